@@ -1,0 +1,70 @@
+# The README's two commands are `make run` and `make test`; the rest are their parts.
+SHELL := /bin/bash
+VENV := .venv
+PY := $(VENV)/bin/python
+PORT ?= 8000
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+.PHONY: bench run test install install-python install-node install-chromium build schema schema-check \
+        lint format pytest e2e demo serve clean
+
+run: install build demo serve
+
+test: install install-chromium schema-check lint pytest build e2e
+
+install: install-python install-node
+
+install-python: $(VENV)/.installed
+$(VENV)/.installed: pyproject.toml
+	test -x $(PY) || python3 -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e ".[dev]"
+	touch $@
+
+install-node: node_modules/.package-lock.json
+node_modules/.package-lock.json: package.json package-lock.json frontend/package.json e2e_tests/package.json shared_schema/package.json
+	npm ci --no-audit --no-fund
+
+# Browser tests use Debian's Chromium; never a test tool's own browser download.
+install-chromium:
+	@command -v chromium >/dev/null || { $(SUDO) apt-get update -qq && $(SUDO) apt-get install -y -qq chromium; }
+
+build: install-node
+	npm run build
+
+schema: install
+	$(PY) -m holiscene_schema.export
+	npm run generate
+
+schema-check:
+	$(PY) -m holiscene_schema.export --check
+	npm run -s -w shared_schema check
+
+lint:
+	$(VENV)/bin/ruff check backend shared_schema benchmarks
+	$(VENV)/bin/ruff format --check backend shared_schema benchmarks
+	$(VENV)/bin/mypy
+	npm run -s lint
+
+format:
+	$(VENV)/bin/ruff check --fix backend shared_schema
+	$(VENV)/bin/ruff format backend shared_schema
+	npm run -s format
+
+pytest:
+	$(VENV)/bin/pytest -q
+
+e2e:
+	cd e2e_tests && ../node_modules/.bin/playwright test
+
+demo:
+	$(VENV)/bin/holiscene demo
+
+serve:
+	$(VENV)/bin/holiscene serve --port $(PORT)
+
+clean:
+	rm -rf $(VENV) node_modules frontend/dist var
+
+bench: install-python
+	$(PY) benchmarks/bench_infer.py

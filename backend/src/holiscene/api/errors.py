@@ -1,0 +1,51 @@
+"""Domain errors -> HTTP answers with a readable `detail`."""
+
+from __future__ import annotations
+
+from fastapi import FastAPI, Request
+from fastapi.exceptions import RequestValidationError
+from fastapi.responses import JSONResponse
+
+from ..editing import InvalidEditError
+from ..inputs import InputError
+from ..pipeline import PipelineBuildError
+from ..store.jobs import JobNotFoundError
+from ..store.scenes import RevisionConflictError, SceneNotFoundError
+
+
+def install_error_handlers(app: FastAPI) -> None:
+    @app.exception_handler(InputError)
+    async def _input(_: Request, exc: InputError) -> JSONResponse:
+        return JSONResponse({"detail": str(exc)}, status_code=exc.status)
+
+    @app.exception_handler(InvalidEditError)
+    async def _edit(_: Request, exc: InvalidEditError) -> JSONResponse:
+        return JSONResponse({"detail": f"invalid edit: {exc}"}, status_code=422)
+
+    @app.exception_handler(SceneNotFoundError)
+    @app.exception_handler(JobNotFoundError)
+    async def _missing(_: Request, exc: LookupError) -> JSONResponse:
+        return JSONResponse(
+            {"detail": str(exc.args[0]) if exc.args else "not found"}, status_code=404
+        )
+
+    @app.exception_handler(RevisionConflictError)
+    async def _conflict(_: Request, exc: RevisionConflictError) -> JSONResponse:
+        detail = {
+            "message": "this scene changed since you loaded it (someone else saved first); "
+            "reload to see their changes, then apply yours again",
+            "current_revision": exc.current_revision,
+        }
+        return JSONResponse({"detail": detail}, status_code=409)
+
+    @app.exception_handler(PipelineBuildError)
+    async def _pipeline(_: Request, exc: PipelineBuildError) -> JSONResponse:
+        return JSONResponse({"detail": str(exc)}, status_code=422)
+
+    @app.exception_handler(RequestValidationError)
+    async def _validation(_: Request, exc: RequestValidationError) -> JSONResponse:
+        parts = []
+        for err in exc.errors():
+            where = ".".join(str(p) for p in err.get("loc", ()) if p != "body")
+            parts.append(f"{where}: {err.get('msg')}" if where else str(err.get("msg")))
+        return JSONResponse({"detail": "; ".join(parts)}, status_code=422)

@@ -1,0 +1,120 @@
+"""Scenes: import, read, edit, history, files."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+from fastapi import APIRouter, File, Form, UploadFile
+from fastapi.responses import FileResponse
+from holiscene_schema import (
+    Conflict,
+    EditRequest,
+    ErrorMessage,
+    ImportResult,
+    Job,
+    RevisionInfo,
+    SceneDocument,
+    SceneSummary,
+)
+
+from ...inputs import InputError, InputFiles, load_photo, parse_detections, parse_intrinsics
+from ...store.scenes import SceneNotFoundError
+from ..deps import WorkbenchDep
+
+router = APIRouter(prefix="/api/scenes", tags=["scenes"])
+
+_ERRORS: dict[int | str, dict[str, object]] = {
+    404: {"model": ErrorMessage},
+    422: {"model": ErrorMessage},
+}
+
+
+async def _read_limited(upload: UploadFile, what: str, limit: int) -> bytes:
+    data = await upload.read(limit + 1)
+    if len(data) > limit:
+        raise InputError(f"{what} is larger than {limit // (1024 * 1024)} MB", 413)
+    return data
+
+
+@router.get("", response_model=list[SceneSummary])
+def list_scenes(workbench: WorkbenchDep) -> list[SceneSummary]:
+    latest = workbench.jobs.latest_for_scenes()
+    summaries = workbench.scenes.list_summaries()
+    return [s.model_copy(update={"latest_job": latest.get(s.id)}) for s in summaries]
+
+
+@router.post(
+    "",
+    status_code=201,
+    response_model=ImportResult,
+    responses={413: {"model": ErrorMessage}, 415: {"model": ErrorMessage}, **_ERRORS},
+)
+async def import_scene(
+    workbench: WorkbenchDep,
+    image: Annotated[UploadFile, File(description="The photo, JPEG or PNG")],
+    cam_k: Annotated[UploadFile | None, File(description="cam_K.txt: 3x3 intrinsics")] = None,
+    detections: Annotated[
+        UploadFile | None, File(description="detections.json: 2D boxes and classes")
+    ] = None,
+    name: Annotated[str | None, Form(max_length=200)] = None,
+    author: Annotated[str, Form(min_length=1, max_length=64)] = "import",
+    run_pipeline: Annotated[bool, Form()] = True,
+) -> ImportResult:
+    limit = workbench.settings.max_upload_mb * 1024 * 1024
+    photo = load_photo(await _read_limited(image, "the photo", limit))
+    K = None
+    if cam_k is not None:
+        raw_k = await _read_limited(cam_k, "cam_K.txt", 64 * 1024)
+        try:
+            K = parse_intrinsics(raw_k.decode())
+        except UnicodeDecodeError as exc:
+            raise InputError("cam_K.txt is not text") from exc
+    boxes = None
+    if detections is not None:
+        raw = await _read_limited(detections, "detections.json", 8 * 1024 * 1024)
+        boxes = parse_detections(raw, photo.width, photo.height)
+    inputs = InputFiles(photo=photo, K=K, detections=boxes)
+    scene_name = (name or "").strip() or (image.filename or "photo").rsplit(".", 1)[0]
+    return workbench.import_scene(inputs, scene_name, author, run_pipeline)
+
+
+@router.get("/{scene_id}", response_model=SceneDocument, responses=_ERRORS)
+def get_scene(scene_id: str, workbench: WorkbenchDep) -> SceneDocument:
+    return workbench.scenes.document(scene_id)
+
+
+@router.get("/{scene_id}/image", responses=_ERRORS)
+def get_image(scene_id: str, workbench: WorkbenchDep) -> FileResponse:
+    return FileResponse(workbench.scenes.image_path(scene_id))
+
+
+@router.get("/{scene_id}/scene.glb", responses=_ERRORS)
+def get_glb(scene_id: str, workbench: WorkbenchDep) -> FileResponse:
+    path = workbench.scenes.glb_path(scene_id)
+    if path is None or not path.is_file():
+        raise SceneNotFoundError(f"scene {scene_id} has no 3D scene yet: run the pipeline")
+    return FileResponse(path, media_type="model/gltf-binary")
+
+
+@router.post("/{scene_id}/pipeline-jobs", status_code=202, response_model=Job, responses=_ERRORS)
+def run_pipeline_job(scene_id: str, workbench: WorkbenchDep) -> Job:
+    return workbench.start_pipeline(scene_id)
+
+
+@router.post(
+    "/{scene_id}/edits",
+    response_model=SceneDocument,
+    responses={409: {"model": Conflict}, **_ERRORS},
+)
+def edit_scene(scene_id: str, request: EditRequest, workbench: WorkbenchDep) -> SceneDocument:
+    return workbench.scenes.apply_edits(scene_id, request)
+
+
+@router.get("/{scene_id}/revisions", response_model=list[RevisionInfo], responses=_ERRORS)
+def list_revisions(scene_id: str, workbench: WorkbenchDep) -> list[RevisionInfo]:
+    return workbench.scenes.revisions(scene_id)
+
+
+@router.get("/{scene_id}/revisions/{number}", response_model=SceneDocument, responses=_ERRORS)
+def get_revision(scene_id: str, number: int, workbench: WorkbenchDep) -> SceneDocument:
+    return workbench.scenes.document(scene_id, number)

@@ -1,0 +1,24 @@
+"""All configuration in one place; every field can be set as HOLISCENE_<NAME> in the environment."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from pydantic_settings import BaseSettings, SettingsConfigDict
+
+REPO_ROOT = Path(__file__).resolve().parents[4]
+
+
+class Settings(BaseSettings):
+    model_config = SettingsConfigDict(env_prefix="HOLISCENE_")
+
+    data_dir: Path = REPO_ROOT / "var" / "data"
+    database_url: str | None = None  # default: SQLite file inside data_dir
+    web_dir: Path = REPO_ROOT / "frontend" / "dist"
+    host: str = "127.0.0.1"
+    port: int = 8000
+    max_upload_mb: int = 50
+
+    @property
+    def resolved_database_url(self) -> str:
+        return self.database_url or f"sqlite:///{self.data_dir / 'holiscene.db'}"

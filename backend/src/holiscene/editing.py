@@ -1,0 +1,89 @@
+"""Applying the app's edits to a scene, and keeping people's supports through pipeline re-runs."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from datetime import datetime
+
+from holiscene_schema import (
+    STRUCTURAL_CLASSES,
+    STRUCTURAL_SUPPORTERS,
+    Edit,
+    RemoveSupport,
+    Scene,
+    SetSupport,
+    SupportRelation,
+    support_graph_problems,
+)
+
+
+class InvalidEditError(ValueError):
+    """An edit that names something that does not exist or breaks the support graph."""
+
+
+def apply_edits(scene: Scene, edits: Sequence[Edit], author: str, now: datetime) -> Scene:
+    """The scene after the edits, in order; raises InvalidEditError and changes nothing if any
+    edit is invalid or the result is not a valid support forest."""
+    objects = {o.id: o for o in scene.objects}
+    supports = {s.child: s for s in scene.supports}
+    for edit in edits:
+        child = objects.get(edit.child)
+        if child is None:
+            raise InvalidEditError(f"no object {edit.child!r} in this scene")
+        if child.cls in STRUCTURAL_CLASSES:
+            raise InvalidEditError(f"{edit.child!r} is a {child.cls}: structure has no supporter")
+        if isinstance(edit, SetSupport):
+            if edit.parent not in objects and edit.parent not in STRUCTURAL_SUPPORTERS:
+                raise InvalidEditError(
+                    f"supporter {edit.parent!r} is neither an object of this scene nor "
+                    "floor, wall or ceiling"
+                )
+            supports[edit.child] = SupportRelation(
+                child=edit.child,
+                parent=edit.parent,
+                type=edit.type,
+                source="manual",
+                confidence=None,
+                author=author,
+                time=now,
+            )
+        elif isinstance(edit, RemoveSupport):
+            if edit.child not in supports:
+                raise InvalidEditError(f"object {edit.child!r} has no supporter to remove")
+            del supports[edit.child]
+    ordered = [supports[o.id] for o in scene.objects if o.id in supports]
+    problems = support_graph_problems(list(objects), [(s.child, s.parent) for s in ordered])
+    if problems:
+        raise InvalidEditError("; ".join(problems))
+    return scene.model_copy(update={"supports": ordered})
+
+
+def describe_edits(edits: Sequence[Edit]) -> str:
+    parts = []
+    for edit in edits:
+        if isinstance(edit, SetSupport):
+            parts.append(f"{edit.child} supported by {edit.parent} ({edit.type})")
+        else:
+            parts.append(f"{edit.child} support removed")
+    return "; ".join(parts)
+
+
+def keep_manual_supports(result: Scene, current: Scene) -> Scene:
+    """`result` (a fresh pipeline run) with every manual support of `current` kept.
+
+    People may edit while a pipeline job runs. Their edges win; an automatic edge that would
+    now close a cycle falls back to the structural supporter of its type.
+    """
+    ids = [o.id for o in result.objects]
+    manual = [s for s in current.supports if s.source == "manual" and s.child in ids]
+    merged = {s.child: s for s in manual}
+    for auto in result.supports:
+        if auto.child in merged:
+            continue
+        edges = [(s.child, s.parent) for s in merged.values()] + [(auto.child, auto.parent)]
+        if support_graph_problems(ids, edges):
+            fallback = "wall" if auto.type == "behind" else "floor"
+            auto = auto.model_copy(update={"parent": fallback, "confidence": None})
+        merged[auto.child] = auto
+    ordered = [merged[i] for i in ids if i in merged]
+    return result.model_copy(update={"supports": ordered})

@@ -1,0 +1,1 @@
+"""Files the pipeline writes for other tools: GLB scenes."""

@@ -1,0 +1,70 @@
+"""One photo through the pipeline: the scene document and its GLB."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from holiscene_schema import ImageInfo, Layout, Scene, SceneObject, SupportRelation
+
+from .geometry.boxes import box_corners
+from .inputs import InputFiles
+from .pipeline import DEFAULT_STAGES, SceneContext, build_pipeline
+from .pipeline.runner import ProgressCallback
+from .rle import encode_mask
+
+LAYOUT_NOT_ESTIMATED = "the room layout is not estimated by this pipeline yet"
+
+
+@dataclass(frozen=True)
+class InferenceResult:
+    scene: Scene
+    glb: bytes | None
+
+
+def infer_scene(
+    inputs: InputFiles,
+    *,
+    name: str,
+    image_file: str,
+    pinned_supports: Sequence[SupportRelation] = (),
+    stages: Sequence[str] = DEFAULT_STAGES,
+    progress: ProgressCallback | None = None,
+) -> InferenceResult:
+    pipeline = build_pipeline(stages)
+    ctx = SceneContext(
+        image=inputs.photo.rgb,
+        given_K=inputs.K,
+        detections=inputs.detections,
+        pinned_supports=list(pinned_supports),
+    )
+    runs = pipeline.run(ctx, progress)
+    scene = Scene(
+        name=name,
+        image=ImageInfo(file=image_file, width=ctx.width, height=ctx.height),
+        camera=ctx.camera,
+        layout=Layout(note=LAYOUT_NOT_ESTIMATED),
+        objects=[_finished_object(ctx, obj) for obj in ctx.objects or []],
+        supports=ctx.supports or [],
+        stages=runs,
+    )
+    return InferenceResult(scene=scene, glb=ctx.scene_glb)
+
+
+def _finished_object(ctx: SceneContext, obj: SceneObject) -> SceneObject:
+    """The object with what the stages computed for it: mask, 3D box and its corners."""
+    mask = (ctx.masks or {}).get(obj.id)
+    box = (ctx.boxes_3d or {}).get(obj.id)
+    corners = None
+    if box is not None:
+        corners = (
+            box_corners(np.array(box.center), np.array(box.size), box.yaw_deg).round(4).tolist()
+        )
+    return obj.model_copy(
+        update={
+            "mask": encode_mask(mask.pixels, mask.source) if mask is not None else None,
+            "box_3d": box,
+            "corners_3d": corners,
+        }
+    )

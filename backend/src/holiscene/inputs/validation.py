@@ -1,0 +1,157 @@
+"""Input checks shared by the CLI and the server. Every failure is an InputError whose message
+says which file is wrong and how, raised before anything is written."""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from holiscene_schema import UnknownClassError, normalise_class_name
+from PIL import Image, UnidentifiedImageError
+
+from ..pipeline.base import Detection
+
+MAX_IMAGE_PIXELS = 40_000_000  # 40 MP: far above any indoor photo we expect, far below a bomb
+BOX_TOLERANCE_PX = 2.0  # boxes may overhang the border by rounding, not more
+_FORMATS = {"JPEG": ".jpg", "PNG": ".png"}
+
+
+class InputError(ValueError):
+    """Bad user input; `status` is the HTTP status the server answers with."""
+
+    def __init__(self, message: str, status: int = 422) -> None:
+        super().__init__(message)
+        self.status = status
+
+
+@dataclass(frozen=True)
+class Photo:
+    rgb: np.ndarray  # (H, W, 3) uint8
+    data: bytes  # the file as given
+    suffix: str  # ".jpg" or ".png"
+
+    @property
+    def width(self) -> int:
+        return int(self.rgb.shape[1])
+
+    @property
+    def height(self) -> int:
+        return int(self.rgb.shape[0])
+
+
+def load_photo(data: bytes, max_pixels: int = MAX_IMAGE_PIXELS) -> Photo:
+    """Decode a JPEG or PNG photo, checking its size from the header before decoding it."""
+    if not data:
+        raise InputError("the photo is empty", 400)
+    try:
+        image = Image.open(io.BytesIO(data))
+    except Image.DecompressionBombError as exc:
+        raise InputError(f"the photo is too large: {exc}", 413) from exc
+    except (UnidentifiedImageError, OSError) as exc:
+        raise InputError("the photo is not a JPEG or PNG image", 415) from exc
+    if image.format not in _FORMATS:
+        raise InputError(f"the photo is a {image.format} image; use JPEG or PNG", 415)
+    width, height = image.size
+    if width * height > max_pixels:
+        raise InputError(
+            f"the photo is too large: {width}x{height} pixels, at most "
+            f"{max_pixels // 1_000_000} MP are accepted",
+            413,
+        )
+    try:
+        image.load()
+        rgb = np.asarray(image.convert("RGB"))
+    except (OSError, SyntaxError, ValueError) as exc:
+        raise InputError(f"the photo cannot be decoded (truncated or corrupt): {exc}") from exc
+    return Photo(rgb=rgb, data=data, suffix=_FORMATS[image.format])
+
+
+def parse_intrinsics(text: str) -> np.ndarray:
+    """cam_K.txt: a 3x3 matrix [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], one row per line."""
+    try:
+        rows = [
+            [float(v) for v in line.split()] for line in text.strip().splitlines() if line.strip()
+        ]
+    except ValueError as exc:
+        raise InputError(f"cam_K.txt must hold numbers only: {exc}") from exc
+    if len(rows) != 3 or any(len(r) != 3 for r in rows):
+        raise InputError("cam_K.txt must hold a 3x3 matrix, one row of 3 numbers per line")
+    K = np.array(rows)
+    if not np.all(np.isfinite(K)):
+        raise InputError("cam_K.txt holds a value that is not finite")
+    if K[0, 0] <= 0 or K[1, 1] <= 0 or not np.allclose(K[2], [0, 0, 1]) or K[1, 0] != 0:
+        raise InputError(
+            "cam_K.txt must be [[fx, s, cx], [0, fy, cy], [0, 0, 1]] with positive focal lengths"
+        )
+    return K
+
+
+def parse_detections(data: bytes, width: int, height: int) -> list[Detection]:
+    """detections.json: [{"bbox": [x1, y1, x2, y2], "class": NAME}, ...] in pixels."""
+    try:
+        items = json.loads(data)
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        raise InputError(f"detections.json is not valid JSON: {exc}") from exc
+    if not isinstance(items, list):
+        raise InputError('detections.json must be a list of {"bbox": [...], "class": ...}')
+    return [_parse_detection(i, item, width, height) for i, item in enumerate(items)]
+
+
+def _parse_detection(index: int, item: Any, width: int, height: int) -> Detection:
+    where = f"detections.json item {index}"
+    if not isinstance(item, dict) or "bbox" not in item or "class" not in item:
+        raise InputError(f"{where} must be an object with 'bbox' and 'class'")
+    bbox, name = item["bbox"], item["class"]
+    if (
+        not isinstance(bbox, list)
+        or len(bbox) != 4
+        or not all(isinstance(v, int | float) and not isinstance(v, bool) for v in bbox)
+        or not all(math.isfinite(v) for v in bbox)
+    ):
+        raise InputError(f"{where}: 'bbox' must be 4 numbers [x1, y1, x2, y2]")
+    x1, y1, x2, y2 = (float(v) for v in bbox)
+    if x2 <= x1 or y2 <= y1:
+        raise InputError(f"{where}: box {bbox} is empty (x2 <= x1 or y2 <= y1)")
+    tol = BOX_TOLERANCE_PX
+    if x1 < -tol or y1 < -tol or x2 > width + tol or y2 > height + tol:
+        raise InputError(f"{where}: box {bbox} lies outside the {width}x{height} image")
+    if not isinstance(name, str):
+        raise InputError(f"{where}: 'class' must be a string")
+    try:
+        cls = normalise_class_name(name)
+    except UnknownClassError as exc:
+        raise InputError(f"{where}: {exc}") from exc
+    clipped = (max(0.0, x1), max(0.0, y1), min(float(width), x2), min(float(height), y2))
+    return Detection(cls=cls, bbox=clipped, source_class=name)
+
+
+@dataclass(frozen=True)
+class InputFiles:
+    """The contents of an input folder, checked."""
+
+    photo: Photo
+    K: np.ndarray | None
+    detections: list[Detection] | None
+
+
+def read_input_folder(folder: Path) -> InputFiles:
+    """Read img.jpg or img.png, and cam_K.txt and detections.json when present."""
+    if not folder.is_dir():
+        raise InputError(f"{folder} is not a folder")
+    images = [folder / n for n in ("img.jpg", "img.jpeg", "img.png") if (folder / n).is_file()]
+    if not images:
+        raise InputError(f"{folder} holds no img.jpg or img.png")
+    photo = load_photo(images[0].read_bytes())
+    k_file, det_file = folder / "cam_K.txt", folder / "detections.json"
+    K = parse_intrinsics(k_file.read_text()) if k_file.is_file() else None
+    detections = (
+        parse_detections(det_file.read_bytes(), photo.width, photo.height)
+        if det_file.is_file()
+        else None
+    )
+    return InputFiles(photo=photo, K=K, detections=detections)

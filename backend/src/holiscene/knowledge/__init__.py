@@ -1,0 +1,1 @@
+"""Hand-written priors about indoor scenes (until learned ones replace them)."""

@@ -1,0 +1,16 @@
+"""The scene pipeline: typed stages composed by name (see DESIGN.md, "Data flow")."""
+
+from .base import PipelineBuildError, SceneContext, Stage, StageFailedError
+from .registry import registered_stages
+from .runner import DEFAULT_STAGES, Pipeline, build_pipeline
+
+__all__ = [
+    "DEFAULT_STAGES",
+    "Pipeline",
+    "PipelineBuildError",
+    "SceneContext",
+    "Stage",
+    "StageFailedError",
+    "build_pipeline",
+    "registered_stages",
+]

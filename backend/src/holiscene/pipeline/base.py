@@ -1,0 +1,101 @@
+"""Stages and the typed context they read and write.
+
+A stage declares the context slots it requires and the ones it provides. The pipeline
+builder checks the chain before anything runs, so a pipeline with an unmet input fails when
+it is built, never halfway through a photo.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import dataclass, field, fields
+from typing import Any, ClassVar, TypeVar
+
+import numpy as np
+from holiscene_schema import Box3D, Camera, SceneObject, SupportRelation
+
+from ..geometry.camera import FloatArray
+from ..rle import MaskSource
+
+T = TypeVar("T")
+
+
+@dataclass
+class Detection:
+    """One input 2D box with its NYU-40 class (and the name it was imported under)."""
+
+    cls: str
+    bbox: tuple[float, float, float, float]
+    source_class: str | None = None
+
+
+@dataclass(frozen=True)
+class ObjectMask:
+    pixels: np.ndarray  # bool (H, W), full image
+    source: MaskSource
+
+
+@dataclass
+class SceneContext:
+    """Everything a pipeline knows about one photo; stages fill the slots they provide.
+
+    Input slots (always present, possibly empty): image, given_K, detections, pinned_supports.
+    """
+
+    image: np.ndarray  # RGB uint8, (H, W, 3)
+    given_K: FloatArray | None = None
+    detections: list[Detection] | None = None
+    # Supports set by people; stages that infer supports must keep them as they are.
+    pinned_supports: list[SupportRelation] = field(default_factory=list)
+
+    objects: list[SceneObject] | None = None
+    intrinsics: tuple[FloatArray, str] | None = None  # K and its source
+    masks: dict[str, ObjectMask] | None = None  # by object id
+    camera: Camera | None = None
+    supports: list[SupportRelation] | None = None
+    boxes_3d: dict[str, Box3D | None] | None = None
+    scene_glb: bytes | None = None
+    notes: dict[str, str] = field(default_factory=dict)  # stage name -> what it could not do
+
+    @property
+    def height(self) -> int:
+        return int(self.image.shape[0])
+
+    @property
+    def width(self) -> int:
+        return int(self.image.shape[1])
+
+
+INPUT_SLOTS: frozenset[str] = frozenset({"image", "given_K", "detections", "pinned_supports"})
+SLOTS: frozenset[str] = frozenset(f.name for f in fields(SceneContext)) - {"notes"}
+
+
+def required(value: T | None, slot: str) -> T:
+    """The value of a slot a stage declared it requires (the builder guarantees it is set)."""
+    if value is None:
+        raise StageFailedError(f"slot {slot!r} is empty although the pipeline requires it")
+    return value
+
+
+class PipelineBuildError(ValueError):
+    """The requested stages cannot form a pipeline (unknown name, unmet input, bad option)."""
+
+
+class StageFailedError(RuntimeError):
+    """A stage could not compute its outputs from this input."""
+
+
+class Stage(ABC):
+    """One step of the pipeline; subclasses register themselves with `@register_stage`."""
+
+    name: ClassVar[str]
+    requires: ClassVar[frozenset[str]]
+    provides: ClassVar[frozenset[str]]
+
+    def __init__(self, **options: Any) -> None:
+        if options:
+            raise PipelineBuildError(f"stage {self.name!r} takes no options, got {sorted(options)}")
+
+    @abstractmethod
+    def run(self, ctx: SceneContext) -> None:
+        """Read the required slots of `ctx` and set the provided ones."""

@@ -1,0 +1,59 @@
+"""A pipeline: stages run in order on one context, timed, with progress reported."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
+
+from holiscene_schema import StageRun
+
+from .base import SceneContext, Stage
+from .registry import build_stages
+
+# The stages of `holiscene infer` and of the server's pipeline jobs, in order.
+DEFAULT_STAGES: tuple[str, ...] = (
+    "objects_from_detections",
+    "intrinsics",
+    "masks_from_boxes",
+    "camera_from_vertical_lines",
+    "supports_from_priors",
+    "boxes_on_supporters",
+    "scene_mesh",
+)
+
+ProgressCallback = Callable[[str, float], None]
+
+
+class Pipeline:
+    def __init__(self, stages: Sequence[Stage]) -> None:
+        self.stages = list(stages)
+
+    @property
+    def names(self) -> list[str]:
+        return [s.name for s in self.stages]
+
+    def run(self, ctx: SceneContext, progress: ProgressCallback | None = None) -> list[StageRun]:
+        """Run every stage; `progress(stage_name, fraction_done)` is called before each one."""
+        runs: list[StageRun] = []
+        for index, stage in enumerate(self.stages):
+            if progress:
+                progress(stage.name, index / len(self.stages))
+            start = time.perf_counter()
+            stage.run(ctx)
+            runs.append(
+                StageRun(
+                    name=stage.name,
+                    seconds=round(time.perf_counter() - start, 4),
+                    note=ctx.notes.get(stage.name),
+                )
+            )
+        if progress:
+            progress("done", 1.0)
+        return runs
+
+
+def build_pipeline(
+    names: Sequence[str] = DEFAULT_STAGES, options: Mapping[str, Mapping[str, Any]] | None = None
+) -> Pipeline:
+    return Pipeline(build_stages(names, options))

@@ -1,0 +1,124 @@
+"""3D boxes of objects standing on the floor or on another object, from where they touch it.
+
+For an object supported from below, the bottom edge of its 2D box is where it meets its
+supporter's top surface: the ray through that edge, cut with the supporter's plane, gives
+its position and width; the top edge gives its height; the depth comes from its class's
+typical proportions. Boxes face the camera (yaw along the viewing ray). Objects on walls need
+the room layout, which this pipeline does not estimate yet: their box stays null.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from holiscene_schema import Box3D, SceneObject, SupportRelation
+
+from ...geometry.camera import FloatArray, PinholeCamera
+from ...knowledge.object_sizes import typical_size
+from ..base import SceneContext, Stage, required
+from ..registry import register_stage
+
+MAX_DISTANCE_M = 30.0
+
+
+def _hit_plane(camera: PinholeCamera, pixels: FloatArray, plane_y: float) -> FloatArray | None:
+    """World points where rays through pixels meet the horizontal plane y = plane_y."""
+    rays = camera.ray(pixels)
+    if np.any(rays[:, 1] * plane_y <= 1e-9):  # parallel, or the plane is behind the ray
+        return None
+    hits: FloatArray = rays * (plane_y / rays[:, 1])[:, None]
+    if np.any(np.linalg.norm(hits, axis=1) > MAX_DISTANCE_M):
+        return None
+    return hits
+
+
+def _height_above(camera: PinholeCamera, base: FloatArray, top_pixel: FloatArray) -> float:
+    """Height above `base` of the point on the vertical through `base` seen at `top_pixel`."""
+    ray = camera.ray(top_pixel)[0]
+    up = np.array([0.0, 1.0, 0.0])
+    # Closest points of the line s * ray and the line base + h * up.
+    a = np.array([[ray @ ray, -(ray @ up)], [ray @ up, -(up @ up)]])
+    rhs = np.array([ray @ base, up @ base])
+    _, h = np.linalg.solve(a, rhs)
+    return float(h)
+
+
+def box_on_plane(camera: PinholeCamera, obj: SceneObject, plane_y: float) -> Box3D | None:
+    x1, y1, x2, y2 = obj.bbox
+    xc = (x1 + x2) / 2.0
+    hits = _hit_plane(camera, np.array([[x1, y2], [xc, y2], [x2, y2]]), plane_y)
+    if hits is None:
+        return None
+    left, centre, right = hits
+    width = float(np.linalg.norm(right - left))
+    height = _height_above(camera, centre, np.array([[xc, y1]]))
+    typical_depth, typical_height, typical_width = typical_size(obj.cls)
+    if not 0.02 < height < 4.0:
+        height = typical_height
+    depth = float(np.clip(width * typical_depth / typical_width, 0.05, 3.0))
+    heading = np.array([centre[0], 0.0, centre[2]])
+    heading /= max(float(np.linalg.norm(heading)), 1e-9)
+    middle = centre + heading * depth / 2.0 + np.array([0.0, height / 2.0, 0.0])
+    yaw = math.degrees(math.atan2(heading[2], -heading[0]))  # the box's front faces the camera
+    return Box3D(
+        center=[round(float(v), 4) for v in middle],
+        size=[round(depth, 4), round(height, 4), round(width, 4)],
+        yaw_deg=round(yaw, 3),
+    )
+
+
+@register_stage
+class BoxesOnSupporters(Stage):
+    name = "boxes_on_supporters"
+    requires = frozenset({"objects", "camera", "supports"})
+    provides = frozenset({"boxes_3d"})
+
+    def run(self, ctx: SceneContext) -> None:
+        objects = required(ctx.objects, "objects")
+        cam = required(ctx.camera, "camera")
+        boxes: dict[str, Box3D | None] = {o.id: None for o in objects}
+        ctx.boxes_3d = boxes
+        if cam.pitch_deg is None or cam.roll_deg is None or cam.height_m is None:
+            ctx.notes[self.name] = "camera pitch and roll unknown: no 3D boxes"
+            return
+        camera = PinholeCamera(np.array(cam.K), cam.pitch_deg, cam.roll_deg)
+        by_id = {o.id: o for o in objects}
+        support_of = {s.child: s for s in required(ctx.supports, "supports")}
+        for obj in _floor_first(objects, support_of):
+            plane_y = _resting_plane(support_of.get(obj.id), boxes, -cam.height_m)
+            if plane_y is not None:
+                boxes[obj.id] = box_on_plane(camera, by_id[obj.id], plane_y)
+        missing = sum(box is None for box in boxes.values())
+        if missing:
+            ctx.notes[self.name] = (
+                f"{missing} object(s) without a 3D box (on walls, or their supporter has none)"
+            )
+
+
+def _resting_plane(
+    support: SupportRelation | None, boxes: dict[str, Box3D | None], floor_y: float
+) -> float | None:
+    if support is None or support.type != "below":
+        return None
+    if support.parent == "floor":
+        return floor_y
+    parent_box = boxes.get(support.parent)
+    if parent_box is None:
+        return None
+    return parent_box.center[1] + parent_box.size[1] / 2.0
+
+
+def _floor_first(
+    objects: list[SceneObject], support_of: dict[str, SupportRelation]
+) -> list[SceneObject]:
+    """Objects ordered so that every supporter comes before what it supports."""
+
+    def depth(obj_id: str) -> int:
+        steps = 0
+        while obj_id in support_of and steps <= len(objects):
+            obj_id = support_of[obj_id].parent
+            steps += 1
+        return steps
+
+    return sorted(objects, key=lambda o: depth(o.id))

@@ -1,0 +1,1 @@
+"""Scenes, their revisions and pipeline jobs, in the database and the data directory."""

@@ -1,0 +1,278 @@
+"""Scenes and their revision history.
+
+Every write names the revision it was based on. The write is one transaction whose
+conditional UPDATE moves `current_revision` only if it still equals that base, so of two
+writers on the same base exactly one wins and the other gets a RevisionConflictError.
+"""
+
+from __future__ import annotations
+
+import json
+import uuid
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from holiscene_schema import (
+    Edit,
+    EditRequest,
+    Job,
+    RevisionInfo,
+    RevisionKind,
+    Scene,
+    SceneDocument,
+    SceneSummary,
+)
+from pydantic import TypeAdapter
+from sqlalchemy import Engine, select, update
+from sqlalchemy.orm import Session
+
+from ..editing import apply_edits, describe_edits, keep_manual_supports
+from ..inputs import InputFiles
+from .clock import as_utc, utcnow
+from .files import SceneFiles
+from .tables import RevisionRow, SceneRow
+
+_EDITS = TypeAdapter(list[Edit])
+
+
+class SceneNotFoundError(LookupError):
+    pass
+
+
+class RevisionConflictError(Exception):
+    def __init__(self, current_revision: int) -> None:
+        super().__init__(f"the scene is at revision {current_revision}")
+        self.current_revision = current_revision
+
+
+class SceneStore:
+    def __init__(self, engine: Engine, files: SceneFiles) -> None:
+        self.engine = engine
+        self.files = files
+
+    # -- reading -------------------------------------------------------------------------
+
+    def list_summaries(self) -> list[SceneSummary]:
+        with Session(self.engine) as session:
+            rows = session.scalars(select(SceneRow).order_by(SceneRow.created_at.desc())).all()
+            return [self._summary(row) for row in rows]
+
+    def summary(self, scene_id: str, latest_job: Job | None = None) -> SceneSummary:
+        with Session(self.engine) as session:
+            return self._summary(self._row(session, scene_id), latest_job)
+
+    def document(self, scene_id: str, revision: int | None = None) -> SceneDocument:
+        with Session(self.engine) as session:
+            row = self._row(session, scene_id)
+            number = revision if revision is not None else row.current_revision
+            rev = session.scalar(
+                select(RevisionRow).where(
+                    RevisionRow.scene_id == scene_id, RevisionRow.number == number
+                )
+            )
+            if rev is None:
+                raise SceneNotFoundError(f"scene {scene_id} has no revision {number}")
+            return SceneDocument(
+                scene_id=scene_id,
+                revision=number,
+                updated_at=as_utc(rev.created_at),
+                scene=Scene.model_validate(rev.scene),
+            )
+
+    def revisions(self, scene_id: str) -> list[RevisionInfo]:
+        with Session(self.engine) as session:
+            self._row(session, scene_id)
+            rows = session.scalars(
+                select(RevisionRow)
+                .where(RevisionRow.scene_id == scene_id)
+                .order_by(RevisionRow.number)
+            ).all()
+            return [
+                RevisionInfo(
+                    number=r.number,
+                    created_at=as_utc(r.created_at),
+                    author=r.author,
+                    kind=r.kind,
+                    summary=r.summary,
+                    edits=_EDITS.validate_python(r.edits) if r.edits is not None else None,
+                )
+                for r in rows
+            ]
+
+    def image_path(self, scene_id: str) -> Path:
+        with Session(self.engine) as session:
+            row = self._row(session, scene_id)
+            return self.files.folder(scene_id) / row.image_file
+
+    def glb_path(self, scene_id: str) -> Path | None:
+        with Session(self.engine) as session:
+            row = self._row(session, scene_id)
+            if row.glb_revision is None:
+                return None
+            return self.files.glb_path(scene_id, row.glb_revision)
+
+    # -- writing -------------------------------------------------------------------------
+
+    def create(self, inputs: InputFiles, scene: Scene, author: str) -> SceneSummary:
+        """Store a new scene: its input files and revision 1 (the import)."""
+        scene_id = uuid.uuid4().hex[:12]
+        now = utcnow()
+        with self.files.new_folder(scene_id) as folder, Session(self.engine) as session:
+            (folder / scene.image.file).write_bytes(inputs.photo.data)
+            if inputs.K is not None:
+                rows = "\n".join(" ".join(f"{v:.6f}" for v in row) for row in inputs.K)
+                (folder / "cam_K.txt").write_text(rows + "\n")
+            if inputs.detections is not None:
+                boxes = [
+                    {"bbox": list(d.bbox), "class": d.source_class or d.cls}
+                    for d in inputs.detections
+                ]
+                (folder / "detections.json").write_text(json.dumps(boxes, indent=1))
+            session.add(
+                SceneRow(
+                    id=scene_id,
+                    name=scene.name,
+                    created_at=now,
+                    updated_at=now,
+                    current_revision=1,
+                    image_file=scene.image.file,
+                    width=scene.image.width,
+                    height=scene.image.height,
+                    object_count=len(scene.objects),
+                    glb_revision=None,
+                )
+            )
+            session.flush()
+            self._add_revision(session, scene_id, 1, author, "import", "imported", None, scene)
+            session.commit()
+        return self.summary(scene_id)
+
+    def apply_edits(self, scene_id: str, request: EditRequest) -> SceneDocument:
+        """A new revision with the edits; raises RevisionConflictError on a stale base,
+        InvalidEditError (from editing) on a bad edit. Nothing is written on error."""
+        base = self._document_for_write(scene_id, request.base_revision)
+        now = utcnow()
+        edited = apply_edits(base.scene, request.edits, request.author, now)
+        self._commit_revision(
+            scene_id,
+            request.base_revision,
+            edited,
+            author=request.author,
+            kind="edit",
+            summary=describe_edits(request.edits),
+            edits=request.edits,
+        )
+        return self.document(scene_id)
+
+    def commit_pipeline_result(
+        self, scene_id: str, result: Scene, glb: bytes | None, attempts: int = 5
+    ) -> int:
+        """Store a pipeline run as a new revision on top of whatever is current, keeping every
+        manual support people set meanwhile. Returns the new revision number."""
+        for _ in range(attempts):
+            current = self.document(scene_id)
+            merged = keep_manual_supports(result, current.scene)
+            new_revision = current.revision + 1
+            if glb is not None:
+                self.files.write_atomic(self.files.glb_path(scene_id, new_revision), glb)
+            try:
+                self._commit_revision(
+                    scene_id,
+                    current.revision,
+                    merged,
+                    author="pipeline",
+                    kind="pipeline",
+                    summary=f"pipeline: {', '.join(s.name for s in result.stages)}",
+                    edits=None,
+                    glb_revision=new_revision if glb is not None else None,
+                )
+                return new_revision
+            except RevisionConflictError:
+                continue  # an edit landed meanwhile: merge again on top of it
+        raise RevisionConflictError(self.document(scene_id).revision)
+
+    # -- helpers -------------------------------------------------------------------------
+
+    def _document_for_write(self, scene_id: str, base_revision: int) -> SceneDocument:
+        current = self.document(scene_id)
+        if current.revision != base_revision:
+            raise RevisionConflictError(current.revision)
+        return current
+
+    def _commit_revision(
+        self,
+        scene_id: str,
+        base_revision: int,
+        scene: Scene,
+        *,
+        author: str,
+        kind: RevisionKind,
+        summary: str,
+        edits: Sequence[Edit] | None,
+        glb_revision: int | None = None,
+    ) -> None:
+        new_revision = base_revision + 1
+        values: dict[str, Any] = {
+            "current_revision": new_revision,
+            "updated_at": utcnow(),
+            "object_count": len(scene.objects),
+        }
+        if glb_revision is not None:
+            values["glb_revision"] = glb_revision
+        with Session(self.engine) as session:
+            moved = session.execute(
+                update(SceneRow)
+                .where(SceneRow.id == scene_id, SceneRow.current_revision == base_revision)
+                .values(**values)
+            )
+            if moved.rowcount != 1:  # type: ignore[attr-defined]
+                session.rollback()
+                raise RevisionConflictError(self._row(session, scene_id).current_revision)
+            self._add_revision(session, scene_id, new_revision, author, kind, summary, edits, scene)
+            session.commit()
+
+    @staticmethod
+    def _add_revision(
+        session: Session,
+        scene_id: str,
+        number: int,
+        author: str,
+        kind: RevisionKind,
+        summary: str,
+        edits: Sequence[Edit] | None,
+        scene: Scene,
+    ) -> None:
+        session.add(
+            RevisionRow(
+                scene_id=scene_id,
+                number=number,
+                created_at=utcnow(),
+                author=author,
+                kind=kind,
+                summary=summary,
+                edits=_EDITS.dump_python(list(edits), mode="json") if edits is not None else None,
+                scene=scene.model_dump(mode="json"),
+            )
+        )
+
+    @staticmethod
+    def _row(session: Session, scene_id: str) -> SceneRow:
+        row = session.get(SceneRow, scene_id)
+        if row is None:
+            raise SceneNotFoundError(f"no scene {scene_id!r}")
+        return row
+
+    @staticmethod
+    def _summary(row: SceneRow, latest_job: Job | None = None) -> SceneSummary:
+        return SceneSummary(
+            id=row.id,
+            name=row.name,
+            revision=row.current_revision,
+            created_at=as_utc(row.created_at),
+            updated_at=as_utc(row.updated_at),
+            width=row.width,
+            height=row.height,
+            object_count=row.object_count,
+            latest_job=latest_job,
+        )

@@ -1,0 +1,97 @@
+"""The application's use cases, shared by the HTTP API and the CLI: import a photo, run the
+pipeline on a scene as a background job, and read jobs. No HTTP here."""
+
+from __future__ import annotations
+
+import logging
+import traceback
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+from holiscene_schema import ImageInfo, ImportResult, Job, Scene
+
+from .core.db import make_engine, migrate
+from .core.settings import Settings
+from .inference import infer_scene
+from .inputs import InputFiles, read_input_folder
+from .pipeline.stages.detections import objects_from_detections
+from .store.files import SceneFiles
+from .store.jobs import JobStore
+from .store.scenes import SceneStore
+
+log = logging.getLogger(__name__)
+
+
+class Workbench:
+    def __init__(self, settings: Settings) -> None:
+        settings.data_dir.mkdir(parents=True, exist_ok=True)
+        self.settings = settings
+        self.engine = make_engine(settings.resolved_database_url)
+        migrate(self.engine)
+        self.scenes = SceneStore(self.engine, SceneFiles(settings.data_dir))
+        self.jobs = JobStore(self.engine)
+        # One worker: the pipeline uses both cores through numpy/OpenCV already.
+        self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="pipeline")
+
+    def recover_after_restart(self) -> None:
+        count = self.jobs.fail_unfinished(
+            "the server stopped before this job finished; run it again"
+        )
+        if count:
+            log.warning("marked %d unfinished job(s) failed after restart", count)
+
+    def close(self) -> None:
+        self._executor.shutdown(wait=True, cancel_futures=True)
+        self.engine.dispose()
+
+    # -- use cases ---------------------------------------------------------------------
+
+    def import_scene(
+        self, inputs: InputFiles, name: str, author: str, run_pipeline: bool = True
+    ) -> ImportResult:
+        summary = self.scenes.create(inputs, imported_scene(inputs, name), author)
+        job = self.start_pipeline(summary.id) if run_pipeline else None
+        return ImportResult(scene=self.scenes.summary(summary.id, job), job=job)
+
+    def start_pipeline(self, scene_id: str) -> Job:
+        revision = self.scenes.summary(scene_id).revision
+        job = self.jobs.create(scene_id, revision)
+        self._executor.submit(self.run_job, job.id)
+        return job
+
+    def run_job(self, job_id: str) -> None:
+        """Run a queued pipeline job to its end; every failure is recorded on the job."""
+        job = self.jobs.get(job_id)
+        try:
+            folder = self.scenes.files.folder(job.scene_id)
+            current = self.scenes.document(job.scene_id)
+            result = infer_scene(
+                read_input_folder(folder),
+                name=current.scene.name,
+                image_file=current.scene.image.file,
+                pinned_supports=[s for s in current.scene.supports if s.source == "manual"],
+                progress=lambda stage, fraction: self.jobs.progress(job_id, stage, fraction),
+            )
+            revision = self.scenes.commit_pipeline_result(job.scene_id, result.scene, result.glb)
+            notes = [f"{s.name}: {s.note}" for s in result.scene.stages if s.note]
+            self.jobs.succeed(job_id, revision, " | ".join(notes) or "done")
+        except Exception as exc:
+            log.exception("pipeline job %s failed", job_id)
+            self.jobs.fail(job_id, f"{type(exc).__name__}: {exc}\n{traceback.format_exc(limit=3)}")
+
+    def import_folder(self, folder: Path, name: str | None = None) -> ImportResult:
+        """Import an input folder and run the pipeline on it now (for demo data and scripts)."""
+        result = self.import_scene(read_input_folder(folder), name or folder.name, "import", False)
+        job = self.jobs.create(result.scene.id, result.scene.revision)
+        self.run_job(job.id)
+        finished = self.jobs.get(job.id)
+        return ImportResult(scene=self.scenes.summary(result.scene.id, finished), job=finished)
+
+
+def imported_scene(inputs: InputFiles, name: str) -> Scene:
+    """Revision 1 of a scene: the photo and its boxes as given, nothing inferred yet."""
+    objects = objects_from_detections(inputs.detections or [])
+    image = ImageInfo(
+        file=f"img{inputs.photo.suffix}", width=inputs.photo.width, height=inputs.photo.height
+    )
+    return Scene(name=name, image=image, objects=objects)

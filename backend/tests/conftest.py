@@ -1,0 +1,62 @@
+"""Shared fixtures: the real photos beside the repository, and a server on a temporary store."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+from fastapi.testclient import TestClient
+from holiscene.api.app import create_app
+from holiscene.core.settings import REPO_ROOT, Settings
+
+REAL_PHOTOS = REPO_ROOT.parent / "shared" / "data" / "real"
+
+
+@pytest.fixture(scope="session")
+def real_photos() -> Path:
+    if not (REAL_PHOTOS / "t3d-5" / "img.jpg").is_file():
+        pytest.fail(f"the real test photos are missing: expected them in {REAL_PHOTOS}")
+    return REAL_PHOTOS
+
+
+@pytest.fixture()
+def t3d5(real_photos: Path) -> Path:
+    return real_photos / "t3d-5"
+
+
+@pytest.fixture()
+def settings(tmp_path: Path) -> Settings:
+    return Settings(data_dir=tmp_path / "data", web_dir=tmp_path / "no-web")
+
+
+@pytest.fixture()
+def client(settings: Settings) -> Iterator[TestClient]:
+    with TestClient(create_app(settings)) as test_client:
+        yield test_client
+
+
+def upload(client: TestClient, folder: Path, **form: str) -> dict:  # type: ignore[type-arg]
+    files = {"image": ("img.jpg", (folder / "img.jpg").read_bytes(), "image/jpeg")}
+    if (folder / "cam_K.txt").is_file():
+        files["cam_k"] = ("cam_K.txt", (folder / "cam_K.txt").read_bytes(), "text/plain")
+    if (folder / "detections.json").is_file():
+        files["detections"] = (
+            "detections.json",
+            (folder / "detections.json").read_bytes(),
+            "application/json",
+        )
+    response = client.post("/api/scenes", files=files, data=form)
+    assert response.status_code == 201, response.text
+    return response.json()  # type: ignore[no-any-return]
+
+
+def wait_for_job(client: TestClient, job_id: str, timeout: float = 30.0) -> dict:  # type: ignore[type-arg]
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        job = client.get(f"/api/jobs/{job_id}").json()
+        if job["status"] in ("succeeded", "failed"):
+            return job  # type: ignore[no-any-return]
+        time.sleep(0.05)
+    raise AssertionError(f"job {job_id} did not finish in {timeout} s")

@@ -1,0 +1,123 @@
+"""`holiscene infer` on a real photo, and its refusals of bad input folders."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import trimesh
+from holiscene.cli import main
+from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene
+
+from .bad_inputs import BAD_DETECTIONS, NOT_AN_IMAGE, png_header_only, truncated
+
+
+def test_infer_writes_scene_json_and_glb(t3d5: Path, tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    completed = subprocess.run(
+        [sys.executable, "-m", "holiscene.cli", "infer", str(t3d5), "-o", str(out)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert completed.returncode == 0, completed.stderr
+    data = json.loads((out / "scene.json").read_text())
+    Scene.model_validate(data)
+    detections = json.loads((t3d5 / "detections.json").read_text())
+
+    # objects[i] is detections[i]: same order, none dropped, NYU-40 classes.
+    assert len(data["objects"]) == len(detections)
+    for obj, det in zip(data["objects"], detections, strict=True):
+        assert obj["bbox"] == [float(v) for v in det["bbox"]]
+        assert obj["class"] == det["class"]  # t3d-5's names are NYU-40 already
+        assert obj["corners_3d"] is None or len(obj["corners_3d"]) == 8
+
+    ids = {o["id"] for o in data["objects"]}
+    children = [s["child"] for s in data["supports"]]
+    assert sorted(children) == sorted(ids), "one support per non-structural object"
+    for support in data["supports"]:
+        assert support["parent"] in ids | STRUCTURAL_SUPPORTERS
+        assert support["type"] in ("below", "behind")
+
+    camera = data["camera"]
+    assert camera["K"] == [[529.5, 0.0, 365.0], [0.0, 529.5, 265.0], [0.0, 0.0, 1.0]]
+    assert camera["pitch_deg"] is not None and -10 < camera["pitch_deg"] < 40
+    assert camera["roll_deg"] is not None and abs(camera["roll_deg"]) < 15
+    # The layout is not estimated yet: null, and the scene says so.
+    assert data["layout"]["corners_2d"] is None and data["layout"]["corners_3d"] is None
+    assert data["layout"]["note"]
+
+    loaded = trimesh.load(out / "scene.glb", force="scene")
+    placed = {o["id"] for o in data["objects"] if o["corners_3d"] is not None}
+    assert placed, "floor-standing furniture gets 3D boxes"
+    assert placed <= set(loaded.geometry)
+
+
+def _input_folder(tmp_path: Path, source: Path) -> Path:
+    folder = tmp_path / "input"
+    shutil.copytree(source, folder)
+    return folder
+
+
+@pytest.mark.parametrize(
+    ("image_name", "make_image", "message"),
+    [
+        ("img.jpg", lambda real: NOT_AN_IMAGE, "not a JPEG or PNG"),
+        ("img.jpg", truncated, "cannot be decoded"),
+        ("img.png", lambda real: png_header_only(20000, 20000), "too large"),
+        ("img.png", lambda real: png_header_only(8000, 6000), "8000x6000"),
+    ],
+)
+def test_infer_refuses_bad_photos(
+    t3d5: Path,
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+    image_name,
+    make_image,
+    message,  # type: ignore[no-untyped-def]
+) -> None:
+    folder = _input_folder(tmp_path, t3d5)
+    real = (folder / "img.jpg").read_bytes()
+    (folder / "img.jpg").unlink()
+    (folder / image_name).write_bytes(make_image(real))
+    out = tmp_path / "out"
+    assert main(["infer", str(folder), "-o", str(out)]) == 2
+    assert message in capsys.readouterr().err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("case", sorted(BAD_DETECTIONS))
+def test_infer_refuses_bad_detections(
+    t3d5: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str], case: str
+) -> None:
+    folder = _input_folder(tmp_path, t3d5)
+    data, message = BAD_DETECTIONS[case]
+    (folder / "detections.json").write_bytes(data)
+    out = tmp_path / "out"
+    assert main(["infer", str(folder), "-o", str(out)]) == 2
+    assert message in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_infer_refuses_unknown_stage(
+    t3d5: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["infer", str(t3d5), "-o", str(tmp_path / "o"), "--stages", "intrinsics,nope"]) == 2
+    assert "unknown stage 'nope'" in capsys.readouterr().err
+
+
+def test_infer_without_detections_says_why_there_are_no_objects(t3d5: Path, tmp_path: Path) -> None:
+    folder = _input_folder(tmp_path, t3d5)
+    (folder / "detections.json").unlink()
+    (folder / "cam_K.txt").unlink()
+    out = tmp_path / "out"
+    assert main(["infer", str(folder), "-o", str(out)]) == 0
+    scene = Scene.model_validate_json((out / "scene.json").read_text())
+    assert scene.objects == []
+    assert scene.camera is not None and scene.camera.K_source == "assumed"
+    notes = {s.name: s.note for s in scene.stages}
+    assert notes["objects_from_detections"] and "detector" in notes["objects_from_detections"]

@@ -1,0 +1,60 @@
+"""Pipelines are checked when built; stages keep people's supports."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from holiscene.inference import infer_scene
+from holiscene.inputs import read_input_folder
+from holiscene.knowledge.support_priors import SUPPORT_PRIORS
+from holiscene.pipeline import DEFAULT_STAGES, PipelineBuildError, build_pipeline, registered_stages
+from holiscene_schema import SupportRelation
+
+
+def test_default_pipeline_builds() -> None:
+    assert build_pipeline().names == list(DEFAULT_STAGES)
+
+
+def test_unmet_input_fails_at_build_time() -> None:
+    with pytest.raises(PipelineBuildError, match=r"'boxes_on_supporters' requires \['camera'"):
+        build_pipeline(["objects_from_detections", "supports_from_priors", "boxes_on_supporters"])
+
+
+def test_unknown_stage_and_stray_options_fail_at_build_time() -> None:
+    with pytest.raises(PipelineBuildError, match="unknown stage"):
+        build_pipeline(["objects_from_detections", "grabcut_everything"])
+    with pytest.raises(PipelineBuildError, match="not in the pipeline"):
+        build_pipeline(["objects_from_detections"], {"intrinsics": {}})
+    with pytest.raises(PipelineBuildError, match="takes no options"):
+        build_pipeline(["objects_from_detections"], {"objects_from_detections": {"x": 1}})
+
+
+def test_every_stage_declares_known_slots() -> None:
+    for stage in registered_stages().values():
+        assert stage.requires and stage.provides
+
+
+def test_every_prior_offers_a_structural_supporter() -> None:
+    for cls, priors in SUPPORT_PRIORS.items():
+        assert any(parent in ("floor", "wall") for parent, _, _ in priors), cls
+
+
+def test_pinned_supports_are_kept(t3d5: Path) -> None:
+    pinned = SupportRelation(child="o1", parent="o0", type="behind", source="manual", author="ann")
+    scene = infer_scene(
+        read_input_folder(t3d5), name="x", image_file="img.jpg", pinned_supports=[pinned]
+    ).scene
+    assert next(s for s in scene.supports if s.child == "o1") == pinned
+
+
+def test_real_photos_get_one_supporter_each_and_floor_furniture(real_photos: Path) -> None:
+    floor_classes = {"bed", "sofa", "dresser", "bookshelf", "refrigerator", "table", "desk"}
+    for folder in sorted(real_photos.iterdir()):
+        scene = infer_scene(read_input_folder(folder), name=folder.name, image_file="img.jpg").scene
+        children = [s.child for s in scene.supports]
+        assert sorted(children) == sorted(o.id for o in scene.objects), folder.name
+        by_child = {s.child: s for s in scene.supports}
+        for obj in scene.objects:
+            if obj.cls in floor_classes:
+                assert by_child[obj.id].parent == "floor", (folder.name, obj.id, obj.cls)

@@ -1,0 +1,76 @@
+"""The contract: models round-trip, generated files are fresh, the support graph is checked."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from holiscene.inference import infer_scene
+from holiscene.inputs import read_input_folder
+from holiscene_schema import NYU40_CLASSES, Scene, normalise_class_name, support_graph_problems
+from holiscene_schema.export import SCHEMA_DIR, main, render_schemas
+from jsonschema import Draft202012Validator
+from pydantic import ValidationError
+
+
+@pytest.fixture()
+def scene(t3d5: Path) -> Scene:
+    return infer_scene(read_input_folder(t3d5), name="t3d-5", image_file="img.jpg").scene
+
+
+def test_scene_round_trips_through_json(scene: Scene) -> None:
+    text = scene.model_dump_json()
+    again = Scene.model_validate_json(text)
+    assert again == scene
+    assert json.loads(text)["objects"][0]["class"] == scene.objects[0].cls
+
+
+def test_committed_json_schema_is_fresh() -> None:
+    assert main(["--check"]) == 0, "run `make schema`"
+    for name, text in render_schemas().items():
+        assert (SCHEMA_DIR / name).read_text() == text
+
+
+def test_scene_json_validates_against_committed_schema(scene: Scene) -> None:
+    schema = json.loads((SCHEMA_DIR / "scene.schema.json").read_text())
+    errors = list(Draft202012Validator(schema).iter_errors(scene.model_dump(mode="json")))
+    assert errors == []
+    broken = scene.model_dump(mode="json")
+    broken["supports"][0]["type"] = "above"
+    assert list(Draft202012Validator(schema).iter_errors(broken))
+
+
+def test_scene_rejects_self_support_and_cycles(scene: Scene) -> None:
+    data = scene.model_dump(mode="json")
+    data["supports"][0]["parent"] = data["supports"][0]["child"]
+    with pytest.raises(ValidationError, match="cannot support itself"):
+        Scene.model_validate(data)
+
+
+@pytest.mark.parametrize(
+    ("edges", "expected"),
+    [
+        ([("a", "floor"), ("b", "a")], []),
+        ([("a", "a")], ["cannot support itself"]),
+        ([("a", "b"), ("b", "c"), ("c", "a")], ["support cycle"]),
+        ([("a", "floor"), ("a", "wall")], ["more than one supporter"]),
+        ([("a", "sky")], ["neither an object nor structural"]),
+        ([("z", "floor")], ["unknown object"]),
+    ],
+)
+def test_support_graph_problems(edges: list[tuple[str, str]], expected: list[str]) -> None:
+    problems = support_graph_problems(["a", "b", "c"], edges)
+    assert len(problems) == len(expected)
+    for problem, fragment in zip(problems, expected, strict=True):
+        assert fragment in problem
+
+
+def test_class_names_map_to_nyu40() -> None:
+    assert normalise_class_name("night_stand") == "night_stand"
+    assert normalise_class_name("refridgerator") == "refrigerator"
+    assert normalise_class_name("dresser_mirror") == "mirror"
+    assert normalise_class_name("Night Stand") == "night_stand"
+    assert len(NYU40_CLASSES) == 40
+    with pytest.raises(ValueError, match="unknown class name"):
+        normalise_class_name("spaceship")

@@ -1,0 +1,98 @@
+"""Write the contract's JSON Schema files: `python -m holiscene_schema.export [--check]`.
+
+The TypeScript types are generated from these files by `npm run -w shared_schema generate`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from pydantic import BaseModel, TypeAdapter
+from pydantic.json_schema import models_json_schema
+
+from .api import (
+    Conflict,
+    EditRequest,
+    ErrorMessage,
+    ImportResult,
+    Job,
+    RevisionInfo,
+    SceneDocument,
+    SceneSummary,
+)
+from .classes import NYU40_CLASSES
+from .scene import Scene
+from .support_graph import STRUCTURAL_SUPPORTERS
+
+SCHEMA_DIR = Path(__file__).resolve().parent.parent / "jsonschema"
+
+# One file per top-level message; each is self-contained (its own $defs).
+TOP_LEVEL: dict[str, type[BaseModel]] = {
+    "scene": Scene,
+    "edit_request": EditRequest,
+    "scene_document": SceneDocument,
+    "scene_summary": SceneSummary,
+    "import_result": ImportResult,
+    "revision_info": RevisionInfo,
+    "job": Job,
+    "error_message": ErrorMessage,
+    "conflict": Conflict,
+}
+
+
+def render_schemas() -> dict[str, str]:
+    """File name -> JSON text of every schema, as committed."""
+    out: dict[str, str] = {}
+    for name, model in TOP_LEVEL.items():
+        schema = TypeAdapter(model).json_schema(by_alias=True, mode="serialization")
+        out[f"{name}.schema.json"] = _dump(schema)
+    # Every model in one file, for the TypeScript generator (one declaration per type).
+    _, bundle = models_json_schema(
+        [(model, "serialization") for model in TOP_LEVEL.values()],
+        title="HoliScene contract",
+        ref_template="#/$defs/{model}",
+    )
+    out["contract.schema.json"] = _dump(bundle)
+    out["vocabulary.json"] = _dump(
+        {
+            "nyu40_classes": list(NYU40_CLASSES),
+            "structural_supporters": sorted(STRUCTURAL_SUPPORTERS),
+            "support_types": ["below", "behind"],
+        }
+    )
+    return out
+
+
+def _dump(schema: dict[str, object]) -> str:
+    return json.dumps(schema, indent=2, sort_keys=True) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--check", action="store_true", help="fail if committed files differ")
+    args = parser.parse_args(argv)
+    rendered = render_schemas()
+    stale = [n for n, text in rendered.items() if _read(SCHEMA_DIR / n) != text]
+    extra = sorted({p.name for p in SCHEMA_DIR.glob("*.json")} - set(rendered))
+    if args.check:
+        if stale or extra:
+            print(f"stale JSON Schema files: {stale + extra}; run `make schema`", file=sys.stderr)
+            return 1
+        return 0
+    SCHEMA_DIR.mkdir(parents=True, exist_ok=True)
+    for name in stale:
+        (SCHEMA_DIR / name).write_text(rendered[name])
+    for name in extra:
+        (SCHEMA_DIR / name).unlink()
+    return 0
+
+
+def _read(path: Path) -> str | None:
+    return path.read_text() if path.exists() else None
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

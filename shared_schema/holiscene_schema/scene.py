@@ -1,0 +1,152 @@
+"""The scene: what the pipeline computes from one photo and what annotators correct.
+
+Conventions (see DESIGN.md):
+- World frame: origin at the camera centre, y up, x horizontal forward, z right; metres.
+- A 3D box has a centre, a size along its own axes (x front, y up, z right before yaw) and a
+  yaw in degrees about world +y (right-handed: yaw 90 turns the box's front from +x to -z).
+  `corners_3d` lists the same box as 8 world points in the order of `BOX_CORNER_SIGNS`.
+- Unknown values are null; a note says why.
+"""
+
+from __future__ import annotations
+
+from datetime import datetime
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from .classes import Nyu40Class
+from .support_graph import support_graph_problems
+
+Point2 = Annotated[list[float], Field(min_length=2, max_length=2)]
+Point3 = Annotated[list[float], Field(min_length=3, max_length=3)]
+Matrix3 = Annotated[list[Point3], Field(min_length=3, max_length=3)]
+BoxCorners = Annotated[list[Point3], Field(min_length=8, max_length=8)]
+Box2D = Annotated[list[float], Field(min_length=4, max_length=4, description="[x1, y1, x2, y2]")]
+
+# Corner order of every 3D box: (sign of local x, y, z) half-sizes; bottom face then top face.
+BOX_CORNER_SIGNS: tuple[tuple[int, int, int], ...] = (
+    (-1, -1, -1), (1, -1, -1), (1, -1, 1), (-1, -1, 1),
+    (-1, 1, -1), (1, 1, -1), (1, 1, 1), (-1, 1, 1),
+)  # fmt: skip
+
+SupportType = Literal["below", "behind"]
+StructuralParent = Literal["floor", "wall", "ceiling"]
+
+
+class SchemaModel(BaseModel):
+    """Base of every contract model: strict field names, aliases used on the wire."""
+
+    model_config = ConfigDict(
+        extra="forbid", validate_by_name=True, validate_by_alias=True, serialize_by_alias=True
+    )
+
+
+class ImageInfo(SchemaModel):
+    file: str = Field(description="File name of the photo, relative to the scene's folder")
+    width: int = Field(gt=0)
+    height: int = Field(gt=0)
+
+
+class Camera(SchemaModel):
+    K: Matrix3 = Field(description="3x3 intrinsics, pixels")
+    K_source: Literal["given", "assumed", "estimated"]
+    pitch_deg: float | None = Field(
+        description="Angle of the optical axis below the horizon (positive looking down)"
+    )
+    roll_deg: float | None = Field(
+        description="Rotation about the optical axis (positive: camera turned clockwise as "
+        "seen from behind it, so the scene appears turned counter-clockwise)"
+    )
+    height_m: float | None = Field(default=None, description="Camera centre above the floor")
+    height_source: Literal["prior", "estimated", "manual"] | None = None
+    note: str | None = None
+
+
+class Layout(SchemaModel):
+    corners_2d: Annotated[list[Point2], Field(min_length=8, max_length=8)] | None = Field(
+        default=None, description="Room cuboid corners in the image, order of corners_3d"
+    )
+    corners_3d: BoxCorners | None = None
+    source: Literal["estimated", "manual"] | None = None
+    note: str | None = None
+
+
+class Mask(SchemaModel):
+    """A binary mask inside a window of the image, run-length encoded row by row.
+
+    `rle` alternates runs of 0 and 1 pixels, starting with a (possibly empty) run of 0.
+    """
+
+    origin: Annotated[list[int], Field(min_length=2, max_length=2)] = Field(
+        description="[x, y] of the window's top-left pixel"
+    )
+    size: Annotated[list[int], Field(min_length=2, max_length=2)] = Field(
+        description="[width, height] of the window"
+    )
+    rle: list[Annotated[int, Field(ge=0)]]
+    source: Literal["given", "box", "grabcut", "model"]
+
+    @model_validator(mode="after")
+    def _runs_fill_window(self) -> Mask:
+        if sum(self.rle) != self.size[0] * self.size[1]:
+            raise ValueError("mask runs do not add up to the window's pixel count")
+        return self
+
+
+class Box3D(SchemaModel):
+    center: Point3
+    size: Point3 = Field(description="Extent along the box's own x (front), y (up), z axes")
+    yaw_deg: float
+
+
+class SceneObject(SchemaModel):
+    id: str = Field(min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_-]+$")
+    cls: Nyu40Class = Field(alias="class")
+    source_class: str | None = Field(
+        default=None, description="The class name as imported, before mapping to NYU-40"
+    )
+    bbox: Box2D
+    mask: Mask | None = None
+    box_3d: Box3D | None = None
+    corners_3d: BoxCorners | None = None
+    note: str | None = None
+
+
+class SupportRelation(SchemaModel):
+    child: str
+    parent: str = Field(description="An object id, or 'floor', 'wall' or 'ceiling'")
+    type: SupportType
+    source: Literal["auto", "manual"]
+    confidence: float | None = Field(default=None, ge=0.0, le=1.0)
+    author: str | None = None
+    time: datetime | None = None
+
+
+class StageRun(SchemaModel):
+    name: str
+    seconds: float = Field(ge=0.0)
+    note: str | None = None
+
+
+class Scene(SchemaModel):
+    schema_version: Literal[1] = 1
+    name: str
+    image: ImageInfo
+    camera: Camera | None = None
+    layout: Layout = Field(default_factory=Layout)
+    objects: list[SceneObject] = Field(default_factory=list)
+    supports: list[SupportRelation] = Field(default_factory=list)
+    stages: list[StageRun] = Field(
+        default_factory=list, description="Pipeline stages that produced this scene"
+    )
+
+    @model_validator(mode="after")
+    def _consistent(self) -> Scene:
+        ids = [o.id for o in self.objects]
+        if len(set(ids)) != len(ids):
+            raise ValueError("object ids must be unique")
+        problems = support_graph_problems(ids, [(s.child, s.parent) for s in self.supports])
+        if problems:
+            raise ValueError("; ".join(problems))
+        return self

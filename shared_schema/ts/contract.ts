@@ -1,0 +1,311 @@
+// Generated from shared_schema/jsonschema/contract.schema.json by ts/generate.mjs.
+// Do not edit: change the pydantic models and run `make schema`.
+
+export interface HoliSceneContract {
+Box3D?: Box3D
+Camera?: Camera
+Conflict?: Conflict
+ConflictDetail?: ConflictDetail
+EditRequest?: EditRequest
+ErrorMessage?: ErrorMessage
+ImageInfo?: ImageInfo
+ImportResult?: ImportResult
+Job?: Job
+Layout?: Layout
+Mask?: Mask
+RemoveSupport?: RemoveSupport
+RevisionInfo?: RevisionInfo
+Scene?: Scene
+SceneDocument?: SceneDocument
+SceneObject?: SceneObject
+SceneSummary?: SceneSummary
+SetSupport?: SetSupport
+StageRun?: StageRun
+SupportRelation?: SupportRelation
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "Box3D".
+ */
+export interface Box3D {
+/**
+ * @minItems 3
+ * @maxItems 3
+ */
+center: [number, number, number]
+/**
+ * Extent along the box's own x (front), y (up), z axes
+ * 
+ * @minItems 3
+ * @maxItems 3
+ */
+size: [number, number, number]
+yaw_deg: number
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "Camera".
+ */
+export interface Camera {
+/**
+ * 3x3 intrinsics, pixels
+ * 
+ * @minItems 3
+ * @maxItems 3
+ */
+K: [[number, number, number], [number, number, number], [number, number, number]]
+K_source: ("given" | "assumed" | "estimated")
+/**
+ * Camera centre above the floor
+ */
+height_m?: (number | null)
+height_source?: (("prior" | "estimated" | "manual") | null)
+note?: (string | null)
+/**
+ * Angle of the optical axis below the horizon (positive looking down)
+ */
+pitch_deg: (number | null)
+/**
+ * Rotation about the optical axis (positive: camera turned clockwise as seen from behind it, so the scene appears turned counter-clockwise)
+ */
+roll_deg: (number | null)
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "Conflict".
+ */
+export interface Conflict {
+detail: ConflictDetail
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "ConflictDetail".
+ */
+export interface ConflictDetail {
+current_revision: number
+message: string
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "EditRequest".
+ */
+export interface EditRequest {
+author: string
+/**
+ * The revision the edits were made on
+ */
+base_revision: number
+/**
+ * @minItems 1
+ * @maxItems 500
+ */
+edits: [(SetSupport | RemoveSupport), ...((SetSupport | RemoveSupport))[]]
+}
+/**
+ * Make `parent` the supporter of `child` (replacing any supporter it had).
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SetSupport".
+ */
+export interface SetSupport {
+child: string
+kind?: "set_support"
+parent: string
+type: ("below" | "behind")
+}
+/**
+ * Leave `child` without a supporter (it is then flagged for labelling).
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "RemoveSupport".
+ */
+export interface RemoveSupport {
+child: string
+kind?: "remove_support"
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "ErrorMessage".
+ */
+export interface ErrorMessage {
+detail: string
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "ImageInfo".
+ */
+export interface ImageInfo {
+/**
+ * File name of the photo, relative to the scene's folder
+ */
+file: string
+height: number
+width: number
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "ImportResult".
+ */
+export interface ImportResult {
+job: (Job | null)
+scene: SceneSummary
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "Job".
+ */
+export interface Job {
+base_revision: number
+created_at: string
+error?: (string | null)
+finished_at?: (string | null)
+id: string
+kind: "pipeline"
+message?: (string | null)
+progress: number
+result_revision?: (number | null)
+scene_id: string
+stage?: (string | null)
+status: ("queued" | "running" | "succeeded" | "failed")
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SceneSummary".
+ */
+export interface SceneSummary {
+created_at: string
+height: number
+id: string
+latest_job?: (Job | null)
+name: string
+object_count: number
+revision: number
+updated_at: string
+width: number
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "Layout".
+ */
+export interface Layout {
+/**
+ * Room cuboid corners in the image, order of corners_3d
+ */
+corners_2d?: ([[number, number], [number, number], [number, number], [number, number], [number, number], [number, number], [number, number], [number, number]] | null)
+corners_3d?: ([[number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number]] | null)
+note?: (string | null)
+source?: (("estimated" | "manual") | null)
+}
+/**
+ * A binary mask inside a window of the image, run-length encoded row by row.
+ * 
+ * `rle` alternates runs of 0 and 1 pixels, starting with a (possibly empty) run of 0.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "Mask".
+ */
+export interface Mask {
+/**
+ * [x, y] of the window's top-left pixel
+ * 
+ * @minItems 2
+ * @maxItems 2
+ */
+origin: [number, number]
+rle: number[]
+/**
+ * [width, height] of the window
+ * 
+ * @minItems 2
+ * @maxItems 2
+ */
+size: [number, number]
+source: ("given" | "box" | "grabcut" | "model")
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "RevisionInfo".
+ */
+export interface RevisionInfo {
+author: string
+created_at: string
+edits?: ((SetSupport | RemoveSupport)[] | null)
+kind: ("import" | "pipeline" | "edit")
+number: number
+summary: string
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "Scene".
+ */
+export interface Scene {
+camera?: (Camera | null)
+image: ImageInfo
+layout?: Layout
+name: string
+objects?: SceneObject[]
+schema_version?: 1
+/**
+ * Pipeline stages that produced this scene
+ */
+stages?: StageRun[]
+supports?: SupportRelation[]
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SceneObject".
+ */
+export interface SceneObject {
+/**
+ * [x1, y1, x2, y2]
+ * 
+ * @minItems 4
+ * @maxItems 4
+ */
+bbox: [number, number, number, number]
+box_3d?: (Box3D | null)
+class: ("wall" | "floor" | "cabinet" | "bed" | "chair" | "sofa" | "table" | "door" | "window" | "bookshelf" | "picture" | "counter" | "blinds" | "desk" | "shelves" | "curtain" | "dresser" | "pillow" | "mirror" | "floor_mat" | "clothes" | "ceiling" | "books" | "refrigerator" | "television" | "paper" | "towel" | "shower_curtain" | "box" | "whiteboard" | "person" | "night_stand" | "toilet" | "sink" | "lamp" | "bathtub" | "bag" | "otherstructure" | "otherfurniture" | "otherprop")
+corners_3d?: ([[number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number]] | null)
+id: string
+mask?: (Mask | null)
+note?: (string | null)
+/**
+ * The class name as imported, before mapping to NYU-40
+ */
+source_class?: (string | null)
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "StageRun".
+ */
+export interface StageRun {
+name: string
+note?: (string | null)
+seconds: number
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SupportRelation".
+ */
+export interface SupportRelation {
+author?: (string | null)
+child: string
+confidence?: (number | null)
+/**
+ * An object id, or 'floor', 'wall' or 'ceiling'
+ */
+parent: string
+source: ("auto" | "manual")
+time?: (string | null)
+type: ("below" | "behind")
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SceneDocument".
+ */
+export interface SceneDocument {
+revision: number
+scene: Scene
+scene_id: string
+updated_at: string
+}
