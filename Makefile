@@ -23,7 +23,8 @@ $(VENV)/.installed: pyproject.toml
 
 install-node: node_modules/.package-lock.json
 node_modules/.package-lock.json: package.json package-lock.json frontend/package.json e2e_tests/package.json shared_schema/package.json
-	npm ci --no-audit --no-fund
+	npm install --no-audit --no-fund
+	touch $@
 
 # Browser tests use Debian's Chromium; never a test tool's own browser download.
 install-chromium:
@@ -32,7 +33,7 @@ install-chromium:
 build: install-node
 	npm run build
 
-schema: install
+schema:
 	$(PY) -m holiscene_schema.export
 	npm run generate
 

@@ -9,7 +9,6 @@ from __future__ import annotations
 import statistics
 import sys
 import time
-from pathlib import Path
 
 from holiscene.core.settings import REPO_ROOT
 from holiscene.inference import infer_scene
@@ -23,9 +22,8 @@ def main() -> int:
     if not folders:
         print(f"no photos in {PHOTOS}", file=sys.stderr)
         return 1
-    print(
-        f"{'photo':8s} {'size':>8s} {'objects':>7s} {'seconds':>8s} {'pitch':>7s} {'roll':>7s} {'3D boxes':>8s}"
-    )
+    columns = ("photo", "size", "objects", "seconds", "pitch", "roll", "3D boxes")
+    print("{:8s} {:>8s} {:>7s} {:>8s} {:>7s} {:>7s} {:>8s}".format(*columns))
     times = []
     for folder in folders:
         start = time.perf_counter()
@@ -38,9 +36,9 @@ def main() -> int:
         roll = f"{camera.roll_deg:.1f}" if camera and camera.roll_deg is not None else "-"
         placed = sum(o.box_3d is not None for o in scene.objects)
         size = f"{scene.image.width}x{scene.image.height}"
-        print(
-            f"{folder.name:8s} {size:>8s} {len(scene.objects):7d} {seconds:8.3f} {pitch:>7s} {roll:>7s} {placed:>4d}/{len(scene.objects):<3d}"
-        )
+        boxes = f"{placed}/{len(scene.objects)}"
+        row = (folder.name, size, len(scene.objects), seconds, pitch, roll, boxes)
+        print("{:8s} {:>8s} {:7d} {:8.3f} {:>7s} {:>7s} {:>8s}".format(*row))
     print(
         f"photos={len(times)} mean={statistics.mean(times):.3f}s "
         f"max={max(times):.3f}s (holiscene infer, {len(times)} real photos, 2-core machine)"

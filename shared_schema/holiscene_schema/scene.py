@@ -38,7 +38,13 @@ class SchemaModel(BaseModel):
     """Base of every contract model: strict field names, aliases used on the wire."""
 
     model_config = ConfigDict(
-        extra="forbid", validate_by_name=True, validate_by_alias=True, serialize_by_alias=True
+        extra="forbid",
+        validate_by_name=True,
+        validate_by_alias=True,
+        serialize_by_alias=True,
+        # Fields with defaults are always present in what we send, so generated types
+        # mark them required (e.g. an edit's `kind`, which tells edit types apart).
+        json_schema_serialization_defaults_required=True,
     )
 
 
@@ -59,16 +65,18 @@ class Camera(SchemaModel):
         "seen from behind it, so the scene appears turned counter-clockwise)"
     )
     height_m: float | None = Field(default=None, description="Camera centre above the floor")
-    height_source: Literal["prior", "estimated", "manual"] | None = None
+    height_source: Literal["prior", "estimated", "manual", "ground_truth"] | None = None
     note: str | None = None
 
 
 class Layout(SchemaModel):
-    corners_2d: Annotated[list[Point2], Field(min_length=8, max_length=8)] | None = Field(
-        default=None, description="Room cuboid corners in the image, order of corners_3d"
+    corners_2d: Annotated[list[Point2 | None], Field(min_length=8, max_length=8)] | None = Field(
+        default=None,
+        description="Room cuboid corners in the image, order of corners_3d; null for a corner "
+        "behind the camera (it has no image point)",
     )
     corners_3d: BoxCorners | None = None
-    source: Literal["estimated", "manual"] | None = None
+    source: Literal["estimated", "manual", "ground_truth"] | None = None
     note: str | None = None
 
 
@@ -85,7 +93,7 @@ class Mask(SchemaModel):
         description="[width, height] of the window"
     )
     rle: list[Annotated[int, Field(ge=0)]]
-    source: Literal["given", "box", "grabcut", "model"]
+    source: Literal["given", "box", "grabcut", "model", "ground_truth"]
 
     @model_validator(mode="after")
     def _runs_fill_window(self) -> Mask:
@@ -100,6 +108,20 @@ class Box3D(SchemaModel):
     yaw_deg: float
 
 
+class MeshRef(SchemaModel):
+    """Where an object's mesh comes from: the built-in library (class + seed) or a file."""
+
+    library: Literal["builtin", "user"]
+    cls: str = Field(alias="class")
+    seed: int | None = None
+    file: str | None = None
+
+
+class DepthRef(SchemaModel):
+    file: str = Field(description="16-bit PNG beside the scene file; 0 = no depth")
+    metres_per_unit: float = Field(gt=0)
+
+
 class SceneObject(SchemaModel):
     id: str = Field(min_length=1, max_length=64, pattern=r"^[A-Za-z0-9_-]+$")
     cls: Nyu40Class = Field(alias="class")
@@ -110,6 +132,8 @@ class SceneObject(SchemaModel):
     mask: Mask | None = None
     box_3d: Box3D | None = None
     corners_3d: BoxCorners | None = None
+    mesh: MeshRef | None = None
+    score: float | None = Field(default=None, ge=0.0, le=1.0, description="Detection confidence")
     note: str | None = None
 
 
@@ -135,6 +159,7 @@ class Scene(SchemaModel):
     image: ImageInfo
     camera: Camera | None = None
     layout: Layout = Field(default_factory=Layout)
+    depth: DepthRef | None = Field(default=None, description="Depth along the optical axis")
     objects: list[SceneObject] = Field(default_factory=list)
     supports: list[SupportRelation] = Field(default_factory=list)
     stages: list[StageRun] = Field(

@@ -6,6 +6,7 @@ Box3D?: Box3D
 Camera?: Camera
 Conflict?: Conflict
 ConflictDetail?: ConflictDetail
+DepthRef?: DepthRef
 EditRequest?: EditRequest
 ErrorMessage?: ErrorMessage
 ImageInfo?: ImageInfo
@@ -13,6 +14,7 @@ ImportResult?: ImportResult
 Job?: Job
 Layout?: Layout
 Mask?: Mask
+MeshRef?: MeshRef
 RemoveSupport?: RemoveSupport
 RevisionInfo?: RevisionInfo
 Scene?: Scene
@@ -58,9 +60,9 @@ K_source: ("given" | "assumed" | "estimated")
 /**
  * Camera centre above the floor
  */
-height_m?: (number | null)
-height_source?: (("prior" | "estimated" | "manual") | null)
-note?: (string | null)
+height_m: (number | null)
+height_source: (("prior" | "estimated" | "manual" | "ground_truth") | null)
+note: (string | null)
 /**
  * Angle of the optical axis below the horizon (positive looking down)
  */
@@ -87,6 +89,17 @@ message: string
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "DepthRef".
+ */
+export interface DepthRef {
+/**
+ * 16-bit PNG beside the scene file; 0 = no depth
+ */
+file: string
+metres_per_unit: number
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "EditRequest".
  */
 export interface EditRequest {
@@ -109,7 +122,7 @@ edits: [(SetSupport | RemoveSupport), ...((SetSupport | RemoveSupport))[]]
  */
 export interface SetSupport {
 child: string
-kind?: "set_support"
+kind: "set_support"
 parent: string
 type: ("below" | "behind")
 }
@@ -121,7 +134,7 @@ type: ("below" | "behind")
  */
 export interface RemoveSupport {
 child: string
-kind?: "remove_support"
+kind: "remove_support"
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -157,15 +170,15 @@ scene: SceneSummary
 export interface Job {
 base_revision: number
 created_at: string
-error?: (string | null)
-finished_at?: (string | null)
+error: (string | null)
+finished_at: (string | null)
 id: string
 kind: "pipeline"
-message?: (string | null)
+message: (string | null)
 progress: number
-result_revision?: (number | null)
+result_revision: (number | null)
 scene_id: string
-stage?: (string | null)
+stage: (string | null)
 status: ("queued" | "running" | "succeeded" | "failed")
 }
 /**
@@ -176,7 +189,7 @@ export interface SceneSummary {
 created_at: string
 height: number
 id: string
-latest_job?: (Job | null)
+latest_job: (Job | null)
 name: string
 object_count: number
 revision: number
@@ -189,12 +202,12 @@ width: number
  */
 export interface Layout {
 /**
- * Room cuboid corners in the image, order of corners_3d
+ * Room cuboid corners in the image, order of corners_3d; null for a corner behind the camera (it has no image point)
  */
-corners_2d?: ([[number, number], [number, number], [number, number], [number, number], [number, number], [number, number], [number, number], [number, number]] | null)
-corners_3d?: ([[number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number]] | null)
-note?: (string | null)
-source?: (("estimated" | "manual") | null)
+corners_2d: ([([number, number] | null), ([number, number] | null), ([number, number] | null), ([number, number] | null), ([number, number] | null), ([number, number] | null), ([number, number] | null), ([number, number] | null)] | null)
+corners_3d: ([[number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number]] | null)
+note: (string | null)
+source: (("estimated" | "manual" | "ground_truth") | null)
 }
 /**
  * A binary mask inside a window of the image, run-length encoded row by row.
@@ -220,7 +233,19 @@ rle: number[]
  * @maxItems 2
  */
 size: [number, number]
-source: ("given" | "box" | "grabcut" | "model")
+source: ("given" | "box" | "grabcut" | "model" | "ground_truth")
+}
+/**
+ * Where an object's mesh comes from: the built-in library (class + seed) or a file.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "MeshRef".
+ */
+export interface MeshRef {
+class: string
+file: (string | null)
+library: ("builtin" | "user")
+seed: (number | null)
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -229,7 +254,7 @@ source: ("given" | "box" | "grabcut" | "model")
 export interface RevisionInfo {
 author: string
 created_at: string
-edits?: ((SetSupport | RemoveSupport)[] | null)
+edits: ((SetSupport | RemoveSupport)[] | null)
 kind: ("import" | "pipeline" | "edit")
 number: number
 summary: string
@@ -239,17 +264,21 @@ summary: string
  * via the `definition` "Scene".
  */
 export interface Scene {
-camera?: (Camera | null)
+camera: (Camera | null)
+/**
+ * Depth along the optical axis
+ */
+depth: (DepthRef | null)
 image: ImageInfo
-layout?: Layout
+layout: Layout
 name: string
-objects?: SceneObject[]
-schema_version?: 1
+objects: SceneObject[]
+schema_version: 1
 /**
  * Pipeline stages that produced this scene
  */
-stages?: StageRun[]
-supports?: SupportRelation[]
+stages: StageRun[]
+supports: SupportRelation[]
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -263,16 +292,21 @@ export interface SceneObject {
  * @maxItems 4
  */
 bbox: [number, number, number, number]
-box_3d?: (Box3D | null)
+box_3d: (Box3D | null)
 class: ("wall" | "floor" | "cabinet" | "bed" | "chair" | "sofa" | "table" | "door" | "window" | "bookshelf" | "picture" | "counter" | "blinds" | "desk" | "shelves" | "curtain" | "dresser" | "pillow" | "mirror" | "floor_mat" | "clothes" | "ceiling" | "books" | "refrigerator" | "television" | "paper" | "towel" | "shower_curtain" | "box" | "whiteboard" | "person" | "night_stand" | "toilet" | "sink" | "lamp" | "bathtub" | "bag" | "otherstructure" | "otherfurniture" | "otherprop")
-corners_3d?: ([[number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number]] | null)
+corners_3d: ([[number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number]] | null)
 id: string
-mask?: (Mask | null)
-note?: (string | null)
+mask: (Mask | null)
+mesh: (MeshRef | null)
+note: (string | null)
+/**
+ * Detection confidence
+ */
+score: (number | null)
 /**
  * The class name as imported, before mapping to NYU-40
  */
-source_class?: (string | null)
+source_class: (string | null)
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -280,7 +314,7 @@ source_class?: (string | null)
  */
 export interface StageRun {
 name: string
-note?: (string | null)
+note: (string | null)
 seconds: number
 }
 /**
@@ -288,15 +322,15 @@ seconds: number
  * via the `definition` "SupportRelation".
  */
 export interface SupportRelation {
-author?: (string | null)
+author: (string | null)
 child: string
-confidence?: (number | null)
+confidence: (number | null)
 /**
  * An object id, or 'floor', 'wall' or 'ceiling'
  */
 parent: string
 source: ("auto" | "manual")
-time?: (string | null)
+time: (string | null)
 type: ("below" | "behind")
 }
 /**

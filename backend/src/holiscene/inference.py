@@ -66,5 +66,6 @@ def _finished_object(ctx: SceneContext, obj: SceneObject) -> SceneObject:
             "mask": encode_mask(mask.pixels, mask.source) if mask is not None else None,
             "box_3d": box,
             "corners_3d": corners,
+            "note": ctx.object_notes.get(obj.id, obj.note),
         }
     )

@@ -53,10 +53,9 @@ class PinholeCamera:
     def ray(self, pixels: FloatArray) -> FloatArray:
         """Unit world directions of the rays through pixels (N, 2)."""
         pts = np.atleast_2d(np.asarray(pixels, dtype=float))
-        homog = np.column_stack([pts, np.ones(len(pts))])
-        d_cv = np.linalg.solve(self.K, homog.T).T
-        d_world = d_cv @ self.world_from_cv.T
-        result: FloatArray = d_world / np.linalg.norm(d_world, axis=1, keepdims=True)
+        to_world = self.world_from_cv @ np.linalg.inv(self.K)
+        d_world = pts @ to_world[:, :2].T + to_world[:, 2]
+        result: FloatArray = d_world / np.sqrt(np.einsum("ij,ij->i", d_world, d_world))[:, None]
         return result
 
     def project(self, points: FloatArray) -> FloatArray:

@@ -56,6 +56,7 @@ class SceneContext:
     boxes_3d: dict[str, Box3D | None] | None = None
     scene_glb: bytes | None = None
     notes: dict[str, str] = field(default_factory=dict)  # stage name -> what it could not do
+    object_notes: dict[str, str] = field(default_factory=dict)  # object id -> why a value is null
 
     @property
     def height(self) -> int:
@@ -67,7 +68,7 @@ class SceneContext:
 
 
 INPUT_SLOTS: frozenset[str] = frozenset({"image", "given_K", "detections", "pinned_supports"})
-SLOTS: frozenset[str] = frozenset(f.name for f in fields(SceneContext)) - {"notes"}
+SLOTS: frozenset[str] = frozenset(f.name for f in fields(SceneContext)) - {"notes", "object_notes"}
 
 
 def required(value: T | None, slot: str) -> T:

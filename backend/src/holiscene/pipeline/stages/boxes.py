@@ -86,9 +86,16 @@ class BoxesOnSupporters(Stage):
         by_id = {o.id: o for o in objects}
         support_of = {s.child: s for s in required(ctx.supports, "supports")}
         for obj in _floor_first(objects, support_of):
-            plane_y = _resting_plane(support_of.get(obj.id), boxes, -cam.height_m)
-            if plane_y is not None:
-                boxes[obj.id] = box_on_plane(camera, by_id[obj.id], plane_y)
+            support = support_of.get(obj.id)
+            plane_y = _resting_plane(support, boxes, -cam.height_m)
+            if plane_y is None:
+                ctx.object_notes[obj.id] = _why_no_plane(support)
+                continue
+            boxes[obj.id] = box_on_plane(camera, by_id[obj.id], plane_y)
+            if boxes[obj.id] is None:
+                ctx.object_notes[obj.id] = (
+                    "no 3D box: its bottom edge does not meet the supporting plane in view"
+                )
         missing = sum(box is None for box in boxes.values())
         if missing:
             ctx.notes[self.name] = (
@@ -107,6 +114,14 @@ def _resting_plane(
     if parent_box is None:
         return None
     return parent_box.center[1] + parent_box.size[1] / 2.0
+
+
+def _why_no_plane(support: SupportRelation | None) -> str:
+    if support is None:
+        return "no 3D box: the object has no supporter"
+    if support.type == "behind":
+        return "no 3D box: objects supported from behind need the room layout (not estimated yet)"
+    return f"no 3D box: its supporter {support.parent} has none"
 
 
 def _floor_first(

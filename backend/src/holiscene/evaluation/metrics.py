@@ -1,0 +1,189 @@
+"""The thesis's metrics on pairs of (predicted, ground-truth) scenes.
+
+- Support accuracy at object level: supporter and type both right (thesis Table 4.2), plus the
+  two parts on their own ("per question": which supporter, which type).
+- Layout 3D IoU of the room cuboids (Total3DUnderstanding's layout metric).
+- Camera pitch and roll mean absolute error in degrees.
+- 3D detection average precision at 3D IoU 0.15 per class and its mean (VOC all-point AP).
+- 2D mask IoU per ground-truth object.
+A prediction that lacks a value scores as wrong (IoU 0, support missing) and is counted, never
+silently skipped.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene
+
+from ..rle import decode_mask
+from .box_iou import iou_3d
+from .matching import match_objects
+
+AP_IOU = 0.15
+SUPPORT_TYPES = ("below", "behind", "none")
+
+
+@dataclass
+class Evaluation:
+    scenes: int = 0
+    support_total: int = 0
+    support_both: int = 0
+    support_parent: int = 0
+    support_type: int = 0
+    support_confusion: dict[str, dict[str, int]] = field(
+        default_factory=lambda: {t: dict.fromkeys(SUPPORT_TYPES, 0) for t in SUPPORT_TYPES}
+    )
+    pitch_errors: list[float] = field(default_factory=list)
+    roll_errors: list[float] = field(default_factory=list)
+    camera_missing: int = 0
+    layout_ious: list[float] = field(default_factory=list)
+    layout_missing: int = 0
+    mask_ious: list[float] = field(default_factory=list)
+    # class -> list of (score, is_true_positive) and the count of ground-truth boxes
+    detections: dict[str, list[tuple[float, bool]]] = field(
+        default_factory=lambda: defaultdict(list)
+    )
+    gt_boxes: dict[str, int] = field(default_factory=lambda: defaultdict(int))
+
+    def add(self, predicted: Scene, truth: Scene) -> None:
+        self.scenes += 1
+        matched = match_objects(predicted.objects, truth.objects)
+        self._add_supports(predicted, truth, matched)
+        self._add_camera(predicted, truth)
+        self._add_layout(predicted, truth)
+        self._add_masks(predicted, truth, matched)
+        self._add_detections(predicted, truth)
+
+    def _add_supports(self, predicted: Scene, truth: Scene, matched: dict[str, str]) -> None:
+        pred_support = {s.child: s for s in predicted.supports}
+        pred_to_gt = {p: g for g, p in matched.items()}
+        for gt in truth.supports:
+            self.support_total += 1
+            pred = pred_support.get(matched.get(gt.child, ""))
+            pred_type = pred.type if pred else "none"
+            self.support_confusion[gt.type][pred_type] += 1
+            if pred is None:
+                continue
+            parent = (
+                pred.parent if pred.parent in STRUCTURAL_SUPPORTERS else pred_to_gt.get(pred.parent)
+            )
+            parent_ok = parent == gt.parent
+            type_ok = pred.type == gt.type
+            self.support_parent += parent_ok
+            self.support_type += type_ok
+            self.support_both += parent_ok and type_ok
+
+    def _add_camera(self, predicted: Scene, truth: Scene) -> None:
+        pc, tc = predicted.camera, truth.camera
+        if tc is None or tc.pitch_deg is None or tc.roll_deg is None:
+            return
+        if pc is None or pc.pitch_deg is None or pc.roll_deg is None:
+            self.camera_missing += 1
+            return
+        self.pitch_errors.append(abs(pc.pitch_deg - tc.pitch_deg))
+        self.roll_errors.append(abs(pc.roll_deg - tc.roll_deg))
+
+    def _add_layout(self, predicted: Scene, truth: Scene) -> None:
+        if truth.layout.corners_3d is None:
+            return
+        if predicted.layout.corners_3d is None:
+            self.layout_missing += 1
+            self.layout_ious.append(0.0)
+            return
+        self.layout_ious.append(
+            iou_3d(np.array(predicted.layout.corners_3d), np.array(truth.layout.corners_3d))
+        )
+
+    def _add_masks(self, predicted: Scene, truth: Scene, matched: dict[str, str]) -> None:
+        pred_by_id = {o.id: o for o in predicted.objects}
+        w, h = truth.image.width, truth.image.height
+        for gt in truth.objects:
+            if gt.mask is None:
+                continue
+            pred = pred_by_id.get(matched.get(gt.id, ""))
+            if pred is None or pred.mask is None:
+                self.mask_ious.append(0.0)
+                continue
+            a, b = decode_mask(gt.mask, w, h), decode_mask(pred.mask, w, h)
+            union = np.logical_or(a, b).sum()
+            self.mask_ious.append(float(np.logical_and(a, b).sum() / union) if union else 0.0)
+
+    def _add_detections(self, predicted: Scene, truth: Scene) -> None:
+        """Greedy VOC matching per class: highest score first, each ground truth used once."""
+        for cls in {o.cls for o in truth.objects} | {o.cls for o in predicted.objects}:
+            gts = [np.array(o.corners_3d) for o in truth.objects if o.cls == cls and o.corners_3d]
+            self.gt_boxes[cls] += len(gts)
+            preds = [o for o in predicted.objects if o.cls == cls and o.corners_3d]
+            preds.sort(key=lambda o: -(o.score if o.score is not None else 1.0))
+            used: set[int] = set()
+            for pred in preds:
+                ious = [iou_3d(np.array(pred.corners_3d), g) for g in gts]
+                best = max(
+                    (i for i in range(len(gts)) if i not in used),
+                    key=lambda i: ious[i],
+                    default=None,
+                )
+                hit = best is not None and ious[best] >= AP_IOU
+                if hit and best is not None:
+                    used.add(best)
+                score = pred.score if pred.score is not None else 1.0
+                self.detections[cls].append((score, hit))
+
+    # -- summaries ---------------------------------------------------------------------
+
+    def average_precision(self) -> dict[str, float]:
+        """AP per class that has ground-truth boxes (all-point interpolated precision)."""
+        result: dict[str, float] = {}
+        for cls, count in sorted(self.gt_boxes.items()):
+            if count == 0:
+                continue
+            ranked = sorted(self.detections.get(cls, []), key=lambda d: -d[0])
+            hits = np.array([hit for _, hit in ranked], dtype=float)
+            if len(hits) == 0:
+                result[cls] = 0.0
+                continue
+            tp = np.cumsum(hits)
+            recall = tp / count
+            precision = tp / np.arange(1, len(hits) + 1)
+            # Precision envelope, then area under the recall steps.
+            envelope = np.maximum.accumulate(precision[::-1])[::-1]
+            recall_steps = np.concatenate([[0.0], recall])
+            result[cls] = float(np.sum((recall_steps[1:] - recall_steps[:-1]) * envelope))
+        return result
+
+    def summary(self) -> dict[str, Any]:
+        ap = self.average_precision()
+
+        def mean(values: list[float]) -> float | None:
+            return float(np.mean(values)) if values else None
+
+        total = max(self.support_total, 1)
+        return {
+            "scenes": self.scenes,
+            "support": {
+                "objects": self.support_total,
+                "accuracy": self.support_both / total if self.support_total else None,
+                "supporter_accuracy": self.support_parent / total if self.support_total else None,
+                "type_accuracy": self.support_type / total if self.support_total else None,
+                "type_confusion": self.support_confusion,
+            },
+            "camera": {
+                "pitch_mae_deg": mean(self.pitch_errors),
+                "roll_mae_deg": mean(self.roll_errors),
+                "scenes_without_estimate": self.camera_missing,
+            },
+            "layout": {
+                "iou_3d": mean(self.layout_ious),
+                "scenes_without_layout": self.layout_missing,
+            },
+            "detection_3d": {
+                "iou_threshold": AP_IOU,
+                "ap_per_class": ap,
+                "map": float(np.mean(list(ap.values()))) if ap else None,
+            },
+            "mask": {"mean_iou": mean(self.mask_ious), "objects": len(self.mask_ious)},
+        }

@@ -1,0 +1,107 @@
+"""Support accuracy, camera errors, AP and mask IoU on small hand-made scenes."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from holiscene.evaluation.metrics import Evaluation
+from holiscene.geometry.boxes import box_corners
+from holiscene.rle import encode_mask
+from holiscene_schema import Camera, ImageInfo, Scene, SceneObject, SupportRelation
+
+IMAGE = ImageInfo(file="img.png", width=20, height=10)
+
+
+def obj(
+    obj_id: str, cls: str, bbox: list[float], center: tuple[float, float, float] | None = None
+) -> SceneObject:
+    mask = np.zeros((10, 20), dtype=bool)
+    x1, y1, x2, y2 = (int(v) for v in bbox)
+    mask[y1:y2, x1:x2] = True
+    corners = None
+    if center is not None:
+        corners = box_corners(np.array(center), np.ones(3), 0.0).tolist()
+    return SceneObject(
+        id=obj_id, cls=cls, bbox=bbox, mask=encode_mask(mask, "given"), corners_3d=corners
+    )  # type: ignore[arg-type]
+
+
+def support(child: str, parent: str, kind: str = "below") -> SupportRelation:
+    return SupportRelation(child=child, parent=parent, type=kind, source="auto")  # type: ignore[arg-type]
+
+
+def camera(pitch: float | None, roll: float | None) -> Camera:
+    return Camera(K=np.eye(3).tolist(), K_source="given", pitch_deg=pitch, roll_deg=roll)
+
+
+@pytest.fixture()
+def truth() -> Scene:
+    return Scene(
+        name="t",
+        image=IMAGE,
+        camera=camera(10.0, 2.0),
+        objects=[
+            obj("t0", "table", [0, 4, 10, 10], (3, 0, 0)),
+            obj("t1", "lamp", [2, 0, 5, 4], (3, 1, 0)),
+            obj("t2", "picture", [12, 1, 18, 5], (5, 1, 2)),
+        ],
+        supports=[support("t0", "floor"), support("t1", "t0"), support("t2", "wall", "behind")],
+    )
+
+
+def test_perfect_prediction_scores_perfectly(truth: Scene) -> None:
+    evaluation = Evaluation()
+    evaluation.add(truth, truth)
+    summary = evaluation.summary()
+    assert summary["support"]["accuracy"] == 1.0
+    assert summary["camera"]["pitch_mae_deg"] == 0.0
+    assert summary["detection_3d"]["map"] == pytest.approx(1.0)
+    assert summary["mask"]["mean_iou"] == 1.0
+
+
+def test_supports_matched_by_boxes_not_ids(truth: Scene) -> None:
+    # Same boxes under other ids and in another order; the lamp's supporter is wrong in type.
+    predicted = Scene(
+        name="p",
+        image=IMAGE,
+        camera=camera(13.0, -1.0),
+        objects=[
+            truth.objects[2].model_copy(update={"id": "a"}),
+            truth.objects[0].model_copy(update={"id": "b"}),
+            truth.objects[1].model_copy(update={"id": "c"}),
+        ],
+        supports=[
+            support("a", "wall", "behind"),
+            support("b", "floor"),
+            support("c", "b", "behind"),
+        ],
+    )
+    evaluation = Evaluation()
+    evaluation.add(predicted, truth)
+    s = evaluation.summary()
+    assert s["support"]["accuracy"] == pytest.approx(2 / 3)
+    assert s["support"]["supporter_accuracy"] == 1.0
+    assert s["support"]["type_accuracy"] == pytest.approx(2 / 3)
+    assert s["support"]["type_confusion"]["below"]["behind"] == 1
+    assert s["camera"]["pitch_mae_deg"] == pytest.approx(3.0)
+    assert s["camera"]["roll_mae_deg"] == pytest.approx(3.0)
+
+
+def test_missing_values_score_as_wrong(truth: Scene) -> None:
+    empty = Scene(name="p", image=IMAGE, camera=camera(None, None))
+    evaluation = Evaluation()
+    evaluation.add(empty, truth)
+    s = evaluation.summary()
+    assert s["support"]["accuracy"] == 0.0
+    assert s["support"]["type_confusion"]["below"]["none"] == 2
+    assert s["camera"]["scenes_without_estimate"] == 1
+    assert s["mask"]["mean_iou"] == 0.0
+    assert s["detection_3d"]["map"] == 0.0
+
+
+def test_average_precision_with_a_false_positive_ranked_first() -> None:
+    evaluation = Evaluation()
+    evaluation.gt_boxes["chair"] = 2
+    # Ranked: false positive, then two hits -> precision 0, 1/2, 2/3 at recall 0, 1/2, 1.
+    evaluation.detections["chair"] = [(0.9, False), (0.8, True), (0.7, True)]
+    assert evaluation.average_precision()["chair"] == pytest.approx(2 / 3)

@@ -1,0 +1,71 @@
+// User story: an annotator imports a photo with its intrinsics and detections, follows the
+// pipeline's progress and opens the new scene.
+import { mkdirSync } from "node:fs";
+import path from "node:path";
+import type { Job, SceneSummary } from "@holiscene/schema";
+import { expect, test } from "@playwright/test";
+import { seedScene, T3D_5 } from "../helpers/api";
+
+test("imports a photo through the form and opens the scene", async ({ page }) => {
+  await page.goto("/#/");
+  await expect(page.getByTestId("upload-form")).toBeVisible();
+  await page.getByTestId("upload-image").setInputFiles(path.join(T3D_5, "img.jpg"));
+  await page.getByTestId("upload-cam_k").setInputFiles(path.join(T3D_5, "cam_K.txt"));
+  await page.getByTestId("upload-detections").setInputFiles(path.join(T3D_5, "detections.json"));
+  await page.getByTestId("upload-name").fill("t3d-5 upload");
+  await page.getByTestId("upload-submit").click();
+
+  await expect(page.getByTestId("upload-job-progress")).toHaveAttribute(
+    "data-status",
+    "succeeded",
+    { timeout: 120_000 },
+  );
+  await expect(page.getByTestId("scene-list")).toContainText("t3d-5 upload");
+  const screenshots = path.resolve(import.meta.dirname, "../screenshots");
+  mkdirSync(screenshots, { recursive: true });
+  await page.screenshot({ path: path.join(screenshots, "scene-list.png"), fullPage: true });
+
+  await page.getByTestId("upload-open").click();
+  await expect(page.getByTestId("scene-title")).toHaveText("t3d-5 upload");
+  await expect(page.getByTestId("mask-layer").locator("[data-testid^='mask-']")).toHaveCount(4);
+  await expect(page.getByTestId("arrow-layer").locator("[data-testid^='arrow-']")).toHaveCount(4);
+});
+
+test("a scene whose pipeline is still running shows progress, then opens", async ({
+  page,
+  request,
+}) => {
+  const seeded = await seedScene(request, T3D_5, "t3d-5 running");
+  const jobs = (await (await request.get("/api/scenes")).json()) as SceneSummary[];
+  const jobId = jobs.find((s) => s.id === seeded.scene_id)?.latest_job?.id;
+  if (!jobId) throw new Error("the seeded scene has no pipeline job");
+
+  // The pipeline on this photo takes well under a second, too quick to watch: the page is
+  // shown the job as still running for its first two looks at it.
+  const running = { status: "running", progress: 0.4, stage: "supports" } as const;
+  await page.route("**/api/scenes", async (route) => {
+    const response = await route.fetch();
+    const scenes = (await response.json()) as SceneSummary[];
+    const json = scenes.map((s) =>
+      s.id === seeded.scene_id && s.latest_job
+        ? { ...s, latest_job: { ...s.latest_job, ...running } }
+        : s,
+    );
+    await route.fulfill({ response, json });
+  });
+  let looks = 0;
+  await page.route(`**/api/jobs/${jobId}`, async (route) => {
+    const response = await route.fetch();
+    const job = (await response.json()) as Job;
+    looks += 1;
+    await route.fulfill({ response, json: looks < 2 ? { ...job, ...running } : job });
+  });
+
+  await page.goto(`/#/scenes/${seeded.scene_id}`);
+  const progress = page.getByTestId("job-progress");
+  await expect(progress).toHaveAttribute("data-status", "running");
+  await expect(progress).toContainText("supports");
+  await expect(page.getByTestId("object-table")).toBeVisible();
+  await expect(progress).toBeHidden();
+  await expect(page.getByTestId("arrow-layer").locator("[data-testid^='arrow-']")).toHaveCount(4);
+});

@@ -1,0 +1,90 @@
+// Typed client of the HoliScene HTTP API (served by `holiscene serve` under /api).
+import type {
+  EditRequest,
+  ImportResult,
+  Job,
+  RevisionInfo,
+  SceneDocument,
+  SceneSummary,
+} from "@holiscene/schema";
+import { ApiError, ConflictError } from "./errors";
+
+const BASE = "/api";
+
+async function readDetail(response: Response): Promise<unknown> {
+  const text = await response.text();
+  try {
+    const body: unknown = JSON.parse(text);
+    return body && typeof body === "object" && "detail" in body
+      ? (body as { detail: unknown }).detail
+      : body;
+  } catch {
+    return text || null;
+  }
+}
+
+async function request<T>(path: string, init: RequestInit = {}): Promise<T> {
+  const response = await fetch(`${BASE}${path}`, {
+    ...init,
+    headers: { Accept: "application/json", ...init.headers },
+  });
+  if (!response.ok) {
+    const detail = await readDetail(response);
+    if (response.status === 409) throw new ConflictError(detail);
+    throw new ApiError(response.status, detail, `${response.status} ${response.statusText}`);
+  }
+  return (await response.json()) as T;
+}
+
+function jsonBody(body: unknown): RequestInit {
+  return {
+    method: "POST",
+    headers: { "Content-Type": "application/json" },
+    body: JSON.stringify(body),
+  };
+}
+
+export interface SceneImport {
+  image: File;
+  camK?: File | null;
+  detections?: File | null;
+  name?: string;
+}
+
+const sceneUrl = (sceneId: string) => `/scenes/${encodeURIComponent(sceneId)}`;
+
+export const api = {
+  listScenes: (signal?: AbortSignal) => request<SceneSummary[]>("/scenes", { signal }),
+
+  importScene(input: SceneImport): Promise<ImportResult> {
+    const form = new FormData();
+    form.append("image", input.image);
+    if (input.camK) form.append("cam_k", input.camK);
+    if (input.detections) form.append("detections", input.detections);
+    if (input.name?.trim()) form.append("name", input.name.trim());
+    return request<ImportResult>("/scenes", { method: "POST", body: form });
+  },
+
+  getScene: (sceneId: string, signal?: AbortSignal) =>
+    request<SceneDocument>(sceneUrl(sceneId), { signal }),
+
+  imageUrl: (sceneId: string) => `${BASE}${sceneUrl(sceneId)}/image`,
+
+  glbUrl: (sceneId: string, revision: number) =>
+    `${BASE}${sceneUrl(sceneId)}/scene.glb?revision=${revision}`,
+
+  startPipeline: (sceneId: string) =>
+    request<Job>(`${sceneUrl(sceneId)}/pipeline-jobs`, { method: "POST" }),
+
+  getJob: (jobId: string, signal?: AbortSignal) =>
+    request<Job>(`/jobs/${encodeURIComponent(jobId)}`, { signal }),
+
+  postEdits: (sceneId: string, body: EditRequest) =>
+    request<SceneDocument>(`${sceneUrl(sceneId)}/edits`, jsonBody(body)),
+
+  listRevisions: (sceneId: string, signal?: AbortSignal) =>
+    request<RevisionInfo[]>(`${sceneUrl(sceneId)}/revisions`, { signal }),
+
+  getRevision: (sceneId: string, revision: number, signal?: AbortSignal) =>
+    request<SceneDocument>(`${sceneUrl(sceneId)}/revisions/${revision}`, { signal }),
+};

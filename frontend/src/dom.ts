@@ -1,0 +1,62 @@
+// Small helpers for building DOM trees without a framework.
+
+type Child = Node | string | null | undefined | false;
+type Listeners = { [K in keyof HTMLElementEventMap]?: (event: HTMLElementEventMap[K]) => void };
+
+export interface ElementProps {
+  className?: string;
+  /** Rendered as `data-testid`, the handle end-to-end tests use. */
+  testid?: string;
+  text?: string;
+  attrs?: Record<string, string | number | boolean | null | undefined>;
+  on?: Listeners;
+}
+
+function setAttrs(node: Element, attrs: ElementProps["attrs"]): void {
+  for (const [name, value] of Object.entries(attrs ?? {})) {
+    if (value === false || value === null || value === undefined) continue;
+    node.setAttribute(name, value === true ? "" : String(value));
+  }
+}
+
+/** Create an HTML element with properties and children. */
+export function el<K extends keyof HTMLElementTagNameMap>(
+  tag: K,
+  props: ElementProps = {},
+  ...children: Child[]
+): HTMLElementTagNameMap[K] {
+  const node = document.createElement(tag);
+  if (props.className) node.className = props.className;
+  if (props.testid) node.dataset.testid = props.testid;
+  if (props.text !== undefined) node.textContent = props.text;
+  setAttrs(node, props.attrs);
+  for (const [type, listener] of Object.entries(props.on ?? {})) {
+    node.addEventListener(type, listener as EventListener);
+  }
+  for (const child of children) {
+    if (child) node.append(child);
+  }
+  return node;
+}
+
+const SVG_NS = "http://www.w3.org/2000/svg";
+
+/** Create an SVG element with attributes. */
+export function svgEl<K extends keyof SVGElementTagNameMap>(
+  tag: K,
+  attrs: Record<string, string | number | undefined> = {},
+  ...children: (SVGElement | string)[]
+): SVGElementTagNameMap[K] {
+  const node = document.createElementNS(SVG_NS, tag);
+  for (const [name, value] of Object.entries(attrs)) {
+    if (value !== undefined) node.setAttribute(name, String(value));
+  }
+  node.append(...children);
+  return node;
+}
+
+/** Format an ISO time as a short local date and time. */
+export function formatTime(iso: string): string {
+  const date = new Date(iso);
+  return Number.isNaN(date.getTime()) ? iso : date.toLocaleString();
+}

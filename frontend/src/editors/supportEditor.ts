@@ -1,0 +1,218 @@
+// The object list: each object's supporter and support type, editable. Edits are staged in
+// the session (shown at once on the photo) and saved together by the save bar.
+import type { SceneObject } from "@holiscene/schema";
+import { STRUCTURAL_SUPPORTERS, SUPPORT_TYPES } from "@holiscene/schema";
+import { el } from "../dom";
+import type { SceneSession } from "../state/sceneSession";
+import {
+  defaultType,
+  isStructural,
+  type ShownSupport,
+  type SupportType,
+  wouldCycle,
+} from "../state/supportGraph";
+import { classCss } from "../views/classColors";
+
+const NONE = "";
+
+interface Row {
+  object: SceneObject;
+  element: HTMLTableRowElement;
+  update(): void;
+}
+
+function supporterOptions(object: SceneObject, objects: readonly SceneObject[]): HTMLElement[] {
+  return [
+    el("option", { text: "— none —", attrs: { value: NONE } }),
+    el(
+      "optgroup",
+      { attrs: { label: "Room" } },
+      ...STRUCTURAL_SUPPORTERS.map((name) => el("option", { text: name, attrs: { value: name } })),
+    ),
+    el(
+      "optgroup",
+      { attrs: { label: "Objects" } },
+      ...objects
+        .filter((other) => other.id !== object.id && !isStructural(other.class))
+        .map((other) =>
+          el("option", { text: `${other.id} · ${other.class}`, attrs: { value: other.id } }),
+        ),
+    ),
+  ];
+}
+
+function statusText(support: ShownSupport | undefined): string {
+  if (!support) return "no supporter";
+  if (support.pending) return "unsaved";
+  const saved = support.saved;
+  if (saved?.source === "manual") return `manual${saved.author ? ` · ${saved.author}` : ""}`;
+  const confidence = saved?.confidence;
+  return typeof confidence === "number" ? `auto · ${Math.round(confidence * 100)}%` : "auto";
+}
+
+function objectRow(object: SceneObject, session: SceneSession): Row {
+  const id = object.id;
+  const supporter = el("select", {
+    testid: `supporter-select-${id}`,
+    attrs: { "aria-label": `Supporter of ${id}` },
+  });
+  supporter.append(...supporterOptions(object, session.objects));
+  const type = el(
+    "select",
+    { testid: `type-select-${id}`, attrs: { "aria-label": `Support type of ${id}` } },
+    ...SUPPORT_TYPES.map((t) => el("option", { text: t, attrs: { value: t } })),
+  );
+  const status = el("span", { className: "badge", testid: `support-status-${id}` });
+  const element = el(
+    "tr",
+    {
+      className: "object-row",
+      testid: `object-row-${id}`,
+      attrs: { "data-object": id },
+      on: {
+        mouseenter: () => session.hover(id),
+        mouseleave: () => session.hover(null),
+        focusin: () => session.select(id),
+      },
+    },
+    el(
+      "th",
+      { attrs: { scope: "row" } },
+      el(
+        "div",
+        { className: "object-name" },
+        el("span", {
+          className: "swatch",
+          attrs: { style: `background:${classCss(object.class)}` },
+        }),
+        el("span", { className: "object-id", text: id }),
+        el("span", { className: "object-class", text: object.class.replaceAll("_", " ") }),
+      ),
+      status,
+    ),
+    el("td", {}, supporter),
+    el("td", {}, type),
+  );
+
+  supporter.addEventListener("change", () => {
+    const parent = supporter.value;
+    if (parent === NONE) {
+      session.stage({ kind: "remove_support", child: id });
+      return;
+    }
+    const current = session.shown().get(id);
+    const keepType = current && defaultType(current.parent) === defaultType(parent);
+    session.stage({
+      kind: "set_support",
+      child: id,
+      parent,
+      type: keepType ? current.type : defaultType(parent),
+    });
+  });
+  type.addEventListener("change", () => {
+    const current = session.shown().get(id);
+    if (!current) return;
+    session.stage({
+      kind: "set_support",
+      child: id,
+      parent: current.parent,
+      type: type.value as SupportType,
+    });
+  });
+
+  const update = () => {
+    const shown = session.shown();
+    const support = shown.get(id);
+    supporter.value = support?.parent ?? NONE;
+    type.value = support?.type ?? defaultType(NONE);
+    type.disabled = !support;
+    for (const option of supporter.querySelectorAll("option")) {
+      const candidate = option.value;
+      const loops =
+        candidate !== NONE && !isStructural(candidate) && wouldCycle(id, candidate, shown);
+      option.disabled = loops && candidate !== support?.parent;
+      option.title = option.disabled ? `${candidate} rests on ${id}` : "";
+    }
+    const pending = session.isPending(id);
+    status.textContent = statusText(support);
+    status.className = `badge${support ? "" : " badge--warn"}${pending ? " badge--pending" : ""}`;
+    element.classList.toggle("is-unsupported", !support);
+    element.classList.toggle("is-pending", pending);
+    element.dataset.unsupported = String(!support);
+    element.classList.toggle("is-hovered", session.hovered === id);
+    element.classList.toggle("is-selected", session.selected === id);
+  };
+  return { object, element, update };
+}
+
+function structureRow(object: SceneObject): HTMLTableRowElement {
+  return el(
+    "tr",
+    { className: "object-row is-structure", testid: `object-row-${object.id}` },
+    el(
+      "th",
+      { attrs: { scope: "row" } },
+      el("span", { className: "object-id", text: object.id }),
+      el("span", { className: "object-class", text: object.class }),
+    ),
+    el("td", { attrs: { colspan: 2 }, text: "room structure (supports, is not supported)" }),
+  );
+}
+
+export function mountSupportEditor(container: HTMLElement, session: SceneSession): () => void {
+  const summary = el("p", { className: "editor-summary", testid: "support-summary" });
+  const body = el("tbody");
+  container.replaceChildren(
+    summary,
+    el(
+      "table",
+      { className: "object-table", testid: "object-table" },
+      el(
+        "thead",
+        {},
+        el(
+          "tr",
+          {},
+          el("th", { text: "Object", attrs: { scope: "col" } }),
+          el("th", { text: "Supported by", attrs: { scope: "col" } }),
+          el("th", { text: "Type", attrs: { scope: "col" } }),
+        ),
+      ),
+      body,
+    ),
+  );
+
+  let rows: Row[] = [];
+  let builtFor = "";
+  const build = () => {
+    const key = session.objects.map((o) => `${o.id}:${o.class}`).join(",");
+    if (key === builtFor) return;
+    builtFor = key;
+    rows = session.objects.filter((o) => !isStructural(o.class)).map((o) => objectRow(o, session));
+    const structure = session.objects.filter((o) => isStructural(o.class)).map(structureRow);
+    body.replaceChildren(...rows.map((r) => r.element), ...structure);
+  };
+  const update = () => {
+    for (const row of rows) row.update();
+    const missing = rows.filter((r) => !session.shown().has(r.object.id)).length;
+    summary.textContent =
+      `${rows.length} objects` +
+      (missing > 0 ? ` · ${missing} without a supporter` : " · all supported");
+    summary.classList.toggle("is-warn", missing > 0);
+  };
+  const scrollToSelected = () => {
+    const row = rows.find((r) => r.object.id === session.selected);
+    if (row && !row.element.contains(document.activeElement)) {
+      row.element.scrollIntoView({ block: "nearest" });
+      row.element.querySelector("select")?.focus({ preventScroll: true });
+    }
+  };
+
+  build();
+  update();
+  return session.subscribe((change) => {
+    if (change === "document") build();
+    if (change === "select") scrollToSelected();
+    update();
+  });
+}

@@ -1,0 +1,31 @@
+// Hash routes: `#/` is the scene list, `#/scenes/{id}` a scene.
+
+export type Route = { page: "list" } | { page: "scene"; sceneId: string } | { page: "unknown" };
+
+export function parseRoute(hash: string): Route {
+  const path = hash.replace(/^#/, "") || "/";
+  if (path === "/") return { page: "list" };
+  const scene = /^\/scenes\/([^/]+)\/?$/.exec(path);
+  if (scene?.[1]) return { page: "scene", sceneId: decodeURIComponent(scene[1]) };
+  return { page: "unknown" };
+}
+
+type LeaveGuard = () => string | null;
+let leaveGuard: LeaveGuard | null = null;
+
+/**
+ * Register what leaving the current page would lose (a message, or null when nothing).
+ * Returns the function that removes the guard.
+ */
+export function setLeaveGuard(guard: LeaveGuard): () => void {
+  leaveGuard = guard;
+  return () => {
+    if (leaveGuard === guard) leaveGuard = null;
+  };
+}
+
+/** Whether to leave the page: yes unless it would lose something and the user says no. */
+export function confirmLeave(): boolean {
+  const message = leaveGuard?.();
+  return !message || window.confirm(message);
+}

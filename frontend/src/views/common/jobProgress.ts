@@ -1,0 +1,43 @@
+// A pipeline job's progress: a bar, the stage and status in words.
+import type { Job } from "@holiscene/schema";
+import { el } from "../../dom";
+
+export function describeJob(job: Job): string {
+  const percent = `${Math.round(job.progress * 100)}%`;
+  switch (job.status) {
+    case "queued":
+      return "Pipeline queued…";
+    case "running":
+      return `Running${job.stage ? ` ${job.stage}` : ""} · ${percent}${job.message ? ` · ${job.message}` : ""}`;
+    case "succeeded":
+      return `Pipeline finished (revision ${job.result_revision ?? "?"})`;
+    case "failed":
+      return `Pipeline failed${job.stage ? ` in ${job.stage}` : ""}: ${job.error ?? "unknown error"}`;
+  }
+}
+
+export interface JobProgress {
+  element: HTMLElement;
+  update(job: Job): void;
+}
+
+export function jobProgress(testid = "job-progress"): JobProgress {
+  const bar = el("progress", { attrs: { max: 1, value: 0 } });
+  const text = el("span", { className: "job-text" });
+  const element = el(
+    "div",
+    { className: "job-progress", testid, attrs: { role: "status", "aria-live": "polite" } },
+    bar,
+    text,
+  );
+  return {
+    element,
+    update(job) {
+      bar.value = job.status === "succeeded" ? 1 : job.progress;
+      if (job.status === "queued") bar.removeAttribute("value");
+      text.textContent = describeJob(job);
+      element.dataset.status = job.status;
+      element.classList.toggle("is-failed", job.status === "failed");
+    },
+  };
+}

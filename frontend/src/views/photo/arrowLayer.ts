@@ -1,0 +1,127 @@
+// Support arrows (red: from below, blue: from behind; dashed: not saved yet), anchors of
+// structural supporters, object labels and flags on objects that have no supporter.
+import type { SceneObject } from "@holiscene/schema";
+import { svgEl } from "../../dom";
+import { isStructural, type ShownSupport } from "../../state/supportGraph";
+import { arrowShape, type Frame, type Point, strokeWidth, structuralAnchor } from "./arrowGeometry";
+import type { Region } from "./maskRaster";
+
+/** Objects that hold others up but are never held up themselves. */
+export const isRoomPart = (object: SceneObject) => isStructural(object.class);
+
+/** Half the width and height of a structural supporter's label. */
+function labelHalf(parent: string, size: number): Point {
+  return [(size * (parent.length * 0.62 + 1.2)) / 2, size * 0.75];
+}
+
+function anchorLabel(parent: string, at: Point, size: number): SVGGElement {
+  const [halfWidth, halfHeight] = labelHalf(parent, size);
+  return svgEl(
+    "g",
+    { class: `anchor anchor--${parent}` },
+    svgEl("rect", {
+      x: at[0] - halfWidth,
+      y: at[1] - halfHeight,
+      width: 2 * halfWidth,
+      height: 2 * halfHeight,
+      rx: halfHeight,
+    }),
+    svgEl("text", { x: at[0], y: at[1], "font-size": size, dy: "0.35em" }, parent),
+  );
+}
+
+function arrowFor(
+  support: ShownSupport,
+  object: SceneObject,
+  centroids: ReadonlyMap<string, Point>,
+  frame: Frame,
+): SVGGElement | null {
+  const to = centroids.get(object.id);
+  if (!to) return null;
+  const width = strokeWidth(frame);
+  const labelSize = width * 5;
+  const structural = isStructural(support.parent) ? support.parent : null;
+  const from = structural
+    ? structuralAnchor(structural, object, to, frame, labelHalf(structural, labelSize))
+    : centroids.get(support.parent);
+  if (!from) return null;
+  const shape = arrowShape(from, to, width, structural ? labelSize * 0.8 : width * 1.5);
+  const group = svgEl(
+    "g",
+    {
+      class: `arrow arrow--${support.type}${support.pending ? " arrow--pending" : ""}`,
+      "data-testid": `arrow-${object.id}`,
+      "data-child": object.id,
+      "data-parent": support.parent,
+      "data-type": support.type,
+      "data-pending": String(support.pending),
+    },
+    svgEl("title", {}, `${support.parent} holds up ${object.id} from ${support.type}`),
+    svgEl("path", { class: "arrow-halo", d: shape.shaft, "stroke-width": width * 2.2 }),
+    svgEl("path", {
+      class: "arrow-shaft",
+      d: shape.shaft,
+      "stroke-width": width,
+      "stroke-dasharray": support.pending ? `${width * 3} ${width * 2}` : undefined,
+    }),
+    svgEl("path", { class: "arrow-head", d: shape.head, "stroke-width": width * 0.6 }),
+  );
+  if (structural) group.append(anchorLabel(structural, from, labelSize));
+  else
+    group.prepend(
+      svgEl("circle", { class: "arrow-tail", cx: from[0], cy: from[1], r: width * 1.5 }),
+    );
+  return group;
+}
+
+export function renderArrows(
+  group: SVGGElement,
+  objects: readonly SceneObject[],
+  regions: ReadonlyMap<string, Region>,
+  supports: ReadonlyMap<string, ShownSupport>,
+  frame: Frame,
+): void {
+  const centroids = new Map<string, Point>(
+    [...regions].map(([id, region]) => [id, region.centroid]),
+  );
+  const arrows: SVGGElement[] = [];
+  for (const object of objects) {
+    const support = supports.get(object.id);
+    if (!support || isRoomPart(object)) continue;
+    const arrow = arrowFor(support, object, centroids, frame);
+    if (arrow) arrows.push(arrow);
+  }
+  group.replaceChildren(...arrows);
+}
+
+/** Id labels at the objects' centroids, and a "?" flag on objects without a supporter. */
+export function renderLabels(
+  group: SVGGElement,
+  objects: readonly SceneObject[],
+  regions: ReadonlyMap<string, Region>,
+  supports: ReadonlyMap<string, ShownSupport>,
+  frame: Frame,
+): void {
+  const size = strokeWidth(frame) * 5.5;
+  const nodes = objects.flatMap((object) => {
+    const region = regions.get(object.id);
+    if (!region) return [];
+    const [x, y] = region.centroid;
+    const label = svgEl(
+      "text",
+      { class: "object-label", x, y: y - size * 0.6, "font-size": size, "data-object": object.id },
+      object.id,
+    );
+    if (supports.has(object.id) || isRoomPart(object)) return [label];
+    const [x1, y1] = object.bbox;
+    const flag = svgEl(
+      "g",
+      { class: "unsupported-flag", "data-testid": `unsupported-${object.id}` },
+      svgEl("title", {}, `${object.id} has no supporter`),
+      svgEl("circle", { cx: x1 + size, cy: y1 + size, r: size * 0.9 }),
+      svgEl("text", { x: x1 + size, y: y1 + size, dy: "0.35em", "font-size": size * 1.2 }, "?"),
+    );
+    return [label, flag];
+  });
+  group.replaceChildren(...nodes);
+}

@@ -1,0 +1,160 @@
+// The photo with its overlays: masks, support arrows, labels; hover and click pick objects.
+import type { SceneObject } from "@holiscene/schema";
+import { api } from "../../api/client";
+import { el, svgEl } from "../../dom";
+import type { SceneSession } from "../../state/sceneSession";
+import { frameFor, strokeWidth } from "./arrowGeometry";
+import { renderArrows, renderLabels } from "./arrowLayer";
+import { renderMasks, renderOutlines } from "./maskLayer";
+import { HitMap, objectRegion, type Region } from "./maskRaster";
+
+function toggle(label: string, testid: string, onChange: (on: boolean) => void): HTMLLabelElement {
+  const input = el("input", {
+    testid,
+    attrs: { type: "checkbox", checked: true },
+    on: { change: () => onChange(input.checked) },
+  });
+  return el("label", { className: "toggle" }, input, label);
+}
+
+function legend(): HTMLElement {
+  const item = (className: string, text: string) =>
+    el(
+      "span",
+      { className: "legend-item" },
+      el("span", { className: `swatch ${className}` }),
+      text,
+    );
+  return el(
+    "div",
+    { className: "legend", attrs: { "aria-label": "Arrow colours" } },
+    item("swatch--below", "supported from below"),
+    item("swatch--behind", "from behind"),
+    item("swatch--pending", "not saved"),
+  );
+}
+
+/** A key for the parts of the objects that the masks and hit map depend on. */
+const geometryKey = (objects: readonly SceneObject[]) =>
+  JSON.stringify(objects.map((o) => [o.id, o.class, o.bbox, o.mask]));
+
+export function mountPhotoView(container: HTMLElement, session: SceneSession): () => void {
+  const { width, height } = session.doc.scene.image;
+  const frame = frameFor(width, height);
+  const m = frame.margin;
+  const masks = svgEl("g", { class: "masks", "data-testid": "mask-layer" });
+  const outlines = svgEl("g", { class: "outlines" });
+  const arrows = svgEl("g", { class: "arrows", "data-testid": "arrow-layer" });
+  const labels = svgEl("g", { class: "labels" });
+  const photo = svgEl("image", {
+    href: api.imageUrl(session.sceneId),
+    x: 0,
+    y: 0,
+    width,
+    height,
+    preserveAspectRatio: "none",
+    "data-testid": "photo-image",
+  });
+  const svg = svgEl(
+    "svg",
+    {
+      class: "photo-svg",
+      "data-testid": "photo",
+      viewBox: `${-m} ${-m} ${width + 2 * m} ${height + 2 * m}`,
+      role: "img",
+      "aria-label": `Photo of ${session.doc.scene.name} with masks and support arrows`,
+    },
+    svgEl("rect", {
+      class: "photo-frame",
+      x: -m,
+      y: -m,
+      width: width + 2 * m,
+      height: height + 2 * m,
+    }),
+    photo,
+    masks,
+    outlines,
+    arrows,
+    labels,
+  );
+  const status = el("p", { className: "photo-status", testid: "photo-status" });
+  photo.addEventListener("load", () => {
+    status.textContent = "";
+    svg.dataset.loaded = "true";
+  });
+  photo.addEventListener("error", () => {
+    status.textContent = "The photo could not be loaded.";
+  });
+
+  const setLayer = (layer: SVGGElement) => (on: boolean) => {
+    layer.style.display = on ? "" : "none";
+  };
+  container.replaceChildren(
+    el(
+      "div",
+      { className: "photo-toolbar" },
+      toggle("Masks", "toggle-masks", setLayer(masks)),
+      toggle("Arrows", "toggle-arrows", setLayer(arrows)),
+      toggle("Labels", "toggle-labels", setLayer(labels)),
+      legend(),
+    ),
+    el("div", { className: "photo-box" }, svg),
+    status,
+  );
+
+  let regions = new Map<string, Region>();
+  let hitMap: HitMap | null = null;
+  let drawnGeometry = "";
+
+  const drawGeometry = () => {
+    const objects = session.objects;
+    const key = geometryKey(objects);
+    if (key === drawnGeometry) return;
+    drawnGeometry = key;
+    const placed = objects.map((object) => ({ object, region: objectRegion(object) }));
+    regions = new Map(placed.map((p) => [p.object.id, p.region]));
+    hitMap = new HitMap(width, height, placed);
+    renderMasks(masks, objects, regions);
+  };
+  const drawSupports = () => {
+    const shown = session.shown();
+    renderArrows(arrows, session.objects, regions, shown, frame);
+    renderLabels(labels, session.objects, regions, shown, frame);
+  };
+  const drawHighlight = () => {
+    const { hovered, selected } = session;
+    svg.classList.toggle("has-hover", hovered !== null);
+    for (const node of svg.querySelectorAll<SVGElement>("[data-object], [data-child]")) {
+      const id = node.dataset.object ?? node.dataset.child;
+      node.classList.toggle("is-hovered", id === hovered);
+      node.classList.toggle("is-selected", id === selected);
+    }
+    renderOutlines(outlines, session.objects, hovered, selected, strokeWidth(frame) * 0.8);
+  };
+  const drawAll = () => {
+    drawGeometry();
+    drawSupports();
+    drawHighlight();
+  };
+
+  const objectAt = (event: MouseEvent): string | null => {
+    const arrow = (event.target as Element).closest<SVGGElement>("[data-child]");
+    if (arrow?.dataset.child) return arrow.dataset.child;
+    const matrix = svg.getScreenCTM();
+    if (!matrix || !hitMap) return null;
+    const point = new DOMPoint(event.clientX, event.clientY).matrixTransform(matrix.inverse());
+    return hitMap.at(point.x, point.y);
+  };
+  svg.addEventListener("mousemove", (event) => session.hover(objectAt(event)));
+  svg.addEventListener("mouseleave", () => session.hover(null));
+  svg.addEventListener("click", (event) => session.select(objectAt(event)));
+
+  drawAll();
+  return session.subscribe((change) => {
+    if (change === "document") drawAll();
+    else if (change === "edits") {
+      drawSupports();
+      drawHighlight();
+    } else if (change === "hover" || change === "select") drawHighlight();
+  });
+}

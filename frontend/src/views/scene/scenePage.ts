@@ -1,0 +1,165 @@
+// The scene page: waits for a running pipeline job, then shows the photo with overlays, the
+// 3D scene and the support editor, all on one SceneSession.
+import type { Job, SceneDocument } from "@holiscene/schema";
+import { api } from "../../api/client";
+import { ApiError } from "../../api/errors";
+import { isFinished, pollJob } from "../../api/jobs";
+import { el } from "../../dom";
+import { mountSaveBar } from "../../editors/saveBar";
+import { mountSupportEditor } from "../../editors/supportEditor";
+import { SceneSession } from "../../state/sceneSession";
+import { jobProgress } from "../common/jobProgress";
+import { mountPhotoView } from "../photo/photoView";
+import { mountScene3d } from "../scene3d/scene3dView";
+import { mountRevisionHistory } from "./revisionHistory";
+
+function panel(title: string, className: string, testid: string) {
+  const body = el("div", { className: "panel-body" });
+  const element = el(
+    "section",
+    { className: `panel ${className}`, testid, attrs: { "aria-label": title } },
+    el("h2", { text: title }),
+    body,
+  );
+  return { element, body };
+}
+
+/** The scene's latest pipeline job, from the scene list (null when there is none). */
+async function latestJob(sceneId: string, signal: AbortSignal): Promise<Job | null> {
+  const scenes = await api.listScenes(signal);
+  return scenes.find((s) => s.id === sceneId)?.latest_job ?? null;
+}
+
+export function mountScenePage(container: HTMLElement, sceneId: string): () => void {
+  const abort = new AbortController();
+  const disposers: (() => void)[] = [];
+  const title = el("h1", { text: sceneId, testid: "scene-title" });
+  const meta = el("span", { className: "scene-meta", testid: "scene-meta" });
+  const progress = jobProgress("job-progress");
+  progress.element.hidden = true;
+  const message = el("div", { className: "page-message", testid: "scene-message" });
+  const rerun = el("button", {
+    text: "Run pipeline again",
+    testid: "run-pipeline",
+    attrs: { type: "button", disabled: true },
+  });
+  const content = el("div", { className: "scene-grid" });
+  container.replaceChildren(
+    el(
+      "div",
+      { className: "scene-page" },
+      el(
+        "div",
+        { className: "scene-header" },
+        el("a", { className: "back", text: "← All scenes", attrs: { href: "#/" } }),
+        title,
+        meta,
+        el("span", { className: "spacer" }),
+        rerun,
+      ),
+      progress.element,
+      message,
+      content,
+    ),
+  );
+
+  const disposeContent = () => {
+    for (const dispose of disposers.splice(0)) dispose();
+    content.replaceChildren();
+  };
+
+  const showScene = (doc: SceneDocument) => {
+    disposeContent();
+    const session = new SceneSession(doc);
+    title.textContent = doc.scene.name;
+    const updateMeta = () => {
+      const { width, height } = session.doc.scene.image;
+      meta.textContent = `${width}×${height} · revision ${session.doc.revision}`;
+    };
+    updateMeta();
+    const photo = panel("Photo", "panel--photo", "photo-panel");
+    const scene3d = panel("3D scene", "panel--scene3d", "scene3d-panel");
+    const editor = panel("Support relations", "panel--editor", "editor-panel");
+    const saveBar = el("div", { className: "save-bar", testid: "save-bar" });
+    const table = el("div", { className: "editor-table" });
+    const history = el("div");
+    editor.body.append(saveBar, table, history);
+    content.append(
+      el("div", { className: "scene-main" }, photo.element, scene3d.element),
+      editor.element,
+    );
+    disposers.push(
+      mountPhotoView(photo.body, session),
+      mountScene3d(scene3d.body, session),
+      mountSaveBar(saveBar, session),
+      mountSupportEditor(table, session),
+      mountRevisionHistory(history, session),
+      session.subscribe((change) => {
+        if (change === "document") updateMeta();
+      }),
+    );
+    rerun.onclick = () => {
+      const unsaved = session.pending.length;
+      if (unsaved > 0 && !window.confirm(`Discard ${unsaved} unsaved change(s) and re-run?`))
+        return;
+      void runPipeline();
+    };
+  };
+
+  const waitForJob = async (job: Job) => {
+    progress.element.hidden = false;
+    const finished = await pollJob(job, { signal: abort.signal, onUpdate: progress.update });
+    progress.element.hidden = finished.status === "succeeded";
+    return finished;
+  };
+
+  const load = async () => {
+    rerun.disabled = true;
+    message.textContent = "Loading…";
+    const job = await latestJob(sceneId, abort.signal);
+    if (job && !isFinished(job)) {
+      message.textContent = "The pipeline is still running on this scene; it opens when done.";
+      await waitForJob(job);
+    } else if (job?.status === "failed") {
+      progress.update(job);
+      progress.element.hidden = false;
+    }
+    const doc = await api.getScene(sceneId, abort.signal);
+    message.textContent = "";
+    showScene(doc);
+    rerun.disabled = false;
+  };
+
+  const runPipeline = async () => {
+    rerun.disabled = true;
+    try {
+      disposeContent();
+      message.textContent = "Running the pipeline…";
+      await waitForJob(await api.startPipeline(sceneId));
+      await load();
+    } catch (error) {
+      fail(error);
+    }
+  };
+
+  const fail = (error: unknown) => {
+    if (abort.signal.aborted) return;
+    rerun.disabled = false;
+    message.replaceChildren(
+      el("p", {
+        className: "alert alert--error",
+        attrs: { role: "alert" },
+        text:
+          error instanceof ApiError && error.status === 404
+            ? `There is no scene "${sceneId}".`
+            : `Could not load the scene: ${error instanceof Error ? error.message : String(error)}`,
+      }),
+    );
+  };
+
+  load().catch(fail);
+  return () => {
+    abort.abort();
+    disposeContent();
+  };
+}

@@ -1,0 +1,90 @@
+// The list page: the upload form and every scene, newest first.
+import type { SceneSummary } from "@holiscene/schema";
+import { api } from "../../api/client";
+import { isFinished } from "../../api/jobs";
+import { el, formatTime } from "../../dom";
+import { describeJob } from "../common/jobProgress";
+import { uploadForm } from "./uploadForm";
+
+const REFRESH_WHILE_RUNNING_MS = 2000;
+
+function sceneRow(scene: SceneSummary): HTMLTableRowElement {
+  const href = `#/scenes/${encodeURIComponent(scene.id)}`;
+  const job = scene.latest_job;
+  return el(
+    "tr",
+    { testid: `scene-row-${scene.id}` },
+    el(
+      "td",
+      { className: "thumb-cell" },
+      el("img", {
+        className: "thumb",
+        attrs: { src: api.imageUrl(scene.id), alt: "", loading: "lazy", width: 96 },
+      }),
+    ),
+    el("th", { attrs: { scope: "row" } }, el("a", { text: scene.name, attrs: { href } })),
+    el("td", { text: `${scene.width}×${scene.height}` }),
+    el("td", { text: String(scene.object_count) }),
+    el("td", { text: String(scene.revision) }),
+    el("td", { text: formatTime(scene.updated_at) }),
+    el("td", {
+      className: job?.status === "failed" ? "is-failed" : "",
+      text: job ? describeJob(job) : "—",
+    }),
+  );
+}
+
+export function mountSceneList(container: HTMLElement): () => void {
+  const abort = new AbortController();
+  const body = el("tbody");
+  const status = el("p", { className: "list-status", testid: "scene-list-status" });
+  const table = el(
+    "table",
+    { className: "scene-table", testid: "scene-list" },
+    el(
+      "thead",
+      {},
+      el(
+        "tr",
+        {},
+        ...["", "Scene", "Size", "Objects", "Revision", "Updated", "Pipeline"].map((text) =>
+          el("th", { text, attrs: { scope: "col" } }),
+        ),
+      ),
+    ),
+    body,
+  );
+  let timer = 0;
+  const refresh = async () => {
+    clearTimeout(timer);
+    try {
+      const scenes = await api.listScenes(abort.signal);
+      body.replaceChildren(...scenes.map(sceneRow));
+      table.hidden = scenes.length === 0;
+      status.textContent = scenes.length === 0 ? "No scenes yet: import a photo above." : "";
+      const running = scenes.some((s) => s.latest_job && !isFinished(s.latest_job));
+      if (running) timer = window.setTimeout(refresh, REFRESH_WHILE_RUNNING_MS);
+    } catch (error) {
+      if (!abort.signal.aborted) status.textContent = `Could not load scenes: ${String(error)}`;
+    }
+  };
+  container.replaceChildren(
+    el(
+      "div",
+      { className: "list-page" },
+      uploadForm(abort.signal, () => void refresh()),
+      el(
+        "section",
+        { className: "card" },
+        el("h2", { text: "Scenes" }),
+        status,
+        el("div", { className: "table-scroll" }, table),
+      ),
+    ),
+  );
+  void refresh();
+  return () => {
+    abort.abort();
+    clearTimeout(timer);
+  };
+}

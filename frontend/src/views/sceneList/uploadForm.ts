@@ -1,0 +1,108 @@
+// Import a photo (with optional cam_K.txt and detections.json) and follow its pipeline job.
+import type { SceneSummary } from "@holiscene/schema";
+import { api } from "../../api/client";
+import { pollJob } from "../../api/jobs";
+import { el } from "../../dom";
+import { jobProgress } from "../common/jobProgress";
+
+function fileField(label: string, name: string, accept: string, hint: string, required = false) {
+  const input = el("input", {
+    testid: `upload-${name}`,
+    attrs: { type: "file", name, accept, required },
+  });
+  const field = el(
+    "label",
+    { className: "field" },
+    el("span", { className: "field-label", text: label }),
+    input,
+    el("span", { className: "field-hint", text: hint }),
+  );
+  return { input, field };
+}
+
+/** The upload form; `onImported` runs when a scene is created and again when its job ends. */
+export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary) => void) {
+  const image = fileField("Photo", "image", "image/*", "JPEG or PNG of an indoor scene", true);
+  const camK = fileField("Intrinsics", "cam_k", ".txt,text/plain", "optional cam_K.txt (3×3)");
+  const detections = fileField(
+    "Detections",
+    "detections",
+    ".json,application/json",
+    "optional detections.json: [{bbox, class}]",
+  );
+  const name = el("input", {
+    testid: "upload-name",
+    attrs: { type: "text", name: "name", placeholder: "defaults to the file name", maxlength: 200 },
+  });
+  const submit = el("button", {
+    className: "primary",
+    text: "Import and run pipeline",
+    testid: "upload-submit",
+    attrs: { type: "submit" },
+  });
+  const result = el("div", { className: "upload-result", testid: "upload-result" });
+  const form = el(
+    "form",
+    { className: "upload-form card", testid: "upload-form" },
+    el("h2", { text: "New scene" }),
+    el(
+      "div",
+      { className: "field-grid" },
+      image.field,
+      camK.field,
+      detections.field,
+      el(
+        "label",
+        { className: "field" },
+        el("span", { className: "field-label", text: "Name" }),
+        name,
+      ),
+    ),
+    el("div", { className: "form-actions" }, submit),
+    result,
+  );
+
+  form.addEventListener("submit", async (event) => {
+    event.preventDefault();
+    const photo = image.input.files?.[0];
+    if (!photo) return;
+    submit.disabled = true;
+    result.replaceChildren(el("p", { text: `Uploading ${photo.name}…` }));
+    try {
+      const imported = await api.importScene({
+        image: photo,
+        camK: camK.input.files?.[0] ?? null,
+        detections: detections.input.files?.[0] ?? null,
+        name: name.value,
+      });
+      const scene = imported.scene;
+      form.reset();
+      onImported(scene);
+      const link = el("a", {
+        text: `Open ${scene.name}`,
+        testid: "upload-open",
+        attrs: { href: `#/scenes/${encodeURIComponent(scene.id)}` },
+      });
+      const progress = jobProgress("upload-job-progress");
+      result.replaceChildren(el("p", {}, `Imported ${scene.name}. `, link), progress.element);
+      if (imported.job) {
+        await pollJob(imported.job, { signal, onUpdate: progress.update });
+        onImported(scene);
+      } else {
+        progress.element.remove();
+      }
+    } catch (error) {
+      if (signal.aborted) return;
+      result.replaceChildren(
+        el("p", {
+          className: "alert alert--error",
+          text: `Import failed: ${error instanceof Error ? error.message : String(error)}`,
+          attrs: { role: "alert" },
+        }),
+      );
+    } finally {
+      submit.disabled = false;
+    }
+  });
+  return form;
+}
