@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: bench run test install install-python install-node install-chromium build schema schema-check \
+.PHONY: bench bench-synth run test install install-python install-node install-chromium build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -42,14 +42,14 @@ schema-check:
 	npm run -s -w shared_schema check
 
 lint:
-	$(VENV)/bin/ruff check backend shared_schema benchmarks
-	$(VENV)/bin/ruff format --check backend shared_schema benchmarks
+	$(VENV)/bin/ruff check backend shared_schema benchmarks scripts
+	$(VENV)/bin/ruff format --check backend shared_schema benchmarks scripts
 	$(VENV)/bin/mypy
 	npm run -s lint
 
 format:
-	$(VENV)/bin/ruff check --fix backend shared_schema
-	$(VENV)/bin/ruff format backend shared_schema
+	$(VENV)/bin/ruff check --fix backend shared_schema benchmarks scripts
+	$(VENV)/bin/ruff format backend shared_schema benchmarks scripts
 	npm run -s format
 
 pytest:
@@ -69,3 +69,6 @@ clean:
 
 bench: install-python
 	$(PY) benchmarks/bench_infer.py
+
+bench-synth: install-python
+	$(PY) benchmarks/bench_synth.py

@@ -60,8 +60,11 @@ def _floor_mesh(boxes: list[Box3D], floor_y: float) -> trimesh.Trimesh:
     return _painted(trimesh.Trimesh(vertices=vertices, faces=faces, process=False), FLOOR_COLOUR)
 
 
-def scene_glb(placed: dict[str, tuple[str, Box3D]], floor_y: float | None) -> bytes:
-    """GLB bytes of objects id -> (class, box) and, when known, the floor plane."""
+def scene_glb(placed: dict[str, tuple[str, Box3D]], floor_y: float | None) -> bytes | None:
+    """GLB bytes of objects id -> (class, box) and, when known, the floor plane; None when
+    there is nothing to show (no placed object and no floor)."""
+    if not placed and floor_y is None:
+        return None
     scene = trimesh.Scene()
     for obj_id, (cls, box) in placed.items():
         scene.add_geometry(_box_mesh(box, class_colour(cls)), node_name=obj_id, geom_name=obj_id)

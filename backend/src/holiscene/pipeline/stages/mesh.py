@@ -26,4 +26,7 @@ class SceneMesh(Stage):
         known_floor = camera.height_m is not None and camera.pitch_deg is not None
         floor_y = -camera.height_m if known_floor and camera.height_m is not None else None
         ctx.scene_glb = scene_glb(placed, floor_y)
-        ctx.notes[self.name] = "objects are boxes: the shape library is not built yet"
+        if ctx.scene_glb is None:
+            ctx.notes[self.name] = "nothing to show in 3D: no object placed and no floor found"
+        else:
+            ctx.notes[self.name] = "objects are boxes: the shape library is not used yet"

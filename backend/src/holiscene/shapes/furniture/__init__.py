@@ -1,0 +1,1 @@
+"""Parametric builders grouped by family; each is `(ShapeBuilder, Generator) -> None`."""

@@ -1,0 +1,1 @@
+"""Synthetic indoor scenes with exact ground truth: plan a room, render it, write it out."""
