@@ -44,7 +44,7 @@ def infer_scene(
         name=name,
         image=ImageInfo(file=image_file, width=ctx.width, height=ctx.height),
         camera=ctx.camera,
-        layout=Layout(note=LAYOUT_NOT_ESTIMATED),
+        layout=ctx.layout or Layout(note=LAYOUT_NOT_ESTIMATED),
         objects=[_finished_object(ctx, obj) for obj in ctx.objects or []],
         supports=ctx.supports or [],
         stages=runs,

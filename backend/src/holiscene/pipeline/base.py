@@ -12,7 +12,8 @@ from dataclasses import dataclass, field, fields
 from typing import Any, ClassVar, TypeVar
 
 import numpy as np
-from holiscene_schema import Box3D, Camera, SceneObject, SupportRelation
+import trimesh
+from holiscene_schema import Box3D, Camera, Layout, MeshRef, SceneObject, SupportRelation
 
 from ..geometry.camera import FloatArray
 from ..rle import MaskSource
@@ -27,6 +28,14 @@ class Detection:
     cls: str
     bbox: tuple[float, float, float, float]
     source_class: str | None = None
+
+
+@dataclass(frozen=True)
+class ObjectMesh:
+    """The model chosen for an object, already placed in the world frame."""
+
+    mesh: trimesh.Trimesh
+    ref: MeshRef
 
 
 @dataclass(frozen=True)
@@ -52,8 +61,13 @@ class SceneContext:
     intrinsics: tuple[FloatArray, str] | None = None  # K and its source
     masks: dict[str, ObjectMask] | None = None  # by object id
     camera: Camera | None = None
+    # The three orthogonal vanishing points (homogeneous image points, rows: vertical first).
+    vanishing_points: FloatArray | None = None
+    layout: Layout | None = None
     supports: list[SupportRelation] | None = None
+    heights: dict[str, float] | None = None  # object id -> metres (single-view metrology)
     boxes_3d: dict[str, Box3D | None] | None = None
+    object_meshes: dict[str, ObjectMesh] | None = None
     scene_glb: bytes | None = None
     notes: dict[str, str] = field(default_factory=dict)  # stage name -> what it could not do
     object_notes: dict[str, str] = field(default_factory=dict)  # object id -> why a value is null
