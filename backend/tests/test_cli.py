@@ -47,9 +47,12 @@ def test_infer_writes_scene_json_and_glb(t3d5: Path, tmp_path: Path) -> None:
     assert camera["K"] == [[529.5, 0.0, 365.0], [0.0, 529.5, 265.0], [0.0, 0.0, 1.0]]
     assert camera["pitch_deg"] is not None and -10 < camera["pitch_deg"] < 40
     assert camera["roll_deg"] is not None and abs(camera["roll_deg"]) < 15
-    # The layout is not estimated yet: null, and the scene says so.
-    assert data["layout"]["corners_2d"] is None and data["layout"]["corners_3d"] is None
-    assert data["layout"]["note"]
+    layout = data["layout"]
+    assert layout["source"] == "estimated"
+    assert len(layout["corners_2d"]) == 8 and len(layout["corners_3d"]) == 8
+    floor_y = [c[1] for c in layout["corners_3d"][:4]]
+    assert floor_y == pytest.approx([-camera["height_m"]] * 4, abs=1e-3)
+    assert "scale from" in layout["note"]
 
     loaded = trimesh.load(out / "scene.glb", force="scene")
     placed = {o["id"] for o in data["objects"] if o["corners_3d"] is not None}

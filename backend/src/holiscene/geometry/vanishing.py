@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -29,6 +30,14 @@ def _fit_point(lines: FloatArray, weights: FloatArray) -> FloatArray:
 
 
 def vertical_vanishing_point(
+    segments: Segments, plausible: Callable[[FloatArray], bool] | None = None
+) -> FloatArray | None:
+    """The best-supported vertical vanishing point (see `vertical_candidates`)."""
+    found = vertical_candidates(segments, count=1, plausible=plausible)
+    return found[0] if found else None
+
+
+def vertical_candidates(
     segments: Segments,
     *,
     max_tilt_deg: float = 30.0,
@@ -36,32 +45,44 @@ def vertical_vanishing_point(
     iterations: int = 400,
     min_inliers: int = 4,
     seed: int = 0,
-) -> FloatArray | None:
-    """Homogeneous vertical vanishing point, or None when the photo shows too few verticals.
+    plausible: Callable[[FloatArray], bool] | None = None,
+    count: int = 3,
+) -> list[FloatArray]:
+    """Up to `count` distinct vertical vanishing points, best first (homogeneous, unit norm);
+    empty when the photo shows too few verticals.
 
     Candidates are segments within `max_tilt_deg` of the image's vertical axis; a pair of them
     proposes a point and the point with the largest inlier length wins, then it is refined on
     its inliers. The returned point is unit-normalised (it may lie at infinity).
+    `plausible` rejects hypotheses that imply an impossible camera (e.g. floor-tile lines
+    converging to the horizon, which a steep pitch could mistake for verticals).
     """
     tilt = np.degrees(np.arccos(np.clip(np.abs(segments.directions[:, 1]), 0.0, 1.0)))
     candidates = segments.subset(tilt <= max_tilt_deg)
     if len(candidates.endpoints) < min_inliers:
-        return None
+        return []
     lines = candidates.homogeneous_lines()
     lengths = candidates.lengths
     rng = np.random.default_rng(seed)
     threshold = math.radians(inlier_deg)
     probs = lengths / lengths.sum()
-    best_score, best_inliers = 0.0, None
+    hypotheses: list[tuple[float, np.ndarray]] = []
     for _ in range(iterations):
         i, j = rng.choice(len(lines), size=2, replace=False, p=probs)
         vp = np.cross(lines[i], lines[j])
-        if not np.any(vp):
+        if not np.any(vp) or (plausible is not None and not plausible(vp)):
             continue
         inliers = _angular_residuals(candidates, vp) < threshold
-        score = float(lengths[inliers].sum())
-        if score > best_score:
-            best_score, best_inliers = score, inliers
-    if best_inliers is None or int(best_inliers.sum()) < min_inliers:
-        return None
-    return _fit_point(lines[best_inliers], lengths[best_inliers])
+        if int(inliers.sum()) >= min_inliers:
+            hypotheses.append((float(lengths[inliers].sum()), inliers))
+    hypotheses.sort(key=lambda h: -h[0])
+    found: list[FloatArray] = []
+    for _, inliers in hypotheses:
+        refined = _fit_point(lines[inliers], lengths[inliers])
+        if plausible is not None and not plausible(refined):
+            continue
+        if all(abs(float(refined @ other)) < math.cos(math.radians(2.0)) for other in found):
+            found.append(refined)
+        if len(found) == count:
+            break
+    return found

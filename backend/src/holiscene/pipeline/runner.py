@@ -16,7 +16,7 @@ DEFAULT_STAGES: tuple[str, ...] = (
     "objects_from_detections",
     "intrinsics",
     "masks_from_boxes",
-    "camera_from_vertical_lines",
+    "layout_from_lines",
     "supports_from_priors",
     "boxes_on_supporters",
     "scene_mesh",

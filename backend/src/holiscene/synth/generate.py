@@ -11,6 +11,7 @@ Output folder (an input folder for `holiscene infer`, plus the truth):
 from __future__ import annotations
 
 import json
+import math
 import os
 import shutil
 import tempfile
@@ -32,7 +33,7 @@ from holiscene_schema import (
 )
 
 from ..geometry.boxes import box_corners
-from ..geometry.camera import PinholeCamera, default_intrinsics
+from ..geometry.camera import PinholeCamera, default_intrinsics, rot_y
 from ..rle import encode_mask
 from . import ranges
 from .materials import Pattern, object_material, random_material
@@ -100,6 +101,7 @@ def _render_plan(plan: RoomPlan, keep: set[int], rng: np.random.Generator) -> Fr
         lighting,
         float(rng.uniform(*ranges.SENSOR_NOISE_SIGMA)),
         rng,
+        texture_from_world=rot_y(math.radians(plan.yaw_deg)).T,
     )
 
 

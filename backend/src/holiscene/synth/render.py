@@ -51,8 +51,12 @@ def render(
     lighting: Lighting,
     noise_sigma: float,
     rng: np.random.Generator,
+    texture_from_world: NDArray[np.float64] | None = None,
 ) -> Frame:
+    """Render items seen by `camera`. Textures are laid out in the frame given by the
+    rotation `texture_from_world` (the room's, so floor tiles and grain follow the walls)."""
     width, height = size
+    texture = np.eye(3) if texture_from_world is None else texture_from_world
     vertices, faces_all, face_item = _merged(items)
     caster = RayCaster(vertices, faces_all)
     all_rays = camera.ray(_pixel_grid(width, height))
@@ -78,7 +82,7 @@ def render(
     albedo = np.zeros_like(hits)
     for k in np.unique(item_of_ray):
         sel = item_of_ray == k
-        albedo[sel] = items[k].material.albedo(hits[sel], normals[sel])
+        albedo[sel] = items[k].material.albedo(hits[sel] @ texture.T, normals[sel] @ texture.T)
 
     radiance = albedo * _irradiance(caster, hits, normals, lighting)[:, None]
     image = np.zeros((width * height, 3))

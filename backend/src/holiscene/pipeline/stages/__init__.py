@@ -1,5 +1,5 @@
 """Built-in stages; importing this package registers them."""
 
-from . import boxes, camera, detections, masks, mesh, supports
+from . import boxes, camera, detections, layout, masks, mesh, supports
 
-__all__ = ["boxes", "camera", "detections", "masks", "mesh", "supports"]
+__all__ = ["boxes", "camera", "detections", "layout", "masks", "mesh", "supports"]

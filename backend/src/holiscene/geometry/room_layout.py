@@ -1,0 +1,340 @@
+"""The room cuboid from line segments, in units of the camera height (Hedau-style hypotheses).
+
+With the camera's pitch and roll and the room's yaw known (`manhattan.py`), a room is the
+distances from the camera to its front, left, right and back walls and its ceiling. Segments
+of the two horizontal families vote for wall distances where they meet the floor (and, scaled
+by the ceiling's unknown height, the ceiling); the best few values of each form hypotheses,
+and each hypothesis is scored by how much segment length lies along its projected edges
+(floor and ceiling edges, and the vertical corners between walls), subject to containing the
+floor-standing objects. Units: camera height = 1, so the floor is y = -1.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .camera import FloatArray, PinholeCamera
+from .lines import Segments
+from .manhattan import ManhattanFrame, room_directions
+
+BACK_WALL_PRIOR = 0.5  # the wall behind the camera is never seen: its distance is a prior
+CEILING_PRIOR = 0.96  # ceiling above the camera / camera height (2.75 m room, 1.4 m camera)
+EDGE_TOLERANCE_FRAC = 0.006  # of the image diagonal
+PEAKS_PER_WALL = 4
+
+
+@dataclass(frozen=True)
+class RoomHypothesis:
+    front: float  # distances from the camera along room x (front), -z (left), +z (right)
+    left: float
+    right: float
+    back: float
+    ceiling: float  # ceiling height above the camera, in camera heights
+    score: float
+    ceiling_seen: bool
+
+    def corners_room(self) -> FloatArray:
+        """The 8 corners in room axes (x, y, z) relative to the camera, contract order."""
+        x0, x1, z0, z1 = -self.back, self.front, -self.left, self.right
+        y0, y1 = -1.0, self.ceiling
+        return np.array(
+            [[x0, y0, z0], [x1, y0, z0], [x1, y0, z1], [x0, y0, z1],
+             [x0, y1, z0], [x1, y1, z0], [x1, y1, z1], [x0, y1, z1]]
+        )  # fmt: skip
+
+
+def room_to_world(frame: ManhattanFrame) -> FloatArray:
+    """Rotation taking room axes to the world frame (columns: room x, y, z in world)."""
+    dirs = room_directions(frame.yaw_deg)
+    return np.column_stack([dirs[1], dirs[0], dirs[2]])
+
+
+def _plane_hits(camera: PinholeCamera, pixels: FloatArray, plane_y: float) -> FloatArray:
+    """Where pixel rays meet the plane y = plane_y (NaN where they do not, in front)."""
+    rays = camera.ray(pixels)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = plane_y / rays[:, 1]
+    hits = rays * t[:, None]
+    hits[~(t > 0)] = np.nan
+    result: FloatArray = hits
+    return result
+
+
+def _weighted_peaks(values: FloatArray, weights: FloatArray, count: int) -> list[float]:
+    """Peaks of a smoothed, log-spaced histogram of distance votes."""
+    ok = np.isfinite(values) & (values > 0.2) & (values < 25.0)
+    if not ok.any():
+        return []
+    bins = np.geomspace(0.2, 25.0, 160)
+    hist, edges = np.histogram(values[ok], bins=bins, weights=weights[ok])
+    hist = np.convolve(hist, [0.25, 0.5, 0.25], mode="same")
+    centres = np.sqrt(edges[:-1] * edges[1:])
+    order = np.argsort(hist)[::-1]
+    peaks: list[float] = []
+    for i in order:
+        if hist[i] <= 0 or len(peaks) == count:
+            break
+        if all(abs(math.log(centres[i] / p)) > 0.06 for p in peaks):
+            peaks.append(float(centres[i]))
+    return peaks
+
+
+def _votes(
+    camera: PinholeCamera,
+    segments: Segments,
+    family: NDArray[np.int64],
+    to_room: FloatArray,
+    plane_y: float,
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Room-axis coordinates of segments on a horizontal plane: x of room-z segments (front
+    wall), z of room-x segments (side walls), with their lengths."""
+    mids = segments.midpoints
+    hits = _plane_hits(camera, mids, plane_y) @ to_room  # rows: room (x, y, z)
+    fronts = family == 2
+    sides = family == 1
+    lengths = segments.lengths
+    return hits[fronts, 0], lengths[fronts], hits[sides, 2], lengths[sides]
+
+
+def _edge_score(
+    camera: PinholeCamera,
+    segments: Segments,
+    family: NDArray[np.int64],
+    edges: list[tuple[FloatArray, FloatArray, int]],
+    tolerance: float,
+    size: tuple[int, int],
+) -> float:
+    """Segment length lying along the projected edges (each edge checked against its family)."""
+    total = 0.0
+    for start, end, fam in edges:
+        pts = _visible_part(camera, start, end)
+        if pts is None:
+            continue
+        a, b = pts
+        direction = b - a
+        length = float(np.hypot(*direction))
+        if length < 1e-6:
+            continue
+        unit = direction / length
+        normal = np.array([-unit[1], unit[0]])
+        sel = family == fam
+        ends = segments.endpoints[sel]
+        if len(ends) == 0:
+            continue
+        d1 = (ends[:, :2] - a) @ normal
+        d2 = (ends[:, 2:] - a) @ normal
+        t1 = (ends[:, :2] - a) @ unit
+        t2 = (ends[:, 2:] - a) @ unit
+        near = (np.abs(d1) < tolerance) & (np.abs(d2) < tolerance)
+        overlap = np.clip(np.maximum(t1, t2), 0, length) - np.clip(np.minimum(t1, t2), 0, length)
+        total += float(overlap[near].sum())
+    return total
+
+
+def _visible_part(
+    camera: PinholeCamera, start: FloatArray, end: FloatArray
+) -> tuple[FloatArray, FloatArray] | None:
+    """The image segment of the part of a 3D segment in front of the camera."""
+    forward = camera.ray(np.array([[camera.K[0, 2], camera.K[1, 2]]]))[0]
+    ds, de = float(start @ forward), float(end @ forward)
+    near = 0.05
+    if ds < near and de < near:
+        return None
+    if ds < near:
+        start = start + (end - start) * (near - ds) / (de - ds)
+    if de < near:
+        end = end + (start - end) * (near - de) / (ds - de)
+    projected = camera.project(np.array([start, end]))
+    if np.isnan(projected).any():
+        return None
+    return projected[0], projected[1]
+
+
+class SurfaceEvidence:
+    """Colour statistics for scoring the surfaces a hypothesis implies (floor, ceiling, walls).
+
+    The photo is reduced to a coarse grid of Lab colours; pixels inside object boxes are left
+    out (furniture hides the walls). A good room splits the rest into surfaces that are each
+    of one colour, so the score is the share of colour variance the split explains.
+    """
+
+    def __init__(
+        self,
+        camera: PinholeCamera,
+        image: NDArray[np.uint8],
+        boxes: list[list[float]],
+        to_room: FloatArray,
+        cell: int = 8,
+    ) -> None:
+        import cv2
+
+        height, width = image.shape[:2]
+        small = cv2.resize(image, (width // cell, height // cell), interpolation=cv2.INTER_AREA)
+        lab = cv2.cvtColor(small, cv2.COLOR_RGB2LAB).reshape(-1, 3).astype(np.float64)
+        ys, xs = np.mgrid[0 : small.shape[0], 0 : small.shape[1]]
+        pixels = np.column_stack([(xs.ravel() + 0.5) * cell, (ys.ravel() + 0.5) * cell])
+        keep = np.ones(len(pixels), dtype=bool)
+        for x1, y1, x2, y2 in boxes:
+            keep &= ~(
+                (pixels[:, 0] >= x1)
+                & (pixels[:, 0] <= x2)
+                & (pixels[:, 1] >= y1)
+                & (pixels[:, 1] <= y2)
+            )
+        self.colours = lab[keep]
+        self.rays_room = camera.ray(pixels[keep]) @ to_room  # room axes
+        self.total = float(((self.colours - self.colours.mean(axis=0)) ** 2).sum()) or 1.0
+
+    def explained(self, hyp: RoomHypothesis) -> float:
+        if len(self.colours) == 0:
+            return 0.0
+        rx, ry, rz = self.rays_room[:, 0], self.rays_room[:, 1], self.rays_room[:, 2]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = np.column_stack([
+                np.where(rx > 0, hyp.front / rx, np.inf), np.where(rx < 0, -hyp.back / rx, np.inf),
+                np.where(rz < 0, -hyp.left / rz, np.inf), np.where(rz > 0, hyp.right / rz, np.inf),
+                np.where(ry < 0, -1.0 / ry, np.inf), np.where(ry > 0, hyp.ceiling / ry, np.inf),
+            ])  # fmt: skip
+        label = np.argmin(t, axis=1)
+        within = 0.0
+        for surface in np.unique(label):
+            part = self.colours[label == surface]
+            within += float(((part - part.mean(axis=0)) ** 2).sum())
+        return 1.0 - within / self.total
+
+
+def estimate_room(
+    camera: PinholeCamera,
+    frame: ManhattanFrame,
+    segments: Segments,
+    size: tuple[int, int],
+    floor_points: FloatArray | None = None,
+    evidence: SurfaceEvidence | None = None,
+) -> RoomHypothesis:
+    """The best room for the segments; `floor_points` (N, 3, world, camera height 1) are
+    points known to lie inside the room (where floor-standing objects touch the floor)."""
+    to_room = room_to_world(frame)  # room -> world; world -> room is its transpose
+    family = frame.family
+    floor_x, floor_xw, floor_z, floor_zw = _votes(camera, segments, family, to_room, -1.0)
+    ceil_x, ceil_xw, ceil_z, ceil_zw = _votes(camera, segments, family, to_room, 1.0)
+
+    inside = np.zeros((0, 3)) if floor_points is None else floor_points @ to_room
+    min_front = float(inside[:, 0].max()) + 0.2 if len(inside) else 1.0
+    min_left = float(-inside[:, 2].min()) + 0.2 if len(inside) else 0.3
+    min_right = float(inside[:, 2].max()) + 0.2 if len(inside) else 0.3
+
+    fronts = [f for f in _weighted_peaks(floor_x, floor_xw, PEAKS_PER_WALL) if f >= min_front]
+    lefts = [v for v in _weighted_peaks(-floor_z, floor_zw, PEAKS_PER_WALL) if v >= min_left]
+    rights = [v for v in _weighted_peaks(floor_z, floor_zw, PEAKS_PER_WALL) if v >= min_right]
+    fronts = fronts or [max(min_front + 0.5, 3.0)]
+    lefts = lefts or [max(min_left + 0.3, 1.5)]
+    rights = rights or [max(min_right + 0.3, 1.5)]
+
+    tolerance = EDGE_TOLERANCE_FRAC * math.hypot(*size)
+    best: RoomHypothesis | None = None
+    for front, left, right in itertools.product(fronts, lefts, rights):
+        # The ceiling: distances of ceiling lines at height 1 scale with the ceiling height.
+        ceilings = [CEILING_PRIOR]
+        for coords, weights, dist in (
+            (ceil_x, ceil_xw, front),
+            (-ceil_z, ceil_zw, left),
+            (ceil_z, ceil_zw, right),
+        ):
+            ok = coords > 0.1
+            ceilings += [dist / p for p in _weighted_peaks(coords[ok], weights[ok], 2)]
+        for ceiling in ceilings:
+            if not 0.3 < ceiling < 3.0:
+                continue
+            hyp = RoomHypothesis(
+                front, left, right, BACK_WALL_PRIOR, ceiling, 0.0, ceiling != CEILING_PRIOR
+            )
+            score = _edge_score(camera, segments, family, _edges(hyp, to_room), tolerance, size)
+            if best is None or score > best.score:
+                best = RoomHypothesis(
+                    front, left, right, BACK_WALL_PRIOR, ceiling, score, hyp.ceiling_seen
+                )
+    assert best is not None
+    if evidence is None:
+        return best
+    return _refine_by_surfaces(
+        best,
+        camera,
+        segments,
+        family,
+        to_room,
+        tolerance,
+        size,
+        evidence,
+        (min_front, min_left, min_right),
+    )
+
+
+EDGE_WEIGHT = 0.3  # share of the score from line support (the rest: surface colours)
+# A weak prior on the room's floor size (metres, log-normal), in camera heights of 1.4 m: it
+# decides walls the photo does not show and breaks ties between floor-texture lines.
+ROOM_SIZE_PRIOR = {"depth": 5.3, "width": 4.6}
+ROOM_SIZE_LOG_SD = 0.35
+PRIOR_WEIGHT = 0.1
+PRIOR_CAMERA_HEIGHT = 1.4
+
+
+def _refine_by_surfaces(
+    start: RoomHypothesis,
+    camera: PinholeCamera,
+    segments: Segments,
+    family: NDArray[np.int64],
+    to_room: FloatArray,
+    tolerance: float,
+    size: tuple[int, int],
+    evidence: SurfaceEvidence,
+    minimum: tuple[float, float, float],
+) -> RoomHypothesis:
+    """Coordinate ascent over each wall distance and the ceiling on a log grid, scoring
+    surface colour consistency plus line support along the edges."""
+    norm = max(float(segments.lengths.sum()), 1.0) * 0.05
+
+    def score(h: RoomHypothesis) -> float:
+        edges = _edge_score(camera, segments, family, _edges(h, to_room), tolerance, size) / norm
+        depth = (h.front + h.back) * PRIOR_CAMERA_HEIGHT
+        width = (h.left + h.right) * PRIOR_CAMERA_HEIGHT
+        prior = (math.log(depth / ROOM_SIZE_PRIOR["depth"]) / ROOM_SIZE_LOG_SD) ** 2 + (
+            math.log(width / ROOM_SIZE_PRIOR["width"]) / ROOM_SIZE_LOG_SD
+        ) ** 2
+        fit = (1 - EDGE_WEIGHT) * evidence.explained(h) + EDGE_WEIGHT * min(edges, 1.0)
+        return fit - PRIOR_WEIGHT * prior
+
+    best, best_score = start, score(start)
+    grids = {
+        "front": np.geomspace(max(minimum[0], 0.8), 14.0, 28),
+        "left": np.geomspace(max(minimum[1], 0.2), 8.0, 24),
+        "right": np.geomspace(max(minimum[2], 0.2), 8.0, 24),
+        "ceiling": np.geomspace(0.5, 2.5, 20),
+    }
+    for _ in range(3):
+        improved = False
+        for field, values in grids.items():
+            for value in values:
+                trial = RoomHypothesis(**{**best.__dict__, field: float(value), "score": 0.0})
+                trial_score = score(trial)
+                if trial_score > best_score + 1e-9:
+                    best, best_score, improved = trial, trial_score, True
+        if not improved:
+            break
+    return RoomHypothesis(**{**best.__dict__, "score": best_score})
+
+
+def _edges(hyp: RoomHypothesis, to_room: FloatArray) -> list[tuple[FloatArray, FloatArray, int]]:
+    """World 3D edges of the visible walls with the family of their direction."""
+    c = hyp.corners_room() @ to_room.T
+    # floor: front (1-2 along z), left (0-1 along x), right (3-2 along x); same for ceiling;
+    # vertical corners front-left (1-5) and front-right (2-6).
+    return [
+        (c[1], c[2], 2), (c[0], c[1], 1), (c[3], c[2], 1),
+        (c[5], c[6], 2), (c[4], c[5], 1), (c[7], c[6], 1),
+        (c[1], c[5], 0), (c[2], c[6], 0),
+    ]  # fmt: skip
