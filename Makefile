@@ -5,12 +5,12 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: bench bench-synth run test install install-python install-node install-chromium build schema schema-check \
+.PHONY: bench bench-synth vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
 
-test: install install-chromium schema-check lint pytest build e2e
+test: install install-chromium schema-check lint pytest test-frontend build e2e
 
 install: install-python install-node
 
@@ -72,3 +72,10 @@ bench: install-python
 
 bench-synth: install-python
 	$(PY) benchmarks/bench_synth.py
+
+# The room-fit test vectors shared by the Python and TypeScript tests.
+vectors:
+	$(PY) -m holiscene_schema.vectors
+
+test-frontend: install-node
+	npm run -s -w frontend test
