@@ -242,4 +242,3 @@ def test_floor_and_ceiling_swapped_is_refused() -> None:
     swapped = [fit_input["corners_2d"][(i + 4) % 8] for i in range(8)]
     with pytest.raises(ValueError, match="is not below the horizon"):
         fit_room(**{**fit_input, "corners_2d": swapped})
-
