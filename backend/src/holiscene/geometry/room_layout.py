@@ -215,11 +215,20 @@ def estimate_room(
     size: tuple[int, int],
     floor_points: FloatArray | None = None,
     evidence: SurfaceEvidence | None = None,
+    object_boxes: list[list[float]] | None = None,
 ) -> RoomHypothesis:
     """The best room for the segments; `floor_points` (N, 3, world, camera height 1) are
-    points known to lie inside the room (where floor-standing objects touch the floor)."""
+    points known to lie inside the room (where floor-standing objects touch the floor).
+    Segments inside `object_boxes` are edges of objects, not of the room: they do not count."""
     to_room = room_to_world(frame)  # room -> world; world -> room is its transpose
-    family = frame.family
+    family = frame.family.copy()
+    if object_boxes:
+        mids = segments.midpoints
+        for x1, y1, x2, y2 in object_boxes:
+            on_object = (
+                (mids[:, 0] > x1) & (mids[:, 0] < x2) & (mids[:, 1] > y1) & (mids[:, 1] < y2)
+            )
+            family[on_object] = -1
     floor_x, floor_xw, floor_z, floor_zw = _votes(camera, segments, family, to_room, -1.0)
     ceil_x, ceil_xw, ceil_z, ceil_zw = _votes(camera, segments, family, to_room, 1.0)
 
@@ -236,7 +245,7 @@ def estimate_room(
     rights = rights or [max(min_right + 0.3, 1.5)]
 
     tolerance = EDGE_TOLERANCE_FRAC * math.hypot(*size)
-    best: RoomHypothesis | None = None
+    hypotheses: list[RoomHypothesis] = []
     for front, left, right in itertools.product(fronts, lefts, rights):
         # The ceiling: distances of ceiling lines at height 1 scale with the ceiling height.
         ceilings = [CEILING_PRIOR]
@@ -250,35 +259,30 @@ def estimate_room(
         for ceiling in ceilings:
             if not 0.3 < ceiling < 3.0:
                 continue
-            hyp = RoomHypothesis(
-                front, left, right, BACK_WALL_PRIOR, ceiling, 0.0, ceiling != CEILING_PRIOR
-            )
+            seen = ceiling != CEILING_PRIOR
+            hyp = RoomHypothesis(front, left, right, BACK_WALL_PRIOR, ceiling, 0.0, seen)
             score = _edge_score(camera, segments, family, _edges(hyp, to_room), tolerance, size)
-            if best is None or score > best.score:
-                best = RoomHypothesis(
-                    front, left, right, BACK_WALL_PRIOR, ceiling, score, hyp.ceiling_seen
-                )
-    assert best is not None
+            hypotheses.append(RoomHypothesis(**{**hyp.__dict__, "score": score}))
+    hypotheses.sort(key=lambda h: -h.score)
     if evidence is None:
-        return best
-    return _refine_by_surfaces(
-        best,
-        camera,
-        segments,
-        family,
-        to_room,
-        tolerance,
-        size,
-        evidence,
-        (min_front, min_left, min_right),
-    )
+        return hypotheses[0]
+    minimum = (min_front, min_left, min_right)
+    refined = [
+        _refine_by_surfaces(
+            h, camera, segments, family, to_room, tolerance, size, evidence, minimum
+        )
+        for h in hypotheses[:RESTARTS]
+    ]
+    return max(refined, key=lambda h: h.score)
 
 
+RESTARTS = 4  # coordinate ascent from the best few line-vote hypotheses
 EDGE_WEIGHT = 0.3  # share of the score from line support (the rest: surface colours)
-# A weak prior on the room's floor size (metres, log-normal), in camera heights of 1.4 m: it
-# decides walls the photo does not show and breaks ties between floor-texture lines.
-ROOM_SIZE_PRIOR = {"depth": 5.3, "width": 4.6}
-ROOM_SIZE_LOG_SD = 0.35
+EDGE_NORM = 0.3  # line support is counted in tenths of all segment length
+# A weak prior on each wall's distance from the camera (metres, log-normal; converted with a
+# camera height of 1.4 m): it decides walls the photo does not show and breaks ties between
+# floor-texture lines. People photograph a room from near one wall, away from the others.
+WALL_DISTANCE_PRIOR = {"front": (4.2, 0.35), "left": (2.2, 0.4), "right": (2.2, 0.4)}
 PRIOR_WEIGHT = 0.1
 PRIOR_CAMERA_HEIGHT = 1.4
 
@@ -296,16 +300,15 @@ def _refine_by_surfaces(
 ) -> RoomHypothesis:
     """Coordinate ascent over each wall distance and the ceiling on a log grid, scoring
     surface colour consistency plus line support along the edges."""
-    norm = max(float(segments.lengths.sum()), 1.0) * 0.05
+    norm = max(float(segments.lengths.sum()), 1.0) * EDGE_NORM
 
     def score(h: RoomHypothesis) -> float:
         edges = _edge_score(camera, segments, family, _edges(h, to_room), tolerance, size) / norm
-        depth = (h.front + h.back) * PRIOR_CAMERA_HEIGHT
-        width = (h.left + h.right) * PRIOR_CAMERA_HEIGHT
-        prior = (math.log(depth / ROOM_SIZE_PRIOR["depth"]) / ROOM_SIZE_LOG_SD) ** 2 + (
-            math.log(width / ROOM_SIZE_PRIOR["width"]) / ROOM_SIZE_LOG_SD
-        ) ** 2
-        fit = (1 - EDGE_WEIGHT) * evidence.explained(h) + EDGE_WEIGHT * min(edges, 1.0)
+        prior = sum(
+            (math.log(getattr(h, wall) * PRIOR_CAMERA_HEIGHT / median) / sd) ** 2
+            for wall, (median, sd) in WALL_DISTANCE_PRIOR.items()
+        )
+        fit = (1 - EDGE_WEIGHT) * evidence.explained(h) + EDGE_WEIGHT * edges
         return fit - PRIOR_WEIGHT * prior
 
     best, best_score = start, score(start)

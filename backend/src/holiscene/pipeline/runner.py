@@ -15,10 +15,12 @@ from .registry import build_stages
 DEFAULT_STAGES: tuple[str, ...] = (
     "objects_from_detections",
     "intrinsics",
-    "masks_from_boxes",
+    "masks_grabcut",
     "layout_from_lines",
     "supports_from_priors",
-    "boxes_on_supporters",
+    "heights_by_metrology",
+    "placement",
+    "shapes_fit",
     "scene_mesh",
 )
 

@@ -6,7 +6,7 @@ import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { api } from "../../api/client";
 import { el } from "../../dom";
 import type { SceneSession } from "../../state/sceneSession";
-import { SceneModel } from "./sceneModel";
+import { isRoomSurface, SceneModel } from "./sceneModel";
 
 type Status = "loading" | "ready" | "missing" | "error" | "no-webgl";
 
@@ -170,7 +170,7 @@ export function mountScene3d(container: HTMLElement, session: SceneSession): () 
     raycaster.setFromCamera(ndc, camera);
     for (const hit of raycaster.intersectObject(model.root, true)) {
       const id: unknown = hit.object.userData.objectId;
-      if (typeof id === "string" && id !== "floor") return id;
+      if (typeof id === "string" && !isRoomSurface(id)) return id;
     }
     return null;
   };

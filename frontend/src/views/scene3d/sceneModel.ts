@@ -22,6 +22,10 @@ export class SceneModel {
       node.userData.objectId = id;
       const cls = classOf.get(id);
       const material = this.materialFor(id, cls === undefined ? FLOOR_COLOUR : classHex(cls));
+      // Room surfaces face inwards and are drawn one-sided: from outside, the walls between
+      // the viewer and the room disappear (a dollhouse view); from the photo's viewpoint
+      // they all show.
+      if (cls === undefined) material.side = THREE.FrontSide;
       disposeMaterial(node.material);
       node.material = material;
     });
@@ -33,10 +37,10 @@ export class SceneModel {
     return new SceneModel(gltf.scene, objects);
   }
 
-  /** The object id a mesh belongs to: the nearest node named by an object id (or "floor"). */
+  /** The object id a mesh belongs to: the nearest node named by an object id (or a room surface). */
   private static idOf(node: THREE.Object3D, classOf: ReadonlyMap<string, string>): string | null {
     for (let at: THREE.Object3D | null = node; at; at = at.parent) {
-      if (classOf.has(at.name) || at.name === "floor") return at.name;
+      if (classOf.has(at.name) || isRoomSurface(at.name)) return at.name;
     }
     return null;
   }
@@ -62,12 +66,12 @@ export class SceneModel {
     }
   }
 
-  /** Box around the objects (the floor left out, as it may extend far). */
+  /** Box around the objects (room surfaces left out, as they may extend far). */
   objectBounds(): THREE.Box3 {
     const box = new THREE.Box3();
     this.root.updateWorldMatrix(true, true);
     this.root.traverse((node) => {
-      if (node instanceof THREE.Mesh && node.userData.objectId !== "floor")
+      if (node instanceof THREE.Mesh && !isRoomSurface(String(node.userData.objectId)))
         box.expandByObject(node);
     });
     return box.isEmpty() ? new THREE.Box3().setFromObject(this.root) : box;
@@ -81,6 +85,11 @@ export class SceneModel {
       }
     });
   }
+}
+
+/** GLB nodes of the room itself (see backend export/glb.py): floor, ceiling, wall_0..wall_3. */
+export function isRoomSurface(name: string): boolean {
+  return name === "floor" || name === "ceiling" || /^wall_\d+$/.test(name);
 }
 
 function disposeMaterial(material: THREE.Material | THREE.Material[]): void {

@@ -14,45 +14,23 @@ import math
 import numpy as np
 from holiscene_schema import Box3D, SceneObject, SupportRelation
 
-from ...geometry.camera import FloatArray, PinholeCamera
+from ...geometry.camera import PinholeCamera
+from ...geometry.ground import height_above, hit_horizontal_plane
 from ...knowledge.object_sizes import typical_size
+from ...support_order import supporters_first
 from ..base import SceneContext, Stage, required
 from ..registry import register_stage
-
-MAX_DISTANCE_M = 30.0
-
-
-def _hit_plane(camera: PinholeCamera, pixels: FloatArray, plane_y: float) -> FloatArray | None:
-    """World points where rays through pixels meet the horizontal plane y = plane_y."""
-    rays = camera.ray(pixels)
-    if np.any(rays[:, 1] * plane_y <= 1e-9):  # parallel, or the plane is behind the ray
-        return None
-    hits: FloatArray = rays * (plane_y / rays[:, 1])[:, None]
-    if np.any(np.linalg.norm(hits, axis=1) > MAX_DISTANCE_M):
-        return None
-    return hits
-
-
-def _height_above(camera: PinholeCamera, base: FloatArray, top_pixel: FloatArray) -> float:
-    """Height above `base` of the point on the vertical through `base` seen at `top_pixel`."""
-    ray = camera.ray(top_pixel)[0]
-    up = np.array([0.0, 1.0, 0.0])
-    # Closest points of the line s * ray and the line base + h * up.
-    a = np.array([[ray @ ray, -(ray @ up)], [ray @ up, -(up @ up)]])
-    rhs = np.array([ray @ base, up @ base])
-    _, h = np.linalg.solve(a, rhs)
-    return float(h)
 
 
 def box_on_plane(camera: PinholeCamera, obj: SceneObject, plane_y: float) -> Box3D | None:
     x1, y1, x2, y2 = obj.bbox
     xc = (x1 + x2) / 2.0
-    hits = _hit_plane(camera, np.array([[x1, y2], [xc, y2], [x2, y2]]), plane_y)
+    hits = hit_horizontal_plane(camera, np.array([[x1, y2], [xc, y2], [x2, y2]]), plane_y)
     if hits is None:
         return None
     left, centre, right = hits
     width = float(np.linalg.norm(right - left))
-    height = _height_above(camera, centre, np.array([[xc, y1]]))
+    height = height_above(camera, centre, np.array([[xc, y1]]))
     typical_depth, typical_height, typical_width = typical_size(obj.cls)
     if not 0.02 < height < 4.0:
         height = typical_height
@@ -85,7 +63,7 @@ class BoxesOnSupporters(Stage):
         camera = PinholeCamera(np.array(cam.K), cam.pitch_deg, cam.roll_deg)
         by_id = {o.id: o for o in objects}
         support_of = {s.child: s for s in required(ctx.supports, "supports")}
-        for obj in _floor_first(objects, support_of):
+        for obj in supporters_first(objects, support_of):
             support = support_of.get(obj.id)
             plane_y = _resting_plane(support, boxes, -cam.height_m)
             if plane_y is None:
@@ -122,18 +100,3 @@ def _why_no_plane(support: SupportRelation | None) -> str:
     if support.type == "behind":
         return "no 3D box: objects supported from behind need the room layout (not estimated yet)"
     return f"no 3D box: its supporter {support.parent} has none"
-
-
-def _floor_first(
-    objects: list[SceneObject], support_of: dict[str, SupportRelation]
-) -> list[SceneObject]:
-    """Objects ordered so that every supporter comes before what it supports."""
-
-    def depth(obj_id: str) -> int:
-        steps = 0
-        while obj_id in support_of and steps <= len(objects):
-            obj_id = support_of[obj_id].parent
-            steps += 1
-        return steps
-
-    return sorted(objects, key=lambda o: depth(o.id))

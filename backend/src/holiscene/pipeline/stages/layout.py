@@ -15,17 +15,17 @@ import numpy as np
 from holiscene_schema import Camera, Layout, SceneObject
 
 from ...geometry.camera import FloatArray, PinholeCamera
+from ...geometry.ground import height_above, hit_horizontal_plane
 from ...geometry.lines import detect_segments
 from ...geometry.manhattan import estimate_manhattan_frame
 from ...geometry.room_layout import RoomHypothesis, SurfaceEvidence, estimate_room, room_to_world
 from ...knowledge.object_sizes import typical_size
 from ..base import SceneContext, Stage, required
 from ..registry import register_stage
-from .boxes import _height_above, _hit_plane
 
 CAMERA_HEIGHT_PRIOR = (1.4, 0.15)  # metres, sd of log
 ROOM_HEIGHT_PRIOR = (2.75, 0.10)
-OBJECT_HEIGHT_SD = 0.3
+OBJECT_HEIGHT_SD = 0.6
 FLOOR_CLASSES = frozenset(
     {"bed", "sofa", "chair", "table", "desk", "dresser", "night_stand", "cabinet", "bookshelf",
      "shelves", "counter", "refrigerator", "toilet", "bathtub"}
@@ -41,7 +41,7 @@ def _floor_contacts(
         x1, _, x2, y2 = obj.bbox
         if obj.cls not in FLOOR_CLASSES or y2 >= height - 2:
             continue
-        hits = _hit_plane(camera, np.array([[(x1 + x2) / 2, y2]]), -1.0)
+        hits = hit_horizontal_plane(camera, np.array([[(x1 + x2) / 2, y2]]), -1.0)
         if hits is not None:
             out.append((obj, hits[0]))
     return out
@@ -61,7 +61,7 @@ def camera_height(
         x1, y1, x2, _ = obj.bbox
         if y1 <= 2:
             continue  # the top is cut off: its height is unknown
-        unit_height = _height_above(camera, base, np.array([[(x1 + x2) / 2, y1]]))
+        unit_height = height_above(camera, base, np.array([[(x1 + x2) / 2, y1]]))
         if unit_height > 0.05:
             logs.append((math.log(typical_size(obj.cls)[1] / unit_height), OBJECT_HEIGHT_SD))
             sized += 1
@@ -93,6 +93,7 @@ class LayoutFromLines(Stage):
                 note=ctx.notes[self.name],
             )
             ctx.layout = Layout(note=ctx.notes[self.name])
+            ctx.vanishing_points = np.zeros((0, 3))  # none found; later stages check the shape
             return
         camera = PinholeCamera(K, frame.pitch_deg, frame.roll_deg)
         contacts = _floor_contacts(camera, objects, ctx.height)
@@ -106,6 +107,7 @@ class LayoutFromLines(Stage):
             (ctx.width, ctx.height),
             np.array([p for _, p in contacts]) if contacts else None,
             evidence,
+            [o.bbox for o in objects],
         )
         metres, priors = camera_height(camera, room, contacts)
         corners = room.corners_room() @ room_to_world(frame).T * metres

@@ -37,8 +37,29 @@ def _front_to_back(a: SceneObject, b: SceneObject) -> int:
 
 
 def occlusion_order(objects: list[SceneObject]) -> list[SceneObject]:
-    """Objects sorted from the frontmost to the backmost."""
-    return sorted(objects, key=functools.cmp_to_key(_front_to_back))
+    """Objects from the frontmost to the backmost.
+
+    A sort by the pairwise rule is not enough: the rule is not transitive (a box inside
+    another is in front, otherwise the one reaching lower is), so a sort can put a box behind
+    the box containing it, whose mask then swallows it. Only overlapping boxes need an order:
+    the sorted list is repaired by moving each box after the boxes that must be in front of
+    it (keeping the sorted order where the rule leaves a cycle).
+    """
+    in_front: dict[str, set[str]] = {obj.id: set() for obj in objects}
+    for i, a in enumerate(objects):
+        for b in objects[i + 1 :]:
+            if _overlap(a.bbox, b.bbox) > 0 and (side := _front_to_back(a, b)) != 0:
+                front, back = (a, b) if side < 0 else (b, a)
+                in_front[back.id].add(front.id)
+    remaining = sorted(objects, key=functools.cmp_to_key(_front_to_back))
+    order: list[SceneObject] = []
+    placed: set[str] = set()
+    while remaining:
+        ready = next((o for o in remaining if in_front[o.id] <= placed), remaining[0])
+        remaining.remove(ready)
+        order.append(ready)
+        placed.add(ready.id)
+    return order
 
 
 def box_pixels(bbox: list[float], width: int, height: int) -> np.ndarray:

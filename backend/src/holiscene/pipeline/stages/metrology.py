@@ -1,0 +1,77 @@
+"""Object heights by single-view metrology along the support order (thesis Eq. 4.3).
+
+See `holiscene.placement.metrology`: each object's height line (the longest vertical edge of
+its mask, by rays from the vertical vanishing point) is carried onto the room's height line
+and measured by cross ratio, from the floor up; an object supported from below starts at its
+supporter's top. Estimates outside three standard deviations of the class's height prior are
+replaced by the prior's mean (thesis Appendix B.2); the stage note lists those objects.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from holiscene_schema import SupportRelation
+
+from ...placement.metrology import HeightEstimate, HeightMeter, height_prior, room_reference
+from ...placement.room import pinhole, projection_matrix, room_of
+from ...support_order import supporters_first
+from ..base import SceneContext, Stage, required
+from ..registry import register_stage
+
+
+@register_stage
+class HeightsByMetrology(Stage):
+    name = "heights_by_metrology"
+    requires = frozenset({"objects", "masks", "camera", "layout", "vanishing_points", "supports"})
+    provides = frozenset({"heights"})
+
+    def run(self, ctx: SceneContext) -> None:
+        objects = required(ctx.objects, "objects")
+        if not objects:
+            ctx.heights = {}
+            return
+        masks = required(ctx.masks, "masks")
+        camera = pinhole(required(ctx.camera, "camera"))
+        room = room_of(required(ctx.layout, "layout"))
+        vps = np.asarray(required(ctx.vanishing_points, "vanishing_points"), dtype=float)
+        support_of: dict[str, SupportRelation] = {
+            s.child: s for s in required(ctx.supports, "supports")
+        }
+        ctx.heights = {}
+        reference = None
+        projection = None
+        if camera is not None and room is not None and vps.shape == (3, 3):
+            projection = projection_matrix(camera)
+            reference = room_reference(projection, room, vps, (ctx.width, ctx.height))
+        if reference is None or room is None or projection is None:
+            for obj in objects:
+                ctx.heights[obj.id] = height_prior(obj.cls)[0]
+            ctx.notes[self.name] = (
+                "no room height line (camera, layout or vanishing points missing): "
+                "every height is its class's prior mean"
+            )
+            return
+        meter = HeightMeter(
+            reference,
+            room,
+            projection,
+            {obj_id: m.pixels for obj_id, m in masks.items()},
+            {o.id: o.cls for o in objects},
+            support_of,
+            vps[1:],
+        )
+        estimates: dict[str, HeightEstimate] = {}
+        for obj in supporters_first(objects, support_of):
+            estimates[obj.id] = meter.measure(obj.id)
+            ctx.heights[obj.id] = round(estimates[obj.id].height, 4)
+        fallbacks = [
+            f"{obj_id} ({e.reason})" for obj_id, e in estimates.items() if e.source == "prior"
+        ]
+        bounds = [obj_id for obj_id, e in estimates.items() if e.source == "lower_bound"]
+        parts = []
+        if fallbacks:
+            parts.append(f"class prior for {len(fallbacks)}: " + ", ".join(fallbacks))
+        if bounds:
+            parts.append("top hidden, at least the prior mean: " + ", ".join(bounds))
+        if parts:
+            ctx.notes[self.name] = "; ".join(parts)
