@@ -124,3 +124,12 @@ def test_infer_without_detections_says_why_there_are_no_objects(t3d5: Path, tmp_
     assert scene.camera is not None and scene.camera.K_source == "assumed"
     notes = {s.name: s.note for s in scene.stages}
     assert notes["objects_from_detections"] and "detector" in notes["objects_from_detections"]
+
+
+def test_infer_refuses_a_missing_models_folder(
+    t3d5: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "out"
+    assert main(["infer", str(t3d5), "-o", str(out), "--models", str(tmp_path / "none")]) == 2
+    assert "does not exist" in capsys.readouterr().err
+    assert not out.exists()

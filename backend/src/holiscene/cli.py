@@ -44,6 +44,9 @@ def _parser() -> argparse.ArgumentParser:
         "-o", "--out", type=Path, required=True, help="folder for scene.json and scene.glb"
     )
     infer.add_argument("--stages", help="comma-separated stage names (default: the full pipeline)")
+    infer.add_argument(
+        "--models", type=Path, help="folder of your own models: <class>/*.obj|glb|ply"
+    )
     infer.set_defaults(handler=_infer)
 
     synth = sub.add_parser("synth", help="generate synthetic scenes with exact ground truth")
@@ -110,19 +113,21 @@ def _infer(args: argparse.Namespace) -> int:
 
     stages = [s.strip() for s in args.stages.split(",")] if args.stages else list(DEFAULT_STAGES)
     if _is_input_folder(args.input_dir) or not args.input_dir.is_dir():
-        _infer_one(args.input_dir, args.out, stages, verbose=True)
+        _infer_one(args.input_dir, args.out, stages, args.models, verbose=True)
         print(args.out / "scene.json")
         return 0
     folders = sorted(f for f in args.input_dir.iterdir() if f.is_dir() and _is_input_folder(f))
     if not folders:
         raise CliError(f"{args.input_dir} holds neither img.jpg/img.png nor input folders")
     for folder in tqdm(folders, desc="infer", unit="scene", file=sys.stderr):
-        _infer_one(folder, args.out / folder.name, stages, verbose=False)
+        _infer_one(folder, args.out / folder.name, stages, args.models, verbose=False)
     print(f"{len(folders)} scenes written to {args.out}")
     return 0
 
 
-def _infer_one(folder: Path, out: Path, stages: list[str], verbose: bool) -> None:
+def _infer_one(
+    folder: Path, out: Path, stages: list[str], models: Path | None, verbose: bool
+) -> None:
     from tqdm import tqdm
 
     from .inference import infer_scene
@@ -145,9 +150,10 @@ def _infer_one(folder: Path, out: Path, stages: list[str], verbose: bool) -> Non
                 name=folder.resolve().name,
                 image_file=f"img{inputs.photo.suffix}",
                 stages=stages,
+                models_dir=models,
                 progress=progress,
             )
-    except (InputError, PipelineBuildError) as exc:
+    except (InputError, PipelineBuildError, ValueError) as exc:
         raise CliError(f"{folder}: {exc}" if not verbose else str(exc)) from exc
     out.mkdir(parents=True, exist_ok=True)
     scene_json = json.dumps(result.scene.model_dump(mode="json"), indent=1) + "\n"

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 from holiscene_schema import ImageInfo, Layout, Scene, SceneObject, SupportRelation
@@ -30,9 +31,17 @@ def infer_scene(
     image_file: str,
     pinned_supports: Sequence[SupportRelation] = (),
     stages: Sequence[str] = DEFAULT_STAGES,
+    models_dir: Path | None = None,
     progress: ProgressCallback | None = None,
 ) -> InferenceResult:
-    pipeline = build_pipeline(stages)
+    """Run the stages on one photo. `models_dir` holds the user's own models
+    (`<class>/*.obj|glb|ply`), offered to `shapes_fit` beside the built-in library."""
+    options = (
+        {"shapes_fit": {"models_dir": models_dir}}
+        if models_dir and "shapes_fit" in stages
+        else None
+    )
+    pipeline = build_pipeline(stages, options)
     ctx = SceneContext(
         image=inputs.photo.rgb,
         given_K=inputs.K,

@@ -70,6 +70,7 @@ class Workbench:
                 name=current.scene.name,
                 image_file=current.scene.image.file,
                 pinned_supports=[s for s in current.scene.supports if s.source == "manual"],
+                models_dir=self.settings.models_dir,
                 progress=lambda stage, fraction: self.jobs.progress(job_id, stage, fraction),
             )
             revision = self.scenes.commit_pipeline_result(job.scene_id, result.scene, result.glb)

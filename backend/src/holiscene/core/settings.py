@@ -18,6 +18,7 @@ class Settings(BaseSettings):
     host: str = "127.0.0.1"
     port: int = 8000
     max_upload_mb: int = 50
+    models_dir: Path | None = None  # the user's own models: <class>/*.obj|glb|ply
 
     @property
     def resolved_database_url(self) -> str:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -43,7 +44,8 @@ class PinholeCamera:
     pitch_deg: float
     roll_deg: float
 
-    @property
+    # Cached: layout search projects thousands of short segments with one camera.
+    @cached_property
     def world_from_cv(self) -> FloatArray:
         """Rotation taking OpenCV camera coordinates to world coordinates."""
         pitch, roll = math.radians(self.pitch_deg), math.radians(self.roll_deg)
@@ -53,9 +55,20 @@ class PinholeCamera:
     def ray(self, pixels: FloatArray) -> FloatArray:
         """Unit world directions of the rays through pixels (N, 2)."""
         pts = np.atleast_2d(np.asarray(pixels, dtype=float))
-        to_world = self.world_from_cv @ np.linalg.inv(self.K)
+        to_world = self._world_from_pixel
         d_world = pts @ to_world[:, :2].T + to_world[:, 2]
         result: FloatArray = d_world / np.sqrt(np.einsum("ij,ij->i", d_world, d_world))[:, None]
+        return result
+
+    @cached_property
+    def _world_from_pixel(self) -> FloatArray:
+        result: FloatArray = self.world_from_cv @ np.linalg.inv(self.K)
+        return result
+
+    @cached_property
+    def optical_axis(self) -> FloatArray:
+        """Unit world direction the camera looks along."""
+        result: FloatArray = self.world_from_cv[:, 2].copy()
         return result
 
     def project(self, points: FloatArray) -> FloatArray:

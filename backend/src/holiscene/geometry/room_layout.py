@@ -140,7 +140,7 @@ def _visible_part(
     camera: PinholeCamera, start: FloatArray, end: FloatArray
 ) -> tuple[FloatArray, FloatArray] | None:
     """The image segment of the part of a 3D segment in front of the camera."""
-    forward = camera.ray(np.array([[camera.K[0, 2], camera.K[1, 2]]]))[0]
+    forward = camera.optical_axis
     ds, de = float(start @ forward), float(end @ forward)
     near = 0.05
     if ds < near and de < near:
@@ -276,7 +276,9 @@ def estimate_room(
     return max(refined, key=lambda h: h.score)
 
 
-RESTARTS = 4  # coordinate ascent from the best few line-vote hypotheses
+RESTARTS = 3  # coordinate ascent from the best few line-vote hypotheses
+GRID_STEPS = {"front": 28, "left": 24, "right": 24, "ceiling": 20}
+ROUNDS = 2
 EDGE_WEIGHT = 0.3  # share of the score from line support (the rest: surface colours)
 EDGE_NORM = 0.3  # line support is counted in tenths of all segment length
 # A weak prior on each wall's distance from the camera (metres, log-normal; converted with a
@@ -313,12 +315,12 @@ def _refine_by_surfaces(
 
     best, best_score = start, score(start)
     grids = {
-        "front": np.geomspace(max(minimum[0], 0.8), 14.0, 28),
-        "left": np.geomspace(max(minimum[1], 0.2), 8.0, 24),
-        "right": np.geomspace(max(minimum[2], 0.2), 8.0, 24),
-        "ceiling": np.geomspace(0.5, 2.5, 20),
+        "front": np.geomspace(max(minimum[0], 0.8), 14.0, GRID_STEPS["front"]),
+        "left": np.geomspace(max(minimum[1], 0.2), 8.0, GRID_STEPS["left"]),
+        "right": np.geomspace(max(minimum[2], 0.2), 8.0, GRID_STEPS["right"]),
+        "ceiling": np.geomspace(0.5, 2.5, GRID_STEPS["ceiling"]),
     }
-    for _ in range(3):
+    for _ in range(ROUNDS):
         improved = False
         for field, values in grids.items():
             for value in values:

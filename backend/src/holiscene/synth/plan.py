@@ -220,17 +220,17 @@ class Planner:
         """A floor object with its back to `wall`, centred at `along` on that wall."""
         size = self.size_of(cls) if size is None else size
         center = self._wall_point(wall, along, size[0] / 2 + 0.01, size[1] / 2)
-        yaw = WALL_YAW[wall]
-        probe = PlannedObject(-1, cls, size, center, yaw, "floor", "below", 0, _EMPTY_SHAPE)
-        if not self.fits(probe.footprint()) or self.collides(probe):
-            return None
-        return self.add(cls, size, center, yaw, "floor", "below")
+        return self._on_floor(cls, size, center, WALL_YAW[wall])
 
     def free(
         self, cls: str, x: float, z: float, yaw: float, size: FloatArray | None = None
     ) -> PlannedObject | None:
         size = self.size_of(cls) if size is None else size
-        center = np.array([x, size[1] / 2, z])
+        return self._on_floor(cls, size, np.array([x, size[1] / 2, z]), yaw)
+
+    def _on_floor(
+        self, cls: str, size: FloatArray, center: FloatArray, yaw: float
+    ) -> PlannedObject | None:
         probe = PlannedObject(-1, cls, size, center, yaw, "floor", "below", 0, _EMPTY_SHAPE)
         if not self.fits(probe.footprint()) or self.collides(probe):
             return None

@@ -69,7 +69,7 @@ def render(
     instance = np.full(width * height, NO_HIT, dtype=np.int32)
     item_of_ray = face_item[tri]
     instance[ray_index] = np.array([items[k].instance for k in range(len(items))])[item_of_ray]
-    optical_axis = camera.ray(np.array([[camera.K[0, 2], camera.K[1, 2]]]))[0]
+    optical_axis = camera.optical_axis
     depth = np.zeros(width * height, dtype=np.float32)
     depth[ray_index] = hits @ optical_axis
 

@@ -23,9 +23,9 @@ from ...knowledge.object_sizes import typical_size
 from ..base import SceneContext, Stage, required
 from ..registry import register_stage
 
-CAMERA_HEIGHT_PRIOR = (1.4, 0.15)  # metres, sd of log
-ROOM_HEIGHT_PRIOR = (2.75, 0.10)
-OBJECT_HEIGHT_SD = 0.6
+CAMERA_HEIGHT_PRIOR = (1.4, 0.12)  # metres, sd of log
+ROOM_HEIGHT_PRIOR = (2.75, 0.15)
+OBJECT_HEIGHT_SD = 0.14  # of the median over objects
 FLOOR_CLASSES = frozenset(
     {"bed", "sofa", "chair", "table", "desk", "dresser", "night_stand", "cabinet", "bookshelf",
      "shelves", "counter", "refrigerator", "toilet", "bathtub"}
@@ -56,20 +56,37 @@ def camera_height(
     if room.ceiling_seen:
         logs.append((math.log(ROOM_HEIGHT_PRIOR[0] / (1.0 + room.ceiling)), ROOM_HEIGHT_PRIOR[1]))
         used.append("room height")
-    sized = 0
-    for obj, base in contacts:
-        x1, y1, x2, _ = obj.bbox
-        if y1 <= 2:
-            continue  # the top is cut off: its height is unknown
-        unit_height = height_above(camera, base, np.array([[(x1 + x2) / 2, y1]]))
-        if unit_height > 0.05:
-            logs.append((math.log(typical_size(obj.cls)[1] / unit_height), OBJECT_HEIGHT_SD))
-            sized += 1
+    sized = [e for e in (_size_estimate(camera, obj, base) for obj, base in contacts) if e]
     if sized:
-        used.append(f"{sized} object size(s)")
+        # One robust observation: the median over objects (each is noisy: sizes vary).
+        spread = OBJECT_HEIGHT_SD if len(sized) > 1 else 2 * OBJECT_HEIGHT_SD
+        logs.append((float(np.median(sized)), spread))
+        used.append(f"{len(sized)} object size(s)")
     weights = np.array([1 / sd**2 for _, sd in logs])
     values = np.array([v for v, _ in logs])
     return float(math.exp((weights @ values) / weights.sum())), " + ".join(used)
+
+
+def _size_estimate(camera: PinholeCamera, obj: SceneObject, base: FloatArray) -> float | None:
+    """log(camera height) implied by the object's typical height, or None.
+
+    Seen from above, a box's top edge in the photo is its far top edge, about one depth
+    behind the contact point: the vertical is moved back by the class's depth (in units of
+    the camera height, so a few fixed-point steps)."""
+    x1, y1, x2, _ = obj.bbox
+    if y1 <= 2:
+        return None  # the top is cut off: its height is unknown
+    depth, height, _ = typical_size(obj.cls)
+    heading = np.array([base[0], 0.0, base[2]]) / max(float(np.hypot(base[0], base[2])), 1e-9)
+    metres = CAMERA_HEIGHT_PRIOR[0]
+    for _ in range(3):
+        unit_height = height_above(
+            camera, base + heading * depth / metres, np.array([[(x1 + x2) / 2, y1]])
+        )
+        if unit_height <= 0.05:
+            return None
+        metres = height / unit_height
+    return math.log(metres)
 
 
 @register_stage
