@@ -19,16 +19,18 @@ from ...geometry.ground import height_above, hit_horizontal_plane
 from ...geometry.lines import detect_segments
 from ...geometry.manhattan import estimate_manhattan_frame
 from ...geometry.room_layout import RoomHypothesis, SurfaceEvidence, estimate_room, room_to_world
-from ...knowledge.object_sizes import typical_size
+from ...knowledge.object_sizes import height_spread, typical_size
 from ..base import SceneContext, Stage, required
 from ..registry import register_stage
 
 CAMERA_HEIGHT_PRIOR = (1.4, 0.12)  # metres, sd of log
 ROOM_HEIGHT_PRIOR = (2.75, 0.15)
-OBJECT_HEIGHT_SD = 0.14  # of the median over objects
+MEASUREMENT_SD = 0.1  # log error of one object's measured height (edges, occlusion)
+# Classes standing on the floor whose bottom edge is where they meet it (doors included:
+# their heights vary least of all, so they weigh most).
 FLOOR_CLASSES = frozenset(
     {"bed", "sofa", "chair", "table", "desk", "dresser", "night_stand", "cabinet", "bookshelf",
-     "shelves", "counter", "refrigerator", "toilet", "bathtub"}
+     "shelves", "counter", "refrigerator", "toilet", "bathtub", "door"}
 )  # fmt: skip
 
 
@@ -56,12 +58,17 @@ def camera_height(
     if room.ceiling_seen:
         logs.append((math.log(ROOM_HEIGHT_PRIOR[0] / (1.0 + room.ceiling)), ROOM_HEIGHT_PRIOR[1]))
         used.append("room height")
-    sized = [e for e in (_size_estimate(camera, obj, base) for obj, base in contacts) if e]
+    sized = [
+        (estimate, math.hypot(height_spread(obj.cls), MEASUREMENT_SD))
+        for obj, base in contacts
+        if (estimate := _size_estimate(camera, obj, base)) is not None
+    ]
     if sized:
-        # One robust observation: the median over objects (each is noisy: sizes vary).
-        spread = OBJECT_HEIGHT_SD if len(sized) > 1 else 2 * OBJECT_HEIGHT_SD
-        logs.append((float(np.median(sized)), spread))
-        used.append(f"{len(sized)} object size(s)")
+        # Drop objects far from the others (a box measured across an occluder, say).
+        centre = float(np.median([e for e, _ in sized]))
+        kept = [(e, sd) for e, sd in sized if abs(e - centre) < 2.5 * sd]
+        logs += kept
+        used.append(f"{len(kept)} object size(s)")
     weights = np.array([1 / sd**2 for _, sd in logs])
     values = np.array([v for v, _ in logs])
     return float(math.exp((weights @ values) / weights.sum())), " + ".join(used)
