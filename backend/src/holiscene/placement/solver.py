@@ -209,7 +209,25 @@ class Placer:
             return None
         centre = np.array(box.center)
         centre[1] = plane_y
-        return centre, float(box.size[2])
+        # A bottom edge hidden behind something in front reads as a contact far away, even
+        # beyond the walls: pull such a box back along its viewing direction into the room.
+        pull = self._inside_room_fraction(centre)
+        return centre * np.array([pull, 1.0, pull]), float(box.size[2]) * pull
+
+    def _inside_room_fraction(self, point: FloatArray, margin: float = 0.2) -> float:
+        """The largest s <= 1 that keeps (s x, y, s z) inside the room's footprint."""
+        if self.room is None:
+            return 1.0
+        half = self.room.size[[0, 2]] / 2.0 - margin
+        local = self.room.to_local(np.array([point[0], self.room.centre[1], point[2]]))[0]
+        camera = self.room.to_local(np.array([0.0, self.room.centre[1], 0.0]))[0]
+        fraction = 1.0
+        for axis, bound in ((0, half[0]), (2, half[1])):
+            step = local[axis] - camera[axis]
+            limit = bound if step > 0 else -bound
+            if abs(local[axis]) > bound and abs(step) > 1e-9:
+                fraction = min(fraction, (limit - camera[axis]) / step)
+        return float(max(fraction, 0.05))
 
     def _standing(
         self, obj: SceneObject, mask: np.ndarray, parent: str, height: float
