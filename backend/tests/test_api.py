@@ -222,3 +222,11 @@ def test_unfinished_jobs_fail_clearly_after_restart(settings: Settings, t3d5: Pa
         job = client.get(f"/api/jobs/{stuck.id}").json()
         assert job["status"] == "failed"
         assert "server stopped" in job["error"]
+
+
+def test_scene_list_shows_the_newest_job(client: TestClient, t3d5: Path) -> None:
+    scene_id, _ = _imported(client, t3d5)
+    rerun = client.post(f"/api/scenes/{scene_id}/pipeline-jobs").json()
+    wait_for_job(client, rerun["id"])
+    listed = client.get("/api/scenes").json()
+    assert listed[0]["latest_job"]["id"] == rerun["id"]

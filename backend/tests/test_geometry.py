@@ -12,7 +12,7 @@ from holiscene.geometry.camera import (
     pitch_roll_from_up_direction,
 )
 from holiscene.geometry.lines import Segments
-from holiscene.geometry.vanishing import vertical_vanishing_point
+from holiscene.geometry.vanishing import vertical_candidates
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -65,8 +65,9 @@ def test_vertical_vanishing_point_recovers_pitch_and_roll(
         ends = camera.project(np.array([base, top]))
         if not np.isnan(ends).any():
             segments.append(ends.reshape(-1))
-    vp = vertical_vanishing_point(Segments(np.array(segments)))
-    assert vp is not None
+    found = vertical_candidates(Segments(np.array(segments)), count=1)
+    assert found
+    vp = found[0]
     got_pitch, got_roll = pitch_roll_from_up_direction(np.linalg.solve(K, vp))
     assert abs(got_pitch - pitch) < 0.05
     assert abs(got_roll - roll) < 0.05

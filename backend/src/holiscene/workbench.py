@@ -51,7 +51,7 @@ class Workbench:
     ) -> ImportResult:
         summary = self.scenes.create(inputs, imported_scene(inputs, name), author)
         job = self.start_pipeline(summary.id) if run_pipeline else None
-        return ImportResult(scene=self.scenes.summary(summary.id, job), job=job)
+        return ImportResult(scene=summary.model_copy(update={"latest_job": job}), job=job)
 
     def start_pipeline(self, scene_id: str) -> Job:
         revision = self.scenes.summary(scene_id).revision

@@ -15,6 +15,7 @@ import itertools
 import math
 from dataclasses import dataclass
 
+import cv2
 import numpy as np
 from numpy.typing import NDArray
 
@@ -171,7 +172,6 @@ class SurfaceEvidence:
         to_room: FloatArray,
         cell: int = 8,
     ) -> None:
-        import cv2
 
         height, width = image.shape[:2]
         small = cv2.resize(image, (width // cell, height // cell), interpolation=cv2.INTER_AREA)

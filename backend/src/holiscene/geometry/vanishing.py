@@ -29,14 +29,6 @@ def _fit_point(lines: FloatArray, weights: FloatArray) -> FloatArray:
     return result / np.linalg.norm(result)
 
 
-def vertical_vanishing_point(
-    segments: Segments, plausible: Callable[[FloatArray], bool] | None = None
-) -> FloatArray | None:
-    """The best-supported vertical vanishing point (see `vertical_candidates`)."""
-    found = vertical_candidates(segments, count=1, plausible=plausible)
-    return found[0] if found else None
-
-
 def vertical_candidates(
     segments: Segments,
     *,

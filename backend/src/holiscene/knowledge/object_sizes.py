@@ -12,7 +12,8 @@ from ..shapes.library import SIZE_RANGES, SizeRange
 _DEFAULT = SizeRange((0.3, 0.5), (0.3, 0.5), (0.3, 0.5))
 
 
-def typical_size(cls: str) -> tuple[float, float, float]:
+def middle_size(cls: str) -> tuple[float, float, float]:
+    """(depth, height, width) at the middle of the class's ranges."""
     ranges = SIZE_RANGES.get(cls, _DEFAULT)
     depth, height, width = (sum(r) / 2 for r in (ranges.depth, ranges.height, ranges.width))
     return depth, height, width

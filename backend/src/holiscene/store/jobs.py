@@ -5,7 +5,7 @@ from __future__ import annotations
 import uuid
 
 from holiscene_schema import Job
-from sqlalchemy import Engine, select, update
+from sqlalchemy import Engine, func, select, update
 from sqlalchemy.orm import Session
 
 from .clock import as_utc, utcnow
@@ -43,9 +43,18 @@ class JobStore:
             return _job(row)
 
     def latest_for_scenes(self) -> dict[str, Job]:
+        """Each scene's newest job (the scene list shows it, and the app polls the list)."""
+        newest = (
+            select(JobRow.scene_id, func.max(JobRow.created_at).label("created_at"))
+            .group_by(JobRow.scene_id)
+            .subquery()
+        )
+        query = select(JobRow).join(
+            newest,
+            (JobRow.scene_id == newest.c.scene_id) & (JobRow.created_at == newest.c.created_at),
+        )
         with Session(self.engine) as session:
-            rows = session.scalars(select(JobRow).order_by(JobRow.created_at)).all()
-            return {row.scene_id: _job(row) for row in rows}
+            return {row.scene_id: _job(row) for row in session.scalars(query)}
 
     def progress(self, job_id: str, stage: str, fraction: float) -> None:
         self._set(job_id, status="running", stage=stage, progress=round(fraction, 4))

@@ -16,7 +16,7 @@ from holiscene_schema import Box3D, SceneObject, SupportRelation
 
 from ...geometry.camera import PinholeCamera
 from ...geometry.ground import height_above, hit_horizontal_plane
-from ...knowledge.object_sizes import typical_size
+from ...knowledge.object_sizes import middle_size
 from ...support_order import supporters_first
 from ..base import SceneContext, Stage, required
 from ..registry import register_stage
@@ -31,7 +31,7 @@ def box_on_plane(camera: PinholeCamera, obj: SceneObject, plane_y: float) -> Box
     left, centre, right = hits
     width = float(np.linalg.norm(right - left))
     height = height_above(camera, centre, np.array([[xc, y1]]))
-    typical_depth, typical_height, typical_width = typical_size(obj.cls)
+    typical_depth, typical_height, typical_width = middle_size(obj.cls)
     if not 0.02 < height < 4.0:
         height = typical_height
     depth = float(np.clip(width * typical_depth / typical_width, 0.05, 3.0))

@@ -19,7 +19,7 @@ from ...geometry.ground import height_above, hit_horizontal_plane
 from ...geometry.lines import detect_segments
 from ...geometry.manhattan import estimate_manhattan_frame
 from ...geometry.room_layout import RoomHypothesis, SurfaceEvidence, estimate_room, room_to_world
-from ...knowledge.object_sizes import height_spread, typical_size
+from ...knowledge.object_sizes import height_spread, middle_size
 from ..base import SceneContext, Stage, required
 from ..registry import register_stage
 
@@ -83,7 +83,7 @@ def _size_estimate(camera: PinholeCamera, obj: SceneObject, base: FloatArray) ->
     x1, y1, x2, _ = obj.bbox
     if y1 <= 2:
         return None  # the top is cut off: its height is unknown
-    depth, height, _ = typical_size(obj.cls)
+    depth, height, _ = middle_size(obj.cls)
     heading = np.array([base[0], 0.0, base[2]]) / max(float(np.hypot(base[0], base[2])), 1e-9)
     metres = CAMERA_HEIGHT_PRIOR[0]
     for _ in range(3):
