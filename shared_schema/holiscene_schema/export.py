@@ -24,6 +24,7 @@ from .api import (
     SceneSummary,
 )
 from .classes import NYU40_CLASSES
+from .relation_model import relation_model_contract
 from .scene import Scene
 from .support_graph import STRUCTURAL_SUPPORTERS
 
@@ -61,6 +62,7 @@ def render_schemas() -> dict[str, str]:
             "nyu40_classes": list(NYU40_CLASSES),
             "structural_supporters": sorted(STRUCTURAL_SUPPORTERS),
             "support_types": ["below", "behind"],
+            "relation_model": relation_model_contract(),
         }
     )
     return out

@@ -49,6 +49,7 @@ const vocabularyTs = [
   `export const NYU40_CLASSES = ${JSON.stringify(vocabulary.nyu40_classes)} as const;`,
   `export const STRUCTURAL_SUPPORTERS = ${JSON.stringify(vocabulary.structural_supporters)} as const;`,
   `export const SUPPORT_TYPES = ${JSON.stringify(vocabulary.support_types)} as const;`,
+  `export const RELATION_MODEL = ${JSON.stringify(vocabulary.relation_model)} as const;`,
   "",
 ].join("\n");
 
