@@ -35,7 +35,7 @@ def area_resize(values: np.ndarray, size: int) -> np.ndarray:
     c0, c1 = cell_bounds(width, size)
     sums = integral[r1][:, c1] - integral[r0][:, c1] - integral[r1][:, c0] + integral[r0][:, c0]
     counts = ((r1 - r0)[:, None] * (c1 - c0)[None, :])[:, :, None]
-    out = (sums / counts).astype(np.float32)
+    out: np.ndarray = (sums / counts).astype(np.float32)
     return out[:, :, 0] if values.ndim == 2 else out
 
 
