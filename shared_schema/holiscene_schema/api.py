@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from datetime import datetime
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
 from pydantic import Field
 
@@ -55,19 +55,26 @@ class RevisionInfo(SchemaModel):
 
 
 JobStatus = Literal["queued", "running", "succeeded", "failed"]
+JobKind = Literal["pipeline", "retrain"]
 
 
 class Job(SchemaModel):
+    """A background job: a pipeline run on one scene, or retraining the Relation Network."""
+
     id: str
-    scene_id: str
-    kind: Literal["pipeline"]
+    kind: JobKind
+    scene_id: str | None = Field(default=None, description="The scene of a pipeline job")
     status: JobStatus
     progress: float = Field(ge=0.0, le=1.0)
     stage: str | None = None
     message: str | None = None
     error: str | None = None
-    base_revision: int
+    log: str = Field(default="", description="What the job did so far, one line per step")
+    base_revision: int | None = Field(default=None, description="Pipeline jobs: the input")
     result_revision: int | None = None
+    result_model_id: str | None = Field(
+        default=None, description="Retrain jobs: the model they registered"
+    )
     created_at: datetime
     finished_at: datetime | None = None
 
@@ -100,3 +107,65 @@ class ErrorMessage(SchemaModel):
 
 class Conflict(SchemaModel):
     detail: ConflictDetail
+
+
+# -- the Relation Network model registry (admin) -------------------------------------------
+
+# default: the committed model the registry started with; accepted: trained here and at least
+# as good as the active model on the held-out scenes (so it was promoted); candidate: as good,
+# but the active model changed while it trained, so it was not promoted by itself; rejected:
+# worse on the held-out scenes. Any of them can still be made active by hand.
+ModelStatus = Literal["default", "accepted", "candidate", "rejected"]
+ModelAction = Literal["seed", "promote", "rollback"]
+
+
+class ModelInfo(SchemaModel):
+    id: str
+    version: int = Field(ge=1)
+    created_at: datetime
+    status: ModelStatus
+    active: bool
+    parent_id: str | None = Field(
+        default=None, description="The model that was active when this one was trained"
+    )
+    parent_version: int | None = None
+    job_id: str | None = Field(default=None, description="The retrain job that made it")
+    heldout_accuracy: float | None = Field(
+        default=None, description="Support accuracy on the held-out labelled scenes"
+    )
+    parent_heldout_accuracy: float | None = Field(
+        default=None, description="The parent's accuracy on the same held-out scenes"
+    )
+    validation_accuracy: float | None = Field(
+        default=None, description="Accuracy on the training run's own validation split"
+    )
+    training_scenes: int = Field(ge=0, description="Labelled scenes it was trained on")
+    heldout_scenes: int = Field(ge=0, description="Labelled scenes it was evaluated on")
+    has_curve: bool
+    note: str | None = None
+    metrics: dict[str, Any] = Field(default_factory=dict, description="The model's metrics.json")
+
+
+class ModelEvent(SchemaModel):
+    """One change of the active model: who made which model active, when."""
+
+    id: int
+    at: datetime
+    action: ModelAction
+    actor: str
+    model_id: str
+    model_version: int
+    previous_model_id: str | None = None
+    previous_version: int | None = None
+    note: str | None = None
+
+
+class RetrainRequest(SchemaModel):
+    author: str = Field(default="admin", min_length=1, max_length=64)
+    max_epochs: int | None = Field(default=None, ge=1, le=500)
+    synthetic_scenes: int | None = Field(default=None, ge=0, le=20_000)
+
+
+class PromoteRequest(SchemaModel):
+    author: str = Field(default="admin", min_length=1, max_length=64)
+    note: str | None = Field(default=None, max_length=500)

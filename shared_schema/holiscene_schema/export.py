@@ -19,6 +19,10 @@ from .api import (
     ErrorMessage,
     ImportResult,
     Job,
+    ModelEvent,
+    ModelInfo,
+    PromoteRequest,
+    RetrainRequest,
     RevisionInfo,
     SceneDocument,
     SceneSummary,
@@ -41,6 +45,10 @@ TOP_LEVEL: dict[str, type[BaseModel]] = {
     "job": Job,
     "error_message": ErrorMessage,
     "conflict": Conflict,
+    "model_info": ModelInfo,
+    "model_event": ModelEvent,
+    "retrain_request": RetrainRequest,
+    "promote_request": PromoteRequest,
 }
 
 

@@ -15,7 +15,11 @@ Job?: Job
 Layout?: Layout
 Mask?: Mask
 MeshRef?: MeshRef
+ModelEvent?: ModelEvent
+ModelInfo?: ModelInfo
+PromoteRequest?: PromoteRequest
 RemoveSupport?: RemoveSupport
+RetrainRequest?: RetrainRequest
 RevisionInfo?: RevisionInfo
 Scene?: Scene
 SceneDocument?: SceneDocument
@@ -164,20 +168,36 @@ job: (Job | null)
 scene: SceneSummary
 }
 /**
+ * A background job: a pipeline run on one scene, or retraining the Relation Network.
+ * 
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "Job".
  */
 export interface Job {
-base_revision: number
+/**
+ * Pipeline jobs: the input
+ */
+base_revision: (number | null)
 created_at: string
 error: (string | null)
 finished_at: (string | null)
 id: string
-kind: "pipeline"
+kind: ("pipeline" | "retrain")
+/**
+ * What the job did so far, one line per step
+ */
+log: string
 message: (string | null)
 progress: number
+/**
+ * Retrain jobs: the model they registered
+ */
+result_model_id: (string | null)
 result_revision: (number | null)
-scene_id: string
+/**
+ * The scene of a pipeline job
+ */
+scene_id: (string | null)
 stage: (string | null)
 status: ("queued" | "running" | "succeeded" | "failed")
 }
@@ -246,6 +266,88 @@ class: string
 file: (string | null)
 library: ("builtin" | "user")
 seed: (number | null)
+}
+/**
+ * One change of the active model: who made which model active, when.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "ModelEvent".
+ */
+export interface ModelEvent {
+action: ("seed" | "promote" | "rollback")
+actor: string
+at: string
+id: number
+model_id: string
+model_version: number
+note: (string | null)
+previous_model_id: (string | null)
+previous_version: (number | null)
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "ModelInfo".
+ */
+export interface ModelInfo {
+active: boolean
+created_at: string
+has_curve: boolean
+/**
+ * Support accuracy on the held-out labelled scenes
+ */
+heldout_accuracy: (number | null)
+/**
+ * Labelled scenes it was evaluated on
+ */
+heldout_scenes: number
+id: string
+/**
+ * The retrain job that made it
+ */
+job_id: (string | null)
+/**
+ * The model's metrics.json
+ */
+metrics: {
+[k: string]: unknown
+}
+note: (string | null)
+/**
+ * The parent's accuracy on the same held-out scenes
+ */
+parent_heldout_accuracy: (number | null)
+/**
+ * The model that was active when this one was trained
+ */
+parent_id: (string | null)
+parent_version: (number | null)
+status: ("default" | "accepted" | "candidate" | "rejected")
+/**
+ * Labelled scenes it was trained on
+ */
+training_scenes: number
+/**
+ * Accuracy on the training run's own validation split
+ */
+validation_accuracy: (number | null)
+version: number
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "PromoteRequest".
+ */
+export interface PromoteRequest {
+author: string
+note: (string | null)
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "RetrainRequest".
+ */
+export interface RetrainRequest {
+author: string
+max_epochs: (number | null)
+synthetic_scenes: (number | null)
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema

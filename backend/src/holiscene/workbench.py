@@ -1,46 +1,90 @@
 """The application's use cases, shared by the HTTP API and the CLI: import a photo, run the
-pipeline on a scene as a background job, and read jobs. No HTTP here."""
+pipeline on a scene as a background job, retrain the Relation Network, and read jobs. No HTTP
+here."""
 
 from __future__ import annotations
 
 import logging
+import shutil
+import threading
 import traceback
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from holiscene_schema import ImageInfo, ImportResult, Job, Scene
+from holiscene_schema import ImageInfo, ImportResult, Job, RetrainRequest, Scene
 
 from .core.db import make_engine, migrate
 from .core.settings import Settings
 from .inference import infer_scene
 from .inputs import InputFiles, read_input_folder
 from .pipeline.stages.detections import objects_from_detections
+from .retraining import RetrainJob, check_can_retrain, train_config
+from .store import models as model_registry
 from .store.files import SceneFiles
 from .store.jobs import JobStore
+from .store.models import ModelStore
 from .store.scenes import SceneStore
 
 log = logging.getLogger(__name__)
 
 
 class Workbench:
-    def __init__(self, settings: Settings) -> None:
+    def __init__(self, settings: Settings, default_model_dir: Path | None = None) -> None:
+        """`default_model_dir`: the model an empty registry starts from (the committed one
+        unless given)."""
         settings.data_dir.mkdir(parents=True, exist_ok=True)
         self.settings = settings
         self.engine = make_engine(settings.resolved_database_url)
         migrate(self.engine)
         self.scenes = SceneStore(self.engine, SceneFiles(settings.data_dir))
         self.jobs = JobStore(self.engine)
+        self.models = ModelStore(
+            self.engine,
+            settings.data_dir / "models",
+            # Looked up per instance (not as a default argument) so tests can point it away.
+            default_model_dir or model_registry.DEFAULT_MODEL_DIR,
+        )
+        self.models.seed_if_empty()
         # One worker: the pipeline uses both cores through numpy/OpenCV already.
         self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="pipeline")
+        # Retraining gets its own single worker: a run takes minutes and must not hold up
+        # imports queued behind it; one at a time (RetrainRunningError otherwise).
+        self._training = ThreadPoolExecutor(max_workers=1, thread_name_prefix="retrain")
+        self._retrain_lock = threading.Lock()
+        self._stop = threading.Event()
+
+    @property
+    def training_dir(self) -> Path:
+        """Where retrain jobs train; nothing in it outlives its job."""
+        return self.settings.data_dir / "training"
 
     def recover_after_restart(self) -> None:
+        for job in self.jobs.unfinished("retrain"):
+            # Registration is the job's last step: a model from it is complete and in use.
+            model = self.models.by_job(job.id)
+            if model is not None:
+                self.jobs.succeed_retrain(
+                    job.id, model.id, f"v{model.version} was registered before the restart"
+                )
+            else:
+                self.jobs.fail(
+                    job.id,
+                    "the server stopped while this model was training; no model was "
+                    "registered from it and the active model is unchanged: retrain again",
+                )
         count = self.jobs.fail_unfinished(
             "the server stopped before this job finished; run it again"
         )
         if count:
             log.warning("marked %d unfinished job(s) failed after restart", count)
+        # Half-trained models and half-copied registry folders of the jobs just failed.
+        shutil.rmtree(self.training_dir, ignore_errors=True)
+        for path in self.models.remove_leftovers():
+            log.warning("removed an incomplete model folder %s", path)
 
     def close(self) -> None:
+        self._stop.set()  # a running retrain stops at its next progress report
+        self._training.shutdown(wait=True, cancel_futures=True)
         self._executor.shutdown(wait=True, cancel_futures=True)
         self.engine.dispose()
 
@@ -59,10 +103,39 @@ class Workbench:
         self._executor.submit(self.run_job, job.id)
         return job
 
+    def start_retrain(self, request: RetrainRequest) -> Job:
+        """Queue a retrain job (admin). NotEnoughLabelsError when too few scenes are labelled,
+        RetrainRunningError when one is queued or running."""
+        check_can_retrain(self.scenes)
+        with self._retrain_lock:
+            job = self.jobs.create_retrain()
+        retrain = self.retrain_job(job.id, request)
+        self.jobs.append_log(
+            job.id,
+            f"queued by {request.author}: max_epochs={retrain.config.max_epochs}, "
+            f"synthetic_scenes={retrain.config.synthetic_scenes}",
+        )
+        self._training.submit(retrain.run)
+        return self.jobs.get(job.id)
+
+    def retrain_job(self, job_id: str, request: RetrainRequest) -> RetrainJob:
+        return RetrainJob(
+            job_id=job_id,
+            jobs=self.jobs,
+            scenes=self.scenes,
+            models=self.models,
+            work_root=self.training_dir,
+            config=train_config(request),
+            author=request.author,
+            stop=self._stop,
+        )
+
     def run_job(self, job_id: str) -> None:
         """Run a queued pipeline job to its end; every failure is recorded on the job."""
         job = self.jobs.get(job_id)
         try:
+            if job.scene_id is None:
+                raise ValueError(f"job {job_id} is not a pipeline job")
             folder = self.scenes.files.folder(job.scene_id)
             current = self.scenes.document(job.scene_id)
             result = infer_scene(

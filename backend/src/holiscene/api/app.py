@@ -12,7 +12,7 @@ from fastapi.staticfiles import StaticFiles
 from ..core.settings import Settings
 from ..workbench import Workbench
 from .errors import install_error_handlers
-from .routes import jobs, scenes
+from .routes import jobs, models, scenes
 
 
 def create_app(settings: Settings | None = None) -> FastAPI:
@@ -32,6 +32,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     install_error_handlers(app)
     app.include_router(scenes.router)
     app.include_router(jobs.router)
+    app.include_router(models.router)
 
     @app.get("/api/health", tags=["health"])
     def health() -> dict[str, str]:

@@ -9,7 +9,9 @@ from fastapi.responses import JSONResponse
 from ..editing import InvalidEditError
 from ..inputs import InputError
 from ..pipeline import PipelineBuildError
-from ..store.jobs import JobNotFoundError
+from ..retraining import NotEnoughLabelsError
+from ..store.jobs import JobNotFoundError, RetrainRunningError
+from ..store.models import ModelNotFoundError
 from ..store.scenes import RevisionConflictError, SceneNotFoundError
 
 
@@ -24,6 +26,7 @@ def install_error_handlers(app: FastAPI) -> None:
 
     @app.exception_handler(SceneNotFoundError)
     @app.exception_handler(JobNotFoundError)
+    @app.exception_handler(ModelNotFoundError)
     async def _missing(_: Request, exc: LookupError) -> JSONResponse:
         return JSONResponse(
             {"detail": str(exc.args[0]) if exc.args else "not found"}, status_code=404
@@ -37,6 +40,14 @@ def install_error_handlers(app: FastAPI) -> None:
             "current_revision": exc.current_revision,
         }
         return JSONResponse({"detail": detail}, status_code=409)
+
+    @app.exception_handler(RetrainRunningError)
+    async def _retrain_running(_: Request, exc: RetrainRunningError) -> JSONResponse:
+        return JSONResponse({"detail": str(exc)}, status_code=409)
+
+    @app.exception_handler(NotEnoughLabelsError)
+    async def _few_labels(_: Request, exc: NotEnoughLabelsError) -> JSONResponse:
+        return JSONResponse({"detail": str(exc)}, status_code=422)
 
     @app.exception_handler(PipelineBuildError)
     async def _pipeline(_: Request, exc: PipelineBuildError) -> JSONResponse:

@@ -1,4 +1,5 @@
-"""Pipeline jobs: status and progress in the database, so any request (or a restart) sees them."""
+"""Background jobs (pipeline runs, retraining): status, progress and log in the database, so any
+request (or a restart) sees them."""
 
 from __future__ import annotations
 
@@ -16,24 +17,58 @@ class JobNotFoundError(LookupError):
     pass
 
 
+class RetrainRunningError(Exception):
+    """Only one retrain job at a time: training uses the whole machine."""
+
+    def __init__(self, job_id: str) -> None:
+        super().__init__(f"a retrain job is already running ({job_id}); wait for it to finish")
+        self.job_id = job_id
+
+
+# A job's log keeps its newest lines within this many characters (a long training run
+# reports every epoch; the page only needs the recent ones and the start).
+MAX_LOG_CHARS = 20_000
+
+
 class JobStore:
     def __init__(self, engine: Engine) -> None:
         self.engine = engine
 
     def create(self, scene_id: str, base_revision: int) -> Job:
-        row = JobRow(
-            id=uuid.uuid4().hex[:16],
-            scene_id=scene_id,
-            kind="pipeline",
-            status="queued",
-            progress=0.0,
-            base_revision=base_revision,
-            created_at=utcnow(),
-        )
+        """A queued pipeline job on a scene's revision."""
+        return self._create(JobRow(scene_id=scene_id, kind="pipeline", base_revision=base_revision))
+
+    def create_retrain(self) -> Job:
+        """A queued retrain job, unless one is queued or running: then RetrainRunningError.
+
+        The check and the insert are one transaction; the caller also serialises them with a
+        lock, since SQLite's default isolation does not stop two transactions reading alike."""
         with Session(self.engine) as session:
+            running = session.scalar(
+                select(JobRow.id).where(
+                    JobRow.kind == "retrain", JobRow.status.in_(["queued", "running"])
+                )
+            )
+            if running is not None:
+                raise RetrainRunningError(running)
+            row = self._new(JobRow(scene_id=None, kind="retrain", base_revision=None))
             session.add(row)
             session.commit()
             return _job(row)
+
+    def _create(self, row: JobRow) -> Job:
+        with Session(self.engine) as session:
+            session.add(self._new(row))
+            session.commit()
+            return _job(row)
+
+    @staticmethod
+    def _new(row: JobRow) -> JobRow:
+        row.id = uuid.uuid4().hex[:16]
+        row.status = "queued"
+        row.progress = 0.0
+        row.created_at = utcnow()
+        return row
 
     def get(self, job_id: str) -> Job:
         with Session(self.engine) as session:
@@ -46,6 +81,7 @@ class JobStore:
         """Each scene's newest job (the scene list shows it, and the app polls the list)."""
         newest = (
             select(JobRow.scene_id, func.max(JobRow.created_at).label("created_at"))
+            .where(JobRow.scene_id.is_not(None))
             .group_by(JobRow.scene_id)
             .subquery()
         )
@@ -54,7 +90,30 @@ class JobStore:
             (JobRow.scene_id == newest.c.scene_id) & (JobRow.created_at == newest.c.created_at),
         )
         with Session(self.engine) as session:
-            return {row.scene_id: _job(row) for row in session.scalars(query)}
+            return {row.scene_id: _job(row) for row in session.scalars(query) if row.scene_id}
+
+    def latest_retrain(self) -> Job | None:
+        query = select(JobRow).where(JobRow.kind == "retrain").order_by(JobRow.created_at.desc())
+        with Session(self.engine) as session:
+            row = session.scalars(query.limit(1)).first()
+            return _job(row) if row is not None else None
+
+    def unfinished(self, kind: str) -> list[Job]:
+        query = select(JobRow).where(JobRow.kind == kind, JobRow.status.in_(["queued", "running"]))
+        with Session(self.engine) as session:
+            return [_job(row) for row in session.scalars(query)]
+
+    def append_log(self, job_id: str, line: str) -> None:
+        """Add a line to the job's log (a read-modify-write: one writer per job, its worker)."""
+        with Session(self.engine) as session:
+            row = session.get(JobRow, job_id)
+            if row is None:
+                raise JobNotFoundError(f"no job {job_id!r}")
+            log = (row.log or "") + line.rstrip("\n") + "\n"
+            if len(log) > MAX_LOG_CHARS:
+                log = "…\n" + log[-MAX_LOG_CHARS:].split("\n", 1)[-1]
+            row.log = log
+            session.commit()
 
     def progress(self, job_id: str, stage: str, fraction: float) -> None:
         self._set(job_id, status="running", stage=stage, progress=round(fraction, 4))
@@ -66,6 +125,17 @@ class JobStore:
             progress=1.0,
             stage=None,
             result_revision=result_revision,
+            message=message,
+            finished_at=utcnow(),
+        )
+
+    def succeed_retrain(self, job_id: str, model_id: str, message: str) -> None:
+        self._set(
+            job_id,
+            status="succeeded",
+            progress=1.0,
+            stage=None,
+            result_model_id=model_id,
             message=message,
             finished_at=utcnow(),
         )
@@ -94,14 +164,16 @@ def _job(row: JobRow) -> Job:
     return Job(
         id=row.id,
         scene_id=row.scene_id,
-        kind="pipeline",
+        kind=row.kind,
         status=row.status,
         progress=row.progress,
         stage=row.stage,
         message=row.message,
         error=row.error,
+        log=row.log or "",
         base_revision=row.base_revision,
         result_revision=row.result_revision,
+        result_model_id=row.result_model_id,
         created_at=as_utc(row.created_at),
         finished_at=as_utc(row.finished_at) if row.finished_at else None,
     )

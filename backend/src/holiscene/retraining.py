@@ -1,0 +1,317 @@
+"""Retraining the Relation Network from the stored labelled scenes (an admin's background job).
+
+A retrain job gathers the scenes people labelled, keeps a fixed share of them out of training,
+trains a new model in a temporary folder, measures it and the active model on the held-out
+scenes, registers it whatever the outcome, and makes it active only if it is not worse.
+
+Nothing half-made reaches the registry: training writes under `<data_dir>/training/<job>/`,
+which is deleted when the job ends and at every start; the registry copies a model in only
+after training and evaluation finished.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import logging
+import shutil
+import threading
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from holiscene_schema import ModelInfo, RetrainRequest, Scene
+
+from .inputs import load_photo
+from .learning.samples import SupportSample, sample_from_scene
+from .learning.training_api import TrainConfig
+from .store.jobs import JobStore
+from .store.models import ModelStore, Registration
+from .store.scenes import SceneStore
+
+log = logging.getLogger(__name__)
+
+HELDOUT_FRACTION = 0.2
+MIN_LABELLED_SCENES = 2  # one to learn from, one to judge by
+# Share of the job's progress bar each step takes (training is nearly all of it).
+_GATHER, _TRAIN_END = 0.05, 0.9
+
+
+class NotEnoughLabelsError(ValueError):
+    """Retraining needs labelled scenes to learn from and to judge the new model by."""
+
+
+class RetrainStopped(RuntimeError):
+    """The server is shutting down: the job ends failed and registers nothing."""
+
+
+@dataclass(frozen=True)
+class LabelledScene:
+    scene_id: str
+    revision: int
+    scene: Scene  # the current revision, with only the supports people set
+
+    @property
+    def key(self) -> str:
+        return f"{self.scene_id}@r{self.revision}"
+
+
+def labelled_scenes(scenes: SceneStore) -> list[LabelledScene]:
+    """Scenes whose current revision has supports set by a person (`source == "manual"`).
+
+    Supports the pipeline guessed are left out: training on them would teach the network its
+    own priors, and judging by them would reward agreeing with the priors."""
+    found = []
+    for summary in scenes.list_summaries():
+        doc = scenes.document(summary.id)
+        manual = [s for s in doc.scene.supports if s.source == "manual"]
+        if manual:
+            scene = doc.scene.model_copy(update={"supports": manual})
+            found.append(LabelledScene(summary.id, doc.revision, scene))
+    return found
+
+
+def _hash_fraction(scene_id: str) -> float:
+    digest = hashlib.sha256(scene_id.encode()).digest()
+    return int.from_bytes(digest[:8], "big") / 2**64
+
+
+def heldout_split(
+    scene_ids: Sequence[str], fraction: float = HELDOUT_FRACTION
+) -> tuple[list[str], list[str]]:
+    """(training ids, held-out ids), decided by a hash of each scene's id.
+
+    The split depends on the id alone, so a scene stays on its side in every retrain and no
+    model is ever judged on a scene an earlier model was trained on. With two or more scenes,
+    at least one is held out and at least one is trained on."""
+    ordered = sorted(scene_ids, key=_hash_fraction)
+    held = [s for s in ordered if _hash_fraction(s) < fraction]
+    if len(ordered) >= 2:
+        if not held:
+            held = ordered[:1]
+        elif len(held) == len(ordered):
+            held = held[:-1]
+    held_set = set(held)
+    return [s for s in scene_ids if s not in held_set], [s for s in scene_ids if s in held_set]
+
+
+def train_config(request: RetrainRequest, cache_dir: Path | None = None) -> TrainConfig:
+    """The training configuration: the defaults, with what the admin chose."""
+    changes: dict[str, Any] = {}
+    if request.max_epochs is not None:
+        changes["max_epochs"] = request.max_epochs
+    if request.synthetic_scenes is not None:
+        changes["synthetic_scenes"] = request.synthetic_scenes
+    if cache_dir is not None:
+        changes["cache_dir"] = cache_dir
+    return dataclasses.replace(TrainConfig(), **changes)
+
+
+def check_can_retrain(scenes: SceneStore) -> int:
+    """The number of labelled scenes; NotEnoughLabelsError when there are too few."""
+    count = len(labelled_scenes(scenes))
+    if count < MIN_LABELLED_SCENES:
+        raise NotEnoughLabelsError(
+            f"retraining needs at least {MIN_LABELLED_SCENES} labelled scenes (scenes with "
+            f"supports set by a person), {count} found: correct the supports of more scenes"
+        )
+    return count
+
+
+@dataclass
+class RetrainJob:
+    """One retrain job's run; `run` records every outcome on the job and never raises."""
+
+    job_id: str
+    jobs: JobStore
+    scenes: SceneStore
+    models: ModelStore
+    work_root: Path  # <data_dir>/training
+    config: TrainConfig
+    author: str
+    stop: threading.Event = dataclasses.field(default_factory=threading.Event)
+
+    def run(self) -> None:
+        work_dir = self.work_root / self.job_id
+        try:
+            self._run(work_dir)
+        except RetrainStopped as exc:
+            self._log(f"stopped: {exc}")
+            self.jobs.fail(self.job_id, f"{exc}; no model was registered from this job")
+        except Exception as exc:
+            log.exception("retrain job %s failed", self.job_id)
+            self._log(f"failed: {type(exc).__name__}: {exc}")
+            self.jobs.fail(
+                self.job_id,
+                f"{type(exc).__name__}: {exc}; no model was registered from this job",
+            )
+        finally:
+            shutil.rmtree(work_dir, ignore_errors=True)
+
+    # -- steps ---------------------------------------------------------------------------
+
+    def _run(self, work_dir: Path) -> None:
+        self._step("gathering labelled scenes", 0.0)
+        labelled = labelled_scenes(self.scenes)
+        if len(labelled) < MIN_LABELLED_SCENES:
+            raise NotEnoughLabelsError(
+                f"retraining needs at least {MIN_LABELLED_SCENES} labelled scenes, "
+                f"{len(labelled)} found"
+            )
+        train_ids, heldout_ids = heldout_split([s.scene_id for s in labelled])
+        by_id = {s.scene_id: s for s in labelled}
+        train = self._samples([by_id[i] for i in train_ids])
+        heldout = self._samples([by_id[i] for i in heldout_ids])
+        if not heldout:
+            raise NotEnoughLabelsError("none of the held-out scenes has a labelled object")
+        self._log(
+            f"{len(labelled)} labelled scenes: {len(train)} to train on, "
+            f"{len(heldout)} held out ({sum(s.labelled for s in heldout)} labelled objects)"
+        )
+        self.models.seed_if_empty()
+        parent = self.models.active_or_none()
+        self._log(f"active model: v{parent.version}" if parent else "no model is active yet")
+
+        self._step("training", _GATHER)
+        result = self._train(train, work_dir / "model")
+        self._check_stop()
+        self._log(f"trained: validation accuracy {result.validation_accuracy:.3f}")
+
+        self._step("evaluating on the held-out scenes", _TRAIN_END)
+        new_accuracy = _accuracy(result.model_dir, heldout)
+        self._log(f"new model: held-out accuracy {new_accuracy:.3f}")
+        parent_accuracy: float | None = None
+        if parent is not None:
+            try:
+                parent_accuracy = _accuracy(self.models.folder(parent.id), heldout)
+                self._log(f"active model v{parent.version}: {parent_accuracy:.3f}")
+            except Exception as exc:  # a broken active model must not block a working one
+                self._log(f"the active model v{parent.version} could not be evaluated: {exc}")
+        self._check_stop()
+
+        better = parent_accuracy is None or new_accuracy >= parent_accuracy
+        info = self._register(
+            result.model_dir,
+            result.validation_accuracy,
+            parent,
+            new_accuracy,
+            parent_accuracy,
+            better,
+            [by_id[i].key for i in train_ids],
+            [by_id[i].key for i in heldout_ids],
+        )
+        message = _outcome(info, new_accuracy, parent, parent_accuracy)
+        self._log(message)
+        self.jobs.succeed_retrain(self.job_id, info.id, message)
+
+    def _samples(self, labelled: Sequence[LabelledScene]) -> list[SupportSample]:
+        samples = []
+        for item in labelled:
+            self._check_stop()
+            photo = load_photo(self.scenes.image_path(item.scene_id).read_bytes())
+            sample = sample_from_scene(item.scene, photo.rgb)
+            if sample is not None and sample.labelled > 0:
+                # Name samples by scene and revision: data.json then says exactly what was seen.
+                samples.append(dataclasses.replace(sample, name=item.key))
+        return samples
+
+    def _train(self, samples: Sequence[SupportSample], out_dir: Path) -> Any:
+        # PyTorch only here, in the job: the server's request path never imports it.
+        from .learning.train import train_relation_model
+
+        out_dir.mkdir(parents=True, exist_ok=True)
+        last_line = [0.0]
+
+        def progress(fraction: float, line: str) -> None:
+            self._check_stop()
+            share = _GATHER + (_TRAIN_END - _GATHER) * min(max(fraction, 0.0), 1.0)
+            self.jobs.progress(self.job_id, "training", share)
+            now = time.monotonic()
+            if line and (now - last_line[0] > 0.5 or fraction >= 1.0):
+                last_line[0] = now
+                self._log(line)
+
+        started = time.monotonic()
+        result = train_relation_model(self.config, samples, out_dir, progress=progress)
+        self._log(f"training took {time.monotonic() - started:.1f} s")
+        return result
+
+    def _register(
+        self,
+        model_dir: Path,
+        validation_accuracy: float,
+        parent: ModelInfo | None,
+        new_accuracy: float,
+        parent_accuracy: float | None,
+        better: bool,
+        train_keys: list[str],
+        heldout_keys: list[str],
+    ) -> ModelInfo:
+        registration = Registration(
+            status="accepted" if better else "rejected",
+            parent_id=parent.id if parent else None,
+            job_id=self.job_id,
+            heldout_accuracy=new_accuracy,
+            parent_heldout_accuracy=parent_accuracy,
+            validation_accuracy=validation_accuracy,
+            data={
+                "training_scenes": train_keys,
+                "heldout_scenes": heldout_keys,
+                "config": _jsonable(dataclasses.asdict(self.config)),
+                "started_by": self.author,
+            },
+        )
+        return self.models.register(
+            model_dir,
+            registration,
+            promote=better,
+            expected_active=parent.id if parent else None,
+            actor=self.author,
+        )
+
+    # -- job reporting -------------------------------------------------------------------
+
+    def _step(self, stage: str, fraction: float) -> None:
+        self._check_stop()
+        self.jobs.progress(self.job_id, stage, fraction)
+        self._log(f"{stage}…")
+
+    def _log(self, line: str) -> None:
+        self.jobs.append_log(self.job_id, line)
+
+    def _check_stop(self) -> None:
+        if self.stop.is_set():
+            raise RetrainStopped("the server stopped while this job ran")
+
+
+def _accuracy(model_dir: Path, samples: Sequence[SupportSample]) -> float:
+    from .learning.runtime import SupportModel
+
+    return float(SupportModel.load(model_dir).accuracy(samples))
+
+
+def _outcome(
+    info: ModelInfo, accuracy: float, parent: ModelInfo | None, parent_accuracy: float | None
+) -> str:
+    against = (
+        f"v{parent.version}'s {parent_accuracy:.3f}"
+        if parent is not None and parent_accuracy is not None
+        else "no comparable active model"
+    )
+    if info.active:
+        return f"v{info.version} is active: held-out accuracy {accuracy:.3f} against {against}"
+    if info.status == "candidate":
+        return f"v{info.version} kept as a candidate ({info.note}): {accuracy:.3f} vs {against}"
+    return f"v{info.version} rejected: held-out accuracy {accuracy:.3f} is worse than {against}"
+
+
+def _jsonable(value: Any) -> Any:
+    if isinstance(value, dict):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, Path):
+        return str(value)
+    return value
