@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: bench bench-synth bench-geometry vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
+.PHONY: bench bench-synth bench-geometry vectors relation-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -80,6 +80,11 @@ bench-geometry: install-python
 # The room-fit test vectors shared by the Python and TypeScript tests.
 vectors:
 	$(PY) -m holiscene_schema.vectors
+
+# The Relation Network's vectors (preprocessing + the default model's logits) shared by the
+# backend and the browser; run after changing the default model or the preprocessing.
+relation-vectors:
+	$(PY) -m holiscene_schema.relation_vectors
 
 test-frontend: install-node
 	npm run -s -w frontend test

@@ -1,3 +1,4 @@
+import { fileURLToPath } from "node:url";
 import { defineConfig } from "vite";
 
 // The backend (`holiscene serve`) serves the built app from frontend/dist and the API under
@@ -15,5 +16,13 @@ export default defineConfig({
     target: "es2022",
     sourcemap: true,
     chunkSizeWarningLimit: 1024,
+    rolldownOptions: {
+      // The workbench, and a page that runs the Relation Network in the browser (for its
+      // end-to-end test and benchmark). onnxruntime-web's wasm file is emitted beside them.
+      input: {
+        main: fileURLToPath(new URL("index.html", import.meta.url)),
+        relationCheck: fileURLToPath(new URL("relation-check.html", import.meta.url)),
+      },
+    },
   },
 });

@@ -1,0 +1,199 @@
+// The Relation Network in the browser: onnxruntime-web (WASM, one thread) on the same ONNX file
+// the backend runs, fed by preprocess.ts. The runtime is loaded on first use as its own chunk
+// (`import("onnxruntime-web/wasm")`); Vite emits its wasm file with the app, so the app serves
+// it itself. A session costs about a second to create (mostly compiling the wasm), so each
+// model URL gets one session, kept and reused.
+import type { Scene, SceneObject } from "@holiscene/schema";
+import { RELATION_MODEL } from "@holiscene/schema";
+import type { InferenceSession } from "onnxruntime-web";
+import { modelObjects, type PixelImage, type RelationInputs, sceneInputs } from "./preprocess";
+
+type Ort = typeof import("onnxruntime-web/wasm");
+export type SupportTypeName = (typeof RELATION_MODEL.support_types)[number];
+
+export const STRUCTURAL_COLUMNS: readonly string[] = RELATION_MODEL.structural_columns;
+export const SUPPORT_TYPE_ORDER: readonly SupportTypeName[] = RELATION_MODEL.support_types;
+const TYPES = SUPPORT_TYPE_ORDER.length;
+
+let runtime: Promise<Ort> | null = null;
+
+/** onnxruntime-web's WASM build, configured for one thread on the page's own thread. */
+function loadRuntime(): Promise<Ort> {
+  runtime ??= import("onnxruntime-web/wasm").then((ort) => {
+    ort.env.wasm.numThreads = 1;
+    ort.env.wasm.proxy = false;
+    return ort;
+  });
+  runtime.catch(() => {
+    runtime = null;
+  });
+  return runtime;
+}
+
+/** One answer for an object: a supporter (object id or ceiling/floor/wall) and a type. */
+export interface SupportSuggestion {
+  supporter: string;
+  type: SupportTypeName;
+  probability: number;
+}
+
+/** An object's answers, most probable first (itself is never among them). */
+export interface ObjectSupportScores {
+  id: string;
+  ranked: SupportSuggestion[];
+}
+
+/** Softmax over each row's (N + 3) * 2 logits, in float64 (rows of `logits` [N, N + 3, 2]). */
+export function supportProbabilities(logits: ArrayLike<number>, count: number): Float64Array {
+  const row = (count + STRUCTURAL_COLUMNS.length) * TYPES;
+  if (logits.length !== count * row) {
+    throw new Error(
+      `expected ${count * row} support logits for ${count} objects, got ${logits.length}`,
+    );
+  }
+  const out = new Float64Array(count * row);
+  for (let i = 0; i < count; i++) {
+    let max = Number.NEGATIVE_INFINITY;
+    for (let k = 0; k < row; k++) max = Math.max(max, logits[i * row + k] as number);
+    let sum = 0;
+    for (let k = 0; k < row; k++) {
+      const e = Math.exp((logits[i * row + k] as number) - max);
+      out[i * row + k] = e;
+      sum += e;
+    }
+    for (let k = 0; k < row; k++) out[i * row + k] = (out[i * row + k] as number) / sum;
+  }
+  return out;
+}
+
+/** Each object's (supporter, type) answers by probability; `ids` name the object columns. */
+export function rankSupports(
+  logits: ArrayLike<number>,
+  ids: readonly string[],
+): ObjectSupportScores[] {
+  const count = ids.length;
+  const probabilities = supportProbabilities(logits, count);
+  const columns = [...ids, ...STRUCTURAL_COLUMNS];
+  const row = columns.length * TYPES;
+  return ids.map((id, i) => {
+    const ranked: SupportSuggestion[] = [];
+    columns.forEach((supporter, column) => {
+      if (column === i) return;
+      SUPPORT_TYPE_ORDER.forEach((type, t) => {
+        const probability = probabilities[i * row + column * TYPES + t] as number;
+        ranked.push({ supporter, type, probability });
+      });
+    });
+    ranked.sort((a, b) => b.probability - a.probability);
+    return { id, ranked };
+  });
+}
+
+export class SupportModel {
+  private constructor(
+    private readonly ort: Ort,
+    private readonly session: InferenceSession,
+    readonly url: string,
+  ) {}
+
+  /** Fetch the ONNX file and create its session (about a second: do it once). */
+  static async load(url: string, signal?: AbortSignal): Promise<SupportModel> {
+    const [ort, response] = await Promise.all([loadRuntime(), fetch(url, { signal })]);
+    if (!response.ok) throw new Error(`could not fetch the model ${url}: ${response.status}`);
+    const bytes = new Uint8Array(await response.arrayBuffer());
+    const session = await ort.InferenceSession.create(bytes, {
+      executionProviders: ["wasm"],
+      graphOptimizationLevel: "all",
+    });
+    const names = RELATION_MODEL.input_order as readonly string[];
+    const missing = names.filter((name) => !session.inputNames.includes(name));
+    if (missing.length > 0 || !session.outputNames.includes(RELATION_MODEL.output.name)) {
+      await session.release();
+      throw new Error(
+        `the model ${url} does not follow the contract (inputs ${session.inputNames})`,
+      );
+    }
+    return new SupportModel(ort, session, url);
+  }
+
+  /** The raw `support_logits` [N, N + 3, 2], flat. */
+  async logits(inputs: RelationInputs): Promise<Float32Array> {
+    const { Tensor } = this.ort;
+    const n = inputs.count;
+    const size = RELATION_MODEL.image_size;
+    const maskSize = RELATION_MODEL.mask_size;
+    const feeds = {
+      image: new Tensor("float32", inputs.image, [1, 3, size, size]),
+      masks: new Tensor("float32", inputs.masks, [n, maskSize, maskSize]),
+      boxes: new Tensor("float32", inputs.boxes, [n, 4]),
+      classes: new Tensor("int64", inputs.classes, [n]),
+    };
+    const name = RELATION_MODEL.output.name;
+    const results = await this.session.run(feeds, [name]);
+    const output = results[name];
+    try {
+      if (output?.type !== "float32") throw new Error(`the model gave no float32 ${name}`);
+      const expected = [n, n + STRUCTURAL_COLUMNS.length, TYPES];
+      if (output.dims.join() !== expected.join()) {
+        throw new Error(`${name} has shape [${output.dims}], expected [${expected}]`);
+      }
+      return new Float32Array(output.data as Float32Array);
+    } finally {
+      output?.dispose();
+    }
+  }
+
+  /** Ranked supporter/type probabilities of each of the scene's (non-structural) objects. */
+  async score(objects: readonly SceneObject[], image: PixelImage): Promise<ObjectSupportScores[]> {
+    const kept = modelObjects(objects);
+    if (kept.length === 0) return [];
+    const logits = await this.logits(sceneInputs(image, kept));
+    return rankSupports(
+      logits,
+      kept.map((o) => o.id),
+    );
+  }
+}
+
+const sessions = new Map<string, Promise<SupportModel>>();
+
+/** The model at `url`, its session created on first use and shared afterwards. */
+export function supportModel(url: string): Promise<SupportModel> {
+  let model = sessions.get(url);
+  if (!model) {
+    model = SupportModel.load(url);
+    sessions.set(url, model);
+    model.catch(() => sessions.delete(url));
+  }
+  return model;
+}
+
+/** The URL of the active model's ONNX file (the model registry's `GET /api/models/active`). */
+export async function activeModelUrl(signal?: AbortSignal): Promise<string> {
+  const response = await fetch("/api/models/active", {
+    signal,
+    headers: { Accept: "application/json" },
+  });
+  if (!response.ok) throw new Error(`no active support model: ${response.status}`);
+  const { id } = (await response.json()) as { id: string };
+  return `/api/models/${encodeURIComponent(id)}/model.onnx`;
+}
+
+/**
+ * Support scores for a scene's objects with the active model (or the one at `modelUrl`):
+ * `imageData` is the scene's photo at its full size (e.g. a canvas's ImageData).
+ */
+export async function scoreSupports(
+  scene: Pick<Scene, "objects" | "image">,
+  imageData: PixelImage,
+  modelUrl?: string,
+): Promise<ObjectSupportScores[]> {
+  if (imageData.width !== scene.image.width || imageData.height !== scene.image.height) {
+    throw new Error(
+      `the photo is ${imageData.width}x${imageData.height}, the scene says ` +
+        `${scene.image.width}x${scene.image.height}`,
+    );
+  }
+  const model = await supportModel(modelUrl ?? (await activeModelUrl()));
+  return model.score(scene.objects, imageData);
+}
