@@ -3,6 +3,7 @@ import "./styles.css";
 import { el } from "./dom";
 import { confirmLeave, parseRoute } from "./router";
 import { bindAuthorInput } from "./state/author";
+import { mountModelsPage } from "./views/models/modelsPage";
 import { mountScenePage } from "./views/scene/scenePage";
 import { mountSceneList } from "./views/sceneList/sceneListView";
 
@@ -21,6 +22,9 @@ function mount(root: HTMLElement): () => void {
     case "scene":
       document.title = `${route.sceneId} · HoliScene`;
       return mountScenePage(root, route.sceneId);
+    case "models":
+      document.title = "Models · HoliScene";
+      return mountModelsPage(root);
     case "unknown":
       document.title = "HoliScene";
       root.replaceChildren(

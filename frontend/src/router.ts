@@ -1,10 +1,16 @@
-// Hash routes: `#/` is the scene list, `#/scenes/{id}` a scene.
+// Hash routes: `#/` is the scene list, `#/scenes/{id}` a scene, `#/models` the Relation
+// Network models (admin).
 
-export type Route = { page: "list" } | { page: "scene"; sceneId: string } | { page: "unknown" };
+export type Route =
+  | { page: "list" }
+  | { page: "scene"; sceneId: string }
+  | { page: "models" }
+  | { page: "unknown" };
 
 export function parseRoute(hash: string): Route {
   const path = hash.replace(/^#/, "") || "/";
   if (path === "/") return { page: "list" };
+  if (/^\/models\/?$/.test(path)) return { page: "models" };
   const scene = /^\/scenes\/([^/]+)\/?$/.exec(path);
   if (scene?.[1]) return { page: "scene", sceneId: decodeURIComponent(scene[1]) };
   return { page: "unknown" };

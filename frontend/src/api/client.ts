@@ -9,7 +9,7 @@ import type {
 } from "@holiscene/schema";
 import { ApiError, ConflictError } from "./errors";
 
-const BASE = "/api";
+export const BASE = "/api";
 
 async function readDetail(response: Response): Promise<unknown> {
   const text = await response.text();
@@ -23,7 +23,7 @@ async function readDetail(response: Response): Promise<unknown> {
   }
 }
 
-async function request<T>(path: string, init: RequestInit = {}): Promise<T> {
+export async function request<T>(path: string, init: RequestInit = {}): Promise<T> {
   const response = await fetch(`${BASE}${path}`, {
     ...init,
     headers: { Accept: "application/json", ...init.headers },
@@ -36,7 +36,7 @@ async function request<T>(path: string, init: RequestInit = {}): Promise<T> {
   return (await response.json()) as T;
 }
 
-function jsonBody(body: unknown): RequestInit {
+export function jsonBody(body: unknown): RequestInit {
   return {
     method: "POST",
     headers: { "Content-Type": "application/json" },

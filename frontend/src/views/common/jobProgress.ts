@@ -1,18 +1,21 @@
-// A pipeline job's progress: a bar, the stage and status in words.
+// A background job's progress (a pipeline run or a retrain): a bar, the stage and status.
 import type { Job } from "@holiscene/schema";
 import { el } from "../../dom";
 
 export function describeJob(job: Job): string {
   const percent = `${Math.round(job.progress * 100)}%`;
+  const what = job.kind === "retrain" ? "Retraining" : "Pipeline";
   switch (job.status) {
     case "queued":
-      return "Pipeline queued…";
+      return `${what} queued…`;
     case "running":
       return `Running${job.stage ? ` ${job.stage}` : ""} · ${percent}${job.message ? ` · ${job.message}` : ""}`;
     case "succeeded":
-      return `Pipeline finished (revision ${job.result_revision ?? "?"})`;
+      return job.kind === "retrain"
+        ? `Retraining finished: ${job.message ?? "done"}`
+        : `Pipeline finished (revision ${job.result_revision ?? "?"})`;
     case "failed":
-      return `Pipeline failed${job.stage ? ` in ${job.stage}` : ""}: ${job.error ?? "unknown error"}`;
+      return `${what} failed${job.stage ? ` in ${job.stage}` : ""}: ${job.error ?? "unknown error"}`;
   }
 }
 

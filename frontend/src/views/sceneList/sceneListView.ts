@@ -76,7 +76,17 @@ export function mountSceneList(container: HTMLElement): () => void {
       el(
         "section",
         { className: "card" },
-        el("h2", { text: "Scenes" }),
+        el(
+          "div",
+          { className: "card-header" },
+          el("h2", { text: "Scenes" }),
+          el("a", {
+            className: "header-link",
+            text: "Relation Network models",
+            testid: "models-link",
+            attrs: { href: "#/models" },
+          }),
+        ),
         status,
         el("div", { className: "table-scroll" }, table),
       ),
