@@ -84,6 +84,14 @@ def _parser() -> argparse.ArgumentParser:
     imp.add_argument("--data-dir", type=Path)
     imp.add_argument("--database-url")
     imp.set_defaults(handler=_import)
+
+    view = sub.add_parser("view", help="review a scene in a viser viewer on 127.0.0.1")
+    view.add_argument("scene", help="a scene id of the store, or a scene.json path (or folder)")
+    view.add_argument("--port", type=int, default=8080, help="port (default 8080; 0: any free)")
+    view.add_argument("--photo", type=Path, help="the photo, when it is not beside scene.json")
+    view.add_argument("--data-dir", type=Path, help="the store's data directory (scene ids)")
+    view.add_argument("--database-url")
+    view.set_defaults(handler=_view)
     return parser
 
 
@@ -274,6 +282,18 @@ def _import(args: argparse.Namespace) -> int:
     finally:
         workbench.close()
     return 1 if failures else 0
+
+
+def _view(args: argparse.Namespace) -> int:
+    from .viewer import ViewerInputError
+    from .viewer.run import serve_until_interrupted
+
+    if not 0 <= args.port <= 65535:
+        raise CliError(f"--port {args.port} is not a port number")
+    try:
+        return serve_until_interrupted(args.scene, _settings(args), args.port, args.photo)
+    except ViewerInputError as exc:
+        raise CliError(str(exc)) from exc
 
 
 if __name__ == "__main__":

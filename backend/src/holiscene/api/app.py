@@ -12,7 +12,7 @@ from fastapi.staticfiles import StaticFiles
 from ..core.settings import Settings
 from ..workbench import Workbench
 from .errors import install_error_handlers
-from .routes import jobs, models, scenes
+from .routes import jobs, models, scenes, viewer
 
 
 def create_app(settings: Settings | None = None) -> FastAPI:
@@ -33,6 +33,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.include_router(scenes.router)
     app.include_router(jobs.router)
     app.include_router(models.router)
+    app.include_router(viewer.router)
 
     @app.get("/api/health", tags=["health"])
     def health() -> dict[str, str]:

@@ -1,0 +1,36 @@
+"""`holiscene view`: one viewer on 127.0.0.1 until Ctrl+C (or SIGTERM)."""
+
+from __future__ import annotations
+
+import signal
+import sys
+import time
+from pathlib import Path
+from types import FrameType
+
+from ..core.settings import Settings
+from .server import start_viewer, viewer_url
+from .sources import load_scene_argument
+
+
+def _interrupt(_signum: int, _frame: FrameType | None) -> None:
+    raise KeyboardInterrupt
+
+
+def serve_until_interrupted(scene: str, settings: Settings, port: int, photo: Path | None) -> int:
+    data = load_scene_argument(scene, settings, photo)
+    server, _viewer = start_viewer(data, port)
+    # A stop from a process manager (SIGTERM) ends the viewer as cleanly as Ctrl+C.
+    signal.signal(signal.SIGTERM, _interrupt)
+    url = viewer_url(server)
+    busy = f" (port {port} was busy)" if port not in (0, server.get_port()) else ""
+    print(f"viewer of {data.origin}: {url}{busy}", flush=True)
+    print("press Ctrl+C to stop", file=sys.stderr, flush=True)
+    try:
+        while True:
+            time.sleep(3600)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        server.stop()
+    return 0
