@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 from holiscene.inference import infer_scene
 from holiscene.inputs import read_input_folder
-from holiscene.knowledge.support_priors import SUPPORT_PRIORS
+from holiscene.learning.runtime import DEFAULT_MODEL_DIR, SupportModel
 from holiscene.pipeline import DEFAULT_STAGES, PipelineBuildError, build_pipeline, registered_stages
 from holiscene_schema import SupportRelation
 
@@ -35,9 +35,18 @@ def test_every_stage_declares_known_slots() -> None:
         assert stage.requires and stage.provides
 
 
-def test_every_prior_offers_a_structural_supporter() -> None:
-    for cls, priors in SUPPORT_PRIORS.items():
-        assert any(parent in ("floor", "wall") for parent, _, _ in priors), cls
+def test_every_class_has_a_structural_supporter_among_its_priors() -> None:
+    priors = SupportModel.load(DEFAULT_MODEL_DIR).priors
+    for cls in priors.counts:
+        assert any(parent in ("floor", "wall") for parent, _, _ in priors.ranked(cls)), cls
+
+
+def test_a_missing_model_fails_at_build_time(tmp_path: Path) -> None:
+    with pytest.raises(PipelineBuildError, match="no Relation Network model"):
+        build_pipeline(
+            ["objects_from_detections", "masks_from_boxes", "supports_from_network"],
+            {"supports_from_network": {"model_dir": tmp_path}},
+        )
 
 
 def test_pinned_supports_are_kept(t3d5: Path) -> None:

@@ -36,7 +36,7 @@ OUTPUT_NAME = "support_logits"
 # Column order of the structural supporters after the N object columns.
 STRUCTURAL_COLUMNS: tuple[str, ...] = tuple(sorted(STRUCTURAL_SUPPORTERS))
 SUPPORT_TYPE_ORDER: tuple[str, ...] = ("below", "behind")
-OPSET = 17
+OPSET = 18
 
 
 def relation_model_contract() -> dict[str, Any]:

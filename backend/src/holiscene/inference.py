@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from holiscene_schema import ImageInfo, Layout, Scene, SceneObject, SupportRelation
@@ -32,15 +33,18 @@ def infer_scene(
     pinned_supports: Sequence[SupportRelation] = (),
     stages: Sequence[str] = DEFAULT_STAGES,
     models_dir: Path | None = None,
+    support_model_dir: Path | None = None,
     progress: ProgressCallback | None = None,
 ) -> InferenceResult:
     """Run the stages on one photo. `models_dir` holds the user's own models
-    (`<class>/*.obj|glb|ply`), offered to `shapes_fit` beside the built-in library."""
-    options = (
-        {"shapes_fit": {"models_dir": models_dir}}
-        if models_dir and "shapes_fit" in stages
-        else None
-    )
+    (`<class>/*.obj|glb|ply`), offered to `shapes_fit` beside the built-in library;
+    `support_model_dir` is the Relation Network to use (default: the committed model)."""
+    options: dict[str, dict[str, Any]] = {}
+    if models_dir and "shapes_fit" in stages:
+        options["shapes_fit"] = {"models_dir": models_dir}
+    for stage in ("supports_from_network", "supports_from_priors"):
+        if support_model_dir and stage in stages:
+            options[stage] = {"model_dir": support_model_dir}
     pipeline = build_pipeline(stages, options)
     ctx = SceneContext(
         image=inputs.photo.rgb,

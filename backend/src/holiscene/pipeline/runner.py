@@ -17,7 +17,7 @@ DEFAULT_STAGES: tuple[str, ...] = (
     "intrinsics",
     "masks_grabcut",
     "layout_from_lines",
-    "supports_from_priors",
+    "supports_from_network",
     "heights_by_metrology",
     "placement",
     "shapes_fit",

@@ -1,17 +1,23 @@
-"""Supports from class priors, each candidate supporter checked against the 2D boxes."""
+"""Support relations: from the Relation Network (default) or from counted priors alone.
+
+Both read the support priors counted with the model in use (its priors.json), both keep the
+supports people pinned, and both return a tree: every object gets exactly one supporter.
+"""
 
 from __future__ import annotations
 
-from holiscene_schema import (
-    STRUCTURAL_CLASSES,
-    STRUCTURAL_SUPPORTERS,
-    SceneObject,
-    SupportRelation,
-    support_graph_problems,
-)
+from pathlib import Path
+from typing import Any
 
-from ...knowledge.support_priors import support_priors
-from ..base import SceneContext, Stage, required
+import numpy as np
+from holiscene_schema import STRUCTURAL_CLASSES, SceneObject, SupportRelation
+from holiscene_schema.relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER
+
+from ...learning.decode import DecodeMode, decode_supports
+from ...learning.preprocess import relation_inputs
+from ...learning.priors import SupportPriors
+from ...learning.runtime import DEFAULT_MODEL_DIR, SupportModel
+from ..base import PipelineBuildError, SceneContext, Stage, required
 from ..registry import register_stage
 
 
@@ -42,14 +48,15 @@ def image_plausibility(child: list[float], parent: list[float], kind: str) -> fl
     return overlap_x if overlap_x >= 0.3 else 0.0
 
 
-def _candidates(child: SceneObject, objects: list[SceneObject]) -> list[tuple[float, str, str]]:
-    """(score, parent, type) for every supporter the priors and the boxes allow.
+def prior_candidates(
+    child: SceneObject, objects: list[SceneObject], priors: SupportPriors
+) -> list[tuple[float, str, str]]:
+    """(score, parent, type) for every supporter the priors and the boxes allow, best first.
 
-    Every class's priors name a structural supporter, so the list is never empty and a
-    child always gets a supporter (structural edges cannot close a cycle)."""
+    Structural supporters need no image check, so the list is never empty."""
     found: list[tuple[float, str, str]] = []
-    for parent_cls, kind, prior in support_priors(child.cls):
-        if parent_cls in STRUCTURAL_SUPPORTERS:
+    for parent_cls, kind, prior in priors.ranked(child.cls):
+        if parent_cls in STRUCTURAL_CLASSES:
             found.append((prior, parent_cls, kind))
             continue
         for other in objects:
@@ -57,36 +64,96 @@ def _candidates(child: SceneObject, objects: list[SceneObject]) -> list[tuple[fl
                 score = prior * image_plausibility(child.bbox, other.bbox, kind)
                 if score > 0:
                     found.append((score, other.id, kind))
-    return sorted(found, reverse=True)
+    return sorted(found, key=lambda x: -x[0])
+
+
+def _model_dir(model_dir: str | Path | None) -> Path:
+    return Path(model_dir) if model_dir is not None else DEFAULT_MODEL_DIR
+
+
+def _load_model(stage: str, model_dir: Path) -> SupportModel:
+    try:
+        return SupportModel.load(model_dir)
+    except FileNotFoundError as error:
+        raise PipelineBuildError(f"stage {stage!r}: {error}") from error
 
 
 @register_stage
 class SupportsFromPriors(Stage):
+    """Chapter 3's inference: counted class priors, each candidate checked on the 2D boxes
+    (vertical order, overlap, size), the most probable one that keeps the graph a tree."""
+
     name = "supports_from_priors"
     requires = frozenset({"objects", "pinned_supports"})
     provides = frozenset({"supports"})
 
+    def __init__(self, model_dir: str | Path | None = None, **rest: Any) -> None:
+        super().__init__(**rest)
+        self.priors = _load_model(self.name, _model_dir(model_dir)).priors
+
     def run(self, ctx: SceneContext) -> None:
-        objects = required(ctx.objects, "objects")
+        objects = [o for o in required(ctx.objects, "objects") if o.cls not in STRUCTURAL_CLASSES]
         ids = [o.id for o in objects]
-        supports = [s for s in ctx.pinned_supports if s.child in ids]
-        pinned = {s.child for s in supports}
-        for child in objects:
-            if child.cls in STRUCTURAL_CLASSES or child.id in pinned:
-                continue
-            candidates = _candidates(child, objects)
-            total = sum(score for score, _, _ in candidates)
-            for score, parent, kind in candidates:
-                edges = [(s.child, s.parent) for s in supports] + [(child.id, parent)]
-                if not support_graph_problems(ids, edges):
-                    supports.append(
-                        SupportRelation(
-                            child=child.id,
-                            parent=parent,
-                            type=kind,
-                            source="auto",
-                            confidence=round(score / total, 4),
-                        )
-                    )
-                    break
-        ctx.supports = supports
+        pinned = [s for s in ctx.pinned_supports if s.child in ids]
+        candidates = {o.id: prior_candidates(o, objects, self.priors) for o in objects}
+        ctx.supports = _tree_from_candidates(ids, candidates, pinned)
+
+
+def _tree_from_candidates(
+    ids: list[str],
+    candidates: dict[str, list[tuple[float, str, str]]],
+    pinned: list[SupportRelation],
+) -> list[SupportRelation]:
+    """Each unpinned object's best candidate that keeps the graph a tree."""
+    # Scores as a probability table so the network's decoder does the tree building.
+    columns = {name: c for c, name in enumerate([*ids, *STRUCTURAL_COLUMNS])}
+    table = np.zeros((len(ids), len(columns), len(SUPPORT_TYPE_ORDER)))
+    for row, child in enumerate(ids):
+        for score, parent, kind in candidates.get(child, []):
+            table[row, columns[parent], SUPPORT_TYPE_ORDER.index(kind)] += score
+        total = table[row].sum()
+        if total > 0:
+            table[row] /= total
+    return decode_supports(table, ids, ["?"] * len(ids), pinned)
+
+
+@register_stage
+class SupportsFromNetwork(Stage):
+    """The Relation Network (ONNX, onnxruntime) on the photo and the masks, decoded into a
+    tree; with `decode="network+priors"` combined with the counted priors as in Eq. 4.1."""
+
+    name = "supports_from_network"
+    requires = frozenset({"objects", "masks", "pinned_supports"})
+    provides = frozenset({"supports"})
+
+    def __init__(
+        self, model_dir: str | Path | None = None, decode: DecodeMode = "network", **rest: Any
+    ) -> None:
+        super().__init__(**rest)
+        if decode not in ("network", "network+priors"):
+            raise PipelineBuildError(f"stage {self.name!r}: unknown decode {decode!r}")
+        self.decode: DecodeMode = decode
+        self.model = _load_model(self.name, _model_dir(model_dir))
+
+    def run(self, ctx: SceneContext) -> None:
+        objects = [o for o in required(ctx.objects, "objects") if o.cls not in STRUCTURAL_CLASSES]
+        masks = required(ctx.masks, "masks")
+        ids = [o.id for o in objects]
+        pinned = [s for s in ctx.pinned_supports if s.child in ids]
+        if not objects:
+            ctx.supports = pinned
+            return
+        inputs = relation_inputs(
+            ctx.image,
+            [masks[o.id].pixels for o in objects],
+            [o.bbox for o in objects],
+            [o.cls for o in objects],
+        )
+        ctx.supports = decode_supports(
+            self.model.probabilities(inputs),
+            ids,
+            [o.cls for o in objects],
+            pinned,
+            self.model.priors,
+            self.decode,
+        )

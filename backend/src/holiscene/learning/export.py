@@ -1,0 +1,44 @@
+"""ONNX export of a support network, checked against PyTorch before it is written."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import onnxruntime as ort
+import torch
+from holiscene_schema.relation_model import INPUT_NAMES, OPSET, OUTPUT_NAME
+
+from .samples import SupportSample
+
+EXPORT_TOLERANCE = 1e-5
+
+
+def export_onnx(net: torch.nn.Module, example: SupportSample, path: Path) -> float:
+    """Write `net` to `path` with a dynamic object count; returns the largest difference
+    between onnxruntime and PyTorch on `example` (raises if above EXPORT_TOLERANCE)."""
+    net = net.eval()
+    args = tuple(torch.from_numpy(example.inputs[name]) for name in INPUT_NAMES)
+    tmp = path.with_suffix(".tmp.onnx")
+    n = torch.export.Dim("objects", min=1, max=256)
+    torch.onnx.export(
+        net,
+        args,
+        str(tmp),
+        input_names=list(INPUT_NAMES),
+        output_names=[OUTPUT_NAME],
+        opset_version=OPSET,
+        dynamo=True,
+        external_data=False,
+        dynamic_shapes={"image": {}, "masks": {0: n}, "boxes": {0: n}, "classes": {0: n}},
+    )
+    with torch.no_grad():
+        expected = net(*args).numpy()
+    session = ort.InferenceSession(str(tmp), providers=["CPUExecutionProvider"])
+    got = session.run([OUTPUT_NAME], {k: example.inputs[k] for k in INPUT_NAMES})[0]
+    difference = float(np.abs(np.asarray(got) - expected).max())
+    if difference > EXPORT_TOLERANCE:
+        tmp.unlink()
+        raise RuntimeError(f"ONNX export differs from PyTorch by {difference:.2e}")
+    tmp.replace(path)
+    return difference

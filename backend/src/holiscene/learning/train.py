@@ -1,0 +1,222 @@
+"""Train a support network on synthetic scenes plus labelled scenes; write a model directory.
+
+`holiscene train-rn` and the app's retrain jobs both call `train_relation_model`. The run is
+deterministic for a seed (one thread, seeded shuffles and augmentation), stops early when
+validation accuracy has not improved for `patience` epochs, and keeps the best epoch.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import platform
+import random
+import time
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import torch
+import torch.nn.functional as F
+
+from .export import export_onnx
+from .nets import SupportNet
+from .priors import count_priors
+from .samples import NO_LABEL, SupportSample
+from .synthetic import seeds_digest, synthetic_samples
+from .training_api import (
+    CURVE_FILE,
+    DATA_FILE,
+    METRICS_FILE,
+    MODEL_FILE,
+    PRIORS_FILE,
+    TrainConfig,
+    TrainProgress,
+    TrainResult,
+)
+
+BATCH_SCENES = 8  # scenes per optimiser step (each scene is one forward pass)
+
+
+def _tensors(sample: SupportSample) -> dict[str, torch.Tensor]:
+    return {k: torch.from_numpy(v) for k, v in sample.inputs.items()}
+
+
+def augment(inputs: dict[str, torch.Tensor], rng: random.Random) -> dict[str, torch.Tensor]:
+    """Mirror left-right (supports do not care) and jitter colour and brightness."""
+    image, masks, boxes = inputs["image"], inputs["masks"], inputs["boxes"]
+    if rng.random() < 0.5:
+        image = image.flip(-1)
+        masks = masks.flip(-1)
+        boxes = torch.stack([1 - boxes[:, 2], boxes[:, 1], 1 - boxes[:, 0], boxes[:, 3]], 1)
+    gains = torch.tensor([rng.uniform(0.8, 1.2) for _ in range(3)]).reshape(1, 3, 1, 1)
+    image = (image * gains + rng.uniform(-0.1, 0.1)).clamp(0, 1)
+    return {"image": image, "masks": masks, "boxes": boxes, "classes": inputs["classes"]}
+
+
+def scene_loss(net: SupportNet, sample: SupportSample, inputs: dict[str, torch.Tensor]) -> Any:
+    logits = net(**inputs)
+    return F.cross_entropy(
+        logits.reshape(logits.shape[0], -1),
+        torch.from_numpy(sample.targets),
+        ignore_index=NO_LABEL,
+        reduction="sum",
+    )
+
+
+def predicted_answers(net: SupportNet, sample: SupportSample) -> np.ndarray:
+    with torch.no_grad():
+        logits = net(**_tensors(sample))
+    answers: np.ndarray = logits.reshape(logits.shape[0], -1).argmax(1).numpy()
+    return answers
+
+
+def accuracy(net: SupportNet, samples: Sequence[SupportSample]) -> float:
+    """Share of labelled objects whose top answer (supporter and type) is right."""
+    net.eval()
+    right = total = 0
+    for sample in samples:
+        labelled = sample.targets != NO_LABEL
+        right += int((predicted_answers(net, sample)[labelled] == sample.targets[labelled]).sum())
+        total += int(labelled.sum())
+    return right / total if total else 0.0
+
+
+def split(
+    samples: Sequence[SupportSample], fraction: float, seed: int
+) -> tuple[list[SupportSample], list[SupportSample]]:
+    order = list(range(len(samples)))
+    random.Random(seed).shuffle(order)
+    held = max(1, round(fraction * len(samples))) if len(samples) > 1 else 0
+    return [samples[i] for i in order[held:]], [samples[i] for i in order[:held]]
+
+
+def train_relation_model(
+    config: TrainConfig,
+    labelled: Sequence[SupportSample],
+    out_dir: Path,
+    progress: TrainProgress | None = None,
+) -> TrainResult:
+    """Train on `config.synthetic_scenes` generated scenes plus `labelled`; write the model
+    directory (ONNX, metrics, counted priors, what data it saw, curve) into `out_dir`."""
+    say = progress or (lambda fraction, line: None)
+    torch.manual_seed(config.seed)
+    torch.set_num_threads(1)
+    started = time.perf_counter()
+    seeds = list(
+        range(config.synthetic_seed_start, config.synthetic_seed_start + config.synthetic_scenes)
+    )
+    say(0.0, f"preparing {len(seeds)} synthetic scenes")
+    synthetic = synthetic_samples(
+        seeds,
+        config.cache_dir,
+        lambda done, total: say(0.25 * done / max(total, 1), f"synthetic scenes {done}/{total}"),
+    )
+    samples = [s for s in [*synthetic, *labelled] if s.labelled > 0]
+    if not samples:
+        raise ValueError("no labelled objects to train on")
+    train, validation = split(samples, config.validation_fraction, config.seed)
+    say(0.25, f"training on {len(train)} scenes, validating on {len(validation)}")
+
+    net = SupportNet()
+    optimiser = torch.optim.AdamW(net.parameters(), lr=config.learning_rate, weight_decay=1e-4)
+    steps_per_epoch = math.ceil(len(train) / BATCH_SCENES)
+    schedule = torch.optim.lr_scheduler.OneCycleLR(
+        optimiser, config.learning_rate, total_steps=max(1, steps_per_epoch * config.max_epochs)
+    )
+    rng = random.Random(config.seed)
+    curve: list[dict[str, float]] = []
+    best_accuracy, best_state, best_epoch = -1.0, net.state_dict(), 0
+    stopped = "max_epochs"
+    for epoch in range(1, config.max_epochs + 1):
+        net.train()
+        order = list(range(len(train)))
+        rng.shuffle(order)
+        total_loss, objects = 0.0, 0
+        for start in range(0, len(order), BATCH_SCENES):
+            optimiser.zero_grad()
+            for index in order[start : start + BATCH_SCENES]:
+                sample = train[index]
+                loss = scene_loss(net, sample, augment(_tensors(sample), rng))
+                (loss / BATCH_SCENES).backward()
+                total_loss += float(loss)
+                objects += sample.labelled
+            optimiser.step()
+            schedule.step()
+        validation_accuracy = accuracy(net, validation)
+        curve.append(
+            {
+                "epoch": epoch,
+                "train_loss": total_loss / max(objects, 1),
+                "validation_accuracy": validation_accuracy,
+                "seconds": time.perf_counter() - started,
+            }
+        )
+        if validation_accuracy > best_accuracy:
+            best_accuracy, best_epoch = validation_accuracy, epoch
+            best_state = {k: v.clone() for k, v in net.state_dict().items()}
+        say(
+            0.25 + 0.7 * epoch / config.max_epochs,
+            f"epoch {epoch}: loss {curve[-1]['train_loss']:.3f}, "
+            f"validation accuracy {validation_accuracy:.4f} (best {best_accuracy:.4f})",
+        )
+        if epoch - best_epoch >= config.patience:
+            stopped = "early_stopping"
+            break
+        if config.time_budget_s and time.perf_counter() - started > config.time_budget_s:
+            stopped = "time_budget"
+            break
+
+    net.load_state_dict(best_state)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    difference = export_onnx(net, validation[0] if validation else train[0], out_dir / MODEL_FILE)
+    (out_dir / PRIORS_FILE).write_text(count_priors(train).to_json())
+    metrics: dict[str, Any] = {
+        "architecture": config.architecture,
+        "validation_accuracy": best_accuracy,
+        "best_epoch": best_epoch,
+        "epochs": len(curve),
+        "stopped": stopped,
+        "train_seconds": round(time.perf_counter() - started, 1),
+        "onnx_max_difference": difference,
+        "curve": curve,
+        "config": {k: str(v) if isinstance(v, Path) else v for k, v in vars(config).items()},
+        "machine": platform.platform(),
+        "torch": torch.__version__,
+    }
+    (out_dir / METRICS_FILE).write_text(json.dumps(metrics, indent=1) + "\n")
+    data = {
+        "synthetic_seeds": {"start": seeds[0] if seeds else None, "count": len(seeds)},
+        "synthetic_digest": seeds_digest(seeds),
+        "labelled_scenes": [s.name for s in labelled],
+        "train_scenes": len(train),
+        "validation_scenes": [s.name for s in validation],
+        "objects": int(sum(s.labelled for s in samples)),
+    }
+    (out_dir / DATA_FILE).write_text(json.dumps(data, indent=1) + "\n")
+    plot_curve(curve, out_dir / CURVE_FILE)
+    say(1.0, f"done: validation accuracy {best_accuracy:.4f} at epoch {best_epoch}")
+    return TrainResult(out_dir, best_accuracy, metrics)
+
+
+def plot_curve(curve: Sequence[dict[str, float]], path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, loss_axis = plt.subplots(figsize=(6, 3.5), dpi=100)
+    epochs = [c["epoch"] for c in curve]
+    loss_axis.plot(epochs, [c["train_loss"] for c in curve], color="tab:red", label="train loss")
+    loss_axis.set_xlabel("epoch")
+    loss_axis.set_ylabel("train loss per object", color="tab:red")
+    accuracy_axis = loss_axis.twinx()
+    accuracy_axis.plot(
+        epochs, [c["validation_accuracy"] for c in curve], color="tab:blue", label="validation"
+    )
+    accuracy_axis.set_ylabel("validation support accuracy", color="tab:blue")
+    accuracy_axis.set_ylim(0, 1)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
