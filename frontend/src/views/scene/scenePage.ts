@@ -7,6 +7,7 @@ import { isFinished, pollJob } from "../../api/jobs";
 import { el } from "../../dom";
 import { mountSaveBar } from "../../editors/saveBar";
 import { mountSupportEditor } from "../../editors/supportEditor";
+import { mountSupportSuggestions } from "../../inference/supportSuggestions";
 import { SceneSession } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
 import { mountPhotoView } from "../photo/photoView";
@@ -82,8 +83,9 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     const editor = panel("Support relations", "panel--editor", "editor-panel");
     const saveBar = el("div", { className: "save-bar", testid: "save-bar" });
     const table = el("div", { className: "editor-table" });
+    const suggestions = el("div");
     const history = el("div");
-    editor.body.append(saveBar, table, history);
+    editor.body.append(saveBar, suggestions, table, history);
     content.append(
       el("div", { className: "scene-main" }, photo.element, scene3d.element),
       editor.element,
@@ -93,6 +95,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       mountScene3d(scene3d.body, session),
       mountSaveBar(saveBar, session),
       mountSupportEditor(table, session),
+      mountSupportSuggestions(suggestions, table, session),
       mountRevisionHistory(history, session),
       session.subscribe((change) => {
         if (change === "document") updateMeta();
