@@ -14,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import logging
+import re
 import shutil
 import threading
 import time
@@ -35,6 +36,8 @@ log = logging.getLogger(__name__)
 
 HELDOUT_FRACTION = 0.2
 MIN_LABELLED_SCENES = 2  # one to learn from, one to judge by
+# "<what> <done>/<total>": a counter line of the training log.
+_COUNTER = re.compile(r"^(.*?)\s*\d+\s*/\s*\d+\s*$")
 # Share of the job's progress bar each step takes (training is nearly all of it).
 _GATHER, _TRAIN_END = 0.05, 0.9
 
@@ -132,8 +135,11 @@ class RetrainJob:
     config: TrainConfig
     author: str
     stop: threading.Event = dataclasses.field(default_factory=threading.Event)
+    _started: float = dataclasses.field(default_factory=time.monotonic, init=False)
+    _last_counter: str | None = dataclasses.field(default=None, init=False)
 
     def run(self) -> None:
+        self._started = time.monotonic()
         work_dir = self.work_root / self.job_id
         try:
             self._run(work_dir)
@@ -222,15 +228,12 @@ class RetrainJob:
         from .learning.train import train_relation_model
 
         out_dir.mkdir(parents=True, exist_ok=True)
-        last_line = [0.0]
 
         def progress(fraction: float, line: str) -> None:
             self._check_stop()
             share = _GATHER + (_TRAIN_END - _GATHER) * min(max(fraction, 0.0), 1.0)
             self.jobs.progress(self.job_id, "training", share)
-            now = time.monotonic()
-            if line and (now - last_line[0] > 0.5 or fraction >= 1.0):
-                last_line[0] = now
+            if line:
                 self._log(line)
 
         started = time.monotonic()
@@ -279,7 +282,13 @@ class RetrainJob:
         self._log(f"{stage}…")
 
     def _log(self, line: str) -> None:
-        self.jobs.append_log(self.job_id, line)
+        # A counter ("synthetic scenes 7/1200") replaces its previous value instead of
+        # adding a line per step; everything else is kept.
+        counter = _COUNTER.match(line)
+        replace = counter is not None and counter.group(1) == self._last_counter
+        self._last_counter = counter.group(1) if counter else None
+        elapsed = time.monotonic() - self._started
+        self.jobs.append_log(self.job_id, f"[{elapsed:6.1f} s] {line}", replace_last=replace)
 
     def _check_stop(self) -> None:
         if self.stop.is_set():

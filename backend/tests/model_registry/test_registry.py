@@ -193,7 +193,7 @@ def test_failed_insert_removes_the_copied_folder(store: ModelStore, tmp_path: Pa
 def test_refuses_a_folder_without_a_model(store: ModelStore, tmp_path: Path) -> None:
     empty = tmp_path / "empty"
     empty.mkdir()
-    with pytest.raises(InvalidModelDirError, match="model.onnx"):
+    with pytest.raises(InvalidModelDirError, match=r"model\.onnx"):
         _register(store, empty)
     broken = fake_model_dir(tmp_path / "broken")
     (broken / "metrics.json").write_text("{not json")

@@ -103,13 +103,17 @@ class JobStore:
         with Session(self.engine) as session:
             return [_job(row) for row in session.scalars(query)]
 
-    def append_log(self, job_id: str, line: str) -> None:
-        """Add a line to the job's log (a read-modify-write: one writer per job, its worker)."""
+    def append_log(self, job_id: str, line: str, replace_last: bool = False) -> None:
+        """Add a line to the job's log, or replace its last line (a counter moving on).
+        A read-modify-write: each job has one writer, its worker."""
         with Session(self.engine) as session:
             row = session.get(JobRow, job_id)
             if row is None:
                 raise JobNotFoundError(f"no job {job_id!r}")
-            log = (row.log or "") + line.rstrip("\n") + "\n"
+            log = row.log or ""
+            if replace_last:
+                log = log[: log.rstrip("\n").rfind("\n") + 1]
+            log += line.rstrip("\n") + "\n"
             if len(log) > MAX_LOG_CHARS:
                 log = "…\n" + log[-MAX_LOG_CHARS:].split("\n", 1)[-1]
             row.log = log
