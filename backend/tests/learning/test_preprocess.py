@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from holiscene.learning.preprocess import area_resize, cell_bounds, relation_inputs
+from holiscene.learning.preprocess import area_resize, cell_bounds, mask_resize, relation_inputs
 from holiscene_schema.relation_model import IMAGE_SIZE, MASK_SIZE
 
 
@@ -52,3 +52,17 @@ def test_relation_inputs_refuse_mismatched_lists() -> None:
     image = np.zeros((10, 10, 3), dtype=np.uint8)
     with pytest.raises(ValueError, match="one mask, box and class"):
         relation_inputs(image, [np.ones((10, 10), bool)], [], ["lamp"])
+
+
+def test_mask_resize_equals_area_resize() -> None:
+    rng = np.random.default_rng(5)
+    for height, width in [(480, 640), (30, 50), (97, 61)]:
+        for _ in range(5):
+            mask = np.zeros((height, width), dtype=bool)
+            y0, x0 = rng.integers(0, height), rng.integers(0, width)
+            y1, x1 = rng.integers(y0, height) + 1, rng.integers(x0, width) + 1
+            mask[y0:y1, x0:x1] = rng.random((y1 - y0, x1 - x0)) < 0.7
+            np.testing.assert_array_equal(
+                mask_resize(mask, MASK_SIZE), area_resize(mask, MASK_SIZE)
+            )
+    assert not mask_resize(np.zeros((20, 20), dtype=bool), MASK_SIZE).any()

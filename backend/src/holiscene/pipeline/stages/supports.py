@@ -96,10 +96,10 @@ class SupportsFromPriors(Stage):
         ids = [o.id for o in objects]
         pinned = [s for s in ctx.pinned_supports if s.child in ids]
         candidates = {o.id: prior_candidates(o, objects, self.priors) for o in objects}
-        ctx.supports = _tree_from_candidates(ids, candidates, pinned)
+        ctx.supports = tree_from_candidates(ids, candidates, pinned)
 
 
-def _tree_from_candidates(
+def tree_from_candidates(
     ids: list[str],
     candidates: dict[str, list[tuple[float, str, str]]],
     pinned: list[SupportRelation],
