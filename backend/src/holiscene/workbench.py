@@ -144,6 +144,8 @@ class Workbench:
                 image_file=current.scene.image.file,
                 pinned_supports=[s for s in current.scene.supports if s.source == "manual"],
                 models_dir=self.settings.models_dir,
+                # The promoted Relation Network (None: the committed default model).
+                support_model_dir=self.models.active_dir(),
                 progress=lambda stage, fraction: self.jobs.progress(job_id, stage, fraction),
             )
             revision = self.scenes.commit_pipeline_result(job.scene_id, result.scene, result.glb)

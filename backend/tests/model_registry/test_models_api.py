@@ -146,7 +146,15 @@ def test_only_one_retrain_job_at_a_time(client: TestClient) -> None:
     workbench.jobs.fail(running.id, "test over")
 
 
-def test_pipeline_jobs_keep_their_shape(client: TestClient) -> None:
+@pytest.fixture()
+def committed_client(settings: Settings) -> Iterator[TestClient]:
+    """A server whose registry starts from the committed default model."""
+    with TestClient(create_app(settings)) as test_client:
+        yield test_client
+
+
+def test_pipeline_jobs_keep_their_shape(committed_client: TestClient) -> None:
+    client = committed_client
     scenes = _workbench(client).scenes
     scene_id = store_labelled_scene(scenes, LABELLED_SEEDS[0])
     started = client.post(f"/api/scenes/{scene_id}/pipeline-jobs")
@@ -158,3 +166,24 @@ def test_pipeline_jobs_keep_their_shape(client: TestClient) -> None:
     listed = client.get("/api/scenes").json()
     assert listed[0]["latest_job"]["id"] == job["id"]
     assert client.get("/api/models/retrain").json() is None
+
+
+def test_pipeline_uses_the_promoted_model(committed_client: TestClient, tmp_path: Path) -> None:
+    client = committed_client
+    workbench = _workbench(client)
+    committed = client.get("/api/models/active").json()
+    assert committed["status"] == "default"
+    # A model whose ONNX file is not a network: a pipeline run that uses it must fail.
+    broken = workbench.models.register(
+        fake_model_dir(tmp_path / "broken", b"not a network"), Registration(status="rejected")
+    )
+    assert client.post(f"/api/models/{broken.id}/promote").status_code == 200
+    scene_id = store_labelled_scene(workbench.scenes, LABELLED_SEEDS[0])
+    job = client.post(f"/api/scenes/{scene_id}/pipeline-jobs").json()
+    failed = wait_for_job(client, job["id"], timeout=60)
+    assert failed["status"] == "failed"
+    assert str(workbench.models.folder(broken.id)) in failed["error"]
+
+    assert client.post(f"/api/models/{committed['id']}/promote").status_code == 200
+    job = client.post(f"/api/scenes/{scene_id}/pipeline-jobs").json()
+    assert wait_for_job(client, job["id"], timeout=60)["status"] == "succeeded"
