@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: bench bench-synth bench-geometry vectors relation-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
+.PHONY: bench bench-synth bench-geometry bench-support bench-relation vectors relation-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -72,6 +72,12 @@ bench: install-python
 
 bench-synth: install-python
 	$(PY) benchmarks/bench_synth.py
+
+bench-support: install-python
+	$(PY) benchmarks/bench_support.py --seed 900000 --count 200
+
+bench-relation: install-python
+	$(PY) benchmarks/bench_relation.py
 
 bench-geometry: install-python
 	$(PY) benchmarks/bench_synth.py --seed 7000 --count 20

@@ -140,7 +140,7 @@ def train_relation_model(
                 sample = train[index]
                 loss = scene_loss(net, sample, augment(_tensors(sample), rng))
                 (loss / BATCH_SCENES).backward()
-                total_loss += float(loss)
+                total_loss += loss.item()
                 objects += sample.labelled
             optimiser.step()
             schedule.step()
