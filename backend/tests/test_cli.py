@@ -133,3 +133,25 @@ def test_infer_refuses_a_missing_models_folder(
     assert main(["infer", str(t3d5), "-o", str(out), "--models", str(tmp_path / "none")]) == 2
     assert "does not exist" in capsys.readouterr().err
     assert not out.exists()
+
+
+def test_train_rn_refuses_a_non_empty_output_and_bad_numbers(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    (tmp_path / "old").mkdir()
+    (tmp_path / "old" / "model.onnx").write_bytes(b"x")
+    assert main(["train-rn", "-o", str(tmp_path / "old")]) == 2
+    assert "not empty" in capsys.readouterr().err
+    assert main(["train-rn", "-o", str(tmp_path / "new"), "--max-epochs", "0"]) == 2
+    assert "--max-epochs" in capsys.readouterr().err
+    assert not (tmp_path / "new").exists()
+
+
+def test_train_rn_with_nothing_to_learn_says_so(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "model"
+    args = ["train-rn", "-o", str(out), "--synthetic-scenes", "0", "--with-store"]
+    assert main([*args, "--data-dir", str(tmp_path / "data")]) == 2
+    assert "no labelled objects" in capsys.readouterr().err
+    assert not (out / "model.onnx").exists()

@@ -9,6 +9,7 @@ import sys
 import tempfile
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 from .core.settings import REPO_ROOT, Settings
 
@@ -84,6 +85,24 @@ def _parser() -> argparse.ArgumentParser:
     imp.add_argument("--data-dir", type=Path)
     imp.add_argument("--database-url")
     imp.set_defaults(handler=_import)
+
+    train = sub.add_parser(
+        "train-rn", help="train the Relation Network on synthetic and stored labelled scenes"
+    )
+    train.add_argument("-o", "--out", type=Path, required=True, help="new model directory")
+    train.add_argument("--seed", type=int, default=0)
+    train.add_argument("--synthetic-scenes", type=int, default=800)
+    train.add_argument("--max-epochs", type=int, default=20)
+    train.add_argument("--patience", type=int, default=4)
+    train.add_argument("--time-budget", type=float, help="stop training after this many seconds")
+    train.add_argument(
+        "--with-store",
+        action="store_true",
+        help="also learn from the labelled scenes stored in the data directory",
+    )
+    train.add_argument("--data-dir", type=Path)
+    train.add_argument("--database-url")
+    train.set_defaults(handler=_train_rn)
 
     view = sub.add_parser("view", help="review a scene in a viser viewer on 127.0.0.1")
     view.add_argument("scene", help="a scene id of the store, or a scene.json path (or folder)")
@@ -194,6 +213,55 @@ def _synth(args: argparse.Namespace) -> int:
     rate = args.count / seconds
     print(f"{args.count} scenes in {seconds:.1f} s ({rate:.2f} scenes/s) -> {args.out}")
     return 0
+
+
+def _train_rn(args: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from .learning.training_api import TrainConfig
+
+    try:
+        from .learning.train import train_relation_model
+    except ImportError as error:
+        raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
+    if args.out.exists() and any(args.out.iterdir()):
+        raise CliError(f"{args.out} is not empty; give a new directory")
+    if args.synthetic_scenes < 0 or args.max_epochs < 1 or args.patience < 1:
+        raise CliError("--synthetic-scenes must be >= 0, --max-epochs and --patience >= 1")
+    labelled = _stored_samples(args) if args.with_store else []
+    config = TrainConfig(
+        seed=args.seed,
+        synthetic_scenes=args.synthetic_scenes,
+        max_epochs=args.max_epochs,
+        patience=args.patience,
+        time_budget_s=args.time_budget,
+    )
+    with tqdm(total=100, desc="train-rn", unit="%", file=sys.stderr) as bar:
+
+        def progress(fraction: float, line: str) -> None:
+            bar.update(round(100 * fraction) - bar.n)
+            bar.set_postfix_str(line[:60])
+            if line.startswith(("epoch", "done", "training")):
+                tqdm.write(line, file=sys.stderr)
+
+        try:
+            result = train_relation_model(config, labelled, args.out, progress)
+        except ValueError as error:
+            raise CliError(str(error)) from error
+    print(f"validation accuracy {result.validation_accuracy:.4f} -> {result.model_dir}")
+    return 0
+
+
+def _stored_samples(args: argparse.Namespace) -> list[Any]:
+    """The samples of the labelled scenes in the store (what a retrain job learns from)."""
+    from .retraining import stored_samples
+    from .workbench import Workbench
+
+    workbench = Workbench(_settings(args))
+    try:
+        return stored_samples(workbench.scenes)
+    finally:
+        workbench.close()
 
 
 def _eval(args: argparse.Namespace) -> int:

@@ -18,7 +18,7 @@ import re
 import shutil
 import threading
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -74,6 +74,23 @@ def labelled_scenes(scenes: SceneStore) -> list[LabelledScene]:
             scene = doc.scene.model_copy(update={"supports": manual})
             found.append(LabelledScene(summary.id, doc.revision, scene))
     return found
+
+
+def stored_samples(
+    scenes: SceneStore,
+    labelled: Sequence[LabelledScene] | None = None,
+    before_each: Callable[[], None] = lambda: None,
+) -> list[SupportSample]:
+    """The training samples of labelled scenes (all of the store's when not given)."""
+    samples = []
+    for item in labelled_scenes(scenes) if labelled is None else labelled:
+        before_each()
+        photo = load_photo(scenes.image_path(item.scene_id).read_bytes())
+        sample = sample_from_scene(item.scene, photo.rgb)
+        if sample is not None and sample.labelled > 0:
+            # Name samples by scene and revision: data.json then says exactly what was seen.
+            samples.append(dataclasses.replace(sample, name=item.key))
+    return samples
 
 
 def _hash_fraction(scene_id: str) -> float:
@@ -213,15 +230,7 @@ class RetrainJob:
         self.jobs.succeed_retrain(self.job_id, info.id, message)
 
     def _samples(self, labelled: Sequence[LabelledScene]) -> list[SupportSample]:
-        samples = []
-        for item in labelled:
-            self._check_stop()
-            photo = load_photo(self.scenes.image_path(item.scene_id).read_bytes())
-            sample = sample_from_scene(item.scene, photo.rgb)
-            if sample is not None and sample.labelled > 0:
-                # Name samples by scene and revision: data.json then says exactly what was seen.
-                samples.append(dataclasses.replace(sample, name=item.key))
-        return samples
+        return stored_samples(self.scenes, labelled, before_each=self._check_stop)
 
     def _train(self, samples: Sequence[SupportSample], out_dir: Path) -> Any:
         # PyTorch only here, in the job: the server's request path never imports it.
