@@ -3,6 +3,7 @@ import "./styles.css";
 import { el } from "./dom";
 import { confirmLeave, parseRoute } from "./router";
 import { bindAuthorInput } from "./state/author";
+import { mountShortcutHelp } from "./views/help/shortcutHelp";
 import { mountModelsPage } from "./views/models/modelsPage";
 import { mountScenePage } from "./views/scene/scenePage";
 import { mountSceneList } from "./views/sceneList/sceneListView";
@@ -11,6 +12,7 @@ const app = document.querySelector<HTMLElement>("#app");
 const authorInput = document.querySelector<HTMLInputElement>("#author-input");
 if (!app || !authorInput) throw new Error("index.html lacks #app or #author-input");
 bindAuthorInput(authorInput);
+mountShortcutHelp(document.body);
 
 function mount(root: HTMLElement): () => void {
   const route = parseRoute(window.location.hash);

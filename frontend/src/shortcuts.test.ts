@@ -1,0 +1,54 @@
+// Key names: what a registration says and what a key press gives must meet.
+import { describe, expect, it } from "vitest";
+import { eventKeys, listShortcuts, normalizeKeys, registerShortcut } from "./shortcuts";
+
+const press = (key: string, mods: { ctrl?: boolean; shift?: boolean; alt?: boolean } = {}) => ({
+  key,
+  ctrlKey: mods.ctrl ?? false,
+  metaKey: false,
+  altKey: mods.alt ?? false,
+  shiftKey: mods.shift ?? false,
+});
+
+describe("key names", () => {
+  it("orders modifiers and upper-cases letters", () => {
+    expect(normalizeKeys("shift+ctrl+z")).toBe("Ctrl+Shift+Z");
+    expect(normalizeKeys("Esc")).toBe("Escape");
+    expect(normalizeKeys("Cmd+S")).toBe("Ctrl+S");
+    expect(normalizeKeys("?")).toBe("?");
+    expect(normalizeKeys("+")).toBe("+");
+    expect(normalizeKeys("Ctrl++")).toBe("Ctrl++");
+  });
+
+  it("names key presses like registrations", () => {
+    expect(eventKeys(press("z", { ctrl: true }))).toBe("Ctrl+Z");
+    expect(eventKeys(press("Z", { ctrl: true, shift: true }))).toBe("Ctrl+Shift+Z");
+    expect(eventKeys(press("A", { shift: true }))).toBe("Shift+A");
+    expect(eventKeys(press("a"))).toBe("A");
+    // "?" needs Shift on most layouts; the symbol says it already.
+    expect(eventKeys(press("?", { shift: true }))).toBe("?");
+    expect(eventKeys(press("Delete"))).toBe("Delete");
+    expect(eventKeys(press("Tab", { shift: true }))).toBe("Shift+Tab");
+    expect(eventKeys(press(" "))).toBe("Space");
+  });
+});
+
+describe("registry", () => {
+  it("lists what is registered until it is removed", () => {
+    const before = listShortcuts().length;
+    const remove = registerShortcut({
+      keys: ["shift+a", "Enter"],
+      description: "Accept all",
+      scope: "Test",
+      run: () => {},
+    });
+    const listed = listShortcuts().at(-1);
+    expect(listed).toEqual({
+      keys: ["Shift+A", "Enter"],
+      description: "Accept all",
+      scope: "Test",
+    });
+    remove();
+    expect(listShortcuts()).toHaveLength(before);
+  });
+});
