@@ -28,8 +28,10 @@ BOX_EDGES: tuple[tuple[int, int], ...] = (
     (0, 4), (1, 5), (2, 6), (3, 7),
 )  # fmt: skip
 
-ARROW_OVERSHOOT = 0.12  # how far the head sticks out of the supported object, metres
-MIN_ARROW_LENGTH = 0.3  # thin things (pictures) still get a visible arrow
+# How far the head sticks out of the supported object, metres: far enough to be seen against
+# the room rather than against the object (a blue arrow on a blue door would vanish).
+ARROW_OVERSHOOT = 0.2
+MIN_ARROW_LENGTH = 0.4  # thin things (pictures) still get a visible arrow
 WALL_FALLBACK_DISTANCE = 0.4  # no room layout: the wall is taken this far behind the object
 
 

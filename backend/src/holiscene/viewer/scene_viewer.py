@@ -51,7 +51,8 @@ DIMMED_OPACITY = 0.25
 FRUSTUM_SCALE = 0.45  # metres: the photo stays small beside a room of a few metres
 PHOTO_MAX_SIDE = 640  # pixels sent to the browser for the frustum's image
 NO_SELECTION = "(none)"
-VIEW_FROM_CAMERA = (-1.6, 1.8, -1.4)  # start of the review view, from the photo's camera
+VIEW_FROM_CAMERA = (-2.0, 2.0, -1.6)  # start of the review view, from the photo's camera
+VIEW_TARGET_FRACTION = 0.35  # of the way from the camera to the room's centre
 
 
 @dataclass
@@ -154,7 +155,11 @@ class SceneViewer:
             receive_shadow=False,
         )
         self.room["edges"] = self.server.scene.add_line_segments(
-            "/room/edges", box_edge_segments(corners), EDGE_RGB, thickness=0.015
+            "/room/edges",
+            box_edge_segments(corners),
+            EDGE_RGB,
+            thickness=1.5,
+            thickness_units="screen",  # thin however close the review camera comes
         )
 
     def _add_objects(self) -> None:
@@ -232,11 +237,12 @@ class SceneViewer:
         )
 
     def _place_view(self) -> None:
-        """Start above and behind the photo's camera, to its left, looking at the room: the
-        frustum with the photo sits in the foreground, the room beyond, the near walls and
-        the ceiling (single-sided, facing in) out of the way."""
+        """Start above and behind the photo's camera, to its left, looking a third of the way
+        into the room: the frustum with the photo sits in the foreground with the room
+        beyond it, the near walls and the ceiling (single-sided, facing in) out of the way."""
+        target = scene_centre(self.scene) * VIEW_TARGET_FRACTION + np.array([0.0, -0.3, 0.0])
         self.server.initial_camera.position = VIEW_FROM_CAMERA
-        self.server.initial_camera.look_at = scene_centre(self.scene)
+        self.server.initial_camera.look_at = target
         self.server.initial_camera.up = (0.0, 1.0, 0.0)
 
     # -- the panel -----------------------------------------------------------------------

@@ -13,6 +13,7 @@ import { jobProgress } from "../common/jobProgress";
 import { mountPhotoView } from "../photo/photoView";
 import { mountScene3d } from "../scene3d/scene3dView";
 import { mountRevisionHistory } from "./revisionHistory";
+import { viserLink } from "./viserLink";
 
 function panel(title: string, className: string, testid: string) {
   const body = el("div", { className: "panel-body" });
@@ -56,6 +57,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
         title,
         meta,
         el("span", { className: "spacer" }),
+        viserLink(sceneId),
         rerun,
       ),
       progress.element,

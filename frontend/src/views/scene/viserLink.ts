@@ -1,0 +1,66 @@
+// "Open in viser": asks the server for the scene's viser viewer (started on demand on
+// 127.0.0.1, one per scene, POST /api/scenes/{id}/viewer) and opens it in a new tab.
+import { el } from "../../dom";
+
+/** The answer of POST /api/scenes/{id}/viewer. */
+interface ViewerInfo {
+  scene_id: string;
+  revision: number;
+  url: string;
+  command: string;
+}
+
+async function openViewer(sceneId: string): Promise<ViewerInfo> {
+  const response = await fetch(`/api/scenes/${encodeURIComponent(sceneId)}/viewer`, {
+    method: "POST",
+    headers: { Accept: "application/json" },
+  });
+  if (!response.ok) {
+    const text = await response.text();
+    let detail = text || response.statusText;
+    try {
+      const body = JSON.parse(text) as { detail?: unknown };
+      if (typeof body.detail === "string") detail = body.detail;
+    } catch {
+      // not JSON: keep the text
+    }
+    throw new Error(`${response.status} ${detail}`);
+  }
+  return (await response.json()) as ViewerInfo;
+}
+
+/** A button that opens the viewer, and a link to it once it runs. */
+export function viserLink(sceneId: string): HTMLElement {
+  const link = el("a", {
+    testid: "viser-link",
+    attrs: { target: "_blank", rel: "noopener", hidden: true },
+  });
+  const button = el("button", {
+    text: "Open in viser",
+    testid: "open-viser",
+    attrs: { type: "button", title: "The 3D review viewer (viser), in a new tab" },
+  });
+  button.onclick = async () => {
+    // Open the tab now, while the click still counts as the user's: popup blockers refuse
+    // a window opened after an await.
+    const tab = window.open("about:blank", "_blank");
+    if (tab) tab.opener = null;
+    button.disabled = true;
+    try {
+      const info = await openViewer(sceneId);
+      link.href = info.url;
+      link.textContent = `viewer of revision ${info.revision}`;
+      link.title = `${info.url} — from a shell: ${info.command}`;
+      link.hidden = false;
+      if (tab) tab.location.href = info.url;
+    } catch (error) {
+      tab?.close();
+      link.removeAttribute("href");
+      link.textContent = `No viewer: ${error instanceof Error ? error.message : String(error)}`;
+      link.hidden = false;
+    } finally {
+      button.disabled = false;
+    }
+  };
+  return el("span", { className: "viser-link" }, button, " ", link);
+}
