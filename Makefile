@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: bench bench-synth bench-geometry bench-support bench-relation vectors relation-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
+.PHONY: bench bench-synth bench-geometry bench-support bench-relation vectors relation-vectors decode-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -91,6 +91,10 @@ vectors:
 # backend and the browser; run after changing the default model or the preprocessing.
 relation-vectors:
 	$(PY) -m holiscene_schema.relation_vectors
+
+# The support-tree decoder's vectors (Python decode.py <-> frontend/src/inference/treeDecode.ts).
+decode-vectors:
+	$(PY) -m holiscene_schema.decode_vectors
 
 test-frontend: install-node
 	npm run -s -w frontend test

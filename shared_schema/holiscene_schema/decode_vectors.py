@@ -1,0 +1,127 @@
+"""Test vectors for the support-tree decoder: `python -m holiscene_schema.decode_vectors`
+writes shared_schema/vectors/support_decode.json.
+
+The decoder (Relation Network probabilities -> one supporter per object, no cycle, the most
+confident objects first, pinned supports kept) is written twice: in Python
+(holiscene.learning.decode, `decode_supports` in "network" mode, which the pipeline runs) and
+in TypeScript (frontend/src/inference/treeDecode.ts, which re-decodes in the browser after each
+correction). Both are tested against these vectors. A development tool: it imports the backend.
+
+Deterministic (one seeded generator). Each case is a probability table [N, N + 3, 2] (rows
+sum to 1, values rounded to 9 decimals so both sides read the same numbers) with object ids,
+and pinned supports; expected = decode_supports on exactly that table. Tables are peaked and
+built so that objects often prefer each other (the cycles the decoder must break); one case
+has exact ties (uniform rows) to pin down the order among equals.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from holiscene.learning.decode import decode_supports
+
+from .relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER
+from .scene import SupportRelation
+
+DECODE_VECTORS = Path(__file__).resolve().parent.parent / "vectors" / "support_decode.json"
+SEED = 20260611
+DIGITS = 9
+TYPES = len(SUPPORT_TYPE_ORDER)
+
+
+def _table(rng: np.random.Generator, n: int, peak: float) -> np.ndarray:
+    """A random probability table whose rows favour a few columns, often another object."""
+    logits = rng.normal(0.0, 1.0, (n, n + len(STRUCTURAL_COLUMNS), TYPES))
+    for i in range(n):
+        favourite = int(rng.integers(0, n + len(STRUCTURAL_COLUMNS)))
+        logits[i, favourite, int(rng.integers(0, TYPES))] += peak
+        if n > 1 and rng.random() < 0.6:  # prefer an object: pairs that want each other
+            other = int(rng.integers(0, n))
+            if other != i:
+                logits[i, other, 0] += peak * 1.1
+    table = np.exp(logits)
+    table /= table.sum(axis=(1, 2), keepdims=True)
+    return np.round(table, DIGITS)
+
+
+def _pinned(rng: np.random.Generator, ids: list[str], count: int) -> list[SupportRelation]:
+    """`count` pinned supports that form no cycle (parents are earlier ids or structural)."""
+    pinned: list[SupportRelation] = []
+    for child_index in rng.permutation(len(ids))[:count]:
+        earlier = ids[: int(child_index)]
+        choices = [*earlier, *STRUCTURAL_COLUMNS]
+        parent = choices[int(rng.integers(0, len(choices)))]
+        kind = SUPPORT_TYPE_ORDER[int(rng.integers(0, TYPES))]
+        pinned.append(
+            SupportRelation(
+                child=ids[int(child_index)],
+                parent=parent,
+                type=kind,
+                source="manual",
+            )
+        )
+    return pinned
+
+
+def _case(name: str, table: np.ndarray, pinned: list[SupportRelation]) -> dict[str, Any]:
+    n = table.shape[0]
+    ids = [f"o{i}" for i in range(n)]
+    decoded = decode_supports(table, ids, ["?"] * n, pinned)
+    return {
+        "name": name,
+        "ids": ids,
+        "probabilities": {"shape": list(table.shape), "data": table.reshape(-1).tolist()},
+        "pinned": [{"child": s.child, "parent": s.parent, "type": s.type} for s in pinned],
+        "expected": [
+            {"child": s.child, "parent": s.parent, "type": s.type, "confidence": s.confidence}
+            for s in decoded
+        ],
+    }
+
+
+def build() -> dict[str, Any]:
+    rng = np.random.default_rng(SEED)
+    cases = []
+    for k, n in enumerate((1, 2, 3, 5, 8, 12, 16, 20)):
+        peak = float(rng.uniform(2.0, 6.0))
+        table = _table(rng, n, peak)
+        ids = [f"o{i}" for i in range(n)]
+        cases.append(_case(f"free-{n}", table, []))
+        count = int(rng.integers(1, max(2, n // 2 + 1)))
+        cases.append(_case(f"pinned-{n}-{k}", table, _pinned(rng, ids, min(count, n))))
+    # Exact ties everywhere: the order among equals decides every answer.
+    uniform = np.full((4, 4 + len(STRUCTURAL_COLUMNS), TYPES), 1.0 / ((4 + 3) * TYPES))
+    cases.append(_case("ties-4", np.round(uniform, DIGITS), []))
+    # Two objects that each want the other most: one of them must take its second answer.
+    pair = np.full((2, 5, TYPES), 0.01)
+    pair[0, 1, 0] = 0.9
+    pair[1, 0, 0] = 0.8
+    pair[0, 3, 0] = 0.05
+    pair[1, 3, 1] = 0.07
+    pair /= pair.sum(axis=(1, 2), keepdims=True)
+    cases.append(_case("mutual-pair", np.round(pair, DIGITS), []))
+    cases.append(
+        _case(
+            "mutual-pair-corrected",
+            np.round(pair, DIGITS),
+            [SupportRelation(child="o1", parent="o0", type="below", source="manual")],
+        )
+    )
+    return {
+        "seed": SEED,
+        "structural_columns": list(STRUCTURAL_COLUMNS),
+        "support_types": list(SUPPORT_TYPE_ORDER),
+        "cases": cases,
+    }
+
+
+def main() -> None:
+    DECODE_VECTORS.write_text(json.dumps(build(), separators=(",", ":")) + "\n")
+    print(f"wrote {DECODE_VECTORS}")
+
+
+if __name__ == "__main__":
+    main()
