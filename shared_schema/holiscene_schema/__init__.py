@@ -21,6 +21,7 @@ from .api import (
     RevisionKind,
     SceneDocument,
     SceneSummary,
+    SetLayout,
     SetSupport,
 )
 from .classes import (
@@ -82,6 +83,7 @@ __all__ = [
     "SceneDocument",
     "SceneObject",
     "SceneSummary",
+    "SetLayout",
     "SetSupport",
     "StageRun",
     "SupportRelation",

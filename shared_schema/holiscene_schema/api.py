@@ -7,7 +7,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import Field
 
-from .scene import Scene, SchemaModel, SupportType
+from .scene import Point2, Scene, SchemaModel, SupportType
 
 
 class SetSupport(SchemaModel):
@@ -26,7 +26,29 @@ class RemoveSupport(SchemaModel):
     child: str
 
 
-Edit = Annotated[SetSupport | RemoveSupport, Field(discriminator="kind")]
+class SetLayout(SchemaModel):
+    """Set the room layout from its 8 corners in the image (dragged by an annotator).
+
+    The server fits the room box and the camera's pitch and roll to the known corners (the
+    room fit, `holiscene.geometry.room_fit`, with the camera's height as the scale) and stores
+    the fitted box's corners and their projections. The objects' 3D boxes are not moved: a
+    placement job does that.
+    """
+
+    kind: Literal["set_layout"] = "set_layout"
+    corners_2d: Annotated[list[Point2 | None], Field(min_length=8, max_length=8)] = Field(
+        description="Pixels in the order of Layout.corners_3d; null for a corner not used "
+        "(behind the camera, or out of view and left to the fit)"
+    )
+    unseen_wall_distance: float | None = Field(
+        default=None,
+        gt=0.0,
+        description="Metres from the camera to a wall without known corners (the fit needs "
+        "it when only two adjacent vertical room edges are known)",
+    )
+
+
+Edit = Annotated[SetSupport | RemoveSupport | SetLayout, Field(discriminator="kind")]
 
 
 class EditRequest(SchemaModel):
@@ -55,15 +77,19 @@ class RevisionInfo(SchemaModel):
 
 
 JobStatus = Literal["queued", "running", "succeeded", "failed"]
-JobKind = Literal["pipeline", "retrain"]
+# placement: the placement stages only, on a scene's stored camera, layout, masks and supports.
+JobKind = Literal["pipeline", "placement", "retrain"]
 
 
 class Job(SchemaModel):
-    """A background job: a pipeline run on one scene, or retraining the Relation Network."""
+    """A background job: a pipeline run on one scene (all stages, or placement only), or
+    retraining the Relation Network."""
 
     id: str
     kind: JobKind
-    scene_id: str | None = Field(default=None, description="The scene of a pipeline job")
+    scene_id: str | None = Field(
+        default=None, description="The scene of a pipeline or placement job"
+    )
     status: JobStatus
     progress: float = Field(ge=0.0, le=1.0)
     stage: str | None = None

@@ -25,6 +25,7 @@ Scene?: Scene
 SceneDocument?: SceneDocument
 SceneObject?: SceneObject
 SceneSummary?: SceneSummary
+SetLayout?: SetLayout
 SetSupport?: SetSupport
 StageRun?: StageRun
 SupportRelation?: SupportRelation
@@ -116,7 +117,7 @@ base_revision: number
  * @minItems 1
  * @maxItems 500
  */
-edits: [(SetSupport | RemoveSupport), ...((SetSupport | RemoveSupport))[]]
+edits: [(SetSupport | RemoveSupport | SetLayout), ...((SetSupport | RemoveSupport | SetLayout))[]]
 }
 /**
  * Make `parent` the supporter of `child` (replacing any supporter it had).
@@ -139,6 +140,31 @@ type: ("below" | "behind")
 export interface RemoveSupport {
 child: string
 kind: "remove_support"
+}
+/**
+ * Set the room layout from its 8 corners in the image (dragged by an annotator).
+ * 
+ * The server fits the room box and the camera's pitch and roll to the known corners (the
+ * room fit, `holiscene.geometry.room_fit`, with the camera's height as the scale) and stores
+ * the fitted box's corners and their projections. The objects' 3D boxes are not moved: a
+ * placement job does that.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SetLayout".
+ */
+export interface SetLayout {
+/**
+ * Pixels in the order of Layout.corners_3d; null for a corner not used (behind the camera, or out of view and left to the fit)
+ * 
+ * @minItems 8
+ * @maxItems 8
+ */
+corners_2d: [([number, number] | null), ([number, number] | null), ([number, number] | null), ([number, number] | null), ([number, number] | null), ([number, number] | null), ([number, number] | null), ([number, number] | null)]
+kind: "set_layout"
+/**
+ * Metres from the camera to a wall without known corners (the fit needs it when only two adjacent vertical room edges are known)
+ */
+unseen_wall_distance: (number | null)
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -168,7 +194,8 @@ job: (Job | null)
 scene: SceneSummary
 }
 /**
- * A background job: a pipeline run on one scene, or retraining the Relation Network.
+ * A background job: a pipeline run on one scene (all stages, or placement only), or
+ * retraining the Relation Network.
  * 
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "Job".
@@ -182,7 +209,7 @@ created_at: string
 error: (string | null)
 finished_at: (string | null)
 id: string
-kind: ("pipeline" | "retrain")
+kind: ("pipeline" | "placement" | "retrain")
 /**
  * What the job did so far, one line per step
  */
@@ -195,7 +222,7 @@ progress: number
 result_model_id: (string | null)
 result_revision: (number | null)
 /**
- * The scene of a pipeline job
+ * The scene of a pipeline or placement job
  */
 scene_id: (string | null)
 stage: (string | null)
@@ -356,7 +383,7 @@ synthetic_scenes: (number | null)
 export interface RevisionInfo {
 author: string
 created_at: string
-edits: ((SetSupport | RemoveSupport)[] | null)
+edits: ((SetSupport | RemoveSupport | SetLayout)[] | null)
 kind: ("import" | "pipeline" | "edit")
 number: number
 summary: string

@@ -11,10 +11,13 @@ from holiscene_schema import (
     Edit,
     RemoveSupport,
     Scene,
+    SetLayout,
     SetSupport,
     SupportRelation,
     support_graph_problems,
 )
+
+from .layout_edit import LayoutEditError, apply_set_layout, describe_set_layout
 
 
 class InvalidEditError(ValueError):
@@ -27,6 +30,12 @@ def apply_edits(scene: Scene, edits: Sequence[Edit], author: str, now: datetime)
     objects = {o.id: o for o in scene.objects}
     supports = {s.child: s for s in scene.supports}
     for edit in edits:
+        if isinstance(edit, SetLayout):
+            try:
+                scene = apply_set_layout(scene, edit)
+            except LayoutEditError as error:
+                raise InvalidEditError(f"room layout: {error}") from error
+            continue
         child = objects.get(edit.child)
         if child is None:
             raise InvalidEditError(f"no object {edit.child!r} in this scene")
@@ -63,6 +72,8 @@ def describe_edits(edits: Sequence[Edit]) -> str:
     for edit in edits:
         if isinstance(edit, SetSupport):
             parts.append(f"{edit.child} supported by {edit.parent} ({edit.type})")
+        elif isinstance(edit, SetLayout):
+            parts.append(describe_set_layout(edit))
         else:
             parts.append(f"{edit.child} support removed")
     return "; ".join(parts)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -34,12 +34,15 @@ def infer_scene(
     stages: Sequence[str] = DEFAULT_STAGES,
     models_dir: Path | None = None,
     support_model_dir: Path | None = None,
+    stage_options: Mapping[str, Mapping[str, Any]] | None = None,
     progress: ProgressCallback | None = None,
 ) -> InferenceResult:
     """Run the stages on one photo. `models_dir` holds the user's own models
     (`<class>/*.obj|glb|ply`), offered to `shapes_fit` beside the built-in library;
-    `support_model_dir` is the Relation Network to use (default: the committed model)."""
-    options: dict[str, dict[str, Any]] = {}
+    `support_model_dir` is the Relation Network to use (default: the committed model);
+    `stage_options` adds options by stage name (e.g. the stored scene a placement job
+    starts from)."""
+    options: dict[str, dict[str, Any]] = {k: dict(v) for k, v in (stage_options or {}).items()}
     if models_dir and "shapes_fit" in stages:
         options["shapes_fit"] = {"models_dir": models_dir}
     for stage in ("supports_from_network", "supports_from_priors"):

@@ -17,6 +17,7 @@ from .core.db import make_engine, migrate
 from .core.settings import Settings
 from .inference import infer_scene
 from .inputs import InputFiles, read_input_folder
+from .pipeline import DEFAULT_STAGES, PLACEMENT_STAGES
 from .pipeline.stages.detections import objects_from_detections
 from .retraining import RetrainJob, check_can_retrain, train_config
 from .store import models as model_registry
@@ -26,6 +27,10 @@ from .store.models import ModelStore
 from .store.scenes import SceneStore
 
 log = logging.getLogger(__name__)
+
+
+class PlacementNotPossibleError(ValueError):
+    """The scene has no camera pitch/roll or room layout to place its objects in."""
 
 
 class Workbench:
@@ -103,6 +108,20 @@ class Workbench:
         self._executor.submit(self.run_job, job.id)
         return job
 
+    def start_placement(self, scene_id: str) -> Job:
+        """Queue a placement job: the stages after the layout, on the current revision's
+        camera, layout, masks and supports (after a person moved the layout)."""
+        current = self.scenes.document(scene_id)
+        scene = current.scene
+        camera = scene.camera
+        if camera is None or camera.pitch_deg is None or scene.layout.corners_3d is None:
+            raise PlacementNotPossibleError(
+                "the scene has no camera pitch/roll or room layout yet: run the whole pipeline"
+            )
+        job = self.jobs.create(scene_id, current.revision, kind="placement")
+        self._executor.submit(self.run_job, job.id)
+        return job
+
     def start_retrain(self, request: RetrainRequest) -> Job:
         """Queue a retrain job (admin). NotEnoughLabelsError when too few scenes are labelled,
         RetrainRunningError when one is queued or running."""
@@ -138,14 +157,22 @@ class Workbench:
                 raise ValueError(f"job {job_id} is not a pipeline job")
             folder = self.scenes.files.folder(job.scene_id)
             current = self.scenes.document(job.scene_id)
+            placement = job.kind == "placement"
+            if placement:
+                # The revision the job was asked on: the layout the person saw when asking.
+                current = self.scenes.document(job.scene_id, job.base_revision)
             result = infer_scene(
                 read_input_folder(folder),
                 name=current.scene.name,
                 image_file=current.scene.image.file,
                 pinned_supports=[s for s in current.scene.supports if s.source == "manual"],
+                stages=PLACEMENT_STAGES if placement else DEFAULT_STAGES,
                 models_dir=self.settings.models_dir,
                 # The promoted Relation Network (None: the committed default model).
                 support_model_dir=self.models.active_dir(),
+                stage_options={"scene_from_revision": {"scene": current.scene}}
+                if placement
+                else None,
                 progress=lambda stage, fraction: self.jobs.progress(job_id, stage, fraction),
             )
             revision = self.scenes.commit_pipeline_result(job.scene_id, result.scene, result.glb)

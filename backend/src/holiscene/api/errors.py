@@ -13,6 +13,7 @@ from ..retraining import NotEnoughLabelsError
 from ..store.jobs import JobNotFoundError, RetrainRunningError
 from ..store.models import ModelNotFoundError
 from ..store.scenes import RevisionConflictError, SceneNotFoundError
+from ..workbench import PlacementNotPossibleError
 
 
 def install_error_handlers(app: FastAPI) -> None:
@@ -47,6 +48,10 @@ def install_error_handlers(app: FastAPI) -> None:
 
     @app.exception_handler(NotEnoughLabelsError)
     async def _few_labels(_: Request, exc: NotEnoughLabelsError) -> JSONResponse:
+        return JSONResponse({"detail": str(exc)}, status_code=422)
+
+    @app.exception_handler(PlacementNotPossibleError)
+    async def _no_placement(_: Request, exc: PlacementNotPossibleError) -> JSONResponse:
         return JSONResponse({"detail": str(exc)}, status_code=422)
 
     @app.exception_handler(PipelineBuildError)

@@ -24,6 +24,17 @@ DEFAULT_STAGES: tuple[str, ...] = (
     "scene_mesh",
 )
 
+# A placement job: the stages after the room layout, on a stored scene whose layout (or
+# supports) a person changed. Heights are measured again: they depend on the camera's pitch
+# and roll and on the room's height line.
+PLACEMENT_STAGES: tuple[str, ...] = (
+    "scene_from_revision",
+    "heights_by_metrology",
+    "placement",
+    "shapes_fit",
+    "scene_mesh",
+)
+
 ProgressCallback = Callable[[str, float], None]
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import uuid
 
-from holiscene_schema import Job
+from holiscene_schema import Job, JobKind
 from sqlalchemy import Engine, func, select, update
 from sqlalchemy.orm import Session
 
@@ -34,9 +34,9 @@ class JobStore:
     def __init__(self, engine: Engine) -> None:
         self.engine = engine
 
-    def create(self, scene_id: str, base_revision: int) -> Job:
-        """A queued pipeline job on a scene's revision."""
-        return self._create(JobRow(scene_id=scene_id, kind="pipeline", base_revision=base_revision))
+    def create(self, scene_id: str, base_revision: int, kind: JobKind = "pipeline") -> Job:
+        """A queued pipeline job (or placement job) on a scene's revision."""
+        return self._create(JobRow(scene_id=scene_id, kind=kind, base_revision=base_revision))
 
     def create_retrain(self) -> Job:
         """A queued retrain job, unless one is queued or running: then RetrainRunningError.

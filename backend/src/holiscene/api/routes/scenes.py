@@ -102,6 +102,18 @@ def run_pipeline_job(scene_id: str, workbench: WorkbenchDep) -> Job:
 
 
 @router.post(
+    "/{scene_id}/placement-jobs",
+    status_code=202,
+    response_model=Job,
+    responses={**_ERRORS},
+)
+def run_placement_job(scene_id: str, workbench: WorkbenchDep) -> Job:
+    """Place the objects again (heights, 3D boxes, shapes, scene.glb) on the current revision's
+    camera and room layout, after a person changed them; the result is a new revision."""
+    return workbench.start_placement(scene_id)
+
+
+@router.post(
     "/{scene_id}/edits",
     response_model=SceneDocument,
     responses={409: {"model": Conflict}, **_ERRORS},

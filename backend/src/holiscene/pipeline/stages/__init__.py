@@ -4,6 +4,7 @@ from . import boxes, camera, detections, layout, masks, mesh, supports
 from .grabcut import MasksGrabCut  # noqa: F401
 from .metrology import HeightsByMetrology  # noqa: F401
 from .placement import PlacementStage  # noqa: F401
+from .restore import SceneFromRevision  # noqa: F401
 from .shapes_fit import ShapesFit  # noqa: F401
 
 __all__ = ["boxes", "camera", "detections", "layout", "masks", "mesh", "supports"]

@@ -1,0 +1,255 @@
+"""Setting the room layout by its corners: the re-fit, its refusals, and the edit API."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+from holiscene.editing import InvalidEditError, apply_edits
+from holiscene.geometry.boxes import box_corners
+from holiscene.geometry.room_fit import project_room_corners
+from holiscene.inference import infer_scene
+from holiscene.inputs import read_input_folder
+from holiscene.layout_edit import CAMERA_HEIGHT_PRIOR_M, camera_height
+from holiscene.pipeline import PLACEMENT_STAGES, PipelineBuildError, build_pipeline
+from holiscene.store.clock import utcnow
+from holiscene_schema import Camera, ImageInfo, Layout, Scene, SetLayout
+
+from .conftest import upload, wait_for_job
+
+K = [[500.0, 0.0, 320.0], [0.0, 500.0, 240.0], [0.0, 0.0, 1.0]]
+PITCH, ROLL, HEIGHT = 12.0, -3.0, 1.5
+
+
+def room(center: list[float], size: list[float], yaw: float) -> np.ndarray:
+    return box_corners(np.array(center), np.array(size), yaw)
+
+
+def scene_with_room(corners: np.ndarray) -> Scene:
+    return Scene(
+        name="room",
+        image=ImageInfo(file="img.png", width=640, height=480),
+        camera=Camera(
+            K=K,
+            K_source="given",
+            pitch_deg=PITCH,
+            roll_deg=ROLL,
+            height_m=HEIGHT,
+            height_source="estimated",
+        ),
+        layout=Layout(
+            corners_2d=project_room_corners(K, PITCH, ROLL, corners),
+            corners_3d=corners.tolist(),
+            source="estimated",
+        ),
+    )
+
+
+def wall_behind(centre: list[float], depth: float, yaw_deg: float) -> float:
+    """Distance from the camera to the room's -x wall, along the room's own x axis."""
+    yaw = np.radians(yaw_deg)
+    return float(depth / 2 - (centre[0] * np.cos(yaw) - centre[2] * np.sin(yaw)))
+
+
+def set_layout(corners_2d: list[list[float] | None], **extra: float) -> SetLayout:
+    return SetLayout.model_validate({"corners_2d": corners_2d, **extra})
+
+
+# The camera stands 1 m inside the room's back half, looking at the far wall (x = 4).
+OLD = room([1.5, 2.6 / 2 - HEIGHT, 0.2], [5.0, 2.6, 4.0], 4.0)
+
+
+def test_set_layout_refits_room_and_camera_from_the_corners() -> None:
+    # The annotator moved the room: far wall 0.5 m further, turned 3 degrees more, and the
+    # camera turned (pitch 10, roll -1): the corners are this new room's image.
+    new = room([1.75, 2.6 / 2 - HEIGHT, 0.2], [5.5, 2.6, 4.0], 7.0)
+    corners_2d = project_room_corners(K, 10.0, -1.0, new)
+    # The near corners are behind the camera: the wall there needs its distance.
+    assert [c is not None for c in corners_2d] == [False, True, True, False] * 2
+    edit = set_layout(corners_2d, unseen_wall_distance=wall_behind([1.75, 0, 0.2], 5.5, 7.0))
+    edited = apply_edits(scene_with_room(OLD), [edit], "ann", utcnow())
+    assert edited.camera is not None
+    assert edited.camera.pitch_deg == pytest.approx(10.0, abs=1e-3)
+    assert edited.camera.roll_deg == pytest.approx(-1.0, abs=1e-3)
+    assert edited.camera.height_m == HEIGHT
+    assert edited.layout.source == "manual"
+    assert edited.layout.corners_3d is not None
+    np.testing.assert_allclose(edited.layout.corners_3d, new, atol=2e-3)
+    # corners_2d stays the image of corners_3d.
+    stored = edited.layout.corners_2d
+    assert stored is not None
+    for got, want in zip(stored, corners_2d, strict=True):
+        assert (got is None) == (want is None)
+        if got is not None and want is not None:
+            np.testing.assert_allclose(got, want, atol=0.05)
+    assert "fit error" in (edited.layout.note or "")
+
+
+def test_out_of_view_corners_left_to_the_fit_with_an_unseen_wall() -> None:
+    # Only the far wall's four corners known (the others left to the fit): the wall behind the
+    # camera takes the distance the app sends (the current room's).
+    corners_2d = project_room_corners(K, PITCH, ROLL, OLD)
+    known: list[list[float] | None] = [
+        c if i in (1, 2, 5, 6) else None for i, c in enumerate(corners_2d)
+    ]
+    edit = set_layout(known, unseen_wall_distance=wall_behind([1.5, 0, 0.2], 5.0, 4.0))
+    edited = apply_edits(scene_with_room(OLD), [edit], "ann", utcnow())
+    assert edited.layout.corners_3d is not None
+    np.testing.assert_allclose(edited.layout.corners_3d, OLD, atol=2e-3)
+    with pytest.raises(InvalidEditError, match="unseen_wall_distance"):
+        apply_edits(scene_with_room(OLD), [set_layout(known)], "ann", utcnow())
+
+
+@pytest.mark.parametrize(
+    ("corners", "message"),
+    [
+        (
+            [[300.0, 400.0], [320.0, 300.0], [500.0, 300.0]] + [None] * 5,
+            "fewer than 4 known corners",
+        ),
+        ([[1e6, 400.0]] + [[320.0, 300.0]] * 7, "image sizes outside"),
+    ],
+)
+def test_bad_corners_are_refused_with_the_reason(
+    corners: list[list[float] | None], message: str
+) -> None:
+    scene = scene_with_room(OLD)
+    with pytest.raises(InvalidEditError, match=message):
+        apply_edits(scene, [set_layout(corners)], "ann", utcnow())
+
+
+def test_inconsistent_corners_are_refused() -> None:
+    corners_2d = project_room_corners(K, PITCH, ROLL, OLD)
+    # Floor and ceiling corners swapped: the room would be upside down.
+    swapped = corners_2d[4:] + corners_2d[:4]
+    with pytest.raises(InvalidEditError, match="room layout"):
+        apply_edits(scene_with_room(OLD), [set_layout(swapped)], "ann", utcnow())
+
+
+def test_a_scene_without_camera_cannot_take_a_layout() -> None:
+    scene = scene_with_room(OLD).model_copy(update={"camera": None})
+    corners_2d = project_room_corners(K, PITCH, ROLL, OLD)
+    with pytest.raises(InvalidEditError, match="no camera"):
+        apply_edits(scene, [set_layout(corners_2d)], "ann", utcnow())
+
+
+def test_camera_height_comes_from_camera_then_floor_then_prior() -> None:
+    scene = scene_with_room(OLD)
+    assert camera_height(scene) == (HEIGHT, "estimated")
+    assert scene.camera is not None
+    no_height = scene.model_copy(
+        update={"camera": scene.camera.model_copy(update={"height_m": None})}
+    )
+    assert camera_height(no_height)[0] == pytest.approx(HEIGHT)
+    assert camera_height(no_height.model_copy(update={"layout": Layout()})) == (
+        CAMERA_HEIGHT_PRIOR_M,
+        "prior",
+    )
+
+
+def _edit(client: TestClient, scene_id: str, base: int, *edits: dict) -> object:  # type: ignore[type-arg]
+    body = {"base_revision": base, "author": "ann", "edits": list(edits)}
+    return client.post(f"/api/scenes/{scene_id}/edits", json=body)
+
+
+def _moved_corners(doc: dict, dy: float) -> list[list[float] | None]:  # type: ignore[type-arg]
+    """The stored corners with the far floor corners (1, 2) moved down by dy pixels."""
+    corners: list[list[float] | None] = doc["scene"]["layout"]["corners_2d"]
+    return [
+        [c[0], c[1] + dy] if c is not None and i in (1, 2) else c for i, c in enumerate(corners)
+    ]
+
+
+def test_layout_edit_and_placement_job_through_the_api(client: TestClient, t3d5: Path) -> None:
+    result = upload(client, t3d5, name="t3d-5")
+    assert wait_for_job(client, result["job"]["id"])["status"] == "succeeded"
+    scene_id = result["scene"]["id"]
+    doc = client.get(f"/api/scenes/{scene_id}").json()
+    edit = {"kind": "set_layout", "corners_2d": _moved_corners(doc, 25.0)}
+
+    response = _edit(client, scene_id, doc["revision"], edit)
+    assert response.status_code == 200, response.text  # type: ignore[attr-defined]
+    edited = response.json()  # type: ignore[attr-defined]
+    assert edited["revision"] == doc["revision"] + 1
+    layout = edited["scene"]["layout"]
+    assert layout["source"] == "manual"
+    assert layout["corners_3d"] != doc["scene"]["layout"]["corners_3d"]
+    assert edited["scene"]["camera"]["pitch_deg"] != doc["scene"]["camera"]["pitch_deg"]
+    history = client.get(f"/api/scenes/{scene_id}/revisions").json()
+    assert history[-1]["kind"] == "edit"
+    assert history[-1]["summary"].startswith("room layout set from")
+    assert history[-1]["edits"][0]["kind"] == "set_layout"
+
+    # The same edit on the old base is a conflict; a bad one is refused; neither writes.
+    assert _edit(client, scene_id, doc["revision"], edit).status_code == 409  # type: ignore[attr-defined]
+    bad = {"kind": "set_layout", "corners_2d": [[10.0, 10.0]] * 3 + [None] * 5}
+    refused = _edit(client, scene_id, edited["revision"], bad)
+    assert refused.status_code == 422  # type: ignore[attr-defined]
+    assert "room layout" in refused.json()["detail"]  # type: ignore[attr-defined]
+    assert client.get(f"/api/scenes/{scene_id}").json()["revision"] == edited["revision"]
+
+    # Re-place the objects in the new room: a placement job makes a new revision.
+    started = client.post(f"/api/scenes/{scene_id}/placement-jobs")
+    assert started.status_code == 202, started.text
+    job = wait_for_job(client, started.json()["id"], timeout=60)
+    assert (job["kind"], job["status"], job["base_revision"]) == (
+        "placement",
+        "succeeded",
+        edited["revision"],
+    )
+    placed = client.get(f"/api/scenes/{scene_id}").json()
+    assert placed["revision"] == job["result_revision"] == edited["revision"] + 1
+    assert placed["scene"]["layout"] == layout
+    assert placed["scene"]["camera"] == edited["scene"]["camera"]
+    assert [s["name"] for s in placed["scene"]["stages"]] == [
+        "scene_from_revision",
+        "heights_by_metrology",
+        "placement",
+        "shapes_fit",
+        "scene_mesh",
+    ]
+    boxes_before = [o["box_3d"] for o in edited["scene"]["objects"]]
+    boxes_after = [o["box_3d"] for o in placed["scene"]["objects"]]
+    assert all(b is not None for b in boxes_after)
+    assert boxes_after != boxes_before  # placed in the new room, under the new camera
+    assert placed["scene"]["supports"] == edited["scene"]["supports"]
+    masks = [o["mask"] for o in placed["scene"]["objects"]]
+    assert masks == [o["mask"] for o in edited["scene"]["objects"]]
+    glb = client.get(f"/api/scenes/{scene_id}/scene.glb")
+    assert glb.status_code == 200 and glb.content[:4] == b"glTF"
+    assert client.get("/api/scenes").json()[0]["latest_job"]["id"] == job["id"]
+
+
+def test_placement_job_needs_a_layout(client: TestClient, t3d5: Path) -> None:
+    result = upload(client, t3d5, name="t3d-5", run_pipeline="false")
+    response = client.post(f"/api/scenes/{result['scene']['id']}/placement-jobs")
+    assert response.status_code == 422
+    assert "run the whole pipeline" in response.json()["detail"]
+    assert client.post("/api/scenes/nope/placement-jobs").status_code == 404
+
+
+def test_placement_stages_on_an_unchanged_scene_place_as_the_full_pipeline(t3d5: Path) -> None:
+    inputs = read_input_folder(t3d5)
+    full = infer_scene(inputs, name="x", image_file="img.jpg").scene
+    again = infer_scene(
+        inputs,
+        name="x",
+        image_file="img.jpg",
+        stages=PLACEMENT_STAGES,
+        stage_options={"scene_from_revision": {"scene": full}},
+    ).scene
+    assert again.layout == full.layout and again.camera == full.camera
+    assert again.supports == full.supports
+    for before, after in zip(full.objects, again.objects, strict=True):
+        assert before.mask == after.mask
+        assert before.box_3d is not None and after.box_3d is not None
+        # Same inputs up to the stored rounding (1e-4 degrees, 0.1 mm): the same boxes.
+        np.testing.assert_allclose(after.box_3d.center, before.box_3d.center, atol=0.02)
+        np.testing.assert_allclose(after.box_3d.size, before.box_3d.size, atol=0.02)
+
+
+def test_placement_pipeline_needs_the_stored_scene() -> None:
+    with pytest.raises(PipelineBuildError, match="needs the stored scene"):
+        build_pipeline(PLACEMENT_STAGES)
