@@ -155,3 +155,26 @@ def test_train_rn_with_nothing_to_learn_says_so(
     assert main([*args, "--data-dir", str(tmp_path / "data")]) == 2
     assert "no labelled objects" in capsys.readouterr().err
     assert not (out / "model.onnx").exists()
+
+
+def test_train_rn_registers_a_candidate_model(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    pytest.importorskip("torch", reason="the train extra (PyTorch) is not installed")
+    from holiscene.core.settings import Settings
+    from holiscene.store.models import active_model_dir
+    from holiscene.workbench import Workbench
+
+    data = tmp_path / "data"
+    out = tmp_path / "model"
+    args = ["train-rn", "-o", str(out), "--synthetic-scenes", "3", "--max-epochs", "1"]
+    assert main([*args, "--register", "--data-dir", str(data)]) == 0
+    assert "registered as model" in capsys.readouterr().out
+    workbench = Workbench(Settings(data_dir=data))
+    try:
+        models = workbench.models.list_models()
+        assert [m.status for m in models] == ["candidate", "default"]
+        # Registered, not active: the seeded default model stays in use until an admin acts.
+        assert active_model_dir(Settings(data_dir=data)) == workbench.models.folder(models[1].id)
+    finally:
+        workbench.close()

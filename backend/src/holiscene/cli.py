@@ -11,6 +11,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from .cli_users import UsersCliError, add_user_commands
 from .core.settings import REPO_ROOT, Settings
 
 DEMO_PHOTOS = REPO_ROOT.parent / "shared" / "data" / "real"
@@ -28,7 +29,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         result: int = args.handler(args)
         return result
-    except CliError as exc:
+    except (CliError, UsersCliError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
 
@@ -71,9 +72,11 @@ def _parser() -> argparse.ArgumentParser:
     serve.add_argument(
         "--allow-remote",
         action="store_true",
-        help="bind beyond loopback although the server has no user accounts yet",
+        help="bind beyond loopback (needs an admin account: holiscene users add)",
     )
     serve.set_defaults(handler=_serve)
+
+    add_user_commands(sub, _settings)
 
     demo = sub.add_parser("demo", help="load demo scenes into an empty database")
     demo.add_argument("--data-dir", type=Path)
@@ -99,6 +102,11 @@ def _parser() -> argparse.ArgumentParser:
         "--with-store",
         action="store_true",
         help="also learn from the labelled scenes stored in the data directory",
+    )
+    train.add_argument(
+        "--register",
+        action="store_true",
+        help="add the new model to the data directory's registry (an admin makes it active)",
     )
     train.add_argument("--data-dir", type=Path)
     train.add_argument("--database-url")
@@ -249,7 +257,31 @@ def _train_rn(args: argparse.Namespace) -> int:
         except ValueError as error:
             raise CliError(str(error)) from error
     print(f"validation accuracy {result.validation_accuracy:.4f} -> {result.model_dir}")
+    if args.register:
+        _register_model(args, result.model_dir, result.validation_accuracy)
     return 0
+
+
+def _register_model(args: argparse.Namespace, model_dir: Path, accuracy: float) -> None:
+    from .learning.training_api import DATA_FILE
+    from .store.models import Registration
+    from .workbench import Workbench
+
+    workbench = Workbench(_settings(args))
+    try:
+        info = workbench.models.register(
+            model_dir,
+            Registration(
+                status="candidate",
+                validation_accuracy=accuracy,
+                data=json.loads((model_dir / DATA_FILE).read_text()),
+                note="trained with holiscene train-rn",
+            ),
+            actor="train-rn",
+        )
+    finally:
+        workbench.close()
+    print(f"registered as model {info.id} (version {info.version}); make it active in #/models")
 
 
 def _stored_samples(args: argparse.Namespace) -> list[Any]:
@@ -297,13 +329,10 @@ def _serve(args: argparse.Namespace) -> int:
     import uvicorn
 
     from .api.app import create_app
+    from .cli_users import check_can_serve
 
     settings = _settings(args)
-    if settings.host not in ("127.0.0.1", "localhost", "::1") and not args.allow_remote:
-        raise CliError(
-            f"refusing to listen on {settings.host}: there are no user accounts yet, so anyone "
-            "who can reach it could change scenes; pass --allow-remote to do it anyway"
-        )
+    check_can_serve(settings, args.allow_remote)
     uvicorn.run(create_app(settings), host=settings.host, port=settings.port, log_level="info")
     return 0
 
