@@ -64,7 +64,9 @@ class SceneDocument(SchemaModel):
     scene: Scene
 
 
-RevisionKind = Literal["import", "pipeline", "edit"]
+# reset: the supports were put back to the pipeline's guesses for a second, independent
+# annotation of the scene (a reviewer's request).
+RevisionKind = Literal["import", "pipeline", "edit", "reset"]
 
 
 class RevisionInfo(SchemaModel):
@@ -105,6 +107,13 @@ class Job(SchemaModel):
     finished_at: datetime | None = None
 
 
+# new: imported, no prediction yet; predicted: the pipeline ran; in_annotation: an annotator
+# took it; submitted: waiting for a reviewer; accepted; rejected: back to the annotator with
+# the reviewer's comment.
+SceneState = Literal["new", "predicted", "in_annotation", "submitted", "accepted", "rejected"]
+Role = Literal["annotator", "reviewer", "admin"]
+
+
 class SceneSummary(SchemaModel):
     id: str
     name: str
@@ -114,6 +123,18 @@ class SceneSummary(SchemaModel):
     width: int
     height: int
     object_count: int
+    state: SceneState
+    assignee: str | None = Field(default=None, description="The annotator working on it")
+    annotation_round: int = Field(
+        ge=1, description="1, or 2 once a reviewer asked for a second, independent annotation"
+    )
+    uncertainty: float | None = Field(
+        default=None,
+        ge=0.0,
+        le=1.0,
+        description="Mean over the objects of 1 - confidence of their supporter (1 without "
+        "one, 0 when a person set it); 'Next scene' picks the highest",
+    )
     latest_job: Job | None = None
 
 
@@ -195,3 +216,152 @@ class RetrainRequest(SchemaModel):
 class PromoteRequest(SchemaModel):
     author: str = Field(default="admin", min_length=1, max_length=64)
     note: str | None = Field(default=None, max_length=500)
+
+
+# -- users, sessions and the annotation workflow --------------------------------------------
+
+UserName = Annotated[
+    str,
+    Field(
+        min_length=1,
+        max_length=64,
+        pattern=r"^[a-z0-9][a-z0-9_.-]*$",
+        description="Lower-case letters, digits, '.', '_' and '-'",
+    ),
+]
+Password = Annotated[str, Field(min_length=1, max_length=256)]
+
+
+class UserInfo(SchemaModel):
+    name: str
+    role: Role
+    created_at: datetime
+
+
+class CurrentUser(SchemaModel):
+    """Who is asking. In local single-user mode (loopback, no accounts yet) everyone is the
+    local admin and `local_mode` is true."""
+
+    name: str
+    role: Role
+    local_mode: bool
+
+
+class LoginRequest(SchemaModel):
+    name: str = Field(min_length=1, max_length=64)
+    password: Password
+    token: bool = Field(
+        default=False,
+        description="Return the session token in the answer (scripts: send it as "
+        "'Authorization: Bearer'); the browser uses the HttpOnly cookie instead",
+    )
+
+
+class LoginResult(SchemaModel):
+    user: CurrentUser
+    token: str | None = None
+    expires_at: datetime
+
+
+class NewUser(SchemaModel):
+    name: UserName
+    role: Role
+    password: Password
+
+
+class RoleChange(SchemaModel):
+    role: Role
+
+
+class PasswordReset(SchemaModel):
+    password: Password
+
+
+class PasswordChange(SchemaModel):
+    current_password: Password
+    new_password: Password
+
+
+WorkflowAction = Literal[
+    "import", "predict", "claim", "reopen", "submit", "accept", "reject", "second_annotation"
+]
+
+
+class WorkflowEvent(SchemaModel):
+    """One change of a scene's state (or assignee): who, when, on which revision, why."""
+
+    id: int
+    at: datetime
+    actor: str
+    action: WorkflowAction
+    from_state: SceneState | None
+    to_state: SceneState
+    assignee: str | None = Field(default=None, description="The annotator concerned")
+    revision: int
+    annotation_round: int
+    comment: str | None = None
+
+
+class SceneWorkflow(SchemaModel):
+    scene_id: str
+    state: SceneState
+    assignee: str | None
+    annotation_round: int
+    revision: int
+    review_comment: str | None = Field(
+        default=None,
+        description="The reviewer's comment from the last rejection, until the scene is "
+        "submitted again",
+    )
+    events: list[WorkflowEvent] = Field(description="Oldest first")
+
+
+class SubmitRequest(SchemaModel):
+    revision: int = Field(ge=1, description="The revision the annotator submits (the latest)")
+
+
+class ReviewRequest(SchemaModel):
+    revision: int = Field(ge=1, description="The revision the reviewer looked at (the latest)")
+    comment: str | None = Field(default=None, max_length=2000)
+
+
+class RejectRequest(SchemaModel):
+    revision: int = Field(ge=1, description="The revision the reviewer looked at (the latest)")
+    comment: str = Field(min_length=1, max_length=2000, description="What went wrong")
+
+
+class SecondAnnotationRequest(SchemaModel):
+    revision: int = Field(ge=1, description="The revision the reviewer looked at (the latest)")
+    comment: str | None = Field(default=None, max_length=2000)
+
+
+class PersonStats(SchemaModel):
+    name: str
+    role: Role | None = Field(default=None, description="null for a name without an account")
+    in_annotation: int = Field(ge=0, description="Scenes they are annotating now")
+    submitted: int = Field(ge=0, description="Submissions (a resubmission counts again)")
+    accepted: int = Field(ge=0, description="Their submissions a reviewer accepted")
+    rejected: int = Field(ge=0, description="Their submissions a reviewer rejected")
+    reviewed: int = Field(ge=0, description="Submissions they accepted or rejected")
+
+
+class SceneAgreement(SchemaModel):
+    """Two independent annotations of one scene: the last submission of round 1 and of
+    round 2, by different annotators."""
+
+    scene_id: str
+    name: str
+    annotators: Annotated[list[str], Field(min_length=2, max_length=2)]
+    revisions: Annotated[list[int], Field(min_length=2, max_length=2)]
+    objects: int = Field(ge=1, description="Objects compared (those that need a supporter)")
+    matching: int = Field(ge=0, description="Objects with the same supporter and type")
+    agreement: float = Field(ge=0.0, le=1.0)
+
+
+class Dashboard(SchemaModel):
+    states: dict[SceneState, int] = Field(description="Scenes per state (every state listed)")
+    people: list[PersonStats]
+    agreement: list[SceneAgreement]
+    mean_agreement: float | None = Field(
+        default=None, description="Mean of the scenes' agreement; null without any"
+    )

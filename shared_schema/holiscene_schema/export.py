@@ -15,17 +15,31 @@ from pydantic.json_schema import models_json_schema
 
 from .api import (
     Conflict,
+    CurrentUser,
+    Dashboard,
     EditRequest,
     ErrorMessage,
     ImportResult,
     Job,
+    LoginRequest,
+    LoginResult,
     ModelEvent,
     ModelInfo,
+    NewUser,
+    PasswordChange,
+    PasswordReset,
     PromoteRequest,
+    RejectRequest,
     RetrainRequest,
+    ReviewRequest,
     RevisionInfo,
+    RoleChange,
     SceneDocument,
     SceneSummary,
+    SceneWorkflow,
+    SecondAnnotationRequest,
+    SubmitRequest,
+    UserInfo,
 )
 from .classes import NYU40_CLASSES
 from .relation_model import relation_model_contract
@@ -49,6 +63,20 @@ TOP_LEVEL: dict[str, type[BaseModel]] = {
     "model_event": ModelEvent,
     "retrain_request": RetrainRequest,
     "promote_request": PromoteRequest,
+    "current_user": CurrentUser,
+    "login_request": LoginRequest,
+    "login_result": LoginResult,
+    "user_info": UserInfo,
+    "new_user": NewUser,
+    "role_change": RoleChange,
+    "password_reset": PasswordReset,
+    "password_change": PasswordChange,
+    "scene_workflow": SceneWorkflow,
+    "submit_request": SubmitRequest,
+    "review_request": ReviewRequest,
+    "reject_request": RejectRequest,
+    "second_annotation_request": SecondAnnotationRequest,
+    "dashboard": Dashboard,
 }
 
 

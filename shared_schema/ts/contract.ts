@@ -6,6 +6,8 @@ Box3D?: Box3D
 Camera?: Camera
 Conflict?: Conflict
 ConflictDetail?: ConflictDetail
+CurrentUser?: CurrentUser
+Dashboard?: Dashboard
 DepthRef?: DepthRef
 EditRequest?: EditRequest
 ErrorMessage?: ErrorMessage
@@ -13,22 +15,37 @@ ImageInfo?: ImageInfo
 ImportResult?: ImportResult
 Job?: Job
 Layout?: Layout
+LoginRequest?: LoginRequest
+LoginResult?: LoginResult
 Mask?: Mask
 MeshRef?: MeshRef
 ModelEvent?: ModelEvent
 ModelInfo?: ModelInfo
+NewUser?: NewUser
+PasswordChange?: PasswordChange
+PasswordReset?: PasswordReset
+PersonStats?: PersonStats
 PromoteRequest?: PromoteRequest
+RejectRequest?: RejectRequest
 RemoveSupport?: RemoveSupport
 RetrainRequest?: RetrainRequest
+ReviewRequest?: ReviewRequest
 RevisionInfo?: RevisionInfo
+RoleChange?: RoleChange
 Scene?: Scene
+SceneAgreement?: SceneAgreement
 SceneDocument?: SceneDocument
 SceneObject?: SceneObject
 SceneSummary?: SceneSummary
+SceneWorkflow?: SceneWorkflow
+SecondAnnotationRequest?: SecondAnnotationRequest
 SetLayout?: SetLayout
 SetSupport?: SetSupport
 StageRun?: StageRun
+SubmitRequest?: SubmitRequest
 SupportRelation?: SupportRelation
+UserInfo?: UserInfo
+WorkflowEvent?: WorkflowEvent
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -91,6 +108,97 @@ detail: ConflictDetail
 export interface ConflictDetail {
 current_revision: number
 message: string
+}
+/**
+ * Who is asking. In local single-user mode (loopback, no accounts yet) everyone is the
+ * local admin and `local_mode` is true.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "CurrentUser".
+ */
+export interface CurrentUser {
+local_mode: boolean
+name: string
+role: ("annotator" | "reviewer" | "admin")
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "Dashboard".
+ */
+export interface Dashboard {
+agreement: SceneAgreement[]
+/**
+ * Mean of the scenes' agreement; null without any
+ */
+mean_agreement: (number | null)
+people: PersonStats[]
+/**
+ * Scenes per state (every state listed)
+ */
+states: {
+[k: string]: number
+}
+}
+/**
+ * Two independent annotations of one scene: the last submission of round 1 and of
+ * round 2, by different annotators.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SceneAgreement".
+ */
+export interface SceneAgreement {
+agreement: number
+/**
+ * @minItems 2
+ * @maxItems 2
+ */
+annotators: [string, string]
+/**
+ * Objects with the same supporter and type
+ */
+matching: number
+name: string
+/**
+ * Objects compared (those that need a supporter)
+ */
+objects: number
+/**
+ * @minItems 2
+ * @maxItems 2
+ */
+revisions: [number, number]
+scene_id: string
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "PersonStats".
+ */
+export interface PersonStats {
+/**
+ * Their submissions a reviewer accepted
+ */
+accepted: number
+/**
+ * Scenes they are annotating now
+ */
+in_annotation: number
+name: string
+/**
+ * Their submissions a reviewer rejected
+ */
+rejected: number
+/**
+ * Submissions they accepted or rejected
+ */
+reviewed: number
+/**
+ * null for a name without an account
+ */
+role: (("annotator" | "reviewer" | "admin") | null)
+/**
+ * Submissions (a resubmission counts again)
+ */
+submitted: number
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -233,6 +341,14 @@ status: ("queued" | "running" | "succeeded" | "failed")
  * via the `definition` "SceneSummary".
  */
 export interface SceneSummary {
+/**
+ * 1, or 2 once a reviewer asked for a second, independent annotation
+ */
+annotation_round: number
+/**
+ * The annotator working on it
+ */
+assignee: (string | null)
 created_at: string
 height: number
 id: string
@@ -240,6 +356,11 @@ latest_job: (Job | null)
 name: string
 object_count: number
 revision: number
+state: ("new" | "predicted" | "in_annotation" | "submitted" | "accepted" | "rejected")
+/**
+ * Mean over the objects of 1 - confidence of their supporter (1 without one, 0 when a person set it); 'Next scene' picks the highest
+ */
+uncertainty: (number | null)
 updated_at: string
 width: number
 }
@@ -255,6 +376,27 @@ corners_2d: ([([number, number] | null), ([number, number] | null), ([number, nu
 corners_3d: ([[number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number]] | null)
 note: (string | null)
 source: (("estimated" | "manual" | "ground_truth") | null)
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "LoginRequest".
+ */
+export interface LoginRequest {
+name: string
+password: string
+/**
+ * Return the session token in the answer (scripts: send it as 'Authorization: Bearer'); the browser uses the HttpOnly cookie instead
+ */
+token: boolean
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "LoginResult".
+ */
+export interface LoginResult {
+expires_at: string
+token: (string | null)
+user: CurrentUser
 }
 /**
  * A binary mask inside a window of the image, run-length encoded row by row.
@@ -361,11 +503,52 @@ version: number
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "NewUser".
+ */
+export interface NewUser {
+/**
+ * Lower-case letters, digits, '.', '_' and '-'
+ */
+name: string
+password: string
+role: ("annotator" | "reviewer" | "admin")
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "PasswordChange".
+ */
+export interface PasswordChange {
+current_password: string
+new_password: string
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "PasswordReset".
+ */
+export interface PasswordReset {
+password: string
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "PromoteRequest".
  */
 export interface PromoteRequest {
 author: string
 note: (string | null)
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "RejectRequest".
+ */
+export interface RejectRequest {
+/**
+ * What went wrong
+ */
+comment: string
+/**
+ * The revision the reviewer looked at (the latest)
+ */
+revision: number
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -378,15 +561,33 @@ synthetic_scenes: (number | null)
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "ReviewRequest".
+ */
+export interface ReviewRequest {
+comment: (string | null)
+/**
+ * The revision the reviewer looked at (the latest)
+ */
+revision: number
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "RevisionInfo".
  */
 export interface RevisionInfo {
 author: string
 created_at: string
 edits: ((SetSupport | RemoveSupport | SetLayout)[] | null)
-kind: ("import" | "pipeline" | "edit")
+kind: ("import" | "pipeline" | "edit" | "reset")
 number: number
 summary: string
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "RoleChange".
+ */
+export interface RoleChange {
+role: ("annotator" | "reviewer" | "admin")
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -471,4 +672,74 @@ revision: number
 scene: Scene
 scene_id: string
 updated_at: string
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SceneWorkflow".
+ */
+export interface SceneWorkflow {
+annotation_round: number
+assignee: (string | null)
+/**
+ * Oldest first
+ */
+events: WorkflowEvent[]
+/**
+ * The reviewer's comment from the last rejection, until the scene is submitted again
+ */
+review_comment: (string | null)
+revision: number
+scene_id: string
+state: ("new" | "predicted" | "in_annotation" | "submitted" | "accepted" | "rejected")
+}
+/**
+ * One change of a scene's state (or assignee): who, when, on which revision, why.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "WorkflowEvent".
+ */
+export interface WorkflowEvent {
+action: ("import" | "predict" | "claim" | "reopen" | "submit" | "accept" | "reject" | "second_annotation")
+actor: string
+annotation_round: number
+/**
+ * The annotator concerned
+ */
+assignee: (string | null)
+at: string
+comment: (string | null)
+from_state: (("new" | "predicted" | "in_annotation" | "submitted" | "accepted" | "rejected") | null)
+id: number
+revision: number
+to_state: ("new" | "predicted" | "in_annotation" | "submitted" | "accepted" | "rejected")
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SecondAnnotationRequest".
+ */
+export interface SecondAnnotationRequest {
+comment: (string | null)
+/**
+ * The revision the reviewer looked at (the latest)
+ */
+revision: number
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SubmitRequest".
+ */
+export interface SubmitRequest {
+/**
+ * The revision the annotator submits (the latest)
+ */
+revision: number
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "UserInfo".
+ */
+export interface UserInfo {
+created_at: string
+name: string
+role: ("annotator" | "reviewer" | "admin")
 }

@@ -25,6 +25,8 @@ from .store.files import SceneFiles
 from .store.jobs import JobStore
 from .store.models import ModelStore
 from .store.scenes import SceneStore
+from .store.users import UserStore
+from .store.workflow import WorkflowStore
 
 log = logging.getLogger(__name__)
 
@@ -43,6 +45,8 @@ class Workbench:
         migrate(self.engine)
         self.scenes = SceneStore(self.engine, SceneFiles(settings.data_dir))
         self.jobs = JobStore(self.engine)
+        self.users = UserStore(self.engine)
+        self.workflow = WorkflowStore(self.engine, self.scenes)
         self.models = ModelStore(
             self.engine,
             settings.data_dir / "models",

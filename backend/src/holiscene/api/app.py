@@ -2,17 +2,29 @@
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Iterable
 from contextlib import asynccontextmanager
+from dataclasses import dataclass
+from typing import Any
 
-from fastapi import FastAPI
+from fastapi import Depends, FastAPI
 from fastapi.responses import JSONResponse
 from fastapi.staticfiles import StaticFiles
 
 from ..core.settings import Settings
 from ..workbench import Workbench
+from .deps import current_user, is_loopback
 from .errors import install_error_handlers
-from .routes import jobs, models, scenes, viewer
+from .routes import auth, jobs, models, scenes, users, viewer, workflow
+from .workflow_errors import install_workflow_error_handlers
+
+# The only API routes an anonymous request may use (the built frontend is public too: the
+# login page is part of it).
+PUBLIC_ROUTES = frozenset({"/api/health", "/api/auth/login", "/api/auth/logout"})
+
+
+class NoAdminError(RuntimeError):
+    """Beyond loopback the server needs accounts, and an admin to manage them."""
 
 
 def create_app(settings: Settings | None = None) -> FastAPI:
@@ -21,6 +33,13 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     @asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:
         workbench = Workbench(settings)
+        if not is_loopback(settings.host) and workbench.users.count_admins() == 0:
+            workbench.close()
+            raise NoAdminError(
+                f"refusing to serve on {settings.host}: there is no admin account, and "
+                "beyond 127.0.0.1 there are no default credentials; create one with "
+                "`holiscene users add NAME --role admin`"
+            )
         workbench.recover_after_restart()
         app.state.workbench = workbench
         try:
@@ -29,11 +48,19 @@ def create_app(settings: Settings | None = None) -> FastAPI:
             workbench.close()
 
     app = FastAPI(title="HoliScene", version="0.1.0", lifespan=lifespan)
+    app.state.login_throttle = auth.LoginThrottle()
     install_error_handlers(app)
-    app.include_router(scenes.router)
-    app.include_router(jobs.router)
-    app.include_router(models.router)
-    app.include_router(viewer.router)
+    install_workflow_error_handlers(app)
+    # Every API router but auth's needs a logged-in user (the local admin in local mode);
+    # routes for reviewers or admins declare their role on top.
+    logged_in = [Depends(current_user)]
+    app.include_router(auth.router)
+    app.include_router(workflow.router, dependencies=logged_in)
+    app.include_router(scenes.router, dependencies=logged_in)
+    app.include_router(jobs.router, dependencies=logged_in)
+    app.include_router(models.router, dependencies=logged_in)
+    app.include_router(viewer.router, dependencies=logged_in)
+    app.include_router(users.router, dependencies=logged_in)
 
     @app.get("/api/health", tags=["health"])
     def health() -> dict[str, str]:
@@ -50,4 +77,46 @@ def create_app(settings: Settings | None = None) -> FastAPI:
                 status_code=503,
             )
 
+    check_routes_guarded(app)
     return app
+
+
+@dataclass(frozen=True)
+class ApiRoute:
+    path: str
+    methods: frozenset[str]
+    dependant: Any  # fastapi.dependencies.models.Dependant, with the router's dependencies
+
+
+def api_routes(app: FastAPI) -> list[ApiRoute]:
+    """Every route of the app, as requests meet it (included routers' dependencies merged)."""
+    try:
+        # Newer FastAPI keeps included routers nested in app.routes and merges on the fly.
+        from fastapi.routing import iter_route_contexts
+    except ImportError:  # older FastAPI copies every route into app.routes
+        contexts: Iterable[Any] = app.routes
+    else:
+        contexts = iter_route_contexts(app.routes)
+    return [
+        ApiRoute(route.path, frozenset(route.methods or ()), getattr(route, "dependant", None))
+        for route in contexts
+        if isinstance(getattr(route, "path", None), str)
+    ]
+
+
+def _needs_user(dependant: Any) -> bool:
+    return any(
+        d.call is current_user or _needs_user(d) for d in getattr(dependant, "dependencies", [])
+    )
+
+
+def check_routes_guarded(app: FastAPI) -> None:
+    """Refuse to build an app with an API route anonymous requests could use by mistake."""
+    routes = [r for r in api_routes(app) if r.path.startswith("/api")]  # the rest: frontend
+    if not any(r.path == "/api/scenes" for r in routes):
+        raise RuntimeError("cannot see the app's routes to check them (FastAPI changed?)")
+    open_routes = [
+        r.path for r in routes if r.path not in PUBLIC_ROUTES and not _needs_user(r.dependant)
+    ]
+    if open_routes:
+        raise RuntimeError(f"API routes without a login check: {', '.join(open_routes)}")

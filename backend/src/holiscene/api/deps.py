@@ -1,12 +1,28 @@
-"""Request dependencies as Annotated aliases."""
+"""Request dependencies as Annotated aliases: the workbench, and who is asking.
+
+Every API router is included with `Depends(current_user)` (see app.py), so a route added
+later is closed to anonymous requests by default; routes for reviewers or admins also
+declare `ReviewerDep` or `AdminDep`. Roles are nested (admin > reviewer > annotator), and
+annotator is the lowest, so "any logged-in user" may read and annotate.
+
+Local single-user mode: while the server listens on loopback only and no account exists,
+every request is the local admin (`local`), as before accounts existed. The first account
+ends it; beyond loopback it never applies (the server refuses to start without an admin).
+"""
 
 from __future__ import annotations
 
+import ipaddress
+from collections.abc import Callable
 from typing import Annotated
 
-from fastapi import Depends, Request
+from fastapi import Depends, HTTPException, Request
+from holiscene_schema import Role
 
 from ..workbench import Workbench
+from ..workflow import LOCAL_USER, Actor, has_role
+
+SESSION_COOKIE = "holiscene_session"
 
 
 def get_workbench(request: Request) -> Workbench:
@@ -15,3 +31,74 @@ def get_workbench(request: Request) -> Workbench:
 
 
 WorkbenchDep = Annotated[Workbench, Depends(get_workbench)]
+
+
+def is_loopback(host: str) -> bool:
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host.strip("[]")).is_loopback
+    except ValueError:
+        return False
+
+
+def local_mode(workbench: Workbench) -> bool:
+    """Loopback only and no accounts yet: no login, everyone is the local admin."""
+    return is_loopback(workbench.settings.host) and not workbench.users.any_users()
+
+
+def session_token(request: Request) -> str | None:
+    """`Authorization: Bearer <token>` (scripts), else the session cookie (the browser)."""
+    scheme, _, token = request.headers.get("authorization", "").partition(" ")
+    if scheme.lower() == "bearer" and token.strip():
+        return token.strip()
+    return request.cookies.get(SESSION_COOKIE) or None
+
+
+def current_user(request: Request, workbench: WorkbenchDep) -> Actor:
+    token = session_token(request)
+    if token is not None:
+        user = workbench.users.user_for_token(token)
+        if user is not None:
+            return Actor(user.name, user.role)
+    if local_mode(workbench):
+        _refuse_cross_site(request)
+        return Actor(LOCAL_USER, "admin", local=True)
+    raise HTTPException(
+        401,
+        "log in first (your session may have expired)" if token else "log in first",
+        headers={"WWW-Authenticate": "Bearer"},
+    )
+
+
+def _refuse_cross_site(request: Request) -> None:
+    """Local mode has no cookie for SameSite to protect: refuse writes a page of another
+    site makes the browser send to this one (its Origin header names the other site)."""
+    origin = request.headers.get("origin")
+    if request.method in ("GET", "HEAD", "OPTIONS") or origin is None:
+        return
+    host = request.headers.get("host", "")
+    if origin.split("://", 1)[-1] != host:
+        raise HTTPException(403, f"cross-site request from {origin} refused")
+
+
+def require_role(role: Role) -> Callable[[Actor], Actor]:
+    def check(user: Annotated[Actor, Depends(current_user)]) -> Actor:
+        if not has_role(user.role, role):
+            raise HTTPException(403, f"this needs the {role} role; you are {user.role}")
+        return user
+
+    check.__name__ = f"require_{role}"
+    return check
+
+
+UserDep = Annotated[Actor, Depends(current_user)]
+AnnotatorDep = Annotated[Actor, Depends(require_role("annotator"))]
+ReviewerDep = Annotated[Actor, Depends(require_role("reviewer"))]
+AdminDep = Annotated[Actor, Depends(require_role("admin"))]
+
+
+def author_of(user: Actor, given: str) -> str:
+    """The author to record: the account's name; in local mode the name typed in the app
+    (there is nothing else to tell people apart by)."""
+    return given if user.local else user.name

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import json
 import uuid
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -21,6 +21,7 @@ from holiscene_schema import (
     RevisionKind,
     Scene,
     SceneDocument,
+    SceneState,
     SceneSummary,
 )
 from pydantic import TypeAdapter
@@ -29,11 +30,16 @@ from sqlalchemy.orm import Session
 
 from ..editing import apply_edits, describe_edits, keep_manual_supports
 from ..inputs import InputFiles
+from ..workflow import scene_uncertainty
 from .clock import as_utc, utcnow
 from .files import SceneFiles
+from .scene_events import as_state, pipeline_committed, record_event
 from .tables import RevisionRow, SceneRow
 
 _EDITS = TypeAdapter(list[Edit])
+# Runs inside a revision's write transaction, after the scene row moved to the new revision
+# number (given); raising rolls the whole write back. The workflow checks and records state.
+RevisionHook = Callable[[Session, int], None]
 
 
 class SceneNotFoundError(LookupError):
@@ -53,10 +59,12 @@ class SceneStore:
 
     # -- reading -------------------------------------------------------------------------
 
-    def list_summaries(self) -> list[SceneSummary]:
+    def list_summaries(self, state: SceneState | None = None) -> list[SceneSummary]:
+        query = select(SceneRow).order_by(SceneRow.created_at.desc())
+        if state is not None:
+            query = query.where(SceneRow.state == state)
         with Session(self.engine) as session:
-            rows = session.scalars(select(SceneRow).order_by(SceneRow.created_at.desc())).all()
-            return [self._summary(row) for row in rows]
+            return [self._summary(row) for row in session.scalars(query).all()]
 
     def summary(self, scene_id: str, latest_job: Job | None = None) -> SceneSummary:
         with Session(self.engine) as session:
@@ -129,28 +137,44 @@ class SceneStore:
                     for d in inputs.detections
                 ]
                 (folder / "detections.json").write_text(json.dumps(boxes, indent=1))
-            session.add(
-                SceneRow(
-                    id=scene_id,
-                    name=scene.name,
-                    created_at=now,
-                    updated_at=now,
-                    current_revision=1,
-                    image_file=scene.image.file,
-                    width=scene.image.width,
-                    height=scene.image.height,
-                    object_count=len(scene.objects),
-                    glb_revision=None,
-                )
+            row = SceneRow(
+                id=scene_id,
+                name=scene.name,
+                created_at=now,
+                updated_at=now,
+                current_revision=1,
+                image_file=scene.image.file,
+                width=scene.image.width,
+                height=scene.image.height,
+                object_count=len(scene.objects),
+                glb_revision=None,
+                state="new",
+                assignee=None,
+                annotation_round=1,
+                uncertainty=scene_uncertainty(scene),
             )
+            session.add(row)
             session.flush()
             self._add_revision(session, scene_id, 1, author, "import", "imported", None, scene)
+            record_event(
+                session,
+                row,
+                action="import",
+                to_state="new",
+                assignee=None,
+                actor=author,
+                revision=1,
+                from_state=None,
+            )
             session.commit()
         return self.summary(scene_id)
 
-    def apply_edits(self, scene_id: str, request: EditRequest) -> SceneDocument:
+    def apply_edits(
+        self, scene_id: str, request: EditRequest, hook: RevisionHook | None = None
+    ) -> SceneDocument:
         """A new revision with the edits; raises RevisionConflictError on a stale base,
-        InvalidEditError (from editing) on a bad edit. Nothing is written on error."""
+        InvalidEditError (from editing) on a bad edit, and whatever `hook` raises. Nothing is
+        written on error."""
         base = self._document_for_write(scene_id, request.base_revision)
         now = utcnow()
         edited = apply_edits(base.scene, request.edits, request.author, now)
@@ -162,8 +186,43 @@ class SceneStore:
             kind="edit",
             summary=describe_edits(request.edits),
             edits=request.edits,
+            hook=hook,
         )
         return self.document(scene_id)
+
+    def commit_reset(
+        self,
+        scene_id: str,
+        base_revision: int,
+        scene: Scene,
+        author: str,
+        summary: str,
+        hook: RevisionHook,
+    ) -> SceneDocument:
+        """A revision that puts the scene back to an earlier state of its supports (for a
+        second annotation)."""
+        self._commit_revision(
+            scene_id,
+            base_revision,
+            scene,
+            author=author,
+            kind="reset",
+            summary=summary,
+            edits=None,
+            hook=hook,
+        )
+        return self.document(scene_id)
+
+    def latest_pipeline_document(self, scene_id: str) -> SceneDocument | None:
+        """The newest revision the pipeline wrote, or None."""
+        with Session(self.engine) as session:
+            number = session.scalar(
+                select(RevisionRow.number)
+                .where(RevisionRow.scene_id == scene_id, RevisionRow.kind == "pipeline")
+                .order_by(RevisionRow.number.desc())
+                .limit(1)
+            )
+        return self.document(scene_id, number) if number is not None else None
 
     def commit_pipeline_result(
         self, scene_id: str, result: Scene, glb: bytes | None, attempts: int = 5
@@ -186,6 +245,7 @@ class SceneStore:
                     summary=f"pipeline: {', '.join(s.name for s in result.stages)}",
                     edits=None,
                     glb_revision=new_revision if glb is not None else None,
+                    hook=lambda session, number: pipeline_committed(session, scene_id, number),
                 )
                 return new_revision
             except RevisionConflictError:
@@ -211,12 +271,14 @@ class SceneStore:
         summary: str,
         edits: Sequence[Edit] | None,
         glb_revision: int | None = None,
+        hook: RevisionHook | None = None,
     ) -> None:
         new_revision = base_revision + 1
         values: dict[str, Any] = {
             "current_revision": new_revision,
             "updated_at": utcnow(),
             "object_count": len(scene.objects),
+            "uncertainty": scene_uncertainty(scene),
         }
         if glb_revision is not None:
             values["glb_revision"] = glb_revision
@@ -229,6 +291,8 @@ class SceneStore:
             if moved.rowcount != 1:  # type: ignore[attr-defined]
                 session.rollback()
                 raise RevisionConflictError(self._row(session, scene_id).current_revision)
+            if hook is not None:
+                hook(session, new_revision)
             self._add_revision(session, scene_id, new_revision, author, kind, summary, edits, scene)
             session.commit()
 
@@ -274,5 +338,9 @@ class SceneStore:
             width=row.width,
             height=row.height,
             object_count=row.object_count,
+            state=as_state(row.state),
+            assignee=row.assignee,
+            annotation_round=row.annotation_round,
+            uncertainty=row.uncertainty,
             latest_job=latest_job,
         )

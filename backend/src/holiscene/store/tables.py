@@ -26,6 +26,12 @@ class SceneRow(Base):
     height: Mapped[int] = mapped_column(Integer)
     object_count: Mapped[int] = mapped_column(Integer)
     glb_revision: Mapped[int | None] = mapped_column(Integer, nullable=True)
+    # The annotation workflow (migration 0003); every change is also a row of scene_events.
+    state: Mapped[str] = mapped_column(String(16), index=True, default="new")
+    assignee: Mapped[str | None] = mapped_column(String(64), nullable=True, index=True)
+    annotation_round: Mapped[int] = mapped_column(Integer, default=1)
+    # Of the current revision (holiscene.workflow.scene_uncertainty); "Next scene" sorts by it.
+    uncertainty: Mapped[float | None] = mapped_column(Float, nullable=True)
 
 
 class RevisionRow(Base):
@@ -98,3 +104,43 @@ class ModelEventRow(Base):
     model_id: Mapped[str] = mapped_column(ForeignKey("models.id"), index=True)
     previous_model_id: Mapped[str | None] = mapped_column(String(32), nullable=True)
     note: Mapped[str | None] = mapped_column(Text, nullable=True)
+
+
+class UserRow(Base):
+    __tablename__ = "users"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True, autoincrement=True)
+    name: Mapped[str] = mapped_column(String(64), unique=True)
+    role: Mapped[str] = mapped_column(String(16))
+    password_hash: Mapped[str] = mapped_column(String(255))  # argon2id, never the password
+    created_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
+
+
+class SessionRow(Base):
+    """A login. Only the SHA-256 of the token is stored: a copy of the database opens no
+    session."""
+
+    __tablename__ = "sessions"
+
+    token_hash: Mapped[str] = mapped_column(String(64), primary_key=True)
+    user_id: Mapped[int] = mapped_column(ForeignKey("users.id", ondelete="CASCADE"), index=True)
+    created_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
+    expires_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
+
+
+class SceneEventRow(Base):
+    """Every change of a scene's workflow state or assignee: who, when, on which revision."""
+
+    __tablename__ = "scene_events"
+
+    id: Mapped[int] = mapped_column(Integer, primary_key=True, autoincrement=True)
+    scene_id: Mapped[str] = mapped_column(ForeignKey("scenes.id", ondelete="CASCADE"), index=True)
+    at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
+    actor: Mapped[str] = mapped_column(String(64))
+    action: Mapped[str] = mapped_column(String(32))
+    from_state: Mapped[str | None] = mapped_column(String(16), nullable=True)
+    to_state: Mapped[str] = mapped_column(String(16))
+    assignee: Mapped[str | None] = mapped_column(String(64), nullable=True)
+    revision: Mapped[int] = mapped_column(Integer)
+    annotation_round: Mapped[int] = mapped_column(Integer)
+    comment: Mapped[str | None] = mapped_column(Text, nullable=True)

@@ -1,8 +1,7 @@
 """The Relation Network model registry: list, files, retrain, promote and roll back.
 
-These are admin routes. There are no user accounts or roles yet (issue 6 adds them); until
-then whoever can reach the server (127.0.0.1 only, unless --allow-remote) can retrain and
-change the active model.
+Any logged-in user may read the registry and fetch model files (the browser scores supports
+with the active model); retraining and changing the active model are for admins.
 """
 
 from __future__ import annotations
@@ -19,7 +18,7 @@ from holiscene_schema import (
 )
 
 from ...store.models import MODEL_FILES
-from ..deps import WorkbenchDep
+from ..deps import AdminDep, WorkbenchDep
 
 router = APIRouter(prefix="/api/models", tags=["models"])
 
@@ -58,10 +57,15 @@ def latest_retrain_job(workbench: WorkbenchDep) -> Job | None:
     response_model=Job,
     responses={409: {"model": ErrorMessage}, 422: {"model": ErrorMessage}},
 )
-def start_retrain(workbench: WorkbenchDep, request: RetrainRequest | None = None) -> Job:
+def start_retrain(
+    workbench: WorkbenchDep, user: AdminDep, request: RetrainRequest | None = None
+) -> Job:
     """Start retraining on the stored labelled scenes; follow it at GET /api/jobs/{id}.
     409 while another retrain job runs, 422 when fewer than two scenes are labelled."""
-    return workbench.start_retrain(request or RetrainRequest())
+    request = request or RetrainRequest()
+    if not user.local:  # with accounts, the account is the author
+        request = request.model_copy(update={"author": user.name})
+    return workbench.start_retrain(request)
 
 
 @router.get("/{model_id}", response_model=ModelInfo, responses=_404)
@@ -71,11 +75,12 @@ def get_model(model_id: str, workbench: WorkbenchDep) -> ModelInfo:
 
 @router.post("/{model_id}/promote", response_model=ModelInfo, responses=_404)
 def promote_model(
-    model_id: str, workbench: WorkbenchDep, request: PromoteRequest | None = None
+    model_id: str, workbench: WorkbenchDep, user: AdminDep, request: PromoteRequest | None = None
 ) -> ModelInfo:
     """Make any registered model the active one (promote a newer, or roll back to an older)."""
     request = request or PromoteRequest()
-    return workbench.models.promote(model_id, request.author, request.note)
+    author = request.author if user.local else user.name
+    return workbench.models.promote(model_id, author, request.note)
 
 
 @router.get(

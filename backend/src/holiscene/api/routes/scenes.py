@@ -14,12 +14,13 @@ from holiscene_schema import (
     Job,
     RevisionInfo,
     SceneDocument,
+    SceneState,
     SceneSummary,
 )
 
 from ...inputs import InputError, InputFiles, load_photo, parse_detections, parse_intrinsics
 from ...store.scenes import SceneNotFoundError
-from ..deps import WorkbenchDep
+from ..deps import AnnotatorDep, WorkbenchDep, author_of
 
 router = APIRouter(prefix="/api/scenes", tags=["scenes"])
 
@@ -37,9 +38,10 @@ async def _read_limited(upload: UploadFile, what: str, limit: int) -> bytes:
 
 
 @router.get("", response_model=list[SceneSummary])
-def list_scenes(workbench: WorkbenchDep) -> list[SceneSummary]:
+def list_scenes(workbench: WorkbenchDep, state: SceneState | None = None) -> list[SceneSummary]:
+    """Every scene, newest first; `state` keeps the scenes in that workflow state."""
     latest = workbench.jobs.latest_for_scenes()
-    summaries = workbench.scenes.list_summaries()
+    summaries = workbench.scenes.list_summaries(state)
     return [s.model_copy(update={"latest_job": latest.get(s.id)}) for s in summaries]
 
 
@@ -51,6 +53,7 @@ def list_scenes(workbench: WorkbenchDep) -> list[SceneSummary]:
 )
 async def import_scene(
     workbench: WorkbenchDep,
+    user: AnnotatorDep,
     image: Annotated[UploadFile, File(description="The photo, JPEG or PNG")],
     cam_k: Annotated[UploadFile | None, File(description="cam_K.txt: 3x3 intrinsics")] = None,
     detections: Annotated[
@@ -75,7 +78,7 @@ async def import_scene(
         boxes = parse_detections(raw, photo.width, photo.height)
     inputs = InputFiles(photo=photo, K=K, detections=boxes)
     scene_name = (name or "").strip() or (image.filename or "photo").rsplit(".", 1)[0]
-    return workbench.import_scene(inputs, scene_name, author, run_pipeline)
+    return workbench.import_scene(inputs, scene_name, author_of(user, author), run_pipeline)
 
 
 @router.get("/{scene_id}", response_model=SceneDocument, responses=_ERRORS)
@@ -97,7 +100,8 @@ def get_glb(scene_id: str, workbench: WorkbenchDep) -> FileResponse:
 
 
 @router.post("/{scene_id}/pipeline-jobs", status_code=202, response_model=Job, responses=_ERRORS)
-def run_pipeline_job(scene_id: str, workbench: WorkbenchDep) -> Job:
+def run_pipeline_job(scene_id: str, workbench: WorkbenchDep, _: AnnotatorDep) -> Job:
+    workbench.workflow.check_pipeline_allowed(scene_id)  # 409 while submitted or accepted
     return workbench.start_pipeline(scene_id)
 
 
@@ -118,8 +122,13 @@ def run_placement_job(scene_id: str, workbench: WorkbenchDep) -> Job:
     response_model=SceneDocument,
     responses={409: {"model": Conflict}, **_ERRORS},
 )
-def edit_scene(scene_id: str, request: EditRequest, workbench: WorkbenchDep) -> SceneDocument:
-    return workbench.scenes.apply_edits(scene_id, request)
+def edit_scene(
+    scene_id: str, request: EditRequest, workbench: WorkbenchDep, user: AnnotatorDep
+) -> SceneDocument:
+    """A new revision; the first edit takes the scene for annotation (409 when someone
+    else is annotating it, or it is submitted or accepted)."""
+    request = request.model_copy(update={"author": author_of(user, request.author)})
+    return workbench.workflow.edit(scene_id, request, user)
 
 
 @router.get("/{scene_id}/revisions", response_model=list[RevisionInfo], responses=_ERRORS)

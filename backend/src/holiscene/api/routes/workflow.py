@@ -1,0 +1,91 @@
+"""The annotation workflow: take the next scene, submit it, accept or reject it, ask for a
+second annotation; a scene's state and history; the dashboard."""
+
+from __future__ import annotations
+
+from fastapi import APIRouter
+from holiscene_schema import (
+    Dashboard,
+    ErrorMessage,
+    RejectRequest,
+    ReviewRequest,
+    SceneSummary,
+    SceneWorkflow,
+    SecondAnnotationRequest,
+    SubmitRequest,
+)
+
+from ..deps import AnnotatorDep, ReviewerDep, UserDep, WorkbenchDep
+
+router = APIRouter(prefix="/api", tags=["workflow"])
+
+_ERRORS: dict[int | str, dict[str, object]] = {
+    404: {"model": ErrorMessage},
+    409: {
+        "model": ErrorMessage,
+        "description": "The workflow does not allow it now; or, with a Conflict body, the "
+        "revision named is not the latest",
+    },
+    422: {"model": ErrorMessage},
+}
+
+
+@router.post("/scenes/next", response_model=SceneSummary, responses=_ERRORS)
+def next_scene(user: AnnotatorDep, workbench: WorkbenchDep) -> SceneSummary:
+    """Assign the caller their next scene: one of theirs a reviewer rejected, else the
+    predicted scene the pipeline is least sure of (highest uncertainty). 404 when none."""
+    return workbench.workflow.next_scene(user)
+
+
+@router.get("/scenes/{scene_id}/workflow", response_model=SceneWorkflow, responses=_ERRORS)
+def scene_workflow(scene_id: str, workbench: WorkbenchDep) -> SceneWorkflow:
+    """State, assignee, the reviewer's comment when rejected, and every state change."""
+    return workbench.workflow.scene_workflow(scene_id)
+
+
+@router.post("/scenes/{scene_id}/take", response_model=SceneSummary, responses=_ERRORS)
+def take_scene(scene_id: str, user: AnnotatorDep, workbench: WorkbenchDep) -> SceneSummary:
+    """Start annotating this scene (editing it does the same). 409 when someone else is
+    annotating it, or it is submitted or accepted."""
+    return workbench.workflow.take(scene_id, user)
+
+
+@router.post("/scenes/{scene_id}/submit", response_model=SceneWorkflow, responses=_ERRORS)
+def submit_scene(
+    scene_id: str, body: SubmitRequest, user: AnnotatorDep, workbench: WorkbenchDep
+) -> SceneWorkflow:
+    """Hand the scene to the reviewers (only its annotator; `revision` must be the latest)."""
+    return workbench.workflow.submit(scene_id, body.revision, user)
+
+
+@router.post("/scenes/{scene_id}/accept", response_model=SceneWorkflow, responses=_ERRORS)
+def accept_scene(
+    scene_id: str, body: ReviewRequest, user: ReviewerDep, workbench: WorkbenchDep
+) -> SceneWorkflow:
+    return workbench.workflow.accept(scene_id, body.revision, user, body.comment)
+
+
+@router.post("/scenes/{scene_id}/reject", response_model=SceneWorkflow, responses=_ERRORS)
+def reject_scene(
+    scene_id: str, body: RejectRequest, user: ReviewerDep, workbench: WorkbenchDep
+) -> SceneWorkflow:
+    """Send the scene back to its annotator with a comment saying what went wrong."""
+    return workbench.workflow.reject(scene_id, body.revision, user, body.comment)
+
+
+@router.post(
+    "/scenes/{scene_id}/second-annotation", response_model=SceneWorkflow, responses=_ERRORS
+)
+def second_annotation(
+    scene_id: str, body: SecondAnnotationRequest, user: ReviewerDep, workbench: WorkbenchDep
+) -> SceneWorkflow:
+    """Have a submitted or accepted scene annotated again, independently: its supports go
+    back to the pipeline's guesses and someone who did not label it takes it next. The
+    dashboard then shows how far the two annotations agree."""
+    return workbench.workflow.second_annotation(scene_id, body.revision, user, body.comment)
+
+
+@router.get("/dashboard", response_model=Dashboard)
+def dashboard(_: UserDep, workbench: WorkbenchDep) -> Dashboard:
+    """Scenes per state, what each person did, and agreement on scenes labelled twice."""
+    return workbench.workflow.dashboard(workbench.users.roles())

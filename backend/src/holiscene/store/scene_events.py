@@ -1,0 +1,82 @@
+"""Workflow state changes inside a scene's write transaction: the row of `scenes` and its
+history row in `scene_events` are written together or not at all."""
+
+from __future__ import annotations
+
+from holiscene_schema import SceneState, WorkflowAction
+from sqlalchemy import select
+from sqlalchemy.orm import Session
+
+from ..workflow import STATES, SceneStatus, WorkflowError, check_pipeline_allowed
+from .clock import utcnow
+from .tables import SceneEventRow, SceneRow
+
+PIPELINE_ACTOR = "pipeline"
+
+
+def as_state(value: str) -> SceneState:
+    for state in STATES:
+        if value == state:
+            return state
+    raise ValueError(f"unknown scene state {value!r} in the database")
+
+
+def status_of(row: SceneRow) -> SceneStatus:
+    return SceneStatus(
+        state=as_state(row.state), assignee=row.assignee, annotation_round=row.annotation_round
+    )
+
+
+def record_event(
+    session: Session,
+    row: SceneRow,
+    *,
+    action: WorkflowAction,
+    to_state: SceneState,
+    assignee: str | None,
+    actor: str,
+    revision: int,
+    from_state: SceneState | None,
+    comment: str | None = None,
+) -> None:
+    """Move the scene to `to_state` (and `assignee`) and write the history row."""
+    row.state = to_state
+    row.assignee = assignee
+    session.add(
+        SceneEventRow(
+            scene_id=row.id,
+            at=utcnow(),
+            actor=actor,
+            action=action,
+            from_state=from_state,
+            to_state=to_state,
+            assignee=assignee,
+            revision=revision,
+            annotation_round=row.annotation_round,
+            comment=comment,
+        )
+    )
+
+
+def pipeline_committed(session: Session, scene_id: str, revision: int) -> None:
+    """A pipeline run is being stored as `revision`: a new scene becomes predicted. A scene a
+    reviewer is judging (or accepted) must not change under them: WorkflowError."""
+    row = session.scalar(select(SceneRow).where(SceneRow.id == scene_id))
+    if row is None:
+        return
+    status = status_of(row)
+    try:
+        check_pipeline_allowed(status)
+    except WorkflowError as exc:
+        raise WorkflowError(f"{exc}; this run's result was not stored") from exc
+    if status.state == "new":
+        record_event(
+            session,
+            row,
+            action="predict",
+            to_state="predicted",
+            assignee=None,
+            actor=PIPELINE_ACTOR,
+            revision=revision,
+            from_state="new",
+        )

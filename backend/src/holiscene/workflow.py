@@ -1,0 +1,196 @@
+"""The annotation workflow's rules, with no database and no HTTP: roles, which state change a
+user may make, how uncertain a predicted scene is, and how far two annotations agree.
+
+States: new -> predicted (the pipeline finished) -> in_annotation (an annotator took it) ->
+submitted -> accepted | rejected (with a comment) ; rejected -> in_annotation (the annotator
+fixes it). A reviewer may ask for a second, independent annotation of a submitted or accepted
+scene: its supports go back to the pipeline's guesses, the annotation round goes up and the
+scene is predicted again, for someone who did not label it before.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from holiscene_schema import STRUCTURAL_CLASSES, Role, Scene, SceneState, WorkflowAction
+
+ROLE_RANK: dict[Role, int] = {"annotator": 1, "reviewer": 2, "admin": 3}
+ROLES: tuple[Role, ...] = ("annotator", "reviewer", "admin")
+STATES: tuple[SceneState, ...] = (
+    "new",
+    "predicted",
+    "in_annotation",
+    "submitted",
+    "accepted",
+    "rejected",
+)
+# The identity of every request in local single-user mode (loopback, no accounts yet).
+LOCAL_USER = "local"
+# Names the system writes as authors; no account may take them.
+RESERVED_NAMES = frozenset({LOCAL_USER, "pipeline", "import", "system", "admin-cli"})
+# A supporter the pipeline guessed without saying how sure it was counts as a coin toss.
+UNKNOWN_CONFIDENCE = 0.5
+
+
+def has_role(role: Role, needed: Role) -> bool:
+    """Roles are nested: an admin may do what a reviewer may, a reviewer what an annotator may."""
+    return ROLE_RANK[role] >= ROLE_RANK[needed]
+
+
+class WorkflowError(Exception):
+    """A state change the workflow does not allow now (HTTP 409); the message says why."""
+
+
+@dataclass(frozen=True)
+class Actor:
+    name: str
+    role: Role
+    local: bool = False  # the local single-user mode's user, who plays every part
+
+
+@dataclass(frozen=True)
+class SceneStatus:
+    state: SceneState
+    assignee: str | None
+    annotation_round: int
+
+
+@dataclass(frozen=True)
+class Transition:
+    action: WorkflowAction
+    to_state: SceneState
+    assignee: str | None
+
+
+def take_for_annotation(
+    status: SceneStatus, actor: Actor, earlier_annotators: Iterable[str] = ()
+) -> Transition | None:
+    """What editing (or taking) the scene does to its state; None when nothing changes.
+
+    Raises WorkflowError when the actor may not work on the scene now. `earlier_annotators`:
+    who submitted it in an earlier annotation round (a second annotation must be
+    independent of the first)."""
+    state, assignee = status.state, status.assignee
+    if state == "submitted":
+        raise WorkflowError(
+            f"the scene is submitted for review (by {assignee or 'someone'}): it cannot be "
+            "edited until a reviewer accepts or rejects it"
+        )
+    if state == "accepted":
+        raise WorkflowError(
+            "the scene is accepted and can no longer be edited; a reviewer can ask for a "
+            "second annotation"
+        )
+    if not actor.local and actor.name in set(earlier_annotators):
+        raise WorkflowError(
+            f"you annotated this scene in an earlier round; annotation round "
+            f"{status.annotation_round} must come from someone else"
+        )
+    if state in ("new", "predicted"):
+        return Transition("claim", "in_annotation", actor.name)
+    if assignee not in (None, actor.name) and not has_role(actor.role, "admin"):
+        raise WorkflowError(f"{assignee} is annotating this scene")
+    if state == "rejected":
+        return Transition("reopen", "in_annotation", actor.name)
+    if assignee != actor.name:  # in annotation, unassigned or taken over by an admin
+        return Transition("claim", "in_annotation", actor.name)
+    return None
+
+
+def submit(status: SceneStatus, actor: Actor) -> Transition:
+    if status.state != "in_annotation":
+        raise WorkflowError(
+            f"only a scene in annotation can be submitted; this one is {describe(status.state)}"
+        )
+    if status.assignee != actor.name:
+        raise WorkflowError(
+            f"only the annotator of this scene ({status.assignee or 'nobody yet'}) can submit it"
+        )
+    return Transition("submit", "submitted", actor.name)
+
+
+def review(status: SceneStatus, actor: Actor, accept: bool) -> Transition:
+    if status.state != "submitted":
+        raise WorkflowError(
+            f"only a submitted scene can be {'accepted' if accept else 'rejected'}; this one "
+            f"is {describe(status.state)}"
+        )
+    if status.assignee == actor.name and not actor.local:
+        raise WorkflowError("you submitted this scene: another reviewer must review it")
+    if accept:
+        return Transition("accept", "accepted", status.assignee)
+    return Transition("reject", "rejected", status.assignee)
+
+
+def second_annotation(status: SceneStatus) -> Transition:
+    if status.state not in ("submitted", "accepted"):
+        raise WorkflowError(
+            "a second annotation can be asked for a submitted or accepted scene; this one is "
+            f"{describe(status.state)}"
+        )
+    return Transition("second_annotation", "predicted", None)
+
+
+def check_pipeline_allowed(status: SceneStatus) -> None:
+    """Re-running the pipeline would change what a reviewer is judging or has accepted."""
+    if status.state in ("submitted", "accepted"):
+        raise WorkflowError(
+            f"the scene is {describe(status.state)}: the pipeline cannot re-run on it now"
+        )
+
+
+def describe(state: SceneState) -> str:
+    return state.replace("_", " ")
+
+
+def _needs_supporter(scene: Scene) -> list[str]:
+    return [o.id for o in scene.objects if o.cls not in STRUCTURAL_CLASSES]
+
+
+def scene_uncertainty(scene: Scene) -> float:
+    """Mean over the objects that need a supporter of how unsure their supporter is:
+    1 - confidence for the pipeline's guess (0.5 when it gave none), 1 without a supporter,
+    0 when a person set it. 0 for a scene with no such objects (nothing to label)."""
+    ids = _needs_supporter(scene)
+    if not ids:
+        return 0.0
+    supports = {s.child: s for s in scene.supports}
+    total = 0.0
+    for object_id in ids:
+        support = supports.get(object_id)
+        if support is None:
+            total += 1.0
+        elif support.source == "auto":
+            confidence = support.confidence
+            total += 1.0 - (UNKNOWN_CONFIDENCE if confidence is None else confidence)
+    return round(total / len(ids), 6)
+
+
+@dataclass(frozen=True)
+class Agreement:
+    objects: int
+    matching: int
+
+    @property
+    def share(self) -> float:
+        return self.matching / self.objects if self.objects else 0.0
+
+
+def support_agreement(first: Scene, second: Scene) -> Agreement:
+    """Share of the objects (that need a supporter, in either scene) whose (supporter, type)
+    is the same in both annotations; an object without a supporter in both counts as a match."""
+    ids = list(dict.fromkeys(_needs_supporter(first) + _needs_supporter(second)))
+    a = {s.child: (s.parent, s.type) for s in first.supports}
+    b = {s.child: (s.parent, s.type) for s in second.supports}
+    matching = sum(1 for object_id in ids if a.get(object_id) == b.get(object_id))
+    return Agreement(objects=len(ids), matching=matching)
+
+
+def pipeline_supports_only(scene: Scene, pipeline_scene: Scene) -> Scene:
+    """`scene` with the supports of the pipeline's revision that the pipeline guessed (source
+    auto), for an independent second annotation. Objects a person labelled before that run
+    are left without a supporter: the pipeline's own guess for them was not kept."""
+    ids = {o.id for o in scene.objects}
+    auto = [s for s in pipeline_scene.supports if s.source == "auto" and s.child in ids]
+    return scene.model_copy(update={"supports": auto})

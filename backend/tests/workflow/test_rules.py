@@ -1,0 +1,111 @@
+"""The workflow's rules without a database: uncertainty, agreement, who may do what."""
+
+from __future__ import annotations
+
+import pytest
+from holiscene.workflow import (
+    Actor,
+    SceneStatus,
+    WorkflowError,
+    has_role,
+    review,
+    scene_uncertainty,
+    submit,
+    support_agreement,
+    take_for_annotation,
+)
+
+from .scenes import PREDICTED, make_scene
+
+ANN = Actor("ann", "annotator")
+BOB = Actor("bob", "annotator")
+REV = Actor("rita", "reviewer")
+ADMIN = Actor("ada", "admin")
+
+
+def test_roles_are_nested() -> None:
+    assert has_role("admin", "reviewer") and has_role("admin", "annotator")
+    assert has_role("reviewer", "annotator") and not has_role("reviewer", "admin")
+    assert not has_role("annotator", "reviewer")
+
+
+def test_uncertainty_is_the_mean_doubt_over_objects_that_need_a_supporter() -> None:
+    # o0: 1 - 0.9, o1: 1 - 0.3, o2: no confidence (0.5), o3: no supporter (1); the wall
+    # needs none and does not count.
+    scene = make_scene(PREDICTED[:3], {"o0": 0.9, "o1": 0.3, "o2": None})
+    assert scene_uncertainty(scene) == pytest.approx((0.1 + 0.7 + 0.5 + 1.0) / 4)
+    # A person's supporter is certain.
+    manual = scene.model_copy(
+        update={"supports": [s.model_copy(update={"source": "manual"}) for s in scene.supports]}
+    )
+    assert scene_uncertainty(manual) == pytest.approx(1.0 / 4)
+
+
+def test_agreement_on_a_hand_made_pair() -> None:
+    first = make_scene(PREDICTED)
+    # o1 on the floor instead of the table (supporter differs), o2 behind instead of below
+    # (type differs), o0 and o3 the same.
+    second = make_scene(
+        [
+            ("o0", "floor", "below"),
+            ("o1", "floor", "below"),
+            ("o2", "o0", "behind"),
+            ("o3", "floor", "below"),
+        ]
+    )
+    result = support_agreement(first, second)
+    assert (result.objects, result.matching, result.share) == (4, 2, 0.5)
+    assert support_agreement(first, first).share == 1.0
+    # An object without a supporter in both annotations agrees; in one only, it does not.
+    assert support_agreement(make_scene(PREDICTED[:3]), make_scene(PREDICTED[:3])).share == 1.0
+    assert support_agreement(make_scene(PREDICTED[:3]), first).matching == 3
+
+
+def test_taking_a_scene() -> None:
+    predicted = SceneStatus("predicted", None, 1)
+    taken = take_for_annotation(predicted, ANN)
+    assert taken is not None and (taken.action, taken.to_state, taken.assignee) == (
+        "claim",
+        "in_annotation",
+        "ann",
+    )
+    mine = SceneStatus("in_annotation", "ann", 1)
+    assert take_for_annotation(mine, ANN) is None  # editing on: nothing changes
+    with pytest.raises(WorkflowError, match="ann is annotating"):
+        take_for_annotation(mine, BOB)
+    with pytest.raises(WorkflowError, match="ann is annotating"):
+        take_for_annotation(mine, REV)
+    admin_takes = take_for_annotation(mine, ADMIN)
+    assert admin_takes is not None and admin_takes.assignee == "ada"
+    rejected = take_for_annotation(SceneStatus("rejected", "ann", 1), ANN)
+    assert rejected is not None and (rejected.action, rejected.to_state) == (
+        "reopen",
+        "in_annotation",
+    )
+    for state in ("submitted", "accepted"):
+        with pytest.raises(WorkflowError):
+            take_for_annotation(SceneStatus(state, "ann", 1), ANN)  # type: ignore[arg-type]
+    # Round 2 must be someone else's.
+    with pytest.raises(WorkflowError, match="earlier round"):
+        take_for_annotation(SceneStatus("predicted", None, 2), ANN, {"ann"})
+    assert take_for_annotation(SceneStatus("predicted", None, 2), BOB, {"ann"}) is not None
+
+
+def test_submitting_and_reviewing() -> None:
+    mine = SceneStatus("in_annotation", "ann", 1)
+    assert submit(mine, ANN).to_state == "submitted"
+    with pytest.raises(WorkflowError, match=r"only the annotator of this scene \(ann\)"):
+        submit(mine, BOB)
+    with pytest.raises(WorkflowError, match="only a scene in annotation"):
+        submit(SceneStatus("predicted", None, 1), ANN)
+    submitted = SceneStatus("submitted", "ann", 1)
+    assert review(submitted, REV, accept=True).to_state == "accepted"
+    rejected = review(submitted, REV, accept=False)
+    assert (rejected.to_state, rejected.assignee) == ("rejected", "ann")
+    with pytest.raises(WorkflowError, match="only a submitted scene"):
+        review(mine, REV, accept=True)
+    with pytest.raises(WorkflowError, match="another reviewer"):
+        review(SceneStatus("submitted", "rita", 1), REV, accept=True)
+    # The local single-user mode plays every part.
+    local = Actor("local", "admin", local=True)
+    assert review(SceneStatus("submitted", "local", 1), local, accept=True).to_state == "accepted"
