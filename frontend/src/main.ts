@@ -1,21 +1,42 @@
-// Entry point: the author field and the hash router.
+// Entry point: who is logged in, the header, and the hash router.
 import "./styles.css";
+import type { CurrentUser } from "@holiscene/schema";
+import { sessionEvents } from "./api/client";
+import { ApiError } from "./api/errors";
+import { authApi } from "./api/workflow";
 import { el } from "./dom";
 import { confirmLeave, parseRoute } from "./router";
 import { bindAuthorInput } from "./state/author";
+import { getCurrentUser, onCurrentUserChange, setCurrentUser } from "./state/currentUser";
+import { mountDashboardPage } from "./views/dashboard/dashboardPage";
 import { mountShortcutHelp } from "./views/help/shortcutHelp";
+import { mountLoginPage } from "./views/login/loginPage";
 import { mountModelsPage } from "./views/models/modelsPage";
 import { mountScenePage } from "./views/scene/scenePage";
 import { mountSceneList } from "./views/sceneList/sceneListView";
 
 const app = document.querySelector<HTMLElement>("#app");
 const authorInput = document.querySelector<HTMLInputElement>("#author-input");
-if (!app || !authorInput) throw new Error("index.html lacks #app or #author-input");
+const userArea = document.querySelector<HTMLElement>("#user-area");
+if (!app || !authorInput || !userArea) {
+  throw new Error("index.html lacks #app, #author-input or #user-area");
+}
 bindAuthorInput(authorInput);
 mountShortcutHelp(document.body);
 
 function mount(root: HTMLElement): () => void {
   const route = parseRoute(window.location.hash);
+  const user = getCurrentUser();
+  if (!user || route.page === "login") {
+    // Logged out: the login page, whatever the address (it is where to go after login).
+    document.body.dataset.page = "login";
+    document.title = "Log in · HoliScene";
+    if (user) {
+      window.location.hash = "#/";
+      return () => {};
+    }
+    return mountLoginPage(root, loggedIn);
+  }
   document.body.dataset.page = route.page;
   switch (route.page) {
     case "list":
@@ -27,6 +48,9 @@ function mount(root: HTMLElement): () => void {
     case "models":
       document.title = "Models · HoliScene";
       return mountModelsPage(root);
+    case "dashboard":
+      document.title = "Dashboard · HoliScene";
+      return mountDashboardPage(root);
     case "unknown":
       document.title = "HoliScene";
       root.replaceChildren(
@@ -41,8 +65,119 @@ function mount(root: HTMLElement): () => void {
   }
 }
 
-let dispose = mount(app);
+function renderUserArea(user: CurrentUser | null): void {
+  document.body.dataset.localMode = String(user?.local_mode ?? false);
+  if (!user) {
+    userArea?.replaceChildren();
+    return;
+  }
+  const logout = el("button", {
+    text: "Log out",
+    testid: "logout",
+    attrs: { type: "button" },
+    on: { click: () => void logOut() },
+  });
+  userArea?.replaceChildren(
+    el("a", { text: "Dashboard", testid: "dashboard-link", attrs: { href: "#/dashboard" } }),
+    el(
+      "span",
+      {
+        testid: "current-user",
+        attrs: {
+          title: user.local_mode
+            ? "Single-user mode: the server listens on 127.0.0.1 only and has no accounts yet"
+            : "",
+        },
+      },
+      el("strong", { text: user.name }),
+      " ",
+      el("span", {
+        className: "user-role",
+        text: user.local_mode ? `(${user.role}, single-user mode)` : `(${user.role})`,
+        testid: "current-role",
+      }),
+    ),
+    ...(user.local_mode ? [] : [logout]),
+  );
+}
+
+let dispose: () => void = () => {};
 let shownHash = window.location.hash;
+
+function remount(): void {
+  dispose();
+  dispose = mount(app as HTMLElement);
+}
+
+function loggedIn(user: CurrentUser): void {
+  setCurrentUser(user);
+  remount();
+}
+
+async function logOut(): Promise<void> {
+  if (!confirmLeave()) return;
+  try {
+    await authApi.logout();
+  } finally {
+    setCurrentUser(null);
+    // Whoever logs in next starts at the scene list, not on this person's page.
+    history.replaceState(null, "", "#/");
+    shownHash = "#/";
+    remount();
+  }
+}
+
+/** The session ended while a page was open: log in again over it, so nothing on the page
+ * (unsaved edits included) is lost; then the page carries on. */
+function loginOverPage(): void {
+  if (document.querySelector("[data-testid='login-overlay']")) return;
+  const before = getCurrentUser();
+  const inner = el("div");
+  const overlay = el(
+    "div",
+    {
+      className: "login-overlay",
+      testid: "login-overlay",
+      attrs: { role: "dialog", "aria-modal": "true", "aria-label": "Log in again" },
+    },
+    el("p", {
+      className: "alert alert--info",
+      text: "Your session ended. Log in again to carry on; nothing on this page was lost.",
+    }),
+    inner,
+  );
+  document.body.append(overlay);
+  mountLoginPage(inner, (user) => {
+    overlay.remove();
+    setCurrentUser(user);
+    if (user.name !== before?.name) remount(); // someone else: show their view
+  });
+}
+
+sessionEvents.onUnauthorized = () => {
+  if (getCurrentUser()) loginOverPage();
+};
+onCurrentUserChange(renderUserArea);
+
+async function start(): Promise<void> {
+  try {
+    setCurrentUser(await authApi.me());
+  } catch (error) {
+    if (!(error instanceof ApiError && error.status === 401)) {
+      app?.replaceChildren(
+        el("p", {
+          className: "alert alert--error",
+          attrs: { role: "alert" },
+          text: `Could not reach the server: ${error instanceof Error ? error.message : String(error)}`,
+        }),
+      );
+      return;
+    }
+    setCurrentUser(null);
+  }
+  remount();
+}
+
 window.addEventListener("hashchange", () => {
   if (!confirmLeave()) {
     // Stay: put the address back without another hashchange.
@@ -50,8 +185,9 @@ window.addEventListener("hashchange", () => {
     return;
   }
   shownHash = window.location.hash;
-  dispose();
-  dispose = mount(app);
+  remount();
   app.focus({ preventScroll: true });
   window.scrollTo(0, 0);
 });
+
+void start();

@@ -1,16 +1,20 @@
 // Hash routes: `#/` is the scene list, `#/scenes/{id}` a scene, `#/models` the Relation
-// Network models (admin).
+// Network models (admin), `#/dashboard` the workflow dashboard, `#/login` the login page.
 
 export type Route =
   | { page: "list" }
   | { page: "scene"; sceneId: string }
   | { page: "models" }
+  | { page: "dashboard" }
+  | { page: "login" }
   | { page: "unknown" };
 
 export function parseRoute(hash: string): Route {
   const path = hash.replace(/^#/, "") || "/";
   if (path === "/") return { page: "list" };
   if (/^\/models\/?$/.test(path)) return { page: "models" };
+  if (/^\/dashboard\/?$/.test(path)) return { page: "dashboard" };
+  if (/^\/login\/?$/.test(path)) return { page: "login" };
   const scene = /^\/scenes\/([^/]+)\/?$/.exec(path);
   if (scene?.[1]) return { page: "scene", sceneId: decodeURIComponent(scene[1]) };
   return { page: "unknown" };

@@ -23,6 +23,9 @@ async function readDetail(response: Response): Promise<unknown> {
   }
 }
 
+/** Told when an answer is 401 (no session, or it ended): main.ts then shows the login page. */
+export const sessionEvents: { onUnauthorized: (() => void) | null } = { onUnauthorized: null };
+
 export async function request<T>(path: string, init: RequestInit = {}): Promise<T> {
   const response = await fetch(`${BASE}${path}`, {
     ...init,
@@ -30,9 +33,11 @@ export async function request<T>(path: string, init: RequestInit = {}): Promise<
   });
   if (!response.ok) {
     const detail = await readDetail(response);
+    if (response.status === 401 && !path.startsWith("/auth/")) sessionEvents.onUnauthorized?.();
     if (response.status === 409) throw new ConflictError(detail);
     throw new ApiError(response.status, detail, `${response.status} ${response.statusText}`);
   }
+  if (response.status === 204) return undefined as T; // no content (logout, ...)
   return (await response.json()) as T;
 }
 

@@ -12,6 +12,7 @@ import { SceneSession } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
 import { mountPhotoView } from "../photo/photoView";
 import { mountScene3d } from "../scene3d/scene3dView";
+import { mountWorkflowBar } from "../workflow/workflowBar";
 import { mountRevisionHistory } from "./revisionHistory";
 import { viserLink } from "./viserLink";
 
@@ -87,7 +88,8 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     const table = el("div", { className: "editor-table" });
     const suggestions = el("div");
     const history = el("div");
-    editor.body.append(saveBar, suggestions, table, history);
+    const workflow = el("div");
+    editor.body.append(workflow, saveBar, suggestions, table, history);
     content.append(
       el("div", { className: "scene-main" }, photo.element, scene3d.element),
       editor.element,
@@ -99,6 +101,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       mountSupportEditor(table, session),
       mountSupportSuggestions(suggestions, table, session),
       mountRevisionHistory(history, session),
+      mountWorkflowBar(workflow, session),
       session.subscribe((change) => {
         if (change === "document") updateMeta();
       }),

@@ -1,9 +1,13 @@
-// The list page: the upload form and every scene, newest first.
+// The list page: the upload form and every scene, newest first, with its workflow state
+// (filterable) and "Next scene" for annotators.
 import type { SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { isFinished } from "../../api/jobs";
+import { SCENE_STATES, type SceneState, stateLabel, workflowApi } from "../../api/workflow";
 import { el, formatTime } from "../../dom";
 import { describeJob } from "../common/jobProgress";
+import { nextSceneControl } from "../workflow/nextScene";
+import "../workflow/workflow.css";
 import { uploadForm } from "./uploadForm";
 
 const REFRESH_WHILE_RUNNING_MS = 2000;
@@ -23,6 +27,22 @@ function sceneRow(scene: SceneSummary): HTMLTableRowElement {
       }),
     ),
     el("th", { attrs: { scope: "row" } }, el("a", { text: scene.name, attrs: { href } })),
+    el(
+      "td",
+      {},
+      el("span", {
+        className: "state-badge",
+        text: stateLabel(scene.state),
+        testid: `scene-state-${scene.id}`,
+        attrs: { "data-state": scene.state },
+      }),
+    ),
+    el("td", { text: scene.assignee ?? "—", testid: `scene-assignee-${scene.id}` }),
+    el("td", {
+      className: "num",
+      text: scene.uncertainty === null ? "—" : scene.uncertainty.toFixed(2),
+      attrs: { title: "Mean doubt of the pipeline's supporters (1 - confidence)" },
+    }),
     el("td", { text: `${scene.width}×${scene.height}` }),
     el("td", { text: String(scene.object_count) }),
     el("td", { text: String(scene.revision) }),
@@ -47,21 +67,45 @@ export function mountSceneList(container: HTMLElement): () => void {
       el(
         "tr",
         {},
-        ...["", "Scene", "Size", "Objects", "Revision", "Updated", "Pipeline"].map((text) =>
-          el("th", { text, attrs: { scope: "col" } }),
-        ),
+        ...[
+          "",
+          "Scene",
+          "State",
+          "Annotator",
+          "Uncertainty",
+          "Size",
+          "Objects",
+          "Revision",
+          "Updated",
+          "Pipeline",
+        ].map((text) => el("th", { text, attrs: { scope: "col" } })),
       ),
     ),
     body,
   );
+  const filter = el(
+    "select",
+    { testid: "state-filter", attrs: { "aria-label": "Show scenes in state" } },
+    el("option", { text: "All states", attrs: { value: "" } }),
+    ...SCENE_STATES.map((state) =>
+      el("option", { text: stateLabel(state), attrs: { value: state } }),
+    ),
+  );
+  const next = nextSceneControl("N");
   let timer = 0;
   const refresh = async () => {
     clearTimeout(timer);
     try {
-      const scenes = await api.listScenes(abort.signal);
+      const state = (filter.value || null) as SceneState | null;
+      const scenes = await workflowApi.listScenes(state, abort.signal);
       body.replaceChildren(...scenes.map(sceneRow));
       table.hidden = scenes.length === 0;
-      status.textContent = scenes.length === 0 ? "No scenes yet: import a photo above." : "";
+      status.textContent =
+        scenes.length > 0
+          ? ""
+          : state
+            ? `No scene is ${stateLabel(state)}.`
+            : "No scenes yet: import a photo above.";
       const running = scenes.some((s) => s.latest_job && !isFinished(s.latest_job));
       if (running) timer = window.setTimeout(refresh, REFRESH_WHILE_RUNNING_MS);
     } catch (error) {
@@ -87,14 +131,22 @@ export function mountSceneList(container: HTMLElement): () => void {
             attrs: { href: "#/models" },
           }),
         ),
+        el(
+          "div",
+          { className: "list-filters" },
+          el("label", { className: "field-inline" }, "State ", filter),
+          next.element,
+        ),
         status,
         el("div", { className: "table-scroll" }, table),
       ),
     ),
   );
+  filter.addEventListener("change", () => void refresh());
   void refresh();
   return () => {
     abort.abort();
     clearTimeout(timer);
+    next.dispose();
   };
 }

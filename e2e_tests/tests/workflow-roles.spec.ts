@@ -1,0 +1,220 @@
+// User story: an admin creates an annotator and a reviewer; the annotator takes the next
+// scene (the most uncertain first) on a real photo and on a synthetic room, corrects a
+// supporter and submits both; the reviewer rejects one with a comment and accepts the other;
+// the annotator sees the comment, fixes the scene and resubmits; the reviewer accepts; the
+// dashboard shows the counts. Runs on its own server, where login is required.
+import { mkdirSync } from "node:fs";
+import path from "node:path";
+import type { SceneDocument, SceneWorkflow } from "@holiscene/schema";
+import { type APIRequestContext, expect, type Page, test } from "@playwright/test";
+import {
+  ADMIN,
+  apiAs,
+  importFolder,
+  listScenes,
+  logIn,
+  logOut,
+  synthesize,
+  WORKFLOW_URL,
+} from "../helpers/workflow";
+
+const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
+mkdirSync(SCREENSHOTS, { recursive: true });
+const REAL_PHOTO = path.resolve(import.meta.dirname, "../../../shared/data/real/im3d-3");
+const ANNOTATOR = { name: "anna", password: "marble-otter-62-sky" };
+const REVIEWER = { name: "rudi", password: "copper-fjord-35-lime" };
+
+const shot = (page: Page, name: string) =>
+  page.screenshot({ path: path.join(SCREENSHOTS, `workflow-${name}.png`), fullPage: true });
+
+async function workflowOf(request: APIRequestContext, sceneId: string): Promise<SceneWorkflow> {
+  return (await (await request.get(`/api/scenes/${sceneId}/workflow`)).json()) as SceneWorkflow;
+}
+
+/** Change one object's supporter in the editor and wait until it is saved. */
+async function correctASupporter(page: Page, request: APIRequestContext, sceneId: string) {
+  const doc = (await (await request.get(`/api/scenes/${sceneId}`)).json()) as SceneDocument;
+  const supports = doc.scene.supports ?? [];
+  const child = supports.find((s) => s.parent !== "floor" && s.source === "auto") ?? supports[0];
+  if (!child) throw new Error(`scene ${sceneId} has no supports to correct`);
+  const target = child.parent === "floor" ? "wall" : "floor";
+  await page.getByTestId(`supporter-select-${child.child}`).selectOption(target);
+  await page.keyboard.press("Control+s"); // edits also save by themselves after a pause
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
+  await expect(page.getByTestId(`supporter-select-${child.child}`)).toHaveValue(target);
+  return child.child;
+}
+
+async function openScene(page: Page, sceneId: string): Promise<void> {
+  await page.goto(`/#/scenes/${sceneId}`);
+  // The scene page loads the photo, the 3D scene and the model: slow on a busy machine.
+  await expect(page.getByTestId("object-table")).toBeVisible({ timeout: 60_000 });
+  await expect(page.getByTestId("workflow-state")).not.toBeEmpty();
+}
+
+test("accounts, next scene by uncertainty, submit, reject with a comment, resubmit, accept, dashboard", async ({
+  page,
+  playwright,
+}) => {
+  const newContext = (options: { baseURL: string; extraHTTPHeaders?: Record<string, string> }) =>
+    playwright.request.newContext(options);
+  const admin = await apiAs(newContext, ADMIN);
+
+  // Nothing is reachable without logging in on this server.
+  const anonymous = await newContext({ baseURL: WORKFLOW_URL });
+  expect((await anonymous.get("/api/scenes")).status()).toBe(401);
+  expect((await anonymous.get("/api/auth/me")).status()).toBe(401);
+  await anonymous.dispose();
+
+  // Two scenes, both predicted by the pipeline: a real photo and a synthetic room.
+  const photoId = await importFolder(admin, REAL_PHOTO, "img.jpg", "im3d-3 photo");
+  const roomId = await importFolder(admin, synthesize(12), "img.png", "synthetic room 12");
+  const predicted = await listScenes(admin);
+  expect(predicted.map((s) => s.state)).toEqual(["predicted", "predicted"]);
+  // "Next scene" must take the one the pipeline is least sure of first.
+  const [first, second] = [...predicted].sort(
+    (a, b) => (b.uncertainty ?? 0) - (a.uncertainty ?? 0),
+  );
+  if (!first || !second) throw new Error("two scenes were imported");
+  expect(first.uncertainty).not.toBe(second.uncertainty);
+
+  // The admin logs in and creates an annotator and a reviewer.
+  await page.goto("/");
+  await expect(page.getByTestId("login-form")).toBeVisible();
+  await shot(page, "login");
+  await page.getByTestId("login-name").fill(ADMIN.name);
+  await page.getByTestId("login-password").fill("not the password");
+  await page.getByTestId("login-submit").click();
+  await expect(page.getByTestId("login-error")).toHaveText("wrong user name or password");
+  await logIn(page, ADMIN.name, ADMIN.password);
+  await expect(page.getByTestId("current-role")).toHaveText("(admin)");
+  await page.getByTestId("dashboard-link").click();
+  for (const [user, role] of [
+    [ANNOTATOR, "annotator"],
+    [REVIEWER, "reviewer"],
+  ] as const) {
+    await page.getByTestId("new-user-name").fill(user.name);
+    await page.getByTestId("new-user-role").selectOption(role);
+    await page.getByTestId("new-user-password").fill(user.password);
+    await page.getByTestId("new-user-submit").click();
+    await expect(page.getByTestId("accounts-message")).toHaveText(`Added ${user.name} (${role}).`);
+    await expect(page.getByTestId(`account-${user.name}`)).toBeVisible();
+  }
+  // A weak password is refused with the server's reason.
+  await page.getByTestId("new-user-name").fill("weak");
+  await page.getByTestId("new-user-password").fill("aaaaaaaaaaaa");
+  await page.getByTestId("new-user-submit").click();
+  await expect(page.getByTestId("accounts-message")).toContainText("different characters");
+  await expect(page.getByTestId("account-weak")).toHaveCount(0);
+  await shot(page, "accounts");
+  await logOut(page);
+
+  // The annotator takes the next scene twice, corrects a supporter in each and submits.
+  await logIn(page, ANNOTATOR.name, ANNOTATOR.password);
+  await expect(page.getByTestId("current-role")).toHaveText("(annotator)");
+  await expect(page.getByTestId(`scene-state-${photoId}`)).toHaveText("predicted");
+  await expect(page.getByTestId(`scene-state-${roomId}`)).toHaveText("predicted");
+  await shot(page, "list-annotator");
+  await page.getByTestId("next-scene").click();
+  await expect(page).toHaveURL(new RegExp(`#/scenes/${first.id}$`));
+  await expect(page.getByTestId("object-table")).toBeVisible({ timeout: 60_000 });
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+  await expect(page.getByTestId("workflow-assignee")).toContainText(ANNOTATOR.name);
+  // Annotators neither accept nor reject.
+  await expect(page.getByTestId("workflow-accept")).toBeHidden();
+  await correctASupporter(page, admin, first.id);
+  await expect(page.getByTestId("workflow-submit")).toBeEnabled();
+  await shot(page, "annotating");
+  await page.getByTestId("workflow-submit").click();
+  await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
+  // Submitted work is locked: the server refuses edits until a reviewer decides.
+  await expect(page.getByTestId("workflow-note")).toContainText("Submitted");
+
+  await page.keyboard.press(">"); // the next scene, from the scene page
+  await expect(page).toHaveURL(new RegExp(`#/scenes/${second.id}$`));
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+  await correctASupporter(page, admin, second.id);
+  await page.locator("body").click({ position: { x: 5, y: 5 } }); // keys go to the page
+  await page.keyboard.press("Shift+Enter");
+  await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
+  // Nothing is left to take.
+  await page.goto("/#/");
+  await page.getByTestId("next-scene").click();
+  await expect(page.getByTestId("next-scene-message")).toContainText("no scene is waiting");
+  await logOut(page);
+
+  // The reviewer rejects the first with a comment and accepts the second.
+  await logIn(page, REVIEWER.name, REVIEWER.password);
+  await page.getByTestId("state-filter").selectOption("submitted");
+  await expect(page.getByTestId("scene-list").locator("tbody tr")).toHaveCount(2);
+  await expect(page.getByTestId(`scene-assignee-${first.id}`)).toHaveText(ANNOTATOR.name);
+  await shot(page, "list-reviewer");
+  await openScene(page, first.id);
+  await expect(page.getByTestId("workflow-submit")).toBeHidden();
+  await page.getByTestId("workflow-reject").click();
+  await page.getByTestId("reject-send").click(); // no comment: refused in the page
+  await expect(page.getByTestId("workflow-error")).toContainText("Say what went wrong");
+  await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
+  const comment = "Check the objects on the floor: one of them stands on the bed.";
+  await page.getByTestId("reject-comment").fill(comment);
+  await page.getByTestId("reject-send").click();
+  await expect(page.getByTestId("workflow-state")).toHaveText("rejected");
+  await expect(page.getByTestId("review-comment-text")).toHaveText(comment);
+  await shot(page, "rejected");
+
+  await openScene(page, second.id);
+  await expect(page.getByTestId("workflow-accept")).toBeVisible();
+  await page.locator("body").click({ position: { x: 5, y: 5 } });
+  await page.keyboard.press("Shift+Enter"); // accept
+  await expect(page.getByTestId("workflow-state")).toHaveText("accepted");
+  await logOut(page);
+
+  // The annotator gets the rejected scene back first, sees the comment, fixes and resubmits.
+  await logIn(page, ANNOTATOR.name, ANNOTATOR.password);
+  await expect(page.getByTestId(`scene-state-${first.id}`)).toHaveText("rejected");
+  await page.getByTestId("next-scene").click();
+  await expect(page).toHaveURL(new RegExp(`#/scenes/${first.id}$`));
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+  // The reviewer's comment stays in view while the annotator fixes the scene.
+  await expect(page.getByTestId("review-comment-text")).toHaveText(comment);
+  await expect(page.getByTestId("review-comment")).toContainText(`Rejected by ${REVIEWER.name}`);
+  await page.getByTestId("workflow-bar").locator("details").first().click();
+  await expect(page.getByTestId("workflow-events")).toContainText(comment);
+  await shot(page, "comment-seen");
+  await correctASupporter(page, admin, first.id);
+  await page.getByTestId("workflow-submit").click();
+  await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
+  await expect(page.getByTestId("review-comment")).toBeHidden();
+  await logOut(page);
+
+  // The reviewer accepts it; the dashboard shows the counts.
+  await logIn(page, REVIEWER.name, REVIEWER.password);
+  await openScene(page, first.id);
+  await page.getByTestId("workflow-accept").click();
+  await expect(page.getByTestId("workflow-state")).toHaveText("accepted");
+  await page.getByTestId("dashboard-link").click();
+  await expect(page.getByTestId("state-count-accepted")).toHaveText("2");
+  for (const state of ["new", "predicted", "in_annotation", "submitted", "rejected"]) {
+    await expect(page.getByTestId(`state-count-${state}`)).toHaveText("0");
+  }
+  await expect(page.getByTestId(`person-${ANNOTATOR.name}-submitted`)).toHaveText("3");
+  await expect(page.getByTestId(`person-${ANNOTATOR.name}-accepted`)).toHaveText("2");
+  await expect(page.getByTestId(`person-${ANNOTATOR.name}-rejected`)).toHaveText("1");
+  await expect(page.getByTestId(`person-${REVIEWER.name}-reviewed`)).toHaveText("3");
+  await expect(page.getByTestId("accounts")).toHaveCount(0); // accounts are for admins
+  await shot(page, "dashboard");
+
+  // The server kept who did what, and when.
+  const history = await workflowOf(admin, first.id);
+  expect(history.events.map((e) => [e.action, e.actor])).toEqual([
+    ["import", ADMIN.name],
+    ["predict", "pipeline"],
+    ["claim", ANNOTATOR.name],
+    ["submit", ANNOTATOR.name],
+    ["reject", REVIEWER.name],
+    ["reopen", ANNOTATOR.name],
+    ["submit", ANNOTATOR.name],
+    ["accept", REVIEWER.name],
+  ]);
+  await admin.dispose();
+});

@@ -1,0 +1,82 @@
+// Accounts, sessions and the annotation workflow (see backend api/routes/auth, users, workflow).
+import type {
+  CurrentUser,
+  Dashboard,
+  LoginResult,
+  NewUser,
+  SceneSummary,
+  SceneWorkflow,
+  UserInfo,
+} from "@holiscene/schema";
+import { jsonBody, request } from "./client";
+
+export type SceneState = SceneSummary["state"];
+export type Role = CurrentUser["role"];
+
+/** Every state in workflow order (the dashboard and the list filter show them so). */
+export const SCENE_STATES: readonly SceneState[] = [
+  "new",
+  "predicted",
+  "in_annotation",
+  "submitted",
+  "accepted",
+  "rejected",
+];
+
+export const stateLabel = (state: SceneState) => state.replace("_", " ");
+
+const sceneUrl = (sceneId: string) => `/scenes/${encodeURIComponent(sceneId)}`;
+const userUrl = (name: string) => `/users/${encodeURIComponent(name)}`;
+
+export const authApi = {
+  /** Who is asking; 401 (an ApiError) when nobody is logged in and login is required. */
+  me: (signal?: AbortSignal) => request<CurrentUser>("/auth/me", { signal }),
+
+  /** The session comes back as an HttpOnly cookie; the page never sees the token. */
+  login: (name: string, password: string) =>
+    request<LoginResult>("/auth/login", jsonBody({ name, password, token: false })),
+
+  logout: () => request<void>("/auth/logout", { method: "POST" }),
+
+  changePassword: (currentPassword: string, newPassword: string) =>
+    request<void>(
+      "/auth/password",
+      jsonBody({ current_password: currentPassword, new_password: newPassword }),
+    ),
+};
+
+export const usersApi = {
+  list: (signal?: AbortSignal) => request<UserInfo[]>("/users", { signal }),
+  create: (user: NewUser) => request<UserInfo>("/users", jsonBody(user)),
+  setRole: (name: string, role: Role) =>
+    request<UserInfo>(userUrl(name), { ...jsonBody({ role }), method: "PATCH" }),
+  resetPassword: (name: string, password: string) =>
+    request<void>(`${userUrl(name)}/password`, jsonBody({ password })),
+};
+
+export const workflowApi = {
+  listScenes: (state: SceneState | null, signal?: AbortSignal) =>
+    request<SceneSummary[]>(state ? `/scenes?state=${state}` : "/scenes", { signal }),
+
+  /** Take the next scene to annotate (404 when none is waiting). */
+  next: () => request<SceneSummary>("/scenes/next", { method: "POST" }),
+
+  get: (sceneId: string, signal?: AbortSignal) =>
+    request<SceneWorkflow>(`${sceneUrl(sceneId)}/workflow`, { signal }),
+
+  take: (sceneId: string) => request<SceneSummary>(`${sceneUrl(sceneId)}/take`, { method: "POST" }),
+
+  submit: (sceneId: string, revision: number) =>
+    request<SceneWorkflow>(`${sceneUrl(sceneId)}/submit`, jsonBody({ revision })),
+
+  accept: (sceneId: string, revision: number) =>
+    request<SceneWorkflow>(`${sceneUrl(sceneId)}/accept`, jsonBody({ revision })),
+
+  reject: (sceneId: string, revision: number, comment: string) =>
+    request<SceneWorkflow>(`${sceneUrl(sceneId)}/reject`, jsonBody({ revision, comment })),
+
+  secondAnnotation: (sceneId: string, revision: number) =>
+    request<SceneWorkflow>(`${sceneUrl(sceneId)}/second-annotation`, jsonBody({ revision })),
+
+  dashboard: (signal?: AbortSignal) => request<Dashboard>("/dashboard", { signal }),
+};

@@ -1,0 +1,84 @@
+// The login page: shown whenever the server answers 401 (no session, or it ended).
+import type { CurrentUser } from "@holiscene/schema";
+import { ApiError } from "../../api/errors";
+import { authApi } from "../../api/workflow";
+import { el } from "../../dom";
+import "../workflow/workflow.css";
+
+export function mountLoginPage(
+  container: HTMLElement,
+  onLoggedIn: (user: CurrentUser) => void,
+): () => void {
+  const name = el("input", {
+    testid: "login-name",
+    attrs: {
+      type: "text",
+      name: "username",
+      autocomplete: "username",
+      required: true,
+      maxlength: 64,
+      autocapitalize: "none",
+      spellcheck: "false",
+    },
+  });
+  const password = el("input", {
+    testid: "login-password",
+    attrs: {
+      type: "password",
+      name: "password",
+      autocomplete: "current-password",
+      required: true,
+      maxlength: 256,
+    },
+  });
+  const submit = el("button", {
+    className: "primary",
+    text: "Log in",
+    testid: "login-submit",
+    attrs: { type: "submit" },
+  });
+  const error = el("p", {
+    className: "alert alert--error",
+    testid: "login-error",
+    attrs: { role: "alert", hidden: true },
+  });
+  const field = (label: string, input: HTMLInputElement) =>
+    el(
+      "label",
+      { className: "field" },
+      el("span", { className: "field-label", text: label }),
+      input,
+    );
+  const form = el(
+    "form",
+    { className: "card login-form", testid: "login-form" },
+    el("h1", { text: "Log in to HoliScene" }),
+    field("User name", name),
+    field("Password", password),
+    error,
+    el("div", { className: "form-actions" }, submit),
+    el("p", {
+      className: "field-hint",
+      text: "Accounts are made by an admin (or with `holiscene users add`).",
+    }),
+  );
+  form.addEventListener("submit", async (event) => {
+    event.preventDefault();
+    submit.disabled = true;
+    error.hidden = true;
+    try {
+      const result = await authApi.login(name.value.trim().toLowerCase(), password.value);
+      onLoggedIn(result.user);
+    } catch (err) {
+      error.hidden = false;
+      error.textContent =
+        err instanceof ApiError ? err.message : `Could not log in: ${String(err)}`;
+      password.select();
+    } finally {
+      submit.disabled = false;
+    }
+  });
+  container.replaceChildren(el("div", { className: "login-page" }, form));
+  name.focus();
+  return () => {};
+}
