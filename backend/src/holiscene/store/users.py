@@ -88,8 +88,7 @@ class UserStore:
 
     def count_admins(self) -> int:
         with Session(self.engine) as session:
-            query = select(func.count()).select_from(UserRow).where(UserRow.role == "admin")
-            return int(session.scalar(query) or 0)
+            return self._admins(session)
 
     def list_users(self) -> list[UserInfo]:
         with Session(self.engine) as session:

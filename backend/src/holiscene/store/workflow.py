@@ -40,7 +40,11 @@ _ACTIONS = get_args(WorkflowAction)
 
 
 class NoSceneWaitingError(LookupError):
-    """ "Next scene" found nothing to annotate (HTTP 404 with the message)."""
+    """Next scene found nothing to annotate (HTTP 404 with the message)."""
+
+
+class WorkflowCommentError(ValueError):
+    """A rejection without a comment (HTTP 422)."""
 
 
 class WorkflowStore:
@@ -309,10 +313,6 @@ class WorkflowStore:
                 )
             )
         return sorted(out, key=lambda a: a.agreement)
-
-
-class WorkflowCommentError(ValueError):
-    """A rejection without a comment (HTTP 422)."""
 
 
 def _open_rejection(events: list[WorkflowEvent]) -> str | None:
