@@ -1,24 +1,30 @@
-// User story: an annotator opens a scene, sees masks, support arrows and the 3D scene,
-// corrects an object's supporter and support type, and the correction is saved.
+// User story: an annotator opens a scene, sees masks, support arrows and the 3D scene, and
+// corrects supports: in the object table, or on the photo (click an arrow, click or drag to
+// the new supporter, keys to flip, remove, accept and reject), with each edge's provenance
+// shown; the corrections are saved.
 import { mkdirSync } from "node:fs";
 import path from "node:path";
-import { expect, type Page, test } from "@playwright/test";
+import { expect, test } from "@playwright/test";
 import { getRevisions, getScene, seedScene, supportOf, T3D_5 } from "../helpers/api";
 import { canvasColours } from "../helpers/canvas";
+import {
+  arrowOf,
+  clickArrow,
+  clickObject,
+  dragArrowTo,
+  objectPoint,
+  openScene,
+  setAuthor,
+  slowAutosave,
+} from "../helpers/photo";
 
 const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
 mkdirSync(SCREENSHOTS, { recursive: true });
 
-async function openScene(page: Page, sceneId: string): Promise<void> {
-  await page.goto(`/#/scenes/${sceneId}`);
-  await expect(page.getByTestId("object-table")).toBeVisible();
-}
-
-async function setAuthor(page: Page, name: string): Promise<void> {
-  const input = page.getByTestId("author-input");
-  await input.fill(name);
-  await input.press("Tab");
-}
+// These tests watch unsaved state and save by hand; no-lost-work.spec.ts covers autosave.
+test.beforeEach(async ({ page }) => {
+  await slowAutosave(page);
+});
 
 test("shows masks, arrows and the 3D scene, and saves a changed supporter", async ({
   page,
@@ -118,16 +124,18 @@ test("shows masks, arrows and the 3D scene, and saves a changed supporter", asyn
 });
 
 test("a save based on a stale revision shows a conflict and keeps the edit", async ({
-  context,
+  browser,
   request,
 }) => {
   const seeded = await seedScene(request, T3D_5, "t3d-5 conflict");
   const [first, second, , fourth] = seeded.scene.objects ?? [];
   if (!first || !second || !fourth) throw new Error("the seeded scene has too few objects");
 
-  // Two annotators open the same revision.
-  const alice = await context.newPage();
-  const bob = await context.newPage();
+  // Two annotators, each in their own browser, open the same revision.
+  const alice = await (await browser.newContext()).newPage();
+  const bob = await (await browser.newContext()).newPage();
+  await slowAutosave(alice);
+  await slowAutosave(bob);
   await openScene(alice, seeded.scene_id);
   await openScene(bob, seeded.scene_id);
 
@@ -162,4 +170,134 @@ test("a save based on a stale revision shows a conflict and keeps the edit", asy
   expect(doc.revision).toBe(seeded.revision + 2);
   expect(supportOf(doc, second.id)).toMatchObject({ parent: first.id, source: "manual" });
   expect(supportOf(doc, fourth.id)).toMatchObject({ type: "behind", source: "manual" });
+});
+
+test("edits supports on the photo with clicks, a drag and keys, showing each edge's provenance", async ({
+  page,
+  request,
+}) => {
+  const seeded = await seedScene(request, T3D_5, "t3d-5 photo editing");
+  const guess = (id: string) => {
+    const s = supportOf(seeded, id);
+    if (!s) throw new Error(`the pipeline gave ${id} no supporter`);
+    return s;
+  };
+  await openScene(page, seeded.scene_id);
+  await setAuthor(page, "e2e-photo");
+  const arrow = (id: string) => page.getByTestId(`arrow-${id}`);
+  const flipped = (t: string) => (t === "below" ? "behind" : "below");
+
+  // Click an arrow: it is selected, and its provenance is shown (a guess, with confidence).
+  await clickArrow(page, "o1");
+  await expect(arrow("o1")).toHaveClass(/is-selected/);
+  await expect(page.getByTestId("edge-info-edge")).toHaveText(
+    `o1 (night stand) on ${guess("o1").parent}, ${guess("o1").type}`,
+  );
+  await expect(page.getByTestId("edge-info-provenance")).toContainText("predicted (auto");
+  await expect(arrow("o1")).toHaveAttribute("data-source", "auto");
+  await page.screenshot({ path: path.join(SCREENSHOTS, "photo-arrow-selected.png") });
+
+  // Click the new supporter: the arrow moves at once, unsaved and manual.
+  await clickObject(page, "o0");
+  await expect(arrow("o1")).toHaveAttribute("data-parent", "o0");
+  await expect(arrow("o1")).toHaveAttribute("data-pending", "true");
+  await expect(arrow("o1")).toHaveAttribute("data-source", "manual");
+  await expect(page.getByTestId("edge-info-provenance")).toHaveText("your edit, not saved yet");
+
+  // T flips below/behind; Delete removes; Ctrl+Z brings it back.
+  const typeBefore = (await arrowOf(page, "o1"))?.type ?? "";
+  await page.keyboard.press("t");
+  await expect(arrow("o1")).toHaveAttribute("data-type", flipped(typeBefore));
+  await page.keyboard.press("Delete");
+  await expect(arrow("o1")).toHaveCount(0);
+  await expect(page.getByTestId("unsupported-o1")).toBeVisible();
+  await page.keyboard.press("Control+z");
+  await expect(arrow("o1")).toHaveAttribute("data-parent", "o0");
+  await expect(arrow("o1")).toHaveAttribute("data-type", flipped(typeBefore));
+
+  // A accepts a guess as it is: same edge, now a person's.
+  await clickArrow(page, "o2");
+  await page.keyboard.press("a");
+  await expect(arrow("o2")).toHaveAttribute("data-parent", guess("o2").parent);
+  await expect(arrow("o2")).toHaveAttribute("data-source", "manual");
+  await expect(arrow("o2")).toHaveAttribute("data-pending", "true");
+
+  // Drag an arrowhead onto another object: it becomes the supporter.
+  await dragArrowTo(page, "o3", "o2");
+  await expect(arrow("o3")).toHaveAttribute("data-parent", "o2");
+  await expect(arrow("o3")).toHaveClass(/is-selected/);
+
+  // R rejects a guess: it goes, and the model's next answer (if it has one) is suggested.
+  await expect(page.getByTestId("suggestion-status")).toContainText("objects scored in", {
+    timeout: 90_000,
+  });
+  const original = guess("o0");
+  await clickArrow(page, "o0");
+  await page.keyboard.press("r");
+  await expect
+    .poll(async () => {
+      const now = await arrowOf(page, "o0");
+      return now === null || now.suggested;
+    })
+    .toBe(true);
+  const next = await arrowOf(page, "o0");
+  if (next) {
+    expect(`${next.parent} ${next.type}`).not.toBe(`${original.parent} ${original.type}`);
+    await expect(arrow("o0")).toHaveAttribute("data-source", "model");
+    await expect(page.getByTestId("edge-info-provenance")).toContainText("suggested by the model");
+    await page.keyboard.press("a"); // take the suggestion
+    await expect(arrow("o0")).toHaveAttribute("data-source", "manual");
+  } else {
+    await page.keyboard.press("f"); // no other answer: the floor holds it
+    await expect(arrow("o0")).toHaveAttribute("data-parent", "floor");
+  }
+  const o0 = await arrowOf(page, "o0");
+
+  // Hovering an object keeps only its edges in view; the rest fade.
+  await page.keyboard.press("Escape");
+  const hover = await objectPoint(page, "o2");
+  await page.mouse.move(hover.x, hover.y);
+  await expect(page.getByTestId("photo")).toHaveClass(/has-hover/);
+  for (const id of ["o0", "o1", "o2", "o3"]) {
+    const a = await arrowOf(page, id);
+    const related = id === "o2" || a?.parent === "o2";
+    const opacity = Number(await arrow(id).evaluate((n) => getComputedStyle(n).opacity));
+    if (related) expect(opacity, `${id} is o2's edge`).toBe(1);
+    else expect(opacity, `${id} is not o2's edge`).toBeLessThan(0.5);
+  }
+  await page.screenshot({ path: path.join(SCREENSHOTS, "photo-hover-fading.png") });
+
+  // H hides the arrows and shows them again.
+  await page.mouse.move(0, 0);
+  await page.keyboard.press("h");
+  await expect(page.getByTestId("arrow-layer")).toBeHidden();
+  await expect(page.getByTestId("toggle-arrows")).not.toBeChecked();
+  await page.keyboard.press("h");
+  await expect(page.getByTestId("arrow-layer")).toBeVisible();
+
+  // Save, reload: every edge records who set it and when, shown on the arrow and on select.
+  await page.keyboard.press("Control+s");
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
+  await page.reload();
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  for (const id of ["o0", "o1", "o2", "o3"]) {
+    await expect(arrow(id)).toHaveAttribute("data-source", "manual");
+    await expect(arrow(id)).toHaveAttribute("data-author", "e2e-photo");
+    await expect(arrow(id)).toHaveAttribute("data-time", /^\d{4}-\d\d-\d\dT/);
+  }
+  await clickArrow(page, "o1");
+  await expect(page.getByTestId("edge-info-provenance")).toContainText("manual · e2e-photo");
+  await page.screenshot({ path: path.join(SCREENSHOTS, "photo-provenance.png") });
+
+  const doc = await getScene(request, seeded.scene_id);
+  expect(supportOf(doc, "o1")).toMatchObject({
+    parent: "o0",
+    type: flipped(typeBefore),
+    source: "manual",
+    author: "e2e-photo",
+  });
+  expect(supportOf(doc, "o2")).toMatchObject({ parent: guess("o2").parent, source: "manual" });
+  expect(supportOf(doc, "o3")).toMatchObject({ parent: "o2", source: "manual" });
+  expect(supportOf(doc, "o0")).toMatchObject({ parent: o0?.parent, type: o0?.type });
+  for (const s of doc.scene.supports ?? []) expect(s.time).toBeTruthy();
 });

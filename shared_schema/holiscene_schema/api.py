@@ -26,6 +26,17 @@ class RemoveSupport(SchemaModel):
     child: str
 
 
+class RestoreSupport(SchemaModel):
+    """Put `child`'s supporter back exactly as it was in revision `from_revision` (source,
+    confidence, author and time included), or remove it if it had none then. Undo and revert
+    use it, so taking back a correction gives the pipeline's guess back as a guess, not as a
+    person's label."""
+
+    kind: Literal["restore_support"] = "restore_support"
+    child: str
+    from_revision: int = Field(ge=1)
+
+
 class SetLayout(SchemaModel):
     """Set the room layout from its 8 corners in the image (dragged by an annotator).
 
@@ -48,7 +59,9 @@ class SetLayout(SchemaModel):
     )
 
 
-Edit = Annotated[SetSupport | RemoveSupport | SetLayout, Field(discriminator="kind")]
+Edit = Annotated[
+    SetSupport | RemoveSupport | RestoreSupport | SetLayout, Field(discriminator="kind")
+]
 
 
 class EditRequest(SchemaModel):

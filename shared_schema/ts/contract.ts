@@ -28,6 +28,7 @@ PersonStats?: PersonStats
 PromoteRequest?: PromoteRequest
 RejectRequest?: RejectRequest
 RemoveSupport?: RemoveSupport
+RestoreSupport?: RestoreSupport
 RetrainRequest?: RetrainRequest
 ReviewRequest?: ReviewRequest
 RevisionInfo?: RevisionInfo
@@ -225,7 +226,7 @@ base_revision: number
  * @minItems 1
  * @maxItems 500
  */
-edits: [(SetSupport | RemoveSupport | SetLayout), ...((SetSupport | RemoveSupport | SetLayout))[]]
+edits: [(SetSupport | RemoveSupport | RestoreSupport | SetLayout), ...((SetSupport | RemoveSupport | RestoreSupport | SetLayout))[]]
 }
 /**
  * Make `parent` the supporter of `child` (replacing any supporter it had).
@@ -248,6 +249,20 @@ type: ("below" | "behind")
 export interface RemoveSupport {
 child: string
 kind: "remove_support"
+}
+/**
+ * Put `child`'s supporter back exactly as it was in revision `from_revision` (source,
+ * confidence, author and time included), or remove it if it had none then. Undo and revert
+ * use it, so taking back a correction gives the pipeline's guess back as a guess, not as a
+ * person's label.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "RestoreSupport".
+ */
+export interface RestoreSupport {
+child: string
+from_revision: number
+kind: "restore_support"
 }
 /**
  * Set the room layout from its 8 corners in the image (dragged by an annotator).
@@ -577,7 +592,7 @@ revision: number
 export interface RevisionInfo {
 author: string
 created_at: string
-edits: ((SetSupport | RemoveSupport | SetLayout)[] | null)
+edits: ((SetSupport | RemoveSupport | RestoreSupport | SetLayout)[] | null)
 kind: ("import" | "pipeline" | "edit" | "reset")
 number: number
 summary: string

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from datetime import datetime
 
 from holiscene_schema import (
@@ -10,6 +10,7 @@ from holiscene_schema import (
     STRUCTURAL_SUPPORTERS,
     Edit,
     RemoveSupport,
+    RestoreSupport,
     Scene,
     SetLayout,
     SetSupport,
@@ -24,9 +25,21 @@ class InvalidEditError(ValueError):
     """An edit that names something that does not exist or breaks the support graph."""
 
 
-def apply_edits(scene: Scene, edits: Sequence[Edit], author: str, now: datetime) -> Scene:
+def restore_revisions(edits: Sequence[Edit]) -> set[int]:
+    """The earlier revisions the edits restore supports from."""
+    return {e.from_revision for e in edits if isinstance(e, RestoreSupport)}
+
+
+def apply_edits(
+    scene: Scene,
+    edits: Sequence[Edit],
+    author: str,
+    now: datetime,
+    earlier: Mapping[int, Scene] | None = None,
+) -> Scene:
     """The scene after the edits, in order; raises InvalidEditError and changes nothing if any
-    edit is invalid or the result is not a valid support forest."""
+    edit is invalid or the result is not a valid support forest. `earlier` holds the revisions
+    named by RestoreSupport edits (restore_revisions)."""
     objects = {o.id: o for o in scene.objects}
     supports = {s.child: s for s in scene.supports}
     for edit in edits:
@@ -56,6 +69,17 @@ def apply_edits(scene: Scene, edits: Sequence[Edit], author: str, now: datetime)
                 author=author,
                 time=now,
             )
+        elif isinstance(edit, RestoreSupport):
+            restored = _restored_support(edit, (earlier or {}).get(edit.from_revision))
+            if restored is None:
+                supports.pop(edit.child, None)
+            elif restored.parent not in objects and restored.parent not in STRUCTURAL_SUPPORTERS:
+                raise InvalidEditError(
+                    f"supporter {restored.parent!r} of {edit.child!r} in revision "
+                    f"{edit.from_revision} is no longer in this scene"
+                )
+            else:
+                supports[edit.child] = restored
         elif isinstance(edit, RemoveSupport):
             if edit.child not in supports:
                 raise InvalidEditError(f"object {edit.child!r} has no supporter to remove")
@@ -67,6 +91,13 @@ def apply_edits(scene: Scene, edits: Sequence[Edit], author: str, now: datetime)
     return scene.model_copy(update={"supports": ordered})
 
 
+def _restored_support(edit: RestoreSupport, earlier: Scene | None) -> SupportRelation | None:
+    """The child's support in the earlier revision, as it was stored (None: it had none)."""
+    if earlier is None:
+        raise InvalidEditError(f"no revision {edit.from_revision} to restore from")
+    return next((s for s in earlier.supports if s.child == edit.child), None)
+
+
 def describe_edits(edits: Sequence[Edit]) -> str:
     parts = []
     for edit in edits:
@@ -74,6 +105,8 @@ def describe_edits(edits: Sequence[Edit]) -> str:
             parts.append(f"{edit.child} supported by {edit.parent} ({edit.type})")
         elif isinstance(edit, SetLayout):
             parts.append(describe_set_layout(edit))
+        elif isinstance(edit, RestoreSupport):
+            parts.append(f"{edit.child} support as in revision {edit.from_revision}")
         else:
             parts.append(f"{edit.child} support removed")
     return "; ".join(parts)

@@ -1,7 +1,9 @@
-// Saving: status, Save / Discard, the list of unsaved edits, and the conflict message with
-// its reload action. Unsaved edits stay listed until they are saved or discarded.
+// Saving: status, Undo / Redo, Save / Discard, the list of unsaved edits, edits a previous
+// visit left unsaved (restore or discard), and the conflict message with its merge and reload
+// actions. Edits are autosaved (state/autosave.ts) and kept in localStorage until the server
+// has them, so leaving the page needs no warning: nothing is lost.
 import { el } from "../dom";
-import { setLeaveGuard } from "../router";
+import { registerShortcut } from "../shortcuts";
 import { getAuthor } from "../state/author";
 import { plural, type SaveState, type SceneSession } from "../state/sceneSession";
 import { describeEdit } from "../state/supportGraph";
@@ -11,7 +13,7 @@ function statusText(state: SaveState, pending: number, revision: number): string
     case "clean":
       return `Revision ${revision} · no unsaved changes`;
     case "dirty":
-      return `${plural(pending, "unsaved change")} on revision ${revision}`;
+      return `${plural(pending, "unsaved change")} on revision ${revision} · autosaving`;
     case "saving":
       return "Saving…";
     case "saved":
@@ -19,54 +21,103 @@ function statusText(state: SaveState, pending: number, revision: number): string
     case "conflict":
       return "Not saved: conflict";
     case "error":
-      return "Not saved: error";
+      return "Not saved: error (retrying)";
   }
 }
 
 function conflictText(state: Extract<SaveState, { kind: "conflict" }>, pending: number): string {
   const latest =
     state.currentRevision === null ? "" : ` (the latest is revision ${state.currentRevision})`;
+  const who = [...new Set(state.theirs.map((r) => r.author))].join(", ") || "Someone else";
   return (
-    `Someone else saved this scene after you loaded revision ${state.baseRevision}${latest}. ` +
+    `${who} saved this scene after you loaded revision ${state.baseRevision}${latest}. ` +
     `Your ${plural(pending, "change")} ${pending === 1 ? "was" : "were"} not saved and ` +
-    `${pending === 1 ? "is" : "are"} kept below. Reload to see their changes with yours on top, then save again.`
+    `${pending === 1 ? "is" : "are"} kept (listed below, and in this browser). Merge to save ` +
+    `yours on top of theirs, or reload to look at theirs first with yours re-applied unsaved.`
   );
 }
 
 export function mountSaveBar(container: HTMLElement, session: SceneSession): () => void {
+  const author = () => getAuthor();
   const status = el("span", {
     className: "save-status",
     testid: "save-status",
     attrs: { role: "status", "aria-live": "polite" },
   });
+  const undo = el("button", {
+    text: "Undo",
+    testid: "undo-button",
+    attrs: { type: "button" },
+    on: { click: () => session.undo() },
+  });
+  const redo = el("button", {
+    text: "Redo",
+    testid: "redo-button",
+    attrs: { type: "button" },
+    on: { click: () => session.redo() },
+  });
   const save = el("button", {
     className: "primary",
     text: "Save",
     testid: "save-button",
-    attrs: { type: "button", title: "Save (Ctrl+S)" },
-    on: { click: () => void session.save(getAuthor()) },
+    attrs: { type: "button", title: "Save now (Ctrl+S); edits are also saved by themselves" },
+    on: { click: () => void session.save(author()) },
   });
   const discard = el("button", {
     text: "Discard",
     testid: "discard-button",
-    attrs: { type: "button" },
+    attrs: { type: "button", title: "Drop the unsaved changes (undo brings them back)" },
     on: { click: () => session.discard() },
   });
+
   const conflictMessage = el("p", { testid: "conflict-text" });
-  const reload = el("button", {
+  const theirsList = el("ul", { className: "conflict-theirs", testid: "conflict-theirs" });
+  const merge = el("button", {
     className: "primary",
-    text: "Reload latest (keep my changes)",
+    text: "Merge: save mine on top (Shift+M)",
+    testid: "conflict-merge",
+    attrs: { type: "button" },
+    on: { click: () => void session.merge(author()) },
+  });
+  const reload = el("button", {
+    text: "Reload: review first (Shift+R)",
     testid: "conflict-reload",
     attrs: { type: "button" },
-    on: { click: () => void session.reloadLatest() },
+    on: { click: () => void session.reloadLatest({ hold: true }) },
   });
   const conflict = el(
     "div",
     { className: "alert alert--conflict", testid: "conflict-message", attrs: { role: "alert" } },
     el("strong", { text: "Conflict: your changes were not saved." }),
     conflictMessage,
-    reload,
+    theirsList,
+    el("div", { className: "save-row" }, merge, reload),
   );
+
+  const recoveryText = el("span", { testid: "recovery-text" });
+  const recovery = el(
+    "div",
+    { className: "alert alert--info", testid: "recovery-banner", attrs: { role: "alert" } },
+    recoveryText,
+    el(
+      "div",
+      { className: "save-row" },
+      el("button", {
+        className: "primary",
+        text: "Restore them (Shift+U)",
+        testid: "recovery-restore",
+        attrs: { type: "button" },
+        on: { click: () => session.restoreRecovered() },
+      }),
+      el("button", {
+        text: "Discard them",
+        testid: "recovery-discard",
+        attrs: { type: "button" },
+        on: { click: () => session.dismissRecovered() },
+      }),
+    ),
+  );
+
   const error = el("div", {
     className: "alert alert--error",
     testid: "save-error",
@@ -86,9 +137,12 @@ export function mountSaveBar(container: HTMLElement, session: SceneSession): () 
       { className: "save-row" },
       status,
       el("span", { className: "spacer" }),
+      undo,
+      redo,
       discard,
       save,
     ),
+    recovery,
     conflict,
     error,
     notice,
@@ -104,13 +158,31 @@ export function mountSaveBar(container: HTMLElement, session: SceneSession): () 
     const busy = state.kind === "saving";
     save.disabled = busy || pending.length === 0 || state.kind === "conflict";
     discard.disabled = busy || pending.length === 0;
+    undo.disabled = session.undoLabel === null;
+    redo.disabled = session.redoLabel === null;
+    undo.title = session.undoLabel ? `Undo: ${session.undoLabel} (Ctrl+Z)` : "Nothing to undo";
+    redo.title = session.redoLabel
+      ? `Redo: ${session.redoLabel} (Ctrl+Shift+Z)`
+      : "Nothing to redo";
     conflict.hidden = state.kind !== "conflict";
-    if (state.kind === "conflict")
+    if (state.kind === "conflict") {
       conflictMessage.textContent = conflictText(state, pending.length);
+      theirsList.replaceChildren(
+        ...state.theirs.map((r) => el("li", { text: `#${r.number} by ${r.author}: ${r.summary}` })),
+      );
+    }
     error.hidden = state.kind !== "error";
     error.textContent = state.kind === "error" ? state.message : "";
     notice.hidden = !session.notice;
     notice.textContent = session.notice ?? "";
+    const recovered = session.recovered;
+    recovery.hidden = !recovered;
+    if (recovered) {
+      recoveryText.textContent =
+        `${plural(recovered.edits.length, "unsaved change")} from your last visit ` +
+        `(${new Date(recovered.savedAt).toLocaleString()}, on revision ${recovered.baseRevision}) ` +
+        `never reached the server: ${recovered.edits.map(describeEdit).join("; ")}.`;
+    }
     pendingList.hidden = pending.length === 0;
     pendingItems.replaceChildren(
       ...pending.map((edit) =>
@@ -119,32 +191,57 @@ export function mountSaveBar(container: HTMLElement, session: SceneSession): () 
     );
   };
 
-  const onKey = (event: KeyboardEvent) => {
-    if ((event.ctrlKey || event.metaKey) && event.key.toLowerCase() === "s") {
-      event.preventDefault();
-      if (!save.disabled) void session.save(getAuthor());
-    }
-  };
-  // Leaving the page with unsaved edits asks first.
-  const onBeforeUnload = (event: BeforeUnloadEvent) => {
-    if (session.pending.length > 0) event.preventDefault();
-  };
-  window.addEventListener("keydown", onKey);
-  window.addEventListener("beforeunload", onBeforeUnload);
-  const removeLeaveGuard = setLeaveGuard(() => {
-    const count = session.pending.length;
-    return count > 0
-      ? `Leave this scene? Your ${plural(count, "unsaved change")} will be lost.`
-      : null;
-  });
+  const scope = "Saving and history";
+  const inConflict = () => session.saveState.kind === "conflict";
+  const removers = [
+    registerShortcut({
+      keys: ["Ctrl+Z"],
+      description: "Undo the last edit",
+      scope,
+      run: () => session.undo(),
+    }),
+    registerShortcut({
+      keys: ["Ctrl+Shift+Z", "Ctrl+Y"],
+      description: "Redo",
+      scope,
+      run: () => session.redo(),
+    }),
+    registerShortcut({
+      keys: "Ctrl+S",
+      description: "Save now (edits are also saved after a short pause)",
+      scope,
+      run: () => {
+        if (!save.disabled) void session.save(author());
+      },
+    }),
+    registerShortcut({
+      keys: "Shift+M",
+      description: "After a conflict: merge, saving your changes on top of theirs",
+      scope,
+      enabled: inConflict,
+      run: () => void session.merge(author()),
+    }),
+    registerShortcut({
+      keys: "Shift+R",
+      description: "After a conflict: reload their version, yours re-applied unsaved",
+      scope,
+      enabled: inConflict,
+      run: () => void session.reloadLatest({ hold: true }),
+    }),
+    registerShortcut({
+      keys: "Shift+U",
+      description: "Restore the changes your last visit left unsaved",
+      scope,
+      enabled: () => session.recovered !== null,
+      run: () => session.restoreRecovered(),
+    }),
+  ];
   update();
   const unsubscribe = session.subscribe((change) => {
-    if (change !== "hover" && change !== "select") update();
+    if (change !== "hover" && change !== "select" && change !== "suggestions") update();
   });
   return () => {
     unsubscribe();
-    removeLeaveGuard();
-    window.removeEventListener("keydown", onKey);
-    window.removeEventListener("beforeunload", onBeforeUnload);
+    for (const remove of removers) remove();
   };
 }

@@ -1,5 +1,5 @@
 // The object list: each object's supporter and support type, editable. Edits are staged in
-// the session (shown at once on the photo) and saved together by the save bar.
+// the session as undoable actions (shown at once on the photo) and autosaved.
 import type { SceneObject } from "@holiscene/schema";
 import { STRUCTURAL_SUPPORTERS, SUPPORT_TYPES } from "@holiscene/schema";
 import { el } from "../dom";
@@ -44,9 +44,8 @@ function supporterOptions(object: SceneObject, objects: readonly SceneObject[]):
 function statusText(support: ShownSupport | undefined): string {
   if (!support) return "no supporter";
   if (support.pending) return "unsaved";
-  const saved = support.saved;
-  if (saved?.source === "manual") return `manual${saved.author ? ` · ${saved.author}` : ""}`;
-  const confidence = saved?.confidence;
+  if (support.source === "manual") return `manual${support.author ? ` · ${support.author}` : ""}`;
+  const confidence = support.confidence;
   return typeof confidence === "number" ? `auto · ${Math.round(confidence * 100)}%` : "auto";
 }
 
@@ -97,27 +96,26 @@ function objectRow(object: SceneObject, session: SceneSession): Row {
   supporter.addEventListener("change", () => {
     const parent = supporter.value;
     if (parent === NONE) {
-      session.stage({ kind: "remove_support", child: id });
+      session.edit(`remove ${id}'s supporter`, [{ kind: "remove_support", child: id }]);
       return;
     }
     const current = session.shown().get(id);
     const keepType = current && defaultType(current.parent) === defaultType(parent);
-    session.stage({
-      kind: "set_support",
-      child: id,
-      parent,
-      type: keepType ? current.type : defaultType(parent),
-    });
+    session.edit(`${id} on ${parent}`, [
+      {
+        kind: "set_support",
+        child: id,
+        parent,
+        type: keepType ? current.type : defaultType(parent),
+      },
+    ]);
   });
   type.addEventListener("change", () => {
     const current = session.shown().get(id);
     if (!current) return;
-    session.stage({
-      kind: "set_support",
-      child: id,
-      parent: current.parent,
-      type: type.value as SupportType,
-    });
+    session.edit(`${id}: ${type.value}`, [
+      { kind: "set_support", child: id, parent: current.parent, type: type.value as SupportType },
+    ]);
   });
 
   const update = () => {
@@ -200,11 +198,11 @@ export function mountSupportEditor(container: HTMLElement, session: SceneSession
       (missing > 0 ? ` · ${missing} without a supporter` : " · all supported");
     summary.classList.toggle("is-warn", missing > 0);
   };
+  // Only scrolls: taking the focus would send the photo's shortcut keys into the select.
   const scrollToSelected = () => {
     const row = rows.find((r) => r.object.id === session.selected);
     if (row && !row.element.contains(document.activeElement)) {
       row.element.scrollIntoView({ block: "nearest" });
-      row.element.querySelector("select")?.focus({ preventScroll: true });
     }
   };
 

@@ -71,8 +71,14 @@ export function rankSupports(
   logits: ArrayLike<number>,
   ids: readonly string[],
 ): ObjectSupportScores[] {
-  const count = ids.length;
-  const probabilities = supportProbabilities(logits, count);
+  return rankProbabilities(supportProbabilities(logits, ids.length), ids);
+}
+
+/** Each object's answers by probability, from the softmaxed [N, N + 3, 2] table. */
+export function rankProbabilities(
+  probabilities: ArrayLike<number>,
+  ids: readonly string[],
+): ObjectSupportScores[] {
   const columns = [...ids, ...STRUCTURAL_COLUMNS];
   const row = columns.length * TYPES;
   return ids.map((id, i) => {
@@ -87,6 +93,14 @@ export function rankSupports(
     ranked.sort((a, b) => b.probability - a.probability);
     return { id, ranked };
   });
+}
+
+/** A scene scored once: what live suggestions decode again after every edit. */
+export interface SceneScores {
+  ids: string[];
+  /** [N, N + 3, 2] softmax probabilities, flat. */
+  probabilities: Float64Array;
+  ranked: ObjectSupportScores[];
 }
 
 export class SupportModel {
@@ -145,13 +159,17 @@ export class SupportModel {
 
   /** Ranked supporter/type probabilities of each of the scene's (non-structural) objects. */
   async score(objects: readonly SceneObject[], image: PixelImage): Promise<ObjectSupportScores[]> {
+    return (await this.probabilities(objects, image)).ranked;
+  }
+
+  /** The probability table of the scene's (non-structural) objects, and their rankings. */
+  async probabilities(objects: readonly SceneObject[], image: PixelImage): Promise<SceneScores> {
     const kept = modelObjects(objects);
-    if (kept.length === 0) return [];
+    const ids = kept.map((o) => o.id);
+    if (kept.length === 0) return { ids, probabilities: new Float64Array(0), ranked: [] };
     const logits = await this.logits(sceneInputs(image, kept));
-    return rankSupports(
-      logits,
-      kept.map((o) => o.id),
-    );
+    const probabilities = supportProbabilities(logits, ids.length);
+    return { ids, probabilities, ranked: rankProbabilities(probabilities, ids) };
   }
 }
 
@@ -188,6 +206,15 @@ export async function scoreSupports(
   imageData: PixelImage,
   modelUrl?: string,
 ): Promise<ObjectSupportScores[]> {
+  return (await scoreScene(scene, imageData, modelUrl)).ranked;
+}
+
+/** Like scoreSupports, with the probability table (for decoding the tree again). */
+export async function scoreScene(
+  scene: Pick<Scene, "objects" | "image">,
+  imageData: PixelImage,
+  modelUrl?: string,
+): Promise<SceneScores> {
   if (imageData.width !== scene.image.width || imageData.height !== scene.image.height) {
     throw new Error(
       `the photo is ${imageData.width}x${imageData.height}, the scene says ` +
@@ -195,5 +222,5 @@ export async function scoreSupports(
     );
   }
   const model = await supportModel(modelUrl ?? (await activeModelUrl()));
-  return model.score(scene.objects, imageData);
+  return model.probabilities(scene.objects, imageData);
 }

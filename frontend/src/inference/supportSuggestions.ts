@@ -1,12 +1,34 @@
-// The Relation Network's answer beside each object of the support editor, on request: a
-// "Model suggestions" button scores the scene in this browser (supportModel.ts) and shows each
-// object's most probable supporter and type with its probability (the next answers in the
-// tooltip). The model and onnxruntime-web load only when asked, then stay for the page.
+// The Relation Network in the scene page. When the scene opens (unless live suggestions are
+// switched off) the photo and masks are scored once in this browser (supportModel.ts); from
+// then on every edit decodes the tree again with the corrections pinned (suggester.ts), so
+// the remaining guesses follow each correction at once, without the server. Each object's row
+// also shows the model's most probable supporter and type (the next answers in the tooltip).
+import type { SceneObject } from "@holiscene/schema";
 import { api } from "../api/client";
 import { el } from "../dom";
 import type { SceneSession } from "../state/sceneSession";
 import type { PixelImage } from "./preprocess";
-import { type ObjectSupportScores, type SupportSuggestion, scoreSupports } from "./supportModel";
+import { makeSuggester } from "./suggester";
+import { type SceneScores, type SupportSuggestion, scoreScene } from "./supportModel";
+
+const SETTING = "holiscene.liveSuggestions";
+
+/** Live suggestions are on unless the user switched them off (remembered in this browser). */
+export function liveSuggestionsEnabled(): boolean {
+  try {
+    return localStorage.getItem(SETTING) !== "off";
+  } catch {
+    return true;
+  }
+}
+
+function rememberEnabled(on: boolean): void {
+  try {
+    localStorage.setItem(SETTING, on ? "on" : "off");
+  } catch {
+    // not remembered: this page only
+  }
+}
 
 /**
  * The scene's photo as stored pixels (RGBA), without EXIF rotation or colour management, as
@@ -33,9 +55,13 @@ export async function photoPixels(url: string, signal?: AbortSignal): Promise<Pi
 const percent = (p: number) => `${Math.round(p * 100)}%`;
 const answer = (s: SupportSuggestion) => `${s.supporter} · ${s.type} ${percent(s.probability)}`;
 
+/** What the model's inputs depend on: scoring again is needed only when this changes. */
+const inputsKey = (objects: readonly SceneObject[]) =>
+  JSON.stringify(objects.map((o) => [o.id, o.class, o.bbox, o.mask]));
+
 /**
- * The button and status line (appended to `controls`) and the badges in `table`'s object rows
- * (`tr[data-object]`). Returns the function that removes them.
+ * The controls and status line (appended to `controls`) and the badges in `table`'s object
+ * rows (`tr[data-object]`). Returns the function that removes them.
  */
 export function mountSupportSuggestions(
   controls: HTMLElement,
@@ -49,18 +75,39 @@ export function mountSupportSuggestions(
     testid: "suggest-supports",
     attrs: { type: "button", title: "Score every object's supporter with the support model" },
   });
-  controls.append(el("div", { className: "suggestions" }, button, status));
+  const live = el("input", {
+    testid: "live-suggestions",
+    attrs: { type: "checkbox", checked: liveSuggestionsEnabled() },
+  });
+  controls.append(
+    el(
+      "div",
+      { className: "suggestions" },
+      button,
+      el(
+        "label",
+        {
+          className: "toggle",
+          attrs: { title: "Score the scene when it opens and follow each correction" },
+        },
+        live,
+        "Live",
+      ),
+      status,
+    ),
+  );
 
-  let scores: ObjectSupportScores[] | null = null;
+  let scores: SceneScores | null = null;
+  let scoredFor = "";
   let photo: Promise<PixelImage> | null = null;
-  let wanted = false;
   let run = 0;
 
   const render = () => {
+    const ranked = scores?.ranked ?? [];
     const shown = table.querySelectorAll(".badge--suggestion");
-    if (shown.length === (scores?.length ?? 0) && [...shown].every((b) => b.isConnected)) return;
+    if (shown.length === ranked.length && [...shown].every((b) => b.isConnected)) return;
     for (const badge of shown) badge.remove();
-    for (const s of scores ?? []) {
+    for (const s of ranked) {
       const best = s.ranked[0];
       const cell = table.querySelector(`tr[data-object="${CSS.escape(s.id)}"] th`);
       if (!best || !cell) continue;
@@ -75,6 +122,17 @@ export function mountSupportSuggestions(
     }
   };
 
+  const describe = (ms: number) => {
+    const count = scores?.ids.length ?? 0;
+    const suggested = session.suggestions().size;
+    status.textContent =
+      `${count} objects scored in ${Math.round(ms)} ms` +
+      (live.checked
+        ? ` · live: ${suggested === 0 ? "no changes suggested" : `${suggested} suggested`}`
+        : "");
+  };
+  let scoredMs = 0;
+
   const score = async () => {
     const mine = ++run;
     button.disabled = true;
@@ -82,11 +140,15 @@ export function mountSupportSuggestions(
     try {
       photo ??= photoPixels(api.imageUrl(session.sceneId), abort.signal);
       const start = performance.now();
-      const result = await scoreSupports(session.doc.scene, await photo);
+      const key = inputsKey(session.objects);
+      const result = await scoreScene(session.doc.scene, await photo);
       if (mine !== run || abort.signal.aborted) return;
       scores = result;
-      status.textContent = `${result.length} objects scored in ${Math.round(performance.now() - start)} ms`;
+      scoredFor = key;
+      scoredMs = performance.now() - start;
+      session.setSuggester(live.checked ? makeSuggester(result) : null);
       render();
+      describe(scoredMs);
     } catch (error) {
       if (abort.signal.aborted) return;
       photo = null;
@@ -96,23 +158,35 @@ export function mountSupportSuggestions(
     }
   };
 
-  button.addEventListener("click", () => {
-    wanted = true;
-    void score();
+  button.addEventListener("click", () => void score());
+  live.addEventListener("change", () => {
+    rememberEnabled(live.checked);
+    if (!live.checked) session.setSuggester(null);
+    else if (scores) session.setSuggester(makeSuggester(scores));
+    else void score();
+    if (scores) describe(scoredMs);
   });
   const unsubscribe = session.subscribe((change) => {
-    // A new revision may move masks or objects: score again; otherwise rows may have been
-    // rebuilt, so put the badges back.
-    if (change === "document" && wanted) {
+    // A revision that moved masks or objects needs scoring again; edits only need decoding
+    // again, which the session does itself. Rows may have been rebuilt: put badges back.
+    if (change === "document" && scores && inputsKey(session.objects) !== scoredFor) {
       scores = null;
+      session.setSuggester(null);
       render();
       void score();
     } else {
       render();
+      if (scores && (change === "edits" || change === "document")) describe(scoredMs);
     }
   });
+  if (live.checked) {
+    // After the page has drawn: loading the runtime and the model takes a second or two.
+    const start = setTimeout(() => void score(), 50);
+    abort.signal.addEventListener("abort", () => clearTimeout(start));
+  }
   return () => {
     abort.abort();
     unsubscribe();
+    session.setSuggester(null);
   };
 }

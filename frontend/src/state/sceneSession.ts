@@ -1,15 +1,23 @@
-// One scene being annotated: the loaded revision, the user's unsaved edits, saving, and
-// what is hovered or selected. Views subscribe and redraw what a change concerns.
-import type { SceneDocument, SceneObject } from "@holiscene/schema";
+// One scene being annotated: the loaded revision, the user's unsaved edits with undo and redo,
+// saving (and merging after a conflict), the drafts kept in localStorage, the model's live
+// suggestions, and what is hovered or selected. Views subscribe and redraw what a change
+// concerns.
+import type { RevisionInfo, SceneDocument, SceneObject, SupportRelation } from "@holiscene/schema";
 import { api } from "../api/client";
 import { ConflictError } from "../api/errors";
+import { type Draft, DraftStore } from "./draftStore";
+import { EditHistory } from "./editHistory";
 import {
   describeEdit,
   type Edit,
   editProblem,
   isNoOp,
+  type RestoreSupportEdit,
   type ShownSupport,
+  type SupportType,
+  sameRelation,
   shownSupports,
+  wireEdit,
 } from "./supportGraph";
 
 export type SaveState =
@@ -17,26 +25,86 @@ export type SaveState =
   | { kind: "dirty" }
   | { kind: "saving" }
   | { kind: "saved"; revision: number }
-  | { kind: "conflict"; baseRevision: number; currentRevision: number | null; message: string }
+  | {
+      kind: "conflict";
+      baseRevision: number;
+      currentRevision: number | null;
+      message: string;
+      /** The revisions saved by others since `baseRevision` (empty if they could not be read). */
+      theirs: RevisionInfo[];
+    }
   | { kind: "error"; message: string };
 
-/** What changed: the document, the unsaved edits, the save state, hover or selection. */
-export type Change = "document" | "edits" | "save" | "hover" | "select";
+/**
+ * What changed: the document, the unsaved edits (and undo/redo), the save state, hover or
+ * selection, the model's suggestions, the edits offered back from an earlier visit.
+ */
+export type Change =
+  | "document"
+  | "edits"
+  | "save"
+  | "hover"
+  | "select"
+  | "suggestions"
+  | "recovery"
+  | "message";
+
+/** The model's answer for an object whose supporter no person has set, when it differs. */
+export interface SuggestedSupport {
+  child: string;
+  parent: string;
+  type: SupportType;
+  probability: number;
+}
+
+/** Computes the suggestions from the session's current state (see inference/liveSuggestions). */
+export type Suggester = (session: SceneSession) => Map<string, SuggestedSupport>;
+
+/** The arrow an object shows: its supporter, or the model's suggestion replacing a guess. */
+export interface DisplayedSupport {
+  child: string;
+  parent: string;
+  type: SupportType;
+  suggested: boolean;
+  /** The supporter as saved or edited (null: none). */
+  support: ShownSupport | null;
+}
+
+/** One object's state, as undo and redo put it back: its supporter and rejected answers. */
+interface ObjectState {
+  edit: Edit;
+  rejected: string[];
+}
+
+export const rejectionKey = (parent: string, type: string) => `${parent}|${type}`;
 
 export class SceneSession {
   doc: SceneDocument;
   saveState: SaveState = { kind: "clean" };
   hovered: string | null = null;
   selected: string | null = null;
-  /** A message about the last reload (what happened to the unsaved edits). */
+  /** Why the last editing action did nothing, for the selection bar (null: nothing to say). */
+  message: string | null = null;
+  /** A message about the last reload or recovery (what happened to the unsaved edits). */
   notice: string | null = null;
+  /** Unsaved edits an earlier visit left (in localStorage), until restored or discarded. */
+  recovered: Draft | null;
+  /** After "reload" on a conflict: do not autosave until the user edits or saves. */
+  holdAutosave = false;
 
   private readonly edits = new Map<string, Edit>();
+  private readonly rejected = new Map<string, Set<string>>();
+  private readonly history = new EditHistory<ObjectState>();
   private readonly listeners = new Set<(change: Change) => void>();
+  private readonly drafts: DraftStore;
   private shownCache: Map<string, ShownSupport> | null = null;
+  private suggester: Suggester | null = null;
+  private suggestionCache: Map<string, SuggestedSupport> | null = null;
 
-  constructor(doc: SceneDocument) {
+  constructor(doc: SceneDocument, options: { drafts?: DraftStore } = {}) {
     this.doc = doc;
+    this.drafts = options.drafts ?? new DraftStore();
+    this.recovered = this.drafts.takeForRecovery(doc.scene_id);
   }
 
   get sceneId(): string {
@@ -60,10 +128,45 @@ export class SceneSession {
     return this.edits.has(child);
   }
 
+  savedSupport(child: string): SupportRelation | undefined {
+    return (this.doc.scene.supports ?? []).find((s) => s.child === child);
+  }
+
   /** Every object's supporter as shown: saved supports with unsaved edits applied. */
   shown(): Map<string, ShownSupport> {
     this.shownCache ??= shownSupports(this.doc.scene.supports ?? [], this.edits.values());
     return this.shownCache;
+  }
+
+  /** Answers rejected for this object ("parent|type", see rejectionKey). */
+  rejectedAnswers(child: string): ReadonlySet<string> {
+    return this.rejected.get(child) ?? new Set();
+  }
+
+  /** Whether a person set the object's supporter (saved or not): the model leaves it alone. */
+  isResolved(child: string): boolean {
+    return this.shown().get(child)?.source === "manual";
+  }
+
+  setSuggester(suggester: Suggester | null): void {
+    this.suggester = suggester;
+    this.suggestionCache = null;
+    this.emit("suggestions");
+  }
+
+  /** The model's current suggestions (none until it has scored the scene). */
+  suggestions(): Map<string, SuggestedSupport> {
+    this.suggestionCache ??= this.suggester?.(this) ?? new Map();
+    return this.suggestionCache;
+  }
+
+  displayed(child: string): DisplayedSupport | null {
+    const support = this.shown().get(child) ?? null;
+    const suggestion = this.suggestions().get(child);
+    if (suggestion) return { ...suggestion, suggested: true, support };
+    return support
+      ? { child, parent: support.parent, type: support.type, suggested: false, support }
+      : null;
   }
 
   subscribe(listener: (change: Change) => void): () => void {
@@ -71,18 +174,106 @@ export class SceneSession {
     return () => this.listeners.delete(listener);
   }
 
-  /** Record an edit of one object's supporter; an edit back to the saved state cancels. */
-  stage(edit: Edit): void {
-    this.edits.delete(edit.child);
-    if (!isNoOp(edit, this.doc.scene.supports ?? [])) this.edits.set(edit.child, edit);
+  // -- editing, undo and redo -----------------------------------------------------------
+
+  /**
+   * One user action: stage the edits (an edit back to the saved state cancels) and remember
+   * it for undo. `reject` adds answers the model must not suggest again for an object.
+   */
+  edit(
+    label: string,
+    edits: readonly Edit[],
+    reject: readonly { child: string; parent: string; type: string }[] = [],
+  ): void {
+    const before = new Map<string, ObjectState>();
+    const touch = (child: string) => {
+      if (!before.has(child)) before.set(child, this.stateOf(child));
+    };
+    for (const edit of edits) {
+      touch(edit.child);
+      this.stage(edit);
+    }
+    for (const r of reject) {
+      touch(r.child);
+      const keys = new Set(this.rejected.get(r.child));
+      keys.add(rejectionKey(r.parent, r.type));
+      this.rejected.set(r.child, keys);
+    }
+    const changes = [...before].flatMap(([key, state]) => {
+      const after = this.stateOf(key);
+      return sameState(state, after) ? [] : [{ key, before: state, after }];
+    });
+    this.history.record({ label, changes });
+    this.holdAutosave = false;
     this.editsChanged();
   }
 
-  discard(): void {
-    this.edits.clear();
-    this.notice = null;
-    this.editsChanged();
+  get undoLabel(): string | null {
+    return this.history.undoLabel;
   }
+
+  get redoLabel(): string | null {
+    return this.history.redoLabel;
+  }
+
+  /** Take back the last action; returns its label (null: nothing to undo). */
+  undo(): string | null {
+    const entry = this.history.undo();
+    if (!entry) return null;
+    for (const change of entry.changes) this.applyState(change.key, change.before);
+    this.holdAutosave = false;
+    this.editsChanged();
+    return entry.label;
+  }
+
+  /** Do the last undone action again; returns its label (null: nothing to redo). */
+  redo(): string | null {
+    const entry = this.history.redo();
+    if (!entry) return null;
+    for (const change of entry.changes) this.applyState(change.key, change.after);
+    this.holdAutosave = false;
+    this.editsChanged();
+    return entry.label;
+  }
+
+  /** Drop every unsaved edit (undoable). */
+  discard(): void {
+    this.notice = null;
+    this.edit(
+      "discard unsaved changes",
+      this.pending.map((e) => this.savedState(e.child)),
+    );
+  }
+
+  /** The saved supporter of `child`, as an edit that would put it back. */
+  private savedState(child: string): RestoreSupportEdit {
+    return {
+      kind: "restore_support",
+      child,
+      from_revision: this.doc.revision,
+      restores: this.savedSupport(child) ?? null,
+    };
+  }
+
+  private stateOf(child: string): ObjectState {
+    return {
+      edit: this.edits.get(child) ?? this.savedState(child),
+      rejected: [...(this.rejected.get(child) ?? [])],
+    };
+  }
+
+  private applyState(child: string, state: ObjectState): void {
+    this.stage(state.edit);
+    if (state.rejected.length > 0) this.rejected.set(child, new Set(state.rejected));
+    else this.rejected.delete(child);
+  }
+
+  private stage(edit: Edit): void {
+    this.edits.delete(edit.child);
+    if (!isNoOp(edit, this.doc.scene.supports ?? [])) this.edits.set(edit.child, edit);
+  }
+
+  // -- hover and selection --------------------------------------------------------------
 
   hover(id: string | null): void {
     if (this.hovered === id) return;
@@ -95,12 +286,22 @@ export class SceneSession {
     this.emit("select");
   }
 
+  /** Tell the user why an action did nothing (null: clear). */
+  say(message: string | null): void {
+    this.message = message;
+    this.emit("message");
+  }
+
+  // -- saving ---------------------------------------------------------------------------
+
   /** Send the unsaved edits, based on the loaded revision. They are kept unless saved. */
   async save(author: string): Promise<void> {
     const sent = this.pending;
     if (sent.length === 0 || this.saveState.kind === "saving") return;
-    const [first, ...rest] = sent as [Edit, ...Edit[]];
+    const [first, ...rest] = sent.map(wireEdit);
+    if (!first) return;
     const baseRevision = this.doc.revision;
+    this.holdAutosave = false;
     this.setSaveState({ kind: "saving" });
     try {
       const doc = await api.postEdits(this.sceneId, {
@@ -113,16 +314,22 @@ export class SceneSession {
       }
       this.notice = null;
       this.setDocument(doc);
-      this.setSaveState(
-        this.edits.size > 0 ? { kind: "dirty" } : { kind: "saved", revision: doc.revision },
-      );
+      // Edits made while saving stay; those the new revision already has are dropped.
+      for (const edit of this.pending) this.stage(edit);
+      this.saveState = { kind: "saved", revision: doc.revision };
+      this.editsChanged();
     } catch (error) {
       if (error instanceof ConflictError) {
+        const theirs = await api
+          .listRevisions(this.sceneId)
+          .then((all) => all.filter((r) => r.number > baseRevision))
+          .catch(() => []);
         this.setSaveState({
           kind: "conflict",
           baseRevision,
           currentRevision: error.currentRevision,
           message: error.message,
+          theirs,
         });
       } else {
         this.setSaveState({ kind: "error", message: errorText(error) });
@@ -132,25 +339,27 @@ export class SceneSession {
 
   /**
    * Load the latest revision and put the unsaved edits back on top of it, dropping only the
-   * ones that no longer apply or that the latest revision already has (and saying so).
+   * ones that no longer apply or that the latest revision already has, and saying which
+   * objects both sides changed. `hold`: do not autosave until the user acts (review first).
    */
-  async reloadLatest(): Promise<void> {
-    const previous = this.doc.revision;
+  async reloadLatest(options: { hold?: boolean } = {}): Promise<void> {
+    const previous = this.doc;
     try {
       const [doc, revisions] = await Promise.all([
         api.getScene(this.sceneId),
         api.listRevisions(this.sceneId).catch(() => []),
       ]);
       const lines: string[] = [];
-      const newer = revisions.filter((r) => r.number > previous);
-      if (newer.length > 0) {
-        lines.push(
-          `Loaded revision ${doc.revision}. Changed since revision ${previous}: ` +
-            newer.map((r) => `#${r.number} by ${r.author} (${r.summary})`).join("; "),
-        );
-      } else {
-        lines.push(`Loaded revision ${doc.revision}.`);
-      }
+      const newer = revisions.filter((r) => r.number > previous.revision);
+      lines.push(
+        newer.length > 0
+          ? `Loaded revision ${doc.revision}. Changed since revision ${previous.revision}: ` +
+              newer.map((r) => `#${r.number} by ${r.author} (${r.summary})`).join("; ") +
+              "."
+          : `Loaded revision ${doc.revision}.`,
+      );
+      const before = (child: string) => previous.scene.supports?.find((s) => s.child === child);
+      const after = (child: string) => doc.scene.supports?.find((s) => s.child === child);
       for (const edit of this.pending) {
         const problem = editProblem(edit, doc.scene.objects ?? []);
         if (problem) {
@@ -159,14 +368,23 @@ export class SceneSession {
         } else if (isNoOp(edit, doc.scene.supports ?? [])) {
           lines.push(`Your edit "${describeEdit(edit)}" is already in revision ${doc.revision}.`);
           this.edits.delete(edit.child);
+        } else if (!sameRelation(before(edit.child), after(edit.child))) {
+          const theirs = after(edit.child);
+          lines.push(
+            `Both of you changed ${edit.child}: yours is kept on top (theirs: ` +
+              (theirs ? `on ${theirs.parent}, ${theirs.type}` : "no supporter") +
+              ").",
+          );
         }
       }
       if (this.edits.size > 0) {
         lines.push(
-          `Your ${plural(this.edits.size, "unsaved change")} are applied on top; review and save again.`,
+          `Your ${plural(this.edits.size, "unsaved change")} ${this.edits.size === 1 ? "is" : "are"} applied on top` +
+            (options.hold ? "; review and save." : "."),
         );
       }
       this.notice = lines.join(" ");
+      this.holdAutosave = options.hold === true && this.edits.size > 0;
       this.saveState = { kind: "clean" }; // the conflict is resolved; editsChanged() says what is left
       this.setDocument(doc);
       this.editsChanged();
@@ -175,17 +393,65 @@ export class SceneSession {
     }
   }
 
+  /** After a conflict: the latest revision with the unsaved edits on top, saved at once. */
+  async merge(author: string): Promise<void> {
+    await this.reloadLatest();
+    if (this.saveState.kind !== "error") await this.save(author);
+  }
+
+  // -- edits left by an earlier visit ---------------------------------------------------
+
+  /** Put the edits an earlier visit left unsaved back (one undoable action). */
+  restoreRecovered(): void {
+    const draft = this.recovered;
+    if (!draft) return;
+    const lines: string[] = [];
+    const usable = draft.edits.filter((edit) => {
+      const problem = editProblem(edit, this.objects);
+      if (problem) lines.push(`Dropped "${describeEdit(edit)}": ${problem}.`);
+      else if (isNoOp(edit, this.doc.scene.supports ?? []))
+        lines.push(`"${describeEdit(edit)}" is already saved.`);
+      return !problem && !isNoOp(edit, this.doc.scene.supports ?? []);
+    });
+    lines.unshift(`Restored ${plural(usable.length, "unsaved change")} from ${draft.savedAt}.`);
+    this.notice = lines.join(" ");
+    this.recovered = null;
+    this.drafts.clearRecovered(this.sceneId);
+    this.emit("recovery");
+    this.edit("restore unsaved changes", usable);
+  }
+
+  dismissRecovered(): void {
+    this.recovered = null;
+    this.drafts.clearRecovered(this.sceneId);
+    this.emit("recovery");
+  }
+
+  // -- internals ------------------------------------------------------------------------
+
   private setDocument(doc: SceneDocument): void {
     this.doc = doc;
     this.shownCache = null;
+    this.suggestionCache = null;
     this.emit("document");
   }
 
   private editsChanged(): void {
     this.shownCache = null;
+    this.suggestionCache = null;
+    this.drafts.save({
+      sceneId: this.sceneId,
+      baseRevision: this.doc.revision,
+      edits: this.pending,
+      savedAt: new Date().toISOString(),
+    });
     this.emit("edits");
-    if (this.saveState.kind === "conflict" && this.edits.size > 0) return;
-    if (this.saveState.kind === "saving") return;
+    const state = this.saveState.kind;
+    if (state === "saving" || (state === "conflict" && this.edits.size > 0)) return;
+    if (state === "saved" && this.edits.size === 0) {
+      this.emit("save");
+      return;
+    }
     this.setSaveState(this.edits.size > 0 ? { kind: "dirty" } : { kind: "clean" });
   }
 
@@ -197,6 +463,11 @@ export class SceneSession {
   private emit(change: Change): void {
     for (const listener of this.listeners) listener(change);
   }
+}
+
+function sameState(a: ObjectState, b: ObjectState): boolean {
+  const key = (s: ObjectState) => JSON.stringify([s.edit, [...s.rejected].sort()]);
+  return key(a) === key(b);
 }
 
 export function plural(count: number, noun: string): string {

@@ -1,14 +1,29 @@
 // The support graph as the editor sees it: the saved supports with unsaved edits on top.
-import type { RemoveSupport, SceneObject, SetSupport, SupportRelation } from "@holiscene/schema";
+import type {
+  RemoveSupport,
+  RestoreSupport,
+  SceneObject,
+  SetSupport,
+  SupportRelation,
+} from "@holiscene/schema";
 import { STRUCTURAL_SUPPORTERS } from "@holiscene/schema";
 
 // The generated types have `kind` optional (it has a default in pydantic); the app always
-// sends it, and requiring it here lets TypeScript tell the two kinds apart.
+// sends it, and requiring it here lets TypeScript tell the kinds apart.
 export type SetSupportEdit = SetSupport & { kind: "set_support" };
 export type RemoveSupportEdit = RemoveSupport & { kind: "remove_support" };
-export type Edit = SetSupportEdit | RemoveSupportEdit;
+/**
+ * Back to the supporter an earlier revision stored (undo, revert). `restores` is that
+ * supporter (null: none), kept by the app to show it; the server reads the revision itself.
+ */
+export type RestoreSupportEdit = RestoreSupport & {
+  kind: "restore_support";
+  restores: SupportRelation | null;
+};
+export type Edit = SetSupportEdit | RemoveSupportEdit | RestoreSupportEdit;
 export type SupportType = SupportRelation["type"];
 export type StructuralSupporter = (typeof STRUCTURAL_SUPPORTERS)[number];
+export type SupportSource = SupportRelation["source"];
 
 export function isStructural(parent: string): parent is StructuralSupporter {
   return (STRUCTURAL_SUPPORTERS as readonly string[]).includes(parent);
@@ -19,9 +34,34 @@ export interface ShownSupport {
   child: string;
   parent: string;
   type: SupportType;
-  /** Absent for an unsaved edit. */
+  /** The saved relation when nothing unsaved changes it; null otherwise. */
   saved: SupportRelation | null;
   pending: boolean;
+  /** Provenance: a person's (manual) or the pipeline's guess (auto); unsaved sets are manual. */
+  source: SupportSource;
+  author: string | null;
+  time: string | null;
+  confidence: number | null;
+}
+
+/** An edit as the server takes it (without what the app keeps beside it). */
+export function wireEdit(edit: Edit): SetSupport | RemoveSupport | RestoreSupport {
+  if (edit.kind !== "restore_support") return edit;
+  return { kind: edit.kind, child: edit.child, from_revision: edit.from_revision };
+}
+
+function fromRelation(relation: SupportRelation, pending: boolean): ShownSupport {
+  return {
+    child: relation.child,
+    parent: relation.parent,
+    type: relation.type,
+    saved: pending ? null : relation,
+    pending,
+    source: relation.source,
+    author: relation.author ?? null,
+    time: relation.time ?? null,
+    confidence: relation.confidence ?? null,
+  };
 }
 
 /** child id -> its supporter, after applying the unsaved edits (in order). */
@@ -30,12 +70,13 @@ export function shownSupports(
   pending: Iterable<Edit>,
 ): Map<string, ShownSupport> {
   const shown = new Map<string, ShownSupport>();
-  for (const relation of saved) {
-    shown.set(relation.child, { ...relation, saved: relation, pending: false });
-  }
+  for (const relation of saved) shown.set(relation.child, fromRelation(relation, false));
   for (const edit of pending) {
     if (edit.kind === "remove_support") {
       shown.delete(edit.child);
+    } else if (edit.kind === "restore_support") {
+      if (edit.restores) shown.set(edit.child, fromRelation(edit.restores, true));
+      else shown.delete(edit.child);
     } else {
       shown.set(edit.child, {
         child: edit.child,
@@ -43,17 +84,52 @@ export function shownSupports(
         type: edit.type,
         saved: null,
         pending: true,
+        source: "manual",
+        author: null,
+        time: null,
+        confidence: null,
       });
     }
   }
   return shown;
 }
 
-/** Whether `edit` would leave the child's supporter exactly as it is saved. */
+/** Whether two stored relations are the same, provenance included. */
+export function sameRelation(
+  a: SupportRelation | null | undefined,
+  b: SupportRelation | null | undefined,
+): boolean {
+  if (!a || !b) return !a && !b;
+  return (
+    a.child === b.child &&
+    a.parent === b.parent &&
+    a.type === b.type &&
+    a.source === b.source &&
+    (a.author ?? null) === (b.author ?? null) &&
+    (a.time ?? null) === (b.time ?? null) &&
+    (a.confidence ?? null) === (b.confidence ?? null)
+  );
+}
+
+/**
+ * Whether `edit` would leave the child's supporter exactly as it is saved. Setting the
+ * supporter a guess already names is not: it makes the guess a person's label (accepting).
+ */
 export function isNoOp(edit: Edit, saved: readonly SupportRelation[]): boolean {
   const current = saved.find((s) => s.child === edit.child);
-  if (edit.kind === "remove_support") return current === undefined;
-  return current !== undefined && current.parent === edit.parent && current.type === edit.type;
+  switch (edit.kind) {
+    case "remove_support":
+      return current === undefined;
+    case "restore_support":
+      return sameRelation(current, edit.restores);
+    case "set_support":
+      return (
+        current !== undefined &&
+        current.source === "manual" &&
+        current.parent === edit.parent &&
+        current.type === edit.type
+      );
+  }
 }
 
 /** Whether making `parent` hold up `child` would close a loop (or is the child itself). */
@@ -72,12 +148,20 @@ export function wouldCycle(
   return false;
 }
 
+/** The supporter an edit gives its child (null: none). */
+function editParent(edit: Edit): string | null {
+  if (edit.kind === "set_support") return edit.parent;
+  if (edit.kind === "restore_support") return edit.restores?.parent ?? null;
+  return null;
+}
+
 /** Why an edit cannot apply to these objects, or null when it can. */
 export function editProblem(edit: Edit, objects: readonly SceneObject[]): string | null {
   const ids = new Set(objects.map((o) => o.id));
   if (!ids.has(edit.child)) return `object ${edit.child} no longer exists`;
-  if (edit.kind === "set_support" && !ids.has(edit.parent) && !isStructural(edit.parent)) {
-    return `supporter ${edit.parent} of ${edit.child} no longer exists`;
+  const parent = editParent(edit);
+  if (parent !== null && !ids.has(parent) && !isStructural(parent)) {
+    return `supporter ${parent} of ${edit.child} no longer exists`;
   }
   return null;
 }
@@ -89,7 +173,16 @@ export function defaultType(parent: string): SupportType {
 
 /** A readable description of an edit, for notices and the pending list. */
 export function describeEdit(edit: Edit): string {
-  return edit.kind === "remove_support"
-    ? `${edit.child}: no supporter`
-    : `${edit.child}: on ${edit.parent} (${edit.type})`;
+  switch (edit.kind) {
+    case "remove_support":
+      return `${edit.child}: no supporter`;
+    case "set_support":
+      return `${edit.child}: on ${edit.parent} (${edit.type})`;
+    case "restore_support": {
+      const r = edit.restores;
+      return r
+        ? `${edit.child}: back on ${r.parent} (${r.type}, ${r.source === "auto" ? "predicted" : `by ${r.author ?? "someone"}`})`
+        : `${edit.child}: back to no supporter`;
+    }
+  }
 }

@@ -28,7 +28,7 @@ from pydantic import TypeAdapter
 from sqlalchemy import Engine, select, update
 from sqlalchemy.orm import Session
 
-from ..editing import apply_edits, describe_edits, keep_manual_supports
+from ..editing import apply_edits, describe_edits, keep_manual_supports, restore_revisions
 from ..inputs import InputFiles
 from ..workflow import scene_uncertainty
 from .clock import as_utc, utcnow
@@ -177,7 +177,8 @@ class SceneStore:
         written on error."""
         base = self._document_for_write(scene_id, request.base_revision)
         now = utcnow()
-        edited = apply_edits(base.scene, request.edits, request.author, now)
+        earlier = self._earlier_scenes(scene_id, restore_revisions(request.edits))
+        edited = apply_edits(base.scene, request.edits, request.author, now, earlier)
         self._commit_revision(
             scene_id,
             request.base_revision,
@@ -253,6 +254,16 @@ class SceneStore:
         raise RevisionConflictError(self.document(scene_id).revision)
 
     # -- helpers -------------------------------------------------------------------------
+
+    def _earlier_scenes(self, scene_id: str, numbers: set[int]) -> dict[int, Scene]:
+        """The scenes of these revisions; a number without a revision is left out."""
+        found: dict[int, Scene] = {}
+        for number in numbers:
+            try:
+                found[number] = self.document(scene_id, number).scene
+            except SceneNotFoundError:
+                continue
+        return found
 
     def _document_for_write(self, scene_id: str, base_revision: int) -> SceneDocument:
         current = self.document(scene_id)

@@ -1,10 +1,14 @@
-// Support arrows (red: from below, blue: from behind; dashed: not saved yet), anchors of
-// structural supporters, object labels and flags on objects that have no supporter.
+// Support arrows (red: from below, blue: from behind; dashed: not saved yet; dotted with a
+// glow: the model's suggestion replacing a guess), anchors of structural supporters, object
+// labels and flags on objects that have no supporter. Each arrow carries its provenance
+// (source, author, time, confidence) as data attributes and in its tooltip.
 import type { SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
+import type { SuggestedSupport } from "../../state/sceneSession";
 import { isStructural, type ShownSupport } from "../../state/supportGraph";
 import { arrowShape, type Frame, type Point, strokeWidth, structuralAnchor } from "./arrowGeometry";
 import type { Region } from "./maskRaster";
+import "./supportEditing.css";
 
 /** Objects that hold others up but are never held up themselves. */
 export const isRoomPart = (object: SceneObject) => isStructural(object.class);
@@ -30,8 +34,33 @@ function anchorLabel(parent: string, at: Point, size: number): SVGGElement {
   );
 }
 
+/** Who set an edge and when, in words (tooltips, the selection bar). */
+export function provenanceText(
+  support: ShownSupport | null,
+  suggestion?: SuggestedSupport,
+): string {
+  if (suggestion) {
+    return `suggested by the model (${Math.round(suggestion.probability * 100)}%) after your corrections`;
+  }
+  if (!support) return "no supporter";
+  if (support.pending && support.source === "manual") return "your edit, not saved yet";
+  const when = support.time ? ` · ${new Date(support.time).toLocaleString()}` : "";
+  const unsaved = support.pending ? " (restored, not saved yet)" : "";
+  if (support.source === "manual")
+    return `manual · ${support.author ?? "unknown"}${when}${unsaved}`;
+  const confidence = support.confidence === null ? "" : ` ${Math.round(support.confidence * 100)}%`;
+  return `predicted (auto${confidence})${when}${unsaved}`;
+}
+
+interface ArrowEdge {
+  parent: string;
+  type: string;
+  support: ShownSupport | null;
+  suggestion?: SuggestedSupport;
+}
+
 function arrowFor(
-  support: ShownSupport,
+  edge: ArrowEdge,
   object: SceneObject,
   centroids: ReadonlyMap<string, Point>,
   frame: Frame,
@@ -40,29 +69,55 @@ function arrowFor(
   if (!to) return null;
   const width = strokeWidth(frame);
   const labelSize = width * 5;
-  const structural = isStructural(support.parent) ? support.parent : null;
+  const structural = isStructural(edge.parent) ? edge.parent : null;
   const from = structural
     ? structuralAnchor(structural, object, to, frame, labelHalf(structural, labelSize))
-    : centroids.get(support.parent);
+    : centroids.get(edge.parent);
   if (!from) return null;
   const shape = arrowShape(from, to, width, structural ? labelSize * 0.8 : width * 1.5);
+  const support = edge.support;
+  const suggested = edge.suggestion !== undefined;
+  const pending = !suggested && support?.pending === true;
+  const classes = ["arrow", `arrow--${edge.type}`];
+  if (pending) classes.push("arrow--pending");
+  if (suggested) classes.push("arrow--suggested");
+  if (!suggested && support?.source === "auto") classes.push("arrow--auto");
+  const dash = suggested
+    ? `${width * 0.8} ${width * 1.6}`
+    : pending
+      ? `${width * 3} ${width * 2}`
+      : undefined;
   const group = svgEl(
     "g",
     {
-      class: `arrow arrow--${support.type}${support.pending ? " arrow--pending" : ""}`,
+      class: classes.join(" "),
       "data-testid": `arrow-${object.id}`,
       "data-child": object.id,
-      "data-parent": support.parent,
-      "data-type": support.type,
-      "data-pending": String(support.pending),
+      "data-parent": edge.parent,
+      "data-type": edge.type,
+      "data-pending": String(pending),
+      "data-suggested": String(suggested),
+      "data-source": suggested ? "model" : (support?.source ?? "none"),
+      "data-author": suggested ? undefined : (support?.author ?? undefined),
+      "data-time": suggested ? undefined : (support?.time ?? undefined),
+      "data-confidence": suggested
+        ? edge.suggestion?.probability.toFixed(4)
+        : (support?.confidence?.toFixed(4) ?? undefined),
+      "data-replaces": suggested && support ? `${support.parent} ${support.type}` : undefined,
     },
-    svgEl("title", {}, `${support.parent} holds up ${object.id} from ${support.type}`),
+    svgEl(
+      "title",
+      {},
+      `${edge.parent} holds up ${object.id} from ${edge.type}: ${provenanceText(support, edge.suggestion)}` +
+        (suggested && support ? ` (was ${support.parent}, ${support.type})` : ""),
+    ),
+    svgEl("path", { class: "arrow-hit", d: shape.shaft, "stroke-width": width * 6 }),
     svgEl("path", { class: "arrow-halo", d: shape.shaft, "stroke-width": width * 2.2 }),
     svgEl("path", {
       class: "arrow-shaft",
       d: shape.shaft,
       "stroke-width": width,
-      "stroke-dasharray": support.pending ? `${width * 3} ${width * 2}` : undefined,
+      "stroke-dasharray": dash,
     }),
     svgEl("path", { class: "arrow-head", d: shape.head, "stroke-width": width * 0.6 }),
   );
@@ -80,15 +135,20 @@ export function renderArrows(
   regions: ReadonlyMap<string, Region>,
   supports: ReadonlyMap<string, ShownSupport>,
   frame: Frame,
+  suggestions: ReadonlyMap<string, SuggestedSupport> = new Map(),
 ): void {
   const centroids = new Map<string, Point>(
     [...regions].map(([id, region]) => [id, region.centroid]),
   );
   const arrows: SVGGElement[] = [];
   for (const object of objects) {
-    const support = supports.get(object.id);
-    if (!support || isRoomPart(object)) continue;
-    const arrow = arrowFor(support, object, centroids, frame);
+    if (isRoomPart(object)) continue;
+    const support = supports.get(object.id) ?? null;
+    const suggestion = suggestions.get(object.id);
+    const edge: ArrowEdge | null = suggestion
+      ? { parent: suggestion.parent, type: suggestion.type, support, suggestion }
+      : support && { parent: support.parent, type: support.type, support };
+    const arrow = edge && arrowFor(edge, object, centroids, frame);
     if (arrow) arrows.push(arrow);
   }
   group.replaceChildren(...arrows);

@@ -2,19 +2,21 @@
 import type { SceneObject } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { el, svgEl } from "../../dom";
+import { mountArrowEditing } from "../../editors/arrowEditing";
+import { registerShortcut } from "../../shortcuts";
 import type { SceneSession } from "../../state/sceneSession";
 import { frameFor, strokeWidth } from "./arrowGeometry";
 import { renderArrows, renderLabels } from "./arrowLayer";
 import { renderMasks, renderOutlines } from "./maskLayer";
 import { HitMap, objectRegion, type Region } from "./maskRaster";
 
-function toggle(label: string, testid: string, onChange: (on: boolean) => void): HTMLLabelElement {
+function toggle(label: string, testid: string, onChange: (on: boolean) => void) {
   const input = el("input", {
     testid,
     attrs: { type: "checkbox", checked: true },
     on: { change: () => onChange(input.checked) },
   });
-  return el("label", { className: "toggle" }, input, label);
+  return { input, label: el("label", { className: "toggle" }, input, label) };
 }
 
 function legend(): HTMLElement {
@@ -31,6 +33,7 @@ function legend(): HTMLElement {
     item("swatch--below", "supported from below"),
     item("swatch--behind", "from behind"),
     item("swatch--pending", "not saved"),
+    item("swatch--suggested", "suggested by the model"),
   );
 }
 
@@ -89,15 +92,21 @@ export function mountPhotoView(container: HTMLElement, session: SceneSession): (
   const setLayer = (layer: SVGGElement) => (on: boolean) => {
     layer.style.display = on ? "" : "none";
   };
+  const layerToggles = [
+    { key: "M", name: "masks", ...toggle("Masks", "toggle-masks", setLayer(masks)) },
+    { key: "H", name: "arrows", ...toggle("Arrows", "toggle-arrows", setLayer(arrows)) },
+    { key: "L", name: "labels", ...toggle("Labels", "toggle-labels", setLayer(labels)) },
+  ];
+  const removeKeys = layerToggles.map(({ key, name, input }) =>
+    registerShortcut({
+      keys: key,
+      description: `Hide or show the ${name}`,
+      scope: "Photo",
+      run: () => input.click(),
+    }),
+  );
   container.replaceChildren(
-    el(
-      "div",
-      { className: "photo-toolbar" },
-      toggle("Masks", "toggle-masks", setLayer(masks)),
-      toggle("Arrows", "toggle-arrows", setLayer(arrows)),
-      toggle("Labels", "toggle-labels", setLayer(labels)),
-      legend(),
-    ),
+    el("div", { className: "photo-toolbar" }, ...layerToggles.map((t) => t.label), legend()),
     el("div", { className: "photo-box" }, svg),
     status,
   );
@@ -118,7 +127,7 @@ export function mountPhotoView(container: HTMLElement, session: SceneSession): (
   };
   const drawSupports = () => {
     const shown = session.shown();
-    renderArrows(arrows, session.objects, regions, shown, frame);
+    renderArrows(arrows, session.objects, regions, shown, frame, session.suggestions());
     renderLabels(labels, session.objects, regions, shown, frame);
   };
   const drawHighlight = () => {
@@ -128,6 +137,8 @@ export function mountPhotoView(container: HTMLElement, session: SceneSession): (
       const id = node.dataset.object ?? node.dataset.child;
       node.classList.toggle("is-hovered", id === hovered);
       node.classList.toggle("is-selected", id === selected);
+      // An arrow from the hovered object to what it holds up stays in view too.
+      node.classList.toggle("is-related", hovered !== null && node.dataset.parent === hovered);
     }
     renderOutlines(outlines, session.objects, hovered, selected, strokeWidth(frame) * 0.8);
   };
@@ -137,24 +148,45 @@ export function mountPhotoView(container: HTMLElement, session: SceneSession): (
     drawHighlight();
   };
 
+  const toImage = (event: MouseEvent): [number, number] | null => {
+    const matrix = svg.getScreenCTM();
+    if (!matrix) return null;
+    const point = new DOMPoint(event.clientX, event.clientY).matrixTransform(matrix.inverse());
+    return [point.x, point.y];
+  };
+  const maskAt = (event: MouseEvent): string | null => {
+    const point = toImage(event);
+    return point && hitMap ? hitMap.at(point[0], point[1]) : null;
+  };
   const objectAt = (event: MouseEvent): string | null => {
     const arrow = (event.target as Element).closest<SVGGElement>("[data-child]");
-    if (arrow?.dataset.child) return arrow.dataset.child;
-    const matrix = svg.getScreenCTM();
-    if (!matrix || !hitMap) return null;
-    const point = new DOMPoint(event.clientX, event.clientY).matrixTransform(matrix.inverse());
-    return hitMap.at(point.x, point.y);
+    return arrow?.dataset.child ?? maskAt(event);
   };
   svg.addEventListener("mousemove", (event) => session.hover(objectAt(event)));
   svg.addEventListener("mouseleave", () => session.hover(null));
-  svg.addEventListener("click", (event) => session.select(objectAt(event)));
+  const stopEditing = mountArrowEditing(
+    {
+      svg,
+      objectAt: maskAt,
+      toImage,
+      centroid: (id) => regions.get(id)?.centroid ?? null,
+      bbox: (id) => session.object(id)?.bbox ?? null,
+      strokeWidth: () => strokeWidth(frame),
+    },
+    session,
+  );
 
   drawAll();
-  return session.subscribe((change) => {
+  const unsubscribe = session.subscribe((change) => {
     if (change === "document") drawAll();
-    else if (change === "edits") {
+    else if (change === "edits" || change === "suggestions") {
       drawSupports();
       drawHighlight();
     } else if (change === "hover" || change === "select") drawHighlight();
   });
+  return () => {
+    unsubscribe();
+    stopEditing();
+    for (const remove of removeKeys) remove();
+  };
 }

@@ -1,37 +1,161 @@
-// The scene's revisions, newest first, refreshed whenever a new revision is loaded.
+// The scene's revisions, newest first, refreshed whenever a new revision is loaded. Each one
+// can show what it changed (diff against the revision before it) and be reverted to: the
+// supports go back exactly as that revision stored them (a new revision; undo takes it back).
+import type { RevisionInfo, SceneDocument } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { el, formatTime } from "../../dom";
+import { registerShortcut } from "../../shortcuts";
+import { getAuthor } from "../../state/author";
+import { describeChange, diffScenes, revertEdits } from "../../state/revisionDiff";
 import type { SceneSession } from "../../state/sceneSession";
 
 export function mountRevisionHistory(container: HTMLElement, session: SceneSession): () => void {
   const list = el("ol", { className: "revision-list", testid: "revision-list" });
-  const details = el("details", { className: "history" }, el("summary", { text: "History" }), list);
+  const summary = el("summary", { text: "History", testid: "history-toggle" });
+  const details = el("details", { className: "history", testid: "history" }, summary, list);
   container.replaceChildren(details);
+  const documents = new Map<number, Promise<SceneDocument>>(); // revisions never change
+  const revision = (n: number) => {
+    let doc = documents.get(n);
+    if (!doc) {
+      doc = api.getRevision(session.sceneId, n);
+      documents.set(n, doc);
+      doc.catch(() => documents.delete(n));
+    }
+    return doc;
+  };
+
+  const showDiff = async (info: RevisionInfo, box: HTMLElement) => {
+    box.hidden = !box.hidden;
+    if (box.hidden || box.childElementCount > 0) return;
+    box.append(el("li", { text: "Loading…" }));
+    try {
+      const after = await revision(info.number);
+      const before = info.number > 1 ? await revision(info.number - 1) : null;
+      const diff = before
+        ? diffScenes(before.scene, after.scene)
+        : { supports: [], objectsAdded: [], objectsRemoved: [], layoutChanged: false };
+      const lines = [
+        ...diff.supports.map((c) =>
+          el("li", {
+            text: describeChange(c),
+            attrs: { "data-child": c.child, "data-kind": c.kind },
+          }),
+        ),
+        ...(diff.objectsAdded.length > 0
+          ? [el("li", { text: `objects added: ${diff.objectsAdded.join(", ")}` })]
+          : []),
+        ...(diff.objectsRemoved.length > 0
+          ? [el("li", { text: `objects removed: ${diff.objectsRemoved.join(", ")}` })]
+          : []),
+        ...(diff.layoutChanged ? [el("li", { text: "room layout changed" })] : []),
+      ];
+      box.replaceChildren(
+        ...(lines.length > 0
+          ? lines
+          : [el("li", { text: before ? "no change to supports" : "the imported scene" })]),
+      );
+    } catch (error) {
+      box.replaceChildren(el("li", { text: `Could not load the diff: ${String(error)}` }));
+    }
+  };
+
+  const revert = async (info: RevisionInfo, button: HTMLButtonElement) => {
+    button.disabled = true;
+    try {
+      const target = await revision(info.number);
+      const shown = [...session.shown().values()].map(
+        (s) =>
+          s.saved ?? {
+            child: s.child,
+            parent: s.parent,
+            type: s.type,
+            source: s.source,
+            author: s.author,
+            time: s.time,
+            confidence: s.confidence,
+          },
+      );
+      const edits = revertEdits(session.doc.scene, shown, info.number, target.scene);
+      if (edits.length === 0) {
+        session.say(`The supports are already as in revision ${info.number}.`);
+        return;
+      }
+      session.edit(`revert to revision ${info.number}`, edits);
+      await session.save(getAuthor());
+    } catch (error) {
+      session.say(`Could not revert: ${String(error)}`);
+    } finally {
+      button.disabled = false;
+    }
+  };
+
+  const item = (info: RevisionInfo, current: number) => {
+    const diff = el("ul", {
+      className: "revision-diff",
+      testid: `revision-diff-${info.number}`,
+      attrs: { hidden: true },
+    });
+    const showButton = el("button", {
+      className: "link-button",
+      text: "Diff",
+      testid: `revision-diff-button-${info.number}`,
+      attrs: { type: "button", title: "What this revision changed" },
+      on: { click: () => void showDiff(info, diff) },
+    });
+    const revertButton = el("button", {
+      className: "link-button",
+      text: "Revert to this",
+      testid: `revision-revert-${info.number}`,
+      attrs: { type: "button", title: "Put the supports back as they were in this revision" },
+    });
+    revertButton.onclick = () => void revert(info, revertButton);
+    return el(
+      "li",
+      { attrs: { "data-revision": info.number } },
+      el("strong", { text: `#${info.number}` }),
+      ` ${info.kind} by ${info.author} · ${formatTime(info.created_at)} · ${info.summary} `,
+      showButton,
+      info.number < current ? revertButton : el("span", { className: "badge", text: "current" }),
+      diff,
+    );
+  };
+
   let shownRevision = -1;
   const refresh = async () => {
     if (shownRevision === session.doc.revision) return;
     shownRevision = session.doc.revision;
     try {
       const revisions = await api.listRevisions(session.sceneId);
+      const current = session.doc.revision;
       list.replaceChildren(
         ...revisions
           .slice()
           .reverse()
-          .map((r) =>
-            el(
-              "li",
-              { attrs: { "data-revision": r.number } },
-              el("strong", { text: `#${r.number}` }),
-              ` ${r.kind} by ${r.author} · ${formatTime(r.created_at)} · ${r.summary}`,
-            ),
-          ),
+          .map((r) => item(r, current)),
       );
     } catch (error) {
       list.replaceChildren(el("li", { text: `Could not load the history: ${String(error)}` }));
     }
   };
   void refresh();
-  return session.subscribe((change) => {
+  const removeKey = registerShortcut({
+    keys: "Shift+H",
+    description: "Open or close the revision history (diff, revert)",
+    scope: "Saving and history",
+    run: () => {
+      details.open = !details.open;
+      if (details.open) {
+        details.scrollIntoView({ block: "nearest" });
+        summary.focus({ preventScroll: true });
+      }
+    },
+  });
+  const unsubscribe = session.subscribe((change) => {
     if (change === "document") void refresh();
   });
+  return () => {
+    unsubscribe();
+    removeKey();
+  };
 }

@@ -5,14 +5,17 @@ import { api } from "../../api/client";
 import { ApiError } from "../../api/errors";
 import { isFinished, pollJob } from "../../api/jobs";
 import { el } from "../../dom";
+import { mountEdgeInfo } from "../../editors/edgeInfo";
 import { mountSaveBar } from "../../editors/saveBar";
 import { mountSupportEditor } from "../../editors/supportEditor";
+import { mountSupportShortcuts } from "../../editors/supportShortcuts";
 import { mountSupportSuggestions } from "../../inference/supportSuggestions";
+import { getAuthor } from "../../state/author";
+import { startAutosave } from "../../state/autosave";
 import { SceneSession } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
 import { mountPhotoView } from "../photo/photoView";
 import { mountScene3d } from "../scene3d/scene3dView";
-import { mountWorkflowBar } from "../workflow/workflowBar";
 import { mountRevisionHistory } from "./revisionHistory";
 import { viserLink } from "./viserLink";
 
@@ -88,20 +91,23 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     const table = el("div", { className: "editor-table" });
     const suggestions = el("div");
     const history = el("div");
-    const workflow = el("div");
-    editor.body.append(workflow, saveBar, suggestions, table, history);
+    editor.body.append(saveBar, suggestions, table, history);
+    const edgeInfo = el("div");
+    photo.element.append(edgeInfo);
     content.append(
       el("div", { className: "scene-main" }, photo.element, scene3d.element),
       editor.element,
     );
     disposers.push(
       mountPhotoView(photo.body, session),
+      mountEdgeInfo(edgeInfo, session),
+      mountSupportShortcuts(session),
+      startAutosave(session, { author: getAuthor }),
       mountScene3d(scene3d.body, session),
       mountSaveBar(saveBar, session),
       mountSupportEditor(table, session),
       mountSupportSuggestions(suggestions, table, session),
       mountRevisionHistory(history, session),
-      mountWorkflowBar(workflow, session),
       session.subscribe((change) => {
         if (change === "document") updateMeta();
       }),

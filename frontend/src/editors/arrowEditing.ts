@@ -1,0 +1,138 @@
+// Editing supports with the mouse on the photo. Click an arrow to select it (its object);
+// with an arrow selected, click another object to make it the supporter; or drag an arrow
+// (from its head or anywhere on it) and drop it on the new supporter. Clicking the selected
+// object or the background clears the selection; clicking an object selects it.
+import { svgEl } from "../dom";
+import type { SceneSession } from "../state/sceneSession";
+import { setSupporter } from "./supportActions";
+
+export interface PhotoPicking {
+  svg: SVGSVGElement;
+  /** The object whose mask (or box) is under the pointer, arrows aside. */
+  objectAt(event: MouseEvent): string | null;
+  /** The pointer in image pixels. */
+  toImage(event: MouseEvent): [number, number] | null;
+  /** Where an object's arrows end (its centroid), in image pixels. */
+  centroid(id: string): [number, number] | null;
+  bbox(id: string): readonly [number, number, number, number] | null;
+  strokeWidth(): number;
+}
+
+const DRAG_PX = 6; // screen pixels before a press on an arrow becomes a drag
+
+const arrowAt = (event: Event): string | null =>
+  (event.target as Element | null)?.closest<SVGGElement>(".arrow[data-child]")?.dataset.child ??
+  null;
+
+export function mountArrowEditing(picking: PhotoPicking, session: SceneSession): () => void {
+  const { svg } = picking;
+  const dragLayer = svgEl("g", { class: "drag-layer", "data-testid": "drag-layer" });
+  svg.append(dragLayer);
+  let press: { child: string; x: number; y: number; dragging: boolean } | null = null;
+  let swallowClick = false;
+
+  const pickSupporter = (child: string, parent: string) => {
+    session.say(setSupporter(session, child, parent));
+  };
+
+  const onClick = (event: MouseEvent) => {
+    if (swallowClick) {
+      swallowClick = false;
+      return;
+    }
+    const arrow = arrowAt(event);
+    if (arrow) {
+      session.say(null);
+      session.select(arrow);
+      return;
+    }
+    const object = picking.objectAt(event);
+    const selected = session.selected;
+    if (selected && object && object !== selected) pickSupporter(selected, object);
+    else {
+      session.say(null);
+      session.select(object === selected ? null : object);
+    }
+  };
+
+  const drawDrag = (event: PointerEvent) => {
+    if (!press) return;
+    const to = picking.centroid(press.child);
+    const at = picking.toImage(event);
+    const target = picking.objectAt(event);
+    const box = target && target !== press.child ? picking.bbox(target) : null;
+    const width = picking.strokeWidth();
+    dragLayer.replaceChildren(
+      ...(box
+        ? [
+            svgEl("rect", {
+              class: "drop-target",
+              x: box[0],
+              y: box[1],
+              width: box[2] - box[0],
+              height: box[3] - box[1],
+              "stroke-width": width,
+            }),
+          ]
+        : []),
+      ...(to && at
+        ? [
+            svgEl("path", {
+              class: "drag-line",
+              "data-testid": "drag-line",
+              d: `M ${at[0].toFixed(1)} ${at[1].toFixed(1)} L ${to[0].toFixed(1)} ${to[1].toFixed(1)}`,
+              "stroke-width": width * 1.5,
+              "stroke-dasharray": `${width * 3} ${width * 2}`,
+            }),
+          ]
+        : []),
+    );
+  };
+
+  const onMove = (event: PointerEvent) => {
+    if (!press) return;
+    if (!press.dragging && Math.hypot(event.clientX - press.x, event.clientY - press.y) < DRAG_PX)
+      return;
+    press.dragging = true;
+    svg.classList.add("is-picking");
+    drawDrag(event);
+  };
+  const onUp = (event: PointerEvent) => {
+    window.removeEventListener("pointermove", onMove);
+    window.removeEventListener("pointerup", onUp);
+    const done = press;
+    press = null;
+    svg.classList.remove("is-picking");
+    dragLayer.replaceChildren();
+    if (!done?.dragging) return;
+    swallowClick = true; // the click that ends a drag is not a pick
+    setTimeout(() => {
+      swallowClick = false;
+    }, 0);
+    const target = picking.objectAt(event);
+    session.select(done.child);
+    if (target && target !== done.child) pickSupporter(done.child, target);
+  };
+  const onDown = (event: PointerEvent) => {
+    const child = event.button === 0 ? arrowAt(event) : null;
+    if (!child) return;
+    press = { child, x: event.clientX, y: event.clientY, dragging: false };
+    window.addEventListener("pointermove", onMove);
+    window.addEventListener("pointerup", onUp);
+  };
+
+  svg.addEventListener("click", onClick);
+  svg.addEventListener("pointerdown", onDown);
+  const showPicking = () => svg.classList.toggle("is-picking", session.selected !== null);
+  const unsubscribe = session.subscribe((change) => {
+    if (change === "select") showPicking();
+  });
+  return () => {
+    unsubscribe();
+    svg.removeEventListener("click", onClick);
+    svg.removeEventListener("pointerdown", onDown);
+    window.removeEventListener("pointermove", onMove);
+    window.removeEventListener("pointerup", onUp);
+    dragLayer.remove();
+  };
+}

@@ -1,0 +1,57 @@
+// The line under the photo: the selected edge with its provenance (who set it, when, or the
+// model's confidence), what can be done next, and why the last action did nothing.
+import { el } from "../dom";
+import type { SceneSession } from "../state/sceneSession";
+import { provenanceText } from "../views/photo/arrowLayer";
+import { unresolved } from "./supportActions";
+
+export function mountEdgeInfo(container: HTMLElement, session: SceneSession): () => void {
+  const edge = el("span", { className: "edge-info-edge", testid: "edge-info-edge" });
+  const provenance = el("span", {
+    className: "edge-info-provenance",
+    testid: "edge-info-provenance",
+  });
+  const hint = el("span", { className: "edge-info-hint", testid: "edge-info-hint" });
+  const message = el("span", {
+    className: "edge-info-message",
+    testid: "edit-message",
+    attrs: { role: "status" },
+  });
+  container.replaceChildren(
+    el("div", { className: "edge-info", testid: "edge-info" }, edge, provenance, hint, message),
+  );
+
+  const update = () => {
+    const child = session.selected;
+    const left = unresolved(session).length;
+    const remaining =
+      left === 0 ? "every edge checked" : `${left} still to check (Shift+A accepts them as shown)`;
+    if (!child) {
+      edge.textContent = "";
+      provenance.textContent = "";
+      hint.textContent = `Click an arrow to select it · ${remaining} · ? lists every key`;
+    } else {
+      const object = session.object(child);
+      const shown = session.displayed(child);
+      const name = `${child}${object ? ` (${object.class.replaceAll("_", " ")})` : ""}`;
+      edge.textContent = shown
+        ? `${name} on ${shown.parent}, ${shown.type}`
+        : `${name}: no supporter`;
+      const suggestion = session.suggestions().get(child);
+      provenance.textContent = shown
+        ? provenanceText(shown.support, suggestion) +
+          (suggestion && shown.support
+            ? ` (was ${shown.support.parent}, ${shown.support.type})`
+            : "")
+        : "";
+      hint.textContent =
+        "click the new supporter (F floor, W wall, C ceiling) · A accept · R reject · T below/behind · Del remove · Esc";
+    }
+    message.textContent = session.message ?? "";
+    message.hidden = !session.message;
+  };
+  update();
+  return session.subscribe((change) => {
+    if (change !== "hover") update();
+  });
+}

@@ -1,0 +1,66 @@
+// The keyboard for support editing: every action on the selected edge has a key, listed in
+// the help overlay (?) by the shortcut registry.
+import { registerShortcut } from "../shortcuts";
+import type { SceneSession } from "../state/sceneSession";
+import {
+  type ActionResult,
+  acceptAll,
+  acceptEdge,
+  flipType,
+  rejectEdge,
+  removeSupport,
+  selectNext,
+  setSupporter,
+} from "./supportActions";
+
+const SCOPE = "Support editing";
+
+export function mountSupportShortcuts(session: SceneSession): () => void {
+  /** Run an action on the selected object, or say that one must be selected first. */
+  const onSelected = (action: (s: SceneSession, child: string) => ActionResult) => () => {
+    const child = session.selected;
+    session.say(child ? action(session, child) : "Select an arrow or object first (click it).");
+  };
+  const keys: [string | string[], string, () => void][] = [
+    [
+      "A",
+      "Accept the selected edge (the prediction, or the model's suggestion)",
+      onSelected(acceptEdge),
+    ],
+    ["Shift+A", "Accept every remaining edge as shown", () => session.say(acceptAll(session))],
+    ["R", "Reject the selected edge: the model's next answer is suggested", onSelected(rejectEdge)],
+    ["T", "Flip the selected edge between below and behind", onSelected(flipType)],
+    [["Delete", "Backspace"], "Remove the selected object's supporter", onSelected(removeSupport)],
+    [
+      "F",
+      "The floor holds up the selected object",
+      onSelected((s, c) => setSupporter(s, c, "floor")),
+    ],
+    ["W", "A wall holds up the selected object", onSelected((s, c) => setSupporter(s, c, "wall"))],
+    [
+      "C",
+      "The ceiling holds up the selected object",
+      onSelected((s, c) => setSupporter(s, c, "ceiling")),
+    ],
+    ["N", "Select the next object still to check", () => session.say(selectNext(session, 1))],
+    [
+      "Shift+N",
+      "Select the previous object still to check",
+      () => session.say(selectNext(session, -1)),
+    ],
+    [
+      "Escape",
+      "Clear the selection",
+      () => {
+        session.say(null);
+        session.select(null);
+      },
+    ],
+  ];
+  const removers = keys.map(([k, description, run]) =>
+    registerShortcut({ keys: k, description, scope: SCOPE, run }),
+  );
+  return () => {
+    for (const remove of removers) remove();
+  };
+}

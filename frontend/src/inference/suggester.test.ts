@@ -1,0 +1,106 @@
+// Live suggestions on a real session: a correction that makes another object's guess close a
+// loop turns that guess into the model's next answer; accepting or rejecting follows.
+import type { SceneDocument, SupportRelation } from "@holiscene/schema";
+import { describe, expect, it } from "vitest";
+import { acceptAll, acceptEdge, rejectEdge, setSupporter } from "../editors/supportActions";
+import { DraftStore } from "../state/draftStore";
+import { SceneSession } from "../state/sceneSession";
+import { makeSuggester } from "./suggester";
+
+// Columns: o0, o1, o2, ceiling, floor, wall; types below, behind.
+function table(rows: Record<string, number>[]): number[] {
+  const columns = ["o0", "o1", "o2", "ceiling", "floor", "wall"];
+  return rows.flatMap((row) =>
+    columns.flatMap((c) => [row[`${c} below`] ?? 0.001, row[`${c} behind`] ?? 0.001]),
+  );
+}
+
+// o0: on the floor (sure); o1: on o2 (0.6) else on o0 (0.3); o2: on o1 (0.5) else floor (0.4).
+const probabilities = table([
+  { "floor below": 0.95 },
+  { "o2 below": 0.6, "o0 below": 0.3 },
+  { "o1 below": 0.5, "floor below": 0.4 },
+]);
+
+const auto = (child: string, parent: string): SupportRelation => ({
+  child,
+  parent,
+  type: "below",
+  source: "auto",
+  confidence: 0.5,
+  author: null,
+  time: null,
+});
+
+function session(): SceneSession {
+  const doc = {
+    scene_id: "s",
+    revision: 2,
+    updated_at: "2026-01-01T00:00:00Z",
+    scene: {
+      schema_version: 1,
+      name: "t",
+      image: { file: "img.png", width: 10, height: 10 },
+      objects: ["o0", "o1", "o2"].map((id) => ({ id, class: "box", bbox: [0, 0, 1, 1] })),
+      // The pipeline's tree from the same table: o1 is surer, so o2 had to take the floor.
+      supports: [auto("o0", "floor"), auto("o1", "o2"), auto("o2", "floor")],
+    },
+  } as unknown as SceneDocument;
+  const s = new SceneSession(doc, { drafts: new DraftStore(null) });
+  s.setSuggester(makeSuggester({ ids: ["o0", "o1", "o2"], probabilities }));
+  return s;
+}
+
+describe("live suggestions", () => {
+  it("agree with the pipeline before any correction", () => {
+    expect(session().suggestions().size).toBe(0);
+  });
+
+  it("a correction moves another object's guess", () => {
+    const s = session();
+    // The annotator says o1 stands on o0: o2 is now free to rest on o1, its best answer.
+    expect(setSupporter(s, "o1", "o0")).toBeNull();
+    expect(s.suggestions().get("o2")).toMatchObject({ parent: "o1", type: "below" });
+    expect(s.displayed("o2")).toMatchObject({ parent: "o1", suggested: true });
+    // Undo: back to the pipeline's tree, no suggestion.
+    s.undo();
+    expect(s.suggestions().size).toBe(0);
+  });
+
+  it("accept takes the suggestion; accept-all takes every remaining edge as shown", () => {
+    const s = session();
+    setSupporter(s, "o1", "o0");
+    acceptEdge(s, "o2");
+    expect(s.shown().get("o2")).toMatchObject({ parent: "o1", source: "manual" });
+    expect(s.suggestions().size).toBe(0);
+    expect(acceptAll(s)).toBeNull();
+    expect(s.pending.map((e) => e.child).sort()).toEqual(["o0", "o1", "o2"]);
+    expect(acceptAll(s)).toBe("Nothing left to accept.");
+  });
+
+  it("rejecting a guess shows the model's next answer", () => {
+    const s = session();
+    rejectEdge(s, "o1"); // not on o2
+    expect(s.shown().has("o1")).toBe(false);
+    // o1's next answer is o0; o2 may now take o1 (no loop).
+    expect(s.suggestions().get("o1")).toMatchObject({ parent: "o0" });
+    expect(s.suggestions().get("o2")).toMatchObject({ parent: "o1" });
+    rejectEdge(s, "o1"); // not on o0 either: the suggestion goes, the next one comes
+    const next = s.suggestions().get("o1");
+    expect(next).toBeDefined();
+    expect([`${next?.parent} ${next?.type}`]).not.toContain("o0 below");
+    expect([`${next?.parent} ${next?.type}`]).not.toContain("o2 below");
+    expect(s.shown().has("o1")).toBe(false);
+  });
+});
+
+describe("objects left without a supporter", () => {
+  it("get no suggestion when removed, the next answer when rejected", () => {
+    const s = session();
+    s.edit("remove", [{ kind: "remove_support", child: "o1" }]);
+    expect(s.suggestions().has("o1")).toBe(false);
+    s.undo();
+    rejectEdge(s, "o1");
+    expect(s.suggestions().get("o1")?.parent).toBe("o0");
+  });
+});

@@ -1,0 +1,46 @@
+// Live suggestions from the Relation Network's probabilities, scored once per scene: after
+// every edit the tree is decoded again with the objects a person has set pinned and the
+// rejected answers left out (treeDecode.ts), so a correction moves the remaining guesses at
+// once, without the server. An object whose decoded answer differs from its guess, or whose
+// guess was rejected, gets that answer as a suggestion.
+import type { SceneSession, SuggestedSupport, Suggester } from "../state/sceneSession";
+import { answerKey, decodeSupports, type PinnedSupport } from "./treeDecode";
+
+export interface SceneProbabilities {
+  /** The model's objects, in the order of the table's rows. */
+  ids: readonly string[];
+  /** [N, N + 3, 2] probabilities, flat. */
+  probabilities: ArrayLike<number>;
+}
+
+export function makeSuggester({ ids, probabilities }: SceneProbabilities): Suggester {
+  return (session: SceneSession) => {
+    const shown = session.shown();
+    const pinned: PinnedSupport[] = [];
+    const excluded = new Set<string>();
+    for (const id of ids) {
+      const support = shown.get(id);
+      if (support && session.isResolved(id)) pinned.push(support);
+      for (const key of session.rejectedAnswers(id)) {
+        const cut = key.lastIndexOf("|");
+        excluded.add(answerKey(id, key.slice(0, cut), key.slice(cut + 1)));
+      }
+    }
+    const suggestions = new Map<string, SuggestedSupport>();
+    for (const d of decodeSupports(probabilities, ids, pinned, excluded)) {
+      if (d.pinned || d.probability === null) continue;
+      const current = shown.get(d.child);
+      if (current && current.parent === d.parent && current.type === d.type) continue;
+      // An object a person left without a supporter stays so, unless they rejected answers
+      // (then the next one is wanted).
+      if (!current && session.rejectedAnswers(d.child).size === 0) continue;
+      suggestions.set(d.child, {
+        child: d.child,
+        parent: d.parent,
+        type: d.type,
+        probability: d.probability,
+      });
+    }
+    return suggestions;
+  };
+}

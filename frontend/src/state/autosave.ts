@@ -1,0 +1,72 @@
+// Autosave: unsaved edits go to the server after a short idle time (each new edit restarts
+// the wait), again when edits were made during a save, and once more when the page leaves.
+// A conflict stops it until the user merges or reloads; a failed save is retried.
+import type { SceneSession } from "./sceneSession";
+
+export interface AutosaveOptions {
+  author: () => string;
+  /** Idle time after the last edit (ms). */
+  delayMs?: number;
+  /** Wait before retrying a save that failed (ms). */
+  retryMs?: number;
+}
+
+export const AUTOSAVE_DELAY_MS = 1500;
+
+/** The idle time before saving: the default, or this browser's setting (ms, 0 = off). */
+export function autosaveDelay(): number {
+  try {
+    const stored = Number(localStorage.getItem("holiscene.autosaveDelayMs") ?? "");
+    return Number.isFinite(stored) &&
+      stored >= 0 &&
+      localStorage.getItem("holiscene.autosaveDelayMs") !== null
+      ? stored
+      : AUTOSAVE_DELAY_MS;
+  } catch {
+    return AUTOSAVE_DELAY_MS;
+  }
+}
+
+export function startAutosave(session: SceneSession, options: AutosaveOptions): () => void {
+  const delay = options.delayMs ?? autosaveDelay();
+  const retry = options.retryMs ?? 5000;
+  let timer: ReturnType<typeof setTimeout> | null = null;
+
+  const cancel = () => {
+    if (timer !== null) clearTimeout(timer);
+    timer = null;
+  };
+  const canSave = () => {
+    const state = session.saveState.kind;
+    return (
+      session.pending.length > 0 &&
+      !session.holdAutosave &&
+      state !== "saving" &&
+      state !== "conflict"
+    );
+  };
+  const schedule = (ms: number) => {
+    cancel();
+    if (!canSave() || delay === 0) return;
+    timer = setTimeout(() => {
+      timer = null;
+      if (canSave()) void session.save(options.author());
+    }, ms);
+  };
+
+  const unsubscribe = session.subscribe((change) => {
+    if (change === "edits") schedule(delay);
+    else if (change === "save") {
+      const state = session.saveState.kind;
+      if (state === "error") schedule(retry);
+      else if (state === "dirty" || state === "saved") schedule(delay);
+    }
+  });
+  schedule(delay);
+  return () => {
+    unsubscribe();
+    cancel();
+    // Leaving the scene: try once more now; the draft in localStorage stays until it lands.
+    if (canSave()) void session.save(options.author());
+  };
+}

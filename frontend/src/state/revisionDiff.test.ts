@@ -1,0 +1,83 @@
+// Revision diffs name each kind of change, and revert gives back exactly the old supports.
+import type { Scene, SupportRelation } from "@holiscene/schema";
+import { describe, expect, it } from "vitest";
+import { describeChange, diffScenes, diffSupports, revertEdits } from "./revisionDiff";
+import { shownSupports } from "./supportGraph";
+
+const rel = (
+  child: string,
+  parent: string,
+  extra: Partial<SupportRelation> = {},
+): SupportRelation => ({
+  child,
+  parent,
+  type: "below",
+  source: "auto",
+  confidence: 0.7,
+  author: null,
+  time: null,
+  ...extra,
+});
+
+const scene = (supports: SupportRelation[], ids = ["o0", "o1", "o2", "o3"]): Scene =>
+  ({
+    schema_version: 1,
+    name: "t",
+    image: { file: "i.png", width: 10, height: 10 },
+    objects: ids.map((id) => ({ id, class: "box", bbox: [0, 0, 1, 1] })),
+    supports,
+  }) as unknown as Scene;
+
+describe("revision diff", () => {
+  const manual = { source: "manual" as const, author: "ann", confidence: null, time: "t1" };
+  const before = [rel("o0", "floor"), rel("o1", "o0"), rel("o2", "floor"), rel("o3", "o0")];
+  const after = [
+    rel("o0", "floor", manual), // confirmed
+    rel("o1", "o2", manual), // moved
+    rel("o2", "floor", { ...manual, type: "behind" }), // retyped
+    // o3 removed
+  ];
+
+  it("names each change", () => {
+    const changes = diffSupports(before, after);
+    expect(changes.map((c) => [c.child, c.kind])).toEqual([
+      ["o0", "confirmed"],
+      ["o1", "moved"],
+      ["o2", "retyped"],
+      ["o3", "removed"],
+    ]);
+    expect(describeChange(changes[1] as (typeof changes)[number])).toBe(
+      "o1: new supporter: on o0 (below, predicted 70%) → on o2 (below, by ann)",
+    );
+    expect(diffSupports(after, before).at(-1)?.kind).toBe("added");
+    expect(diffSupports(before, before)).toEqual([]);
+  });
+
+  it("notices objects and the layout", () => {
+    const a = scene(before);
+    const b = {
+      ...scene(after, ["o0", "o1", "o2", "o4"]),
+      layout: { corners_2d: [] },
+    } as unknown as Scene;
+    const diff = diffScenes(a, b);
+    expect(diff.objectsAdded).toEqual(["o4"]);
+    expect(diff.objectsRemoved).toEqual(["o3"]);
+    expect(diff.layoutChanged).toBe(true);
+  });
+
+  it("revert restores every differing support, provenance included", () => {
+    const edits = revertEdits(scene(after), after, 2, scene(before));
+    expect(edits.map((e) => [e.child, e.from_revision])).toEqual([
+      ["o0", 2],
+      ["o1", 2],
+      ["o2", 2],
+      ["o3", 2],
+    ]);
+    const reverted = [...shownSupports(after, edits).values()];
+    expect(reverted.map((s) => [s.child, s.parent, s.type, s.source])).toEqual(
+      before.map((s) => [s.child, s.parent, s.type, s.source]),
+    );
+    // An object gone since is left out.
+    expect(revertEdits(scene(after, ["o0", "o1", "o2"]), after, 2, scene(before))).toHaveLength(3);
+  });
+});

@@ -1,0 +1,180 @@
+// The session's editing without a server: undo and redo across edits (a predicted edge comes
+// back as predicted), discarding, rejected answers, and drafts that outlive the page.
+import type { SceneDocument, SupportRelation } from "@holiscene/schema";
+import { beforeEach, describe, expect, it } from "vitest";
+import { DraftStore } from "./draftStore";
+import { SceneSession } from "./sceneSession";
+
+class MemoryStorage implements Storage {
+  private readonly items = new Map<string, string>();
+  get length() {
+    return this.items.size;
+  }
+  clear() {
+    this.items.clear();
+  }
+  getItem(key: string) {
+    return this.items.get(key) ?? null;
+  }
+  key(index: number) {
+    return [...this.items.keys()][index] ?? null;
+  }
+  removeItem(key: string) {
+    this.items.delete(key);
+  }
+  setItem(key: string, value: string) {
+    this.items.set(key, value);
+  }
+}
+
+const auto = (child: string, parent: string, confidence = 0.8): SupportRelation => ({
+  child,
+  parent,
+  type: "below",
+  source: "auto",
+  confidence,
+  author: null,
+  time: null,
+});
+
+function doc(supports: SupportRelation[], revision = 2): SceneDocument {
+  const box = (i: number) => [i * 10, 0, i * 10 + 8, 8] as [number, number, number, number];
+  return {
+    scene_id: "s1",
+    revision,
+    updated_at: "2026-01-01T00:00:00Z",
+    scene: {
+      schema_version: 1,
+      name: "test",
+      image: { file: "img.png", width: 100, height: 100 },
+      objects: ["o0", "o1", "o2"].map((id, i) => ({ id, class: "box", bbox: box(i) })),
+      supports,
+    },
+  } as unknown as SceneDocument;
+}
+
+describe("SceneSession editing", () => {
+  let storage: MemoryStorage;
+  let session: SceneSession;
+  beforeEach(() => {
+    storage = new MemoryStorage();
+    session = new SceneSession(doc([auto("o0", "floor"), auto("o1", "o0")]), {
+      drafts: new DraftStore(storage),
+    });
+  });
+
+  it("accepting a guess makes it a person's label; undo gives the guess back as a guess", () => {
+    session.edit("accept o1", [{ kind: "set_support", child: "o1", parent: "o0", type: "below" }]);
+    expect(session.pending).toHaveLength(1);
+    expect(session.shown().get("o1")).toMatchObject({ source: "manual", pending: true });
+    expect(session.isResolved("o1")).toBe(true);
+
+    expect(session.undo()).toBe("accept o1");
+    expect(session.pending).toHaveLength(0);
+    expect(session.shown().get("o1")).toMatchObject({ source: "auto", confidence: 0.8 });
+    expect(session.saveState.kind).toBe("clean");
+
+    expect(session.redo()).toBe("accept o1");
+    expect(session.shown().get("o1")).toMatchObject({ source: "manual", pending: true });
+    expect(session.redo()).toBeNull();
+  });
+
+  it("undoes several edits of one object one by one, and a new edit forgets the redo", () => {
+    const set = (parent: string) =>
+      session.edit(`o2 on ${parent}`, [
+        { kind: "set_support", child: "o2", parent, type: "below" },
+      ]);
+    set("o0");
+    set("o1");
+    session.edit("flip", [{ kind: "set_support", child: "o2", parent: "o1", type: "behind" }]);
+    expect(session.shown().get("o2")).toMatchObject({ parent: "o1", type: "behind" });
+    session.undo();
+    expect(session.shown().get("o2")).toMatchObject({ parent: "o1", type: "below" });
+    session.undo();
+    expect(session.shown().get("o2")).toMatchObject({ parent: "o0" });
+    session.undo();
+    expect(session.shown().has("o2")).toBe(false);
+    expect(session.pending).toHaveLength(0);
+    session.redo();
+    set("floor");
+    expect(session.redoLabel).toBeNull();
+    expect(session.undoLabel).toBe("o2 on floor");
+  });
+
+  it("one action may change several objects and is undone as one", () => {
+    session.edit("accept all", [
+      { kind: "set_support", child: "o0", parent: "floor", type: "below" },
+      { kind: "set_support", child: "o1", parent: "o0", type: "below" },
+    ]);
+    expect(session.pending).toHaveLength(2);
+    session.undo();
+    expect(session.pending).toHaveLength(0);
+  });
+
+  it("discarding is an action too", () => {
+    session.edit("remove", [{ kind: "remove_support", child: "o1" }]);
+    session.discard();
+    expect(session.pending).toHaveLength(0);
+    session.undo();
+    expect(session.pending.map((e) => e.kind)).toEqual(["remove_support"]);
+  });
+
+  it("remembers rejected answers with the edit, and undo forgets them", () => {
+    session.edit(
+      "reject",
+      [{ kind: "remove_support", child: "o1" }],
+      [{ child: "o1", parent: "o0", type: "below" }],
+    );
+    expect([...session.rejectedAnswers("o1")]).toEqual(["o0|below"]);
+    session.undo();
+    expect(session.rejectedAnswers("o1").size).toBe(0);
+    expect(session.shown().get("o1")?.parent).toBe("o0");
+  });
+
+  it("keeps unsaved edits in storage and offers them to the next visit", () => {
+    session.edit("o2 on o1", [{ kind: "set_support", child: "o2", parent: "o1", type: "below" }]);
+    session.edit("reject o1", [{ kind: "remove_support", child: "o1" }]);
+    const stored = new DraftStore(storage).load("s1");
+    expect(stored?.edits.map((e) => e.child)).toEqual(["o2", "o1"]);
+
+    // The tab closes; a new visit finds them.
+    const next = new SceneSession(doc([auto("o0", "floor"), auto("o1", "o0")]), {
+      drafts: new DraftStore(storage),
+    });
+    expect(next.recovered?.edits).toHaveLength(2);
+    expect(next.pending).toHaveLength(0);
+    // Its own edits before deciding do not overwrite what is offered.
+    next.edit("o0 on wall", [{ kind: "set_support", child: "o0", parent: "wall", type: "behind" }]);
+    const third = new SceneSession(doc([auto("o0", "floor"), auto("o1", "o0")]), {
+      drafts: new DraftStore(storage),
+    });
+    expect(third.recovered?.edits.map((e) => e.child).sort()).toEqual(["o0", "o1", "o2"]);
+    third.restoreRecovered();
+    expect(third.pending).toHaveLength(3);
+    expect(third.recovered).toBeNull();
+    expect(third.notice).toContain("Restored 3 unsaved changes");
+    // Restoring is undoable.
+    third.undo();
+    expect(third.pending).toHaveLength(0);
+    expect(new DraftStore(storage).load("s1")).toBeNull();
+  });
+
+  it("drops recovered edits that are already saved", () => {
+    session.edit("o2 on o1", [{ kind: "set_support", child: "o2", parent: "o1", type: "below" }]);
+    const manual: SupportRelation = {
+      child: "o2",
+      parent: "o1",
+      type: "below",
+      source: "manual",
+      author: "ann",
+      time: "2026-01-01T00:00:01Z",
+      confidence: null,
+    };
+    const next = new SceneSession(doc([auto("o0", "floor"), auto("o1", "o0"), manual], 3), {
+      drafts: new DraftStore(storage),
+    });
+    next.restoreRecovered();
+    expect(next.pending).toHaveLength(0);
+    expect(next.notice).toContain("already saved");
+  });
+});
