@@ -58,12 +58,19 @@ class SupportPriors:
 
     def conditional(self, parent_cls: str, child_cls: str, support_type: str) -> float:
         """P(supporter class | child class, type), as Eq. 4.1 uses it."""
-        type_total = sum(
-            self.joint(p, child_cls, support_type) for p in self.supporter_classes(child_cls)
-        )
+        type_total = self._type_totals.get((child_cls, support_type))
+        if type_total is None:  # decoding asks for the same few totals again and again
+            type_total = sum(
+                self.joint(p, child_cls, support_type) for p in self.supporter_classes(child_cls)
+            )
+            self._type_totals[(child_cls, support_type)] = type_total
         if type_total <= 0:
             return 0.0
         return self.joint(parent_cls, child_cls, support_type) / type_total
+
+    @cached_property
+    def _type_totals(self) -> dict[tuple[str, str], float]:
+        return {}
 
     def supporter_classes(self, child_cls: str) -> frozenset[str]:
         """Every supporter class counted for any child (candidates for smoothing)."""
