@@ -38,11 +38,10 @@ export function mountEdgeInfo(container: HTMLElement, session: SceneSession): ()
         ? `${name} on ${shown.parent}, ${shown.type}`
         : `${name}: no supporter`;
       const suggestion = session.suggestions().get(child);
+      const was = shown?.support ?? session.savedSupport(child);
       provenance.textContent = shown
         ? provenanceText(shown.support, suggestion) +
-          (suggestion && shown.support
-            ? ` (was ${shown.support.parent}, ${shown.support.type})`
-            : "")
+          (suggestion && was ? ` (was ${was.parent}, ${was.type})` : "")
         : "";
       hint.textContent =
         "click the new supporter (F floor, W wall, C ceiling) · A accept · R reject · T below/behind · Del remove · Esc";

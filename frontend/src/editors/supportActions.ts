@@ -2,13 +2,7 @@
 // step on the session. The photo's mouse handling and the keyboard shortcuts both call these.
 // Each returns a message for the user when the action could not be done (null: done).
 import type { SceneSession } from "../state/sceneSession";
-import {
-  defaultType,
-  type Edit,
-  isStructural,
-  type SupportType,
-  wouldCycle,
-} from "../state/supportGraph";
+import { defaultType, type Edit, isStructural, type SupportType } from "../state/supportGraph";
 
 export type ActionResult = string | null;
 
@@ -19,19 +13,49 @@ export function supportable(session: SceneSession): string[] {
   return session.objects.filter((o) => !isStructural(o.class)).map((o) => o.id);
 }
 
-/** Make `parent` hold up `child`; the type follows the supporter unless it is kept. */
+/**
+ * The objects from `parent` along the supporters as shown to the one resting on `child`
+ * (`parent` first), or null when `parent` does not rest on `child`, so that making `parent`
+ * hold up `child` closes no loop.
+ */
+function loopThrough(session: SceneSession, child: string, parent: string): string[] | null {
+  const shown = session.shown();
+  const path: string[] = [];
+  for (let node: string | undefined = parent; node !== undefined; node = shown.get(node)?.parent) {
+    if (node === child) return path;
+    if (path.includes(node)) return null;
+    path.push(node);
+  }
+  return null;
+}
+
+/**
+ * Make `parent` hold up `child`; the type follows the supporter unless it is kept. When
+ * `parent` rests (through guesses) on `child`, the least confident guess on that loop goes
+ * and is rejected, so the model suggests that object's next answer; a loop of people's
+ * edges is refused.
+ */
 export function setSupporter(session: SceneSession, child: string, parent: string): ActionResult {
   if (child === parent) return `${child} cannot hold itself up.`;
+  const loop = isStructural(parent) ? null : loopThrough(session, child, parent);
   const shown = session.shown();
-  if (!isStructural(parent) && wouldCycle(child, parent, shown)) {
-    return `${parent} rests on ${child}: pick another supporter.`;
-  }
+  const guesses = (loop ?? []).filter((id) => !session.isResolved(id));
+  if (loop && guesses.length === 0) return `${parent} rests on ${child}: pick another supporter.`;
   const current = session.displayed(child);
   const type =
     current && defaultType(current.parent) === defaultType(parent)
       ? current.type
       : defaultType(parent);
-  session.edit(`${child} on ${parent}`, [{ kind: "set_support", child, parent, type }]);
+  const edits: Edit[] = [{ kind: "set_support", child, parent, type }];
+  const rejected: { child: string; parent: string; type: string }[] = [];
+  if (loop) {
+    const confidence = (id: string) => shown.get(id)?.confidence ?? 0;
+    const broken = guesses.reduce((a, b) => (confidence(b) < confidence(a) ? b : a));
+    const guess = shown.get(broken);
+    edits.push({ kind: "remove_support", child: broken });
+    if (guess) rejected.push({ child: broken, parent: guess.parent, type: guess.type });
+  }
+  session.edit(`${child} on ${parent}`, edits, rejected);
   return null;
 }
 

@@ -104,3 +104,24 @@ describe("objects left without a supporter", () => {
     expect(s.suggestions().get("o1")?.parent).toBe("o0");
   });
 });
+
+describe("a correction against a guess", () => {
+  it("drops the guess that would close a loop, and the model suggests its next answer", () => {
+    const s = session();
+    // o1's guess is "on o2"; the annotator says o2 stands on o1.
+    expect(setSupporter(s, "o2", "o1")).toBeNull();
+    expect(s.shown().get("o2")).toMatchObject({ parent: "o1", source: "manual" });
+    expect(s.shown().has("o1")).toBe(false);
+    expect(s.displayed("o1")).toMatchObject({ parent: "o0", suggested: true });
+    // One action: undo gives both back.
+    s.undo();
+    expect(s.shown().get("o1")).toMatchObject({ parent: "o2", source: "auto" });
+    expect(s.shown().get("o2")).toMatchObject({ parent: "floor", source: "auto" });
+  });
+
+  it("is refused when people's edges make the loop", () => {
+    const s = session();
+    acceptEdge(s, "o1"); // o1 on o2, by a person now
+    expect(setSupporter(s, "o2", "o1")).toBe("o1 rests on o2: pick another supporter.");
+  });
+});

@@ -205,6 +205,7 @@ export class SceneSession {
     });
     this.history.record({ label, changes });
     this.holdAutosave = false;
+    this.notice = null; // what a merge or a recovery reported is old news now
     this.editsChanged();
   }
 
@@ -312,7 +313,6 @@ export class SceneSession {
       for (const edit of sent) {
         if (this.edits.get(edit.child) === edit) this.edits.delete(edit.child);
       }
-      this.notice = null;
       this.setDocument(doc);
       // Edits made while saving stay; those the new revision already has are dropped.
       for (const edit of this.pending) this.stage(edit);
@@ -414,11 +414,11 @@ export class SceneSession {
       return !problem && !isNoOp(edit, this.doc.scene.supports ?? []);
     });
     lines.unshift(`Restored ${plural(usable.length, "unsaved change")} from ${draft.savedAt}.`);
-    this.notice = lines.join(" ");
     this.recovered = null;
     this.drafts.clearRecovered(this.sceneId);
-    this.emit("recovery");
     this.edit("restore unsaved changes", usable);
+    this.notice = lines.join(" ");
+    this.emit("recovery");
   }
 
   dismissRecovered(): void {

@@ -1,0 +1,105 @@
+// User story: the annotator corrects one edge and the remaining predictions follow at once.
+// The Relation Network scored the photo and masks in the browser when the scene opened;
+// after a correction the tree is decoded again with the correction pinned, and an object
+// whose best answer changed shows it as a suggestion (dotted arrow), with no request to the
+// server (every request is recorded from the correction until the arrow changed).
+import { mkdirSync } from "node:fs";
+import path from "node:path";
+import type { Request } from "@playwright/test";
+import { expect, test } from "@playwright/test";
+import { getScene, supportOf } from "../helpers/api";
+import {
+  arrowOf,
+  clickArrow,
+  clickObject,
+  openScene,
+  setAuthor,
+  slowAutosave,
+  waitForModel,
+} from "../helpers/photo";
+import { importSynthetic, synthesize } from "../helpers/synthetic";
+
+const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
+mkdirSync(SCREENSHOTS, { recursive: true });
+const STRUCTURAL = new Set(["floor", "wall", "ceiling"]);
+
+test("a correction re-scores the other predictions in the browser, without the server", async ({
+  page,
+  request,
+}) => {
+  const [synthetic] = synthesize(11, 1); // books and a box on a counter and tables
+  if (!synthetic) throw new Error("no synthetic scene");
+  const seeded = await importSynthetic(request, synthetic, "synthetic live suggestions");
+  // An object the pipeline put on another object: a is on b.
+  const stacked = (seeded.scene.supports ?? []).find(
+    (s) => s.source === "auto" && !STRUCTURAL.has(s.parent),
+  );
+  if (!stacked) throw new Error("the synthetic scene has no object on another object");
+  const a = stacked.child;
+  const b = stacked.parent;
+
+  await slowAutosave(page); // so that any request seen below is the suggestions' doing
+  await openScene(page, seeded.scene_id);
+  await setAuthor(page, "e2e-live");
+  await waitForModel(page);
+  await expect(page.getByTestId("suggestion-status")).toContainText("live: no changes suggested");
+  expect(await arrowOf(page, a)).toMatchObject({ parent: b, suggested: false, source: "auto" });
+
+  const requests: string[] = [];
+  const record = (r: Request) => requests.push(`${r.method()} ${r.url()}`);
+
+  // The annotator says b stands on a: a's guess (on b) would now close a loop, so the model
+  // answers again for a.
+  await clickArrow(page, b);
+  page.on("request", record);
+  const started = Date.now();
+  await clickObject(page, a);
+  await expect(page.getByTestId(`arrow-${b}`)).toHaveAttribute("data-parent", a);
+  await expect(page.getByTestId(`arrow-${a}`)).toHaveAttribute("data-suggested", "true");
+  const elapsed = Date.now() - started;
+  page.off("request", record);
+  expect(requests, "requests while the suggestions updated").toEqual([]);
+  const suggestion = await arrowOf(page, a);
+  expect(suggestion?.parent).not.toBe(b);
+  expect(suggestion?.source).toBe("model");
+  await expect(page.getByTestId("suggestion-status")).toContainText("1 suggested");
+  console.log(
+    `live suggestion: ${a} now on ${suggestion?.parent} (was ${b}), ${elapsed} ms after the click`,
+  );
+  await page.screenshot({ path: path.join(SCREENSHOTS, "live-suggestion.png") });
+
+  // Undo takes the correction back, and the suggestion with it; redo brings both.
+  await page.keyboard.press("Control+z");
+  await expect(page.getByTestId(`arrow-${a}`)).toHaveAttribute("data-suggested", "false");
+  await expect(page.getByTestId(`arrow-${a}`)).toHaveAttribute("data-parent", b);
+  await page.keyboard.press("Control+Shift+z");
+  await expect(page.getByTestId(`arrow-${a}`)).toHaveAttribute("data-suggested", "true");
+
+  // Rejecting another guess: its next answer appears, again without a request.
+  const other = (seeded.scene.supports ?? []).find((s) => s.child !== a && s.child !== b);
+  if (!other) throw new Error("the scene has too few objects");
+  await clickArrow(page, other.child);
+  page.on("request", record);
+  await page.keyboard.press("r");
+  await expect
+    .poll(async () => {
+      const now = await arrowOf(page, other.child);
+      return now === null || now.suggested;
+    })
+    .toBe(true);
+  page.off("request", record);
+  expect(requests, "requests while rejecting").toEqual([]);
+  const replaced = await arrowOf(page, other.child);
+  if (replaced)
+    expect(`${replaced.parent} ${replaced.type}`).not.toBe(`${other.parent} ${other.type}`);
+
+  // Accepting the suggestion for a makes it a person's edge; then save.
+  await clickArrow(page, a);
+  await page.keyboard.press("a");
+  await expect(page.getByTestId(`arrow-${a}`)).toHaveAttribute("data-source", "manual");
+  await page.keyboard.press("Control+s");
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
+  const doc = await getScene(request, seeded.scene_id);
+  expect(supportOf(doc, b)).toMatchObject({ parent: a, source: "manual", author: "e2e-live" });
+  expect(supportOf(doc, a)).toMatchObject({ parent: suggestion?.parent, source: "manual" });
+});

@@ -1,0 +1,273 @@
+// User story: no lost work. Undo and redo across every edit (a taken-back acceptance gives
+// the pipeline's guess back as a guess); edits save themselves after a short idle time and
+// survive a reload; edits whose save failed survive a closed tab (localStorage) and are
+// offered back; the history shows each revision's diff and can revert; when two people edit
+// the same scene the second gets a clear conflict message and can merge or reload, keeping
+// their edit.
+import { mkdirSync } from "node:fs";
+import path from "node:path";
+import type { SceneDocument, SupportRelation } from "@holiscene/schema";
+import { type APIRequestContext, expect, type Page, test } from "@playwright/test";
+import { getRevisions, getScene, seedScene, supportOf, T3D_5 } from "../helpers/api";
+import { arrowOf, clickArrow, clickObject, openScene, setAuthor } from "../helpers/photo";
+
+const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
+mkdirSync(SCREENSHOTS, { recursive: true });
+
+const flip = (t: string) => (t === "below" ? "behind" : "below");
+
+function guessOf(doc: SceneDocument, id: string): SupportRelation {
+  const s = supportOf(doc, id);
+  if (!s) throw new Error(`no supporter for ${id}`);
+  return s;
+}
+
+/** Wait until autosave has saved everything (no click: the idle timer does it). */
+async function autosaved(page: Page): Promise<void> {
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved", {
+    timeout: 20_000,
+  });
+}
+
+async function edit(
+  request: APIRequestContext,
+  doc: SceneDocument,
+  author: string,
+  edits: object[],
+): Promise<SceneDocument> {
+  const response = await request.post(`/api/scenes/${doc.scene_id}/edits`, {
+    data: { base_revision: doc.revision, author, edits },
+  });
+  expect(response.status(), await response.text()).toBe(200);
+  return (await response.json()) as SceneDocument;
+}
+
+test("undo and redo across edits, autosave after idle, and a reload keeps the edits", async ({
+  page,
+  request,
+}) => {
+  const seeded = await seedScene(request, T3D_5, "t3d-5 undo");
+  const o1 = guessOf(seeded, "o1");
+  const o2 = guessOf(seeded, "o2");
+  const posts: string[] = [];
+  page.on("request", (r) => {
+    if (r.method() === "POST" && r.url().endsWith("/edits")) posts.push(r.url());
+  });
+  await openScene(page, seeded.scene_id);
+  await setAuthor(page, "e2e-undo");
+
+  await clickArrow(page, "o1");
+  await clickObject(page, "o0"); // 1: o1 on o0
+  await page.keyboard.press("t"); // 2: flip its type
+  await clickArrow(page, "o2");
+  await page.keyboard.press("a"); // 3: accept o2's guess
+  await expect(page.getByTestId("arrow-o2")).toHaveAttribute("data-source", "manual");
+
+  // Undo all three, in order; the accepted guess is a guess again.
+  await page.keyboard.press("Control+z");
+  await expect(page.getByTestId("arrow-o2")).toHaveAttribute("data-source", "auto");
+  await page.keyboard.press("Control+z");
+  await expect(page.getByTestId("arrow-o1")).toHaveAttribute("data-type", o1.type);
+  await page.keyboard.press("Control+z");
+  expect(await arrowOf(page, "o1")).toMatchObject({ parent: o1.parent, source: "auto" });
+  await expect(page.getByTestId("undo-button")).toBeDisabled();
+
+  // Redo two of them.
+  await page.keyboard.press("Control+Shift+z");
+  await expect(page.getByTestId("arrow-o1")).toHaveAttribute("data-parent", "o0");
+  await page.keyboard.press("Control+Shift+z");
+  await expect(page.getByTestId("arrow-o1")).toHaveAttribute("data-type", flip(o1.type));
+
+  // Nobody clicks Save: after a short idle time the edits are on the server.
+  await autosaved(page);
+  expect(posts.length).toBeGreaterThan(0);
+  let doc = await getScene(request, seeded.scene_id);
+  expect(supportOf(doc, "o1")).toMatchObject({
+    parent: "o0",
+    type: flip(o1.type),
+    source: "manual",
+    author: "e2e-undo",
+  });
+  // o2's acceptance was undone: the guess as the pipeline stored it, whatever was saved between.
+  expect(supportOf(doc, "o2")).toEqual(o2);
+
+  // Undo works across saves too: taking back the flip saves again.
+  await page.keyboard.press("Control+z");
+  await expect(page.getByTestId("arrow-o1")).toHaveAttribute("data-type", o1.type);
+  await autosaved(page);
+  doc = await getScene(request, seeded.scene_id);
+  expect(supportOf(doc, "o1")).toMatchObject({ parent: "o0", type: o1.type, source: "manual" });
+
+  // Reloaded, the page shows what was saved.
+  await page.reload();
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  expect(await arrowOf(page, "o1")).toMatchObject({
+    parent: "o0",
+    type: o1.type,
+    source: "manual",
+  });
+  expect(await arrowOf(page, "o2")).toMatchObject({ parent: o2.parent, source: "auto" });
+  await expect(page.getByTestId("recovery-banner")).toBeHidden();
+});
+
+test("edits whose save failed survive a closed tab and are offered back", async ({
+  context,
+  request,
+}) => {
+  const seeded = await seedScene(request, T3D_5, "t3d-5 recovery");
+  const page = await context.newPage();
+  // The server never gets the edit: every save fails.
+  await page.route("**/api/scenes/*/edits", (route) => route.abort("failed"));
+  await openScene(page, seeded.scene_id);
+  await setAuthor(page, "e2e-crash");
+  await clickArrow(page, "o3");
+  await page.keyboard.press("w"); // a wall holds o3
+  await expect(page.getByTestId("arrow-o3")).toHaveAttribute("data-parent", "wall");
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "error", {
+    timeout: 20_000,
+  });
+  const draft = await page.evaluate(
+    (id) => localStorage.getItem(`holiscene.draft.${id}`),
+    seeded.scene_id,
+  );
+  expect(draft).toContain('"child":"o3"');
+  await page.close(); // the tab is gone, the edit never reached the server
+  expect(supportOf(await getScene(request, seeded.scene_id), "o3")?.parent).not.toBe("wall");
+
+  // Next visit: the edit is offered back; restoring it (Shift+U) saves it.
+  const again = await context.newPage();
+  await openScene(again, seeded.scene_id);
+  const banner = again.getByTestId("recovery-banner");
+  await expect(banner).toBeVisible();
+  await expect(banner).toContainText("o3: on wall (behind)");
+  await again.screenshot({ path: path.join(SCREENSHOTS, "recovery-offered.png") });
+  await again.keyboard.press("Shift+U");
+  await expect(banner).toBeHidden();
+  await expect(again.getByTestId("arrow-o3")).toHaveAttribute("data-parent", "wall");
+  await autosaved(again);
+  expect(supportOf(await getScene(request, seeded.scene_id), "o3")).toMatchObject({
+    parent: "wall",
+    type: "behind",
+    source: "manual",
+    author: "e2e-crash",
+  });
+  const left = await again.evaluate(
+    (id) => Object.keys(localStorage).filter((k) => k.startsWith(`holiscene.draft.${id}`)),
+    seeded.scene_id,
+  );
+  expect(left).toEqual([]);
+});
+
+test("the history shows what each revision changed and reverts to any of them", async ({
+  page,
+  request,
+}) => {
+  const seeded = await seedScene(request, T3D_5, "t3d-5 history");
+  const predicted = seeded.revision;
+  const first = await edit(request, seeded, "alice", [
+    { kind: "set_support", child: "o1", parent: "o0", type: "below" },
+    {
+      kind: "set_support",
+      child: "o2",
+      parent: guessOf(seeded, "o2").parent,
+      type: guessOf(seeded, "o2").type,
+    },
+  ]);
+  const second = await edit(request, first, "bob", [{ kind: "remove_support", child: "o3" }]);
+
+  await openScene(page, seeded.scene_id);
+  await setAuthor(page, "e2e-history");
+  await page.keyboard.press("Shift+H");
+  await expect(page.getByTestId("revision-list")).toBeVisible();
+
+  // Diff of alice's revision: o1 moved, o2's guess confirmed.
+  await page.getByTestId(`revision-diff-button-${first.revision}`).click();
+  const diff = page.getByTestId(`revision-diff-${first.revision}`);
+  await expect(diff.locator("li[data-child='o1']")).toHaveAttribute("data-kind", "moved");
+  await expect(diff.locator("li[data-child='o1']")).toContainText("→ on o0 (below, by alice)");
+  await expect(diff.locator("li[data-child='o2']")).toHaveAttribute("data-kind", "confirmed");
+  await page.getByTestId(`revision-diff-button-${second.revision}`).click();
+  await expect(
+    page.getByTestId(`revision-diff-${second.revision}`).locator("li[data-child='o3']"),
+  ).toHaveAttribute("data-kind", "removed");
+  await page.screenshot({ path: path.join(SCREENSHOTS, "revision-diff.png"), fullPage: true });
+
+  // Revert to the pipeline's revision: every support exactly as the pipeline stored it.
+  await page.getByTestId(`revision-revert-${predicted}`).click();
+  await autosaved(page);
+  let doc = await getScene(request, seeded.scene_id);
+  expect(doc.revision).toBe(second.revision + 1);
+  expect(doc.scene.supports).toEqual(seeded.scene.supports);
+  await expect(page.getByTestId("revision-list").locator("li").first()).toContainText(
+    `as in revision ${predicted}`,
+  );
+
+  // Undo the revert: bob's and alice's supports come back as they were.
+  await page.keyboard.press("Control+z");
+  await autosaved(page);
+  doc = await getScene(request, seeded.scene_id);
+  expect(doc.scene.supports).toEqual(second.scene.supports);
+});
+
+test("two people edit one scene: the second gets a conflict, merges or reloads, nothing is lost", async ({
+  browser,
+  request,
+}) => {
+  const seeded = await seedScene(request, T3D_5, "t3d-5 two people");
+  const alice = await (await browser.newContext()).newPage();
+  const bob = await (await browser.newContext()).newPage();
+  await openScene(alice, seeded.scene_id);
+  await openScene(bob, seeded.scene_id);
+  await setAuthor(alice, "alice");
+  await setAuthor(bob, "bob");
+
+  // Alice moves o1 onto o0 and it autosaves.
+  await clickArrow(alice, "o1");
+  await clickObject(alice, "o0");
+  await autosaved(alice);
+
+  // Bob, still on the revision he loaded, changes o1 too, and o3: his autosave conflicts.
+  await clickArrow(bob, "o1");
+  await bob.keyboard.press("f");
+  await clickArrow(bob, "o3");
+  await bob.keyboard.press("w");
+  const conflict = bob.getByTestId("conflict-message");
+  await expect(conflict).toBeVisible({ timeout: 20_000 });
+  await expect(conflict).toContainText("alice saved this scene");
+  await expect(bob.getByTestId("conflict-theirs")).toContainText("by alice");
+  await expect(bob.getByTestId("pending-edits")).toContainText("o3: on wall");
+  await bob.screenshot({ path: path.join(SCREENSHOTS, "conflict-two-people.png"), fullPage: true });
+
+  // Merge (Shift+M): bob's edits saved on top of alice's, and he is told about o1.
+  await bob.keyboard.press("Shift+M");
+  await autosaved(bob);
+  await expect(conflict).toBeHidden();
+  await expect(bob.getByTestId("reload-notice")).toContainText("Both of you changed o1");
+  let doc = await getScene(request, seeded.scene_id);
+  expect(supportOf(doc, "o1")).toMatchObject({ parent: "floor", author: "bob" });
+  expect(supportOf(doc, "o3")).toMatchObject({ parent: "wall", author: "bob" });
+  // Alice's edit is not lost: it is a revision of its own.
+  const revisions = await getRevisions(request, seeded.scene_id);
+  expect(
+    revisions.some((r) => r.author === "alice" && r.summary.includes("o1 supported by o0")),
+  ).toBe(true);
+
+  // Now Alice is behind. Her next edit conflicts; she reloads to review first.
+  await clickArrow(alice, "o2");
+  await alice.keyboard.press("w");
+  await expect(alice.getByTestId("conflict-message")).toBeVisible({ timeout: 20_000 });
+  await alice.getByTestId("conflict-reload").click();
+  await expect(alice.getByTestId("conflict-message")).toBeHidden();
+  await expect(alice.getByTestId("reload-notice")).toContainText("by bob");
+  // Bob's change is shown, hers is kept unsaved until she saves.
+  await expect(alice.getByTestId("arrow-o3")).toHaveAttribute("data-parent", "wall");
+  await expect(alice.getByTestId("arrow-o2")).toHaveAttribute("data-pending", "true");
+  await alice.waitForTimeout(3000); // longer than the autosave delay: held for her review
+  await expect(alice.getByTestId("save-status")).toHaveAttribute("data-state", "dirty");
+  await alice.keyboard.press("Control+s");
+  await autosaved(alice);
+  doc = await getScene(request, seeded.scene_id);
+  expect(supportOf(doc, "o2")).toMatchObject({ parent: "wall", author: "alice" });
+  expect(supportOf(doc, "o3")).toMatchObject({ parent: "wall", author: "bob" });
+  expect(supportOf(doc, "o1")).toMatchObject({ parent: "floor", author: "bob" });
+});
