@@ -4,6 +4,7 @@ import { mkdtempSync } from "node:fs";
 import { tmpdir } from "node:os";
 import path from "node:path";
 import { defineConfig } from "@playwright/test";
+import { ADMIN, WORKFLOW_PORT, WORKFLOW_URL } from "./helpers/workflow";
 
 // HOLISCENE_E2E_PORT: another port, for runs beside another one on the same machine.
 const PORT = Number(process.env.HOLISCENE_E2E_PORT ?? 8765);
@@ -14,6 +15,10 @@ process.env.HOLISCENE_E2E_DATA_DIR ??= mkdtempSync(path.join(tmpdir(), "holiscen
 const dataDir = process.env.HOLISCENE_E2E_DATA_DIR;
 // Unset, so the server keeps its database (SQLite) inside the fresh data directory.
 delete process.env.HOLISCENE_DATABASE_URL;
+// The workflow spec's server has accounts (login required); the first server stays in local
+// single-user mode for every other spec. Inside the run's directory, so teardown removes it.
+const workflowDir = path.join(dataDir, "workflow-server");
+const WORKFLOW_SPEC = /workflow-roles\.spec\.ts$/;
 
 export default defineConfig({
   testDir: "./tests",
@@ -44,12 +49,30 @@ export default defineConfig({
       ],
     },
   },
-  webServer: {
-    command: `../.venv/bin/holiscene serve --port ${PORT} --data-dir ${dataDir}`,
-    url: `${BASE_URL}/api/health`,
-    reuseExistingServer: false,
-    timeout: 60_000,
-    stdout: "pipe",
-    stderr: "pipe",
-  },
+  projects: [
+    { name: "local-mode", testIgnore: WORKFLOW_SPEC },
+    { name: "accounts", testMatch: WORKFLOW_SPEC, use: { baseURL: WORKFLOW_URL } },
+  ],
+  webServer: [
+    {
+      command: `../.venv/bin/holiscene serve --port ${PORT} --data-dir ${dataDir}`,
+      url: `${BASE_URL}/api/health`,
+      reuseExistingServer: false,
+      timeout: 60_000,
+      stdout: "pipe",
+      stderr: "pipe",
+    },
+    {
+      // The admin comes from the CLI, as on a real server (no default credentials).
+      command:
+        `../.venv/bin/holiscene users add ${ADMIN.name} --role admin --data-dir ${workflowDir} && ` +
+        `exec ../.venv/bin/holiscene serve --port ${WORKFLOW_PORT} --data-dir ${workflowDir}`,
+      env: { HOLISCENE_PASSWORD: ADMIN.password },
+      url: `${WORKFLOW_URL}/api/health`,
+      reuseExistingServer: false,
+      timeout: 60_000,
+      stdout: "pipe",
+      stderr: "pipe",
+    },
+  ],
 });

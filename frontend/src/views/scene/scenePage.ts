@@ -16,6 +16,7 @@ import { SceneSession } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
 import { mountPhotoView } from "../photo/photoView";
 import { mountScene3d } from "../scene3d/scene3dView";
+import { mountWorkflowBar } from "../workflow/workflowBar";
 import { mountRevisionHistory } from "./revisionHistory";
 import { viserLink } from "./viserLink";
 
@@ -91,7 +92,8 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     const table = el("div", { className: "editor-table" });
     const suggestions = el("div");
     const history = el("div");
-    editor.body.append(saveBar, suggestions, table, history);
+    const workflow = el("div");
+    editor.body.append(workflow, saveBar, suggestions, table, history);
     const edgeInfo = el("div");
     photo.element.append(edgeInfo);
     content.append(
@@ -108,6 +110,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       mountSupportEditor(table, session),
       mountSupportSuggestions(suggestions, table, session),
       mountRevisionHistory(history, session),
+      mountWorkflowBar(workflow, session),
       session.subscribe((change) => {
         if (change === "document") updateMeta();
       }),
