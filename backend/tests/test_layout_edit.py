@@ -128,6 +128,19 @@ def test_inconsistent_corners_are_refused() -> None:
         apply_edits(scene_with_room(OLD), [set_layout(swapped)], "ann", utcnow())
 
 
+def test_corners_no_box_fits_are_refused() -> None:
+    # A room seen whole from outside (all 8 corners known): one corner dragged far off.
+    box = room([6.0, 2.6 / 2 - HEIGHT, 0.0], [2.0, 2.6, 3.0], 10.0)
+    corners_2d = project_room_corners(K, PITCH, ROLL, box)
+    assert all(c is not None for c in corners_2d)
+    fits = apply_edits(scene_with_room(box), [set_layout(corners_2d)], "ann", utcnow())
+    assert fits.layout.note is not None and "fit error 0.0 px" in fits.layout.note
+    moved = [list(c) for c in corners_2d if c is not None]
+    moved[2][0] -= 200.0
+    with pytest.raises(InvalidEditError, match="do not fit one room box"):
+        apply_edits(scene_with_room(box), [set_layout(moved)], "ann", utcnow())
+
+
 def test_a_scene_without_camera_cannot_take_a_layout() -> None:
     scene = scene_with_room(OLD).model_copy(update={"camera": None})
     corners_2d = project_room_corners(K, PITCH, ROLL, OLD)

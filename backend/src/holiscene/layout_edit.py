@@ -24,6 +24,9 @@ MAX_IMAGES_OUTSIDE = 10.0
 # A room smaller than this on a side is a mistake (and placement ignores such rooms).
 MIN_ROOM_SIDE_M = 0.5
 MAX_ROOM_SIDE_M = 100.0
+# Corners that no box fits to within this share of the photo's diagonal (root mean square) are
+# not one room: one of them was dropped in the wrong place.
+MAX_FIT_ERROR = 0.05
 
 
 class LayoutEditError(ValueError):
@@ -81,6 +84,12 @@ def apply_set_layout(scene: Scene, edit: SetLayout) -> Scene:
         raise LayoutEditError(
             f"the corners give a room of {sides} m: each side must be between "
             f"{MIN_ROOM_SIDE_M} and {MAX_ROOM_SIDE_M:.0f} m"
+        )
+    limit = MAX_FIT_ERROR * math.hypot(scene.image.width, scene.image.height)
+    if fit.rms_px > limit:
+        raise LayoutEditError(
+            f"the corners do not fit one room box: they are {fit.rms_px:.0f} px off on "
+            f"average (at most {limit:.0f} px)"
         )
     pitch, roll = round(fit.pitch_deg, 4), round(fit.roll_deg, 4)
     corners_3d = fit.corners_3d.round(4)

@@ -4,7 +4,7 @@ import { el } from "../../dom";
 
 export function describeJob(job: Job): string {
   const percent = `${Math.round(job.progress * 100)}%`;
-  const what = job.kind === "retrain" ? "Retraining" : "Pipeline";
+  const what = { retrain: "Retraining", placement: "Placement", pipeline: "Pipeline" }[job.kind];
   switch (job.status) {
     case "queued":
       return `${what} queued…`;
@@ -13,7 +13,7 @@ export function describeJob(job: Job): string {
     case "succeeded":
       return job.kind === "retrain"
         ? `Retraining finished: ${job.message ?? "done"}`
-        : `Pipeline finished (revision ${job.result_revision ?? "?"})`;
+        : `${what} finished (revision ${job.result_revision ?? "?"})`;
     case "failed":
       return `${what} failed${job.stage ? ` in ${job.stage}` : ""}: ${job.error ?? "unknown error"}`;
   }

@@ -6,6 +6,7 @@ import { ApiError } from "../../api/errors";
 import { isFinished, pollJob } from "../../api/jobs";
 import { el } from "../../dom";
 import { mountEdgeInfo } from "../../editors/edgeInfo";
+import { mountLayoutEditing } from "../../editors/layoutEditor";
 import { mountSaveBar } from "../../editors/saveBar";
 import { mountSupportEditor } from "../../editors/supportEditor";
 import { mountSupportShortcuts } from "../../editors/supportShortcuts";
@@ -100,12 +101,14 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       el("div", { className: "scene-main" }, photo.element, scene3d.element),
       editor.element,
     );
+    disposers.push(mountPhotoView(photo.body, session));
+    const layout = mountLayoutEditing(photo.element, photo.body, session);
     disposers.push(
-      mountPhotoView(photo.body, session),
+      layout.dispose,
       mountEdgeInfo(edgeInfo, session),
       mountSupportShortcuts(session),
       startAutosave(session, { author: getAuthor }),
-      mountScene3d(scene3d.body, session),
+      mountScene3d(scene3d.body, session, layout.draft),
       mountSaveBar(saveBar, session),
       mountSupportEditor(table, session),
       mountSupportSuggestions(suggestions, table, session),

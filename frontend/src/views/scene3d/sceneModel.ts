@@ -10,7 +10,7 @@ const NO_GLOW = new THREE.Color(0x000000);
 
 export class SceneModel {
   readonly root: THREE.Object3D;
-  private readonly materials = new Map<string, THREE.MeshStandardMaterial>();
+  private readonly materials = new Map<string, THREE.MeshLambertMaterial>();
 
   private constructor(root: THREE.Object3D, objects: readonly SceneObject[]) {
     this.root = root;
@@ -45,18 +45,35 @@ export class SceneModel {
     return null;
   }
 
-  private materialFor(id: string, colour: number): THREE.MeshStandardMaterial {
+  private materialFor(id: string, colour: number): THREE.MeshLambertMaterial {
     let material = this.materials.get(id);
     if (!material) {
-      material = new THREE.MeshStandardMaterial({
+      // Diffuse only: matte furniture looks as it would with PBR materials, at a fraction of
+      // the cost per pixel, which software WebGL feels.
+      material = new THREE.MeshLambertMaterial({
         color: colour,
-        roughness: 0.75,
-        metalness: 0,
         side: THREE.DoubleSide,
       });
       this.materials.set(id, material);
     }
     return material;
+  }
+
+  /** Show or hide the GLB's own room (the view draws the layout's room itself when known). */
+  setRoomVisible(visible: boolean): void {
+    this.root.traverse((node) => {
+      if (node instanceof THREE.Mesh && isRoomSurface(String(node.userData.objectId)))
+        node.visible = visible;
+    });
+  }
+
+  /** The mesh nodes of an object (empty for an unknown id). */
+  meshesOf(id: string): THREE.Mesh[] {
+    const meshes: THREE.Mesh[] = [];
+    this.root.traverse((node) => {
+      if (node instanceof THREE.Mesh && node.userData.objectId === id) meshes.push(node);
+    });
+    return meshes;
   }
 
   /** Make the given objects glow; all others plain. */

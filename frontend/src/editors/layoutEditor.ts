@@ -1,0 +1,220 @@
+// Room-layout editing: the bar above the photo that turns corner dragging on and off, says how
+// the fit goes, saves the layout (a SetLayout edit, its own revision), and re-places the
+// objects in the saved room (a placement job, with its progress).
+import "./layoutEditor.css";
+import type { Job } from "@holiscene/schema";
+import { api } from "../api/client";
+import { ConflictError } from "../api/errors";
+import { isFinished, pollJob } from "../api/jobs";
+import { startPlacement } from "../api/placement";
+import { el } from "../dom";
+import type { Point2 } from "../geometry/camera";
+import { registerShortcut } from "../shortcuts";
+import { getAuthor } from "../state/author";
+import { LayoutDraft } from "../state/layoutDraft";
+import type { SceneSession } from "../state/sceneSession";
+import { jobProgress } from "../views/common/jobProgress";
+import { frameFor } from "../views/photo/arrowGeometry";
+import { mountLayoutLayer } from "../views/photo/layoutLayer";
+
+export const LAYOUT_EDIT_KEY = "E";
+
+/** What end-to-end tests read from the layout bar (its `layoutProbe` property). */
+export interface LayoutProbe {
+  /** Milliseconds of every room fit since the layout was last loaded or reset. */
+  fitTimes(): number[];
+  /** The room shown: its 8 corners and the camera's pitch and roll. */
+  live(): { corners3d: number[][]; pitchDeg: number; rollDeg: number } | null;
+  error(): string | null;
+}
+
+export type ProbedLayoutBar = HTMLElement & { layoutProbe?: LayoutProbe };
+
+/**
+ * Room-layout editing on a scene page: the draft, its bar (put before the photo) and its
+ * handles on the photo. Mount after the photo view (the handles go into its SVG); the 3D view
+ * takes the draft to follow the drags.
+ */
+export function mountLayoutEditing(
+  photoPanel: HTMLElement,
+  photoBody: HTMLElement,
+  session: SceneSession,
+): { draft: LayoutDraft; dispose: () => void } {
+  const { width, height } = session.doc.scene.image;
+  const frame = frameFor(width, height);
+  // A corner is in view on the photo or in the margin around it (where handles can be grabbed).
+  const inView = ([x, y]: Point2) =>
+    x >= -frame.margin &&
+    x <= width + frame.margin &&
+    y >= -frame.margin &&
+    y <= height + frame.margin;
+  const draft = new LayoutDraft(session.doc, inView);
+  const bar: ProbedLayoutBar = el("div");
+  bar.layoutProbe = {
+    fitTimes: () => [...draft.fitTimes],
+    live: () => {
+      const live = draft.live;
+      return live && { corners3d: live.corners3d, pitchDeg: live.pitchDeg, rollDeg: live.rollDeg };
+    },
+    error: () => draft.error,
+  };
+  photoPanel.insertBefore(bar, photoBody);
+  const disposers = [mountLayoutEditor(bar, session, draft)];
+  const svg = photoBody.querySelector<SVGSVGElement>("svg[data-testid='photo']");
+  if (svg) disposers.push(mountLayoutLayer(svg, frame, draft, () => session.doc.scene.camera));
+  return {
+    draft,
+    dispose: () => {
+      for (const dispose of disposers) dispose();
+      bar.remove();
+    },
+  };
+}
+
+const errorText = (error: unknown) => (error instanceof Error ? error.message : String(error));
+
+function mountLayoutEditor(
+  bar: HTMLElement,
+  session: SceneSession,
+  draft: LayoutDraft,
+): () => void {
+  const abort = new AbortController();
+  const button = (text: string, testid: string, onClick: () => void) =>
+    el("button", { text, testid, attrs: { type: "button" }, on: { click: onClick } });
+  const toggle = button("Edit layout", "layout-toggle", () => draft.setEditing(!draft.editing));
+  toggle.title = `Drag the room's corners on the photo (${LAYOUT_EDIT_KEY})`;
+  const save = button("Save layout", "layout-save", () => void saveLayout());
+  const reset = button("Reset", "layout-reset", () => draft.reset());
+  const replace = button("Re-place objects", "replace-objects", () => void replaceObjects());
+  replace.title = "Place the objects again in the saved room (a placement job)";
+  const status = el("span", { className: "layout-status", testid: "layout-status" });
+  const progress = jobProgress("placement-progress");
+  progress.element.hidden = true;
+  let saving = false;
+  let job: Job | null = null;
+  let message: { text: string; alert: boolean } | null = null;
+
+  bar.classList.add("layout-bar");
+  bar.dataset.testid = "layout-bar";
+  bar.replaceChildren(
+    el(
+      "div",
+      { className: "layout-row" },
+      toggle,
+      status,
+      el("span", { className: "spacer" }),
+      reset,
+      save,
+      replace,
+    ),
+    progress.element,
+  );
+
+  const describe = (): { text: string; alert: boolean } => {
+    if (message) return message;
+    if (!draft.available) return { text: "No room layout to edit yet.", alert: false };
+    if (draft.error !== null)
+      return { text: `No room from these corners: ${draft.error}`, alert: true };
+    const live = draft.live;
+    if (!draft.editing || !live) return { text: "", alert: false };
+    const [depth, height, width] = live.room.size.map((s) => s.toFixed(2));
+    const room = `room ${depth} × ${width} m, ${height} m high; camera pitch ${live.pitchDeg.toFixed(1)}°, roll ${live.rollDeg.toFixed(1)}°`;
+    return {
+      text: draft.dirty ? `Moved (not saved): ${room}` : `Drag the yellow corners. ${room}`,
+      alert: false,
+    };
+  };
+
+  const draw = () => {
+    const running = job !== null && !isFinished(job);
+    toggle.disabled = !draft.available;
+    toggle.setAttribute("aria-pressed", String(draft.editing));
+    toggle.classList.toggle("is-active", draft.editing);
+    save.disabled = saving || draft.edit() === null;
+    reset.disabled = saving || !draft.dirty;
+    // The placement job runs on the saved layout: save (or reset) the moved corners first.
+    replace.disabled = running || saving || draft.dirty || !draft.available;
+    const { text, alert } = describe();
+    status.textContent = text;
+    status.classList.toggle("is-alert", alert);
+    if (alert) status.setAttribute("role", "alert");
+    else status.removeAttribute("role");
+    bar.dataset.editing = String(draft.editing);
+    bar.dataset.dirty = String(draft.dirty);
+    bar.dataset.fitError = draft.error ?? "";
+    const last = draft.fitTimes.at(-1);
+    if (last !== undefined) bar.dataset.fitMs = last.toFixed(3);
+  };
+
+  const saveLayout = async () => {
+    const edit = draft.edit();
+    if (!edit || saving) return;
+    saving = true;
+    message = null;
+    draw();
+    try {
+      await api.postEdits(session.sceneId, {
+        base_revision: session.doc.revision,
+        author: getAuthor(),
+        edits: [edit],
+      });
+      draft.reset(); // saved: the stored layout is now these corners' fit
+      await session.reloadLatest();
+      message = { text: `Layout saved (revision ${session.doc.revision}).`, alert: false };
+    } catch (error) {
+      message = {
+        text:
+          error instanceof ConflictError
+            ? `Not saved: ${error.message} Your corners are kept; reload the scene and save again.`
+            : `Not saved: ${errorText(error)}`,
+        alert: true,
+      };
+    } finally {
+      saving = false;
+      draw();
+    }
+  };
+
+  const replaceObjects = async () => {
+    message = null;
+    progress.element.hidden = false;
+    try {
+      job = await startPlacement(session.sceneId);
+      draw();
+      job = await pollJob(job, {
+        signal: abort.signal,
+        onUpdate: (update) => {
+          job = update;
+          progress.update(update);
+        },
+      });
+      if (job.status === "succeeded") await session.reloadLatest();
+    } catch (error) {
+      if (abort.signal.aborted) return;
+      message = { text: `Could not re-place the objects: ${errorText(error)}`, alert: true };
+    }
+    draw();
+  };
+
+  const removeKey = registerShortcut({
+    keys: LAYOUT_EDIT_KEY,
+    description: "Edit the room layout (drag its corners on the photo), or stop",
+    scope: "Room layout",
+    run: () => draft.setEditing(!draft.editing),
+    enabled: () => draft.available,
+  });
+  const unsubscribeDraft = draft.subscribe((change) => {
+    if (change !== "fit" || draft.dirty) message = null;
+    draw();
+  });
+  const unsubscribeSession = session.subscribe((change) => {
+    if (change === "document") draft.setDocument(session.doc);
+  });
+  draw();
+  return () => {
+    abort.abort();
+    removeKey();
+    unsubscribeDraft();
+    unsubscribeSession();
+  };
+}
