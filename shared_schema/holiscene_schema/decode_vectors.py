@@ -3,15 +3,19 @@ writes shared_schema/vectors/support_decode.json.
 
 The decoder (Relation Network probabilities -> one supporter per object, no cycle, the most
 confident objects first, pinned supports kept) is written twice: in Python
-(holiscene.learning.decode, `decode_supports` in "network" mode, which the pipeline runs) and
-in TypeScript (frontend/src/inference/treeDecode.ts, which re-decodes in the browser after each
-correction). Both are tested against these vectors. A development tool: it imports the backend.
+(holiscene.learning.decode, `decode_supports`, which the pipeline runs) and in TypeScript
+(frontend/src/inference/treeDecode.ts, which re-decodes in the browser after each correction).
+Both readings are covered: "network" and "network+priors" (Eq. 4.1, with counted priors; the
+pipeline's default). Both sides are tested against these vectors. A development tool: it
+imports the backend.
 
 Deterministic (one seeded generator). Each case is a probability table [N, N + 3, 2] (rows
 sum to 1, values rounded to 9 decimals so both sides read the same numbers) with object ids,
 and pinned supports; expected = decode_supports on exactly that table. Tables are peaked and
 built so that objects often prefer each other (the cycles the decoder must break); one case
-has exact ties (uniform rows) to pin down the order among equals.
+has exact ties (uniform rows) to pin down the order among equals. The "network+priors" cases
+carry their own small priors table (random counts over a few classes, one class never counted,
+so the smoothing and the fallbacks are exercised) and the objects' classes.
 """
 
 from __future__ import annotations
@@ -21,7 +25,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from holiscene.learning.decode import decode_supports
+from holiscene.learning.decode import DecodeMode, decode_supports
+from holiscene.learning.priors import SupportPriors
 
 from .relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER
 from .scene import SupportRelation
@@ -66,12 +71,44 @@ def _pinned(rng: np.random.Generator, ids: list[str], count: int) -> list[Suppor
     return pinned
 
 
-def _case(name: str, table: np.ndarray, pinned: list[SupportRelation]) -> dict[str, Any]:
+CLASSES = ("bed", "books", "box", "lamp", "table", "pillow", "night_stand", "counter")
+NEVER_COUNTED = "bathtub"
+
+
+def _priors(rng: np.random.Generator) -> SupportPriors:
+    """Random counts: each class (but one) held up by a few of the others or by structure."""
+    supporters = [*CLASSES, *STRUCTURAL_COLUMNS]
+    counts: dict[str, dict[str, float]] = {}
+    for child in CLASSES:
+        picks = rng.choice(len(supporters), size=int(rng.integers(1, 5)), replace=False)
+        counts[child] = {
+            f"{supporters[int(k)]}|{SUPPORT_TYPE_ORDER[int(rng.integers(0, TYPES))]}": float(
+                rng.integers(1, 200)
+            )
+            for k in picks
+            if supporters[int(k)] != child
+        } or {"floor|below": 1.0}
+    return SupportPriors(counts)
+
+
+def _case(
+    name: str,
+    table: np.ndarray,
+    pinned: list[SupportRelation],
+    classes: list[str] | None = None,
+    priors: SupportPriors | None = None,
+) -> dict[str, Any]:
     n = table.shape[0]
     ids = [f"o{i}" for i in range(n)]
-    decoded = decode_supports(table, ids, ["?"] * n, pinned)
+    mode: DecodeMode = "network+priors" if priors is not None else "network"
+    decoded = decode_supports(table, ids, classes or ["?"] * n, pinned, priors, mode)
+    extra: dict[str, Any] = {}
+    if priors is not None:
+        extra = {"classes": classes, "priors": json.loads(priors.to_json())}
     return {
         "name": name,
+        "mode": mode,
+        **extra,
         "ids": ids,
         "probabilities": {"shape": list(table.shape), "data": table.reshape(-1).tolist()},
         "pinned": [{"child": s.child, "parent": s.parent, "type": s.type} for s in pinned],
@@ -110,6 +147,15 @@ def build() -> dict[str, Any]:
             [SupportRelation(child="o1", parent="o0", type="below", source="manual")],
         )
     )
+    priors = _priors(rng)
+    pool = [*CLASSES, NEVER_COUNTED]
+    for n in (1, 3, 6, 10, 16):
+        table = _table(rng, n, float(rng.uniform(1.0, 4.0)))
+        classes = [pool[int(rng.integers(0, len(pool)))] for _ in range(n)]
+        ids = [f"o{i}" for i in range(n)]
+        cases.append(_case(f"priors-free-{n}", table, [], classes, priors))
+        pins = _pinned(rng, ids, max(1, n // 3))
+        cases.append(_case(f"priors-pinned-{n}", table, pins, classes, priors))
     return {
         "seed": SEED,
         "structural_columns": list(STRUCTURAL_COLUMNS),

@@ -1,9 +1,11 @@
 // Live suggestions from the Relation Network's probabilities, scored once per scene: after
-// every edit the tree is decoded again with the objects a person has set pinned and the
+// every edit the tree is decoded again as the pipeline decodes it (with the model's counted
+// priors, Eq. 4.1, when it has them), with the objects a person has set pinned and the
 // rejected answers left out (treeDecode.ts), so a correction moves the remaining guesses at
 // once, without the server. An object whose decoded answer differs from its guess, or whose
 // guess was rejected, gets that answer as a suggestion.
 import type { SceneSession, SuggestedSupport, Suggester } from "../state/sceneSession";
+import type { SupportPriors } from "./supportPriors";
 import { answerKey, decodeSupports, type PinnedSupport } from "./treeDecode";
 
 export interface SceneProbabilities {
@@ -11,9 +13,18 @@ export interface SceneProbabilities {
   ids: readonly string[];
   /** [N, N + 3, 2] probabilities, flat. */
   probabilities: ArrayLike<number>;
+  /** With both: Eq. 4.1's reading (the pipeline's); without: the network alone. */
+  classes?: readonly string[];
+  priors?: SupportPriors | null;
 }
 
-export function makeSuggester({ ids, probabilities }: SceneProbabilities): Suggester {
+export function makeSuggester({
+  ids,
+  probabilities,
+  classes,
+  priors,
+}: SceneProbabilities): Suggester {
+  const withPriors = priors && classes ? { classes, priors } : null;
   return (session: SceneSession) => {
     const shown = session.shown();
     const pinned: PinnedSupport[] = [];
@@ -27,7 +38,7 @@ export function makeSuggester({ ids, probabilities }: SceneProbabilities): Sugge
       }
     }
     const suggestions = new Map<string, SuggestedSupport>();
-    for (const d of decodeSupports(probabilities, ids, pinned, excluded)) {
+    for (const d of decodeSupports(probabilities, ids, pinned, excluded, withPriors)) {
       if (d.pinned || d.probability === null) continue;
       const current = shown.get(d.child);
       if (current && current.parent === d.parent && current.type === d.type) continue;

@@ -7,6 +7,7 @@ import type { Scene, SceneObject } from "@holiscene/schema";
 import { RELATION_MODEL } from "@holiscene/schema";
 import type { InferenceSession } from "onnxruntime-web";
 import { modelObjects, type PixelImage, type RelationInputs, sceneInputs } from "./preprocess";
+import { type PriorsFile, SupportPriors } from "./supportPriors";
 
 type Ort = typeof import("onnxruntime-web/wasm");
 export type SupportTypeName = (typeof RELATION_MODEL.support_types)[number];
@@ -98,6 +99,10 @@ export function rankProbabilities(
 /** A scene scored once: what live suggestions decode again after every edit. */
 export interface SceneScores {
   ids: string[];
+  /** The objects' classes, in the order of `ids`. */
+  classes: string[];
+  /** The model's counted priors (its priors.json), for Eq. 4.1 decoding; null if it has none. */
+  priors: SupportPriors | null;
   /** [N, N + 3, 2] softmax probabilities, flat. */
   probabilities: Float64Array;
   ranked: ObjectSupportScores[];
@@ -108,11 +113,16 @@ export class SupportModel {
     private readonly ort: Ort,
     private readonly session: InferenceSession,
     readonly url: string,
+    readonly priors: SupportPriors | null,
   ) {}
 
   /** Fetch the ONNX file and create its session (about a second: do it once). */
   static async load(url: string, signal?: AbortSignal): Promise<SupportModel> {
-    const [ort, response] = await Promise.all([loadRuntime(), fetch(url, { signal })]);
+    const [ort, response, priors] = await Promise.all([
+      loadRuntime(),
+      fetch(url, { signal }),
+      loadPriors(url, signal),
+    ]);
     if (!response.ok) throw new Error(`could not fetch the model ${url}: ${response.status}`);
     const bytes = new Uint8Array(await response.arrayBuffer());
     const session = await ort.InferenceSession.create(bytes, {
@@ -127,7 +137,7 @@ export class SupportModel {
         `the model ${url} does not follow the contract (inputs ${session.inputNames})`,
       );
     }
-    return new SupportModel(ort, session, url);
+    return new SupportModel(ort, session, url, priors);
   }
 
   /** The raw `support_logits` [N, N + 3, 2], flat. */
@@ -166,10 +176,25 @@ export class SupportModel {
   async probabilities(objects: readonly SceneObject[], image: PixelImage): Promise<SceneScores> {
     const kept = modelObjects(objects);
     const ids = kept.map((o) => o.id);
-    if (kept.length === 0) return { ids, probabilities: new Float64Array(0), ranked: [] };
+    const classes = kept.map((o) => o.class as string);
+    const priors = this.priors;
+    if (kept.length === 0) {
+      return { ids, classes, priors, probabilities: new Float64Array(0), ranked: [] };
+    }
     const logits = await this.logits(sceneInputs(image, kept));
     const probabilities = supportProbabilities(logits, ids.length);
-    return { ids, probabilities, ranked: rankProbabilities(probabilities, ids) };
+    return { ids, classes, priors, probabilities, ranked: rankProbabilities(probabilities, ids) };
+  }
+}
+
+/** The priors.json beside a model.onnx (the registry serves both); null when there is none. */
+async function loadPriors(modelUrl: string, signal?: AbortSignal): Promise<SupportPriors | null> {
+  if (!modelUrl.endsWith("/model.onnx")) return null;
+  try {
+    const response = await fetch(modelUrl.replace(/model\.onnx$/, "priors.json"), { signal });
+    return response.ok ? SupportPriors.fromJson((await response.json()) as PriorsFile) : null;
+  } catch {
+    return null;
   }
 }
 

@@ -4,10 +4,14 @@
 import { describe, expect, it } from "vitest";
 import vectorsText from "../../../shared_schema/vectors/support_decode.json?raw";
 import { STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER } from "./supportModel";
-import { answerKey, decodeSupports, rankedCandidates } from "./treeDecode";
+import { type PriorsFile, SupportPriors } from "./supportPriors";
+import { answerKey, decodeSupports, type PriorScoring, rankedCandidates } from "./treeDecode";
 
 interface DecodeCase {
   name: string;
+  mode: "network" | "network+priors";
+  classes?: string[];
+  priors?: PriorsFile;
   ids: string[];
   probabilities: { shape: number[]; data: number[] };
   pinned: { child: string; parent: string; type: string }[];
@@ -25,11 +29,18 @@ describe("support-tree decoder, against the Python decoder", () => {
     expect(vectors.structural_columns).toEqual([...STRUCTURAL_COLUMNS]);
     expect(vectors.support_types).toEqual([...SUPPORT_TYPE_ORDER]);
     expect(vectors.cases.length).toBeGreaterThanOrEqual(10);
+    expect(vectors.cases.filter((c) => c.mode === "network+priors").length).toBeGreaterThanOrEqual(
+      8,
+    );
   });
 
   for (const c of vectors.cases) {
     it(`decodes ${c.name} like Python`, () => {
-      const decoded = decodeSupports(c.probabilities.data, c.ids, c.pinned);
+      const withPriors: PriorScoring | null =
+        c.mode === "network+priors" && c.priors && c.classes
+          ? { classes: c.classes, priors: SupportPriors.fromJson(c.priors) }
+          : null;
+      const decoded = decodeSupports(c.probabilities.data, c.ids, c.pinned, new Set(), withPriors);
       expect(decoded.map((d) => [d.child, d.parent, d.type])).toEqual(
         c.expected.map((e) => [e.child, e.parent, e.type]),
       );

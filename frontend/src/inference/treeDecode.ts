@@ -1,11 +1,24 @@
 // From the Relation Network's probabilities to a support tree, in the browser: the TypeScript
-// twin of backend/src/holiscene/learning/decode.py (`decode_supports`, "network" mode, which
-// the pipeline runs). Each object without a pinned supporter takes its most probable
-// (supporter, type) that closes no cycle, the most confident objects first, so a doubtful
-// object cannot block a sure one. Re-decoding with an annotator's corrections pinned is how
-// the remaining predictions follow a correction without a server round trip. Both sides are
-// tested against shared_schema/vectors/support_decode.json.
+// twin of backend/src/holiscene/learning/decode.py (`decode_supports`). Each object without a
+// pinned supporter takes its best (supporter, type) that closes no cycle, the most confident
+// objects first, so a doubtful object cannot block a sure one. Two readings of the scores, as
+// in Python: "network" (the probabilities alone) and "network+priors" (Eq. 4.1: the network's
+// five most probable supporter categories, each instance's probability times the counted
+// prior P(supporter class | class, type); the pipeline's default). Re-decoding with an
+// annotator's corrections pinned is how the remaining predictions follow a correction without
+// a server round trip. Both sides are tested against shared_schema/vectors/support_decode.json.
+
 import { STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER, type SupportTypeName } from "./supportModel";
+import type { SupportPriors } from "./supportPriors";
+
+export type DecodeMode = "network" | "network+priors";
+const TOP_CATEGORIES = 5; // |SC(O_i)| in Eq. 4.1
+
+/** What "network+priors" needs: the objects' classes (in the order of `ids`) and the priors. */
+export interface PriorScoring {
+  classes: readonly string[];
+  priors: SupportPriors;
+}
 
 export interface DecodedSupport {
   child: string;
@@ -40,20 +53,47 @@ export function rankedCandidates(
   probabilities: ArrayLike<number>,
   row: number,
   ids: readonly string[],
+  withPriors: PriorScoring | null = null,
 ): Candidate[] {
   const columns = [...ids, ...STRUCTURAL_COLUMNS];
   const types = SUPPORT_TYPE_ORDER.length;
   const offset = row * columns.length * types;
-  let total = 0;
-  for (let c = 0; c < columns.length; c++) {
-    if (c === row) continue;
-    for (let t = 0; t < types; t++) total += probabilities[offset + c * types + t] as number;
+  const scores = Array.from({ length: columns.length * types }, (_, k) =>
+    Math.floor(k / types) === row ? 0 : (probabilities[offset + k] as number),
+  );
+  if (withPriors) {
+    const { classes, priors } = withPriors;
+    const columnClass = (c: number) =>
+      (c < ids.length ? classes[c] : STRUCTURAL_COLUMNS[c - ids.length]) as string;
+    const mass = new Map<string, number>(); // in the order categories first appear, as in Python
+    for (let c = 0; c < columns.length; c++) {
+      let sum = 0;
+      for (let t = 0; t < types; t++) sum += scores[c * types + t] as number;
+      mass.set(columnClass(c), (mass.get(columnClass(c)) ?? 0) + sum);
+    }
+    const top = new Set(
+      [...mass.keys()]
+        .sort((a, b) => (mass.get(b) as number) - (mass.get(a) as number))
+        .slice(0, TOP_CATEGORIES),
+    );
+    const child = classes[row] as string;
+    for (let c = 0; c < columns.length; c++) {
+      const cls = columnClass(c);
+      SUPPORT_TYPE_ORDER.forEach((type, t) => {
+        const prior = top.has(cls) ? priors.conditional(cls, child, type) : 0;
+        scores[c * types + t] = (scores[c * types + t] as number) * prior;
+      });
+    }
+    // The priors ruled everything out: fall back to the network alone.
+    if (scores.every((v) => v <= 0)) return rankedCandidates(probabilities, row, ids);
   }
+  let total = 0;
+  for (const v of scores) total += v;
   const found: Candidate[] = [];
   for (let c = 0; c < columns.length; c++) {
     if (c === row) continue;
     SUPPORT_TYPE_ORDER.forEach((type, t) => {
-      const p = probabilities[offset + c * types + t] as number;
+      const p = scores[c * types + t] as number;
       found.push({ parent: columns[c] as string, type, probability: total > 0 ? p / total : 0 });
     });
   }
@@ -75,13 +115,14 @@ function closesCycle(child: string, parent: string, parentOf: ReadonlyMap<string
 /**
  * A supporter for every object, in the order of `ids`: the pinned ones as they are, the rest
  * decoded. `excluded` (answerKey) are answers the annotator rejected; an object whose every
- * answer is excluded or closes a cycle gets none.
+ * answer is excluded or closes a cycle gets none. With `withPriors`, Eq. 4.1's reading.
  */
 export function decodeSupports(
   probabilities: ArrayLike<number>,
   ids: readonly string[],
   pinned: readonly PinnedSupport[] = [],
   excluded: ReadonlySet<string> = new Set(),
+  withPriors: PriorScoring | null = null,
 ): DecodedSupport[] {
   const known = new Set(ids);
   const decided = new Map<string, DecodedSupport>();
@@ -101,7 +142,7 @@ export function decodeSupports(
     .map((id, row) => ({ id, row }))
     .filter(({ id }) => !decided.has(id))
     .map(({ id, row }) => {
-      const ranked = rankedCandidates(probabilities, row, ids);
+      const ranked = rankedCandidates(probabilities, row, ids, withPriors);
       return {
         id,
         // The order of decisions uses the best answer before exclusions, as in Python.
