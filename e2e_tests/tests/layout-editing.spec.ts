@@ -204,6 +204,15 @@ test("layout editing on a synthetic room: live 3D room, save, re-place objects",
   test.setTimeout(480_000);
   const doc = await seedFolder(request, synthesize(11), "synth-11 layout");
   await openScene(page, doc.scene_id);
+  // The E key turns corner dragging on and off; the key help lists it.
+  const bar = page.getByTestId("layout-bar");
+  await page.locator("body").press("e");
+  await expect(bar).toHaveAttribute("data-editing", "true");
+  await page.locator("body").press("e");
+  await expect(bar).toHaveAttribute("data-editing", "false");
+  await page.locator("body").press("?");
+  await expect(page.getByTestId("shortcut-help")).toContainText("Edit the room layout");
+  await page.getByTestId("shortcut-help-close").click();
   const saved = await dragAndSave(page, doc, "layout-synth");
   await replaceObjects(page, saved, "layout-synth");
 });
