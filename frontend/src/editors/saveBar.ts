@@ -21,7 +21,7 @@ function statusText(state: SaveState, pending: number, revision: number): string
     case "conflict":
       return "Not saved: conflict";
     case "error":
-      return "Not saved: error (retrying)";
+      return state.retry ? "Not saved: error (retrying)" : "Not saved: refused";
   }
 }
 

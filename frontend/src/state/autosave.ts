@@ -1,6 +1,7 @@
 // Autosave: unsaved edits go to the server after a short idle time (each new edit restarts
 // the wait), again when edits were made during a save, and once more when the page leaves.
-// A conflict stops it until the user merges or reloads; a failed save is retried.
+// A conflict stops it until the user merges or reloads; a save that failed on the way is
+// retried, one the server refused (e.g. not allowed) waits for the user's next edit.
 import type { SceneSession } from "./sceneSession";
 
 export interface AutosaveOptions {
@@ -16,12 +17,9 @@ export const AUTOSAVE_DELAY_MS = 1500;
 /** The idle time before saving: the default, or this browser's setting (ms, 0 = off). */
 export function autosaveDelay(): number {
   try {
-    const stored = Number(localStorage.getItem("holiscene.autosaveDelayMs") ?? "");
-    return Number.isFinite(stored) &&
-      stored >= 0 &&
-      localStorage.getItem("holiscene.autosaveDelayMs") !== null
-      ? stored
-      : AUTOSAVE_DELAY_MS;
+    const stored = localStorage.getItem("holiscene.autosaveDelayMs");
+    const ms = stored === null ? Number.NaN : Number(stored);
+    return Number.isFinite(ms) && ms >= 0 ? ms : AUTOSAVE_DELAY_MS;
   } catch {
     return AUTOSAVE_DELAY_MS;
   }
@@ -55,12 +53,12 @@ export function startAutosave(session: SceneSession, options: AutosaveOptions): 
   };
 
   const unsubscribe = session.subscribe((change) => {
+    const state = session.saveState;
     if (change === "edits") schedule(delay);
-    else if (change === "save") {
-      const state = session.saveState.kind;
-      if (state === "error") schedule(retry);
-      else if (state === "dirty" || state === "saved") schedule(delay);
-    }
+    else if (change !== "save") return;
+    else if (state.kind === "error") {
+      if (state.retry) schedule(retry);
+    } else if (state.kind === "dirty" || state.kind === "saved") schedule(delay);
   });
   schedule(delay);
   return () => {

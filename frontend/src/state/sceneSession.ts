@@ -4,7 +4,7 @@
 // concerns.
 import type { RevisionInfo, SceneDocument, SceneObject, SupportRelation } from "@holiscene/schema";
 import { api } from "../api/client";
-import { ConflictError } from "../api/errors";
+import { ApiError, ConflictError } from "../api/errors";
 import { type Draft, DraftStore } from "./draftStore";
 import { EditHistory } from "./editHistory";
 import {
@@ -33,7 +33,12 @@ export type SaveState =
       /** The revisions saved by others since `baseRevision` (empty if they could not be read). */
       theirs: RevisionInfo[];
     }
-  | { kind: "error"; message: string };
+  | {
+      kind: "error";
+      message: string;
+      /** A network or server failure, worth trying again (a refusal is not). */
+      retry: boolean;
+    };
 
 /**
  * What changed: the document, the unsaved edits (and undo/redo), the save state, hover or
@@ -332,7 +337,8 @@ export class SceneSession {
           theirs,
         });
       } else {
-        this.setSaveState({ kind: "error", message: errorText(error) });
+        const refused = error instanceof ApiError && error.status < 500;
+        this.setSaveState({ kind: "error", message: errorText(error), retry: !refused });
       }
     }
   }
@@ -389,7 +395,11 @@ export class SceneSession {
       this.setDocument(doc);
       this.editsChanged();
     } catch (error) {
-      this.setSaveState({ kind: "error", message: `Reload failed: ${errorText(error)}` });
+      this.setSaveState({
+        kind: "error",
+        message: `Reload failed: ${errorText(error)}`,
+        retry: false,
+      });
     }
   }
 

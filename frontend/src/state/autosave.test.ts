@@ -1,0 +1,99 @@
+// Autosave's timing on a stand-in session (the real one needs a server to save to): it saves
+// after the idle time, waits again after each edit, stops on a conflict, retries a failed save
+// but not a refused one, holds while asked to, and saves once more when the page leaves.
+import { afterEach, beforeEach, describe, expect, it, vi } from "vitest";
+import { startAutosave } from "./autosave";
+import type { Change, SaveState, SceneSession } from "./sceneSession";
+
+class StandIn {
+  pending: unknown[] = [];
+  saveState: SaveState = { kind: "clean" };
+  holdAutosave = false;
+  saves = 0;
+  private listener: ((change: Change) => void) | null = null;
+  subscribe(listener: (change: Change) => void) {
+    this.listener = listener;
+    return () => {
+      this.listener = null;
+    };
+  }
+  edit() {
+    this.pending.push({});
+    this.saveState = { kind: "dirty" };
+    this.listener?.("edits");
+  }
+  settle(state: SaveState) {
+    this.saveState = state;
+    this.listener?.("save");
+  }
+  async save() {
+    this.saves += 1;
+  }
+}
+
+describe("autosave", () => {
+  let session: StandIn;
+  let stop: () => void;
+  beforeEach(() => {
+    vi.useFakeTimers();
+    session = new StandIn();
+    stop = startAutosave(session as unknown as SceneSession, {
+      author: () => "ann",
+      delayMs: 1000,
+      retryMs: 5000,
+    });
+  });
+  afterEach(() => {
+    stop();
+    vi.useRealTimers();
+  });
+
+  it("saves after the idle time, counted from the last edit", () => {
+    session.edit();
+    vi.advanceTimersByTime(900);
+    session.edit();
+    vi.advanceTimersByTime(900);
+    expect(session.saves).toBe(0);
+    vi.advanceTimersByTime(100);
+    expect(session.saves).toBe(1);
+    vi.advanceTimersByTime(10_000);
+    expect(session.saves).toBe(1);
+  });
+
+  it("does not save in a conflict, nor while held", () => {
+    session.edit();
+    session.settle({
+      kind: "conflict",
+      baseRevision: 2,
+      currentRevision: 3,
+      message: "",
+      theirs: [],
+    });
+    vi.advanceTimersByTime(5000);
+    expect(session.saves).toBe(0);
+    session.holdAutosave = true;
+    session.settle({ kind: "dirty" });
+    vi.advanceTimersByTime(5000);
+    expect(session.saves).toBe(0);
+  });
+
+  it("retries a save that failed on the way, not one the server refused", () => {
+    session.edit();
+    vi.advanceTimersByTime(1000);
+    session.settle({ kind: "error", message: "offline", retry: true });
+    vi.advanceTimersByTime(4999);
+    expect(session.saves).toBe(1);
+    vi.advanceTimersByTime(1);
+    expect(session.saves).toBe(2);
+    session.settle({ kind: "error", message: "not allowed", retry: false });
+    vi.advanceTimersByTime(60_000);
+    expect(session.saves).toBe(2);
+  });
+
+  it("saves what is left when the page leaves", () => {
+    session.edit();
+    stop();
+    expect(session.saves).toBe(1);
+    stop = () => {};
+  });
+});
