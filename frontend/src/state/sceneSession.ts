@@ -324,7 +324,9 @@ export class SceneSession {
       this.saveState = { kind: "saved", revision: doc.revision };
       this.editsChanged();
     } catch (error) {
-      if (error instanceof ConflictError) {
+      // A 409 without a current revision is the workflow's refusal (the scene is someone
+      // else's, or submitted), not a newer revision: nothing to merge.
+      if (error instanceof ConflictError && error.currentRevision !== null) {
         const theirs = await api
           .listRevisions(this.sceneId)
           .then((all) => all.filter((r) => r.number > baseRevision))
