@@ -24,7 +24,8 @@ type Status = "loading" | "ready" | "missing" | "error" | "no-webgl";
 
 /** Distance of the frustum's image plane from the camera centre, metres. */
 const FRUSTUM_DEPTH = 0.6;
-/** The view counts as moving until this long after its last change (milliseconds). */
+/** The view counts as moving until this long after its last change (milliseconds), or three
+ * frame times when frames are slower: a slow machine would otherwise switch every frame. */
 const MOVING_MS = 200;
 /** A press that moves less than this (pixels) before release is a click, not an orbit. */
 const CLICK_SLOP = 5;
@@ -175,9 +176,13 @@ export function mountScene3d(
 
   let frame = 0;
   let lastFrameSize = { width: 0, height: 0 };
+  let lastFrameAt = 0;
+  let frameInterval = 0; // between the last two frames, milliseconds
   const render = () => {
     frame = 0;
     const start = performance.now();
+    frameInterval = start - lastFrameAt;
+    lastFrameAt = start;
     renderer.render(scene, camera);
     lastFrameSize = { width: canvas.width, height: canvas.height };
     probe.frames += 1;
@@ -188,7 +193,7 @@ export function mountScene3d(
     frame ||= requestAnimationFrame(render);
   };
   // On software WebGL the view moves at half resolution (a quarter of the pixels to shade)
-  // and is drawn sharp again once it has been still for MOVING_MS.
+  // and is drawn sharp again once it has been still for a while (MOVING_MS).
   const fullRatio = Math.min(window.devicePixelRatio, 2);
   const movingRatio = isSoftwareWebGL() ? fullRatio / 2 : fullRatio;
   let still = 0;
@@ -200,7 +205,8 @@ export function mountScene3d(
   controls.addEventListener("change", () => {
     setRatio(movingRatio);
     clearTimeout(still);
-    still = window.setTimeout(() => setRatio(fullRatio), MOVING_MS);
+    const wait = Math.max(MOVING_MS, Math.min(3 * frameInterval, 2000));
+    still = window.setTimeout(() => setRatio(fullRatio), wait);
     requestRender();
   });
 
