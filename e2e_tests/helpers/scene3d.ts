@@ -1,32 +1,13 @@
 // Seeding scenes from any input folder (real or synthetic), and reading the 3D view and the
 // layout editor through the probes they put on their elements (scene3dView.ts: the canvas's
 // `scene3dProbe`; layoutEditor.ts: the layout bar's `layoutProbe`).
-import { execFileSync } from "node:child_process";
-import { existsSync, mkdtempSync, readFileSync } from "node:fs";
-import { tmpdir } from "node:os";
+import { existsSync, readFileSync } from "node:fs";
 import path from "node:path";
 import type { ImportResult, SceneDocument } from "@holiscene/schema";
 import { type APIRequestContext, expect, type Page } from "@playwright/test";
 import { getScene, waitForJob } from "./api";
 
-const HOLISCENE = path.resolve(import.meta.dirname, "../../.venv/bin/holiscene");
-
-/** A synthetic scene folder made by `holiscene synth` with this seed. */
-export function synthesize(seed: number): string {
-  const out = mkdtempSync(path.join(tmpdir(), "holiscene-e2e-synth-"));
-  execFileSync(HOLISCENE, [
-    "synth",
-    "--seed",
-    String(seed),
-    "--count",
-    "1",
-    "--workers",
-    "1",
-    "-o",
-    out,
-  ]);
-  return path.join(out, `synth-${seed}`);
-}
+export { synthesizeFolder as synthesize } from "./synthetic";
 
 /** Import an input folder (img.jpg or img.png, cam_K.txt, detections.json), run its pipeline. */
 export async function seedFolder(

@@ -34,6 +34,13 @@ export function synthesize(seed: number, count: number): SyntheticScene[] {
   });
 }
 
+/** One synthetic scene folder (img.png, cam_K.txt, detections.json, gt.json) for `seed`. */
+export function synthesizeFolder(seed: number): string {
+  const [scene] = synthesize(seed, 1);
+  if (!scene) throw new Error(`holiscene synth wrote no scene for seed ${seed}`);
+  return scene.dir;
+}
+
 const part = (dir: string, name: string, mimeType: string) => ({
   name,
   mimeType,

@@ -1,9 +1,7 @@
 // The workflow spec's own server: accounts exist there from the start (an admin made with
 // `holiscene users add` before `holiscene serve`), so login is required, while the other
 // specs' server stays in local single-user mode.
-import { execFileSync } from "node:child_process";
-import { mkdtempSync, readFileSync } from "node:fs";
-import { tmpdir } from "node:os";
+import { readFileSync } from "node:fs";
 import path from "node:path";
 import type { ImportResult, SceneSummary } from "@holiscene/schema";
 import { type APIRequestContext, expect, type Page } from "@playwright/test";
@@ -13,7 +11,6 @@ import { waitForJob } from "./api";
 export const WORKFLOW_PORT = Number(process.env.HOLISCENE_E2E_PORT ?? 8765) + 1;
 export const WORKFLOW_URL = `http://127.0.0.1:${WORKFLOW_PORT}`;
 export const ADMIN = { name: "e2e-admin", password: "tidal-quartz-Passw0rd-17" };
-const HOLISCENE = path.resolve(import.meta.dirname, "../../.venv/bin/holiscene");
 
 /** Log in through the API; the context then sends the session as a bearer token. */
 export async function apiAs(
@@ -65,22 +62,7 @@ export async function importFolder(
   return imported.scene.id;
 }
 
-/** A synthetic room made by `holiscene synth`: img.png, cam_K.txt, detections.json. */
-export function synthesize(seed: number): string {
-  const out = mkdtempSync(path.join(tmpdir(), "holiscene-e2e-synth-"));
-  execFileSync(HOLISCENE, [
-    "synth",
-    "--seed",
-    String(seed),
-    "--count",
-    "1",
-    "--workers",
-    "1",
-    "-o",
-    out,
-  ]);
-  return path.join(out, `synth-${seed}`);
-}
+export { synthesizeFolder as synthesize } from "./synthetic";
 
 export async function listScenes(request: APIRequestContext): Promise<SceneSummary[]> {
   const response = await request.get("/api/scenes");
