@@ -148,7 +148,9 @@ def test_retrain_through_the_api(settings: Settings, no_default_model: None) -> 
         )
         assert started.status_code == 202, started.text
         job = started.json()
-        assert (job["kind"], job["scene_id"], job["status"]) == ("retrain", None, "queued")
+        assert (job["kind"], job["scene_id"]) == ("retrain", None)
+        # The worker may pick the job up before the response is written.
+        assert job["status"] in ("queued", "running")
         assert "queued by bob: max_epochs=1, synthetic_scenes=4" in job["log"]
         again = client.post("/api/models/retrain")
         assert again.status_code == 409 and job["id"] in again.json()["detail"]

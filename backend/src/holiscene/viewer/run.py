@@ -20,8 +20,11 @@ def _interrupt(_signum: int, _frame: FrameType | None) -> None:
 def serve_until_interrupted(scene: str, settings: Settings, port: int, photo: Path | None) -> int:
     data = load_scene_argument(scene, settings, photo)
     server, _viewer = start_viewer(data, port)
-    # A stop from a process manager (SIGTERM) ends the viewer as cleanly as Ctrl+C.
+    # Ctrl+C and a process manager's SIGTERM both end the viewer cleanly. SIGINT is set
+    # explicitly: a process started in the background inherits it ignored, and then Python
+    # never raises KeyboardInterrupt (CI found this).
     signal.signal(signal.SIGTERM, _interrupt)
+    signal.signal(signal.SIGINT, _interrupt)
     url = viewer_url(server)
     busy = f" (port {port} was busy)" if port not in (0, server.get_port()) else ""
     print(f"viewer of {data.origin}: {url}{busy}", flush=True)
