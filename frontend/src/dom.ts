@@ -39,6 +39,30 @@ export function el<K extends keyof HTMLElementTagNameMap>(
   return node;
 }
 
+/** A form field: its label text above the input (and any hint after it). */
+export function labelledField(
+  label: string,
+  input: HTMLElement,
+  ...after: Child[]
+): HTMLLabelElement {
+  return el(
+    "label",
+    { className: "field" },
+    el("span", { className: "field-label", text: label }),
+    input,
+    ...after,
+  );
+}
+
+/** An error line for a form, hidden until a message is put in it. */
+export function hiddenErrorAlert(testid: string): HTMLParagraphElement {
+  return el("p", {
+    className: "alert alert--error",
+    testid,
+    attrs: { role: "alert", hidden: true },
+  });
+}
+
 const SVG_NS = "http://www.w3.org/2000/svg";
 
 /** Create an SVG element with attributes. */

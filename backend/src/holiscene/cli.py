@@ -9,10 +9,13 @@ import sys
 import tempfile
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 from .cli_users import UsersCliError, add_user_commands
 from .core.settings import REPO_ROOT, Settings
+
+if TYPE_CHECKING:
+    from .learning.samples import SupportSample
 
 DEMO_PHOTOS = REPO_ROOT.parent / "shared" / "data" / "real"
 DEMO_FOLDERS = ("t3d-5", "im3d-6", "mm3d-4", "im3d-3")
@@ -284,7 +287,7 @@ def _register_model(args: argparse.Namespace, model_dir: Path, accuracy: float) 
     print(f"registered as model {info.id} (version {info.version}); make it active in #/models")
 
 
-def _stored_samples(args: argparse.Namespace) -> list[Any]:
+def _stored_samples(args: argparse.Namespace) -> list[SupportSample]:
     """The samples of the labelled scenes in the store (what a retrain job learns from)."""
     from .retraining import stored_samples
     from .workbench import Workbench

@@ -54,7 +54,7 @@ def test_priors_overrule_an_implausible_category() -> None:
         {},
         ("o0", "o1", "o2"),
         classes,
-        np.array([answer_index(3, 1, "below"), answer_index(3, 4, "below"), NO_LABEL]),
+        np.array([answer_index(1, "below"), answer_index(4, "below"), NO_LABEL]),
     )
     priors = count_priors([sample] * 5)
     # The network slightly prefers the picture as the lamp's supporter.

@@ -10,7 +10,7 @@ from holiscene.learning.samples import NO_LABEL, SupportSample, answer_index
 
 def _sample(classes: list[str], answers: list[tuple[int, str] | None]) -> SupportSample:
     n = len(classes)
-    targets = [NO_LABEL if a is None else answer_index(n, a[0], a[1]) for a in answers]
+    targets = [NO_LABEL if a is None else answer_index(a[0], a[1]) for a in answers]
     return SupportSample(
         "hand", {}, tuple(f"o{i}" for i in range(n)), tuple(classes), np.array(targets)
     )

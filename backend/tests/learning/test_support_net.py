@@ -48,7 +48,7 @@ def tabletop(seed: int, n_boxes: int = 2) -> SupportSample:
         masks.append(mask)
     classes = ["table"] + ["box"] * n_boxes
     n = len(classes)
-    targets = [answer_index(n, n + 1, "below")] + [answer_index(n, 0, "below")] * n_boxes
+    targets = [answer_index(n + 1, "below")] + [answer_index(0, "below")] * n_boxes
     ids = tuple(f"o{i}" for i in range(n))
     inputs = relation_inputs(image, masks, boxes, classes)
     return SupportSample(f"tabletop-{seed}", inputs, ids, tuple(classes), np.array(targets))

@@ -67,7 +67,7 @@ export function cameraHeight(doc: SceneDocument): number {
 }
 
 /** The stored room, or null when the scene has no camera pitch/roll or layout. */
-function storedRoom(doc: SceneDocument): LiveRoom | null {
+export function storedRoom(doc: SceneDocument): LiveRoom | null {
   const camera = doc.scene.camera;
   const corners = doc.scene.layout?.corners_3d;
   if (!camera || camera.pitch_deg == null || camera.roll_deg == null || !corners) return null;

@@ -40,7 +40,7 @@ def true_supports(sample: SupportSample) -> dict[str, tuple[str, str]]:
     found = {}
     for i, target in enumerate(sample.targets.tolist()):
         if target != NO_LABEL:
-            column, kind = decode_answer(len(sample.object_ids), target)
+            column, kind = decode_answer(target)
             found[sample.object_ids[i]] = (names[column], kind)
     return found
 

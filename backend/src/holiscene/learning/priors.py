@@ -107,11 +107,10 @@ class SupportPriors:
 def count_priors(samples: Iterable[SupportSample]) -> SupportPriors:
     counts: dict[str, dict[str, float]] = defaultdict(lambda: defaultdict(float))
     for sample in samples:
-        n = len(sample.classes)
         for i, target in enumerate(sample.targets.tolist()):
             if target == NO_LABEL:
                 continue
-            column, support_type = decode_answer(n, target)
+            column, support_type = decode_answer(target)
             key = SupportPriors._key(supporter_class(sample, column), support_type)
             counts[sample.classes[i]][key] += 1.0
     return SupportPriors({c: dict(r) for c, r in counts.items()})

@@ -43,8 +43,7 @@ class SupportModel:
         self.session = ort.InferenceSession(
             str(model_file), options, providers=["CPUExecutionProvider"]
         )
-        priors_file = model_dir / PRIORS_FILE
-        self.priors = SupportPriors.load(priors_file) if priors_file.exists() else SupportPriors()
+        self.priors = model_priors(model_dir)
 
     @classmethod
     def load(cls, model_dir: Path) -> SupportModel:
@@ -66,6 +65,12 @@ class SupportModel:
             right += int((answers[labelled] == sample.targets[labelled]).sum())
             total += int(labelled.sum())
         return right / total if total else 0.0
+
+
+def model_priors(model_dir: Path) -> SupportPriors:
+    """The support priors counted with a model (empty ones for a model without them)."""
+    priors_file = model_dir / PRIORS_FILE
+    return SupportPriors.load(priors_file) if priors_file.exists() else SupportPriors()
 
 
 def _mtime(path: Path) -> float:

@@ -33,7 +33,7 @@ class SupportSample:
         return int((self.targets != NO_LABEL).sum())
 
 
-def answer_index(n_objects: int, column: int, support_type: str) -> int:
+def answer_index(column: int, support_type: str) -> int:
     return column * len(SUPPORT_TYPE_ORDER) + SUPPORT_TYPE_ORDER.index(support_type)
 
 
@@ -44,7 +44,7 @@ def supporter_column(parent: str, object_ids: Sequence[str]) -> int | None:
     return object_ids.index(parent) if parent in object_ids else None
 
 
-def decode_answer(n_objects: int, index: int) -> tuple[int, str]:
+def decode_answer(index: int) -> tuple[int, str]:
     """(supporter column, support type) of a flattened answer index."""
     column, kind = divmod(index, len(SUPPORT_TYPE_ORDER))
     return column, SUPPORT_TYPE_ORDER[kind]
@@ -81,7 +81,7 @@ def sample_from_scene(scene: Scene, image: np.ndarray) -> SupportSample | None:
             continue
         column = supporter_column(support.parent, ids)
         if column is not None and column != ids.index(support.child):
-            targets[ids.index(support.child)] = answer_index(len(ids), column, support.type)
+            targets[ids.index(support.child)] = answer_index(column, support.type)
     inputs = relation_inputs(
         image, object_masks(scene), [o.bbox for o in kept], [o.cls for o in kept]
     )

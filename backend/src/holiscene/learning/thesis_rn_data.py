@@ -221,7 +221,7 @@ class RNScene:
             if parent is None or kind is None:
                 continue
             column = parent if isinstance(parent, int) else n + STRUCTURAL_COLUMNS.index(parent)
-            targets[i] = answer_index(n, column, kind)
+            targets[i] = answer_index(column, kind)
         ids = tuple(f"o{i}" for i in range(n))
         return SupportSample(self.name, {}, ids, self.classes, targets)
 

@@ -3,7 +3,7 @@
 import type { Dashboard, PersonStats, SceneAgreement, UserInfo } from "@holiscene/schema";
 import { ApiError } from "../../api/errors";
 import { type Role, SCENE_STATES, stateLabel, usersApi, workflowApi } from "../../api/workflow";
-import { el, formatTime } from "../../dom";
+import { el, formatTime, labelledField } from "../../dom";
 import { hasRole } from "../../state/currentUser";
 import "../workflow/workflow.css";
 
@@ -168,19 +168,12 @@ function accountsSection(signal: AbortSignal, onChange: () => void): HTMLElement
     testid: "new-user-submit",
     attrs: { type: "submit" },
   });
-  const field = (label: string, input: HTMLElement) =>
-    el(
-      "label",
-      { className: "field" },
-      el("span", { className: "field-label", text: label }),
-      input,
-    );
   const form = el(
     "form",
     { className: "user-form", testid: "new-user-form" },
-    field("Name", name),
-    field("Role", role),
-    field("Password", password),
+    labelledField("Name", name),
+    labelledField("Role", role),
+    labelledField("Password", password),
     create,
   );
   const load = async () => {

@@ -2,7 +2,7 @@
 import type { CurrentUser } from "@holiscene/schema";
 import { ApiError } from "../../api/errors";
 import { authApi } from "../../api/workflow";
-import { el } from "../../dom";
+import { el, hiddenErrorAlert, labelledField } from "../../dom";
 import "../workflow/workflow.css";
 
 export function mountLoginPage(
@@ -37,24 +37,13 @@ export function mountLoginPage(
     testid: "login-submit",
     attrs: { type: "submit" },
   });
-  const error = el("p", {
-    className: "alert alert--error",
-    testid: "login-error",
-    attrs: { role: "alert", hidden: true },
-  });
-  const field = (label: string, input: HTMLInputElement) =>
-    el(
-      "label",
-      { className: "field" },
-      el("span", { className: "field-label", text: label }),
-      input,
-    );
+  const error = hiddenErrorAlert("login-error");
   const form = el(
     "form",
     { className: "card login-form", testid: "login-form" },
     el("h1", { text: "Log in to HoliScene" }),
-    field("User name", name),
-    field("Password", password),
+    labelledField("User name", name),
+    labelledField("Password", password),
     error,
     el("div", { className: "form-actions" }, submit),
     el("p", {

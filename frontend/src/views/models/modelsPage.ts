@@ -4,7 +4,7 @@
 import type { Job, ModelEvent, ModelInfo } from "@holiscene/schema";
 import { isFinished, pollJob } from "../../api/jobs";
 import { modelsApi } from "../../api/models";
-import { el, formatTime } from "../../dom";
+import { el, formatTime, hiddenErrorAlert, labelledField } from "../../dom";
 import { getAuthor } from "../../state/author";
 import { jobProgress } from "../common/jobProgress";
 
@@ -34,12 +34,7 @@ function numberField(label: string, name: string, placeholder: string, max: numb
     testid: `retrain-${name}`,
     attrs: { type: "number", name, min: name === "epochs" ? 1 : 0, max, step: 1, placeholder },
   });
-  const field = el(
-    "label",
-    { className: "field" },
-    el("span", { className: "field-label", text: label }),
-    input,
-  );
+  const field = labelledField(label, input);
   return { input, field };
 }
 
@@ -56,11 +51,7 @@ export function mountModelsPage(container: HTMLElement): () => void {
     testid: "retrain-button",
     attrs: { type: "submit" },
   });
-  const retrainError = el("p", {
-    className: "alert alert--error",
-    testid: "retrain-error",
-    attrs: { role: "alert", hidden: true },
-  });
+  const retrainError = hiddenErrorAlert("retrain-error");
   const progress = jobProgress("retrain-progress");
   progress.element.hidden = true;
   const log = el("pre", { className: "job-log", testid: "retrain-log", attrs: { hidden: true } });

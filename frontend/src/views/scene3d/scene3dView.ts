@@ -8,9 +8,7 @@ import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { api } from "../../api/client";
 import { el } from "../../dom";
-import type { Vec3 } from "../../geometry/camera";
-import { roomBoxFromCorners } from "../../geometry/roomBox";
-import type { LayoutDraft, LiveRoom } from "../../state/layoutDraft";
+import { type LayoutDraft, storedRoom } from "../../state/layoutDraft";
 import type { SceneSession } from "../../state/sceneSession";
 import { planArrows } from "./arrowPlan";
 import { PhotoFrustum } from "./photoFrustum";
@@ -70,20 +68,6 @@ function createRenderer(canvas: HTMLCanvasElement): THREE.WebGLRenderer | null {
   } catch {
     return null;
   }
-}
-
-/** The stored room and camera of a revision, or null. */
-function storedLive(doc: SceneDocument): LiveRoom | null {
-  const camera = doc.scene.camera;
-  const corners = doc.scene.layout?.corners_3d;
-  if (!camera || camera.pitch_deg == null || camera.roll_deg == null || !corners) return null;
-  const corners3d = corners.map((c) => [c[0], c[1], c[2]] as Vec3);
-  return {
-    pitchDeg: camera.pitch_deg,
-    rollDeg: camera.roll_deg,
-    room: roomBoxFromCorners(corners3d),
-    corners3d,
-  };
 }
 
 /** What the GLB depends on: the stages that made the revision (edits keep them). */
@@ -228,7 +212,7 @@ export function mountScene3d(
   /** The room, frustum and arrows for the current revision and layout draft. */
   const showLive = () => {
     const doc = session.doc;
-    const live = layout ? layout.live : storedLive(doc);
+    const live = layout ? layout.live : storedRoom(doc);
     room.set(live?.room ?? null);
     room.setEditing(layout?.editing ?? false);
     model?.setRoomVisible(live === null);

@@ -2,7 +2,7 @@
 import type { SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { pollJob } from "../../api/jobs";
-import { el } from "../../dom";
+import { el, labelledField } from "../../dom";
 import { jobProgress } from "../common/jobProgress";
 
 function fileField(label: string, name: string, accept: string, hint: string, required = false) {
@@ -10,13 +10,7 @@ function fileField(label: string, name: string, accept: string, hint: string, re
     testid: `upload-${name}`,
     attrs: { type: "file", name, accept, required },
   });
-  const field = el(
-    "label",
-    { className: "field" },
-    el("span", { className: "field-label", text: label }),
-    input,
-    el("span", { className: "field-hint", text: hint }),
-  );
+  const field = labelledField(label, input, el("span", { className: "field-hint", text: hint }));
   return { input, field };
 }
 
@@ -51,12 +45,7 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
       image.field,
       camK.field,
       detections.field,
-      el(
-        "label",
-        { className: "field" },
-        el("span", { className: "field-label", text: "Name" }),
-        name,
-      ),
+      labelledField("Name", name),
     ),
     el("div", { className: "form-actions" }, submit),
     result,

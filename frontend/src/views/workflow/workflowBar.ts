@@ -6,7 +6,7 @@
 import type { SceneWorkflow, WorkflowEvent } from "@holiscene/schema";
 import { ApiError } from "../../api/errors";
 import { stateLabel, workflowApi } from "../../api/workflow";
-import { el, formatTime } from "../../dom";
+import { el, formatTime, hiddenErrorAlert } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
 import { getCurrentUser, hasRole } from "../../state/currentUser";
 import type { SceneSession } from "../../state/sceneSession";
@@ -47,11 +47,7 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
     attrs: { role: "note", hidden: true },
   });
   const note = el("p", { className: "workflow-note", testid: "workflow-note" });
-  const error = el("p", {
-    className: "alert alert--error",
-    testid: "workflow-error",
-    attrs: { role: "alert", hidden: true },
-  });
+  const error = hiddenErrorAlert("workflow-error");
   const button = (text: string, testid: string, title: string, primary = false) =>
     el("button", {
       className: primary ? "primary" : "",

@@ -16,7 +16,8 @@ from holiscene_schema.relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORD
 from ...learning.decode import DecodeMode, decode_supports
 from ...learning.preprocess import relation_inputs
 from ...learning.priors import SupportPriors
-from ...learning.runtime import DEFAULT_MODEL_DIR, SupportModel
+from ...learning.runtime import DEFAULT_MODEL_DIR, SupportModel, model_priors
+from ...learning.training_api import MODEL_FILE
 from ..base import PipelineBuildError, SceneContext, Stage, required
 from ..registry import register_stage
 
@@ -89,7 +90,11 @@ class SupportsFromPriors(Stage):
 
     def __init__(self, model_dir: str | Path | None = None, **rest: Any) -> None:
         super().__init__(**rest)
-        self.priors = _load_model(self.name, _model_dir(model_dir)).priors
+        # Only the model's counted priors: no ONNX session is needed for this method.
+        folder = _model_dir(model_dir)
+        if not (folder / MODEL_FILE).is_file():
+            raise PipelineBuildError(f"stage {self.name!r}: no Relation Network model at {folder}")
+        self.priors = model_priors(folder)
 
     def run(self, ctx: SceneContext) -> None:
         objects = [o for o in required(ctx.objects, "objects") if o.cls not in STRUCTURAL_CLASSES]
