@@ -24,9 +24,10 @@ from .store import models as model_registry
 from .store.files import SceneFiles
 from .store.jobs import JobStore
 from .store.models import ModelStore
-from .store.scenes import SceneStore
+from .store.scenes import SceneChangedError, SceneStore
 from .store.users import UserStore
 from .store.workflow import WorkflowStore
+from .workflow import WorkflowError
 
 log = logging.getLogger(__name__)
 
@@ -157,7 +158,7 @@ class Workbench:
         """Run a queued pipeline job to its end; every failure is recorded on the job."""
         job = self.jobs.get(job_id)
         try:
-            if job.scene_id is None:
+            if job.scene_id is None or job.base_revision is None:
                 raise ValueError(f"job {job_id} is not a pipeline job")
             folder = self.scenes.files.folder(job.scene_id)
             current = self.scenes.document(job.scene_id)
@@ -179,9 +180,22 @@ class Workbench:
                 else None,
                 progress=lambda stage, fraction: self.jobs.progress(job_id, stage, fraction),
             )
-            revision = self.scenes.commit_pipeline_result(job.scene_id, result.scene, result.glb)
+            if placement:
+                revision = self.scenes.commit_placement_result(
+                    job.scene_id, job.base_revision, result.scene, result.glb
+                )
+            else:
+                revision = self.scenes.commit_pipeline_result(
+                    job.scene_id, result.scene, result.glb, base_revision=job.base_revision
+                )
             notes = [f"{s.name}: {s.note}" for s in result.scene.stages if s.note]
             self.jobs.succeed(job_id, revision, " | ".join(notes) or "done")
+        except SceneChangedError as changed:
+            log.warning("job %s not stored: %s", job_id, changed)
+            self.jobs.fail(job_id, scene_changed_message(job, changed))
+        except WorkflowError as refused:  # e.g. submitted for review while the job ran
+            log.warning("job %s not stored: %s", job_id, refused)
+            self.jobs.fail(job_id, str(refused))
         except Exception as exc:
             log.exception("pipeline job %s failed", job_id)
             self.jobs.fail(job_id, f"{type(exc).__name__}: {exc}\n{traceback.format_exc(limit=3)}")
@@ -193,6 +207,20 @@ class Workbench:
         self.run_job(job.id)
         finished = self.jobs.get(job.id)
         return ImportResult(scene=self.scenes.summary(result.scene.id, finished), job=finished)
+
+
+def scene_changed_message(job: Job, changed: SceneChangedError) -> str:
+    """Why a job's result was not stored, and what to do."""
+    moved = f"revision {changed.base_revision} -> {changed.current_revision}"
+    if job.kind == "placement":
+        return (
+            f"the scene changed while objects were being re-placed ({moved}); nothing was "
+            "overwritten; run re-place again"
+        )
+    return (
+        f"the room layout was set by hand while the pipeline ran ({moved}); the run's result "
+        "was not stored, so that layout stays; run the pipeline again to replace it"
+    )
 
 
 def imported_scene(inputs: InputFiles, name: str) -> Scene:

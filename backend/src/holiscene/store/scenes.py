@@ -52,6 +52,15 @@ class RevisionConflictError(Exception):
         self.current_revision = current_revision
 
 
+class SceneChangedError(RevisionConflictError):
+    """A job's result, computed on `base_revision`, was not stored: the scene moved on to
+    `current_revision` with work the result would have overwritten."""
+
+    def __init__(self, base_revision: int, current_revision: int) -> None:
+        super().__init__(current_revision)
+        self.base_revision = base_revision
+
+
 class SceneStore:
     def __init__(self, engine: Engine, files: SceneFiles) -> None:
         self.engine = engine
@@ -226,34 +235,89 @@ class SceneStore:
         return self.document(scene_id, number) if number is not None else None
 
     def commit_pipeline_result(
-        self, scene_id: str, result: Scene, glb: bytes | None, attempts: int = 5
+        self,
+        scene_id: str,
+        result: Scene,
+        glb: bytes | None,
+        base_revision: int | None = None,
+        attempts: int = 5,
     ) -> int:
-        """Store a pipeline run as a new revision on top of whatever is current, keeping every
-        manual support people set meanwhile. Returns the new revision number."""
+        """Store a whole pipeline run as a new revision on top of whatever is current, keeping
+        every manual support people set meanwhile. Returns the new revision number.
+
+        `base_revision`: the revision the run started from. A room layout set by hand after it
+        cannot be merged (the run estimated its own): SceneChangedError, nothing written."""
         for _ in range(attempts):
             current = self.document(scene_id)
+            if base_revision is not None and self._layout_set_since(scene_id, base_revision):
+                raise SceneChangedError(base_revision, current.revision)
             merged = keep_manual_supports(result, current.scene)
-            new_revision = current.revision + 1
-            if glb is not None:
-                self.files.write_atomic(self.files.glb_path(scene_id, new_revision), glb)
             try:
-                self._commit_revision(
-                    scene_id,
-                    current.revision,
-                    merged,
-                    author="pipeline",
-                    kind="pipeline",
-                    summary=f"pipeline: {', '.join(s.name for s in result.stages)}",
-                    edits=None,
-                    glb_revision=new_revision if glb is not None else None,
-                    hook=lambda session, number: pipeline_committed(session, scene_id, number),
-                )
-                return new_revision
+                return self._commit_result(scene_id, current.revision, merged, glb)
             except RevisionConflictError:
                 continue  # an edit landed meanwhile: merge again on top of it
         raise RevisionConflictError(self.document(scene_id).revision)
 
+    def commit_placement_result(
+        self, scene_id: str, base_revision: int, result: Scene, glb: bytes | None
+    ) -> int:
+        """Store a placement run made on `base_revision`, only if the scene is still at that
+        revision: the run carries that revision's layout, camera and supports, and storing it
+        on top of a newer revision would silently undo what was saved since. Otherwise
+        SceneChangedError, and nothing is written."""
+        try:
+            return self._commit_result(scene_id, base_revision, result, glb)
+        except RevisionConflictError as conflict:
+            raise SceneChangedError(base_revision, conflict.current_revision) from conflict
+
     # -- helpers -------------------------------------------------------------------------
+
+    def _commit_result(
+        self, scene_id: str, base_revision: int, scene: Scene, glb: bytes | None
+    ) -> int:
+        """A pipeline or placement run as revision base_revision + 1, if the scene is still at
+        `base_revision` (RevisionConflictError otherwise). The GLB is written once the revision
+        number is ours, inside the transaction, and removed again if the transaction fails."""
+        new_revision = base_revision + 1
+        glb_path = self.files.glb_path(scene_id, new_revision)
+        written = False
+
+        def committed(session: Session, number: int) -> None:
+            nonlocal written
+            pipeline_committed(session, scene_id, number)  # refuses a submitted scene
+            if glb is not None:
+                self.files.write_atomic(glb_path, glb)
+                written = True
+
+        try:
+            self._commit_revision(
+                scene_id,
+                base_revision,
+                scene,
+                author="pipeline",
+                kind="pipeline",
+                summary=f"pipeline: {', '.join(s.name for s in scene.stages)}",
+                edits=None,
+                glb_revision=new_revision if glb is not None else None,
+                hook=committed,
+            )
+        except BaseException:
+            if written:
+                glb_path.unlink(missing_ok=True)
+            raise
+        return new_revision
+
+    def _layout_set_since(self, scene_id: str, revision: int) -> bool:
+        """Whether an edit after `revision` set the room layout by hand."""
+        with Session(self.engine) as session:
+            edits = session.scalars(
+                select(RevisionRow.edits).where(
+                    RevisionRow.scene_id == scene_id,
+                    RevisionRow.number > revision,
+                    RevisionRow.kind == "edit",
+                )
+            )
+            return any(e.get("kind") == "set_layout" for batch in edits for e in batch or [])
 
     def _earlier_scenes(self, scene_id: str, numbers: set[int]) -> dict[int, Scene]:
         """The scenes of these revisions; a number without a revision is left out."""

@@ -109,11 +109,14 @@ def run_pipeline_job(scene_id: str, workbench: WorkbenchDep, _: AnnotatorDep) ->
     "/{scene_id}/placement-jobs",
     status_code=202,
     response_model=Job,
-    responses={**_ERRORS},
+    responses={409: {"model": ErrorMessage}, **_ERRORS},
 )
 def run_placement_job(scene_id: str, workbench: WorkbenchDep) -> Job:
     """Place the objects again (heights, 3D boxes, shapes, scene.glb) on the current revision's
-    camera and room layout, after a person changed them; the result is a new revision."""
+    camera and room layout, after a person changed them; the result is a new revision, stored
+    only if nobody saved the scene meanwhile (else the job fails and nothing is overwritten).
+    409 while the scene is submitted or accepted."""
+    workbench.workflow.check_pipeline_allowed(scene_id)
     return workbench.start_placement(scene_id)
 
 
