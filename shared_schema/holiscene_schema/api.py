@@ -70,7 +70,22 @@ class EditRequest(SchemaModel):
     edits: list[Edit] = Field(min_length=1, max_length=500)
 
 
-class SceneDocument(SchemaModel):
+class EditPermission(SchemaModel):
+    """Whether the user asking may edit the scene now, so the app can disable its editors.
+    The server checks every edit itself (409 with the same reason) whatever this says."""
+
+    editable: bool = Field(
+        default=False,
+        description="The user asking may change this scene's supports and room layout now",
+    )
+    editable_reason: str | None = Field(
+        default=None,
+        description="Why not, when editable is false (e.g. the scene is submitted for review, "
+        "someone else is annotating it, or this is not the latest revision)",
+    )
+
+
+class SceneDocument(EditPermission):
     scene_id: str
     revision: int
     updated_at: datetime
@@ -315,7 +330,7 @@ class WorkflowEvent(SchemaModel):
     comment: str | None = None
 
 
-class SceneWorkflow(SchemaModel):
+class SceneWorkflow(EditPermission):
     scene_id: str
     state: SceneState
     assignee: str | None

@@ -683,6 +683,14 @@ type: ("below" | "behind")
  * via the `definition` "SceneDocument".
  */
 export interface SceneDocument {
+/**
+ * The user asking may change this scene's supports and room layout now
+ */
+editable: boolean
+/**
+ * Why not, when editable is false (e.g. the scene is submitted for review, someone else is annotating it, or this is not the latest revision)
+ */
+editable_reason: (string | null)
 revision: number
 scene: Scene
 scene_id: string
@@ -695,6 +703,14 @@ updated_at: string
 export interface SceneWorkflow {
 annotation_round: number
 assignee: (string | null)
+/**
+ * The user asking may change this scene's supports and room layout now
+ */
+editable: boolean
+/**
+ * Why not, when editable is false (e.g. the scene is submitted for review, someone else is annotating it, or this is not the latest revision)
+ */
+editable_reason: (string | null)
 /**
  * Oldest first
  */

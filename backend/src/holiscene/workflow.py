@@ -70,12 +70,17 @@ def take_for_annotation(
 
     Raises WorkflowError when the actor may not work on the scene now. `earlier_annotators`:
     who submitted it in an earlier annotation round (a second annotation must be
-    independent of the first)."""
+    independent of the first).
+
+    A submitted or accepted scene is locked for everyone, reviewers and admins included:
+    what a reviewer judges, or accepted, is exactly what its annotator submitted. A reviewer
+    who wants a change rejects the scene with a comment (its annotator fixes it; an admin
+    may take it over), and an accepted scene changes only through a second annotation."""
     state, assignee = status.state, status.assignee
     if state == "submitted":
         raise WorkflowError(
-            f"the scene is submitted for review (by {assignee or 'someone'}): it cannot be "
-            "edited until a reviewer accepts or rejects it"
+            f"the scene is submitted for review (by {assignee or 'someone'}): a reviewer must "
+            "reject it before it can be edited"
         )
     if state == "accepted":
         raise WorkflowError(
@@ -95,6 +100,18 @@ def take_for_annotation(
         return Transition("reopen", "in_annotation", actor.name)
     if assignee != actor.name:  # in annotation, unassigned or taken over by an admin
         return Transition("claim", "in_annotation", actor.name)
+    return None
+
+
+def edit_refusal(
+    status: SceneStatus, actor: Actor, earlier_annotators: Iterable[str] = ()
+) -> str | None:
+    """Why the actor may not edit the scene now (supports, room layout), or None when they
+    may: the rules of take_for_annotation, which every edit goes through."""
+    try:
+        take_for_annotation(status, actor, earlier_annotators)
+    except WorkflowError as refused:
+        return str(refused)
     return None
 
 

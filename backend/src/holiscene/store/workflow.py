@@ -75,6 +75,18 @@ class WorkflowStore:
                 events=events,
             )
 
+    def edit_refusal(self, scene_id: str, actor: Actor, revision: int | None = None) -> str | None:
+        """Why the actor may not edit the scene now, or None when they may. `revision`: the
+        revision they look at; edits apply to the latest only."""
+        with Session(self.engine) as session:
+            row = _row(session, scene_id)
+            if revision is not None and revision != row.current_revision:
+                return (
+                    f"revision {revision} is an earlier one: edits apply to the latest "
+                    f"(revision {row.current_revision})"
+                )
+            return workflow.edit_refusal(status_of(row), actor, _earlier_annotators(session, row))
+
     def check_pipeline_allowed(self, scene_id: str) -> None:
         with Session(self.engine) as session:
             workflow.check_pipeline_allowed(status_of(_row(session, scene_id)))
@@ -83,7 +95,13 @@ class WorkflowStore:
 
     def edit(self, scene_id: str, request: EditRequest, actor: Actor) -> SceneDocument:
         """Apply an annotator's edits; the first edit takes the scene (predicted -> in
-        annotation, or rejected -> in annotation again). In the same transaction."""
+        annotation, or rejected -> in annotation again). In the same transaction.
+
+        A scene the actor may not edit is refused (WorkflowError) before the edits are even
+        looked at; the check is made again inside the write transaction."""
+        refusal = self.edit_refusal(scene_id, actor)
+        if refusal is not None:
+            raise WorkflowError(refusal)
 
         def take(session: Session, revision: int) -> None:
             row = _row(session, scene_id)

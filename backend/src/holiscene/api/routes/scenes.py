@@ -20,7 +20,8 @@ from holiscene_schema import (
 
 from ...inputs import InputError, InputFiles, load_photo, parse_detections, parse_intrinsics
 from ...store.scenes import SceneNotFoundError
-from ..deps import AnnotatorDep, WorkbenchDep, author_of
+from ..deps import AnnotatorDep, UserDep, WorkbenchDep, author_of
+from ..permissions import with_edit_permission
 
 router = APIRouter(prefix="/api/scenes", tags=["scenes"])
 
@@ -82,8 +83,9 @@ async def import_scene(
 
 
 @router.get("/{scene_id}", response_model=SceneDocument, responses=_ERRORS)
-def get_scene(scene_id: str, workbench: WorkbenchDep) -> SceneDocument:
-    return workbench.scenes.document(scene_id)
+def get_scene(scene_id: str, workbench: WorkbenchDep, user: UserDep) -> SceneDocument:
+    """The latest revision; `editable` says whether the user asking may edit it now."""
+    return with_edit_permission(workbench.scenes.document(scene_id), workbench, user)
 
 
 @router.get("/{scene_id}/image", responses=_ERRORS)
@@ -131,7 +133,7 @@ def edit_scene(
     """A new revision; the first edit takes the scene for annotation (409 when someone
     else is annotating it, or it is submitted or accepted)."""
     request = request.model_copy(update={"author": author_of(user, request.author)})
-    return workbench.workflow.edit(scene_id, request, user)
+    return with_edit_permission(workbench.workflow.edit(scene_id, request, user), workbench, user)
 
 
 @router.get("/{scene_id}/revisions", response_model=list[RevisionInfo], responses=_ERRORS)
@@ -140,5 +142,8 @@ def list_revisions(scene_id: str, workbench: WorkbenchDep) -> list[RevisionInfo]
 
 
 @router.get("/{scene_id}/revisions/{number}", response_model=SceneDocument, responses=_ERRORS)
-def get_revision(scene_id: str, number: int, workbench: WorkbenchDep) -> SceneDocument:
-    return workbench.scenes.document(scene_id, number)
+def get_revision(
+    scene_id: str, number: int, workbench: WorkbenchDep, user: UserDep
+) -> SceneDocument:
+    """A revision as stored; only the latest can be `editable`."""
+    return with_edit_permission(workbench.scenes.document(scene_id, number), workbench, user)

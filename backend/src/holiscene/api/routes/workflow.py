@@ -16,6 +16,7 @@ from holiscene_schema import (
 )
 
 from ..deps import AnnotatorDep, ReviewerDep, UserDep, WorkbenchDep
+from ..permissions import with_edit_permission
 
 router = APIRouter(prefix="/api", tags=["workflow"])
 
@@ -38,9 +39,10 @@ def next_scene(user: AnnotatorDep, workbench: WorkbenchDep) -> SceneSummary:
 
 
 @router.get("/scenes/{scene_id}/workflow", response_model=SceneWorkflow, responses=_ERRORS)
-def scene_workflow(scene_id: str, workbench: WorkbenchDep) -> SceneWorkflow:
-    """State, assignee, the reviewer's comment when rejected, and every state change."""
-    return workbench.workflow.scene_workflow(scene_id)
+def scene_workflow(scene_id: str, user: UserDep, workbench: WorkbenchDep) -> SceneWorkflow:
+    """State, assignee, the reviewer's comment when rejected, every state change, and whether
+    the user asking may edit the scene now (`editable`, `editable_reason`)."""
+    return with_edit_permission(workbench.workflow.scene_workflow(scene_id), workbench, user)
 
 
 @router.post("/scenes/{scene_id}/take", response_model=SceneSummary, responses=_ERRORS)
@@ -55,14 +57,16 @@ def submit_scene(
     scene_id: str, body: SubmitRequest, user: AnnotatorDep, workbench: WorkbenchDep
 ) -> SceneWorkflow:
     """Hand the scene to the reviewers (only its annotator; `revision` must be the latest)."""
-    return workbench.workflow.submit(scene_id, body.revision, user)
+    flow = workbench.workflow.submit(scene_id, body.revision, user)
+    return with_edit_permission(flow, workbench, user)
 
 
 @router.post("/scenes/{scene_id}/accept", response_model=SceneWorkflow, responses=_ERRORS)
 def accept_scene(
     scene_id: str, body: ReviewRequest, user: ReviewerDep, workbench: WorkbenchDep
 ) -> SceneWorkflow:
-    return workbench.workflow.accept(scene_id, body.revision, user, body.comment)
+    flow = workbench.workflow.accept(scene_id, body.revision, user, body.comment)
+    return with_edit_permission(flow, workbench, user)
 
 
 @router.post("/scenes/{scene_id}/reject", response_model=SceneWorkflow, responses=_ERRORS)
@@ -70,7 +74,8 @@ def reject_scene(
     scene_id: str, body: RejectRequest, user: ReviewerDep, workbench: WorkbenchDep
 ) -> SceneWorkflow:
     """Send the scene back to its annotator with a comment saying what went wrong."""
-    return workbench.workflow.reject(scene_id, body.revision, user, body.comment)
+    flow = workbench.workflow.reject(scene_id, body.revision, user, body.comment)
+    return with_edit_permission(flow, workbench, user)
 
 
 @router.post(
@@ -82,7 +87,8 @@ def second_annotation(
     """Have a submitted or accepted scene annotated again, independently: its supports go
     back to the pipeline's guesses and someone who did not label it takes it next. The
     dashboard then shows how far the two annotations agree."""
-    return workbench.workflow.second_annotation(scene_id, body.revision, user, body.comment)
+    flow = workbench.workflow.second_annotation(scene_id, body.revision, user, body.comment)
+    return with_edit_permission(flow, workbench, user)
 
 
 @router.get("/dashboard", response_model=Dashboard)
