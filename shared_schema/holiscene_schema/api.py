@@ -264,6 +264,11 @@ class UserInfo(SchemaModel):
     name: str
     role: Role
     created_at: datetime
+    disabled: bool = Field(
+        default=False,
+        description="An admin disabled the account: it cannot log in and its sessions ended",
+    )
+    disabled_at: datetime | None = Field(default=None, description="Since when, if disabled")
 
 
 class CurrentUser(SchemaModel):

@@ -771,6 +771,14 @@ revision: number
  */
 export interface UserInfo {
 created_at: string
+/**
+ * An admin disabled the account: it cannot log in and its sessions ended
+ */
+disabled: boolean
+/**
+ * Since when, if disabled
+ */
+disabled_at: (string | null)
 name: string
 role: ("annotator" | "reviewer" | "admin")
 }

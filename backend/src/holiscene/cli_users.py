@@ -9,6 +9,7 @@ import os
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from datetime import timedelta
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -31,7 +32,9 @@ def add_user_commands(
     sub: argparse._SubParsersAction,  # type: ignore[type-arg]
     settings: SettingsFactory,
 ) -> None:
-    users = sub.add_parser("users", help="user accounts: add, list, set-role, reset-password")
+    users = sub.add_parser(
+        "users", help="user accounts: add, list, set-role, reset-password, disable, enable"
+    )
     commands = users.add_subparsers(required=True, metavar="ACTION")
 
     def store_options(parser: argparse.ArgumentParser) -> None:
@@ -63,6 +66,17 @@ def add_user_commands(
     store_options(reset)
     reset.set_defaults(handler=lambda args: _reset(args, settings(args)))
 
+    for action, disabled, help_text in (
+        ("disable", True, "disable an account: no login, and its sessions end at once"),
+        ("enable", False, "enable a disabled account again"),
+    ):
+        switch = commands.add_parser(action, help=help_text)
+        switch.add_argument("name")
+        store_options(switch)
+        switch.set_defaults(
+            handler=lambda args, off=disabled: _set_disabled(args, settings(args), off)
+        )
+
 
 @contextmanager
 def user_store(settings: Settings) -> Iterator[UserStore]:
@@ -74,7 +88,7 @@ def user_store(settings: Settings) -> Iterator[UserStore]:
     engine = make_engine(settings.resolved_database_url)
     try:
         migrate(engine)
-        yield UserStore(engine)
+        yield UserStore(engine, timedelta(hours=settings.session_idle_hours))
     finally:
         engine.dispose()
 
@@ -114,7 +128,10 @@ def _list(settings: Settings) -> int:
     if not accounts:
         print("no accounts (the server runs in local single-user mode on 127.0.0.1)")
     for user in accounts:
-        print(f"{user.name:24s} {user.role:10s} since {user.created_at:%Y-%m-%d %H:%M}")
+        line = f"{user.name:24s} {user.role:10s} since {user.created_at:%Y-%m-%d %H:%M}"
+        if user.disabled_at is not None:
+            line += f"  disabled since {user.disabled_at:%Y-%m-%d %H:%M}"
+        print(line)
     return 0
 
 
@@ -127,6 +144,12 @@ def _reset(args: argparse.Namespace, settings: Settings) -> int:
     password = _password(args.name)
     with user_store(settings) as users:
         return _run(lambda: f"new password set for {users.set_password(args.name, password).name}")
+
+
+def _set_disabled(args: argparse.Namespace, settings: Settings, disabled: bool) -> int:
+    with user_store(settings) as users:
+        state = "disabled" if disabled else "enabled"
+        return _run(lambda: f"{users.set_disabled(args.name, disabled).name} is now {state}")
 
 
 def check_can_serve(settings: Settings, allow_remote: bool) -> None:

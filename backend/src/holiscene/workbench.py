@@ -9,6 +9,7 @@ import shutil
 import threading
 import traceback
 from concurrent.futures import ThreadPoolExecutor
+from datetime import timedelta
 from pathlib import Path
 
 from holiscene_schema import ImageInfo, ImportResult, Job, RetrainRequest, Scene
@@ -46,7 +47,7 @@ class Workbench:
         migrate(self.engine)
         self.scenes = SceneStore(self.engine, SceneFiles(settings.data_dir))
         self.jobs = JobStore(self.engine)
-        self.users = UserStore(self.engine)
+        self.users = UserStore(self.engine, timedelta(hours=settings.session_idle_hours))
         self.workflow = WorkflowStore(self.engine, self.scenes)
         self.models = ModelStore(
             self.engine,

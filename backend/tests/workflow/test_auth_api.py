@@ -29,6 +29,8 @@ NEEDS: dict[tuple[str, str], str] = {
     ("POST", "/api/users"): "admin",
     ("PATCH", "/api/users/{name}"): "admin",
     ("POST", "/api/users/{name}/password"): "admin",
+    ("POST", "/api/users/{name}/disable"): "admin",
+    ("POST", "/api/users/{name}/enable"): "admin",
 }
 RANK = {"annotator": 1, "reviewer": 2, "admin": 3}
 

@@ -1,4 +1,5 @@
-"""Migration 0003 on a database of scenes stored before accounts and states existed."""
+"""Migrations on databases written by earlier versions: 0003 on scenes stored before accounts
+and states existed, 0004 on accounts and sessions stored before idle timeouts and disabling."""
 
 from __future__ import annotations
 
@@ -59,4 +60,40 @@ def test_existing_scenes_get_a_state_and_an_uncertainty(tmp_path: Path) -> None:
         "predicted": ("predicted", None, 1, 0.85),
         "edited": ("in_annotation", None, 1, 0.85),
     }
+    engine.dispose()
+
+
+def test_open_sessions_get_a_last_seen_time_and_accounts_stay_enabled(tmp_path: Path) -> None:
+    engine = make_engine(f"sqlite:///{tmp_path / 'old.db'}")
+    _upgrade(engine, "0003")
+    with engine.begin() as connection:
+        connection.execute(
+            text(
+                "INSERT INTO users (id, name, role, password_hash, created_at) "
+                "VALUES (1, 'ada', 'admin', 'x', '2026-01-01 00:00:00')"
+            )
+        )
+        connection.execute(
+            text(
+                "INSERT INTO sessions VALUES ('h', 1, '2026-01-02 10:00:00', '2026-01-09 10:00:00')"
+            )
+        )
+    _upgrade(engine, "head")
+    with engine.connect() as connection:
+        session = connection.execute(text("SELECT created_at, last_seen_at FROM sessions")).one()
+        disabled = connection.execute(text("SELECT disabled_at FROM users")).scalar_one()
+        # The index on sessions.user_id survives the copy of the table.
+        indexes = connection.execute(text("PRAGMA index_list('sessions')")).all()
+    assert session[1] == session[0] and disabled is None
+    assert any(row[1] == "ix_sessions_user_id" for row in indexes)
+
+    # And back: 0004 can be undone.
+    config = Config()
+    config.set_main_option("script_location", str(MIGRATIONS_DIR))
+    with engine.begin() as connection:
+        config.attributes["connection"] = connection
+        command.downgrade(config, "0003")
+    with engine.connect() as connection:
+        columns = [row[1] for row in connection.execute(text("PRAGMA table_info('sessions')"))]
+    assert "last_seen_at" not in columns and len(columns) == 4
     engine.dispose()

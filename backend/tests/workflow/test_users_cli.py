@@ -81,3 +81,48 @@ def test_serve_beyond_loopback_needs_allow_remote_and_an_admin(
     remote = Settings(data_dir=Path(data), host="0.0.0.0")
     check_can_serve(remote, allow_remote=True)  # an admin exists: it may serve
     check_can_serve(Settings(data_dir=Path(data), host="127.0.0.1"), allow_remote=False)
+
+
+def test_users_disable_and_enable(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from holiscene.cli_users import user_store
+    from holiscene.core.settings import Settings
+    from holiscene.store.users import AccountDisabledError, SessionEndedError
+
+    data = str(tmp_path / "data")
+    monkeypatch.setenv("HOLISCENE_PASSWORD", PASSWORD)
+    for name, role in (("ada", "admin"), ("ann", "annotator")):
+        assert _run(capsys, "users", "add", name, "--role", role, "--data-dir", data)[0] == 0
+    settings = Settings(data_dir=Path(data))
+    with user_store(settings) as users:
+        user = users.log_in("ann", PASSWORD)
+        assert user is not None
+        token = users.open_session(user).token  # as a server on the same store would
+
+    assert _run(capsys, "users", "disable", "ann", "--data-dir", data)[:2] == (
+        0,
+        "ann is now disabled\n",
+    )
+    listed = _run(capsys, "users", "list", "--data-dir", data)[1].splitlines()
+    assert "disabled since" in listed[1] and "disabled" not in listed[0]
+    with user_store(settings) as users:
+        with pytest.raises(SessionEndedError, match="ann was disabled"):
+            users.user_for_token(token)
+        with pytest.raises(AccountDisabledError, match="ask an admin"):
+            users.log_in("ann", PASSWORD)
+
+    # The only admin stays enabled; unknown names are refused.
+    status, _, err = _run(capsys, "users", "disable", "ada", "--data-dir", data)
+    assert status == 2 and "only enabled admin" in err
+    status, _, err = _run(capsys, "users", "enable", "nobody", "--data-dir", data)
+    assert status == 2 and "no user 'nobody'" in err
+
+    assert _run(capsys, "users", "enable", "ann", "--data-dir", data)[:2] == (
+        0,
+        "ann is now enabled\n",
+    )
+    with user_store(settings) as users:
+        assert users.user_for_token(token) is None  # the old session stays ended
+        assert users.log_in("ann", PASSWORD) is not None
+        assert [u.disabled for u in users.list_users()] == [False, False]

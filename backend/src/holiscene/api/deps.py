@@ -19,6 +19,7 @@ from typing import Annotated
 from fastapi import Depends, HTTPException, Request
 from holiscene_schema import Role
 
+from ..store.users import SessionEndedError
 from ..workbench import Workbench
 from ..workflow import LOCAL_USER, Actor, has_role
 
@@ -58,7 +59,10 @@ def session_token(request: Request) -> str | None:
 def current_user(request: Request, workbench: WorkbenchDep) -> Actor:
     token = session_token(request)
     if token is not None:
-        user = workbench.users.user_for_token(token)
+        try:
+            user = workbench.users.user_for_token(token)
+        except SessionEndedError as ended:
+            raise HTTPException(401, str(ended), headers={"WWW-Authenticate": "Bearer"}) from ended
         if user is not None:
             return Actor(user.name, user.role)
     if local_mode(workbench):

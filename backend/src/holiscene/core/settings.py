@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from pydantic import Field
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 REPO_ROOT = Path(__file__).resolve().parents[4]
@@ -19,6 +20,8 @@ class Settings(BaseSettings):
     port: int = 8000
     max_upload_mb: int = 50
     models_dir: Path | None = None  # the user's own models: <class>/*.obj|glb|ply
+    # A login session ends after this long without a request (each request moves it on).
+    session_idle_hours: float = Field(default=8.0, gt=0)
 
     @property
     def resolved_database_url(self) -> str:

@@ -114,6 +114,8 @@ class UserRow(Base):
     role: Mapped[str] = mapped_column(String(16))
     password_hash: Mapped[str] = mapped_column(String(255))  # argon2id, never the password
     created_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
+    # Set while an admin has disabled the account (migration 0004): no login, no session.
+    disabled_at: Mapped[datetime | None] = mapped_column(DateTime(timezone=True), nullable=True)
 
 
 class SessionRow(Base):
@@ -126,6 +128,9 @@ class SessionRow(Base):
     user_id: Mapped[int] = mapped_column(ForeignKey("users.id", ondelete="CASCADE"), index=True)
     created_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
     expires_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
+    # The session's last request (migration 0004): it ends after Settings.session_idle_hours
+    # without one.
+    last_seen_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
 
 
 class SceneEventRow(Base):

@@ -2,8 +2,9 @@
 
 Passwords are stored as argon2id hashes. A session is a random token given to the client
 (an HttpOnly cookie, or a bearer token for scripts); the database keeps only its SHA-256, so
-reading the database opens no session. Sessions end at logout, at expiry, and when the
-user's password is reset.
+reading the database opens no session. Sessions end at logout, at expiry, after a while
+without requests (the idle timeout; every request moves it on), when the user's password is
+reset, and while an admin has disabled the account.
 """
 
 from __future__ import annotations
@@ -15,9 +16,9 @@ from dataclasses import dataclass
 from datetime import datetime, timedelta
 
 from holiscene_schema import Role, UserInfo
-from sqlalchemy import Engine, delete, func, select
+from sqlalchemy import Engine, delete, func, select, update
 from sqlalchemy.exc import IntegrityError
-from sqlalchemy.orm import Session
+from sqlalchemy.orm import Session, aliased
 
 from ..core.passwords import check_password, hash_password, needs_rehash, verify_password
 from ..workflow import RESERVED_NAMES, ROLES
@@ -25,6 +26,9 @@ from .clock import as_utc, utcnow
 from .tables import SessionRow, UserRow
 
 SESSION_LIFETIME = timedelta(days=7)
+DEFAULT_IDLE_TIMEOUT = timedelta(hours=8)
+# A session's last-seen time is written at most this often (not on every request).
+LAST_SEEN_STEP = timedelta(seconds=30)
 NAME_PATTERN = re.compile(r"^[a-z0-9][a-z0-9_.-]{0,63}$")
 
 
@@ -40,11 +44,20 @@ class UserNotFoundError(LookupError):
     pass
 
 
+class SessionEndedError(Exception):
+    """A token of a session that no longer opens anything; the message says why (HTTP 401)."""
+
+
+class AccountDisabledError(Exception):
+    """The right password for an account an admin disabled (HTTP 403 at login)."""
+
+
 @dataclass(frozen=True)
 class User:
     id: int
     name: str
     role: Role
+    disabled: bool = False
 
 
 @dataclass(frozen=True)
@@ -76,8 +89,12 @@ def check_role(role: str) -> Role:
 
 
 class UserStore:
-    def __init__(self, engine: Engine) -> None:
+    def __init__(self, engine: Engine, idle_timeout: timedelta = DEFAULT_IDLE_TIMEOUT) -> None:
+        """`idle_timeout`: how long a session lasts without a request."""
+        if idle_timeout <= timedelta(0):
+            raise ValueError("the session idle timeout must be positive")
         self.engine = engine
+        self.idle_timeout = idle_timeout
 
     # -- accounts ------------------------------------------------------------------------
 
@@ -127,9 +144,49 @@ class UserStore:
         checked_role = check_role(role)
         with Session(self.engine) as session:
             row = self._row(session, name)
-            if row.role == "admin" and checked_role != "admin" and self._admins(session) <= 1:
+            if checked_role != "admin" and self._last_admin(session, row):
                 raise UserError(f"{name} is the only admin; make someone else admin first", 409)
             row.role = checked_role
+            session.commit()
+            return _info(row)
+
+    def set_disabled(self, name: str, disabled: bool) -> UserInfo:
+        """Disable an account (it cannot log in, and its sessions stop working at once) or
+        enable it again (its sessions from before stay ended: log in anew). The last enabled
+        admin cannot be disabled, not even by themselves: nobody could manage accounts."""
+        with Session(self.engine) as session:
+            row = self._row(session, name)
+            if disabled and row.disabled_at is None:
+                # One statement, so two admins disabling each other at once cannot both win:
+                # the count of the others is read where the row is written.
+                admin = aliased(UserRow)  # not correlated with the row updated
+                others = (
+                    select(func.count())
+                    .select_from(admin)
+                    .where(admin.role == "admin", admin.disabled_at.is_(None), admin.id != row.id)
+                    .scalar_subquery()
+                )
+                moved = session.execute(
+                    update(UserRow)
+                    .where(
+                        UserRow.id == row.id,
+                        UserRow.disabled_at.is_(None),
+                        (UserRow.role != "admin") | (others > 0),
+                    )
+                    .values(disabled_at=utcnow())
+                    .execution_options(synchronize_session=False)
+                )
+                if moved.rowcount != 1:  # type: ignore[attr-defined]
+                    raise UserError(
+                        f"{name} is the only enabled admin and cannot be disabled: make someone "
+                        "else admin first",
+                        409,
+                    )
+                session.commit()
+                session.refresh(row)
+            elif not disabled and row.disabled_at is not None:
+                row.disabled_at = None
+                session.execute(delete(SessionRow).where(SessionRow.user_id == row.id))
             session.commit()
             return _info(row)
 
@@ -153,7 +210,17 @@ class UserStore:
             if needs_rehash(row.password_hash):
                 row.password_hash = hash_password(password)
                 session.commit()
-            return User(row.id, row.name, check_role(row.role))
+            return _user(row)
+
+    def log_in(self, name: str, password: str) -> User | None:
+        """check_credentials for a login: AccountDisabledError for a disabled account (said
+        only to whoever knows its password)."""
+        user = self.check_credentials(name, password)
+        if user is not None and user.disabled:
+            raise AccountDisabledError(
+                f"the account {user.name} is disabled; ask an admin to enable it"
+            )
+        return user
 
     # -- sessions ------------------------------------------------------------------------
 
@@ -162,20 +229,30 @@ class UserStore:
         now = utcnow()
         expires = now + SESSION_LIFETIME
         with Session(self.engine) as session:
-            session.execute(delete(SessionRow).where(SessionRow.expires_at < now))
+            session.execute(
+                delete(SessionRow).where(
+                    (SessionRow.expires_at < now)
+                    | (SessionRow.last_seen_at < now - self.idle_timeout)
+                )
+            )
             session.add(
                 SessionRow(
                     token_hash=_token_hash(token),
                     user_id=user.id,
                     created_at=now,
                     expires_at=expires,
+                    last_seen_at=now,
                 )
             )
             session.commit()
         return NewSession(token=token, user=user, expires_at=expires)
 
     def user_for_token(self, token: str) -> User | None:
-        """The session's user, read fresh (a role change applies at the next request)."""
+        """The session's user, read fresh (a role change applies at the next request), and
+        the session kept alive: each request moves its idle deadline on. None for a token
+        that never opened a session (or whose session was closed); SessionEndedError, saying
+        why, for one that expired, went unused too long, or whose account is disabled."""
+        now = utcnow()
         with Session(self.engine) as session:
             found = session.execute(
                 select(SessionRow, UserRow)
@@ -185,9 +262,22 @@ class UserStore:
             if found is None:
                 return None
             row, user = found
-            if as_utc(row.expires_at) <= utcnow():
-                return None
-            return User(user.id, user.name, check_role(user.role))
+            if user.disabled_at is not None:
+                raise SessionEndedError(
+                    f"the account {user.name} was disabled by an admin; your session ended"
+                )
+            if as_utc(row.expires_at) <= now:
+                raise SessionEndedError("your session expired; log in again")
+            last_seen = as_utc(row.last_seen_at)
+            if last_seen + self.idle_timeout <= now:
+                raise SessionEndedError(
+                    f"your session ended after {_duration(self.idle_timeout)} without "
+                    "activity; log in again"
+                )
+            if now - last_seen >= min(LAST_SEEN_STEP, self.idle_timeout / 10):
+                row.last_seen_at = now
+                session.commit()
+            return _user(user)
 
     def close_session(self, token: str) -> None:
         with Session(self.engine) as session:
@@ -205,9 +295,40 @@ class UserStore:
 
     @staticmethod
     def _admins(session: Session) -> int:
-        query = select(func.count()).select_from(UserRow).where(UserRow.role == "admin")
+        """Enabled admins: a disabled one manages nothing."""
+        query = (
+            select(func.count())
+            .select_from(UserRow)
+            .where(UserRow.role == "admin", UserRow.disabled_at.is_(None))
+        )
         return int(session.scalar(query) or 0)
+
+    def _last_admin(self, session: Session, row: UserRow) -> bool:
+        """Whether `row` is the only enabled admin."""
+        return row.role == "admin" and row.disabled_at is None and self._admins(session) <= 1
+
+
+def _user(row: UserRow) -> User:
+    return User(row.id, row.name, check_role(row.role), disabled=row.disabled_at is not None)
 
 
 def _info(row: UserRow) -> UserInfo:
-    return UserInfo(name=row.name, role=check_role(row.role), created_at=as_utc(row.created_at))
+    return UserInfo(
+        name=row.name,
+        role=check_role(row.role),
+        created_at=as_utc(row.created_at),
+        disabled=row.disabled_at is not None,
+        disabled_at=as_utc(row.disabled_at) if row.disabled_at is not None else None,
+    )
+
+
+def _duration(span: timedelta) -> str:
+    """8 hours, 90 minutes, 45 seconds."""
+    seconds = span.total_seconds()
+    for unit, size in (("hour", 3600), ("minute", 60)):
+        if seconds >= size and seconds % size == 0:
+            count = int(seconds // size)
+            return f"{count} {unit}{'s' if count != 1 else ''}"
+    if seconds >= 60:
+        return f"{seconds / 60:g} minutes"
+    return f"{seconds:g} seconds"

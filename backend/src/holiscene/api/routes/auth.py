@@ -14,7 +14,7 @@ from collections import defaultdict, deque
 from fastapi import APIRouter, HTTPException, Request, Response
 from holiscene_schema import CurrentUser, ErrorMessage, LoginRequest, LoginResult, PasswordChange
 
-from ...store.users import SESSION_LIFETIME
+from ...store.users import SESSION_LIFETIME, AccountDisabledError
 from ..deps import SESSION_COOKIE, UserDep, WorkbenchDep, local_mode, session_token
 
 router = APIRouter(prefix="/api/auth", tags=["auth"])
@@ -63,7 +63,11 @@ def _me(name: str, role: str, local: bool) -> CurrentUser:
 @router.post(
     "/login",
     response_model=LoginResult,
-    responses={401: {"model": ErrorMessage}, 429: {"model": ErrorMessage}},
+    responses={
+        401: {"model": ErrorMessage},
+        403: {"model": ErrorMessage, "description": "The account is disabled"},
+        429: {"model": ErrorMessage},
+    },
 )
 def login(
     body: LoginRequest, request: Request, response: Response, workbench: WorkbenchDep
@@ -72,7 +76,10 @@ def login(
     throttle = _throttle(request)
     if throttle.blocked(name):
         raise HTTPException(429, "too many failed logins for this name; wait a few minutes")
-    user = workbench.users.check_credentials(name, body.password)
+    try:
+        user = workbench.users.log_in(name, body.password)
+    except AccountDisabledError as disabled:
+        raise HTTPException(403, str(disabled)) from disabled
     if user is None:
         throttle.failed(name)
         raise HTTPException(401, "wrong user name or password")

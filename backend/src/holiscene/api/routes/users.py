@@ -1,4 +1,5 @@
-"""Accounts (admins only): list, create, change a role, reset a password."""
+"""Accounts (admins only): list, create, change a role, reset a password, disable and
+enable."""
 
 from __future__ import annotations
 
@@ -33,6 +34,19 @@ def create_user(body: NewUser, workbench: WorkbenchDep) -> UserInfo:
 def change_role(name: str, body: RoleChange, workbench: WorkbenchDep) -> UserInfo:
     """409 when it would leave no admin."""
     return workbench.users.set_role(name, body.role)
+
+
+@router.post("/{name}/disable", response_model=UserInfo, responses=_ERRORS)
+def disable_user(name: str, workbench: WorkbenchDep) -> UserInfo:
+    """The account can no longer log in, and its sessions stop working at once (401). 409
+    for the only enabled admin (also when they disable themselves)."""
+    return workbench.users.set_disabled(name, True)
+
+
+@router.post("/{name}/enable", response_model=UserInfo, responses=_ERRORS)
+def enable_user(name: str, workbench: WorkbenchDep) -> UserInfo:
+    """The account may log in again (its sessions from before stay ended)."""
+    return workbench.users.set_disabled(name, False)
 
 
 @router.post("/{name}/password", status_code=204, responses=_ERRORS)

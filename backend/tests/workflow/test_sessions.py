@@ -1,0 +1,157 @@
+"""Sessions that end after a while without requests (sliding: each request moves the deadline
+on), and accounts an admin disables: no login, and their sessions stop working at once."""
+
+from __future__ import annotations
+
+from datetime import timedelta
+from pathlib import Path
+
+import pytest
+from holiscene.core.settings import Settings
+from holiscene.store.clock import as_utc, utcnow
+from holiscene.store.tables import SessionRow, UserRow
+from pydantic import ValidationError
+from sqlalchemy import select, update
+from sqlalchemy.orm import Session
+
+from .conftest import PASSWORD, Accounts
+
+IDLE_HOURS = 0.5
+
+
+@pytest.fixture()
+def settings(tmp_path: Path) -> Settings:
+    """A 30-minute idle timeout (the default is 8 hours)."""
+    return Settings(
+        data_dir=tmp_path / "data", web_dir=tmp_path / "no-web", session_idle_hours=IDLE_HOURS
+    )
+
+
+def _last_seen(accounts: Accounts, name: str) -> list[tuple[str, object]]:
+    with Session(accounts.workbench.engine) as session:
+        rows = session.execute(
+            select(SessionRow.token_hash, SessionRow.last_seen_at)
+            .join(UserRow, UserRow.id == SessionRow.user_id)
+            .where(UserRow.name == name)
+        ).all()
+        return [(token_hash, as_utc(seen)) for token_hash, seen in rows]
+
+
+def _set_session(accounts: Accounts, name: str, **values: object) -> None:
+    """Move the stored times of every session of `name` (no sleeping in tests)."""
+    with Session(accounts.workbench.engine) as session:
+        user_id = session.scalar(select(UserRow.id).where(UserRow.name == name))
+        session.execute(update(SessionRow).where(SessionRow.user_id == user_id).values(**values))
+        session.commit()
+
+
+def _me(accounts: Accounts, name: str) -> tuple[int, str]:
+    response = accounts.client.get("/api/auth/me", headers=accounts.headers(name))
+    detail = response.json().get("detail", "") if response.status_code != 200 else ""
+    return response.status_code, detail
+
+
+def test_a_session_ends_after_the_idle_timeout(accounts: Accounts) -> None:
+    assert accounts.workbench.users.idle_timeout == timedelta(minutes=30)
+    # Used 29 minutes ago: still open, and the request moves its deadline on.
+    _set_session(accounts, "ann", last_seen_at=utcnow() - timedelta(minutes=29))
+    assert _me(accounts, "ann") == (200, "")
+    [(_, seen)] = _last_seen(accounts, "ann")
+    assert utcnow() - seen < timedelta(seconds=30)  # type: ignore[operator]
+
+    # Sliding: 29 more minutes without a request is still within the 30 from the last one.
+    _set_session(accounts, "ann", last_seen_at=utcnow() - timedelta(minutes=29))
+    assert _me(accounts, "ann") == (200, "")
+
+    # 31 minutes without a request: ended, with the reason.
+    _set_session(accounts, "ann", last_seen_at=utcnow() - timedelta(minutes=31))
+    status, detail = _me(accounts, "ann")
+    assert status == 401
+    assert detail == "your session ended after 30 minutes without activity; log in again"
+    scenes = accounts.client.get("/api/scenes", headers=accounts.headers("ann"))
+    assert scenes.status_code == 401
+    # Other people's sessions are not affected; logging in again opens a new one.
+    assert _me(accounts, "bob") == (200, "")
+    accounts.login("ann")
+    assert _me(accounts, "ann") == (200, "")
+    # The ended session is cleared away at the next login.
+    assert len(_last_seen(accounts, "ann")) == 1
+
+
+def test_a_session_still_ends_at_its_expiry(accounts: Accounts) -> None:
+    _set_session(accounts, "bob", expires_at=utcnow() - timedelta(seconds=1))
+    assert _me(accounts, "bob") == (401, "your session expired; log in again")
+
+
+def test_the_idle_timeout_is_a_setting(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    assert Settings(data_dir=tmp_path).session_idle_hours == 8.0
+    monkeypatch.setenv("HOLISCENE_SESSION_IDLE_HOURS", "2.5")
+    assert Settings(data_dir=tmp_path).session_idle_hours == 2.5
+    for bad in (0, -1):
+        with pytest.raises(ValidationError, match="greater than 0"):
+            Settings(data_dir=tmp_path, session_idle_hours=bad)
+
+
+def test_admin_disables_and_enables_an_account(accounts: Accounts) -> None:
+    client, ada = accounts.client, accounts.headers("ada")
+    assert _me(accounts, "ann") == (200, "")
+
+    disabled = client.post("/api/users/ann/disable", headers=ada)
+    assert disabled.status_code == 200, disabled.text
+    assert disabled.json()["disabled"] is True and disabled.json()["disabled_at"] is not None
+    # Her session stops at once, saying why; login is refused, saying why, but only to
+    # someone who knows the password.
+    assert _me(accounts, "ann") == (
+        401,
+        "the account ann was disabled by an admin; your session ended",
+    )
+    login = client.post("/api/auth/login", json={"name": "ann", "password": PASSWORD})
+    assert login.status_code == 403
+    assert login.json()["detail"] == "the account ann is disabled; ask an admin to enable it"
+    wrong = client.post("/api/auth/login", json={"name": "ann", "password": "wrong-password-1"})
+    assert (wrong.status_code, wrong.json()["detail"]) == (401, "wrong user name or password")
+    listed = {u["name"]: u["disabled"] for u in client.get("/api/users", headers=ada).json()}
+    assert listed == {"ada": False, "ann": True, "bob": False, "rex": False, "rita": False}
+    # Disabling twice changes nothing.
+    again = client.post("/api/users/ann/disable", headers=ada)
+    assert again.status_code == 200 and again.json() == disabled.json()
+
+    enabled = client.post("/api/users/ann/enable", headers=ada)
+    assert enabled.status_code == 200
+    assert (enabled.json()["disabled"], enabled.json()["disabled_at"]) == (False, None)
+    # The old session does not come back; a new login works.
+    assert _me(accounts, "ann")[0] == 401
+    accounts.login("ann")
+    assert _me(accounts, "ann") == (200, "")
+
+
+def test_the_last_enabled_admin_cannot_be_disabled(accounts: Accounts) -> None:
+    client, ada = accounts.client, accounts.headers("ada")
+    refused = client.post("/api/users/ada/disable", headers=ada)
+    assert refused.status_code == 409
+    assert "ada is the only enabled admin" in refused.json()["detail"]
+    assert _me(accounts, "ada") == (200, "")  # nothing changed
+    assert client.post("/api/users/nobody/disable", headers=ada).status_code == 404
+
+    # With a second admin, an admin may disable themselves; then the other is the last one.
+    accounts.add("max", "admin")
+    assert client.post("/api/users/ada/disable", headers=ada).status_code == 200
+    assert _me(accounts, "ada")[0] == 401
+    mx = accounts.headers("max")
+    last = client.post("/api/users/max/disable", headers=mx)
+    assert last.status_code == 409 and "only enabled admin" in last.json()["detail"]
+    # A disabled admin does not count: max cannot stop being admin either.
+    demote = client.patch("/api/users/max", json={"role": "reviewer"}, headers=mx)
+    assert demote.status_code == 409 and "only admin" in demote.json()["detail"]
+    assert client.post("/api/users/ada/enable", headers=mx).status_code == 200
+    accounts.login("ada")
+    assert _me(accounts, "ada") == (200, "")
+
+
+@pytest.mark.parametrize("who", ["ann", "rita"])
+def test_only_admins_disable_accounts(accounts: Accounts, who: str) -> None:
+    for action in ("disable", "enable"):
+        response = accounts.client.post(f"/api/users/bob/{action}", headers=accounts.headers(who))
+        assert response.status_code == 403
+        assert "needs the admin role" in response.json()["detail"]
+    assert _me(accounts, "bob") == (200, "")
