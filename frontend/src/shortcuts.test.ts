@@ -47,8 +47,24 @@ describe("registry", () => {
       keys: ["Shift+A", "Enter"],
       description: "Accept all",
       scope: "Test",
+      enabled: true,
     });
     remove();
     expect(listShortcuts()).toHaveLength(before);
+  });
+
+  it("says which keys are off now (the help overlay greys them)", () => {
+    let editable = false;
+    const remove = registerShortcut({
+      keys: "F",
+      description: "Floor",
+      scope: "Test",
+      run: () => {},
+      enabled: () => editable,
+    });
+    expect(listShortcuts().at(-1)?.enabled).toBe(false);
+    editable = true;
+    expect(listShortcuts().at(-1)?.enabled).toBe(true);
+    remove();
   });
 });

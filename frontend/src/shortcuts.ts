@@ -18,9 +18,11 @@ export interface Shortcut {
   keys: readonly string[];
   description: string;
   scope: string;
+  /** Whether the key does something now (e.g. editing keys are off on a read-only scene). */
+  enabled: boolean;
 }
 
-interface Entry extends Shortcut {
+interface Entry extends Omit<Shortcut, "enabled"> {
   spec: ShortcutSpec;
 }
 
@@ -108,7 +110,12 @@ export function registerShortcut(spec: ShortcutSpec): () => void {
   };
 }
 
-/** Every registered shortcut, in the order they were registered. */
+/** Every registered shortcut, in the order they were registered, and whether it is on now. */
 export function listShortcuts(): Shortcut[] {
-  return entries.map(({ keys, description, scope }) => ({ keys, description, scope }));
+  return entries.map(({ keys, description, scope, spec }) => ({
+    keys,
+    description,
+    scope,
+    enabled: spec.enabled?.() ?? true,
+  }));
 }

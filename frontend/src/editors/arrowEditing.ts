@@ -1,7 +1,8 @@
 // Editing supports with the mouse on the photo. Click an arrow to select it (its object);
 // with an arrow selected, click another object to make it the supporter; or drag an arrow
 // (from its head or anywhere on it) and drop it on the new supporter. Clicking the selected
-// object or the background clears the selection; clicking an object selects it.
+// object or the background clears the selection; clicking an object selects it. While the
+// scene is read only, clicks only select.
 import { svgEl } from "../dom";
 import type { SceneSession } from "../state/sceneSession";
 import { setSupporter } from "./supportActions";
@@ -48,7 +49,9 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     }
     const object = picking.objectAt(event);
     const selected = session.selected;
-    if (selected && object && object !== selected) pickSupporter(selected, object);
+    // Read only: a click selects what it is on, it picks no supporter.
+    if (selected && object && object !== selected && session.editable)
+      pickSupporter(selected, object);
     else {
       session.say(null);
       session.select(object === selected ? null : object);
@@ -114,7 +117,7 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     if (target && target !== done.child) pickSupporter(done.child, target);
   };
   const onDown = (event: PointerEvent) => {
-    const child = event.button === 0 ? arrowAt(event) : null;
+    const child = event.button === 0 && session.editable ? arrowAt(event) : null;
     if (!child) return;
     press = { child, x: event.clientX, y: event.clientY, dragging: false };
     window.addEventListener("pointermove", onMove);

@@ -43,8 +43,9 @@ export function mountEdgeInfo(container: HTMLElement, session: SceneSession): ()
         ? provenanceText(shown.support, suggestion) +
           (suggestion && was ? ` (was ${was.parent}, ${was.type})` : "")
         : "";
-      hint.textContent =
-        "click the new supporter (F floor, W wall, C ceiling) · A accept · R reject · T below/behind · Del remove · Esc";
+      hint.textContent = session.editable
+        ? "click the new supporter (F floor, W wall, C ceiling) · A accept · R reject · T below/behind · Del remove · Esc"
+        : "read only: nothing can be changed now · Esc";
     }
     message.textContent = session.message ?? "";
     message.hidden = !session.message;

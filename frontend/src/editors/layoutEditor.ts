@@ -1,10 +1,9 @@
 // Room-layout editing: the bar above the photo that turns corner dragging on and off, says how
-// the fit goes, saves the layout (a SetLayout edit, its own revision), and re-places the
+// the fit goes, saves the layout now (a SetLayout edit; the session also saves it by itself
+// after a pause, with the support edits, and undoes a drag like any edit), and re-places the
 // objects in the saved room (a placement job, with its progress).
 import "./layoutEditor.css";
 import type { Job } from "@holiscene/schema";
-import { api } from "../api/client";
-import { ConflictError } from "../api/errors";
 import { isFinished, pollJob } from "../api/jobs";
 import { startPlacement } from "../api/placement";
 import { el } from "../dom";
@@ -49,6 +48,7 @@ export function mountLayoutEditing(
     y >= -frame.margin &&
     y <= height + frame.margin;
   const draft = new LayoutDraft(session.doc, inView);
+  const detach = session.attachLayout(draft);
   const bar: ProbedLayoutBar = el("div");
   bar.layoutProbe = {
     fitTimes: () => [...draft.fitTimes],
@@ -59,7 +59,7 @@ export function mountLayoutEditing(
     error: () => draft.error,
   };
   photoPanel.insertBefore(bar, photoBody);
-  const disposers = [mountLayoutEditor(bar, session, draft)];
+  const disposers = [mountLayoutEditor(bar, session, draft), detach];
   const svg = photoBody.querySelector<SVGSVGElement>("svg[data-testid='photo']");
   if (svg) disposers.push(mountLayoutLayer(svg, frame, draft, () => session.doc.scene.camera));
   return {
@@ -83,14 +83,15 @@ function mountLayoutEditor(
     el("button", { text, testid, attrs: { type: "button" }, on: { click: onClick } });
   const toggle = button("Edit layout", "layout-toggle", () => draft.setEditing(!draft.editing));
   toggle.title = `Drag the room's corners on the photo (${LAYOUT_EDIT_KEY})`;
-  const save = button("Save layout", "layout-save", () => void saveLayout());
+  const save = button("Save layout", "layout-save", () => void session.save(getAuthor()));
+  save.title = "Save the moved corners now (they are also saved by themselves after a pause)";
   const reset = button("Reset", "layout-reset", () => draft.reset());
+  reset.title = "Back to the saved layout (Ctrl+Z undoes this)";
   const replace = button("Re-place objects", "replace-objects", () => void replaceObjects());
   replace.title = "Place the objects again in the saved room (a placement job)";
   const status = el("span", { className: "layout-status", testid: "layout-status" });
   const progress = jobProgress("placement-progress");
   progress.element.hidden = true;
-  let saving = false;
   let job: Job | null = null;
   let message: { text: string; alert: boolean } | null = null;
 
@@ -115,6 +116,10 @@ function mountLayoutEditor(
     if (!draft.available) return { text: "No room layout to edit yet.", alert: false };
     if (draft.error !== null)
       return { text: `No room from these corners: ${draft.error}`, alert: true };
+    const state = session.saveState;
+    if (draft.dirty && (state.kind === "error" || state.kind === "conflict")) {
+      return { text: `Not saved: ${state.message} Your corners are kept.`, alert: true };
+    }
     const live = draft.live;
     if (!draft.editing || !live) return { text: "", alert: false };
     const [depth, height, width] = live.room.size.map((s) => s.toFixed(2));
@@ -127,13 +132,15 @@ function mountLayoutEditor(
 
   const draw = () => {
     const running = job !== null && !isFinished(job);
-    toggle.disabled = !draft.available;
+    const saving = session.saveState.kind === "saving";
+    const editable = session.editable;
+    toggle.disabled = !draft.available || !editable;
     toggle.setAttribute("aria-pressed", String(draft.editing));
     toggle.classList.toggle("is-active", draft.editing);
-    save.disabled = saving || draft.edit() === null;
-    reset.disabled = saving || !draft.dirty;
+    save.disabled = !editable || saving || draft.edit() === null;
+    reset.disabled = !editable || saving || !draft.dirty;
     // The placement job runs on the saved layout: save (or reset) the moved corners first.
-    replace.disabled = running || saving || draft.dirty || !draft.available;
+    replace.disabled = !editable || running || saving || draft.dirty || !draft.available;
     const { text, alert } = describe();
     status.textContent = text;
     status.classList.toggle("is-alert", alert);
@@ -144,35 +151,6 @@ function mountLayoutEditor(
     bar.dataset.fitError = draft.error ?? "";
     const last = draft.fitTimes.at(-1);
     if (last !== undefined) bar.dataset.fitMs = last.toFixed(3);
-  };
-
-  const saveLayout = async () => {
-    const edit = draft.edit();
-    if (!edit || saving) return;
-    saving = true;
-    message = null;
-    draw();
-    try {
-      await api.postEdits(session.sceneId, {
-        base_revision: session.doc.revision,
-        author: getAuthor(),
-        edits: [edit],
-      });
-      draft.reset(); // saved: the stored layout is now these corners' fit
-      await session.reloadLatest();
-      message = { text: `Layout saved (revision ${session.doc.revision}).`, alert: false };
-    } catch (error) {
-      message = {
-        text:
-          error instanceof ConflictError
-            ? `Not saved: ${error.message} Your corners are kept; reload the scene and save again.`
-            : `Not saved: ${errorText(error)}`,
-        alert: true,
-      };
-    } finally {
-      saving = false;
-      draw();
-    }
   };
 
   const replaceObjects = async () => {
@@ -201,14 +179,16 @@ function mountLayoutEditor(
     description: "Edit the room layout (drag its corners on the photo), or stop",
     scope: "Room layout",
     run: () => draft.setEditing(!draft.editing),
-    enabled: () => draft.available,
+    enabled: () => draft.available && session.editable,
   });
   const unsubscribeDraft = draft.subscribe((change) => {
-    if (change !== "fit" || draft.dirty) message = null;
+    if (change === "saved") {
+      message = { text: `Layout saved (revision ${session.doc.revision}).`, alert: false };
+    } else if (change !== "fit" || draft.dirty) message = null;
     draw();
   });
   const unsubscribeSession = session.subscribe((change) => {
-    if (change === "document") draft.setDocument(session.doc);
+    if (change === "save" || change === "lock" || change === "document") draw();
   });
   draw();
   return () => {

@@ -8,12 +8,18 @@ import { getAuthor } from "../state/author";
 import { plural, type SaveState, type SceneSession } from "../state/sceneSession";
 import { describeEdit } from "../state/supportGraph";
 
-function statusText(state: SaveState, pending: number, revision: number): string {
+/** The room layout's line in the lists of unsaved changes. */
+const LAYOUT_CHANGE = "room layout: corners moved";
+
+function statusText(state: SaveState, pending: number, revision: number, savable: boolean): string {
   switch (state.kind) {
     case "clean":
       return `Revision ${revision} · no unsaved changes`;
     case "dirty":
-      return `${plural(pending, "unsaved change")} on revision ${revision} · autosaving`;
+      return (
+        `${plural(pending, "unsaved change")} on revision ${revision} · ` +
+        (savable ? "autosaving" : "not saved while no room fits the moved corners")
+      );
     case "saving":
       return "Saving…";
     case "saved":
@@ -95,6 +101,13 @@ export function mountSaveBar(container: HTMLElement, session: SceneSession): () 
   );
 
   const recoveryText = el("span", { testid: "recovery-text" });
+  const restore = el("button", {
+    className: "primary",
+    text: "Restore them (Shift+U)",
+    testid: "recovery-restore",
+    attrs: { type: "button" },
+    on: { click: () => session.restoreRecovered() },
+  });
   const recovery = el(
     "div",
     { className: "alert alert--info", testid: "recovery-banner", attrs: { role: "alert" } },
@@ -102,13 +115,7 @@ export function mountSaveBar(container: HTMLElement, session: SceneSession): () 
     el(
       "div",
       { className: "save-row" },
-      el("button", {
-        className: "primary",
-        text: "Restore them (Shift+U)",
-        testid: "recovery-restore",
-        attrs: { type: "button" },
-        on: { click: () => session.restoreRecovered() },
-      }),
+      restore,
       el("button", {
         text: "Discard them",
         testid: "recovery-discard",
@@ -152,21 +159,23 @@ export function mountSaveBar(container: HTMLElement, session: SceneSession): () 
   const update = () => {
     const state = session.saveState;
     const pending = session.pending;
-    status.textContent = statusText(state, pending.length, session.doc.revision);
+    const unsaved = session.unsavedCount;
+    const editable = session.editable;
+    status.textContent = statusText(state, unsaved, session.doc.revision, session.savable);
     status.dataset.state = state.kind;
     container.dataset.state = state.kind;
     const busy = state.kind === "saving";
-    save.disabled = busy || pending.length === 0 || state.kind === "conflict";
-    discard.disabled = busy || pending.length === 0;
-    undo.disabled = session.undoLabel === null;
-    redo.disabled = session.redoLabel === null;
+    save.disabled = !editable || busy || !session.savable || state.kind === "conflict";
+    discard.disabled = !editable || busy || unsaved === 0;
+    undo.disabled = !editable || session.undoLabel === null;
+    redo.disabled = !editable || session.redoLabel === null;
     undo.title = session.undoLabel ? `Undo: ${session.undoLabel} (Ctrl+Z)` : "Nothing to undo";
     redo.title = session.redoLabel
       ? `Redo: ${session.redoLabel} (Ctrl+Shift+Z)`
       : "Nothing to redo";
     conflict.hidden = state.kind !== "conflict";
     if (state.kind === "conflict") {
-      conflictMessage.textContent = conflictText(state, pending.length);
+      conflictMessage.textContent = conflictText(state, unsaved);
       theirsList.replaceChildren(
         ...state.theirs.map((r) => el("li", { text: `#${r.number} by ${r.author}: ${r.summary}` })),
       );
@@ -177,39 +186,51 @@ export function mountSaveBar(container: HTMLElement, session: SceneSession): () 
     notice.textContent = session.notice ?? "";
     const recovered = session.recovered;
     recovery.hidden = !recovered;
+    restore.disabled = !editable;
     if (recovered) {
+      const changes = [
+        ...recovered.edits.map(describeEdit),
+        ...(recovered.layout ? [LAYOUT_CHANGE] : []),
+      ];
       recoveryText.textContent =
-        `${plural(recovered.edits.length, "unsaved change")} from your last visit ` +
+        `${plural(changes.length, "unsaved change")} from your last visit ` +
         `(${new Date(recovered.savedAt).toLocaleString()}, on revision ${recovered.baseRevision}) ` +
-        `never reached the server: ${recovered.edits.map(describeEdit).join("; ")}.`;
+        `never reached the server: ${changes.join("; ")}.`;
     }
-    pendingList.hidden = pending.length === 0;
+    pendingList.hidden = unsaved === 0;
     pendingItems.replaceChildren(
       ...pending.map((edit) =>
         el("li", { text: describeEdit(edit), attrs: { "data-child": edit.child } }),
       ),
+      ...(session.layoutPending
+        ? [el("li", { text: LAYOUT_CHANGE, attrs: { "data-layout": "" } })]
+        : []),
     );
   };
 
   const scope = "Saving and history";
-  const inConflict = () => session.saveState.kind === "conflict";
+  const editable = () => session.editable;
+  const inConflict = () => editable() && session.saveState.kind === "conflict";
   const removers = [
     registerShortcut({
       keys: ["Ctrl+Z"],
-      description: "Undo the last edit",
+      description: "Undo the last edit (a support or a room corner)",
       scope,
+      enabled: editable,
       run: () => session.undo(),
     }),
     registerShortcut({
       keys: ["Ctrl+Shift+Z", "Ctrl+Y"],
       description: "Redo",
       scope,
+      enabled: editable,
       run: () => session.redo(),
     }),
     registerShortcut({
       keys: "Ctrl+S",
       description: "Save now (edits are also saved after a short pause)",
       scope,
+      enabled: editable,
       run: () => {
         if (!save.disabled) void session.save(author());
       },
@@ -232,7 +253,7 @@ export function mountSaveBar(container: HTMLElement, session: SceneSession): () 
       keys: "Shift+U",
       description: "Restore the changes your last visit left unsaved",
       scope,
-      enabled: () => session.recovered !== null,
+      enabled: () => editable() && session.recovered !== null,
       run: () => session.restoreRecovered(),
     }),
   ];

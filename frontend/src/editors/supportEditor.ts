@@ -1,5 +1,6 @@
-// The object list: each object's supporter and support type, editable. Edits are staged in
-// the session as undoable actions (shown at once on the photo) and autosaved.
+// The object list: each object's supporter and support type, editable (read only while the
+// scene is locked). Edits are staged in the session as undoable actions (shown at once on the
+// photo) and autosaved.
 import type { SceneObject } from "@holiscene/schema";
 import { STRUCTURAL_SUPPORTERS, SUPPORT_TYPES } from "@holiscene/schema";
 import { el } from "../dom";
@@ -123,7 +124,8 @@ function objectRow(object: SceneObject, session: SceneSession): Row {
     const support = shown.get(id);
     supporter.value = support?.parent ?? NONE;
     type.value = support?.type ?? defaultType(NONE);
-    type.disabled = !support;
+    supporter.disabled = !session.editable;
+    type.disabled = !support || !session.editable;
     for (const option of supporter.querySelectorAll("option")) {
       const candidate = option.value;
       const loops =

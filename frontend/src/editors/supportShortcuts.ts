@@ -21,7 +21,8 @@ export function mountSupportShortcuts(session: SceneSession): () => void {
     const child = session.selected;
     session.say(child ? action(session, child) : "Select an arrow or object first (click it).");
   };
-  const keys: [string | string[], string, () => void][] = [
+  // Keys that change supports are off while the scene is read only; the others only select.
+  const keys: [string | string[], string, () => void, boolean?][] = [
     [
       "A",
       "Accept the selected edge (the prediction, or the model's suggestion)",
@@ -42,11 +43,12 @@ export function mountSupportShortcuts(session: SceneSession): () => void {
       "The ceiling holds up the selected object",
       onSelected((s, c) => setSupporter(s, c, "ceiling")),
     ],
-    ["N", "Select the next object still to check", () => session.say(selectNext(session, 1))],
+    ["N", "Select the next object still to check", () => session.say(selectNext(session, 1)), true],
     [
       "Shift+N",
       "Select the previous object still to check",
       () => session.say(selectNext(session, -1)),
+      true,
     ],
     [
       "Escape",
@@ -55,10 +57,18 @@ export function mountSupportShortcuts(session: SceneSession): () => void {
         session.say(null);
         session.select(null);
       },
+      true,
     ],
   ];
-  const removers = keys.map(([k, description, run]) =>
-    registerShortcut({ keys: k, description, scope: SCOPE, run }),
+  const editable = () => session.editable;
+  const removers = keys.map(([k, description, run, reads]) =>
+    registerShortcut({
+      keys: k,
+      description,
+      scope: SCOPE,
+      run,
+      enabled: reads ? undefined : editable,
+    }),
   );
   return () => {
     for (const remove of removers) remove();

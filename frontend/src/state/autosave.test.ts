@@ -1,6 +1,7 @@
 // Autosave's timing on a stand-in session (the real one needs a server to save to): it saves
 // after the idle time, waits again after each edit, stops on a conflict, retries a failed save
-// but not a refused one, holds while asked to, and saves once more when the page leaves.
+// but not a refused one, holds while asked to or while the scene is read only, and saves once
+// more when the page leaves.
 import { afterEach, beforeEach, describe, expect, it, vi } from "vitest";
 import { startAutosave } from "./autosave";
 import type { Change, SaveState, SceneSession } from "./sceneSession";
@@ -9,6 +10,10 @@ class StandIn {
   pending: unknown[] = [];
   saveState: SaveState = { kind: "clean" };
   holdAutosave = false;
+  editable = true;
+  get savable() {
+    return this.pending.length > 0;
+  }
   saves = 0;
   private listener: ((change: Change) => void) | null = null;
   subscribe(listener: (change: Change) => void) {
@@ -88,6 +93,17 @@ describe("autosave", () => {
     session.settle({ kind: "error", message: "not allowed", retry: false });
     vi.advanceTimersByTime(60_000);
     expect(session.saves).toBe(2);
+  });
+
+  it("sends nothing while the scene is read only, and saves the kept edits once it is not", () => {
+    session.editable = false;
+    session.edit();
+    vi.advanceTimersByTime(60_000);
+    expect(session.saves).toBe(0);
+    session.editable = true; // the session says "dirty" again when its lock lifts
+    session.settle({ kind: "dirty" });
+    vi.advanceTimersByTime(1000);
+    expect(session.saves).toBe(1);
   });
 
   it("saves what is left when the page leaves", () => {

@@ -1,7 +1,8 @@
 // Autosave: unsaved edits go to the server after a short idle time (each new edit restarts
 // the wait), again when edits were made during a save, and once more when the page leaves.
 // A conflict stops it until the user merges or reloads; a save that failed on the way is
-// retried, one the server refused (e.g. not allowed) waits for the user's next edit.
+// retried, one the server refused (e.g. not allowed) waits for the user's next edit, or for
+// the scene to be editable again. Nothing is sent while the scene is read only.
 import type { SceneSession } from "./sceneSession";
 
 export interface AutosaveOptions {
@@ -37,7 +38,8 @@ export function startAutosave(session: SceneSession, options: AutosaveOptions): 
   const canSave = () => {
     const state = session.saveState.kind;
     return (
-      session.pending.length > 0 &&
+      session.savable &&
+      session.editable &&
       !session.holdAutosave &&
       state !== "saving" &&
       state !== "conflict"

@@ -1,5 +1,6 @@
 // Unsaved edits kept in localStorage until the server confirms them, so a closed tab or a
 // crash loses nothing: the next visit to the scene offers them back.
+import type { LayoutState } from "./layoutDraft";
 import type { Edit } from "./supportGraph";
 
 export interface Draft {
@@ -7,9 +8,14 @@ export interface Draft {
   /** The revision the edits were made on. */
   baseRevision: number;
   edits: Edit[];
+  /** The room layout's corners, when they were moved and not saved. */
+  layout?: LayoutState | null;
   /** ISO time of the last change. */
   savedAt: string;
 }
+
+/** Whether a draft holds anything unsaved. */
+const hasChanges = (draft: Draft) => draft.edits.length > 0 || !!draft.layout;
 
 const key = (sceneId: string) => `holiscene.draft.${sceneId}`;
 const recoveredKey = (sceneId: string) => `holiscene.draft.${sceneId}.recovered`;
@@ -26,7 +32,24 @@ function isDraft(value: unknown): value is Draft {
   if (!value || typeof value !== "object") return false;
   const d = value as Partial<Draft>;
   return (
-    typeof d.sceneId === "string" && typeof d.baseRevision === "number" && Array.isArray(d.edits)
+    typeof d.sceneId === "string" &&
+    typeof d.baseRevision === "number" &&
+    Array.isArray(d.edits) &&
+    (d.layout == null || isLayoutState(d.layout))
+  );
+}
+
+function isLayoutState(value: unknown): value is LayoutState {
+  const l = value as Partial<LayoutState>;
+  const point = (c: unknown) =>
+    c === null || (Array.isArray(c) && c.length === 2 && c.every(Number.isFinite));
+  return (
+    Array.isArray(l.corners) &&
+    l.corners.length === 8 &&
+    l.corners.every(point) &&
+    Array.isArray(l.used) &&
+    l.used.length === 8 &&
+    (l.unseenDistance === null || typeof l.unseenDistance === "number")
   );
 }
 
@@ -36,7 +59,7 @@ export class DraftStore {
   private read(name: string): Draft | null {
     try {
       const value: unknown = JSON.parse(this.storage?.getItem(name) ?? "null");
-      return isDraft(value) && value.edits.length > 0 ? value : null;
+      return isDraft(value) && hasChanges(value) ? value : null;
     } catch {
       return null;
     }
@@ -44,7 +67,7 @@ export class DraftStore {
 
   private write(name: string, draft: Draft | null): void {
     try {
-      if (draft && draft.edits.length > 0) this.storage?.setItem(name, JSON.stringify(draft));
+      if (draft && hasChanges(draft)) this.storage?.setItem(name, JSON.stringify(draft));
       else this.storage?.removeItem(name);
     } catch {
       // full or refused: the edits still live in the page
@@ -79,7 +102,7 @@ export class DraftStore {
   }
 }
 
-/** Both drafts' edits, one per object, the later draft's winning. */
+/** Both drafts' edits, one per object (and the layout), the later draft's winning. */
 function mergeDrafts(earlier: Draft | null, later: Draft | null): Draft | null {
   if (!earlier || !later) return later ?? earlier;
   const edits = new Map<string, Edit>();
@@ -87,5 +110,5 @@ function mergeDrafts(earlier: Draft | null, later: Draft | null): Draft | null {
     edits.delete(edit.child);
     edits.set(edit.child, edit);
   }
-  return { ...later, edits: [...edits.values()] };
+  return { ...later, edits: [...edits.values()], layout: later.layout ?? earlier.layout ?? null };
 }

@@ -1,57 +1,12 @@
 // The layout draft: dragged corners re-fit the room; a bad drag keeps the last room and says
 // why; the edit sends the corners the fit used, with the distance of an unseen wall.
-import type { SceneDocument } from "@holiscene/schema";
 import { afterEach, beforeEach, describe, expect, it, vi } from "vitest";
 import { boxCorners } from "../geometry/boxes";
-import type { Point2, Vec3 } from "../geometry/camera";
+import type { Point2 } from "../geometry/camera";
 import { roomBoxFromCorners, unseenWall, wallDistance } from "../geometry/roomBox";
 import { projectRoomCorners } from "../geometry/roomFit";
-import { cameraHeight, LayoutDraft } from "./layoutDraft";
-
-const K: [Vec3, Vec3, Vec3] = [
-  [500, 0, 320],
-  [0, 500, 240],
-  [0, 0, 1],
-];
-const HEIGHT = 1.5;
-const PITCH = 12;
-const ROLL = -3;
-
-function documentFor(corners: Vec3[]): SceneDocument {
-  return {
-    scene_id: "s",
-    revision: 3,
-    updated_at: "2026-01-01T00:00:00Z",
-    scene: {
-      schema_version: 1,
-      name: "room",
-      image: { file: "img.png", width: 640, height: 480 },
-      camera: {
-        K,
-        K_source: "given",
-        pitch_deg: PITCH,
-        roll_deg: ROLL,
-        height_m: HEIGHT,
-        height_source: "estimated",
-        note: null,
-      },
-      layout: {
-        corners_2d: projectRoomCorners(K, PITCH, ROLL, corners),
-        corners_3d: corners,
-        source: "estimated",
-        note: null,
-      },
-      depth: null,
-      objects: [],
-      supports: [],
-      stages: [],
-    },
-  } as unknown as SceneDocument;
-}
-
-// The camera inside the room looking at the far wall: the near corners are behind it.
-const ROOM = boxCorners([1.5, 2.6 / 2 - HEIGHT, 0.2], [5, 2.6, 4], 4);
-const inPhoto = ([x, y]: Point2) => x >= -40 && x <= 680 && y >= -40 && y <= 520;
+import { documentFor, HEIGHT, inPhoto, K, manualFrames, PITCH, ROOM } from "../testing/roomScene";
+import { cameraHeight, LayoutDraft, type LayoutState } from "./layoutDraft";
 
 describe("room box helpers", () => {
   it("reads back the box of its corners", () => {
@@ -75,22 +30,13 @@ describe("room box helpers", () => {
 
 describe("LayoutDraft", () => {
   // Animation frames run when the test says so.
-  let frames: FrameRequestCallback[] = [];
-  const flushFrames = () => {
-    const due = frames;
-    frames = [];
-    for (const callback of due) callback(0);
-  };
+  let frames: ReturnType<typeof manualFrames>;
+  const flushFrames = () => frames.flush();
   beforeEach(() => {
-    vi.stubGlobal("requestAnimationFrame", (callback: FrameRequestCallback) => {
-      frames.push(callback);
-      return frames.length;
-    });
-    vi.stubGlobal("cancelAnimationFrame", () => {});
+    frames = manualFrames();
   });
   afterEach(() => {
     vi.unstubAllGlobals();
-    frames = [];
   });
 
   it("starts from the stored room and uses the corners in view", () => {
@@ -119,7 +65,7 @@ describe("LayoutDraft", () => {
           point[1] + step * (target[1] - point[1]),
         ]);
       }
-      expect(frames.length).toBe(1);
+      expect(frames.pending()).toBe(1);
       flushFrames();
     }
     expect(changes).toEqual(["fit", "fit"]);
@@ -171,5 +117,139 @@ describe("LayoutDraft", () => {
     expect(draft.available).toBe(false);
     draft.setEditing(true);
     expect(draft.editing).toBe(false);
+  });
+});
+
+// The camera looks at the far wall from just inside the near one: the near floor corners are
+// in front of it but far off the photo (below, to the sides), the near ceiling corners behind.
+const FAR_ROOM = boxCorners([2.35, 2.6 / 2 - HEIGHT, 0.2], [5, 2.6, 4], 4);
+
+describe("LayoutDraft steps and off-photo corners", () => {
+  let frames: ReturnType<typeof manualFrames>;
+  beforeEach(() => {
+    frames = manualFrames();
+  });
+  afterEach(() => {
+    vi.unstubAllGlobals();
+  });
+
+  const record = (draft: LayoutDraft) => {
+    const steps: { label: string; before: LayoutState; after: LayoutState }[] = [];
+    draft.onStep = (label, before, after) => steps.push({ label, before, after });
+    return steps;
+  };
+  const drag = (draft: LayoutDraft, index: number, by: Point2, moves = 3) => {
+    const start = draft.beginDrag(index);
+    if (!start) throw new Error(`no handle for corner ${index}`);
+    for (let k = 1; k <= moves; k++) {
+      draft.moveCorner(index, [start[0] + (by[0] * k) / moves, start[1] + (by[1] * k) / moves]);
+      frames.flush();
+    }
+    draft.endDrag();
+    return start;
+  };
+  const maxDifference = (a: number[][] | undefined, b: number[][] | undefined) =>
+    Math.max(...(a ?? []).flatMap((p, i) => p.map((v, j) => Math.abs(v - (b?.[i]?.[j] ?? NaN)))));
+
+  it("makes a drag, pointer down to up, one step; its states put the room back and forth", () => {
+    const draft = new LayoutDraft(documentFor(ROOM), inPhoto);
+    const steps = record(draft);
+    const stored = draft.live;
+    const start = draft.beginDrag(1) as Point2;
+    draft.moveCorner(1, [start[0] + 10, start[1] + 16]);
+    frames.flush();
+    draft.moveCorner(1, [start[0] + 20, start[1] + 32]);
+    frames.flush();
+    expect(steps).toHaveLength(0); // not while the button is down
+    draft.endDrag();
+    expect(steps.map((s) => s.label)).toEqual(["move the room's floor corner 1"]);
+    const moved = draft.live;
+    expect(draft.dirty).toBe(true);
+    expect(maxDifference(moved?.corners3d, stored?.corners3d)).toBeGreaterThan(0.01);
+
+    const step = steps[0] as (typeof steps)[number];
+    draft.applyState(step.before); // undo
+    expect(draft.dirty).toBe(false);
+    expect(draft.live).toEqual(stored);
+    expect(draft.edit()).toBeNull();
+    expect(draft.handles().find((h) => h.index === 1)?.point).toEqual(start);
+
+    draft.applyState(step.after); // redo
+    expect(draft.dirty).toBe(true);
+    expect(maxDifference(draft.live?.corners3d, moved?.corners3d)).toBeLessThan(1e-9);
+    expect(draft.edit()?.corners_2d[1]).toEqual([start[0] + 20, start[1] + 32]);
+  });
+
+  it("a reset is a step too, and a click on a handle is none", () => {
+    const draft = new LayoutDraft(documentFor(ROOM), inPhoto);
+    const steps = record(draft);
+    draft.beginDrag(2);
+    draft.endDrag();
+    expect(steps).toHaveLength(0);
+    drag(draft, 2, [15, 0]);
+    draft.reset();
+    expect(steps.map((s) => s.label)).toEqual([
+      "move the room's floor corner 2",
+      "reset the room layout",
+    ]);
+    expect(draft.dirty).toBe(false);
+    draft.applyState((steps[1] as (typeof steps)[number]).before);
+    expect(draft.dirty).toBe(true);
+  });
+
+  it("gives corners off the photo a handle where the fitted room puts them; a drag pins one", () => {
+    const doc = documentFor(FAR_ROOM);
+    const draft = new LayoutDraft(doc, inPhoto);
+    const steps = record(draft);
+    const handles = draft.handles();
+    // Corners 4 and 7 are behind the camera: no handle. 0 and 3 are far off the photo.
+    expect(handles.map((h) => [h.index, h.pinned])).toEqual([
+      [0, false],
+      [1, true],
+      [2, true],
+      [3, false],
+      [5, true],
+      [6, true],
+    ]);
+    const far = handles.find((h) => h.index === 3)?.point as Point2;
+    const stored = doc.scene.layout?.corners_2d?.[3] as number[];
+    expect(far[0]).toBeCloseTo(stored[0] as number, 6);
+    expect(far[1]).toBeCloseTo(stored[1] as number, 6);
+    expect(far[0]).toBeGreaterThan(1000); // beyond the photo's right edge
+
+    // A click pins nothing; a drag pins the corner and the fit goes through it.
+    draft.beginDrag(3);
+    draft.endDrag();
+    expect(draft.handles().find((h) => h.index === 3)?.pinned).toBe(false);
+    expect(steps).toHaveLength(0);
+    drag(draft, 3, [-120, -60]);
+    expect(draft.error).toBeNull();
+    expect(draft.handles().find((h) => h.index === 3)).toMatchObject({
+      pinned: true,
+      point: [far[0] - 120, far[1] - 60],
+    });
+    expect(draft.edit()?.corners_2d[3]).toEqual([far[0] - 120, far[1] - 60]);
+    expect(steps.map((s) => s.label)).toEqual(["move the room's floor corner 3"]);
+    // Undo un-pins it again.
+    draft.applyState((steps[0] as (typeof steps)[number]).before);
+    expect(draft.handles().find((h) => h.index === 3)?.pinned).toBe(false);
+    expect(draft.dirty).toBe(false);
+  });
+
+  it("takes a saved revision as stored when it holds the corners as dragged, not older ones", () => {
+    const draft = new LayoutDraft(documentFor(FAR_ROOM), inPhoto);
+    const changes: string[] = [];
+    draft.subscribe((change) => changes.push(change));
+    drag(draft, 3, [-120, -60]);
+    const sent = draft.version;
+    drag(draft, 1, [5, 5]); // moved while the save was on its way
+    draft.setDocument(documentFor(FAR_ROOM, {}, 4), sent);
+    expect(draft.dirty).toBe(true);
+    expect(changes.at(-1)).toBe("document");
+    draft.setDocument(documentFor(FAR_ROOM, {}, 5), draft.version);
+    expect(draft.dirty).toBe(false);
+    expect(changes.at(-1)).toBe("saved");
+    // The corner the user pinned stays pinned (at the stored position).
+    expect(draft.handles().find((h) => h.index === 3)?.pinned).toBe(true);
   });
 });

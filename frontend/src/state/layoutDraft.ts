@@ -8,6 +8,7 @@ import { roomBoxFromCorners, unseenWall, wallDistance } from "../geometry/roomBo
 import {
   cornerCoverageProblem,
   fitRoom,
+  projectRoomCorners,
   type RoomBox,
   type RoomFit,
   RoomFitError,
@@ -50,9 +51,58 @@ export interface LiveRoom {
   corners3d: Vec3[];
 }
 
-export type LayoutChange = "mode" | "fit" | "document";
+/** What changed: editing on or off, the fitted room, the revision (`saved`: one that stored
+ * the corners as dragged). */
+export type LayoutChange = "mode" | "fit" | "document" | "saved";
 
 type Corner = Point2 | null;
+
+/**
+ * What undo and redo put back of the layout (and what a draft in localStorage keeps): the
+ * corners as dragged, which of them the fit uses, and the distance of a wall none of them
+ * places. Plain JSON.
+ */
+export interface LayoutState {
+  corners: Corner[];
+  used: boolean[];
+  unseenDistance: number | null;
+}
+
+/** A corner handle: where the corner is, and whether the fit uses it (pinned) or places it. */
+export interface CornerHandle {
+  index: number;
+  point: Point2;
+  /** Dragged or in view: the fit goes through it. Otherwise it follows the fitted room. */
+  pinned: boolean;
+}
+
+/** One undoable step of the layout: a corner drag, a reset. */
+export type LayoutStep = (label: string, before: LayoutState, after: LayoutState) => void;
+
+/** Image pixels below which two corner positions are the same. */
+const SAME_PX = 1e-3;
+
+const copyState = (state: LayoutState): LayoutState => ({
+  corners: state.corners.map((c) => (c ? ([c[0], c[1]] as Point2) : null)),
+  used: [...state.used],
+  unseenDistance: state.unseenDistance,
+});
+
+const samePoint = (a: Corner | undefined, b: Corner | undefined) =>
+  a == null || b == null
+    ? a == null && b == null
+    : Math.abs(a[0] - b[0]) <= SAME_PX && Math.abs(a[1] - b[1]) <= SAME_PX;
+
+/** Whether two layout states give the fit the same corners (and unseen-wall distance). */
+export function sameLayout(a: LayoutState, b: LayoutState): boolean {
+  return (
+    a.unseenDistance === b.unseenDistance &&
+    a.used.every((u, i) => u === b.used[i]) &&
+    a.corners.every((c, i) => !a.used[i] || samePoint(c, b.corners[i]))
+  );
+}
+
+const cornerName = (index: number) => `${index < 4 ? "floor" : "ceiling"} corner ${index}`;
 
 /** Metres from the camera to the floor, in the order layout_edit.py's camera_height uses. */
 export function cameraHeight(doc: SceneDocument): number {
@@ -89,6 +139,10 @@ export class LayoutDraft {
   error: string | null = null;
   /** Duration of every fit since the draft was last reset, milliseconds. */
   readonly fitTimes: number[] = [];
+  /** Counts every change of the corners: a save knows whether it stored the latest ones. */
+  version = 0;
+  /** Told of every finished step (a drag, a reset), for undo and redo. */
+  onStep: LayoutStep | null = null;
 
   private doc: SceneDocument;
   private corners: Corner[] = [];
@@ -97,6 +151,8 @@ export class LayoutDraft {
   private unseenDistance: number | null = null;
   private moved = false;
   private frame = 0;
+  /** The state when the corner being dragged was grabbed. */
+  private dragStart: { index: number; from: Point2; state: LayoutState } | null = null;
   private readonly listeners = new Set<(change: LayoutChange) => void>();
 
   /** `inView(point)`: whether a stored corner is on (or just beside) the photo. */
@@ -106,7 +162,7 @@ export class LayoutDraft {
   ) {
     this.doc = doc;
     this.live = storedRoom(doc);
-    this.resetCorners();
+    this.setState(this.storedState());
   }
 
   /** Whether there is a stored layout to edit (its corners in the image and the room). */
@@ -119,11 +175,25 @@ export class LayoutDraft {
     return this.moved;
   }
 
-  /** The dragged corners (8, null where unknown) and whether each is used by the fit. */
-  handles(): { index: number; point: Point2 }[] {
-    return this.corners.flatMap((point, index) =>
-      point && this.used[index] ? [{ index, point }] : [],
-    );
+  /** Whether a corner is being dragged. */
+  get dragging(): boolean {
+    return this.dragStart !== null;
+  }
+
+  /**
+   * A handle for every corner in front of the camera: the corners the fit uses where they
+   * were put, the others where the fitted room puts them (dragging one pins it).
+   */
+  handles(): CornerHandle[] {
+    const K = this.doc.scene.camera?.K;
+    const live = this.live;
+    const placed =
+      K && live ? projectRoomCorners(K, live.pitchDeg, live.rollDeg, live.corners3d) : [];
+    return this.corners.flatMap((corner, index) => {
+      const pinned = this.used[index] === true;
+      const point = pinned ? corner : (placed[index] ?? null);
+      return point ? [{ index, point, pinned }] : [];
+    });
   }
 
   subscribe(listener: (change: LayoutChange) => void): () => void {
@@ -155,25 +225,74 @@ export class LayoutDraft {
   }
 
   /**
-   * A new revision was loaded (a support edit saved, a placement job done, someone else's
-   * save): show its room, or keep the moved corners, re-fitted, when there are some.
+   * A new revision was loaded (a save, a placement job, someone else's save): show its room,
+   * or keep the moved corners, re-fitted, when there are some. `savedVersion`: the version of
+   * the corners this revision stored (they are then the stored layout, not unsaved changes).
    */
-  setDocument(doc: SceneDocument): void {
+  setDocument(doc: SceneDocument, savedVersion: number | null = null): void {
     this.doc = doc;
+    if (savedVersion !== null && savedVersion === this.version && !this.dragging) {
+      // The user's pinned corners stay pinned, at the stored (fitted) positions.
+      this.toStored(this.used);
+      this.emit("saved");
+      return;
+    }
     if (this.moved) this.refit();
-    else this.reset();
+    else this.toStored();
     this.emit("document");
   }
 
-  /** Back to the stored layout. */
+  /** Back to the stored layout: one undoable step. */
   reset(): void {
+    const before = this.snapshot();
+    this.toStored();
+    this.record("reset the room layout", before);
+  }
+
+  /** Back to the stored layout, not a step of its own (the caller records it). */
+  showStored(): void {
+    this.toStored();
+  }
+
+  /** The corners now, for undo and redo (a copy). */
+  snapshot(): LayoutState {
+    return copyState({
+      corners: this.corners,
+      used: this.used,
+      unseenDistance: this.unseenDistance,
+    });
+  }
+
+  /** Put a state back (undo, redo, a recovered draft): the room is re-fitted at once. */
+  applyState(state: LayoutState): void {
+    this.dragStart = null;
+    this.setState(copyState(state));
+    this.moved = !sameLayout(this.snapshot(), this.storedState(this.used));
+    if (this.moved) {
+      this.refit();
+      return;
+    }
     this.cancelFrame();
     this.live = storedRoom(this.doc);
     this.error = null;
-    this.moved = false;
     this.fitTimes.length = 0;
-    this.resetCorners();
     this.emit("fit");
+  }
+
+  /**
+   * A drag begins on corner `index`: returns where the corner is (a corner the fit did not
+   * use is pinned where the fitted room puts it), or null when it has no handle.
+   */
+  beginDrag(index: number): Point2 | null {
+    const handle = this.handles().find((h) => h.index === index);
+    if (!handle) return null;
+    this.dragStart = { index, from: handle.point, state: this.snapshot() };
+    if (!handle.pinned) {
+      this.used[index] = true;
+      this.corners[index] = [handle.point[0], handle.point[1]];
+      this.version++;
+    }
+    return handle.point;
   }
 
   /** Move a corner; the room is re-fitted on the next animation frame. */
@@ -181,10 +300,29 @@ export class LayoutDraft {
     if (!this.used[index]) return;
     this.corners[index] = point;
     this.moved = true;
+    this.version++;
     this.frame ||= requestAnimationFrame(() => {
       this.frame = 0;
       this.refit();
     });
+  }
+
+  /** The drag ends: the room is fitted to the last position, and the drag is one step. */
+  endDrag(): void {
+    const start = this.dragStart;
+    if (!start) return;
+    this.dragStart = null;
+    const { index, from, state } = start;
+    if (samePoint(this.corners[index], from)) {
+      // A click: a corner the fit placed is not pinned by it.
+      if (state.used[index]) this.refit();
+      else this.applyState(state);
+      return;
+    }
+    this.moved = !sameLayout(this.snapshot(), this.storedState(this.used));
+    if (this.moved) this.refit();
+    else this.applyState(this.snapshot());
+    this.record(`move the room's ${cornerName(index)}`, state);
   }
 
   /** Fit the room to the corners now (also what a pending animation frame does). */
@@ -226,6 +364,31 @@ export class LayoutDraft {
     };
   }
 
+  /** Tell the history about a finished step that started from `before`. */
+  private record(label: string, before: LayoutState): void {
+    const after = this.snapshot();
+    if (!sameLayout(before, after)) this.onStep?.(label, before, after);
+  }
+
+  private setState(state: LayoutState): void {
+    this.corners = state.corners;
+    this.used = state.used;
+    this.unseenDistance = state.unseenDistance;
+    this.version++;
+  }
+
+  /** The stored layout's corners and room. `pinned`: corners to keep using (if known). */
+  private toStored(pinned: readonly boolean[] = []): void {
+    this.cancelFrame();
+    this.dragStart = null;
+    this.live = storedRoom(this.doc);
+    this.error = null;
+    this.moved = false;
+    this.fitTimes.length = 0;
+    this.setState(this.storedState(pinned));
+    this.emit("fit");
+  }
+
   private cancelFrame(): void {
     if (this.frame !== 0) cancelAnimationFrame(this.frame);
     this.frame = 0;
@@ -239,27 +402,26 @@ export class LayoutDraft {
    * The stored corners; the fit uses those in view (the others were extrapolated by the last
    * fit, and anchoring to them would resist every drag), or all known ones when the corners
    * in view cannot determine the room. A wall with no corner in view keeps its distance.
+   * `pinned`: corners the user dragged before, used too.
    */
-  private resetCorners(): void {
+  private storedState(pinned: readonly boolean[] = []): LayoutState {
     const stored = this.doc.scene.layout?.corners_2d ?? [];
-    this.corners = Array.from({ length: 8 }, (_, i) => {
+    const corners = Array.from({ length: 8 }, (_, i): Corner => {
       const c = stored[i];
-      return c ? ([c[0], c[1]] as Point2) : null;
+      return c ? [c[0], c[1]] : null;
     });
-    const room = this.live?.room ?? null;
-    const choose = (inView: boolean[]) => {
-      const corners = this.corners.map((c, i) => (inView[i] ? c : null));
-      const wall = unseenWall(corners);
+    const room = storedRoom(this.doc)?.room ?? null;
+    const choose = (used: boolean[]) => {
+      const known = corners.map((c, i) => (used[i] ? c : null));
+      const wall = unseenWall(known);
       const distance = wall && room ? wallDistance(room, wall) : null;
       const usable =
-        (distance === null || distance > 0) && cornerCoverageProblem(corners, distance) === null;
-      return { inView, distance, usable };
+        (distance === null || distance > 0) && cornerCoverageProblem(known, distance) === null;
+      return { used, distance, usable };
     };
-    const visible = choose(this.corners.map((c) => c !== null && this.inView(c)));
-    const fallback = choose(this.corners.map((c) => c !== null));
-    const chosen = visible.usable ? visible : fallback;
-    this.used = chosen.inView;
-    this.unseenDistance = chosen.distance;
+    const visible = choose(corners.map((c, i) => c !== null && (this.inView(c) || !!pinned[i])));
+    const chosen = visible.usable ? visible : choose(corners.map((c) => c !== null));
+    return { corners, used: chosen.used, unseenDistance: chosen.distance };
   }
 
   private emit(change: LayoutChange): void {

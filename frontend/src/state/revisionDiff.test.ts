@@ -1,23 +1,11 @@
 // Revision diffs name each kind of change, and revert gives back exactly the old supports.
 import type { Scene, SupportRelation } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
+import { supportRelation } from "../testing/supports";
 import { describeChange, diffScenes, diffSupports, revertEdits } from "./revisionDiff";
 import { shownSupports } from "./supportGraph";
 
-const rel = (
-  child: string,
-  parent: string,
-  extra: Partial<SupportRelation> = {},
-): SupportRelation => ({
-  child,
-  parent,
-  type: "below",
-  source: "auto",
-  confidence: 0.7,
-  author: null,
-  time: null,
-  ...extra,
-});
+const rel = supportRelation;
 
 const scene = (supports: SupportRelation[], ids = ["o0", "o1", "o2", "o3"]): Scene =>
   ({

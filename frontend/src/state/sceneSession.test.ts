@@ -2,40 +2,13 @@
 // back as predicted), discarding, rejected answers, and drafts that outlive the page.
 import type { SceneDocument, SupportRelation } from "@holiscene/schema";
 import { beforeEach, describe, expect, it } from "vitest";
+import { MemoryStorage } from "../testing/memoryStorage";
+import { supportRelation } from "../testing/supports";
 import { DraftStore } from "./draftStore";
 import { SceneSession } from "./sceneSession";
 
-class MemoryStorage implements Storage {
-  private readonly items = new Map<string, string>();
-  get length() {
-    return this.items.size;
-  }
-  clear() {
-    this.items.clear();
-  }
-  getItem(key: string) {
-    return this.items.get(key) ?? null;
-  }
-  key(index: number) {
-    return [...this.items.keys()][index] ?? null;
-  }
-  removeItem(key: string) {
-    this.items.delete(key);
-  }
-  setItem(key: string, value: string) {
-    this.items.set(key, value);
-  }
-}
-
-const auto = (child: string, parent: string, confidence = 0.8): SupportRelation => ({
-  child,
-  parent,
-  type: "below",
-  source: "auto",
-  confidence,
-  author: null,
-  time: null,
-});
+const auto = (child: string, parent: string, confidence = 0.8): SupportRelation =>
+  supportRelation(child, parent, { confidence });
 
 function doc(supports: SupportRelation[], revision = 2): SceneDocument {
   const box = (i: number) => [i * 10, 0, i * 10 + 8, 8] as [number, number, number, number];

@@ -1,12 +1,21 @@
-// One scene being annotated: the loaded revision, the user's unsaved edits with undo and redo,
-// saving (and merging after a conflict), the drafts kept in localStorage, the model's live
+// One scene being annotated: the loaded revision, the user's unsaved edits (supports and the
+// room layout) with one undo and redo history, saving (and merging after a conflict), the
+// drafts kept in localStorage, whether the scene may be edited now, the model's live
 // suggestions, and what is hovered or selected. Views subscribe and redraw what a change
 // concerns.
-import type { RevisionInfo, SceneDocument, SceneObject, SupportRelation } from "@holiscene/schema";
+import type {
+  RevisionInfo,
+  SceneDocument,
+  SceneObject,
+  SceneWorkflow,
+  SupportRelation,
+} from "@holiscene/schema";
 import { api } from "../api/client";
 import { ApiError, ConflictError } from "../api/errors";
 import { type Draft, DraftStore } from "./draftStore";
-import { EditHistory } from "./editHistory";
+import { EditHistory, type HistoryChange } from "./editHistory";
+import { type EditLock, type EditPermission, editLock, lockText } from "./editLock";
+import type { LayoutDraft, LayoutState } from "./layoutDraft";
 import {
   describeEdit,
   type Edit,
@@ -52,7 +61,8 @@ export type Change =
   | "select"
   | "suggestions"
   | "recovery"
-  | "message";
+  | "message"
+  | "lock";
 
 /** The model's answer for an object whose supporter no person has set, when it differs. */
 export interface SuggestedSupport {
@@ -81,6 +91,18 @@ interface ObjectState {
   rejected: string[];
 }
 
+/** What one step of the history changed: an object's supporter, or the room layout. */
+type HistoryState =
+  | { part: "support"; state: ObjectState }
+  | { part: "layout"; state: LayoutState };
+
+/** The room layout's step of the history (objects are keyed by their id). */
+const layoutChange = (before: LayoutState, after: LayoutState): HistoryChange<HistoryState> => ({
+  key: "layout",
+  before: { part: "layout", state: before },
+  after: { part: "layout", state: after },
+});
+
 export const rejectionKey = (parent: string, type: string) => `${parent}|${type}`;
 
 export class SceneSession {
@@ -99,7 +121,15 @@ export class SceneSession {
 
   private readonly edits = new Map<string, Edit>();
   private readonly rejected = new Map<string, Set<string>>();
-  private readonly history = new EditHistory<ObjectState>();
+  private readonly history = new EditHistory<HistoryState>();
+  private layout: LayoutDraft | null = null;
+  /** The scene's place in the workflow, once known (it may lock the scene). */
+  private workflow: SceneWorkflow | null = null;
+  /** The server's latest word on editing (the scene's or the workflow's, whichever came last). */
+  private permission: EditPermission | null = null;
+  /** The server refused a save (409, not a stale revision) in this workflow state. */
+  private refusal: { message: string; workflow: string } | null = null;
+  private shownLock = "";
   private readonly listeners = new Set<(change: Change) => void>();
   private readonly drafts: DraftStore;
   private shownCache: Map<string, ShownSupport> | null = null;
@@ -110,6 +140,61 @@ export class SceneSession {
     this.doc = doc;
     this.drafts = options.drafts ?? new DraftStore();
     this.recovered = this.drafts.takeForRecovery(doc.scene_id);
+    this.permission = permissionOf(doc);
+    this.shownLock = JSON.stringify(this.lock);
+  }
+
+  /**
+   * The room layout being edited joins the session: its drags are steps of the one history,
+   * its corners are saved with the support edits, and kept in the draft in localStorage.
+   */
+  attachLayout(draft: LayoutDraft): () => void {
+    this.layout = draft;
+    draft.onStep = (label, before, after) => this.record(label, [layoutChange(before, after)]);
+    return () => {
+      draft.onStep = null;
+      if (this.layout === draft) this.layout = null;
+    };
+  }
+
+  /** Whether the room layout has unsaved changes. */
+  get layoutPending(): boolean {
+    return this.layout?.dirty === true;
+  }
+
+  /** Unsaved changes: one per object, and one for the room layout. */
+  get unsavedCount(): number {
+    return this.edits.size + (this.layoutPending ? 1 : 0);
+  }
+
+  /** Whether there is something a save would send (a layout no room fits is not sent). */
+  get savable(): boolean {
+    return this.edits.size > 0 || this.layout?.edit() != null;
+  }
+
+  // -- whether the scene may be edited ---------------------------------------------------
+
+  /**
+   * Why the scene cannot be edited now (null: it can): the server says so (on the scene or
+   * its workflow), or it is submitted or accepted, or the server refused the last save.
+   */
+  get lock(): EditLock | null {
+    const lock = editLock(this.workflow?.state, this.permission);
+    if (lock) return lock;
+    return this.refusal && { title: "Read only", reason: this.refusal.message };
+  }
+
+  get editable(): boolean {
+    return this.lock === null;
+  }
+
+  /** The scene's workflow as last read (the workflow bar reads it). */
+  setWorkflow(workflow: SceneWorkflow | null): void {
+    this.workflow = workflow;
+    // A refusal holds until the workflow moves on (submitted, sent back, taken, ...).
+    if (this.refusal && this.refusal.workflow !== workflowKey(workflow)) this.refusal = null;
+    this.permission = permissionOf(workflow) ?? this.permission;
+    this.lockChanged();
   }
 
   get sceneId(): string {
@@ -189,7 +274,13 @@ export class SceneSession {
     label: string,
     edits: readonly Edit[],
     reject: readonly { child: string; parent: string; type: string }[] = [],
+    layout: { before: LayoutState; after: LayoutState } | null = null,
   ): void {
+    const lock = this.lock;
+    if (lock !== null) {
+      this.say(lockText(lock));
+      return;
+    }
     const before = new Map<string, ObjectState>();
     const touch = (child: string) => {
       if (!before.has(child)) before.set(child, this.stateOf(child));
@@ -204,10 +295,23 @@ export class SceneSession {
       keys.add(rejectionKey(r.parent, r.type));
       this.rejected.set(r.child, keys);
     }
-    const changes = [...before].flatMap(([key, state]) => {
+    const changes: HistoryChange<HistoryState>[] = [];
+    for (const [key, state] of before) {
       const after = this.stateOf(key);
-      return sameState(state, after) ? [] : [{ key, before: state, after }];
-    });
+      if (!sameState(state, after)) {
+        changes.push({
+          key,
+          before: { part: "support", state },
+          after: { part: "support", state: after },
+        });
+      }
+    }
+    if (layout) changes.push(layoutChange(layout.before, layout.after));
+    this.record(label, changes);
+  }
+
+  /** Remember an action for undo; the unsaved changes changed. */
+  private record(label: string, changes: HistoryChange<HistoryState>[]): void {
     this.history.record({ label, changes });
     this.holdAutosave = false;
     this.notice = null; // what a merge or a recovery reported is old news now
@@ -222,8 +326,9 @@ export class SceneSession {
     return this.history.redoLabel;
   }
 
-  /** Take back the last action; returns its label (null: nothing to undo). */
+  /** Take back the last action; returns its label (null: nothing to undo, or read only). */
   undo(): string | null {
+    if (!this.editable) return null;
     const entry = this.history.undo();
     if (!entry) return null;
     for (const change of entry.changes) this.applyState(change.key, change.before);
@@ -232,8 +337,9 @@ export class SceneSession {
     return entry.label;
   }
 
-  /** Do the last undone action again; returns its label (null: nothing to redo). */
+  /** Do the last undone action again; returns its label (null: nothing to redo, or read only). */
   redo(): string | null {
+    if (!this.editable) return null;
     const entry = this.history.redo();
     if (!entry) return null;
     for (const change of entry.changes) this.applyState(change.key, change.after);
@@ -242,12 +348,21 @@ export class SceneSession {
     return entry.label;
   }
 
-  /** Drop every unsaved edit (undoable). */
+  /** Drop every unsaved change, the room layout's too (undoable). */
   discard(): void {
     this.notice = null;
+    const layout = this.layout;
+    let layoutChange: { before: LayoutState; after: LayoutState } | null = null;
+    if (layout?.dirty && this.editable) {
+      const before = layout.snapshot();
+      layout.showStored(); // recorded below, with the supports, as one step
+      layoutChange = { before, after: layout.snapshot() };
+    }
     this.edit(
       "discard unsaved changes",
       this.pending.map((e) => this.savedState(e.child)),
+      [],
+      layoutChange,
     );
   }
 
@@ -268,7 +383,12 @@ export class SceneSession {
     };
   }
 
-  private applyState(child: string, state: ObjectState): void {
+  private applyState(key: string, state: HistoryState): void {
+    if (state.part === "layout") this.layout?.applyState(state.state);
+    else this.applySupport(key, state.state);
+  }
+
+  private applySupport(child: string, state: ObjectState): void {
     this.stage(state.edit);
     if (state.rejected.length > 0) this.rejected.set(child, new Set(state.rejected));
     else this.rejected.delete(child);
@@ -300,11 +420,16 @@ export class SceneSession {
 
   // -- saving ---------------------------------------------------------------------------
 
-  /** Send the unsaved edits, based on the loaded revision. They are kept unless saved. */
+  /**
+   * Send the unsaved edits (and the room layout's), based on the loaded revision. They are
+   * kept unless saved.
+   */
   async save(author: string): Promise<void> {
+    if (this.saveState.kind === "saving" || !this.editable) return;
     const sent = this.pending;
-    if (sent.length === 0 || this.saveState.kind === "saving") return;
-    const [first, ...rest] = sent.map(wireEdit);
+    const layoutEdit = this.layout?.edit() ?? null;
+    const layoutVersion = this.layout?.version ?? null;
+    const [first, ...rest] = [...sent.map(wireEdit), ...(layoutEdit ? [layoutEdit] : [])];
     if (!first) return;
     const baseRevision = this.doc.revision;
     this.holdAutosave = false;
@@ -318,14 +443,15 @@ export class SceneSession {
       for (const edit of sent) {
         if (this.edits.get(edit.child) === edit) this.edits.delete(edit.child);
       }
-      this.setDocument(doc);
+      this.setDocument(doc, layoutEdit ? layoutVersion : null);
       // Edits made while saving stay; those the new revision already has are dropped.
       for (const edit of this.pending) this.stage(edit);
       this.saveState = { kind: "saved", revision: doc.revision };
       this.editsChanged();
     } catch (error) {
       // A 409 without a current revision is the workflow's refusal (the scene is someone
-      // else's, or submitted), not a newer revision: nothing to merge.
+      // else's, or submitted), not a newer revision: nothing to merge. The edits are kept
+      // (here and in localStorage) and the editor is read only until the workflow changes.
       if (error instanceof ConflictError && error.currentRevision !== null) {
         const theirs = await api
           .listRevisions(this.sceneId)
@@ -341,6 +467,10 @@ export class SceneSession {
       } else {
         const refused = error instanceof ApiError && error.status < 500;
         this.setSaveState({ kind: "error", message: errorText(error), retry: !refused });
+        if (error instanceof ConflictError) {
+          this.refusal = { message: error.message, workflow: workflowKey(this.workflow) };
+          this.lockChanged();
+        }
       }
     }
   }
@@ -385,14 +515,21 @@ export class SceneSession {
           );
         }
       }
-      if (this.edits.size > 0) {
+      const layoutChanged =
+        JSON.stringify(previous.scene.layout?.corners_2d) !==
+        JSON.stringify(doc.scene.layout?.corners_2d);
+      if (this.layoutPending && layoutChanged) {
+        lines.push("Both of you changed the room layout: your corners are kept on top.");
+      }
+      const unsaved = this.edits.size + (this.layoutPending ? 1 : 0);
+      if (unsaved > 0) {
         lines.push(
-          `Your ${plural(this.edits.size, "unsaved change")} ${this.edits.size === 1 ? "is" : "are"} applied on top` +
+          `Your ${plural(unsaved, "unsaved change")} ${unsaved === 1 ? "is" : "are"} applied on top` +
             (options.hold ? "; review and save." : "."),
         );
       }
       this.notice = lines.join(" ");
-      this.holdAutosave = options.hold === true && this.edits.size > 0;
+      this.holdAutosave = options.hold === true && unsaved > 0;
       this.saveState = { kind: "clean" }; // the conflict is resolved; editsChanged() says what is left
       this.setDocument(doc);
       this.editsChanged();
@@ -416,7 +553,7 @@ export class SceneSession {
   /** Put the edits an earlier visit left unsaved back (one undoable action). */
   restoreRecovered(): void {
     const draft = this.recovered;
-    if (!draft) return;
+    if (!draft || !this.editable) return;
     const lines: string[] = [];
     const usable = draft.edits.filter((edit) => {
       const problem = editProblem(edit, this.objects);
@@ -425,10 +562,18 @@ export class SceneSession {
         lines.push(`"${describeEdit(edit)}" is already saved.`);
       return !problem && !isNoOp(edit, this.doc.scene.supports ?? []);
     });
-    lines.unshift(`Restored ${plural(usable.length, "unsaved change")} from ${draft.savedAt}.`);
+    let layoutChange: { before: LayoutState; after: LayoutState } | null = null;
+    if (draft.layout && this.layout) {
+      const before = this.layout.snapshot();
+      this.layout.applyState(draft.layout);
+      layoutChange = { before, after: this.layout.snapshot() };
+      if (!this.layout.dirty) lines.push("The room layout is already saved.");
+    }
+    const count = usable.length + (layoutChange && this.layout?.dirty ? 1 : 0);
+    lines.unshift(`Restored ${plural(count, "unsaved change")} from ${draft.savedAt}.`);
     this.recovered = null;
     this.drafts.clearRecovered(this.sceneId);
-    this.edit("restore unsaved changes", usable);
+    this.edit("restore unsaved changes", usable, [], layoutChange);
     this.notice = lines.join(" ");
     this.emit("recovery");
   }
@@ -441,11 +586,15 @@ export class SceneSession {
 
   // -- internals ------------------------------------------------------------------------
 
-  private setDocument(doc: SceneDocument): void {
+  /** `layoutVersion`: the layout corners this revision stored (a save sent them). */
+  private setDocument(doc: SceneDocument, layoutVersion: number | null = null): void {
     this.doc = doc;
+    this.permission = permissionOf(doc) ?? this.permission;
     this.shownCache = null;
     this.suggestionCache = null;
+    this.layout?.setDocument(doc, layoutVersion);
     this.emit("document");
+    this.lockChanged();
   }
 
   private editsChanged(): void {
@@ -455,16 +604,32 @@ export class SceneSession {
       sceneId: this.sceneId,
       baseRevision: this.doc.revision,
       edits: this.pending,
+      layout: this.layoutPending ? (this.layout?.snapshot() ?? null) : null,
       savedAt: new Date().toISOString(),
     });
     this.emit("edits");
     const state = this.saveState.kind;
-    if (state === "saving" || (state === "conflict" && this.edits.size > 0)) return;
-    if (state === "saved" && this.edits.size === 0) {
+    const unsaved = this.unsavedCount;
+    if (state === "saving" || (state === "conflict" && unsaved > 0)) return;
+    if (state === "saved" && unsaved === 0) {
       this.emit("save");
       return;
     }
-    this.setSaveState(this.edits.size > 0 ? { kind: "dirty" } : { kind: "clean" });
+    this.setSaveState(unsaved > 0 ? { kind: "dirty" } : { kind: "clean" });
+  }
+
+  /** Say when the lock changed; once the scene is editable again, its kept edits can be saved. */
+  private lockChanged(): void {
+    const lock = this.lock;
+    const key = JSON.stringify(lock);
+    if (key === this.shownLock) return;
+    const wasLocked = this.shownLock !== "null";
+    this.shownLock = key;
+    if (lock !== null) this.layout?.setEditing(false);
+    this.emit("lock");
+    if (wasLocked && lock === null && this.saveState.kind === "error") {
+      this.setSaveState(this.unsavedCount > 0 ? { kind: "dirty" } : { kind: "clean" });
+    }
   }
 
   private setSaveState(state: SaveState): void {
@@ -481,6 +646,15 @@ function sameState(a: ObjectState, b: ObjectState): boolean {
   const key = (s: ObjectState) => JSON.stringify([s.edit, [...s.rejected].sort()]);
   return key(a) === key(b);
 }
+
+/** The server's word on editing in a scene or workflow answer (null: an older server's). */
+function permissionOf(answer: EditPermission | null): EditPermission | null {
+  return typeof answer?.editable === "boolean" ? answer : null;
+}
+
+/** The workflow as far as a refusal depends on it: its state and who annotates it. */
+const workflowKey = (workflow: SceneWorkflow | null) =>
+  workflow ? `${workflow.state}|${workflow.assignee ?? ""}|${workflow.revision}` : "";
 
 export function plural(count: number, noun: string): string {
   return `${count} ${noun}${count === 1 ? "" : "s"}`;

@@ -1,5 +1,6 @@
 // The keyboard help overlay: "?" lists every shortcut registered at that moment, grouped by
-// scope, so the list is always what the keys actually do on this page.
+// scope, so the list is always what the keys actually do on this page; keys that do nothing
+// now (editing keys on a read-only scene, conflict keys without a conflict) are greyed.
 import { el } from "../../dom";
 import { listShortcuts, registerShortcut, type Shortcut } from "../../shortcuts";
 import "./shortcutHelp.css";
@@ -15,7 +16,15 @@ function keyLabel(keys: string): HTMLElement {
 function row(shortcut: Shortcut): HTMLElement {
   return el(
     "tr",
-    { testid: "shortcut-row", attrs: { "data-keys": shortcut.keys.join(" ") } },
+    {
+      className: shortcut.enabled ? "" : "is-off",
+      testid: "shortcut-row",
+      attrs: {
+        "data-keys": shortcut.keys.join(" "),
+        "data-enabled": String(shortcut.enabled),
+        title: shortcut.enabled ? null : "Not available now",
+      },
+    },
     el(
       "td",
       { className: "shortcut-key-cell" },

@@ -1,6 +1,10 @@
 // The room layout on the photo while it is edited: the fitted room's edges and a draggable
-// handle on each corner the fit uses. Dragging moves the corner in the draft, which re-fits
-// the room once per animation frame.
+// handle on each corner in front of the camera. A corner the fit uses (in view, or dragged)
+// has a solid handle; one the fitted room places has a dashed one, and dragging it pins it.
+// A corner beyond the margin around the photo has its handle on the drawing's edge with an
+// arrow pointing at it (cornerHandles.ts). Dragging moves the corner in the draft by as much
+// as the pointer moves, which re-fits the room once per animation frame; a drag is one step
+// of the undo history.
 import "./layoutLayer.css";
 import type { Camera } from "@holiscene/schema";
 import { svgEl } from "../../dom";
@@ -8,6 +12,15 @@ import type { Point2 } from "../../geometry/camera";
 import { projectBoxEdges } from "../../geometry/roomBox";
 import type { LayoutDraft } from "../../state/layoutDraft";
 import { type Frame, strokeWidth } from "./arrowGeometry";
+import {
+  draggedCorner,
+  followPointer,
+  insetRect,
+  offPhotoText,
+  type PlacedHandle,
+  placeHandles,
+  type Rect,
+} from "./cornerHandles";
 
 const fmt = (p: Point2) => `${p[0].toFixed(1)} ${p[1].toFixed(1)}`;
 
@@ -39,7 +52,22 @@ export function mountLayoutLayer(
     return [p.x, p.y];
   };
 
-  let dragging: number | null = null;
+  /** The corner being dragged: where it and its handle were, and where the pointer was. */
+  let drag: { index: number; corner: Point2; grabbedAt: Point2; handleAt: Point2 } | null = null;
+  /** The handles as last drawn, by corner index. */
+  let drawn = new Map<number, PlacedHandle>();
+  const radius = width * 3.2;
+  // A handle on the edge is larger: it stands for a corner one cannot see.
+  const clampedRadius = radius * 1.4;
+  // The drawing (the photo and its margin) and where clamped handles sit, whole, inside it.
+  const area: Rect = {
+    left: -frame.margin,
+    top: -frame.margin,
+    right: frame.width + frame.margin,
+    bottom: frame.height + frame.margin,
+  };
+  const border = insetRect(area, clampedRadius * 1.15);
+
   const drawEdges = () => {
     const live = draft.live;
     const K = camera()?.K;
@@ -48,24 +76,58 @@ export function mountLayoutLayer(
     edges.setAttribute("d", segments.map(([a, b]) => `M ${fmt(a)} L ${fmt(b)}`).join(" "));
     layer.classList.toggle("is-invalid", draft.error !== null);
   };
-  const drawHandles = () => {
-    const radius = width * 3.2;
-    handles.replaceChildren(
-      ...draft.handles().map(({ index, point }) =>
-        svgEl(
-          "g",
-          {
-            class: `layout-handle${dragging === index ? " is-dragging" : ""}`,
-            "data-testid": `layout-handle-${index}`,
-            "data-corner": index,
-            transform: `translate(${point[0].toFixed(1)} ${point[1].toFixed(1)})`,
-          },
-          svgEl("title", {}, `Room corner ${index} (${index < 4 ? "floor" : "ceiling"}): drag`),
-          svgEl("circle", { r: radius * 1.8, class: "layout-handle-hit" }),
-          svgEl("circle", { r: radius, "stroke-width": width * 0.8 }),
-        ),
-      ),
+  const handleTitle = (h: PlacedHandle) => {
+    const name = `Room corner ${h.index} (${h.index < 4 ? "floor" : "ceiling"})`;
+    const where = h.clamped ? `, ${offPhotoText(h.corner, frame.width, frame.height)}` : "";
+    const how = h.pinned ? "" : "; placed by the fitted room until you drag it";
+    const action = h.clamped ? "drag to move it by as much as you drag" : "drag";
+    return `${name}${where}${how}: ${action}`;
+  };
+  const handleNode = (h: PlacedHandle) => {
+    const classes = [
+      "layout-handle",
+      h.pinned ? "" : "is-free",
+      h.clamped ? "is-clamped" : "",
+      drag?.index === h.index ? "is-dragging" : "",
+    ];
+    const r = h.clamped ? clampedRadius : radius;
+    const parts: SVGElement[] = [
+      svgEl("title", {}, handleTitle(h)),
+      svgEl("circle", { r: radius * 1.8, class: "layout-handle-hit" }),
+      svgEl("circle", { r, "stroke-width": width * 0.8 }),
+    ];
+    if (h.direction) {
+      // An arrowhead inside the handle, pointing at the corner off the photo.
+      const [dx, dy] = h.direction;
+      const tip: Point2 = [dx * r * 0.8, dy * r * 0.8];
+      const base: Point2 = [-dx * r * 0.45, -dy * r * 0.45];
+      const side: Point2 = [-dy * r * 0.6, dx * r * 0.6];
+      const d =
+        `M ${fmt(tip)} L ${fmt([base[0] + side[0], base[1] + side[1]])} ` +
+        `L ${fmt([base[0] - side[0], base[1] - side[1]])} Z`;
+      parts.push(svgEl("path", { class: "layout-handle-arrow", d }));
+    }
+    return svgEl(
+      "g",
+      {
+        class: classes.filter(Boolean).join(" "),
+        "data-testid": `layout-handle-${h.index}`,
+        "data-corner": h.index,
+        "data-pinned": String(h.pinned),
+        "data-clamped": String(h.clamped),
+        "data-x": h.corner[0].toFixed(2),
+        "data-y": h.corner[1].toFixed(2),
+        transform: `translate(${h.at[0].toFixed(1)} ${h.at[1].toFixed(1)})`,
+      },
+      ...parts,
     );
+  };
+  const drawHandles = () => {
+    const placed = placeHandles(draft.handles(), area, border, clampedRadius * 2.2).map((h) =>
+      drag?.index === h.index ? followPointer(h, drag.handleAt, drag.corner, border) : h,
+    );
+    drawn = new Map(placed.map((h) => [h.index, h]));
+    handles.replaceChildren(...placed.map(handleNode));
   };
   const draw = () => {
     layer.style.display = draft.editing ? "" : "none";
@@ -74,26 +136,31 @@ export function mountLayoutLayer(
     drawHandles();
   };
 
-  // Pointer capture keeps the drag on the handle's group while the pointer leaves it.
+  // Pointer capture keeps the drag on the handles' group while the pointer leaves a handle.
   handles.addEventListener("pointerdown", (event) => {
     const target = (event.target as Element).closest<SVGGElement>("[data-corner]");
-    if (!target || event.button !== 0) return;
+    if (!target || event.button !== 0 || drag !== null) return;
+    const grabbedAt = toImage(event);
+    if (!grabbedAt) return;
     event.preventDefault();
     event.stopPropagation();
-    dragging = Number(target.dataset.corner);
+    const index = Number(target.dataset.corner);
+    const corner = draft.beginDrag(index);
+    if (!corner) return;
+    drag = { index, corner, grabbedAt, handleAt: drawn.get(index)?.at ?? corner };
     handles.setPointerCapture(event.pointerId);
     target.classList.add("is-dragging");
   });
   handles.addEventListener("pointermove", (event) => {
-    if (dragging === null) return;
+    if (drag === null) return;
     const point = toImage(event);
-    if (point) draft.moveCorner(dragging, point);
+    if (point) draft.moveCorner(drag.index, draggedCorner(drag.corner, drag.grabbedAt, point));
   });
   const endDrag = (event: PointerEvent) => {
-    if (dragging === null) return;
-    dragging = null;
+    if (drag === null) return;
+    drag = null;
     if (handles.hasPointerCapture(event.pointerId)) handles.releasePointerCapture(event.pointerId);
-    draft.refit(); // the corner's last position, without waiting for a frame
+    draft.endDrag(); // the corner's last position, without waiting for a frame; one undo step
   };
   handles.addEventListener("pointerup", endDrag);
   handles.addEventListener("pointercancel", endDrag);

@@ -110,6 +110,7 @@ export function mountRevisionHistory(container: HTMLElement, session: SceneSessi
       attrs: { type: "button", title: "Put the supports back as they were in this revision" },
     });
     revertButton.onclick = () => void revert(info, revertButton);
+    revertButton.disabled = !session.editable;
     return el(
       "li",
       { attrs: { "data-revision": info.number } },
@@ -153,6 +154,12 @@ export function mountRevisionHistory(container: HTMLElement, session: SceneSessi
   });
   const unsubscribe = session.subscribe((change) => {
     if (change === "document") void refresh();
+    if (change === "lock") {
+      for (const button of list.querySelectorAll<HTMLButtonElement>(
+        "[data-testid^='revision-revert-']",
+      ))
+        button.disabled = !session.editable;
+    }
   });
   return () => {
     unsubscribe();

@@ -13,7 +13,7 @@ import { mountSupportShortcuts } from "../../editors/supportShortcuts";
 import { mountSupportSuggestions } from "../../inference/supportSuggestions";
 import { getAuthor } from "../../state/author";
 import { startAutosave } from "../../state/autosave";
-import { SceneSession } from "../../state/sceneSession";
+import { plural, SceneSession } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
 import { mountPhotoView } from "../photo/photoView";
 import { mountScene3d } from "../scene3d/scene3dView";
@@ -36,6 +36,50 @@ function panel(title: string, className: string, testid: string) {
 async function latestJob(sceneId: string, signal: AbortSignal): Promise<Job | null> {
   const scenes = await api.listScenes(signal);
   return scenes.find((s) => s.id === sceneId)?.latest_job ?? null;
+}
+
+/** The server's reason as a sentence: capital first, one full stop. */
+const sentence = (text: string) =>
+  `${text.charAt(0).toUpperCase()}${text.slice(1).replace(/\.?\s*$/, ".")}`;
+
+/**
+ * The banner of a scene that cannot be edited now (submitted, accepted, or the server said
+ * so): why, what is off, and that unsaved changes are kept.
+ */
+function readOnlyBanner(session: SceneSession): { element: HTMLElement; dispose: () => void } {
+  const reason = el("strong", { testid: "read-only-reason" });
+  const detail = el("span", { testid: "read-only-detail" });
+  const element = el(
+    "div",
+    {
+      className: "alert alert--info read-only-banner",
+      testid: "read-only-banner",
+      attrs: { role: "status", hidden: true },
+    },
+    reason,
+    " ",
+    detail,
+  );
+  const update = () => {
+    const lock = session.lock;
+    element.hidden = lock === null;
+    reason.textContent = lock?.title ?? "";
+    const kept = session.unsavedCount;
+    detail.textContent =
+      (lock?.reason ? `${sentence(lock.reason)} ` : "") +
+      "The support editor, the layout editor and their keys are off; the photo, the 3D view " +
+      "and ? (the key list) still work." +
+      (kept > 0
+        ? ` Your ${plural(kept, "unsaved change")} ${kept === 1 ? "is" : "are"} kept in this browser until the scene can be edited again.`
+        : "");
+  };
+  update();
+  return {
+    element,
+    dispose: session.subscribe((change) => {
+      if (change === "lock" || change === "edits" || change === "document") update();
+    }),
+  };
 }
 
 export function mountScenePage(container: HTMLElement, sceneId: string): () => void {
@@ -97,7 +141,9 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     editor.body.append(workflow, saveBar, suggestions, table, history);
     const edgeInfo = el("div");
     photo.element.append(edgeInfo);
+    const banner = readOnlyBanner(session);
     content.append(
+      banner.element,
       el("div", { className: "scene-main" }, photo.element, scene3d.element),
       editor.element,
     );
@@ -114,12 +160,15 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       mountSupportSuggestions(suggestions, table, session),
       mountRevisionHistory(history, session),
       mountWorkflowBar(workflow, session),
+      banner.dispose,
       session.subscribe((change) => {
         if (change === "document") updateMeta();
+        if (change === "lock") rerun.disabled = !session.editable;
       }),
     );
+    rerun.disabled = !session.editable;
     rerun.onclick = () => {
-      const unsaved = session.pending.length;
+      const unsaved = session.unsavedCount;
       if (unsaved > 0 && !window.confirm(`Discard ${unsaved} unsaved change(s) and re-run?`))
         return;
       void runPipeline();
@@ -146,8 +195,8 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     }
     const doc = await api.getScene(sceneId, abort.signal);
     message.textContent = "";
-    showScene(doc);
     rerun.disabled = false;
+    showScene(doc);
   };
 
   const runPipeline = async () => {

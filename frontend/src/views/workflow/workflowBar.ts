@@ -139,7 +139,7 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
       el("strong", { text: `Rejected by ${rejection?.actor ?? "a reviewer"}: ` }),
       el("span", { text: flow.review_comment ?? "", testid: "review-comment-text" }),
     );
-    const pending = session.pending.length;
+    const pending = session.unsavedCount;
     const annotator = hasRole("annotator");
     take.hidden = !(
       annotator &&
@@ -191,6 +191,7 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
   const load = async () => {
     try {
       flow = await workflowApi.get(session.sceneId, abort.signal);
+      session.setWorkflow(flow); // submitted and accepted scenes are read only
       render();
     } catch (err) {
       if (!abort.signal.aborted) showError(err);
@@ -286,6 +287,8 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
       void load(); // a save may have taken the scene
     } else if (change === "edits") {
       render();
+    } else if (change === "lock" && session.saveState.kind === "error") {
+      void load(); // a save was refused: the scene's state may have changed meanwhile
     }
   });
   void load();
