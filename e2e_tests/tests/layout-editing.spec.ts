@@ -1,13 +1,16 @@
 // User story: an annotator corrects the room layout by dragging its corners on the photo; the
 // 3D room and the camera follow during the drag; a drag the fit cannot follow says why and
-// keeps the last room; the layout is saved as a new revision; "Re-place objects" runs a
-// placement job with its progress shown, and the 3D view shows the new revision when it ends.
-// On a real photo and on a synthetic room.
+// keeps the last room; Ctrl+Z takes a drag back (and Ctrl+Shift+Z does it again); a corner
+// off the photo is dragged by its handle on the photo's edge; the layout is saved as a new
+// revision; "Re-place objects" runs a placement job with its progress shown, and the 3D view
+// shows the new revision when it ends. On a real photo and on a synthetic room. And: a drag
+// saved by itself, then undone, is saved back, and a reload shows the room as it was.
 import { mkdirSync } from "node:fs";
 import path from "node:path";
 import type { Job, SceneDocument, SceneSummary } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getRevisions, getScene, T3D_5 } from "../helpers/api";
+import { slowAutosave } from "../helpers/photo";
 import {
   layoutProbe,
   maxDifference,
@@ -23,13 +26,17 @@ mkdirSync(SCREENSHOTS, { recursive: true });
 const FIT_BUDGET_MS = 50;
 const STEPS = 10;
 
-/** The handles one can grab on the photo: corner index -> centre on the screen. (Corners
- * out of view also have handles when the fit needs them, but they lie outside the photo.) */
+/** The handles on the corners themselves (in the photo or its margin) that the fit goes
+ * through: corner index -> centre on the screen. (Corners further out have their handle on
+ * the drawing's edge, `data-clamped`; corners the fitted room places are `data-pinned=false`.) */
 async function handles(page: Page): Promise<Map<number, { x: number; y: number }>> {
   const photo = await page.getByTestId("photo").boundingBox();
   if (!photo) throw new Error("the photo is not laid out");
   const found = new Map<number, { x: number; y: number }>();
-  for (const handle of await page.locator("[data-testid^='layout-handle-']").all()) {
+  const onCorners = page.locator(
+    "[data-testid^='layout-handle-'][data-clamped='false'][data-pinned='true']",
+  );
+  for (const handle of await onCorners.all()) {
     const index = Number(await handle.getAttribute("data-corner"));
     const box = await handle.boundingBox();
     if (!box) continue;
@@ -52,10 +59,29 @@ interface DragResult {
   fitTimes: number[];
 }
 
+/** Where a corner is, image pixels (its handle says so, wherever the handle is drawn). */
+async function cornerAt(page: Page, index: number): Promise<[number, number]> {
+  const handle = page.getByTestId(`layout-handle-${index}`);
+  return [Number(await handle.getAttribute("data-x")), Number(await handle.getAttribute("data-y"))];
+}
+
+/** The centre of a corner's handle on the screen. */
+async function handleCentre(page: Page, index: number): Promise<{ x: number; y: number }> {
+  const box = await page.getByTestId(`layout-handle-${index}`).boundingBox();
+  if (!box) throw new Error(`no handle for corner ${index}`);
+  return { x: box.x + box.width / 2, y: box.y + box.height / 2 };
+}
+
+/** Image pixels per screen pixel on the photo. */
+function imagePerScreenPixel(page: Page): Promise<number> {
+  return page
+    .getByTestId("photo")
+    .evaluate((svg) => 1 / ((svg as SVGSVGElement).getScreenCTM()?.a ?? Number.NaN));
+}
+
 /** Drag a corner handle by (dx, dy) screen pixels in STEPS moves, reading the 3D room. */
 async function dragCorner(page: Page, index: number, dx: number, dy: number): Promise<DragResult> {
-  const from = (await handles(page)).get(index);
-  if (!from) throw new Error(`no handle for corner ${index}`);
+  const from = await handleCentre(page, index);
   const before = await scene3d(page, (p) => p.roomCorners());
   const roomMoves: number[] = [];
   const steps: DragResult["steps"] = [];
@@ -164,6 +190,7 @@ test("layout editing on a real photo: live 3D room, a refused drag, save, re-pla
 }) => {
   test.setTimeout(480_000);
   const doc = await seedFolder(request, T3D_5, "t3d-5 layout");
+  await slowAutosave(page); // the layout is saved with the button here
   await openScene(page, doc.scene_id);
 
   // A ceiling corner dragged far below the floor: no room; the last room stays, with the reason.
@@ -203,6 +230,7 @@ test("layout editing on a synthetic room: live 3D room, save, re-place objects",
 }) => {
   test.setTimeout(480_000);
   const doc = await seedFolder(request, synthesize(11), "synth-11 layout");
+  await slowAutosave(page); // the layout is saved with the button here
   await openScene(page, doc.scene_id);
   // The E key turns corner dragging on and off; the key help lists it.
   const bar = page.getByTestId("layout-bar");
@@ -213,6 +241,143 @@ test("layout editing on a synthetic room: live 3D room, save, re-place objects",
   await page.locator("body").press("?");
   await expect(page.getByTestId("shortcut-help")).toContainText("Edit the room layout");
   await page.getByTestId("shortcut-help-close").click();
+
+  await undoRedoDrag(page, doc);
+  await dragOffPhotoCorner(page, doc);
+  await page.getByTestId("layout-toggle").click();
+  await expect(bar).toHaveAttribute("data-editing", "false");
+
   const saved = await dragAndSave(page, doc, "layout-synth");
   await replaceObjects(page, saved, "layout-synth");
+});
+
+/** Ctrl+Z takes a corner drag back, the corner and the fitted room with it; Ctrl+Shift+Z does
+ * it again. Nothing of it reaches the server. */
+async function undoRedoDrag(page: Page, doc: SceneDocument): Promise<void> {
+  const bar = page.getByTestId("layout-bar");
+  await page.getByTestId("layout-toggle").click();
+  await expect(bar).toHaveAttribute("data-editing", "true");
+  const floor = [...(await handles(page)).keys()].find((i) => i < 4);
+  if (floor === undefined) throw new Error("no floor corner in view");
+  const corner = await cornerAt(page, floor);
+  const room = await scene3d(page, (p) => p.roomCorners());
+  await dragCorner(page, floor, floor === 1 ? -24 : 24, 30);
+  await expect(bar).toHaveAttribute("data-dirty", "true");
+  const movedCorner = await cornerAt(page, floor);
+  const movedRoom = await scene3d(page, (p) => p.roomCorners());
+  expect(maxDifference(room, movedRoom)).toBeGreaterThan(0.01);
+  await expect(page.getByTestId("undo-button")).toHaveAttribute(
+    "title",
+    `Undo: move the room's floor corner ${floor} (Ctrl+Z)`,
+  );
+
+  await page.keyboard.press("Control+z");
+  await expect(bar).toHaveAttribute("data-dirty", "false");
+  expect(await cornerAt(page, floor)).toEqual(corner);
+  await nextFrames(page);
+  expect(maxDifference(room, await scene3d(page, (p) => p.roomCorners()))).toBeLessThan(1e-9);
+  await expect(page.getByTestId("pending-edits")).toBeHidden();
+
+  await page.keyboard.press("Control+Shift+z");
+  await expect(bar).toHaveAttribute("data-dirty", "true");
+  expect(await cornerAt(page, floor)).toEqual(movedCorner);
+  await nextFrames(page);
+  expect(maxDifference(movedRoom, await scene3d(page, (p) => p.roomCorners()))).toBeLessThan(1e-9);
+  await expect(page.getByTestId("pending-edits")).toContainText("room layout: corners moved");
+
+  await page.keyboard.press("Control+z");
+  await expect(bar).toHaveAttribute("data-dirty", "false");
+  expect(maxDifference(room, await scene3d(page, (p) => p.roomCorners()))).toBeLessThan(1e-9);
+  expect((await getScene(page.request, doc.scene_id)).revision).toBe(doc.revision);
+}
+
+/** A corner far off the photo has its handle on the drawing's edge, pointing at it; dragging
+ * the handle moves the corner by as much as the pointer moved, and the room follows. */
+async function dragOffPhotoCorner(page: Page, doc: SceneDocument): Promise<void> {
+  const bar = page.getByTestId("layout-bar");
+  const clamped = page.locator("[data-testid^='layout-handle-'][data-clamped='true']");
+  expect(await clamped.count()).toBeGreaterThan(0);
+  const index = Number(await clamped.first().getAttribute("data-corner"));
+  const handle = page.getByTestId(`layout-handle-${index}`);
+  await expect(handle.locator("title")).toHaveText(/off the photo: \d+ px/);
+  await expect(handle.locator(".layout-handle-arrow")).toHaveCount(1);
+  const { width, height } = doc.scene.image;
+  const corner = await cornerAt(page, index);
+  const outside = corner[0] < 0 || corner[0] > width || corner[1] < 0 || corner[1] > height;
+  expect(outside).toBe(true);
+  const room = await scene3d(page, (p) => p.roomCorners());
+  // Along the edge the handle is on (across it for a corner beyond a side edge).
+  const aboveOrBelow = corner[1] < 0 || corner[1] > height;
+  const [dx, dy] = aboveOrBelow ? [-40, 0] : [0, -40];
+  const scale = await imagePerScreenPixel(page);
+  await dragCorner(page, index, dx, dy);
+  await expect(bar).toHaveAttribute("data-dirty", "true");
+  const moved = await cornerAt(page, index);
+  expect(moved[0]).toBeCloseTo(corner[0] + dx * scale, 0);
+  expect(moved[1]).toBeCloseTo(corner[1] + dy * scale, 0);
+  expect(await handle.getAttribute("data-pinned")).toBe("true");
+  await nextFrames(page);
+  expect(maxDifference(room, await scene3d(page, (p) => p.roomCorners()))).toBeGreaterThan(1e-4);
+  await page.screenshot({ path: path.join(SCREENSHOTS, "layout-off-photo-corner.png") });
+  await page.keyboard.press("Control+z");
+  await expect(bar).toHaveAttribute("data-dirty", "false");
+  expect(await cornerAt(page, index)).toEqual(corner);
+}
+
+test("layout undo after an autosave: the drag is saved back, and a reload shows the room as it was", async ({
+  page,
+  request,
+}) => {
+  test.setTimeout(300_000);
+  const doc = await seedFolder(request, synthesize(12), "synth-12 layout undo");
+  await slowAutosave(page, 400);
+  await openScene(page, doc.scene_id);
+  const bar = page.getByTestId("layout-bar");
+  await page.getByTestId("layout-toggle").click();
+  const floor = [...(await handles(page)).keys()].find((i) => i < 4);
+  if (floor === undefined) throw new Error("no floor corner in view");
+  const corner = await cornerAt(page, floor);
+  const room = await scene3d(page, (p) => p.roomCorners());
+
+  // The drag saves itself (one revision, the layout stored as dragged).
+  await dragCorner(page, floor, floor === 1 ? -24 : 24, 30);
+  await expect(page.getByTestId("scene-meta")).toContainText(`revision ${doc.revision + 1}`);
+  await expect(bar).toHaveAttribute("data-dirty", "false");
+  const saved = await getScene(page.request, doc.scene_id);
+  expect(saved.scene.layout?.source).toBe("manual");
+  const dragged = saved.scene.layout?.corners_2d?.[floor] as number[];
+  expect(Math.hypot((dragged[0] ?? 0) - corner[0], (dragged[1] ?? 0) - corner[1])).toBeGreaterThan(
+    10,
+  );
+
+  // Undone: the corner and the room go back, and that is saved as the layout again.
+  await page.keyboard.press("Control+z");
+  const undone = await cornerAt(page, floor); // as before the drag (or as saved back, if quick)
+  expect(Math.hypot(undone[0] - corner[0], undone[1] - corner[1])).toBeLessThan(0.5);
+  await expect(page.getByTestId("scene-meta")).toContainText(`revision ${doc.revision + 2}`);
+  await expect(bar).toHaveAttribute("data-dirty", "false");
+  const back = await getScene(page.request, doc.scene_id);
+  const restored = back.scene.layout?.corners_2d?.[floor] as number[];
+  expect(Math.hypot((restored[0] ?? 0) - corner[0], (restored[1] ?? 0) - corner[1])).toBeLessThan(
+    0.5,
+  );
+  expect(maxDifference(room, back.scene.layout?.corners_3d ?? null)).toBeLessThan(2e-3);
+  const revisions = await getRevisions(page.request, doc.scene_id);
+  expect(revisions.map((r) => r.edits?.[0]?.kind ?? r.kind).slice(-2)).toEqual([
+    "set_layout",
+    "set_layout",
+  ]);
+
+  // A reload shows what the page showed.
+  const shown = await cornerAt(page, floor);
+  const shownRoom = await scene3d(page, (p) => p.roomCorners());
+  await page.reload();
+  await expect(page.getByTestId("scene3d-canvas")).toHaveAttribute("data-status", "ready", {
+    timeout: 120_000,
+  });
+  await page.getByTestId("layout-toggle").click();
+  const reloaded = await cornerAt(page, floor);
+  expect(Math.hypot(reloaded[0] - shown[0], reloaded[1] - shown[1])).toBeLessThan(0.5);
+  expect(maxDifference(shownRoom, await scene3d(page, (p) => p.roomCorners()))).toBeLessThan(2e-3);
+  await expect(page.getByTestId("recovery-banner")).toBeHidden();
 });
