@@ -2,11 +2,14 @@
 // scene (the most uncertain first) on a real photo and on a synthetic room, corrects a
 // supporter and submits both; the reviewer rejects one with a comment and accepts the other;
 // the annotator sees the comment, fixes the scene and resubmits; the reviewer accepts; the
-// dashboard shows the counts. Runs on its own server, where login is required.
+// dashboard shows the counts. A submitted scene is read only for its annotator (a banner says
+// why; the support editor, the layout editor and their keys are off, the key list still opens)
+// until the reviewer sends it back. Runs on its own server, where login is required.
 import { mkdirSync } from "node:fs";
 import path from "node:path";
 import type { SceneDocument, SceneWorkflow } from "@holiscene/schema";
 import { type APIRequestContext, expect, type Page, test } from "@playwright/test";
+import { clickObject } from "../helpers/photo";
 import {
   ADMIN,
   apiAs,
@@ -43,6 +46,47 @@ async function correctASupporter(page: Page, request: APIRequestContext, sceneId
   await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
   await expect(page.getByTestId(`supporter-select-${child.child}`)).toHaveValue(target);
   return child.child;
+}
+
+/**
+ * The scene page is read only: the banner says why, the support editor and the layout editor
+ * are off and so are their keys (F does nothing to the selected object, E starts no layout
+ * editing, Ctrl+Z undoes nothing), while "?" still lists the keys (the editing ones greyed).
+ */
+async function expectReadOnly(page: Page, sceneId: string, title: string): Promise<void> {
+  const banner = page.getByTestId("read-only-banner");
+  await expect(banner).toBeVisible();
+  await expect(page.getByTestId("read-only-reason")).toHaveText(title);
+  await expect(banner).toContainText(
+    "The support editor, the layout editor and their keys are off",
+  );
+  const selects = page.locator("[data-testid^='supporter-select-']");
+  for (const select of await selects.all()) await expect(select).toBeDisabled();
+  await expect(page.getByTestId("layout-toggle")).toBeDisabled();
+  await expect(page.getByTestId("undo-button")).toBeDisabled();
+  await expect(page.getByTestId("save-button")).toBeDisabled();
+  await expect(page.getByTestId("run-pipeline")).toBeDisabled();
+
+  const before = (await (await page.request.get(`/api/scenes/${sceneId}`)).json()) as SceneDocument;
+  const child = (before.scene.supports ?? []).find((s) => s.parent !== "floor")?.child;
+  if (!child) throw new Error("no object to try the F key on");
+  await clickObject(page, child); // read only, a click still selects
+  await expect(page.getByTestId(`object-row-${child}`)).toHaveClass(/is-selected/);
+  for (const key of ["f", "e", "Control+z"]) await page.keyboard.press(key);
+  await expect(page.getByTestId("layout-bar")).toHaveAttribute("data-editing", "false");
+  await expect(page.getByTestId(`supporter-select-${child}`)).not.toHaveValue("floor");
+  await expect(page.getByTestId("pending-edits")).toBeHidden();
+
+  await page.keyboard.press("?");
+  const help = page.getByTestId("shortcut-help");
+  await expect(help).toBeVisible();
+  await expect(help.locator("[data-keys='F']")).toHaveAttribute("data-enabled", "false");
+  await expect(help.locator("[data-keys='E']")).toHaveAttribute("data-enabled", "false");
+  await expect(help.locator("[data-keys='?']")).toHaveAttribute("data-enabled", "true");
+  await page.keyboard.press("Escape");
+  await expect(help).toBeHidden();
+  const after = (await (await page.request.get(`/api/scenes/${sceneId}`)).json()) as SceneDocument;
+  expect(after.revision).toBe(before.revision);
 }
 
 async function openScene(page: Page, sceneId: string): Promise<void> {
@@ -129,6 +173,8 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
   // Submitted work is locked: the server refuses edits until a reviewer decides.
   await expect(page.getByTestId("workflow-note")).toContainText("Submitted");
+  await expectReadOnly(page, first.id, "Submitted for review — read only");
+  await shot(page, "read-only");
 
   await page.keyboard.press(">"); // the next scene, from the scene page
   await expect(page).toHaveURL(new RegExp(`#/scenes/${second.id}$`));
@@ -151,6 +197,8 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await shot(page, "list-reviewer");
   await openScene(page, first.id);
   await expect(page.getByTestId("workflow-submit")).toBeHidden();
+  // The reviewer judges it as submitted: read only for them too.
+  await expect(page.getByTestId("read-only-reason")).toHaveText("Submitted for review — read only");
   await page.getByTestId("workflow-reject").click();
   await page.getByTestId("reject-send").click(); // no comment: refused in the page
   await expect(page.getByTestId("workflow-error")).toContainText("Say what went wrong");
@@ -175,6 +223,11 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await page.getByTestId("next-scene").click();
   await expect(page).toHaveURL(new RegExp(`#/scenes/${first.id}$`));
   await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+  // Editable again: no banner, the editors and their keys are on.
+  await expect(page.getByTestId("read-only-banner")).toBeHidden();
+  await expect(page.locator("[data-testid^='supporter-select-']").first()).toBeEnabled();
+  await expect(page.getByTestId("layout-toggle")).toBeEnabled();
+  await expect(page.getByTestId("undo-button")).toBeDisabled(); // nothing to undo yet
   // The reviewer's comment stays in view while the annotator fixes the scene.
   await expect(page.getByTestId("review-comment-text")).toHaveText(comment);
   await expect(page.getByTestId("review-comment")).toContainText(`Rejected by ${REVIEWER.name}`);

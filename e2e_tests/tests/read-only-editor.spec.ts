@@ -1,0 +1,86 @@
+// User story: an annotator has an unsaved correction open while the scene gets submitted
+// elsewhere (another tab). Saving is refused: the page shows the server's reason, keeps the
+// correction (on the page and in this browser), and turns read only with a banner saying why.
+// Once a reviewer sends the scene back, the next visit offers the kept correction, which is
+// then saved: no work is lost. Local single-user mode (the one person may review too).
+import { mkdirSync } from "node:fs";
+import path from "node:path";
+import type { SceneDocument } from "@holiscene/schema";
+import { expect, test } from "@playwright/test";
+import { getScene } from "../helpers/api";
+import { openScene, slowAutosave } from "../helpers/photo";
+import { seedFolder, synthesize } from "../helpers/scene3d";
+
+const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
+mkdirSync(SCREENSHOTS, { recursive: true });
+
+test("a save refused by the workflow lock keeps the edit, shows why, and is saved once the scene is sent back", async ({
+  page,
+  request,
+}) => {
+  test.setTimeout(300_000);
+  const doc = await seedFolder(request, synthesize(14), "synth-14 lock");
+  const id = doc.scene_id;
+  await slowAutosave(page); // the save is the user's (Ctrl+S), at a known moment
+  await openScene(page, id);
+  await expect(page.getByTestId("read-only-banner")).toBeHidden();
+
+  // A correction in the page, not saved yet.
+  const support = (doc.scene.supports ?? [])[0];
+  if (!support) throw new Error("the scene has no supports");
+  const target = support.parent === "floor" ? "wall" : "floor";
+  const select = page.getByTestId(`supporter-select-${support.child}`);
+  await select.selectOption(target);
+  await expect(page.getByTestId("pending-edits")).toContainText(support.child);
+
+  // Meanwhile, elsewhere, the scene is taken and submitted.
+  expect((await request.post(`/api/scenes/${id}/take`)).status()).toBe(200);
+  const submitted = await request.post(`/api/scenes/${id}/submit`, {
+    data: { revision: doc.revision },
+  });
+  expect(submitted.status(), await submitted.text()).toBe(200);
+
+  // Saving is refused: the server's reason shows, the correction stays, the page is read only.
+  await page.locator("body").click({ position: { x: 5, y: 5 } });
+  await page.keyboard.press("Control+s");
+  await expect(page.getByTestId("save-status")).toHaveText("Not saved: refused");
+  await expect(page.getByTestId("save-error")).toContainText("submitted for review");
+  await expect(page.getByTestId("read-only-reason")).toHaveText("Submitted for review — read only");
+  await expect(page.getByTestId("read-only-banner")).toContainText(
+    "Your 1 unsaved change is kept in this browser",
+  );
+  await expect(page.getByTestId("pending-edits")).toContainText(support.child);
+  await expect(select).toHaveValue(target);
+  await expect(select).toBeDisabled();
+  await expect(page.getByTestId("layout-toggle")).toBeDisabled();
+  const kept = await page.evaluate((key) => localStorage.getItem(key), `holiscene.draft.${id}`);
+  expect(JSON.parse(kept ?? "{}").edits).toEqual([
+    expect.objectContaining({ child: support.child, parent: target }),
+  ]);
+  expect((await getScene(request, id)).revision).toBe(doc.revision);
+  await page.screenshot({ path: path.join(SCREENSHOTS, "read-only-refused.png"), fullPage: true });
+
+  // The reviewer sends it back; the next visit offers the kept correction, and it is saved.
+  const rejected = await request.post(`/api/scenes/${id}/reject`, {
+    data: { revision: doc.revision, comment: "Check the supports again." },
+  });
+  expect(rejected.status(), await rejected.text()).toBe(200);
+  await page.reload();
+  await expect(page.getByTestId("object-table")).toBeVisible();
+  await expect(page.getByTestId("workflow-state")).toHaveText("rejected");
+  await expect(page.getByTestId("read-only-banner")).toBeHidden();
+  await expect(page.getByTestId("recovery-text")).toContainText(support.child);
+  await page.getByTestId("recovery-restore").click();
+  await expect(select).toHaveValue(target);
+  await expect(select).toBeEnabled();
+  await page.locator("body").click({ position: { x: 5, y: 5 } });
+  await page.keyboard.press("Control+s");
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
+  const saved: SceneDocument = await getScene(request, id);
+  expect(saved.revision).toBe(doc.revision + 1);
+  expect(saved.scene.supports?.find((s) => s.child === support.child)).toMatchObject({
+    parent: target,
+    source: "manual",
+  });
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+});
