@@ -71,6 +71,7 @@ interface Probe {
   photoOnFrustum(): boolean;
   arrows(): { child: string; parent: string; type: string }[];
   screenPointOf(id: string): { x: number; y: number } | null;
+  objectColour(id: string): number[] | null;
   renderInfo(): { calls: number; triangles: number; width: number; height: number };
   orbit(azimuth: number): void;
 }

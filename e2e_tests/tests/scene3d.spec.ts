@@ -62,14 +62,22 @@ test("shows the frustum and arrows, shares the selection with the photo, exports
   const [first, second] = [objects[0]?.id ?? "", objects[2]?.id ?? ""];
   const at = await scene3d(page, (p, id) => p.screenPointOf(id), first);
   if (!at) throw new Error(`object ${first} cannot be clicked in the 3D view`);
+  const colour = (id: string) => scene3d(page, (p, i) => p.objectColour(i), id);
+  const brightness = (rgb: number[] | null) => (rgb ?? []).reduce((sum, v) => sum + v, 0);
+  await page.mouse.move(4, 4); // nothing hovered
+  const plain = await colour(first);
   await page.mouse.click(at.x, at.y);
   await expect(canvas).toHaveAttribute("data-selected", first);
   await expect(page.getByTestId(`mask-${first}`)).toHaveClass(/is-selected/);
+  // The selected object glows in 3D, on top of its class colour.
+  await page.mouse.move(4, 4);
+  expect(brightness(await colour(first))).toBeGreaterThan(brightness(plain) + 0.1);
 
   // A click on nothing in 3D clears it; a click on the photo selects there and in 3D.
   await canvas.click({ position: { x: 4, y: 4 } });
   await expect(canvas).toHaveAttribute("data-selected", "");
   await expect(page.getByTestId(`mask-${first}`)).not.toHaveClass(/is-selected/);
+  expect(await colour(first)).toEqual(plain);
   await page.getByTestId("toggle-arrows").uncheck();
   await page.getByTestId("toggle-labels").uncheck();
   await page.getByTestId(`mask-${second}`).click({ force: true });

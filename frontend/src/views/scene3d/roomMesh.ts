@@ -9,7 +9,8 @@ import type { RoomBox } from "../../geometry/roomFit";
 // Flat shades rather than lit materials: each surface is a plane, which the scene's lights
 // (hemisphere and sun, no point lights) would light evenly anyway; unlit, the room, which
 // covers most of the view, costs software WebGL little to draw. Walls along the room's two
-// axes differ a little so its corners read.
+// axes differ a little so its corners read. One draw call: the faces' shades are vertex
+// colours, not six materials (software WebGL pays per draw call).
 const WALL_X = 0xd6d1c9;
 const WALL_Z = 0xcac5bd;
 const FLOOR = 0xb4afa5;
@@ -21,17 +22,24 @@ export class RoomMesh {
   readonly root = new THREE.Group();
   private readonly box: THREE.Mesh;
   private readonly edges: THREE.LineSegments;
-  private readonly materials: THREE.MeshBasicMaterial[];
+  private readonly material = new THREE.MeshBasicMaterial({
+    vertexColors: true,
+    side: THREE.BackSide,
+  });
   private readonly edgeMaterial = new THREE.LineBasicMaterial({ color: EDGE });
   private current: RoomBox | null = null;
 
   constructor() {
     this.root.name = "room";
-    const surface = (color: number) => new THREE.MeshBasicMaterial({ color, side: THREE.BackSide });
-    // BoxGeometry's face groups: +x, -x, +y (ceiling), -y (floor), +z, -z.
-    this.materials = [WALL_X, WALL_X, CEILING, FLOOR, WALL_Z, WALL_Z].map(surface);
     const geometry = new THREE.BoxGeometry(1, 1, 1);
-    this.box = new THREE.Mesh(geometry, this.materials);
+    // BoxGeometry's faces, four vertices each: +x, -x, +y (ceiling), -y (floor), +z, -z.
+    const colours = [WALL_X, WALL_X, CEILING, FLOOR, WALL_Z, WALL_Z].flatMap((hex) => {
+      const rgb = new THREE.Color(hex).toArray();
+      return [...rgb, ...rgb, ...rgb, ...rgb];
+    });
+    geometry.setAttribute("color", new THREE.Float32BufferAttribute(colours, 3));
+    geometry.clearGroups();
+    this.box = new THREE.Mesh(geometry, this.material);
     this.box.name = "room-box";
     this.edges = new THREE.LineSegments(new THREE.EdgesGeometry(geometry), this.edgeMaterial);
     this.root.add(this.box, this.edges);
@@ -70,7 +78,7 @@ export class RoomMesh {
   dispose(): void {
     this.box.geometry.dispose();
     this.edges.geometry.dispose();
-    for (const material of this.materials) material.dispose();
+    this.material.dispose();
     this.edgeMaterial.dispose();
   }
 }

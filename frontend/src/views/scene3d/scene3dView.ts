@@ -43,6 +43,8 @@ export interface Scene3dProbe {
   arrows(): { child: string; parent: string; type: string }[];
   /** A client point where a click hits the object (not hidden by another), or null. */
   screenPointOf(id: string): { x: number; y: number } | null;
+  /** The object's colour as drawn now (linear RGB; brighter while selected or hovered). */
+  objectColour(id: string): number[] | null;
   /** The last frame's draw calls and triangles, and the drawing buffer's size then. */
   renderInfo(): { calls: number; triangles: number; width: number; height: number };
   /** Turn the view about the orbit target, as a horizontal drag does (radians). */
@@ -119,10 +121,7 @@ export function mountScene3d(
   renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(0xe8ecf1);
-  scene.add(new THREE.HemisphereLight(0xffffff, 0x8a8577, 2.2));
-  const sun = new THREE.DirectionalLight(0xffffff, 1.6);
-  sun.position.set(-2, 6, 3);
-  scene.add(sun);
+  // No lights: objects and arrows are lit once, when baked (bakedMesh.ts), the room is flat.
 
   const room = new RoomMesh();
   const arrows = new SupportArrows3d();
@@ -144,6 +143,7 @@ export function mountScene3d(
     photoOnFrustum: () => frustum?.hasPhoto ?? false,
     arrows: () => arrows.arrows.map(({ child, parent, type }) => ({ child, parent, type })),
     screenPointOf: (id) => screenPointOf(id),
+    objectColour: (id) => model?.colourOf(id)?.toArray() ?? null,
     orbit: (azimuth) => {
       const offset = camera.position.clone().sub(controls.target);
       offset.applyAxisAngle(new THREE.Vector3(0, 1, 0), azimuth);
@@ -311,11 +311,11 @@ export function mountScene3d(
     }
     const first = model === null;
     if (model) {
-      scene.remove(model.root);
+      scene.remove(model.view);
       model.dispose();
     }
     model = loaded;
-    scene.add(model.root);
+    scene.add(model.view);
     canvas.dataset.revision = String(doc.revision);
     showLive();
     highlight();

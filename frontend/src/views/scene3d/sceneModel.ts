@@ -1,34 +1,97 @@
-// The GLB scene as loaded for display: meshes coloured by class, found by object id.
+// The GLB scene as loaded for display: meshes coloured by class, found by object id. What is
+// drawn is baked (bakedMesh.ts): the objects lit once and merged, closed solids into one mesh
+// drawn one-sided and the rest into one drawn two-sided, and the GLB's room surfaces as a
+// third; the GLB's own nodes stay, undrawn, for picking and bounds.
 import type { SceneObject } from "@holiscene/schema";
 import * as THREE from "three";
 import { GLTFLoader } from "three/examples/jsm/loaders/GLTFLoader.js";
 import { classHex } from "../classColors";
+import { BakedGeometry, type BakedPart, solidWinding } from "./bakedMesh";
 
 const FLOOR_COLOUR = 0xb9b4aa;
+/** What a selected or hovered object emits on top of its lit colour (it glows). */
 const HIGHLIGHT = new THREE.Color(0x555555);
-const NO_GLOW = new THREE.Color(0x000000);
 
 export class SceneModel {
+  /** The GLB's nodes, meshes tagged with their object id: picked and measured, not drawn. */
   readonly root: THREE.Object3D;
-  private readonly materials = new Map<string, THREE.MeshLambertMaterial>();
+  /** What the view draws: the objects (solids, others) and the GLB's room surfaces. */
+  readonly view = new THREE.Group();
+  private readonly solids: BakedGeometry;
+  private readonly others: BakedGeometry;
+  private readonly room: BakedGeometry;
+  private readonly roomMesh: THREE.Mesh;
+  /** Objects are drawn two-sided, but for closed solids, whose back faces never show; room
+   * surfaces face inwards and are drawn one-sided: from outside, the walls between the
+   * viewer and the room disappear (a dollhouse view); from the photo's viewpoint they all
+   * show. Picking sees the objects' faces from both sides, the room's as drawn. */
+  private readonly materials = {
+    solids: new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.FrontSide }),
+    others: new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide }),
+    room: new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.FrontSide }),
+    pickObject: new THREE.MeshBasicMaterial({ side: THREE.DoubleSide }),
+    pickRoom: new THREE.MeshBasicMaterial({ side: THREE.FrontSide }),
+  };
+  /** Object id -> its parts in the baked objects, with their colours. */
+  private readonly partsOf = new Map<
+    string,
+    { baked: "solids" | "others"; part: number; colour: THREE.Color }[]
+  >();
+  private readonly roomNodes: THREE.Mesh[] = [];
+  private lit = new Set<string>();
 
   private constructor(root: THREE.Object3D, objects: readonly SceneObject[]) {
     this.root = root;
+    root.updateMatrixWorld(true); // not in the drawn scene: nothing else updates it
     const classOf = new Map(objects.map((o) => [o.id, o.class]));
+    const objectParts = { solids: [] as BakedPart[], others: [] as BakedPart[] };
+    const roomParts: BakedPart[] = [];
     root.traverse((node) => {
       if (!(node instanceof THREE.Mesh)) return;
       const id = SceneModel.idOf(node, classOf);
-      if (id === null) return;
-      node.userData.objectId = id;
-      const cls = classOf.get(id);
-      const material = this.materialFor(id, cls === undefined ? FLOOR_COLOUR : classHex(cls));
-      // Room surfaces face inwards and are drawn one-sided: from outside, the walls between
-      // the viewer and the room disappear (a dollhouse view); from the photo's viewpoint
-      // they all show.
-      if (cls === undefined) material.side = THREE.FrontSide;
-      disposeMaterial(node.material);
-      node.material = material;
+      const cls = id === null ? undefined : classOf.get(id);
+      const glbMaterial = node.material;
+      const part = { geometry: node.geometry, matrix: node.matrixWorld };
+      if (id !== null) node.userData.objectId = id;
+      if (id !== null && cls === undefined) {
+        roomParts.push({ ...part, colour: new THREE.Color(FLOOR_COLOUR) });
+        this.roomNodes.push(node);
+        node.material = this.materials.pickRoom;
+      } else {
+        // A mesh of no object (none in the pipeline's GLB) keeps its own colour.
+        const own = Array.isArray(glbMaterial) ? undefined : glbColour(glbMaterial);
+        const colour =
+          cls !== undefined
+            ? new THREE.Color(classHex(cls))
+            : (own ?? new THREE.Color(FLOOR_COLOUR));
+        const winding = solidWinding(node.geometry, node.matrixWorld);
+        const baked = winding === 0 ? "others" : "solids";
+        if (id !== null) {
+          const entry = { baked, part: objectParts[baked].length, colour } as const;
+          this.partsOf.set(id, [...(this.partsOf.get(id) ?? []), entry]);
+        }
+        objectParts[baked].push({ ...part, colour, flip: winding === -1 });
+        node.material = this.materials.pickObject;
+      }
+      disposeMaterial(glbMaterial);
     });
+    this.solids = new BakedGeometry(objectParts.solids);
+    this.others = new BakedGeometry(objectParts.others);
+    this.room = new BakedGeometry(roomParts);
+    const drawn = (geometry: THREE.BufferGeometry, material: THREE.Material, name: string) => {
+      const mesh = new THREE.Mesh(geometry, material);
+      mesh.name = name;
+      mesh.matrixAutoUpdate = false;
+      mesh.raycast = () => {}; // picking goes through the GLB's nodes
+      this.view.add(mesh);
+      return mesh;
+    };
+    drawn(this.solids.geometry, this.materials.solids, "objects").visible =
+      objectParts.solids.length > 0;
+    drawn(this.others.geometry, this.materials.others, "objects-two-sided").visible =
+      objectParts.others.length > 0;
+    this.roomMesh = drawn(this.room.geometry, this.materials.room, "glb-room");
+    this.roomMesh.visible = roomParts.length > 0;
   }
 
   /** Parse GLB bytes; meshes named by object id take their class colour. */
@@ -45,26 +108,10 @@ export class SceneModel {
     return null;
   }
 
-  private materialFor(id: string, colour: number): THREE.MeshLambertMaterial {
-    let material = this.materials.get(id);
-    if (!material) {
-      // Diffuse only: matte furniture looks as it would with PBR materials, at a fraction of
-      // the cost per pixel, which software WebGL feels.
-      material = new THREE.MeshLambertMaterial({
-        color: colour,
-        side: THREE.DoubleSide,
-      });
-      this.materials.set(id, material);
-    }
-    return material;
-  }
-
   /** Show or hide the GLB's own room (the view draws the layout's room itself when known). */
   setRoomVisible(visible: boolean): void {
-    this.root.traverse((node) => {
-      if (node instanceof THREE.Mesh && isRoomSurface(String(node.userData.objectId)))
-        node.visible = visible;
-    });
+    for (const node of this.roomNodes) node.visible = visible;
+    this.roomMesh.visible = visible && this.roomNodes.length > 0;
   }
 
   /** The mesh nodes of an object (empty for an unknown id). */
@@ -78,9 +125,18 @@ export class SceneModel {
 
   /** Make the given objects glow; all others plain. */
   highlight(ids: ReadonlySet<string>): void {
-    for (const [id, material] of this.materials) {
-      material.emissive.copy(ids.has(id) ? HIGHLIGHT : NO_GLOW);
+    for (const id of new Set([...this.lit, ...ids])) {
+      for (const { baked, part, colour } of this.partsOf.get(id) ?? []) {
+        this[baked].setColour(part, colour, ids.has(id) ? HIGHLIGHT : undefined);
+      }
     }
+    this.lit = new Set(ids);
+  }
+
+  /** The colour an object is drawn in now (its first part's, linear), null for an unknown id. */
+  colourOf(id: string): THREE.Color | null {
+    const first = this.partsOf.get(id)?.[0];
+    return first ? this[first.baked].colourOf(first.part) : null;
   }
 
   /** Box around the objects (room surfaces left out, as they may extend far). */
@@ -96,17 +152,21 @@ export class SceneModel {
 
   dispose(): void {
     this.root.traverse((node) => {
-      if (node instanceof THREE.Mesh) {
-        node.geometry.dispose();
-        disposeMaterial(node.material);
-      }
+      if (node instanceof THREE.Mesh) node.geometry.dispose();
     });
+    for (const baked of [this.solids, this.others, this.room]) baked.dispose();
+    for (const material of Object.values(this.materials)) material.dispose();
   }
 }
 
 /** GLB nodes of the room itself (see backend export/glb.py): floor, ceiling, wall_0..wall_3. */
 export function isRoomSurface(name: string): boolean {
   return name === "floor" || name === "ceiling" || /^wall_\d+$/.test(name);
+}
+
+function glbColour(material: THREE.Material): THREE.Color | undefined {
+  const { color } = material as { color?: unknown };
+  return color instanceof THREE.Color ? color.clone() : undefined;
 }
 
 function disposeMaterial(material: THREE.Material | THREE.Material[]): void {
