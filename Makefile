@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: bench bench-synth bench-geometry bench-support bench-relation vectors relation-vectors decode-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
+.PHONY: surface-model calibrate-scale bench bench-synth bench-geometry bench-support bench-relation vectors relation-vectors decode-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -82,6 +82,16 @@ bench-relation: install-python
 bench-geometry: install-python
 	$(PY) benchmarks/bench_synth.py --seed 7000 --count 20
 	$(PY) benchmarks/bench_placement.py
+
+# The learned parts of the layout stage, both from synthetic rooms (commit what they write):
+# the Surface Network (floor/ceiling/wall labels) and the per-class metric-scale calibration.
+surface-model: install-python
+	rm -rf /tmp/holiscene-surface-model
+	$(PY) -m holiscene.cli train-surfaces -o /tmp/holiscene-surface-model --scenes 1200 --epochs 30
+	cp /tmp/holiscene-surface-model/* backend/src/holiscene/learning/default_surface_model/
+
+calibrate-scale: install-python
+	$(PY) scripts/calibrate_scale.py
 
 # The room-fit test vectors shared by the Python and TypeScript tests.
 vectors:

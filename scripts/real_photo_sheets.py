@@ -1,6 +1,6 @@
-"""One PNG per real photo: the photo with masks and the room layout, and the reconstructed 3D
-scene rendered from the photo's camera and from above. For looking, not for committing (the
-photos' terms forbid copying them into the repository):
+"""One PNG per real photo: the photo with masks and the room layout, the Surface Network's
+labels, and the reconstructed 3D scene rendered from the photo's camera and from above. For
+looking, not for committing (the photos' terms forbid copying them into the repository):
 
     .venv/bin/python scripts/real_photo_sheets.py [OUT_DIR]   # default /tmp/holiscene-real
 """
@@ -16,6 +16,8 @@ import trimesh
 from holiscene.core.settings import REPO_ROOT
 from holiscene.export.glb import class_colour
 from holiscene.geometry.camera import PinholeCamera
+from holiscene.geometry.surface_labels import MAP_SIZE
+from holiscene.geometry.surface_map import load_surface_model
 from holiscene.inference import infer_scene
 from holiscene.inputs import read_input_folder
 from holiscene.rle import decode_mask
@@ -45,6 +47,20 @@ def _overlay(rgb: np.ndarray, scene) -> np.ndarray:  # type: ignore[no-untyped-d
     return out
 
 
+SURFACE_COLOURS = np.array(  # BGR: floor green, ceiling yellow, front wall red, side wall blue
+    [[60, 160, 60], [60, 200, 220], [60, 60, 220], [220, 90, 60]], dtype=np.uint8
+)
+
+
+def _surface_panel(rgb: np.ndarray) -> np.ndarray:
+    """What the Surface Network sees: its most probable label per cell over the photo."""
+    probabilities = load_surface_model().probabilities(rgb)
+    labels = probabilities.argmax(axis=1).reshape(MAP_SIZE[1], MAP_SIZE[0])
+    h, w = rgb.shape[:2]
+    colours = cv2.resize(SURFACE_COLOURS[labels], (w, h), interpolation=cv2.INTER_NEAREST)
+    return cv2.addWeighted(cv2.cvtColor(rgb, cv2.COLOR_RGB2BGR), 0.5, colours, 0.5, 0)
+
+
 def _render_glb(
     glb: bytes, camera: PinholeCamera, size: tuple[int, int], walls: bool = True
 ) -> np.ndarray:
@@ -72,7 +88,7 @@ def main() -> int:
         inputs = read_input_folder(folder)
         result = infer_scene(inputs, name=folder.name, image_file="img.jpg")
         scene, cam = result.scene, result.scene.camera
-        panels = [_overlay(inputs.photo.rgb, scene)]
+        panels = [_overlay(inputs.photo.rgb, scene), _surface_panel(inputs.photo.rgb)]
         if result.glb is not None and cam is not None and cam.pitch_deg is not None:
             size = (inputs.photo.width, inputs.photo.height)
             K = np.array(cam.K)

@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import sys
 import tempfile
-from collections.abc import Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -114,6 +115,16 @@ def _parser() -> argparse.ArgumentParser:
     train.add_argument("--data-dir", type=Path)
     train.add_argument("--database-url")
     train.set_defaults(handler=_train_rn)
+
+    surfaces = sub.add_parser(
+        "train-surfaces",
+        help="train the Surface Network (floor, ceiling and wall labels) on synthetic rooms",
+    )
+    surfaces.add_argument("-o", "--out", type=Path, required=True, help="new model directory")
+    surfaces.add_argument("--seed", type=int, default=0)
+    surfaces.add_argument("--scenes", type=int, default=600, help="synthetic training rooms")
+    surfaces.add_argument("--epochs", type=int, default=16)
+    surfaces.set_defaults(handler=_train_surfaces)
 
     view = sub.add_parser("view", help="review a scene in a viser viewer on 127.0.0.1")
     view.add_argument("scene", help="a scene id of the store, or a scene.json path (or folder)")
@@ -226,9 +237,41 @@ def _synth(args: argparse.Namespace) -> int:
     return 0
 
 
-def _train_rn(args: argparse.Namespace) -> int:
+@contextlib.contextmanager
+def _training_progress(name: str) -> Iterator[Callable[[float, str], None]]:
+    """A progress bar fed by a training run's (fraction, line) reports; epoch lines stay."""
     from tqdm import tqdm
 
+    with tqdm(total=100, desc=name, unit="%", file=sys.stderr) as bar:
+
+        def progress(fraction: float, line: str) -> None:
+            bar.update(round(100 * fraction) - bar.n)
+            bar.set_postfix_str(line[:60])
+            if line.startswith(("epoch", "done", "training")):
+                tqdm.write(line, file=sys.stderr)
+
+        yield progress
+
+
+def _train_surfaces(args: argparse.Namespace) -> int:
+    try:
+        from .learning.surface_net import SurfaceTrainConfig, train_surface_model
+    except ImportError as error:
+        raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
+    if args.out.exists() and any(args.out.iterdir()):
+        raise CliError(f"{args.out} is not empty; give a new directory")
+    if args.scenes < 1 or args.epochs < 1:
+        raise CliError("--scenes and --epochs must be at least 1")
+    config = SurfaceTrainConfig(
+        seed=args.seed, train_seeds=(500_000, args.scenes), epochs=args.epochs
+    )
+    with _training_progress("train-surfaces") as progress:
+        metrics = train_surface_model(config, args.out, progress)
+    print(f"validation pixel accuracy {metrics['validation_pixel_accuracy']:.4f} -> {args.out}")
+    return 0
+
+
+def _train_rn(args: argparse.Namespace) -> int:
     from .learning.training_api import TrainConfig
 
     try:
@@ -247,14 +290,7 @@ def _train_rn(args: argparse.Namespace) -> int:
         patience=args.patience,
         time_budget_s=args.time_budget,
     )
-    with tqdm(total=100, desc="train-rn", unit="%", file=sys.stderr) as bar:
-
-        def progress(fraction: float, line: str) -> None:
-            bar.update(round(100 * fraction) - bar.n)
-            bar.set_postfix_str(line[:60])
-            if line.startswith(("epoch", "done", "training")):
-                tqdm.write(line, file=sys.stderr)
-
+    with _training_progress("train-rn") as progress:
         try:
             result = train_relation_model(config, labelled, args.out, progress)
         except ValueError as error:

@@ -11,6 +11,7 @@ floor-standing objects. Units: camera height = 1, so the floor is y = -1.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from dataclasses import dataclass
@@ -22,6 +23,8 @@ from numpy.typing import NDArray
 from .camera import FloatArray, PinholeCamera
 from .lines import Segments
 from .manhattan import ManhattanFrame, room_directions
+from .surface_labels import nearest_surface
+from .surface_map import SurfaceMap
 
 BACK_WALL_PRIOR = 0.5  # the wall behind the camera is never seen: its distance is a prior
 CEILING_PRIOR = 0.96  # ceiling above the camera / camera height (2.75 m room, 1.4 m camera)
@@ -38,6 +41,12 @@ class RoomHypothesis:
     ceiling: float  # ceiling height above the camera, in camera heights
     score: float
     ceiling_seen: bool
+
+    def surfaces_seen(self, rays_room: FloatArray) -> NDArray[np.int64]:
+        """The face of this room (an index into `surface_labels.SURFACES`) each ray meets."""
+        return nearest_surface(
+            rays_room, self.front, self.back, self.left, self.right, 1.0, self.ceiling
+        )
 
     def corners_room(self) -> FloatArray:
         """The 8 corners in room axes (x, y, z) relative to the camera, contract order."""
@@ -193,14 +202,7 @@ class SurfaceEvidence:
     def explained(self, hyp: RoomHypothesis) -> float:
         if len(self.colours) == 0:
             return 0.0
-        rx, ry, rz = self.rays_room[:, 0], self.rays_room[:, 1], self.rays_room[:, 2]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = np.column_stack([
-                np.where(rx > 0, hyp.front / rx, np.inf), np.where(rx < 0, -hyp.back / rx, np.inf),
-                np.where(rz < 0, -hyp.left / rz, np.inf), np.where(rz > 0, hyp.right / rz, np.inf),
-                np.where(ry < 0, -1.0 / ry, np.inf), np.where(ry > 0, hyp.ceiling / ry, np.inf),
-            ])  # fmt: skip
-        label = np.argmin(t, axis=1)
+        label = hyp.surfaces_seen(self.rays_room)
         within = 0.0
         for surface in np.unique(label):
             part = self.colours[label == surface]
@@ -216,10 +218,13 @@ def estimate_room(
     floor_points: FloatArray | None = None,
     evidence: SurfaceEvidence | None = None,
     object_boxes: list[list[float]] | None = None,
+    surface_map: SurfaceMap | None = None,
 ) -> RoomHypothesis:
     """The best room for the segments; `floor_points` (N, 3, world, camera height 1) are
     points known to lie inside the room (where floor-standing objects touch the floor).
-    Segments inside `object_boxes` are edges of objects, not of the room: they do not count."""
+    Segments inside `object_boxes` are edges of objects, not of the room: they do not count.
+    With a `surface_map` (the Surface Network's labels), agreeing with it counts most, and it
+    decides whether the ceiling is seen."""
     to_room = room_to_world(frame)  # room -> world; world -> room is its transpose
     family = frame.family.copy()
     if object_boxes:
@@ -269,11 +274,14 @@ def estimate_room(
     minimum = (min_front, min_left, min_right)
     refined = [
         _refine_by_surfaces(
-            h, camera, segments, family, to_room, tolerance, size, evidence, minimum
+            h, camera, segments, family, to_room, tolerance, size, evidence, minimum, surface_map
         )
         for h in hypotheses[:RESTARTS]
     ]
-    return max(refined, key=lambda h: h.score)
+    best = max(refined, key=lambda h: h.score)
+    if surface_map is None:
+        return best
+    return dataclasses.replace(best, ceiling_seen=surface_map.ceiling_seen)
 
 
 RESTARTS = 3  # coordinate ascent from the best few line-vote hypotheses
@@ -285,8 +293,19 @@ EDGE_NORM = 0.3  # line support is counted in tenths of all segment length
 # camera height of 1.4 m): it decides walls the photo does not show and breaks ties between
 # floor-texture lines. People photograph a room from near one wall, away from the others.
 WALL_DISTANCE_PRIOR = {"front": (4.2, 0.35), "left": (2.2, 0.4), "right": (2.2, 0.4)}
+ROOM_WIDTH_PRIOR = (4.4, 0.25)  # metres across, sd of log: one side wall seen places the other
 PRIOR_WEIGHT = 0.1
+SURFACE_MAP_WEIGHT = 3.0  # agreement with the Surface Network (a share of cells, like colour)
 PRIOR_CAMERA_HEIGHT = 1.4
+
+
+def _layout_prior(h: RoomHypothesis) -> float:
+    """Squared log-normal z-scores of the room's width and each wall's distance (metres)."""
+    width = (h.left + h.right) * PRIOR_CAMERA_HEIGHT
+    total = (math.log(width / ROOM_WIDTH_PRIOR[0]) / ROOM_WIDTH_PRIOR[1]) ** 2
+    for wall, (median, sd) in WALL_DISTANCE_PRIOR.items():
+        total += (math.log(getattr(h, wall) * PRIOR_CAMERA_HEIGHT / median) / sd) ** 2
+    return total
 
 
 def _refine_by_surfaces(
@@ -299,18 +318,21 @@ def _refine_by_surfaces(
     size: tuple[int, int],
     evidence: SurfaceEvidence,
     minimum: tuple[float, float, float],
+    surface_map: SurfaceMap | None = None,
 ) -> RoomHypothesis:
     """Coordinate ascent over each wall distance and the ceiling on a log grid, scoring
-    surface colour consistency plus line support along the edges."""
+    surface colour consistency plus line support along the edges (plus agreement with the
+    Surface Network's labels when there is a map)."""
     norm = max(float(segments.lengths.sum()), 1.0) * EDGE_NORM
 
     def score(h: RoomHypothesis) -> float:
         edges = _edge_score(camera, segments, family, _edges(h, to_room), tolerance, size) / norm
-        prior = sum(
-            (math.log(getattr(h, wall) * PRIOR_CAMERA_HEIGHT / median) / sd) ** 2
-            for wall, (median, sd) in WALL_DISTANCE_PRIOR.items()
-        )
+        prior = _layout_prior(h)
         fit = (1 - EDGE_WEIGHT) * evidence.explained(h) + EDGE_WEIGHT * edges
+        if surface_map is not None:
+            fit += SURFACE_MAP_WEIGHT * surface_map.agreement(
+                h.surfaces_seen(surface_map.rays_room)
+            )
         return fit - PRIOR_WEIGHT * prior
 
     best, best_score = start, score(start)

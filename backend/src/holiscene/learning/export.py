@@ -34,11 +34,25 @@ def export_onnx(net: torch.nn.Module, example: SupportSample, path: Path) -> flo
     )
     with torch.no_grad():
         expected = net(*args).numpy()
-    session = ort.InferenceSession(str(tmp), providers=["CPUExecutionProvider"])
-    got = session.run([OUTPUT_NAME], {k: example.inputs[k] for k in INPUT_NAMES})[0]
+    feeds = {k: example.inputs[k] for k in INPUT_NAMES}
+    return keep_if_faithful(tmp, path, feeds, OUTPUT_NAME, expected, EXPORT_TOLERANCE)
+
+
+def keep_if_faithful(
+    exported: Path,
+    path: Path,
+    feeds: dict[str, np.ndarray],
+    output_name: str,
+    expected: np.ndarray,
+    tolerance: float,
+) -> float:
+    """Run the `exported` ONNX file on `feeds`; move it to `path` when its output is within
+    `tolerance` of PyTorch's `expected`, else delete it and raise. Returns the difference."""
+    session = ort.InferenceSession(str(exported), providers=["CPUExecutionProvider"])
+    got = session.run([output_name], feeds)[0]
     difference = float(np.abs(np.asarray(got) - expected).max())
-    if difference > EXPORT_TOLERANCE:
-        tmp.unlink()
+    if difference > tolerance:
+        exported.unlink()
         raise RuntimeError(f"ONNX export differs from PyTorch by {difference:.2e}")
-    tmp.replace(path)
+    exported.replace(path)
     return difference

@@ -178,12 +178,9 @@ def train_relation_model(
         "best_epoch": best_epoch,
         "epochs": len(curve),
         "stopped": stopped,
-        "train_seconds": round(time.perf_counter() - started, 1),
         "onnx_max_difference": difference,
         "curve": curve,
-        "config": {k: str(v) if isinstance(v, Path) else v for k, v in vars(config).items()},
-        "machine": platform.platform(),
-        "torch": torch.__version__,
+        **run_record(started, config),
     }
     (out_dir / METRICS_FILE).write_text(json.dumps(metrics, indent=1) + "\n")
     data = {
@@ -200,7 +197,22 @@ def train_relation_model(
     return TrainResult(out_dir, best_accuracy, metrics)
 
 
-def plot_curve(curve: Sequence[dict[str, float]], path: Path) -> None:
+def run_record(started: float, config: object) -> dict[str, Any]:
+    """What every training run's metrics.json says of how it ran: time, settings, machine."""
+    return {
+        "train_seconds": round(time.perf_counter() - started, 1),
+        "config": {k: str(v) if isinstance(v, Path) else v for k, v in vars(config).items()},
+        "machine": platform.platform(),
+        "torch": torch.__version__,
+    }
+
+
+def plot_curve(
+    curve: Sequence[dict[str, float]],
+    path: Path,
+    accuracy_label: str = "validation support accuracy",
+    loss_label: str = "train loss per object",
+) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -210,12 +222,12 @@ def plot_curve(curve: Sequence[dict[str, float]], path: Path) -> None:
     epochs = [c["epoch"] for c in curve]
     loss_axis.plot(epochs, [c["train_loss"] for c in curve], color="tab:red", label="train loss")
     loss_axis.set_xlabel("epoch")
-    loss_axis.set_ylabel("train loss per object", color="tab:red")
+    loss_axis.set_ylabel(loss_label, color="tab:red")
     accuracy_axis = loss_axis.twinx()
     accuracy_axis.plot(
         epochs, [c["validation_accuracy"] for c in curve], color="tab:blue", label="validation"
     )
-    accuracy_axis.set_ylabel("validation support accuracy", color="tab:blue")
+    accuracy_axis.set_ylabel(accuracy_label, color="tab:blue")
     accuracy_axis.set_ylim(0, 1)
     fig.tight_layout()
     fig.savefig(path)

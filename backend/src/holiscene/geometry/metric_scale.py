@@ -1,0 +1,184 @@
+"""Metric scale: the camera's height in metres, the one thing a single photo cannot give.
+
+The room and the objects are first measured in units of the camera height. Metres come from
+priors fused in log space, each weighted by how little it varies:
+
+- the camera's height (1.4 m, sd of log 0.12: people hold cameras at chest to eye height);
+- the room's height, when the ceiling's edges are seen (2.75 m, sd 0.15);
+- the typical height of each floor-standing object whose bottom and top are in the photo.
+
+An object's height is read with the vertical through its floor contact (`ground.height_above`),
+which is biased in a way that depends on the class (a box's top edge in the photo is its far
+edge seen from above, its near edge seen from below; a low table is mostly top). That bias and
+the measurement's real spread are learned per class on synthetic rooms with exact ground truth
+(`calibrate_scale`, stored in `knowledge/scale_calibration.json`); classes with too few
+measurements fall back to the spread of the furniture library's height range.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections import defaultdict
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+from holiscene_schema import SceneObject
+
+from ..knowledge.object_sizes import height_spread, middle_size
+from .camera import FloatArray, PinholeCamera
+from .ground import height_above, hit_horizontal_plane
+
+CAMERA_HEIGHT_PRIOR = (1.4, 0.12)  # metres, sd of log
+ROOM_HEIGHT_PRIOR = (2.75, 0.15)
+MEASUREMENT_SD = 0.1  # log error of one uncalibrated height measurement (edges, occlusion)
+MIN_CALIBRATION_COUNT = 8  # fewer measurements of a class and its calibration is not used
+MIN_CALIBRATED_SD = 0.05
+# Classes standing on the floor whose bottom edge is where they meet it (doors included:
+# their heights vary least of all, so they weigh most).
+FLOOR_CLASSES = frozenset(
+    {"bed", "sofa", "chair", "table", "desk", "dresser", "night_stand", "cabinet", "bookshelf",
+     "shelves", "counter", "refrigerator", "toilet", "bathtub", "door"}
+)  # fmt: skip
+CALIBRATION_FILE = Path(__file__).parent.parent / "knowledge" / "scale_calibration.json"
+
+
+@dataclass(frozen=True)
+class ClassCalibration:
+    bias: float  # mean of (measured - true) log camera height
+    sd: float  # spread of the corrected measurement
+    count: int
+
+
+@dataclass(frozen=True)
+class ScaleCalibration:
+    classes: dict[str, ClassCalibration] = field(default_factory=dict)
+    source: str = "uncalibrated"
+
+    def measurement_error(self, cls: str) -> tuple[float, float]:
+        """(bias, sd) of one log camera-height measurement from an object of class `cls`."""
+        calibrated = self.classes.get(cls)
+        if calibrated is None or calibrated.count < MIN_CALIBRATION_COUNT:
+            return 0.0, math.hypot(height_spread(cls), MEASUREMENT_SD)
+        return calibrated.bias, max(calibrated.sd, MIN_CALIBRATED_SD)
+
+    def to_json(self) -> str:
+        classes = {
+            cls: {"bias": round(c.bias, 4), "sd": round(c.sd, 4), "count": c.count}
+            for cls, c in sorted(self.classes.items())
+        }
+        return json.dumps({"source": self.source, "classes": classes}, indent=2) + "\n"
+
+    @classmethod
+    def from_json(cls, text: str) -> ScaleCalibration:
+        data = json.loads(text)
+        classes = {name: ClassCalibration(**values) for name, values in data["classes"].items()}
+        return cls(classes=classes, source=data["source"])
+
+
+@lru_cache(maxsize=1)
+def default_calibration() -> ScaleCalibration:
+    if not CALIBRATION_FILE.is_file():
+        return ScaleCalibration()
+    return ScaleCalibration.from_json(CALIBRATION_FILE.read_text())
+
+
+def floor_contacts(
+    camera: PinholeCamera, objects: list[SceneObject], height: int
+) -> list[tuple[SceneObject, FloatArray]]:
+    """Floor points (camera height 1) under furniture whose bottom edge is in the photo."""
+    out = []
+    for obj in objects:
+        x1, _, x2, y2 = obj.bbox
+        if obj.cls not in FLOOR_CLASSES or y2 >= height - 2:
+            continue
+        hits = hit_horizontal_plane(camera, np.array([[(x1 + x2) / 2, y2]]), -1.0)
+        if hits is not None:
+            out.append((obj, hits[0]))
+    return out
+
+
+def measured_log_camera_height(
+    camera: PinholeCamera, obj: SceneObject, base: FloatArray
+) -> float | None:
+    """log(camera height in metres) implied by the object's typical height, uncorrected; None
+    when its top is cut off or the vertical through its contact gives no height.
+
+    Seen from above, a box's top edge in the photo is its far top edge, about one depth
+    behind the contact point: the vertical is moved back by the class's depth (in units of
+    the camera height, so a few fixed-point steps)."""
+    x1, y1, x2, _ = obj.bbox
+    if y1 <= 2:
+        return None
+    depth, height, _ = middle_size(obj.cls)
+    heading = np.array([base[0], 0.0, base[2]]) / max(float(np.hypot(base[0], base[2])), 1e-9)
+    metres = CAMERA_HEIGHT_PRIOR[0]
+    for _ in range(3):
+        unit_height = height_above(
+            camera, base + heading * depth / metres, np.array([[(x1 + x2) / 2, y1]])
+        )
+        if unit_height <= 0.05:
+            return None
+        metres = height / unit_height
+    return math.log(metres)
+
+
+def camera_height(
+    camera: PinholeCamera,
+    contacts: list[tuple[SceneObject, FloatArray]],
+    ceiling_above_camera: float | None,
+    calibration: ScaleCalibration | None = None,
+) -> tuple[float, str]:
+    """Metres per unit (the camera's height), and which priors decided it.
+    `ceiling_above_camera` is the seen ceiling's height in camera heights, or None."""
+    calibration = calibration or default_calibration()
+    logs = [(math.log(CAMERA_HEIGHT_PRIOR[0]), CAMERA_HEIGHT_PRIOR[1])]
+    used = ["camera height"]
+    if ceiling_above_camera is not None:
+        room_log = math.log(ROOM_HEIGHT_PRIOR[0] / (1.0 + ceiling_above_camera))
+        logs.append((room_log, ROOM_HEIGHT_PRIOR[1]))
+        used.append("room height")
+    sized = []
+    for obj, base in contacts:
+        measured = measured_log_camera_height(camera, obj, base)
+        if measured is not None:
+            bias, sd = calibration.measurement_error(obj.cls)
+            sized.append((measured - bias, sd))
+    if sized:
+        # Drop objects far from the others (a box measured across an occluder, say).
+        centre = float(np.median([e for e, _ in sized]))
+        kept = [(e, sd) for e, sd in sized if abs(e - centre) < 2.5 * sd]
+        logs += kept
+        used.append(f"{len(kept)} object size(s)")
+    weights = np.array([1 / sd**2 for _, sd in logs])
+    values = np.array([v for v, _ in logs])
+    return float(math.exp((weights @ values) / weights.sum())), " + ".join(used)
+
+
+def measurement_residuals(
+    camera: PinholeCamera,
+    contacts: list[tuple[SceneObject, FloatArray]],
+    true_camera_height: float,
+) -> Iterator[tuple[str, float]]:
+    """(class, measured - true log camera height) for each object that can be measured."""
+    for obj, base in contacts:
+        measured = measured_log_camera_height(camera, obj, base)
+        if measured is not None:
+            yield obj.cls, measured - math.log(true_camera_height)
+
+
+def fit_calibration(residuals: Iterable[tuple[str, float]], source: str) -> ScaleCalibration:
+    """Per-class bias (the median, robust to the odd occluded box) and spread (1.4826 MAD)."""
+    by_class: dict[str, list[float]] = defaultdict(list)
+    for cls, value in residuals:
+        by_class[cls].append(value)
+    classes = {}
+    for cls, values in by_class.items():
+        array = np.array(values)
+        median = float(np.median(array))
+        spread = 1.4826 * float(np.median(np.abs(array - median)))
+        classes[cls] = ClassCalibration(bias=median, sd=spread, count=len(values))
+    return ScaleCalibration(classes=classes, source=source)

@@ -1,0 +1,80 @@
+"""Learn the per-class bias and spread of single-view height measurements (`make calibrate-scale`).
+
+Renders synthetic rooms from seeds no test or benchmark uses (300000+), measures every
+floor-standing object the way the layout stage does (camera pitch and roll from the photo's
+lines, the object's box), compares with the true camera height and writes
+`backend/src/holiscene/knowledge/scale_calibration.json`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+
+from holiscene.geometry.camera import PinholeCamera
+from holiscene.geometry.lines import detect_segments
+from holiscene.geometry.manhattan import estimate_manhattan_frame
+from holiscene.geometry.metric_scale import (
+    CALIBRATION_FILE,
+    fit_calibration,
+    floor_contacts,
+    measurement_residuals,
+)
+from holiscene.inputs.validation import read_input_folder
+from holiscene.pipeline import SceneContext, build_pipeline
+from holiscene.pipeline.base import required
+from tqdm import tqdm
+
+
+def scene_residuals(folder: Path) -> Iterator[tuple[str, float]]:
+    inputs = read_input_folder(folder)
+    truth = json.loads((folder / "gt.json").read_text())
+    ctx = SceneContext(image=inputs.photo.rgb, given_K=inputs.K, detections=inputs.detections)
+    build_pipeline(["objects_from_detections", "intrinsics"]).run(ctx)
+    K, _ = required(ctx.intrinsics, "intrinsics")
+    frame = estimate_manhattan_frame(detect_segments(ctx.image), K)
+    if frame is None:
+        return
+    camera = PinholeCamera(K, frame.pitch_deg, frame.roll_deg)
+    contacts = floor_contacts(camera, required(ctx.objects, "objects"), ctx.height)
+    yield from measurement_residuals(camera, contacts, truth["camera"]["height_m"])
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--seed", type=int, default=300000)
+    parser.add_argument("--count", type=int, default=300)
+    parser.add_argument("--scenes", type=Path, help="use these rendered scenes instead")
+    parser.add_argument("-o", "--output", type=Path, default=CALIBRATION_FILE)
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        scenes = args.scenes
+        if scenes is None:
+            scenes = Path(tmp) / "scenes"
+            synth = ["synth", "--seed", str(args.seed), "--count", str(args.count)]
+            subprocess.run(
+                [sys.executable, "-m", "holiscene.cli", *synth, "-o", str(scenes)], check=True
+            )
+        folders = sorted(p for p in scenes.iterdir() if (p / "gt.json").is_file())
+        if not folders:
+            print(f"error: no synthetic scenes (gt.json) in {scenes}", file=sys.stderr)
+            return 2
+        residuals = [
+            r for f in tqdm(folders, desc="measure", unit="scene") for r in scene_residuals(f)
+        ]
+    source = f"{len(folders)} synthetic scenes, seeds {args.seed}+ ({len(residuals)} measurements)"
+    calibration = fit_calibration(residuals, source)
+    args.output.write_text(calibration.to_json())
+    for cls, c in sorted(calibration.classes.items(), key=lambda kv: -kv[1].count):
+        print(f"{cls:14s} n={c.count:4d} bias={c.bias:+.3f} sd={c.sd:.3f}")
+    print(f"wrote {args.output}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
