@@ -41,6 +41,7 @@ export class PhotoFrustum {
       side: THREE.DoubleSide,
       transparent: true,
       opacity: 0.92,
+      forceSinglePass: true, // one flat quad: one draw call, not one per side
     });
     this.plane = new THREE.Mesh(planeGeometry, this.planeMaterial);
     this.plane.name = "photo-plane";
