@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: surface-model calibrate-scale bench bench-synth bench-geometry bench-support bench-relation vectors relation-vectors decode-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
+.PHONY: surface-model calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors decode-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -82,6 +82,10 @@ bench-relation: install-python
 bench-geometry: install-python
 	$(PY) benchmarks/bench_synth.py --seed 7000 --count 20
 	$(PY) benchmarks/bench_placement.py
+
+# Where the layout IoU goes: each part of the layout stage against the truth.
+bench-layout: install-python
+	$(PY) benchmarks/bench_layout_parts.py --seed 7000 --count 20
 
 # The learned parts of the layout stage, both from synthetic rooms (commit what they write):
 # the Surface Network (floor/ceiling/wall labels) and the per-class metric-scale calibration.

@@ -21,7 +21,7 @@ from ..registry import register_stage
 MIN_CEILING_ABOVE_CAMERA = 0.15  # camera heights: a camera is never at the ceiling
 
 
-def _ceiling_from_priors(room: RoomHypothesis, metres: float) -> RoomHypothesis:
+def ceiling_from_priors(room: RoomHypothesis, metres: float) -> RoomHypothesis:
     """A ceiling the photo does not show sits at the typical room height: in camera heights,
     that depends on the fused scale (the line search's guess, from wall colours alone, was
     off by a quarter on average; this is off by about the room-height prior's spread)."""
@@ -81,7 +81,7 @@ class LayoutFromLines(Stage):
         metres, priors = camera_height(
             camera, contacts, room.ceiling if room.ceiling_seen else None
         )
-        room = _ceiling_from_priors(room, metres)
+        room = ceiling_from_priors(room, metres)
         corners = room.corners_room() @ to_room.T * metres
         projected = camera.project(corners)
         note = f"scale from {priors}; the back wall's distance is a prior"

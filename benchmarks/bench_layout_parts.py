@@ -1,0 +1,112 @@
+"""Where the layout's IoU goes: `make bench-layout` (20 synthetic scenes from seed 7000).
+
+For each scene, runs the layout stage's parts (Manhattan frame, Surface Network, room search,
+metric scale) and compares each part with the truth: the scale's error, each wall's distance
+error (in camera heights), and the layout IoU when that one part is replaced by the truth.
+The part whose replacement gains most is where work pays. Prints a row per scene and means.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import tempfile
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+from holiscene.evaluation.box_iou import iou_3d
+from holiscene.geometry.camera import PinholeCamera
+from holiscene.geometry.lines import detect_segments
+from holiscene.geometry.manhattan import estimate_manhattan_frame
+from holiscene.geometry.metric_scale import camera_height, floor_contacts
+from holiscene.geometry.room_layout import (
+    RoomHypothesis,
+    SurfaceEvidence,
+    estimate_room,
+    room_to_world,
+)
+from holiscene.geometry.surface_map import SurfaceMap, load_surface_model
+from holiscene.inputs import read_input_folder
+from holiscene.pipeline import SceneContext, build_pipeline
+from holiscene.pipeline.base import required
+from holiscene.pipeline.stages.layout import ceiling_from_priors
+
+PARTS = ("front", "left", "right", "back", "ceiling")
+
+
+def scene_parts(folder: Path) -> dict[str, float]:
+    inputs = read_input_folder(folder)
+    truth = json.loads((folder / "gt.json").read_text())
+    ctx = SceneContext(image=inputs.photo.rgb, given_K=inputs.K, detections=inputs.detections)
+    build_pipeline(["objects_from_detections", "intrinsics"]).run(ctx)
+    K, _ = required(ctx.intrinsics, "intrinsics")
+    objects = required(ctx.objects, "objects")
+    segments = detect_segments(ctx.image)
+    frame = estimate_manhattan_frame(segments, K)
+    if frame is None:
+        return {}
+    camera = PinholeCamera(K, frame.pitch_deg, frame.roll_deg)
+    to_room = room_to_world(frame)
+    contacts = floor_contacts(camera, objects, ctx.height)
+    boxes = [o.bbox for o in objects]
+    room = estimate_room(
+        camera,
+        frame,
+        segments,
+        (ctx.width, ctx.height),
+        np.array([p for _, p in contacts]) if contacts else None,
+        SurfaceEvidence(camera, ctx.image, boxes, to_room),
+        boxes,
+        SurfaceMap.predict(load_surface_model(), ctx.image, camera, to_room),
+    )
+    metres, _ = camera_height(camera, contacts, room.ceiling if room.ceiling_seen else None)
+    room = ceiling_from_priors(room, metres)
+
+    true_corners = np.array(truth["layout"]["corners_3d"])
+    true_height = truth["camera"]["height_m"]
+    local = true_corners @ to_room / true_height  # room axes, camera heights
+    true_room = {
+        "front": local[:, 0].max(), "back": -local[:, 0].min(),
+        "left": -local[:, 2].min(), "right": local[:, 2].max(), "ceiling": local[:, 1].max(),
+    }  # fmt: skip
+
+    def iou(hypothesis: RoomHypothesis, scale: float) -> float:
+        return iou_3d(hypothesis.corners_room() @ to_room.T * scale, true_corners)
+
+    row = {
+        "iou": iou(room, metres),
+        "scale_error": abs(metres / true_height - 1),
+        "iou_true_scale": iou(room, true_height),
+    }
+    for part in PARTS:
+        row[f"{part}_error"] = abs(getattr(room, part) / true_room[part] - 1)
+        row[f"iou_true_{part}"] = iou(replace(room, **{part: true_room[part]}), metres)
+    row["iou_all_walls_true"] = iou(replace(room, **true_room), metres)
+    return row
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--seed", type=int, default=7000)
+    parser.add_argument("--count", type=int, default=20)
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        synth = ["synth", "--seed", str(args.seed), "--count", str(args.count), "-o", tmp]
+        subprocess.run([sys.executable, "-m", "holiscene.cli", *synth], check=True)
+        rows = {}
+        for folder in sorted(p for p in Path(tmp).iterdir() if (p / "gt.json").is_file()):
+            rows[folder.name] = scene_parts(folder)
+    keys = list(next(iter(rows.values())))
+    print("scene        " + " ".join(f"{k:>18s}" for k in keys))
+    for name, row in rows.items():
+        print(f"{name:12s} " + " ".join(f"{row.get(k, float('nan')):18.3f}" for k in keys))
+    means = {k: float(np.nanmean([r.get(k, np.nan) for r in rows.values()])) for k in keys}
+    print("mean         " + " ".join(f"{means[k]:18.3f}" for k in keys))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
