@@ -78,6 +78,33 @@ def test_a_session_ends_after_the_idle_timeout(accounts: Accounts) -> None:
     assert len(_last_seen(accounts, "ann")) == 1
 
 
+def test_background_polling_does_not_hold_a_session_open(accounts: Accounts) -> None:
+    """A forgotten tab polls (job progress, the scene list while a job runs): those requests
+    carry `X-Holiscene-Background: 1` and are answered, but do not count as activity."""
+    background = {**accounts.headers("ann"), "X-Holiscene-Background": "1"}
+    twenty_nine = utcnow() - timedelta(minutes=29)
+    _set_session(accounts, "ann", last_seen_at=twenty_nine)
+    polled = accounts.client.get("/api/scenes", headers=background)
+    assert polled.status_code == 200, polled.text  # authenticated as usual
+    [(_, seen)] = _last_seen(accounts, "ann")
+    assert seen == twenty_nine  # the deadline did not move
+    # So polling past the idle timeout ends the session, polls included.
+    _set_session(accounts, "ann", last_seen_at=utcnow() - timedelta(minutes=31))
+    ended = accounts.client.get("/api/scenes", headers=background)
+    assert ended.status_code == 401
+    assert "without activity" in ended.json()["detail"]
+
+    # A request without the header (or with another value) is activity and moves it on.
+    for headers in (
+        accounts.headers("bob"),
+        {**accounts.headers("bob"), "X-Holiscene-Background": "0"},
+    ):
+        _set_session(accounts, "bob", last_seen_at=twenty_nine)
+        assert accounts.client.get("/api/scenes", headers=headers).status_code == 200
+        [(_, seen)] = _last_seen(accounts, "bob")
+        assert utcnow() - seen < timedelta(seconds=30)  # type: ignore[operator]
+
+
 def test_a_session_still_ends_at_its_expiry(accounts: Accounts) -> None:
     _set_session(accounts, "bob", expires_at=utcnow() - timedelta(seconds=1))
     assert _me(accounts, "bob") == (401, "your session expired; log in again")

@@ -41,6 +41,17 @@ export async function request<T>(path: string, init: RequestInit = {}): Promise<
   return (await response.json()) as T;
 }
 
+/**
+ * Marks a request the page makes by itself (polling), not because of something a person did:
+ * the server answers it as usual but does not count it as activity, so a forgotten tab still
+ * reaches the session's idle timeout (backend api/deps.py).
+ */
+export const BACKGROUND_HEADER = "X-Holiscene-Background";
+
+export function inBackground(init: RequestInit = {}): RequestInit {
+  return { ...init, headers: { ...init.headers, [BACKGROUND_HEADER]: "1" } };
+}
+
 export function jsonBody(body: unknown): RequestInit {
   return {
     method: "POST",
@@ -81,8 +92,9 @@ export const api = {
   startPipeline: (sceneId: string) =>
     request<Job>(`${sceneUrl(sceneId)}/pipeline-jobs`, { method: "POST" }),
 
+  /** Only pollJob asks for a job, so this is a background request (see BACKGROUND_HEADER). */
   getJob: (jobId: string, signal?: AbortSignal) =>
-    request<Job>(`/jobs/${encodeURIComponent(jobId)}`, { signal }),
+    request<Job>(`/jobs/${encodeURIComponent(jobId)}`, inBackground({ signal })),
 
   postEdits: (sceneId: string, body: EditRequest) =>
     request<SceneDocument>(`${sceneUrl(sceneId)}/edits`, jsonBody(body)),

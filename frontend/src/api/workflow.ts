@@ -8,7 +8,7 @@ import type {
   SceneWorkflow,
   UserInfo,
 } from "@holiscene/schema";
-import { jsonBody, request } from "./client";
+import { inBackground, jsonBody, request } from "./client";
 
 export type SceneState = SceneSummary["state"];
 export type Role = CurrentUser["role"];
@@ -55,8 +55,12 @@ export const usersApi = {
 };
 
 export const workflowApi = {
-  listScenes: (state: SceneState | null, signal?: AbortSignal) =>
-    request<SceneSummary[]>(state ? `/scenes?state=${state}` : "/scenes", { signal }),
+  /** `background`: the page refreshes the list by itself (not activity, see BACKGROUND_HEADER). */
+  listScenes: (state: SceneState | null, signal?: AbortSignal, background = false) =>
+    request<SceneSummary[]>(
+      state ? `/scenes?state=${state}` : "/scenes",
+      background ? inBackground({ signal }) : { signal },
+    ),
 
   /** Take the next scene to annotate (404 when none is waiting). */
   next: () => request<SceneSummary>("/scenes/next", { method: "POST" }),

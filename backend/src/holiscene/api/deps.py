@@ -24,6 +24,9 @@ from ..workbench import Workbench
 from ..workflow import LOCAL_USER, Actor, has_role
 
 SESSION_COOKIE = "holiscene_session"
+# Sent by the app on requests it makes by itself (polling a job, refreshing the scene list):
+# they are answered as usual but are not activity, so they do not hold a session open.
+BACKGROUND_HEADER = "X-Holiscene-Background"
 
 
 def get_workbench(request: Request) -> Workbench:
@@ -56,11 +59,16 @@ def session_token(request: Request) -> str | None:
     return request.cookies.get(SESSION_COOKIE) or None
 
 
+def is_background(request: Request) -> bool:
+    """Whether the page sent this request by itself, not because of something a person did."""
+    return request.headers.get(BACKGROUND_HEADER, "") == "1"
+
+
 def current_user(request: Request, workbench: WorkbenchDep) -> Actor:
     token = session_token(request)
     if token is not None:
         try:
-            user = workbench.users.user_for_token(token)
+            user = workbench.users.user_for_token(token, activity=not is_background(request))
         except SessionEndedError as ended:
             raise HTTPException(401, str(ended), headers={"WWW-Authenticate": "Bearer"}) from ended
         if user is not None:

@@ -3,8 +3,9 @@
 Passwords are stored as argon2id hashes. A session is a random token given to the client
 (an HttpOnly cookie, or a bearer token for scripts); the database keeps only its SHA-256, so
 reading the database opens no session. Sessions end at logout, at expiry, after a while
-without requests (the idle timeout; every request moves it on), when the user's password is
-reset, and while an admin has disabled the account.
+without requests (the idle timeout; every request a person makes moves it on, the page's
+background polling does not), when the user's password is reset, and while an admin has
+disabled the account.
 """
 
 from __future__ import annotations
@@ -247,11 +248,13 @@ class UserStore:
             session.commit()
         return NewSession(token=token, user=user, expires_at=expires)
 
-    def user_for_token(self, token: str) -> User | None:
+    def user_for_token(self, token: str, *, activity: bool = True) -> User | None:
         """The session's user, read fresh (a role change applies at the next request), and
-        the session kept alive: each request moves its idle deadline on. None for a token
-        that never opened a session (or whose session was closed); SessionEndedError, saying
-        why, for one that expired, went unused too long, or whose account is disabled."""
+        the session kept alive: each request moves its idle deadline on, unless `activity`
+        is False (a page polling by itself: a forgotten tab must still idle out). None for a
+        token that never opened a session (or whose session was closed); SessionEndedError,
+        saying why, for one that expired, went unused too long, or whose account is
+        disabled."""
         now = utcnow()
         with Session(self.engine) as session:
             found = session.execute(
@@ -274,7 +277,7 @@ class UserStore:
                     f"your session ended after {_duration(self.idle_timeout)} without "
                     "activity; log in again"
                 )
-            if now - last_seen >= min(LAST_SEEN_STEP, self.idle_timeout / 10):
+            if activity and now - last_seen >= min(LAST_SEEN_STEP, self.idle_timeout / 10):
                 row.last_seen_at = now
                 session.commit()
             return _user(user)

@@ -93,11 +93,12 @@ export function mountSceneList(container: HTMLElement): () => void {
   );
   const next = nextSceneControl("N");
   let timer = 0;
-  const refresh = async () => {
+  // `background`: the timed refresh while a job runs, which is not activity (api/client.ts).
+  const refresh = async (background = false) => {
     clearTimeout(timer);
     try {
       const state = (filter.value || null) as SceneState | null;
-      const scenes = await workflowApi.listScenes(state, abort.signal);
+      const scenes = await workflowApi.listScenes(state, abort.signal, background);
       body.replaceChildren(...scenes.map(sceneRow));
       table.hidden = scenes.length === 0;
       status.textContent =
@@ -107,7 +108,7 @@ export function mountSceneList(container: HTMLElement): () => void {
             ? `No scene is ${stateLabel(state)}.`
             : "No scenes yet: import a photo above.";
       const running = scenes.some((s) => s.latest_job && !isFinished(s.latest_job));
-      if (running) timer = window.setTimeout(refresh, REFRESH_WHILE_RUNNING_MS);
+      if (running) timer = window.setTimeout(() => void refresh(true), REFRESH_WHILE_RUNNING_MS);
     } catch (error) {
       if (!abort.signal.aborted) status.textContent = `Could not load scenes: ${String(error)}`;
     }
