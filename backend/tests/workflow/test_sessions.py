@@ -3,6 +3,8 @@ on), and accounts an admin disables: no login, and their sessions stop working a
 
 from __future__ import annotations
 
+import threading
+import time
 from datetime import timedelta
 from pathlib import Path
 
@@ -10,6 +12,7 @@ import pytest
 from holiscene.core.settings import Settings
 from holiscene.store.clock import as_utc, utcnow
 from holiscene.store.tables import SessionRow, UserRow
+from holiscene.store.users import UserError
 from pydantic import ValidationError
 from sqlalchemy import select, update
 from sqlalchemy.orm import Session
@@ -173,6 +176,59 @@ def test_the_last_enabled_admin_cannot_be_disabled(accounts: Accounts) -> None:
     assert client.post("/api/users/ada/enable", headers=mx).status_code == 200
     accounts.login("ada")
     assert _me(accounts, "ada") == (200, "")
+
+
+def test_the_last_enabled_admin_cannot_be_demoted(accounts: Accounts) -> None:
+    client, ada = accounts.client, accounts.headers("ada")
+    accounts.add("max", "admin")
+    mx = accounts.headers("max")
+    # With two admins, one may step down (to any lower role); then the other is the last.
+    demoted = client.patch("/api/users/ada", json={"role": "reviewer"}, headers=ada)
+    assert demoted.status_code == 200 and demoted.json()["role"] == "reviewer"
+    for role in ("reviewer", "annotator"):
+        refused = client.patch("/api/users/max", json={"role": role}, headers=mx)
+        assert refused.status_code == 409 and "max is the only admin" in refused.json()["detail"]
+    assert accounts.workbench.users.roles()["max"] == "admin"
+    # Staying admin, promoting, and demoting a disabled admin are always allowed.
+    assert client.patch("/api/users/max", json={"role": "admin"}, headers=mx).status_code == 200
+    assert client.patch("/api/users/ada", json={"role": "admin"}, headers=mx).status_code == 200
+    assert client.post("/api/users/ada/disable", headers=mx).status_code == 200
+    gone = client.patch("/api/users/ada", json={"role": "annotator"}, headers=mx)
+    assert gone.status_code == 200 and gone.json()["role"] == "annotator"
+    assert accounts.workbench.users.count_admins() == 1
+
+
+@pytest.mark.parametrize("action", ["demote", "disable"])
+def test_two_admins_taking_each_others_rights_at_once_leave_one(
+    accounts: Accounts, action: str
+) -> None:
+    """Both requests start while a third writer holds SQLite's write lock, so a check read
+    before the write would see two admins in both and let both through (none left)."""
+    accounts.add("max", "admin")
+    users = accounts.workbench.users
+    outcomes: dict[str, str] = {}
+
+    def take_away(name: str) -> None:
+        try:
+            if action == "demote":
+                users.set_role(name, "reviewer")
+            else:
+                users.set_disabled(name, True)
+            outcomes[name] = "done"
+        except UserError as refused:
+            outcomes[name] = f"{refused.status}"
+
+    with accounts.workbench.engine.connect() as blocker:
+        blocker.exec_driver_sql("BEGIN IMMEDIATE")  # the write lock, until COMMIT
+        threads = [threading.Thread(target=take_away, args=(name,)) for name in ("ada", "max")]
+        for thread in threads:
+            thread.start()
+        time.sleep(0.3)  # both are waiting for the lock (the busy timeout is 30 s)
+        blocker.exec_driver_sql("COMMIT")
+        for thread in threads:
+            thread.join(timeout=30)
+    assert sorted(outcomes.values()) == ["409", "done"]
+    assert users.count_admins() == 1
 
 
 @pytest.mark.parametrize("who", ["ann", "rita"])

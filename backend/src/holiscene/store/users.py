@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from datetime import datetime, timedelta
 
 from holiscene_schema import Role, UserInfo
-from sqlalchemy import Engine, delete, func, select, update
+from sqlalchemy import ColumnElement, Engine, delete, func, select, update
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session, aliased
 
@@ -142,13 +142,19 @@ class UserStore:
             return _info(row)
 
     def set_role(self, name: str, role: str) -> UserInfo:
+        """A new role. The last enabled admin cannot stop being admin (nobody could manage
+        accounts): checked in the statement that writes the role (`_unless_last_admin`)."""
         checked_role = check_role(role)
         with Session(self.engine) as session:
             row = self._row(session, name)
-            if checked_role != "admin" and self._last_admin(session, row):
+            change = update(UserRow).where(UserRow.id == row.id).values(role=checked_role)
+            if checked_role != "admin":
+                change = change.where(_unless_last_admin(row.id))
+            moved = session.execute(change.execution_options(synchronize_session=False))
+            if moved.rowcount != 1:  # type: ignore[attr-defined]
                 raise UserError(f"{name} is the only admin; make someone else admin first", 409)
-            row.role = checked_role
             session.commit()
+            session.refresh(row)
             return _info(row)
 
     def set_disabled(self, name: str, disabled: bool) -> UserInfo:
@@ -158,21 +164,12 @@ class UserStore:
         with Session(self.engine) as session:
             row = self._row(session, name)
             if disabled and row.disabled_at is None:
-                # One statement, so two admins disabling each other at once cannot both win:
-                # the count of the others is read where the row is written.
-                admin = aliased(UserRow)  # not correlated with the row updated
-                others = (
-                    select(func.count())
-                    .select_from(admin)
-                    .where(admin.role == "admin", admin.disabled_at.is_(None), admin.id != row.id)
-                    .scalar_subquery()
-                )
                 moved = session.execute(
                     update(UserRow)
                     .where(
                         UserRow.id == row.id,
                         UserRow.disabled_at.is_(None),
-                        (UserRow.role != "admin") | (others > 0),
+                        _unless_last_admin(row.id),
                     )
                     .values(disabled_at=utcnow())
                     .execution_options(synchronize_session=False)
@@ -306,9 +303,39 @@ class UserStore:
         )
         return int(session.scalar(query) or 0)
 
-    def _last_admin(self, session: Session, row: UserRow) -> bool:
-        """Whether `row` is the only enabled admin."""
-        return row.role == "admin" and row.disabled_at is None and self._admins(session) <= 1
+
+def _unless_last_admin(user_id: int) -> ColumnElement[bool]:
+    """For an UPDATE of user `user_id` that takes admin rights away (a role change, or
+    disabling): the user is not an enabled admin, or another enabled admin remains.
+
+    It is checked inside the UPDATE that writes the row, never read before it, so two admins
+    demoting or disabling each other at once cannot both win:
+    - SQLite runs one writer at a time and an UPDATE takes the write lock before it reads, so
+      the second UPDATE counts the admins with the first one's change committed (or fails
+      "database is locked" after the 30 s busy timeout, changing nothing).
+    - PostgreSQL (READ COMMITTED) would count from the statement's snapshot, and two UPDATEs of
+      different rows do not wait for each other: both could see the other admin still there
+      and win. So the count locks the enabled admins it counts (FOR UPDATE, in id order, so two
+      such UPDATEs queue on the first row instead of deadlocking): the second one waits until
+      the first commits, then reads the admin it demoted as it is now (no longer an enabled
+      admin, left out of the count) and writes nothing.
+    SQLite ignores FOR UPDATE (it needs none).
+    """
+    admin = aliased(UserRow)  # not correlated with the row updated
+    enabled_admins = (
+        select(admin.id)
+        .where(admin.role == "admin", admin.disabled_at.is_(None))
+        .order_by(admin.id)
+        .with_for_update()
+        .subquery()
+    )
+    others = (
+        select(func.count())
+        .select_from(enabled_admins)
+        .where(enabled_admins.c.id != user_id)
+        .scalar_subquery()
+    )
+    return (UserRow.role != "admin") | UserRow.disabled_at.is_not(None) | (others > 0)
 
 
 def _user(row: UserRow) -> User:
