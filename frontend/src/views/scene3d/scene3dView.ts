@@ -411,8 +411,12 @@ export function mountScene3d(
       if (glbKey(session.doc) !== loadedGlb) void loadSafely();
     }
   });
-  // The layout draft's changes come after the session's: the editor re-reads the document
-  // before the view redraws from it.
+  // The layout draft is updated before the session announces a change: SceneSession hands a
+  // new document to the draft (layout.setDocument: re-fit the moved corners, or show the
+  // stored room) before it emits "document", and undo/redo re-fit the draft before it emits
+  // "edits". So layout.live is already current whichever event the view hears first; the
+  // draft's own events (drags, fits) redraw the room as well, and a second showLive for the
+  // same change only draws the same room again.
   const unsubscribeLayout = layout?.subscribe(showLive) ?? (() => {});
 
   return () => {
