@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -13,7 +14,12 @@ from holiscene.geometry.room_fit import project_room_corners
 from holiscene.inference import infer_scene
 from holiscene.inputs import read_input_folder
 from holiscene.layout_edit import CAMERA_HEIGHT_PRIOR_M, camera_height
-from holiscene.pipeline import PLACEMENT_STAGES, PipelineBuildError, build_pipeline
+from holiscene.pipeline import (
+    KEPT_LAYOUT_STAGES,
+    PLACEMENT_STAGES,
+    PipelineBuildError,
+    build_pipeline,
+)
 from holiscene.store.clock import utcnow
 from holiscene_schema import Camera, ImageInfo, Layout, Scene, SetLayout
 
@@ -175,16 +181,21 @@ def _moved_corners(doc: dict, dy: float) -> list[list[float] | None]:  # type: i
     ]
 
 
-def test_layout_edit_and_placement_job_through_the_api(client: TestClient, t3d5: Path) -> None:
+def _layout_set_by_hand(client: TestClient, t3d5: Path) -> tuple[str, Any, Any, Any]:
+    """t3d-5 through the pipeline, then its far floor corners moved down 25 px by hand: the
+    scene id, the pipeline's document, the `set_layout` edit and the document it saved."""
     result = upload(client, t3d5, name="t3d-5")
     assert wait_for_job(client, result["job"]["id"])["status"] == "succeeded"
     scene_id = result["scene"]["id"]
     doc = client.get(f"/api/scenes/{scene_id}").json()
     edit = {"kind": "set_layout", "corners_2d": _moved_corners(doc, 25.0)}
-
     response = _edit(client, scene_id, doc["revision"], edit)
     assert response.status_code == 200, response.text  # type: ignore[attr-defined]
-    edited = response.json()  # type: ignore[attr-defined]
+    return scene_id, doc, edit, response.json()  # type: ignore[attr-defined]
+
+
+def test_layout_edit_and_placement_job_through_the_api(client: TestClient, t3d5: Path) -> None:
+    scene_id, doc, edit, edited = _layout_set_by_hand(client, t3d5)
     assert edited["revision"] == doc["revision"] + 1
     layout = edited["scene"]["layout"]
     assert layout["source"] == "manual"
@@ -235,6 +246,44 @@ def test_layout_edit_and_placement_job_through_the_api(client: TestClient, t3d5:
     assert client.get("/api/scenes").json()[0]["latest_job"]["id"] == job["id"]
 
 
+def test_pipeline_rerun_keeps_a_layout_set_by_hand(client: TestClient, t3d5: Path) -> None:
+    """As with people's supports, a full re-run keeps a room layout set by hand before it, and
+    the camera fitted to it, and runs the other stages again around them: the objects end up
+    where a placement job puts them in that room."""
+    scene_id, estimated, _, edited = _layout_set_by_hand(client, t3d5)
+    layout, camera = edited["scene"]["layout"], edited["scene"]["camera"]
+    assert layout["source"] == "manual"
+    assert layout["corners_3d"] != estimated["scene"]["layout"]["corners_3d"]
+    # Where the objects belong in the hand-set room: a placement job's answer.
+    placement = client.post(f"/api/scenes/{scene_id}/placement-jobs").json()
+    assert wait_for_job(client, placement["id"], timeout=60)["status"] == "succeeded"
+    placed = client.get(f"/api/scenes/{scene_id}").json()["scene"]
+
+    started = client.post(f"/api/scenes/{scene_id}/pipeline-jobs")
+    assert started.status_code == 202, started.text
+    job = wait_for_job(client, started.json()["id"], timeout=90)
+    assert job["status"] == "succeeded", job["error"]
+    assert (
+        "layout_from_revision: kept the room layout set by hand, and the camera's pitch, roll "
+        "and height fitted to it" in job["message"]
+    )
+    rerun = client.get(f"/api/scenes/{scene_id}").json()
+    assert rerun["revision"] == job["result_revision"]
+    scene = rerun["scene"]
+    assert scene["layout"] == layout  # the corners (2D and 3D), source and note as set
+    assert scene["camera"] == camera
+    assert [s["name"] for s in scene["stages"]] == list(KEPT_LAYOUT_STAGES)
+    assert "layout_from_lines" not in KEPT_LAYOUT_STAGES
+    # The other stages ran again, and placed every object in the hand-set room.
+    assert [o["mask"] for o in scene["objects"]] == [o["mask"] for o in placed["objects"]]
+    for before, after in zip(placed["objects"], scene["objects"], strict=True):
+        assert before["box_3d"] is not None and after["box_3d"] is not None
+        np.testing.assert_allclose(after["box_3d"]["center"], before["box_3d"]["center"], atol=0.02)
+        np.testing.assert_allclose(after["box_3d"]["size"], before["box_3d"]["size"], atol=0.02)
+    boxes = [o["box_3d"] for o in scene["objects"]]
+    assert boxes != [o["box_3d"] for o in estimated["scene"]["objects"]]  # not the old room's
+
+
 def test_placement_job_needs_a_layout(client: TestClient, t3d5: Path) -> None:
     result = upload(client, t3d5, name="t3d-5", run_pipeline="false")
     response = client.post(f"/api/scenes/{result['scene']['id']}/placement-jobs")
@@ -263,6 +312,7 @@ def test_placement_stages_on_an_unchanged_scene_place_as_the_full_pipeline(t3d5:
         np.testing.assert_allclose(after.box_3d.size, before.box_3d.size, atol=0.02)
 
 
-def test_placement_pipeline_needs_the_stored_scene() -> None:
+@pytest.mark.parametrize("stages", [PLACEMENT_STAGES, KEPT_LAYOUT_STAGES])
+def test_placement_pipeline_needs_the_stored_scene(stages: tuple[str, ...]) -> None:
     with pytest.raises(PipelineBuildError, match="needs the stored scene"):
-        build_pipeline(PLACEMENT_STAGES)
+        build_pipeline(stages)

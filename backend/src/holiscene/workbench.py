@@ -11,6 +11,7 @@ import traceback
 from concurrent.futures import ThreadPoolExecutor
 from datetime import timedelta
 from pathlib import Path
+from typing import Any
 
 from holiscene_schema import ImageInfo, ImportResult, Job, RetrainRequest, Scene
 
@@ -18,8 +19,9 @@ from .core.db import make_engine, migrate
 from .core.settings import Settings
 from .inference import infer_scene
 from .inputs import InputFiles, read_input_folder
-from .pipeline import DEFAULT_STAGES, PLACEMENT_STAGES
+from .pipeline import DEFAULT_STAGES, KEPT_LAYOUT_STAGES, PLACEMENT_STAGES
 from .pipeline.stages.detections import objects_from_detections
+from .pipeline.stages.restore import has_hand_set_layout
 from .retraining import RetrainJob, check_can_retrain, train_config
 from .store import models as model_registry
 from .store.files import SceneFiles
@@ -167,18 +169,17 @@ class Workbench:
             if placement:
                 # The revision the job was asked on: the layout the person saw when asking.
                 current = self.scenes.document(job.scene_id, job.base_revision)
+            stages, stage_options = job_stages(placement, current.scene)
             result = infer_scene(
                 read_input_folder(folder),
                 name=current.scene.name,
                 image_file=current.scene.image.file,
                 pinned_supports=[s for s in current.scene.supports if s.source == "manual"],
-                stages=PLACEMENT_STAGES if placement else DEFAULT_STAGES,
+                stages=stages,
                 models_dir=self.settings.models_dir,
                 # The promoted Relation Network (None: the committed default model).
                 support_model_dir=self.models.active_dir(),
-                stage_options={"scene_from_revision": {"scene": current.scene}}
-                if placement
-                else None,
+                stage_options=stage_options,
                 progress=lambda stage, fraction: self.jobs.progress(job_id, stage, fraction),
             )
             if placement:
@@ -186,8 +187,10 @@ class Workbench:
                     job.scene_id, job.base_revision, result.scene, result.glb
                 )
             else:
+                # A layout set by hand up to the revision read above is in the result (kept);
+                # one set after it would be overwritten, so that refuses the result.
                 revision = self.scenes.commit_pipeline_result(
-                    job.scene_id, result.scene, result.glb, base_revision=job.base_revision
+                    job.scene_id, result.scene, result.glb, base_revision=current.revision
                 )
             notes = [f"{s.name}: {s.note}" for s in result.scene.stages if s.note]
             self.jobs.succeed(job_id, revision, " | ".join(notes) or "done")
@@ -210,6 +213,19 @@ class Workbench:
         return ImportResult(scene=self.scenes.summary(result.scene.id, finished), job=finished)
 
 
+def job_stages(
+    placement: bool, scene: Scene
+) -> tuple[tuple[str, ...], dict[str, dict[str, Any]] | None]:
+    """The stages of a placement or pipeline job on `scene` (the revision it read), and their
+    options: a placement job starts from the stored scene; a full re-run keeps a room layout
+    set by hand (and its camera), as it keeps people's supports."""
+    if placement:
+        return PLACEMENT_STAGES, {"scene_from_revision": {"scene": scene}}
+    if has_hand_set_layout(scene):
+        return KEPT_LAYOUT_STAGES, {"layout_from_revision": {"scene": scene}}
+    return DEFAULT_STAGES, None
+
+
 def scene_changed_message(job: Job, changed: SceneChangedError) -> str:
     """Why a job's result was not stored, and what to do."""
     moved = f"revision {changed.base_revision} -> {changed.current_revision}"
@@ -220,7 +236,7 @@ def scene_changed_message(job: Job, changed: SceneChangedError) -> str:
         )
     return (
         f"the room layout was set by hand while the pipeline ran ({moved}); the run's result "
-        "was not stored, so that layout stays; run the pipeline again to replace it"
+        "was not stored, so that layout stays; a new run keeps it"
     )
 
 

@@ -2,10 +2,17 @@
 
 from .base import PipelineBuildError, SceneContext, Stage, StageFailedError
 from .registry import registered_stages
-from .runner import DEFAULT_STAGES, PLACEMENT_STAGES, Pipeline, build_pipeline
+from .runner import (
+    DEFAULT_STAGES,
+    KEPT_LAYOUT_STAGES,
+    PLACEMENT_STAGES,
+    Pipeline,
+    build_pipeline,
+)
 
 __all__ = [
     "DEFAULT_STAGES",
+    "KEPT_LAYOUT_STAGES",
     "PLACEMENT_STAGES",
     "Pipeline",
     "PipelineBuildError",

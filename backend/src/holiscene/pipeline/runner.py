@@ -35,6 +35,12 @@ PLACEMENT_STAGES: tuple[str, ...] = (
     "scene_mesh",
 )
 
+# A full re-run of a scene whose room layout a person set: that layout and the camera fitted
+# to it are kept (as people's supports are), every other stage runs again around them.
+KEPT_LAYOUT_STAGES: tuple[str, ...] = tuple(
+    "layout_from_revision" if name == "layout_from_lines" else name for name in DEFAULT_STAGES
+)
+
 ProgressCallback = Callable[[str, float], None]
 
 
