@@ -62,7 +62,8 @@ def scene_parts(folder: Path) -> dict[str, float]:
         boxes,
         SurfaceMap.predict(load_surface_model(), ctx.image, camera, to_room),
     )
-    metres, _ = camera_height(camera, contacts, room.ceiling if room.ceiling_seen else None)
+    ceiling = room.ceiling if room.ceiling_seen else None
+    metres, _ = camera_height(camera, contacts, ceiling, ctx.width)
     room = ceiling_from_priors(room, metres)
 
     true_corners = np.array(truth["layout"]["corners_3d"])

@@ -1,4 +1,4 @@
-"""Learn the per-class bias and spread of single-view height measurements (`make calibrate-scale`).
+"""Learn the per-class bias and spread of single-view size measurements (`make calibrate-scale`).
 
 Renders synthetic rooms from seeds no test or benchmark uses (300000+), measures every
 floor-standing object the way the layout stage does (camera pitch and roll from the photo's
@@ -21,6 +21,7 @@ from holiscene.geometry.lines import detect_segments
 from holiscene.geometry.manhattan import estimate_manhattan_frame
 from holiscene.geometry.metric_scale import (
     CALIBRATION_FILE,
+    Residual,
     fit_calibration,
     floor_contacts,
     measurement_residuals,
@@ -31,7 +32,7 @@ from holiscene.pipeline.base import required
 from tqdm import tqdm
 
 
-def scene_residuals(folder: Path) -> Iterator[tuple[str, float]]:
+def scene_residuals(folder: Path) -> Iterator[Residual]:
     inputs = read_input_folder(folder)
     truth = json.loads((folder / "gt.json").read_text())
     ctx = SceneContext(image=inputs.photo.rgb, given_K=inputs.K, detections=inputs.detections)
@@ -42,7 +43,7 @@ def scene_residuals(folder: Path) -> Iterator[tuple[str, float]]:
         return
     camera = PinholeCamera(K, frame.pitch_deg, frame.roll_deg)
     contacts = floor_contacts(camera, required(ctx.objects, "objects"), ctx.height)
-    yield from measurement_residuals(camera, contacts, truth["camera"]["height_m"])
+    yield from measurement_residuals(camera, contacts, truth["camera"]["height_m"], ctx.width)
 
 
 def main() -> int:
@@ -70,8 +71,9 @@ def main() -> int:
     source = f"{len(folders)} synthetic scenes, seeds {args.seed}+ ({len(residuals)} measurements)"
     calibration = fit_calibration(residuals, source)
     args.output.write_text(calibration.to_json())
-    for cls, c in sorted(calibration.classes.items(), key=lambda kv: -kv[1].count):
-        print(f"{cls:14s} n={c.count:4d} bias={c.bias:+.3f} sd={c.sd:.3f}")
+    for kind, classes in calibration.kinds.items():
+        for cls, c in sorted(classes.items(), key=lambda kv: -kv[1].count):
+            print(f"{kind:6s} {cls:14s} n={c.count:4d} bias={c.bias:+.3f} sd={c.sd:.3f}")
     print(f"wrote {args.output}")
     return 0
 

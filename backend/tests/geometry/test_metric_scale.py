@@ -23,42 +23,47 @@ def test_fit_takes_the_median_and_a_robust_spread() -> None:
     rng = np.random.default_rng(0)
     values = rng.normal(0.2, 0.1, 400)
     values[:20] = 3.0  # a few boxes measured across occluders
-    calibration = fit_calibration([("chair", float(v)) for v in values], "test")
-    chair = calibration.classes["chair"]
+    residuals = [("height", "chair", float(v)) for v in values] + [("width", "chair", 0.5)] * 9
+    calibration = fit_calibration(residuals, "test")
+    assert calibration.kinds["width"]["chair"] == ClassCalibration(0.5, 0.0, 9)
+    chair = calibration.kinds["height"]["chair"]
     assert chair.count == 400
     assert chair.bias == pytest.approx(0.2, abs=0.02)
     assert chair.sd == pytest.approx(0.1, abs=0.02)
 
 
-def test_rare_classes_fall_back_to_the_library_spread() -> None:
-    calibration = ScaleCalibration(
-        {"door": ClassCalibration(0.05, 0.06, 100), "bed": ClassCalibration(0.4, 0.01, 2)}
-    )
-    assert calibration.measurement_error("door") == (0.05, 0.06)
-    bias, sd = calibration.measurement_error("bed")  # too few to trust
-    assert bias == 0.0 and sd > height_spread("bed")
+def test_rare_classes_fall_back_to_the_library_spread_or_are_not_used() -> None:
+    classes = {"door": ClassCalibration(0.05, 0.06, 100), "bed": ClassCalibration(0.4, 0.01, 2)}
+    calibration = ScaleCalibration({"height": classes, "width": classes})
+    assert calibration.measurement_error("height", "door") == (0.05, 0.06)
+    assert calibration.measurement_error("width", "door") == (0.05, 0.06)
+    error = calibration.measurement_error("height", "bed")  # too few to trust
+    assert error is not None and error[0] == 0.0 and error[1] > height_spread("bed")
+    assert calibration.measurement_error("width", "bed") is None  # raw widths are not used
     assert MIN_CALIBRATION_COUNT > 2
 
 
 def test_calibration_round_trips_through_json() -> None:
-    calibration = ScaleCalibration({"desk": ClassCalibration(-0.0123, 0.15, 44)}, "here")
+    desk = {"desk": ClassCalibration(-0.0123, 0.15, 44)}
+    calibration = ScaleCalibration({"height": desk, "width": desk}, "here")
     again = ScaleCalibration.from_json(calibration.to_json())
     assert again == calibration
 
 
 def test_the_shipped_calibration_covers_the_common_floor_classes() -> None:
     calibration = default_calibration()
-    for cls in ("chair", "table", "door", "sofa"):
-        assert calibration.classes[cls].count >= MIN_CALIBRATION_COUNT
-        assert abs(calibration.classes[cls].bias) < 0.5
+    for kind in ("height", "width"):
+        for cls in ("chair", "table", "door", "sofa"):
+            assert calibration.kinds[kind][cls].count >= MIN_CALIBRATION_COUNT
+            assert abs(calibration.kinds[kind][cls].bias) < 0.5
 
 
 def test_without_evidence_the_camera_prior_decides() -> None:
     camera = PinholeCamera(np.array([[500.0, 0, 320], [0, 500, 240], [0, 0, 1]]), 10.0, 0.0)
-    metres, used = camera_height(camera, [], None)
+    metres, used = camera_height(camera, [], None, 640)
     assert metres == pytest.approx(CAMERA_HEIGHT_PRIOR[0])
     assert used == "camera height"
     # A seen ceiling 1.2 camera heights up pulls towards 2.75 m / 2.2 = 1.25 m.
-    metres, used = camera_height(camera, [], 1.2)
+    metres, used = camera_height(camera, [], 1.2, 640)
     assert 1.25 < metres < CAMERA_HEIGHT_PRIOR[0] and "room height" in used
     assert math.isfinite(metres)

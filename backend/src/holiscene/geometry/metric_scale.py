@@ -5,14 +5,17 @@ priors fused in log space, each weighted by how little it varies:
 
 - the camera's height (1.4 m, sd of log 0.12: people hold cameras at chest to eye height);
 - the room's height, when the ceiling's edges are seen (2.75 m, sd 0.15);
-- the typical height of each floor-standing object whose bottom and top are in the photo.
+- the typical height of each floor-standing object whose bottom and top are in the photo,
+  and its typical width when both its sides are in the photo.
 
 An object's height is read with the vertical through its floor contact (`ground.height_above`),
 which is biased in a way that depends on the class (a box's top edge in the photo is its far
 edge seen from above, its near edge seen from below; a low table is mostly top). That bias and
 the measurement's real spread are learned per class on synthetic rooms with exact ground truth
-(`calibrate_scale`, stored in `knowledge/scale_calibration.json`); classes with too few
-measurements fall back to the spread of the furniture library's height range.
+(`scripts/calibrate_scale.py`, stored in `knowledge/scale_calibration.json`); a width is
+read where the box's bottom edge meets the floor, and how the object is turned is left to the
+same calibration. Classes with too few measurements fall back to the spread of the furniture
+library's height range (heights) or are not used (widths).
 """
 
 from __future__ import annotations
@@ -24,6 +27,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
+from typing import Literal
 
 import numpy as np
 from holiscene_schema import SceneObject
@@ -53,30 +57,46 @@ class ClassCalibration:
     count: int
 
 
+Measurement = Literal["height", "width"]
+MEASUREMENTS: tuple[Measurement, ...] = ("height", "width")
+
+
 @dataclass(frozen=True)
 class ScaleCalibration:
-    classes: dict[str, ClassCalibration] = field(default_factory=dict)
+    """Per measurement kind, per class: how far one measurement is off."""
+
+    kinds: dict[Measurement, dict[str, ClassCalibration]] = field(default_factory=dict)
     source: str = "uncalibrated"
 
-    def measurement_error(self, cls: str) -> tuple[float, float]:
-        """(bias, sd) of one log camera-height measurement from an object of class `cls`."""
-        calibrated = self.classes.get(cls)
+    def measurement_error(self, kind: Measurement, cls: str) -> tuple[float, float] | None:
+        """(bias, sd) of one log camera-height measurement of `kind` from an object of class
+        `cls`; None for a width that was not calibrated (widths vary too much to use raw)."""
+        calibrated = self.kinds.get(kind, {}).get(cls)
         if calibrated is None or calibrated.count < MIN_CALIBRATION_COUNT:
+            if kind == "width":
+                return None
             return 0.0, math.hypot(height_spread(cls), MEASUREMENT_SD)
         return calibrated.bias, max(calibrated.sd, MIN_CALIBRATED_SD)
 
     def to_json(self) -> str:
-        classes = {
-            cls: {"bias": round(c.bias, 4), "sd": round(c.sd, 4), "count": c.count}
-            for cls, c in sorted(self.classes.items())
+        kinds = {
+            kind: {
+                cls: {"bias": round(c.bias, 4), "sd": round(c.sd, 4), "count": c.count}
+                for cls, c in sorted(classes.items())
+            }
+            for kind, classes in self.kinds.items()
         }
-        return json.dumps({"source": self.source, "classes": classes}, indent=2) + "\n"
+        return json.dumps({"source": self.source, **kinds}, indent=2) + "\n"
 
     @classmethod
     def from_json(cls, text: str) -> ScaleCalibration:
         data = json.loads(text)
-        classes = {name: ClassCalibration(**values) for name, values in data["classes"].items()}
-        return cls(classes=classes, source=data["source"])
+        kinds: dict[Measurement, dict[str, ClassCalibration]] = {
+            kind: {name: ClassCalibration(**values) for name, values in data[kind].items()}
+            for kind in MEASUREMENTS
+            if kind in data
+        }
+        return cls(kinds=kinds, source=data["source"])
 
 
 @lru_cache(maxsize=1)
@@ -126,10 +146,40 @@ def measured_log_camera_height(
     return math.log(metres)
 
 
+def measured_log_camera_height_from_width(
+    camera: PinholeCamera, obj: SceneObject, image_width: int
+) -> float | None:
+    """log(camera height in metres) implied by the object's typical width, uncorrected: the
+    box's bottom edge laid on the floor at its nearest point spans about the object's larger
+    horizontal side (the calibration absorbs how it is turned); None when a side is cut off."""
+    x1, _, x2, y2 = obj.bbox
+    if x1 <= 2 or x2 >= image_width - 2:
+        return None
+    hits = hit_horizontal_plane(camera, np.array([[x1, y2], [x2, y2]]), -1.0)
+    if hits is None or np.isnan(hits).any():
+        return None
+    apparent = float(np.linalg.norm(hits[0] - hits[1]))
+    depth, _, width = middle_size(obj.cls)
+    return math.log(max(width, depth) / apparent) if apparent > 0.02 else None
+
+
+def measurements(
+    camera: PinholeCamera, obj: SceneObject, base: FloatArray, image_width: int
+) -> Iterator[tuple[Measurement, float]]:
+    """Every uncorrected log camera-height measurement the object offers."""
+    height = measured_log_camera_height(camera, obj, base)
+    if height is not None:
+        yield "height", height
+    width = measured_log_camera_height_from_width(camera, obj, image_width)
+    if width is not None:
+        yield "width", width
+
+
 def camera_height(
     camera: PinholeCamera,
     contacts: list[tuple[SceneObject, FloatArray]],
     ceiling_above_camera: float | None,
+    image_width: int,
     calibration: ScaleCalibration | None = None,
 ) -> tuple[float, str]:
     """Metres per unit (the camera's height), and which priors decided it.
@@ -143,42 +193,48 @@ def camera_height(
         used.append("room height")
     sized = []
     for obj, base in contacts:
-        measured = measured_log_camera_height(camera, obj, base)
-        if measured is not None:
-            bias, sd = calibration.measurement_error(obj.cls)
-            sized.append((measured - bias, sd))
+        for kind, measured in measurements(camera, obj, base, image_width):
+            error = calibration.measurement_error(kind, obj.cls)
+            if error is not None:
+                sized.append((measured - error[0], error[1]))
     if sized:
-        # Drop objects far from the others (a box measured across an occluder, say).
+        # Drop measurements far from the others (a box measured across an occluder, say).
         centre = float(np.median([e for e, _ in sized]))
         kept = [(e, sd) for e, sd in sized if abs(e - centre) < 2.5 * sd]
         logs += kept
-        used.append(f"{len(kept)} object size(s)")
+        used.append(f"{len(kept)} object height(s) and width(s)")
     weights = np.array([1 / sd**2 for _, sd in logs])
     values = np.array([v for v, _ in logs])
     return float(math.exp((weights @ values) / weights.sum())), " + ".join(used)
+
+
+Residual = tuple[Measurement, str, float]  # (kind, class, measured - true log camera height)
 
 
 def measurement_residuals(
     camera: PinholeCamera,
     contacts: list[tuple[SceneObject, FloatArray]],
     true_camera_height: float,
-) -> Iterator[tuple[str, float]]:
-    """(class, measured - true log camera height) for each object that can be measured."""
+    image_width: int,
+) -> Iterator[Residual]:
+    """Every measurement of every object that can be measured, against the truth."""
     for obj, base in contacts:
-        measured = measured_log_camera_height(camera, obj, base)
-        if measured is not None:
-            yield obj.cls, measured - math.log(true_camera_height)
+        for kind, measured in measurements(camera, obj, base, image_width):
+            yield kind, obj.cls, measured - math.log(true_camera_height)
 
 
-def fit_calibration(residuals: Iterable[tuple[str, float]], source: str) -> ScaleCalibration:
-    """Per-class bias (the median, robust to the odd occluded box) and spread (1.4826 MAD)."""
-    by_class: dict[str, list[float]] = defaultdict(list)
-    for cls, value in residuals:
-        by_class[cls].append(value)
-    classes = {}
-    for cls, values in by_class.items():
-        array = np.array(values)
-        median = float(np.median(array))
-        spread = 1.4826 * float(np.median(np.abs(array - median)))
-        classes[cls] = ClassCalibration(bias=median, sd=spread, count=len(values))
-    return ScaleCalibration(classes=classes, source=source)
+def fit_calibration(residuals: Iterable[Residual], source: str) -> ScaleCalibration:
+    """Per kind and class: bias (the median, robust to the odd occluded box) and spread
+    (1.4826 times the median absolute deviation)."""
+    grouped: dict[Measurement, dict[str, list[float]]] = defaultdict(lambda: defaultdict(list))
+    for kind, cls, value in residuals:
+        grouped[kind][cls].append(value)
+    kinds: dict[Measurement, dict[str, ClassCalibration]] = {}
+    for kind, by_class in grouped.items():
+        kinds[kind] = {}
+        for cls, values in by_class.items():
+            array = np.array(values)
+            median = float(np.median(array))
+            spread = 1.4826 * float(np.median(np.abs(array - median)))
+            kinds[kind][cls] = ClassCalibration(bias=median, sd=spread, count=len(values))
+    return ScaleCalibration(kinds=kinds, source=source)

@@ -79,7 +79,7 @@ class LayoutFromLines(Stage):
             surface_map,
         )
         metres, priors = camera_height(
-            camera, contacts, room.ceiling if room.ceiling_seen else None
+            camera, contacts, room.ceiling if room.ceiling_seen else None, ctx.width
         )
         room = ceiling_from_priors(room, metres)
         corners = room.corners_room() @ to_room.T * metres
