@@ -9,7 +9,6 @@ import os
 import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from datetime import timedelta
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -88,7 +87,7 @@ def user_store(settings: Settings) -> Iterator[UserStore]:
     engine = make_engine(settings.resolved_database_url)
     try:
         migrate(engine)
-        yield UserStore(engine, timedelta(hours=settings.session_idle_hours))
+        yield UserStore(engine, settings.session_idle_timeout)
     finally:
         engine.dispose()
 

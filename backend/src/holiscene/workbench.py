@@ -9,7 +9,6 @@ import shutil
 import threading
 import traceback
 from concurrent.futures import ThreadPoolExecutor
-from datetime import timedelta
 from pathlib import Path
 from typing import Any
 
@@ -49,7 +48,7 @@ class Workbench:
         migrate(self.engine)
         self.scenes = SceneStore(self.engine, SceneFiles(settings.data_dir))
         self.jobs = JobStore(self.engine)
-        self.users = UserStore(self.engine, timedelta(hours=settings.session_idle_hours))
+        self.users = UserStore(self.engine, settings.session_idle_timeout)
         self.workflow = WorkflowStore(self.engine, self.scenes)
         self.models = ModelStore(
             self.engine,
@@ -164,11 +163,10 @@ class Workbench:
             if job.scene_id is None or job.base_revision is None:
                 raise ValueError(f"job {job_id} is not a pipeline job")
             folder = self.scenes.files.folder(job.scene_id)
-            current = self.scenes.document(job.scene_id)
             placement = job.kind == "placement"
-            if placement:
-                # The revision the job was asked on: the layout the person saw when asking.
-                current = self.scenes.document(job.scene_id, job.base_revision)
+            # A placement job: the revision it was asked on (the layout the person saw when
+            # asking); a pipeline job: the latest.
+            current = self.scenes.document(job.scene_id, job.base_revision if placement else None)
             stages, stage_options = job_stages(placement, current.scene)
             result = infer_scene(
                 read_input_folder(folder),

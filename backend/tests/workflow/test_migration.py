@@ -4,6 +4,7 @@ and states existed, 0004 on accounts and sessions stored before idle timeouts an
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from pathlib import Path
 
 from alembic import command
@@ -14,17 +15,20 @@ from sqlalchemy import text
 from .scenes import make_scene
 
 
-def _upgrade(engine: object, target: str) -> None:
+def _migrate(
+    engine: object, target: str, step: Callable[[Config, str], None] = command.upgrade
+) -> None:
+    """Migrate up to `target` (or down to it, with `step=command.downgrade`)."""
     config = Config()
     config.set_main_option("script_location", str(MIGRATIONS_DIR))
     with engine.begin() as connection:  # type: ignore[attr-defined]
         config.attributes["connection"] = connection
-        command.upgrade(config, target)
+        step(config, target)
 
 
 def test_existing_scenes_get_a_state_and_an_uncertainty(tmp_path: Path) -> None:
     engine = make_engine(f"sqlite:///{tmp_path / 'old.db'}")
-    _upgrade(engine, "0002")
+    _migrate(engine, "0002")
     predicted = make_scene([("o0", "floor", "below")], {"o0": 0.6})  # (0.4 + 1 * 3) / 4
     kinds = {"imported": ["import"], "predicted": ["import", "pipeline"]}
     kinds["edited"] = [*kinds["predicted"], "edit"]
@@ -50,7 +54,7 @@ def test_existing_scenes_get_a_state_and_an_uncertainty(tmp_path: Path) -> None:
                         "scene": json.dumps(predicted.model_dump(mode="json")),
                     },
                 )
-    _upgrade(engine, "head")
+    _migrate(engine, "head")
     with engine.connect() as connection:
         rows = connection.execute(
             text("SELECT id, state, assignee, annotation_round, uncertainty FROM scenes")
@@ -65,7 +69,7 @@ def test_existing_scenes_get_a_state_and_an_uncertainty(tmp_path: Path) -> None:
 
 def test_open_sessions_get_a_last_seen_time_and_accounts_stay_enabled(tmp_path: Path) -> None:
     engine = make_engine(f"sqlite:///{tmp_path / 'old.db'}")
-    _upgrade(engine, "0003")
+    _migrate(engine, "0003")
     with engine.begin() as connection:
         connection.execute(
             text(
@@ -78,7 +82,7 @@ def test_open_sessions_get_a_last_seen_time_and_accounts_stay_enabled(tmp_path: 
                 "INSERT INTO sessions VALUES ('h', 1, '2026-01-02 10:00:00', '2026-01-09 10:00:00')"
             )
         )
-    _upgrade(engine, "head")
+    _migrate(engine, "head")
     with engine.connect() as connection:
         session = connection.execute(text("SELECT created_at, last_seen_at FROM sessions")).one()
         disabled = connection.execute(text("SELECT disabled_at FROM users")).scalar_one()
@@ -88,11 +92,7 @@ def test_open_sessions_get_a_last_seen_time_and_accounts_stay_enabled(tmp_path: 
     assert any(row[1] == "ix_sessions_user_id" for row in indexes)
 
     # And back: 0004 can be undone.
-    config = Config()
-    config.set_main_option("script_location", str(MIGRATIONS_DIR))
-    with engine.begin() as connection:
-        config.attributes["connection"] = connection
-        command.downgrade(config, "0003")
+    _migrate(engine, "0003", step=command.downgrade)
     with engine.connect() as connection:
         columns = [row[1] for row in connection.execute(text("PRAGMA table_info('sessions')"))]
     assert "last_seen_at" not in columns and len(columns) == 4

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from datetime import timedelta
 from pathlib import Path
 
 from pydantic import Field
@@ -26,3 +27,7 @@ class Settings(BaseSettings):
     @property
     def resolved_database_url(self) -> str:
         return self.database_url or f"sqlite:///{self.data_dir / 'holiscene.db'}"
+
+    @property
+    def session_idle_timeout(self) -> timedelta:
+        return timedelta(hours=self.session_idle_hours)

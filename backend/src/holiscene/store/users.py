@@ -27,7 +27,6 @@ from .clock import as_utc, utcnow
 from .tables import SessionRow, UserRow
 
 SESSION_LIFETIME = timedelta(days=7)
-DEFAULT_IDLE_TIMEOUT = timedelta(hours=8)
 # A session's last-seen time is written at most this often (not on every request).
 LAST_SEEN_STEP = timedelta(seconds=30)
 NAME_PATTERN = re.compile(r"^[a-z0-9][a-z0-9_.-]{0,63}$")
@@ -90,12 +89,11 @@ def check_role(role: str) -> Role:
 
 
 class UserStore:
-    def __init__(self, engine: Engine, idle_timeout: timedelta = DEFAULT_IDLE_TIMEOUT) -> None:
-        """`idle_timeout`: how long a session lasts without a request."""
-        if idle_timeout <= timedelta(0):
-            raise ValueError("the session idle timeout must be positive")
+    def __init__(self, engine: Engine, idle_timeout: timedelta) -> None:
+        """`idle_timeout`: how long a session lasts without a request (Settings)."""
         self.engine = engine
         self.idle_timeout = idle_timeout
+        self._last_seen_step = min(LAST_SEEN_STEP, idle_timeout / 10)
 
     # -- accounts ------------------------------------------------------------------------
 
@@ -147,14 +145,16 @@ class UserStore:
         checked_role = check_role(role)
         with Session(self.engine) as session:
             row = self._row(session, name)
-            change = update(UserRow).where(UserRow.id == row.id).values(role=checked_role)
-            if checked_role != "admin":
-                change = change.where(_unless_last_admin(row.id))
-            moved = session.execute(change.execution_options(synchronize_session=False))
-            if moved.rowcount != 1:  # type: ignore[attr-defined]
-                raise UserError(f"{name} is the only admin; make someone else admin first", 409)
+            if checked_role == "admin":
+                row.role = checked_role
+            else:
+                _update_unless_last_admin(
+                    session,
+                    row.id,
+                    f"{name} is the only admin; make someone else admin first",
+                    role=checked_role,
+                )
             session.commit()
-            session.refresh(row)
             return _info(row)
 
     def set_disabled(self, name: str, disabled: bool) -> UserInfo:
@@ -164,24 +164,14 @@ class UserStore:
         with Session(self.engine) as session:
             row = self._row(session, name)
             if disabled and row.disabled_at is None:
-                moved = session.execute(
-                    update(UserRow)
-                    .where(
-                        UserRow.id == row.id,
-                        UserRow.disabled_at.is_(None),
-                        _unless_last_admin(row.id),
-                    )
-                    .values(disabled_at=utcnow())
-                    .execution_options(synchronize_session=False)
+                _update_unless_last_admin(
+                    session,
+                    row.id,
+                    f"{name} is the only enabled admin and cannot be disabled: make someone "
+                    "else admin first",
+                    UserRow.disabled_at.is_(None),
+                    disabled_at=utcnow(),
                 )
-                if moved.rowcount != 1:  # type: ignore[attr-defined]
-                    raise UserError(
-                        f"{name} is the only enabled admin and cannot be disabled: make someone "
-                        "else admin first",
-                        409,
-                    )
-                session.commit()
-                session.refresh(row)
             elif not disabled and row.disabled_at is not None:
                 row.disabled_at = None
                 session.execute(delete(SessionRow).where(SessionRow.user_id == row.id))
@@ -274,7 +264,7 @@ class UserStore:
                     f"your session ended after {_duration(self.idle_timeout)} without "
                     "activity; log in again"
                 )
-            if activity and now - last_seen >= min(LAST_SEEN_STEP, self.idle_timeout / 10):
+            if activity and now - last_seen >= self._last_seen_step:
                 row.last_seen_at = now
                 session.commit()
             return _user(user)
@@ -302,6 +292,25 @@ class UserStore:
             .where(UserRow.role == "admin", UserRow.disabled_at.is_(None))
         )
         return int(session.scalar(query) or 0)
+
+
+def _update_unless_last_admin(
+    session: Session,
+    user_id: int,
+    refusal: str,
+    *conditions: ColumnElement[bool],
+    **values: object,
+) -> None:
+    """Write `values` to user `user_id` (where `conditions` hold too), unless that leaves no
+    enabled admin (`_unless_last_admin`): then UserError 409 `refusal`, nothing written."""
+    moved = session.execute(
+        update(UserRow)
+        .where(UserRow.id == user_id, *conditions, _unless_last_admin(user_id))
+        .values(**values)
+        .execution_options(synchronize_session=False)
+    )
+    if moved.rowcount != 1:  # type: ignore[attr-defined]
+        raise UserError(refusal, 409)
 
 
 def _unless_last_admin(user_id: int) -> ColumnElement[bool]:
