@@ -18,21 +18,12 @@ from pathlib import Path
 
 import numpy as np
 from holiscene.evaluation.box_iou import iou_3d
-from holiscene.geometry.camera import PinholeCamera
-from holiscene.geometry.lines import detect_segments
-from holiscene.geometry.manhattan import estimate_manhattan_frame
-from holiscene.geometry.metric_scale import camera_height, floor_contacts
-from holiscene.geometry.room_layout import (
-    RoomHypothesis,
-    SurfaceEvidence,
-    estimate_room,
-    room_to_world,
-)
-from holiscene.geometry.surface_map import SurfaceMap, load_surface_model
+from holiscene.geometry.room_layout import RoomHypothesis
+from holiscene.geometry.surface_map import load_surface_model
 from holiscene.inputs import read_input_folder
 from holiscene.pipeline import SceneContext, build_pipeline
 from holiscene.pipeline.base import required
-from holiscene.pipeline.stages.layout import ceiling_from_priors
+from holiscene.pipeline.stages.layout import estimate_layout
 
 PARTS = ("front", "left", "right", "back", "ceiling")
 
@@ -43,28 +34,10 @@ def scene_parts(folder: Path) -> dict[str, float]:
     ctx = SceneContext(image=inputs.photo.rgb, given_K=inputs.K, detections=inputs.detections)
     build_pipeline(["objects_from_detections", "intrinsics"]).run(ctx)
     K, _ = required(ctx.intrinsics, "intrinsics")
-    objects = required(ctx.objects, "objects")
-    segments = detect_segments(ctx.image)
-    frame = estimate_manhattan_frame(segments, K)
-    if frame is None:
+    estimate = estimate_layout(ctx.image, K, required(ctx.objects, "objects"), load_surface_model())
+    if estimate is None:
         return {}
-    camera = PinholeCamera(K, frame.pitch_deg, frame.roll_deg)
-    to_room = room_to_world(frame)
-    contacts = floor_contacts(camera, objects, ctx.height)
-    boxes = [o.bbox for o in objects]
-    room = estimate_room(
-        camera,
-        frame,
-        segments,
-        (ctx.width, ctx.height),
-        np.array([p for _, p in contacts]) if contacts else None,
-        SurfaceEvidence(camera, ctx.image, boxes, to_room),
-        boxes,
-        SurfaceMap.predict(load_surface_model(), ctx.image, camera, to_room),
-    )
-    ceiling = room.ceiling if room.ceiling_seen else None
-    metres, _ = camera_height(camera, contacts, ceiling, ctx.width)
-    room = ceiling_from_priors(room, metres)
+    room, to_room, metres = estimate.room, estimate.to_room, estimate.metres
 
     true_corners = np.array(truth["layout"]["corners_3d"])
     true_height = truth["camera"]["height_m"]

@@ -16,7 +16,6 @@ import trimesh
 from holiscene.core.settings import REPO_ROOT
 from holiscene.export.glb import class_colour
 from holiscene.geometry.camera import PinholeCamera
-from holiscene.geometry.surface_labels import MAP_SIZE
 from holiscene.geometry.surface_map import load_surface_model
 from holiscene.inference import infer_scene
 from holiscene.inputs import read_input_folder
@@ -54,8 +53,7 @@ SURFACE_COLOURS = np.array(  # BGR: floor green, ceiling yellow, front wall red,
 
 def _surface_panel(rgb: np.ndarray) -> np.ndarray:
     """What the Surface Network sees: its most probable label per cell over the photo."""
-    probabilities = load_surface_model().probabilities(rgb)
-    labels = probabilities.argmax(axis=1).reshape(MAP_SIZE[1], MAP_SIZE[0])
+    labels = load_surface_model().label_map(rgb)
     h, w = rgb.shape[:2]
     colours = cv2.resize(SURFACE_COLOURS[labels], (w, h), interpolation=cv2.INTER_NEAREST)
     return cv2.addWeighted(cv2.cvtColor(rgb, cv2.COLOR_RGB2BGR), 0.5, colours, 0.5, 0)

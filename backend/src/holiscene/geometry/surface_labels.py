@@ -38,11 +38,17 @@ def map_pixels(width: int, height: int) -> FloatArray:
     return np.column_stack([grid_x.ravel(), grid_y.ravel()])
 
 
+def normalised_batch(images: NDArray[np.generic]) -> NDArray[np.float32]:
+    """RGB images (N, H, W, 3) in 0-255 as the network reads them: (N, 3, H, W), normalised.
+    Training and inference both go through here, so they can never disagree."""
+    scaled = images.astype(np.float32) / 255.0
+    normalised: NDArray[np.float32] = (scaled - PIXEL_MEAN) / PIXEL_STD
+    return np.ascontiguousarray(normalised.transpose(0, 3, 1, 2))
+
+
 def network_input(rgb: NDArray[np.uint8]) -> NDArray[np.float32]:
     """The photo as the network reads it: (1, 3, H, W), resized by area, normalised."""
-    small = cv2.resize(rgb, INPUT_SIZE, interpolation=cv2.INTER_AREA).astype(np.float32) / 255.0
-    normalised = (small - PIXEL_MEAN) / PIXEL_STD
-    return np.ascontiguousarray(normalised.transpose(2, 0, 1)[None])
+    return normalised_batch(cv2.resize(rgb, INPUT_SIZE, interpolation=cv2.INTER_AREA)[None])
 
 
 def nearest_surface(

@@ -44,6 +44,11 @@ class SurfaceModel:
         result: NDArray[np.float32] = flat / flat.sum(axis=1, keepdims=True)
         return result
 
+    def label_map(self, rgb: NDArray[np.uint8]) -> NDArray[np.int64]:
+        """The most probable class per cell, as an image of MAP_SIZE (for pictures)."""
+        result: NDArray[np.int64] = self.probabilities(rgb).argmax(axis=1)
+        return result.reshape(MAP_SIZE[1], MAP_SIZE[0])
+
 
 @lru_cache(maxsize=2)
 def load_surface_model(path: Path = DEFAULT_SURFACE_MODEL) -> SurfaceModel:
@@ -77,10 +82,3 @@ class SurfaceMap:
         """Mean probability of the classes of the faces `labels_of` (one per cell)."""
         classes = CLASS_OF_SURFACE[labels_of]
         return float(self.probabilities[np.arange(len(classes)), classes].mean())
-
-    def class_map(self) -> NDArray[np.int64]:
-        """The most probable class per cell, as an image of MAP_SIZE (for pictures)."""
-        result: NDArray[np.int64] = self.probabilities.argmax(axis=1).reshape(
-            MAP_SIZE[1], MAP_SIZE[0]
-        )
-        return result

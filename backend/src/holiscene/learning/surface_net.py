@@ -21,7 +21,7 @@ import torch
 import torch.nn.functional as F
 from torch import Tensor, nn
 
-from ..geometry.surface_labels import INPUT_SIZE, MAP_SIZE, PIXEL_MEAN, PIXEL_STD, SURFACE_CLASSES
+from ..geometry.surface_labels import INPUT_SIZE, MAP_SIZE, SURFACE_CLASSES, normalised_batch
 from .export import keep_if_faithful
 from .surface_data import SurfaceSet, surface_set
 from .train import plot_curve, run_record
@@ -84,10 +84,7 @@ class SurfaceTrainConfig:
 
 
 def _batch_tensors(images: np.ndarray, labels: np.ndarray) -> tuple[Tensor, Tensor]:
-    x = (images.astype(np.float32) / 255.0 - PIXEL_MEAN) / PIXEL_STD
-    return torch.from_numpy(x.transpose(0, 3, 1, 2).copy()), torch.from_numpy(
-        labels.astype(np.int64)
-    )
+    return torch.from_numpy(normalised_batch(images)), torch.from_numpy(labels.astype(np.int64))
 
 
 def _augment(

@@ -4,17 +4,24 @@ scale (`geometry.metric_scale` says which priors give metres and how wrong they 
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from holiscene_schema import Camera, Layout
+from holiscene_schema import Camera, Layout, SceneObject
+from numpy.typing import NDArray
 
-from ...geometry.camera import PinholeCamera
+from ...geometry.camera import FloatArray, PinholeCamera
 from ...geometry.lines import detect_segments
-from ...geometry.manhattan import estimate_manhattan_frame
+from ...geometry.manhattan import ManhattanFrame, estimate_manhattan_frame
 from ...geometry.metric_scale import ROOM_HEIGHT_PRIOR, camera_height, floor_contacts
 from ...geometry.room_layout import RoomHypothesis, SurfaceEvidence, estimate_room, room_to_world
-from ...geometry.surface_map import DEFAULT_SURFACE_MODEL, SurfaceMap, load_surface_model
+from ...geometry.surface_map import (
+    DEFAULT_SURFACE_MODEL,
+    SurfaceMap,
+    SurfaceModel,
+    load_surface_model,
+)
 from ..base import SceneContext, Stage, required
 from ..registry import register_stage
 
@@ -31,6 +38,51 @@ def ceiling_from_priors(room: RoomHypothesis, metres: float) -> RoomHypothesis:
     return dataclasses.replace(room, ceiling=ceiling)
 
 
+@dataclass(frozen=True)
+class LayoutEstimate:
+    """What the photo says of the camera and the room, before it is written to the scene."""
+
+    frame: ManhattanFrame
+    camera: PinholeCamera
+    to_room: FloatArray  # room axes -> world
+    room: RoomHypothesis  # camera heights
+    metres: float  # the camera's height
+    priors: str  # which priors decided `metres`
+
+
+def estimate_layout(
+    image: NDArray[np.uint8],
+    K: FloatArray,
+    objects: list[SceneObject],
+    surface_model: SurfaceModel | None,
+) -> LayoutEstimate | None:
+    """Manhattan frame -> room search (with the Surface Network's labels when there is a
+    model) -> metric scale -> unseen ceiling; None when too few vertical lines are seen."""
+    height, width = image.shape[:2]
+    segments = detect_segments(image)
+    frame = estimate_manhattan_frame(segments, K)
+    if frame is None:
+        return None
+    camera = PinholeCamera(K, frame.pitch_deg, frame.roll_deg)
+    contacts = floor_contacts(camera, objects, height)
+    to_room = room_to_world(frame)
+    boxes = [o.bbox for o in objects]
+    room = estimate_room(
+        camera,
+        frame,
+        segments,
+        (width, height),
+        np.array([p for _, p in contacts]) if contacts else None,
+        SurfaceEvidence(camera, image, boxes, to_room),
+        boxes,
+        SurfaceMap.predict(surface_model, image, camera, to_room) if surface_model else None,
+    )
+    metres, priors = camera_height(
+        camera, contacts, room.ceiling if room.ceiling_seen else None, width
+    )
+    return LayoutEstimate(frame, camera, to_room, ceiling_from_priors(room, metres), metres, priors)
+
+
 @register_stage
 class LayoutFromLines(Stage):
     name = "layout_from_lines"
@@ -44,10 +96,10 @@ class LayoutFromLines(Stage):
 
     def run(self, ctx: SceneContext) -> None:
         K, source = required(ctx.intrinsics, "intrinsics")
-        objects = required(ctx.objects, "objects")
-        segments = detect_segments(ctx.image)
-        frame = estimate_manhattan_frame(segments, K)
-        if frame is None:
+        estimate = estimate_layout(
+            ctx.image, K, required(ctx.objects, "objects"), self.surface_model
+        )
+        if estimate is None:
             ctx.notes[self.name] = "too few vertical lines: pitch, roll and layout unknown"
             ctx.camera = Camera(
                 K=K.tolist(),
@@ -59,32 +111,10 @@ class LayoutFromLines(Stage):
             ctx.layout = Layout(note=ctx.notes[self.name])
             ctx.vanishing_points = np.zeros((0, 3))  # none found; later stages check the shape
             return
-        camera = PinholeCamera(K, frame.pitch_deg, frame.roll_deg)
-        contacts = floor_contacts(camera, objects, ctx.height)
-        to_room = room_to_world(frame)
-        evidence = SurfaceEvidence(camera, ctx.image, [o.bbox for o in objects], to_room)
-        surface_map = (
-            SurfaceMap.predict(self.surface_model, ctx.image, camera, to_room)
-            if self.surface_model
-            else None
-        )
-        room = estimate_room(
-            camera,
-            frame,
-            segments,
-            (ctx.width, ctx.height),
-            np.array([p for _, p in contacts]) if contacts else None,
-            evidence,
-            [o.bbox for o in objects],
-            surface_map,
-        )
-        metres, priors = camera_height(
-            camera, contacts, room.ceiling if room.ceiling_seen else None, ctx.width
-        )
-        room = ceiling_from_priors(room, metres)
-        corners = room.corners_room() @ to_room.T * metres
+        frame, camera, metres = estimate.frame, estimate.camera, estimate.metres
+        corners = estimate.room.corners_room() @ estimate.to_room.T * metres
         projected = camera.project(corners)
-        note = f"scale from {priors}; the back wall's distance is a prior"
+        note = f"scale from {estimate.priors}; the back wall's distance is a prior"
         ctx.vanishing_points = frame.vanishing_points(K)
         ctx.camera = Camera(
             K=K.tolist(),
