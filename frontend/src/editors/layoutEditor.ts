@@ -14,6 +14,7 @@ import { LayoutDraft } from "../state/layoutDraft";
 import type { SceneSession } from "../state/sceneSession";
 import { jobProgress } from "../views/common/jobProgress";
 import { frameFor } from "../views/photo/arrowGeometry";
+import { drawingRect, insideRect } from "../views/photo/cornerHandles";
 import { mountLayoutLayer } from "../views/photo/layoutLayer";
 
 export const LAYOUT_EDIT_KEY = "E";
@@ -42,11 +43,8 @@ export function mountLayoutEditing(
   const { width, height } = session.doc.scene.image;
   const frame = frameFor(width, height);
   // A corner is in view on the photo or in the margin around it (where handles can be grabbed).
-  const inView = ([x, y]: Point2) =>
-    x >= -frame.margin &&
-    x <= width + frame.margin &&
-    y >= -frame.margin &&
-    y <= height + frame.margin;
+  const drawing = drawingRect(frame);
+  const inView = (point: Point2) => insideRect(point, drawing);
   const draft = new LayoutDraft(session.doc, inView);
   const detach = session.attachLayout(draft);
   const bar: ProbedLayoutBar = el("div");

@@ -19,7 +19,7 @@ export interface EditPermission {
 }
 
 /** The banner's headline for a read-only scene in this state. */
-export function lockTitle(state: SceneState | null | undefined): string {
+function lockTitle(state: SceneState | null | undefined): string {
   switch (state) {
     case "submitted":
       return "Submitted for review — read only";

@@ -267,16 +267,7 @@ export class LayoutDraft {
   applyState(state: LayoutState): void {
     this.dragStart = null;
     this.setState(copyState(state));
-    this.moved = !sameLayout(this.snapshot(), this.storedState(this.used));
-    if (this.moved) {
-      this.refit();
-      return;
-    }
-    this.cancelFrame();
-    this.live = storedRoom(this.doc);
-    this.error = null;
-    this.fitTimes.length = 0;
-    this.emit("fit");
+    this.settle();
   }
 
   /**
@@ -319,9 +310,7 @@ export class LayoutDraft {
       else this.applyState(state);
       return;
     }
-    this.moved = !sameLayout(this.snapshot(), this.storedState(this.used));
-    if (this.moved) this.refit();
-    else this.applyState(this.snapshot());
+    this.settle();
     this.record(`move the room's ${cornerName(index)}`, state);
   }
 
@@ -379,13 +368,25 @@ export class LayoutDraft {
 
   /** The stored layout's corners and room. `pinned`: corners to keep using (if known). */
   private toStored(pinned: readonly boolean[] = []): void {
-    this.cancelFrame();
     this.dragStart = null;
+    this.setState(this.storedState(pinned));
+    this.showStoredRoom();
+  }
+
+  /** Fit the room to the corners, or show the stored room when they are the stored ones. */
+  private settle(): void {
+    this.moved = !sameLayout(this.snapshot(), this.storedState(this.used));
+    if (this.moved) this.refit();
+    else this.showStoredRoom();
+  }
+
+  /** Show the stored room (the corners give the stored layout). */
+  private showStoredRoom(): void {
+    this.cancelFrame();
     this.live = storedRoom(this.doc);
     this.error = null;
     this.moved = false;
     this.fitTimes.length = 0;
-    this.setState(this.storedState(pinned));
     this.emit("fit");
   }
 

@@ -521,7 +521,7 @@ export class SceneSession {
       if (this.layoutPending && layoutChanged) {
         lines.push("Both of you changed the room layout: your corners are kept on top.");
       }
-      const unsaved = this.edits.size + (this.layoutPending ? 1 : 0);
+      const unsaved = this.unsavedCount;
       if (unsaved > 0) {
         lines.push(
           `Your ${plural(unsaved, "unsaved change")} ${unsaved === 1 ? "is" : "are"} applied on top` +

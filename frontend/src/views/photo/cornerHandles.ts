@@ -5,6 +5,7 @@
 // as the pointer moves (along the edge the handle slides with the pointer; across the edge
 // the corner comes nearer or goes further out).
 import type { Point2 } from "../../geometry/camera";
+import type { Frame } from "./arrowGeometry";
 
 export interface Rect {
   left: number;
@@ -25,6 +26,12 @@ export interface PlacedHandle {
   clamped: boolean;
   /** Unit vector from the handle towards the corner (clamped handles only). */
   direction: Point2 | null;
+}
+
+/** The drawing over a photo: the photo and the margin around it (image pixels). */
+export function drawingRect(frame: Frame): Rect {
+  const { width, height, margin } = frame;
+  return { left: -margin, top: -margin, right: width + margin, bottom: height + margin };
 }
 
 /** The point of the rectangle nearest to `p`. */

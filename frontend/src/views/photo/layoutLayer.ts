@@ -14,12 +14,12 @@ import type { LayoutDraft } from "../../state/layoutDraft";
 import { type Frame, strokeWidth } from "./arrowGeometry";
 import {
   draggedCorner,
+  drawingRect,
   followPointer,
   insetRect,
   offPhotoText,
   type PlacedHandle,
   placeHandles,
-  type Rect,
 } from "./cornerHandles";
 
 const fmt = (p: Point2) => `${p[0].toFixed(1)} ${p[1].toFixed(1)}`;
@@ -60,12 +60,7 @@ export function mountLayoutLayer(
   // A handle on the edge is larger: it stands for a corner one cannot see.
   const clampedRadius = radius * 1.4;
   // The drawing (the photo and its margin) and where clamped handles sit, whole, inside it.
-  const area: Rect = {
-    left: -frame.margin,
-    top: -frame.margin,
-    right: frame.width + frame.margin,
-    bottom: frame.height + frame.margin,
-  };
+  const area = drawingRect(frame);
   const border = insetRect(area, clampedRadius * 1.15);
 
   const drawEdges = () => {

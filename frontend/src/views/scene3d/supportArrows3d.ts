@@ -48,7 +48,10 @@ export class SupportArrows3d {
     return this.shown;
   }
 
+  /** Show these arrows; the same arrows again (the view redraws on many changes) keep the
+   * baked mesh. */
   set(arrows: readonly Arrow3d[]): void {
+    if (sameArrows(arrows, this.shown)) return;
     this.shown = [...arrows];
     const start = new THREE.Vector3();
     const end = new THREE.Vector3();
@@ -92,4 +95,24 @@ export class SupportArrows3d {
     this.headGeometry.dispose();
     this.material.dispose();
   }
+}
+
+const sameCoords = (a: readonly number[], b: readonly number[]) =>
+  a.length === b.length && a.every((v, k) => v === b[k]);
+
+function sameArrows(a: readonly Arrow3d[], b: readonly Arrow3d[]): boolean {
+  return (
+    a.length === b.length &&
+    a.every((x, i) => {
+      const y = b[i];
+      return (
+        y !== undefined &&
+        x.child === y.child &&
+        x.parent === y.parent &&
+        x.type === y.type &&
+        sameCoords(x.start, y.start) &&
+        sameCoords(x.end, y.end)
+      );
+    })
+  );
 }
