@@ -1,6 +1,6 @@
 """Metrology -> placement -> model fitting on 20 synthetic scenes (seeds 7000-7019).
 
-    python benchmarks/bench_placement.py [--seeds N]
+    python benchmarks/bench_placement.py [--seeds N] [--first-seed S]
 
 An oracle stands in for the stages before these: the true 2D boxes and classes, the true
 masks (then, in a second pass, the filled 2D boxes as masks), the true supports, and the true
@@ -79,12 +79,13 @@ def run(scenes: list[SyntheticScene], masks: MaskKind) -> None:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=20)
+    parser.add_argument("--first-seed", type=int, default=FIRST_SEED)
     args = parser.parse_args()
     print(
         "oracle inputs: true 2D boxes + classes, masks, supports, camera and layout "
         "(vanishing points from them); stages timed: heights_by_metrology, placement, shapes_fit"
     )
-    scenes = [synthesize(seed) for seed in range(FIRST_SEED, FIRST_SEED + args.seeds)]
+    scenes = [synthesize(seed) for seed in range(args.first_seed, args.first_seed + args.seeds)]
     run(scenes, "truth")
     run(scenes, "box")
     return 0

@@ -12,11 +12,13 @@ from holiscene.geometry.metric_scale import (
     MIN_CALIBRATION_COUNT,
     ClassCalibration,
     ScaleCalibration,
+    bottom_may_be_hidden,
     camera_height,
     default_calibration,
     fit_calibration,
 )
 from holiscene.knowledge.object_sizes import height_spread
+from holiscene_schema import SceneObject
 
 
 def test_fit_takes_the_median_and_a_robust_spread() -> None:
@@ -67,3 +69,18 @@ def test_without_evidence_the_camera_prior_decides() -> None:
     metres, used = camera_height(camera, [], 1.2, 640)
     assert 1.25 < metres < CAMERA_HEIGHT_PRIOR[0] and "room height" in used
     assert math.isfinite(metres)
+
+
+def test_a_bottom_edge_behind_a_nearer_object_may_be_hidden() -> None:
+    """A box cut off by a nearer object ends where the view does, not on the floor: its
+    contact would lie too far away (and push the room's walls out)."""
+    chair = SceneObject(id="chair", cls="chair", bbox=[200.0, 150.0, 260.0, 300.0])
+    table = SceneObject(id="table", cls="table", bbox=[150.0, 250.0, 400.0, 380.0])
+    picture = SceneObject(id="picture", cls="picture", bbox=[150.0, 20.0, 300.0, 120.0])
+    objects = [chair, table, picture]
+    assert bottom_may_be_hidden(chair, objects)
+    assert not bottom_may_be_hidden(table, objects)
+    assert not bottom_may_be_hidden(picture, objects)  # nothing reaches over its bottom edge
+    # Beside the table the chair's bottom edge is seen.
+    chair_beside = chair.model_copy(update={"bbox": [420.0, 150.0, 480.0, 300.0]})
+    assert not bottom_may_be_hidden(chair_beside, [chair_beside, table])

@@ -121,6 +121,19 @@ def floor_contacts(
     return out
 
 
+def bottom_may_be_hidden(obj: SceneObject, objects: list[SceneObject]) -> bool:
+    """Whether the middle of the box's bottom edge lies inside the box of an object that
+    reaches lower in the photo (nearer the camera, so possibly in front of it): the box then
+    ends where the view is cut off, and its floor contact may lie too far away, even beyond
+    the walls. (The scale still uses such objects: its calibration counts that error in.)"""
+    x1, _, x2, y2 = obj.bbox
+    centre = (x1 + x2) / 2
+    return any(
+        o is not obj and o.bbox[0] < centre < o.bbox[2] and o.bbox[1] < y2 < o.bbox[3] - 2
+        for o in objects
+    )
+
+
 def measured_log_camera_height(
     camera: PinholeCamera, obj: SceneObject, base: FloatArray
 ) -> float | None:

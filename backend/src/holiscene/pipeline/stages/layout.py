@@ -14,7 +14,12 @@ from numpy.typing import NDArray
 from ...geometry.camera import FloatArray, PinholeCamera
 from ...geometry.lines import detect_segments
 from ...geometry.manhattan import ManhattanFrame, estimate_manhattan_frame
-from ...geometry.metric_scale import ROOM_HEIGHT_PRIOR, camera_height, floor_contacts
+from ...geometry.metric_scale import (
+    ROOM_HEIGHT_PRIOR,
+    bottom_may_be_hidden,
+    camera_height,
+    floor_contacts,
+)
 from ...geometry.room_layout import RoomHypothesis, SurfaceEvidence, estimate_room, room_to_world
 from ...geometry.surface_map import (
     DEFAULT_SURFACE_MODEL,
@@ -67,12 +72,14 @@ def estimate_layout(
     contacts = floor_contacts(camera, objects, height)
     to_room = room_to_world(frame)
     boxes = [o.bbox for o in objects]
+    # Points surely inside the room: contacts whose bottom edge no nearer object may hide.
+    inside = [p for o, p in contacts if not bottom_may_be_hidden(o, objects)]
     room = estimate_room(
         camera,
         frame,
         segments,
         (width, height),
-        np.array([p for _, p in contacts]) if contacts else None,
+        np.array(inside) if inside else None,
         SurfaceEvidence(camera, image, boxes, to_room),
         boxes,
         SurfaceMap.predict(surface_model, image, camera, to_room) if surface_model else None,
