@@ -98,9 +98,9 @@ def main() -> int:
         f"infer: {infer_seconds / args.count:.2f} s/scene"
     )
     header = ["predictions", "support acc %", "supporter %", "type %", "pitch MAE", "roll MAE"]
-    header += ["layout IoU %", "mAP@0.15 %", "mask IoU %"]
+    header += ["layout IoU %", "in view %", "mAP@0.15 %", "mask IoU %"]
     print("| " + " | ".join(header) + " |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| " + " | ".join(["---"] * len(header)) + " |")
     for name, s in (
         ("ground truth", truth),
         ("current pipeline", pipeline),
@@ -113,12 +113,13 @@ def main() -> int:
             pct(support["type_accuracy"]),
         ]
         if name == "class prior only":  # supports only: the rest is copied from the truth
-            cells += ["-"] * 5
+            cells += ["-"] * 6
         else:
             cells += [
                 deg(s["camera"]["pitch_mae_deg"]),
                 deg(s["camera"]["roll_mae_deg"]),
                 pct(s["layout"]["iou_3d"]),
+                pct(s["layout"]["iou_3d_in_view"]),
                 pct(s["detection_3d"]["map"]),
                 pct(s["mask"]["mean_iou"]),
             ]

@@ -6,8 +6,9 @@ import math
 
 import numpy as np
 import pytest
-from holiscene.evaluation.box_iou import iou_2d, iou_3d
+from holiscene.evaluation.box_iou import iou_2d, iou_3d, iou_3d_in_view
 from holiscene.geometry.boxes import box_corners
+from holiscene.geometry.camera import PinholeCamera
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -57,3 +58,22 @@ def test_iou_is_symmetric_and_bounded(yaw: float, dx: float, dz: float) -> None:
 def test_iou_2d() -> None:
     assert iou_2d([0, 0, 2, 2], [1, 1, 3, 3]) == pytest.approx(1 / 7)
     assert iou_2d([0, 0, 1, 1], [2, 2, 3, 3]) == 0.0
+
+
+def test_in_view_iou_ignores_what_the_camera_cannot_see() -> None:
+    """Two rooms that differ only behind the camera: the full IoU sees the difference, the
+    in-view IoU does not; moving the wall the camera faces changes both."""
+    camera = PinholeCamera(np.array([[400.0, 0, 320], [0, 400, 240], [0, 0, 1]]), 10.0, 0.0)
+    size = (640, 480)
+    # The camera looks along +x (y up, z right); the room spans x from -back to 5.
+    room = box_corners(np.array([2.0, 0.0, 0.0]), np.array([6.0, 3.0, 4.0]), 0.0)  # back 1 m
+    deeper_behind = box_corners(np.array([1.5, 0.0, 0.0]), np.array([7.0, 3.0, 4.0]), 0.0)
+    assert iou_3d(room, deeper_behind) == pytest.approx(6 / 7)
+    assert iou_3d_in_view(room, deeper_behind, camera, size) == pytest.approx(1.0)
+    assert iou_3d_in_view(room, room, camera, size) == pytest.approx(1.0)
+    shallower = box_corners(np.array([1.5, 0.0, 0.0]), np.array([5.0, 3.0, 4.0]), 0.0)
+    in_view = iou_3d_in_view(room, shallower, camera, size)
+    assert 0.5 < in_view < 0.95
+    assert iou_3d_in_view(room, shallower, camera, size, cells=96) == pytest.approx(
+        in_view, abs=0.02
+    )

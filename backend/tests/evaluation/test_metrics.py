@@ -7,7 +7,7 @@ import pytest
 from holiscene.evaluation.metrics import Evaluation
 from holiscene.geometry.boxes import box_corners
 from holiscene.rle import encode_mask
-from holiscene_schema import Camera, ImageInfo, Scene, SceneObject, SupportRelation
+from holiscene_schema import Camera, ImageInfo, Layout, Scene, SceneObject, SupportRelation
 
 IMAGE = ImageInfo(file="img.png", width=20, height=10)
 
@@ -105,3 +105,18 @@ def test_average_precision_with_a_false_positive_ranked_first() -> None:
     # Ranked: false positive, then two hits -> precision 0, 1/2, 2/3 at recall 0, 1/2, 1.
     evaluation.detections["chair"] = [(0.9, False), (0.8, True), (0.7, True)]
     assert evaluation.average_precision()["chair"] == pytest.approx(2 / 3)
+
+
+def test_layout_in_view_leaves_out_the_room_behind_the_camera() -> None:
+    view = Camera(
+        K=[[10.0, 0, 10], [0, 10, 5], [0, 0, 1]], K_source="given", pitch_deg=10.0, roll_deg=0.0
+    )
+    room = box_corners(np.array([2.0, 0.0, 0.0]), np.array([6.0, 3.0, 4.0]), 0.0)
+    behind_moved = box_corners(np.array([1.0, 0.0, 0.0]), np.array([8.0, 3.0, 4.0]), 0.0)
+    truth = Scene(name="t", image=IMAGE, camera=view, layout=Layout(corners_3d=room.tolist()))
+    guess = truth.model_copy(update={"layout": Layout(corners_3d=behind_moved.tolist())})
+    evaluation = Evaluation()
+    evaluation.add(guess, truth)
+    layout = evaluation.summary()["layout"]
+    assert layout["iou_3d"] == pytest.approx(0.75)
+    assert layout["iou_3d_in_view"] == pytest.approx(1.0)

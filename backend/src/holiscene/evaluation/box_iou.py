@@ -10,6 +10,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ..geometry.camera import PinholeCamera
+
 Polygon = NDArray[np.float64]  # (N, 2), counter-clockwise
 
 
@@ -90,3 +92,44 @@ def iou_2d(a: list[float], b: list[float]) -> float:
     inter = w * h
     union = (a[2] - a[0]) * (a[3] - a[1]) + (b[2] - b[0]) * (b[3] - b[1]) - inter
     return inter / union if union > 0 else 0.0
+
+
+def _inside_box(corners: NDArray[np.float64], points: NDArray[np.float64]) -> NDArray[np.bool_]:
+    """Which points lie in the box of (8, 3) corners (contract order: corner 0, its two
+    bottom neighbours 1 and 3, and 4 above it)."""
+    origin = corners[0]
+    inside = np.ones(len(points), dtype=bool)
+    for neighbour in (corners[1], corners[3], corners[4]):
+        axis = neighbour - origin
+        t = (points - origin) @ axis / float(axis @ axis)
+        inside &= (t >= 0.0) & (t <= 1.0)
+    return inside
+
+
+def iou_3d_in_view(
+    corners_a: NDArray[np.float64],
+    corners_b: NDArray[np.float64],
+    camera: PinholeCamera,
+    image_size: tuple[int, int],
+    cells: int = 64,
+) -> float:
+    """3D IoU of the parts of two boxes the photo shows (inside the camera's view frustum),
+    on a regular grid of `cells`^3 points over both boxes (the room parts out of view, such
+    as the wall behind the camera, are left to priors and do not count here)."""
+    a, b = np.asarray(corners_a, dtype=float), np.asarray(corners_b, dtype=float)
+    both = np.vstack([a, b])
+    axes = [np.linspace(lo, hi, cells) for lo, hi in zip(both.min(0), both.max(0), strict=True)]
+    points = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+    pixels = camera.project(points)
+    width, height = image_size
+    in_view = (
+        np.isfinite(pixels).all(axis=1)
+        & (pixels[:, 0] >= 0)
+        & (pixels[:, 0] <= width)
+        & (pixels[:, 1] >= 0)
+        & (pixels[:, 1] <= height)
+    )
+    in_a = _inside_box(a, points) & in_view
+    in_b = _inside_box(b, points) & in_view
+    union = int(np.count_nonzero(in_a | in_b))
+    return int(np.count_nonzero(in_a & in_b)) / union if union else 0.0

@@ -2,7 +2,9 @@
 
 - Support accuracy at object level: supporter and type both right (thesis Table 4.2), plus the
   two parts on their own ("per question": which supporter, which type).
-- Layout 3D IoU of the room cuboids (Total3DUnderstanding's layout metric).
+- Layout 3D IoU of the room cuboids (Total3DUnderstanding's layout metric), and the same IoU
+  of only the parts inside the camera's view (no photo shows the walls behind or beside the
+  camera; SUN RGB-D's layouts, annotated on depth scans, barely contain them either).
 - Camera pitch and roll mean absolute error in degrees.
 - 3D detection average precision at 3D IoU 0.15 per class and its mean (VOC all-point AP).
 - 2D mask IoU per ground-truth object.
@@ -19,8 +21,9 @@ from typing import Any
 import numpy as np
 from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene
 
+from ..geometry.camera import PinholeCamera
 from ..rle import decode_mask
-from .box_iou import iou_3d
+from .box_iou import iou_3d, iou_3d_in_view
 from .matching import match_objects
 
 AP_IOU = 0.15
@@ -41,6 +44,7 @@ class Evaluation:
     roll_errors: list[float] = field(default_factory=list)
     camera_missing: int = 0
     layout_ious: list[float] = field(default_factory=list)
+    layout_ious_in_view: list[float] = field(default_factory=list)
     layout_missing: int = 0
     mask_ious: list[float] = field(default_factory=list)
     # class -> list of (score, is_true_positive) and the count of ground-truth boxes
@@ -93,10 +97,15 @@ class Evaluation:
         if predicted.layout.corners_3d is None:
             self.layout_missing += 1
             self.layout_ious.append(0.0)
+            self.layout_ious_in_view.append(0.0)
             return
-        self.layout_ious.append(
-            iou_3d(np.array(predicted.layout.corners_3d), np.array(truth.layout.corners_3d))
-        )
+        estimate, true = np.array(predicted.layout.corners_3d), np.array(truth.layout.corners_3d)
+        self.layout_ious.append(iou_3d(estimate, true))
+        camera = truth.camera
+        if camera is not None and camera.pitch_deg is not None and camera.roll_deg is not None:
+            view = PinholeCamera(np.array(camera.K), camera.pitch_deg, camera.roll_deg)
+            size = (truth.image.width, truth.image.height)
+            self.layout_ious_in_view.append(iou_3d_in_view(estimate, true, view, size))
 
     def _add_masks(self, predicted: Scene, truth: Scene, matched: dict[str, str]) -> None:
         pred_by_id = {o.id: o for o in predicted.objects}
@@ -178,6 +187,7 @@ class Evaluation:
             },
             "layout": {
                 "iou_3d": mean(self.layout_ious),
+                "iou_3d_in_view": mean(self.layout_ious_in_view),
                 "scenes_without_layout": self.layout_missing,
             },
             "detection_3d": {

@@ -26,6 +26,7 @@ def markdown_report(summary: dict[str, Any], title: str) -> str:
         f"| camera roll MAE (deg) | {_fmt(camera['roll_mae_deg'])} |",
         f"| scenes without a camera estimate | {camera['scenes_without_estimate']} |",
         f"| layout 3D IoU (%) | {_fmt(layout['iou_3d'], 100)} |",
+        f"| layout 3D IoU of the parts in view (%) | {_fmt(layout['iou_3d_in_view'], 100)} |",
         f"| scenes without a layout (IoU 0) | {layout['scenes_without_layout']} |",
         f"| 3D detection mAP at IoU {det['iou_threshold']} (%) | {_fmt(det['map'], 100)} |",
         f"| 2D mask IoU (%) | {_fmt(mask['mean_iou'], 100)} over {mask['objects']} objects |",
