@@ -3,7 +3,10 @@
 For each scene, runs the layout stage's parts (Manhattan frame, Surface Network, room search,
 metric scale) and compares each part with the truth: the scale's error, each wall's distance
 error (in camera heights), and the layout IoU when that one part is replaced by the truth.
-The part whose replacement gains most is where work pays. Prints a row per scene and means.
+The part whose replacement gains most is where work pays. Two more rows bound what reading
+the photo better can give: the parts the photo shows (the faces of the true room in view) made
+true, and those with the true scale too (the parts out of view keep their size in metres).
+Prints a row per scene and means.
 """
 
 from __future__ import annotations
@@ -17,8 +20,10 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
-from holiscene.evaluation.box_iou import iou_3d
+from holiscene.evaluation.box_iou import iou_3d, iou_3d_in_view
+from holiscene.geometry.camera import PinholeCamera
 from holiscene.geometry.room_layout import RoomHypothesis
+from holiscene.geometry.surface_labels import SURFACES, map_pixels
 from holiscene.geometry.surface_map import load_surface_model
 from holiscene.inputs import read_input_folder
 from holiscene.pipeline import SceneContext, build_pipeline
@@ -59,6 +64,27 @@ def scene_parts(folder: Path) -> dict[str, float]:
         row[f"{part}_error"] = abs(getattr(room, part) / true_room[part] - 1)
         row[f"iou_true_{part}"] = iou(replace(room, **{part: true_room[part]}), metres)
     row["iou_all_walls_true"] = iou(replace(room, **true_room), metres)
+
+    # The parts whose faces the photo shows (on the true room).
+    rays = estimate.camera.ray(map_pixels(ctx.width, ctx.height)) @ to_room
+    faces_seen = {SURFACES[i] for i in np.unique(replace(room, **true_room).surfaces_seen(rays))}
+    in_view = [part for part in ("front", "left", "right", "ceiling") if part in faces_seen]
+    seen_true = replace(room, **{part: true_room[part] for part in in_view})
+    row["iou_parts_in_view_true"] = iou(seen_true, metres)
+    # ... and the true scale, the parts out of view keeping their size in metres.
+    ratio = metres / true_height
+    out_of_view = {
+        p: getattr(room, p) * ratio for p in PARTS if p not in in_view and p != "ceiling"
+    }
+    if "ceiling" not in in_view:
+        out_of_view["ceiling"] = (room.ceiling + 1.0) * ratio - 1.0
+    row["iou_in_view_and_scale_true"] = iou(replace(seen_true, **out_of_view), true_height)
+
+    camera = truth["camera"]
+    view = PinholeCamera(np.array(camera["K"]), camera["pitch_deg"], camera["roll_deg"])
+    estimate_corners = room.corners_room() @ to_room.T * metres
+    size = (ctx.width, ctx.height)
+    row["iou_in_view"] = iou_3d_in_view(estimate_corners, true_corners, view, size)
     return row
 
 
