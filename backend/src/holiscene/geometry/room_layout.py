@@ -295,7 +295,7 @@ EDGE_NORM = 0.3  # line support is counted in tenths of all segment length
 WALL_DISTANCE_PRIOR = {"front": (4.2, 0.35), "left": (2.2, 0.4), "right": (2.2, 0.4)}
 ROOM_WIDTH_PRIOR = (4.4, 0.25)  # metres across, sd of log: one side wall seen places the other
 PRIOR_WEIGHT = 0.1
-SURFACE_MAP_WEIGHT = 3.0  # agreement with the Surface Network (a share of cells, like colour)
+SURFACE_MAP_WEIGHT = 6.0  # agreement with the Surface Network (a share of cells, like colour)
 PRIOR_CAMERA_HEIGHT = 1.4
 
 

@@ -119,7 +119,9 @@ class LayoutFromLines(Stage):
             ctx.vanishing_points = np.zeros((0, 3))  # none found; later stages check the shape
             return
         frame, camera, metres = estimate.frame, estimate.camera, estimate.metres
-        corners = estimate.room.corners_room() @ estimate.to_room.T * metres
+        # Stored rounded; the 2D corners are those of the stored 3D ones (a corner near the
+        # camera's plane projects far away, where the rounding would show).
+        corners = (estimate.room.corners_room() @ estimate.to_room.T * metres).round(4)
         projected = camera.project(corners)
         note = f"scale from {estimate.priors}; the back wall's distance is a prior"
         ctx.vanishing_points = frame.vanishing_points(K)
@@ -135,7 +137,7 @@ class LayoutFromLines(Stage):
             corners_2d=[
                 None if np.isnan(p).any() else [round(float(v), 2) for v in p] for p in projected
             ],
-            corners_3d=corners.round(4).tolist(),
+            corners_3d=corners.tolist(),
             source="estimated",
             note=note,
         )
