@@ -37,8 +37,13 @@ class SurfaceModel:
         self.session = ort.InferenceSession(str(path), options, providers=["CPUExecutionProvider"])
 
     def probabilities(self, rgb: NDArray[np.uint8]) -> NDArray[np.float32]:
-        """(cells, classes) probabilities, cells row by row over MAP_SIZE."""
-        logits = self.session.run(None, {"image": network_input(rgb)})[0][0]  # (C, h, w)
+        """(cells, classes) probabilities, cells row by row over MAP_SIZE: the mean of the
+        photo's and its mirror image's (mirroring keeps every label, as in training)."""
+        plain, mirrored = (
+            self.session.run(None, {"image": network_input(image)})[0][0]  # (C, h, w)
+            for image in (rgb, rgb[:, ::-1])
+        )
+        logits = (plain + mirrored[:, :, ::-1]) / 2.0
         flat = logits.reshape(logits.shape[0], -1).T
         flat = np.exp(flat - flat.max(axis=1, keepdims=True))
         result: NDArray[np.float32] = flat / flat.sum(axis=1, keepdims=True)
