@@ -31,16 +31,19 @@ from ..base import SceneContext, Stage, required
 from ..registry import register_stage
 
 MIN_CEILING_ABOVE_CAMERA = 0.15  # camera heights: a camera is never at the ceiling
+BACK_WALL_DISTANCE_M = 0.65  # people photograph a room standing a little way from a wall
 
 
-def ceiling_from_priors(room: RoomHypothesis, metres: float) -> RoomHypothesis:
-    """A ceiling the photo does not show sits at the typical room height: in camera heights,
-    that depends on the fused scale (the line search's guess, from wall colours alone, was
-    off by a quarter on average; this is off by about the room-height prior's spread)."""
+def unseen_parts_from_priors(room: RoomHypothesis, metres: float) -> RoomHypothesis:
+    """The parts the photo does not show, in metres now that the scale is known: the wall
+    behind the camera at a typical distance, and a ceiling not seen at the typical room height
+    (the line search's guess, from wall colours alone, was off by a quarter on average; this
+    is off by about the room-height prior's spread)."""
+    back = BACK_WALL_DISTANCE_M / metres
     if room.ceiling_seen:
-        return room
+        return dataclasses.replace(room, back=back)
     ceiling = max(ROOM_HEIGHT_PRIOR[0] / metres - 1.0, MIN_CEILING_ABOVE_CAMERA)
-    return dataclasses.replace(room, ceiling=ceiling)
+    return dataclasses.replace(room, back=back, ceiling=ceiling)
 
 
 @dataclass(frozen=True)
@@ -87,7 +90,8 @@ def estimate_layout(
     metres, priors = camera_height(
         camera, contacts, room.ceiling if room.ceiling_seen else None, width
     )
-    return LayoutEstimate(frame, camera, to_room, ceiling_from_priors(room, metres), metres, priors)
+    room = unseen_parts_from_priors(room, metres)
+    return LayoutEstimate(frame, camera, to_room, room, metres, priors)
 
 
 @register_stage
