@@ -19,8 +19,11 @@ from .geometry.room_fit import fit_room, project_room_corners
 
 CAMERA_HEIGHT_PRIOR_M = 1.4  # the layout stage's prior (pipeline/stages/layout.py)
 # A known corner may lie outside the photo (a room corner beside or behind the frame), but not
-# absurdly far: within this many image widths (heights) of the image on each side.
-MAX_IMAGES_OUTSIDE = 10.0
+# absurdly far: within this many image widths (heights) of the image on each side. A corner
+# near the camera's plane projects thousands of pixels away (12 image widths for synth-12's
+# room); the layout stage stores such corners and the page fits with them, so the bound only
+# stops numbers no room gives.
+MAX_IMAGES_OUTSIDE = 1000.0
 # A room smaller than this on a side is a mistake (and placement ignores such rooms).
 MIN_ROOM_SIDE_M = 0.5
 MAX_ROOM_SIDE_M = 100.0
