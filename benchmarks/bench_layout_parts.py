@@ -82,9 +82,8 @@ def scene_parts(folder: Path) -> dict[str, float]:
 
     camera = truth["camera"]
     view = PinholeCamera(np.array(camera["K"]), camera["pitch_deg"], camera["roll_deg"])
-    estimate_corners = room.corners_room() @ to_room.T * metres
     size = (ctx.width, ctx.height)
-    row["iou_in_view"] = iou_3d_in_view(estimate_corners, true_corners, view, size)
+    row["iou_in_view"] = iou_3d_in_view(estimate.corners_world(), true_corners, view, size)
     return row
 
 

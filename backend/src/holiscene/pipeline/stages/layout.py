@@ -57,6 +57,11 @@ class LayoutEstimate:
     metres: float  # the camera's height
     priors: str  # which priors decided `metres`
 
+    def corners_world(self) -> FloatArray:
+        """The room's 8 corners in the world frame, metres (contract order)."""
+        result: FloatArray = self.room.corners_room() @ self.to_room.T * self.metres
+        return result
+
 
 def estimate_layout(
     image: NDArray[np.uint8],
@@ -65,7 +70,8 @@ def estimate_layout(
     surface_model: SurfaceModel | None,
 ) -> LayoutEstimate | None:
     """Manhattan frame -> room search (with the Surface Network's labels when there is a
-    model) -> metric scale -> unseen ceiling; None when too few vertical lines are seen."""
+    model) -> metric scale -> the parts out of view in metres (back wall, unseen ceiling);
+    None when too few vertical lines are seen."""
     height, width = image.shape[:2]
     segments = detect_segments(image)
     frame = estimate_manhattan_frame(segments, K)
@@ -125,7 +131,7 @@ class LayoutFromLines(Stage):
         frame, camera, metres = estimate.frame, estimate.camera, estimate.metres
         # Stored rounded; the 2D corners are those of the stored 3D ones (a corner near the
         # camera's plane projects far away, where the rounding would show).
-        corners = (estimate.room.corners_room() @ estimate.to_room.T * metres).round(4)
+        corners = estimate.corners_world().round(4)
         projected = camera.project(corners)
         note = f"scale from {estimate.priors}; the back wall's distance is a prior"
         ctx.vanishing_points = frame.vanishing_points(K)
