@@ -11,6 +11,9 @@ from holiscene.evaluation.box_iou import iou_3d
 from holiscene.geometry.camera import PinholeCamera, rot_y
 from holiscene.geometry.lines import detect_segments
 from holiscene.geometry.manhattan import estimate_manhattan_frame
+from holiscene.geometry.room_layout import SurfaceEvidence, estimate_room, room_to_world
+from holiscene.geometry.surface_labels import SURFACES
+from holiscene.geometry.surface_map import SurfaceMap, load_surface_model
 from holiscene.pipeline import SceneContext, build_pipeline
 from holiscene.pipeline.base import Detection
 from holiscene.synth.generate import SyntheticScene, synthesize
@@ -86,3 +89,28 @@ def test_layout_stage_outputs_a_consistent_room() -> None:
         ious.append(iou_3d(corners, np.array(truth.layout.corners_3d)))
     # Measured 0.5-0.6 mean on synthetic rooms (see README); this guards against regressions.
     assert float(np.mean(ious)) > 0.4, ious
+
+
+def test_a_wall_out_of_view_keeps_its_distance_in_metres() -> None:
+    """The wall priors are in metres: with a taller camera (as the objects tell it) a wall the
+    photo does not show comes nearer in camera heights, while the walls it shows stay put."""
+    synthetic = scene(4101)  # shows the front and right walls, not the left one
+    image, K = synthetic.frame.rgb, synthetic.K
+    segments = detect_segments(image)
+    frame = estimate_manhattan_frame(segments, K)
+    assert frame is not None
+    camera = PinholeCamera(K, frame.pitch_deg, frame.roll_deg)
+    to_room = room_to_world(frame)
+    surface_map = SurfaceMap.predict(load_surface_model(), image, camera, to_room)
+    boxes = [o.bbox for o in synthetic.truth.objects]
+    evidence = SurfaceEvidence(camera, image, boxes, to_room)
+    short, tall = (
+        estimate_room(camera, frame, segments, (640, 480), None, evidence, boxes, surface_map, m)
+        for m in (1.2, 1.6)
+    )
+    seen = {SURFACES[i] for i in np.unique(short.surfaces_seen(surface_map.rays_room))}
+    assert {"front", "right"} <= seen and "left" not in seen
+    for wall in ("front", "right"):
+        assert getattr(tall, wall) == pytest.approx(getattr(short, wall), rel=0.05)
+    # 1.6 / 1.2 = 1.33 in a perfect search; its grid steps by about 17%.
+    assert 1.15 < short.left / tall.left < 1.6

@@ -26,6 +26,7 @@ from .manhattan import ManhattanFrame, room_directions
 from .surface_labels import nearest_surface
 from .surface_map import SurfaceMap
 
+PRIOR_CAMERA_HEIGHT = 1.4  # metres: turns priors in metres into camera heights by default
 BACK_WALL_PRIOR = 0.5  # the wall behind the camera is never seen: its distance is a prior
 CEILING_PRIOR = 0.96  # ceiling above the camera / camera height (2.75 m room, 1.4 m camera)
 EDGE_TOLERANCE_FRAC = 0.006  # of the image diagonal
@@ -219,12 +220,14 @@ def estimate_room(
     evidence: SurfaceEvidence | None = None,
     object_boxes: list[list[float]] | None = None,
     surface_map: SurfaceMap | None = None,
+    metres: float = PRIOR_CAMERA_HEIGHT,
 ) -> RoomHypothesis:
     """The best room for the segments; `floor_points` (N, 3, world, camera height 1) are
     points known to lie inside the room (where floor-standing objects touch the floor).
     Segments inside `object_boxes` are edges of objects, not of the room: they do not count.
     With a `surface_map` (the Surface Network's labels), agreeing with it counts most, and it
-    decides whether the ceiling is seen."""
+    decides whether the ceiling is seen. `metres` (the camera's height as the objects tell it)
+    turns the priors on wall distances, in metres, into camera heights."""
     to_room = room_to_world(frame)  # room -> world; world -> room is its transpose
     family = frame.family.copy()
     if object_boxes:
@@ -274,7 +277,17 @@ def estimate_room(
     minimum = (min_front, min_left, min_right)
     refined = [
         _refine_by_surfaces(
-            h, camera, segments, family, to_room, tolerance, size, evidence, minimum, surface_map
+            h,
+            camera,
+            segments,
+            family,
+            to_room,
+            tolerance,
+            size,
+            evidence,
+            minimum,
+            surface_map,
+            metres,
         )
         for h in hypotheses[:RESTARTS]
     ]
@@ -289,22 +302,22 @@ GRID_STEPS = {"front": 28, "left": 24, "right": 24, "ceiling": 20}
 ROUNDS = 2
 EDGE_WEIGHT = 0.3  # share of the score from line support (the rest: surface colours)
 EDGE_NORM = 0.3  # line support is counted in tenths of all segment length
-# A weak prior on each wall's distance from the camera (metres, log-normal; converted with a
-# camera height of 1.4 m): it decides walls the photo does not show and breaks ties between
+# A weak prior on each wall's distance from the camera (metres, log-normal; converted with the
+# camera height the objects tell): it decides walls the photo does not show and breaks ties between
 # floor-texture lines. People photograph a room from near one wall, away from the others.
 WALL_DISTANCE_PRIOR = {"front": (4.2, 0.35), "left": (2.2, 0.4), "right": (2.2, 0.4)}
 ROOM_WIDTH_PRIOR = (4.4, 0.25)  # metres across, sd of log: one side wall seen places the other
 PRIOR_WEIGHT = 0.1
 SURFACE_MAP_WEIGHT = 6.0  # agreement with the Surface Network (a share of cells, like colour)
-PRIOR_CAMERA_HEIGHT = 1.4
 
 
-def _layout_prior(h: RoomHypothesis) -> float:
-    """Squared log-normal z-scores of the room's width and each wall's distance (metres)."""
-    width = (h.left + h.right) * PRIOR_CAMERA_HEIGHT
+def _layout_prior(h: RoomHypothesis, metres: float) -> float:
+    """Squared log-normal z-scores of the room's width and each wall's distance (metres, with
+    the camera `metres` high)."""
+    width = (h.left + h.right) * metres
     total = (math.log(width / ROOM_WIDTH_PRIOR[0]) / ROOM_WIDTH_PRIOR[1]) ** 2
     for wall, (median, sd) in WALL_DISTANCE_PRIOR.items():
-        total += (math.log(getattr(h, wall) * PRIOR_CAMERA_HEIGHT / median) / sd) ** 2
+        total += (math.log(getattr(h, wall) * metres / median) / sd) ** 2
     return total
 
 
@@ -319,6 +332,7 @@ def _refine_by_surfaces(
     evidence: SurfaceEvidence,
     minimum: tuple[float, float, float],
     surface_map: SurfaceMap | None = None,
+    metres: float = PRIOR_CAMERA_HEIGHT,
 ) -> RoomHypothesis:
     """Coordinate ascent over each wall distance and the ceiling on a log grid, scoring
     surface colour consistency plus line support along the edges (plus agreement with the
@@ -327,7 +341,7 @@ def _refine_by_surfaces(
 
     def score(h: RoomHypothesis) -> float:
         edges = _edge_score(camera, segments, family, _edges(h, to_room), tolerance, size) / norm
-        prior = _layout_prior(h)
+        prior = _layout_prior(h, metres)
         fit = (1 - EDGE_WEIGHT) * evidence.explained(h) + EDGE_WEIGHT * edges
         if surface_map is not None:
             fit += SURFACE_MAP_WEIGHT * surface_map.agreement(

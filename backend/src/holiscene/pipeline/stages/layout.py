@@ -83,6 +83,9 @@ def estimate_layout(
     boxes = [o.bbox for o in objects]
     # Points surely inside the room: contacts whose bottom edge no nearer object may hide.
     inside = [p for o, p in contacts if not bottom_may_be_hidden(o, objects)]
+    # The objects' scale turns the priors on wall distances (metres) into camera heights; the
+    # seen ceiling then joins the final scale.
+    metres_from_objects, _ = camera_height(camera, contacts, None, width)
     room = estimate_room(
         camera,
         frame,
@@ -92,6 +95,7 @@ def estimate_layout(
         SurfaceEvidence(camera, image, boxes, to_room),
         boxes,
         SurfaceMap.predict(surface_model, image, camera, to_room) if surface_model else None,
+        metres_from_objects,
     )
     metres, priors = camera_height(
         camera, contacts, room.ceiling if room.ceiling_seen else None, width
