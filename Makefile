@@ -45,6 +45,7 @@ lint:
 	$(VENV)/bin/ruff check backend shared_schema benchmarks scripts
 	$(VENV)/bin/ruff format --check backend shared_schema benchmarks scripts
 	$(VENV)/bin/mypy
+	$(VENV)/bin/mypy benchmarks scripts
 	npm run -s lint
 
 format:

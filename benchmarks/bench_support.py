@@ -53,19 +53,23 @@ def main() -> int:
         start = time.perf_counter()
         result = score(name, method, samples)
         seconds = time.perf_counter() - start
+        supporter, type_right = (
+            result.supporter_right / result.total,
+            result.type_right / result.total,
+        )
         rows.append(
             {
                 "method": name,
                 "accuracy": result.accuracy,
-                "supporter": result.supporter_right / result.total,
-                "type": result.type_right / result.total,
+                "supporter": supporter,
+                "type": type_right,
                 "objects": result.total,
                 "seconds": seconds,
             }
         )
         print(
-            f"{name:40s} {100 * result.accuracy:8.2f}% {100 * rows[-1]['supporter']:9.2f}% "
-            f"{100 * rows[-1]['type']:6.2f}% {result.total:8d} {seconds:6.1f}"
+            f"{name:40s} {100 * result.accuracy:8.2f}% {100 * supporter:9.2f}% "
+            f"{100 * type_right:6.2f}% {result.total:8d} {seconds:6.1f}"
         )
     if args.json:
         args.json.write_text(json.dumps({"seed": args.seed, "rows": rows}, indent=1) + "\n")

@@ -50,7 +50,7 @@ def class_prior_supports(train: Path, test: Path, out: Path) -> None:
                     if not same:
                         continue
                     parent = same[0]
-                edge = SupportRelation(child=obj.id, parent=parent, type=kind, source="auto")  # type: ignore[arg-type]
+                edge = SupportRelation(child=obj.id, parent=parent, type=kind, source="auto")
                 supports.append(edge)
                 break
         predicted = scene.model_copy(update={"supports": []}).model_dump(mode="json")

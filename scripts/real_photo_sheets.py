@@ -59,11 +59,14 @@ def _surface_panel(rgb: np.ndarray) -> np.ndarray:
     return cv2.addWeighted(cv2.cvtColor(rgb, cv2.COLOR_RGB2BGR), 0.5, colours, 0.5, 0)
 
 
-def _render_glb(
-    glb: bytes, camera: PinholeCamera, size: tuple[int, int], walls: bool = True
+def _load_glb(glb: bytes) -> trimesh.Scene:
+    return trimesh.load_scene(trimesh.util.wrap_as_stream(glb), file_type="glb")
+
+
+def _render_scene(
+    loaded: trimesh.Scene, camera: PinholeCamera, size: tuple[int, int], walls: bool = True
 ) -> np.ndarray:
-    loaded = trimesh.load(trimesh.util.wrap_as_stream(glb), file_type="glb", force="scene")
-    items = []
+    items: list[RenderItem] = []
     for name, geometry in loaded.geometry.items():
         if not walls and (name == "ceiling" or name.startswith("wall_")):
             continue  # seen from above, the room is a floor
@@ -91,15 +94,17 @@ def main() -> int:
             size = (inputs.photo.width, inputs.photo.height)
             K = np.array(cam.K)
             panels.append(
-                _render_glb(result.glb, PinholeCamera(K, cam.pitch_deg, cam.roll_deg or 0.0), size)
+                _render_scene(
+                    _load_glb(result.glb),
+                    PinholeCamera(K, cam.pitch_deg, cam.roll_deg or 0.0),
+                    size,
+                )
             )
             # From above and behind the camera, looking down at the room.
             above = PinholeCamera(K, 50.0, 0.0)
-            lifted = trimesh.load(
-                trimesh.util.wrap_as_stream(result.glb), file_type="glb", force="scene"
-            )
+            lifted = _load_glb(result.glb)
             lifted.apply_translation([2.5, -3.5, 0.0])
-            panels.append(_render_glb(lifted.export(file_type="glb"), above, size, walls=False))
+            panels.append(_render_scene(lifted, above, size, walls=False))
         cv2.imwrite(str(out / f"{folder.name}.png"), np.hstack(panels))
         print(out / f"{folder.name}.png")
     return 0

@@ -35,9 +35,10 @@ def _labels_panel(scene: SyntheticScene) -> np.ndarray:
     panel = cv2.addWeighted(image, 0.35, overlay, 0.65, 0)
     corners = truth.layout.corners_2d or []
     for a, b in LAYOUT_EDGES:
-        if corners[a] is not None and corners[b] is not None:
-            pa = tuple(int(v) for v in np.clip(corners[a], -5000, 5000))
-            pb = tuple(int(v) for v in np.clip(corners[b], -5000, 5000))
+        corner_a, corner_b = corners[a], corners[b]
+        if corner_a is not None and corner_b is not None:
+            pa = tuple(int(v) for v in np.clip(corner_a, -5000, 5000))
+            pb = tuple(int(v) for v in np.clip(corner_b, -5000, 5000))
             cv2.line(panel, pa, pb, (0, 255, 255), 1, cv2.LINE_AA)
     for s in truth.supports:
         if s.child not in centres:
@@ -55,7 +56,8 @@ def _labels_panel(scene: SyntheticScene) -> np.ndarray:
 def _depth_panel(scene: SyntheticScene) -> np.ndarray:
     depth = scene.frame.depth
     scaled = np.clip(depth / max(float(depth.max()), 1e-6) * 255, 0, 255).astype(np.uint8)
-    return cv2.applyColorMap(255 - scaled, cv2.COLORMAP_VIRIDIS)
+    coloured: np.ndarray = cv2.applyColorMap(255 - scaled, cv2.COLORMAP_VIRIDIS)
+    return coloured
 
 
 def main() -> int:

@@ -120,3 +120,18 @@ def test_layout_in_view_leaves_out_the_room_behind_the_camera() -> None:
     layout = evaluation.summary()["layout"]
     assert layout["iou_3d"] == pytest.approx(0.75)
     assert layout["iou_3d_in_view"] == pytest.approx(1.0)
+
+
+def test_a_missed_layout_counts_in_view_only_where_the_truth_has_a_camera() -> None:
+    room = box_corners(np.array([2.0, 0.0, 0.0]), np.array([6.0, 3.0, 4.0]), 0.0).tolist()
+    view = Camera(
+        K=[[10.0, 0, 10], [0, 10, 5], [0, 0, 1]], K_source="given", pitch_deg=10.0, roll_deg=0.0
+    )
+    with_camera = Scene(name="a", image=IMAGE, camera=view, layout=Layout(corners_3d=room))
+    without_camera = with_camera.model_copy(update={"name": "b", "camera": camera(None, None)})
+    evaluation = Evaluation()
+    evaluation.add(with_camera, with_camera)  # in view 1.0
+    evaluation.add(Scene(name="b", image=IMAGE), without_camera)  # missed: no in-view figure
+    layout = evaluation.summary()["layout"]
+    assert layout["iou_3d"] == pytest.approx(0.5)
+    assert layout["iou_3d_in_view"] == pytest.approx(1.0)

@@ -94,16 +94,22 @@ class Evaluation:
     def _add_layout(self, predicted: Scene, truth: Scene) -> None:
         if truth.layout.corners_3d is None:
             return
+        true = np.array(truth.layout.corners_3d)
+        # The in-view IoU needs the true camera: scenes without its pitch and roll are left out
+        # of that mean (a missed layout counts 0 in both means otherwise).
+        camera = truth.camera
+        view = None
+        if camera is not None and camera.pitch_deg is not None and camera.roll_deg is not None:
+            view = PinholeCamera(np.array(camera.K), camera.pitch_deg, camera.roll_deg)
         if predicted.layout.corners_3d is None:
             self.layout_missing += 1
             self.layout_ious.append(0.0)
-            self.layout_ious_in_view.append(0.0)
+            if view is not None:
+                self.layout_ious_in_view.append(0.0)
             return
-        estimate, true = np.array(predicted.layout.corners_3d), np.array(truth.layout.corners_3d)
+        estimate = np.array(predicted.layout.corners_3d)
         self.layout_ious.append(iou_3d(estimate, true))
-        camera = truth.camera
-        if camera is not None and camera.pitch_deg is not None and camera.roll_deg is not None:
-            view = PinholeCamera(np.array(camera.K), camera.pitch_deg, camera.roll_deg)
+        if view is not None:
             size = (truth.image.width, truth.image.height)
             self.layout_ious_in_view.append(iou_3d_in_view(estimate, true, view, size))
 
