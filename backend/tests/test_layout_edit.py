@@ -108,6 +108,35 @@ def test_out_of_view_corners_left_to_the_fit_with_an_unseen_wall() -> None:
         apply_edits(scene_with_room(OLD), [set_layout(known)], "ann", utcnow())
 
 
+def test_a_camera_height_set_by_hand_scales_the_room_and_stays() -> None:
+    corners_2d = project_room_corners(K, PITCH, ROLL, OLD)
+    known: list[list[float] | None] = [
+        c if i in (1, 2, 5, 6) else None for i, c in enumerate(corners_2d)
+    ]
+    behind = wall_behind([1.5, 0, 0.2], 5.0, 4.0)
+    edit = set_layout(known, unseen_wall_distance=behind * 1.2, camera_height_m=1.8)
+    edited = apply_edits(scene_with_room(OLD), [edit], "ann", utcnow())
+    assert edited.camera is not None
+    assert edited.camera.height_m == pytest.approx(1.8)
+    assert edited.camera.height_source == "manual"
+    # Same corners in the photo, 20% taller camera: the same room 20% larger about the camera.
+    assert edited.layout.corners_3d is not None
+    np.testing.assert_allclose(edited.layout.corners_3d, OLD * 1.2, atol=2e-3)
+    assert "camera 1.80 m above the floor" in (edited.layout.note or "")
+    # A later edit without a height keeps the one set by hand.
+    again = apply_edits(edited, [set_layout(known, unseen_wall_distance=behind)], "ann", utcnow())
+    assert again.camera is not None
+    assert again.camera.height_m == pytest.approx(1.8)
+    assert again.camera.height_source == "manual"
+
+
+@pytest.mark.parametrize("height", [0.0, -1.0, 25.0])
+def test_an_impossible_camera_height_is_refused(height: float) -> None:
+    corners_2d = project_room_corners(K, PITCH, ROLL, OLD)
+    with pytest.raises(ValueError, match="camera_height_m"):
+        set_layout(corners_2d, camera_height_m=height)
+
+
 @pytest.mark.parametrize(
     ("corners", "message"),
     [

@@ -283,7 +283,7 @@ async function undoRedoDrag(page: Page, doc: SceneDocument): Promise<void> {
   expect(await cornerAt(page, floor)).toEqual(movedCorner);
   await nextFrames(page);
   expect(maxDifference(movedRoom, await scene3d(page, (p) => p.roomCorners()))).toBeLessThan(1e-9);
-  await expect(page.getByTestId("pending-edits")).toContainText("room layout: corners moved");
+  await expect(page.getByTestId("pending-edits")).toContainText("room layout changed");
 
   await page.keyboard.press("Control+z");
   await expect(bar).toHaveAttribute("data-dirty", "false");
@@ -380,4 +380,75 @@ test("layout undo after an autosave: the drag is saved back, and a reload shows 
   expect(Math.hypot(reloaded[0] - shown[0], reloaded[1] - shown[1])).toBeLessThan(0.5);
   expect(maxDifference(shownRoom, await scene3d(page, (p) => p.roomCorners()))).toBeLessThan(2e-3);
   await expect(page.getByTestId("recovery-banner")).toBeHidden();
+});
+
+test("the camera's height set by hand scales the room about the camera, undoes and is saved", async ({
+  page,
+  request,
+}) => {
+  test.setTimeout(300_000);
+  const doc = await seedFolder(request, synthesize(11), "synth-11 camera height");
+  await slowAutosave(page); // saved with the button here
+  await openScene(page, doc.scene_id);
+  const bar = page.getByTestId("layout-bar");
+  const field = page.getByTestId("camera-height");
+  await expect(page.getByTestId("camera-height-field")).toBeHidden();
+  await page.getByTestId("layout-toggle").click();
+  const estimated = doc.scene.camera?.height_m ?? Number.NaN;
+  await expect(field).toHaveValue(estimated.toFixed(2));
+  const room = (await scene3d(page, (p) => p.roomCorners())) ?? [];
+
+  // 25% higher: every corner of the room 25% further from the camera, and the status says so.
+  const higher = Number((estimated * 1.25).toFixed(2));
+  await field.fill(String(higher));
+  await field.press("Tab");
+  await expect(bar).toHaveAttribute("data-dirty", "true");
+  await expect(page.getByTestId("layout-status")).toContainText(
+    `camera ${higher.toFixed(2)} m high`,
+  );
+  await nextFrames(page);
+  const ratio = higher / estimated;
+  const scaled = room.map((c) => c.map((v) => v * ratio));
+  // (The stored room is rounded to 0.1 mm and its corners to 0.01 px: the fit of those corners
+  // is that room to about 0.1 mm; the height moved the corners by metres.)
+  expect(maxDifference(scaled, await scene3d(page, (p) => p.roomCorners()))).toBeLessThan(2e-3);
+  await page.screenshot({ path: path.join(SCREENSHOTS, "layout-camera-height.png") });
+
+  // Not a height: refused with the reason, the field shows the height in use.
+  await field.fill("0");
+  await field.press("Tab");
+  await expect(page.getByTestId("layout-status")).toContainText("must be between 0.1 and 20 m");
+  await expect(field).toHaveValue(higher.toFixed(2));
+
+  // Undone and redone like a corner drag (the page's keys, not the field's).
+  await field.blur();
+  await page.keyboard.press("Control+z");
+  await expect(bar).toHaveAttribute("data-dirty", "false");
+  await expect(field).toHaveValue(estimated.toFixed(2));
+  await nextFrames(page);
+  expect(maxDifference(room, await scene3d(page, (p) => p.roomCorners()))).toBeLessThan(1e-9);
+  await page.keyboard.press("Control+Shift+z");
+  await expect(bar).toHaveAttribute("data-dirty", "true");
+  await expect(field).toHaveValue(higher.toFixed(2));
+
+  // Saved: the camera's height is the annotator's, and a reload shows it.
+  await page.getByTestId("layout-save").click();
+  await expect(page.getByTestId("layout-status")).toContainText("Layout saved", {
+    timeout: 30_000,
+  });
+  const saved = await getScene(page.request, doc.scene_id);
+  expect(saved.revision).toBe(doc.revision + 1);
+  expect(saved.scene.camera).toMatchObject({ height_m: higher, height_source: "manual" });
+  expect(maxDifference(scaled, saved.scene.layout?.corners_3d ?? null)).toBeLessThan(2e-3);
+  const revisions = await getRevisions(page.request, doc.scene_id);
+  expect(revisions.at(-1)?.edits?.[0]).toMatchObject({
+    kind: "set_layout",
+    camera_height_m: higher,
+  });
+  await page.reload();
+  await expect(page.getByTestId("scene3d-canvas")).toHaveAttribute("data-status", "ready", {
+    timeout: 120_000,
+  });
+  await page.getByTestId("layout-toggle").click();
+  await expect(field).toHaveValue(higher.toFixed(2));
 });

@@ -42,8 +42,8 @@ class SetLayout(SchemaModel):
 
     The server fits the room box and the camera's pitch and roll to the known corners (the
     room fit, `holiscene.geometry.room_fit`, with the camera's height as the scale) and stores
-    the fitted box's corners and their projections. The objects' 3D boxes are not moved: a
-    placement job does that.
+    the fitted box's corners and their projections. A `camera_height_m` sets the scale by hand.
+    The objects' 3D boxes are not moved: a placement job does that.
     """
 
     kind: Literal["set_layout"] = "set_layout"
@@ -56,6 +56,13 @@ class SetLayout(SchemaModel):
         gt=0.0,
         description="Metres from the camera to a wall without known corners (the fit needs "
         "it when only two adjacent vertical room edges are known)",
+    )
+    camera_height_m: float | None = Field(
+        default=None,
+        ge=0.1,
+        le=20.0,
+        description="The camera's height above the floor in metres, when the annotator knows "
+        "it (the scale of the whole room; no photo tells it). Null keeps the scene's.",
     )
 
 

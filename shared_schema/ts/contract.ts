@@ -269,13 +269,17 @@ kind: "restore_support"
  * 
  * The server fits the room box and the camera's pitch and roll to the known corners (the
  * room fit, `holiscene.geometry.room_fit`, with the camera's height as the scale) and stores
- * the fitted box's corners and their projections. The objects' 3D boxes are not moved: a
- * placement job does that.
+ * the fitted box's corners and their projections. A `camera_height_m` sets the scale by hand.
+ * The objects' 3D boxes are not moved: a placement job does that.
  * 
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "SetLayout".
  */
 export interface SetLayout {
+/**
+ * The camera's height above the floor in metres, when the annotator knows it (the scale of the whole room; no photo tells it). Null keeps the scene's.
+ */
+camera_height_m: (number | null)
 /**
  * Pixels in the order of Layout.corners_3d; null for a corner not used (behind the camera, or out of view and left to the fit)
  * 

@@ -3,8 +3,9 @@
 The app fits the same corners with the TypeScript twin of `geometry.room_fit` while the
 annotator drags them (frontend/src/editors/layoutEditor.ts); the server fits them again here
 and stores the result, so what is saved is what the 3D view showed. Both sides take the
-metric scale from the camera's height in the same order: the camera's `height_m`, else the
-stored room's floor, else the layout stage's prior.
+metric scale from the camera's height in the same order: the edit's `camera_height_m` (set by
+hand), else the camera's `height_m`, else the stored room's floor, else the layout stage's
+prior.
 """
 
 from __future__ import annotations
@@ -76,6 +77,8 @@ def apply_set_layout(scene: Scene, edit: SetLayout) -> Scene:
         raise LayoutEditError("the scene has no camera intrinsics yet: run the pipeline first")
     _check_corners(scene, edit)
     metres, height_source = camera_height(scene)
+    if edit.camera_height_m is not None:
+        metres, height_source = edit.camera_height_m, "manual"
     K = np.asarray(scene.camera.K, dtype=float)
     try:
         fit = fit_room(K, edit.corners_2d, metres, unseen_wall_distance=edit.unseen_wall_distance)
@@ -100,6 +103,8 @@ def apply_set_layout(scene: Scene, edit: SetLayout) -> Scene:
     projected = project_room_corners(K, pitch, roll, corners_3d)
     known = sum(c is not None for c in edit.corners_2d)
     note = f"set by hand: {known} corners, fit error {fit.rms_px:.1f} px"
+    if edit.camera_height_m is not None:
+        note += f", camera {metres:.2f} m above the floor"
     if not fit.converged:
         note += " (the fit stopped before converging)"
     camera: Camera = scene.camera.model_copy(
@@ -122,4 +127,6 @@ def apply_set_layout(scene: Scene, edit: SetLayout) -> Scene:
 
 def describe_set_layout(edit: SetLayout) -> str:
     known = sum(c is not None for c in edit.corners_2d)
-    return f"room layout set from {known} corners"
+    if edit.camera_height_m is None:
+        return f"room layout set from {known} corners"
+    return f"room layout set from {known} corners, camera {edit.camera_height_m:.2f} m high"

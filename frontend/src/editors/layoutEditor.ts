@@ -10,7 +10,7 @@ import { el } from "../dom";
 import type { Point2 } from "../geometry/camera";
 import { registerShortcut } from "../shortcuts";
 import { getAuthor } from "../state/author";
-import { LayoutDraft } from "../state/layoutDraft";
+import { CAMERA_HEIGHT_RANGE_M, LayoutDraft } from "../state/layoutDraft";
 import type { SceneSession } from "../state/sceneSession";
 import { jobProgress } from "../views/common/jobProgress";
 import { frameFor } from "../views/photo/arrowGeometry";
@@ -87,6 +87,28 @@ function mountLayoutEditor(
   reset.title = "Back to the saved layout (Ctrl+Z undoes this)";
   const replace = button("Re-place objects", "replace-objects", () => void replaceObjects());
   replace.title = "Place the objects again in the saved room (a placement job)";
+  // The scale of the whole room: no photo tells it, an annotator may know it.
+  const heightInput = el("input", {
+    testid: "camera-height",
+    attrs: {
+      type: "number",
+      step: "0.01",
+      min: String(CAMERA_HEIGHT_RANGE_M[0]),
+      max: String(CAMERA_HEIGHT_RANGE_M[1]),
+      inputmode: "decimal",
+    },
+    on: { change: () => setHeight() },
+  });
+  const heightField = el(
+    "label",
+    { className: "camera-height", testid: "camera-height-field" },
+    "Camera height ",
+    heightInput,
+    " m",
+  );
+  heightField.title =
+    "The camera's height above the floor: the scale of the whole room, which the photo " +
+    "cannot tell (the pipeline guesses it from the objects' typical sizes)";
   const status = el("span", { className: "layout-status", testid: "layout-status" });
   const progress = jobProgress("placement-progress");
   progress.element.hidden = true;
@@ -100,6 +122,7 @@ function mountLayoutEditor(
       "div",
       { className: "layout-row" },
       toggle,
+      heightField,
       status,
       el("span", { className: "spacer" }),
       reset,
@@ -121,11 +144,26 @@ function mountLayoutEditor(
     const live = draft.live;
     if (!draft.editing || !live) return { text: "", alert: false };
     const [depth, height, width] = live.room.size.map((s) => s.toFixed(2));
-    const room = `room ${depth} × ${width} m, ${height} m high; camera pitch ${live.pitchDeg.toFixed(1)}°, roll ${live.rollDeg.toFixed(1)}°`;
+    const camera = `camera ${draft.cameraHeight.toFixed(2)} m high, pitch ${live.pitchDeg.toFixed(1)}°, roll ${live.rollDeg.toFixed(1)}°`;
+    const room = `room ${depth} × ${width} m, ${height} m high; ${camera}`;
     return {
       text: draft.dirty ? `Moved (not saved): ${room}` : `Drag the yellow corners. ${room}`,
       alert: false,
     };
+  };
+
+  const setHeight = () => {
+    const metres = heightInput.valueAsNumber;
+    const [low, high] = CAMERA_HEIGHT_RANGE_M;
+    if (!(metres >= low && metres <= high)) {
+      message = { text: `The camera's height must be between ${low} and ${high} m.`, alert: true };
+      heightInput.value = draft.cameraHeight.toFixed(2);
+      draw();
+      return;
+    }
+    message = null;
+    draft.setCameraHeight(metres);
+    draw();
   };
 
   const draw = () => {
@@ -134,6 +172,9 @@ function mountLayoutEditor(
     const editable = session.editable;
     toggle.disabled = !draft.available || !editable;
     toggle.setAttribute("aria-pressed", String(draft.editing));
+    heightField.hidden = !draft.editing;
+    heightInput.disabled = !editable || saving;
+    if (document.activeElement !== heightInput) heightInput.value = draft.cameraHeight.toFixed(2);
     toggle.classList.toggle("is-active", draft.editing);
     save.disabled = !editable || saving || draft.edit() === null;
     reset.disabled = !editable || saving || !draft.dirty;

@@ -9,7 +9,7 @@ import { plural, type SaveState, type SceneSession } from "../state/sceneSession
 import { describeEdit } from "../state/supportGraph";
 
 /** The room layout's line in the lists of unsaved changes. */
-const LAYOUT_CHANGE = "room layout: corners moved";
+const LAYOUT_CHANGE = "room layout changed (corners or camera height)";
 
 function statusText(state: SaveState, pending: number, revision: number, savable: boolean): string {
   switch (state.kind) {

@@ -49,7 +49,8 @@ function isLayoutState(value: unknown): value is LayoutState {
     l.corners.every(point) &&
     Array.isArray(l.used) &&
     l.used.length === 8 &&
-    (l.unseenDistance === null || typeof l.unseenDistance === "number")
+    (l.unseenDistance === null || typeof l.unseenDistance === "number") &&
+    (l.cameraHeightM == null || (typeof l.cameraHeightM === "number" && l.cameraHeightM > 0))
   );
 }
 

@@ -110,6 +110,30 @@ describe("LayoutDraft", () => {
     expect(draft.dirty).toBe(false);
   });
 
+  it("scales the room about the camera when the camera's height is set by hand", () => {
+    const draft = new LayoutDraft(documentFor(ROOM), inPhoto);
+    const steps: string[] = [];
+    draft.onStep = (label) => steps.push(label);
+    const behind = draft.snapshot().unseenDistance ?? 0;
+    draft.setCameraHeight(HEIGHT * 1.2);
+    expect(steps).toEqual(["set the camera's height to 1.80 m"]);
+    expect(draft.dirty).toBe(true);
+    expect(draft.cameraHeight).toBeCloseTo(HEIGHT * 1.2, 12);
+    // Same corners in the photo, a camera 20% higher: every corner 20% further away.
+    for (const [i, corner] of (draft.live?.corners3d ?? []).entries()) {
+      for (const [k, v] of corner.entries()) expect(v).toBeCloseTo((ROOM[i]?.[k] ?? 0) * 1.2, 6);
+    }
+    const edit = draft.edit();
+    expect(edit?.camera_height_m).toBeCloseTo(HEIGHT * 1.2, 12);
+    expect(edit?.unseen_wall_distance).toBeCloseTo(behind * 1.2, 9);
+    // Undo puts the scene's height back, and the stored room.
+    draft.applyState({ ...draft.snapshot(), cameraHeightM: null, unseenDistance: behind });
+    expect(draft.dirty).toBe(false);
+    expect(draft.cameraHeight).toBe(HEIGHT);
+    draft.setCameraHeight(-1); // not a height: ignored
+    expect(draft.dirty).toBe(false);
+  });
+
   it("is not available without a stored layout", () => {
     const doc = documentFor(ROOM);
     doc.scene.layout = { corners_2d: null, corners_3d: null, source: null, note: null };

@@ -16,6 +16,8 @@ import {
 
 /** The layout stage's camera-height prior (backend layout_edit.py: CAMERA_HEIGHT_PRIOR_M). */
 export const CAMERA_HEIGHT_PRIOR_M = 1.4;
+/** The camera heights an annotator may set, metres (SetLayout.camera_height_m's range). */
+export const CAMERA_HEIGHT_RANGE_M: readonly [number, number] = [0.1, 20];
 /** The sides a room may have, metres (layout_edit.py refuses others the same way). */
 export const MIN_ROOM_SIDE_M = 0.5;
 export const MAX_ROOM_SIDE_M = 100;
@@ -59,13 +61,15 @@ type Corner = Point2 | null;
 
 /**
  * What undo and redo put back of the layout (and what a draft in localStorage keeps): the
- * corners as dragged, which of them the fit uses, and the distance of a wall none of them
- * places. Plain JSON.
+ * corners as dragged, which of them the fit uses, the distance of a wall none of them places,
+ * and the camera's height when the annotator set it (null: the scene's). Plain JSON.
  */
 export interface LayoutState {
   corners: Corner[];
   used: boolean[];
   unseenDistance: number | null;
+  /** Metres; drafts kept before it existed lack it (read as null). */
+  cameraHeightM: number | null;
 }
 
 /** A corner handle: where the corner is, and whether the fit uses it (pinned) or places it. */
@@ -86,6 +90,7 @@ const copyState = (state: LayoutState): LayoutState => ({
   corners: state.corners.map((c) => (c ? ([c[0], c[1]] as Point2) : null)),
   used: [...state.used],
   unseenDistance: state.unseenDistance,
+  cameraHeightM: state.cameraHeightM ?? null,
 });
 
 const samePoint = (a: Corner | undefined, b: Corner | undefined) =>
@@ -93,10 +98,12 @@ const samePoint = (a: Corner | undefined, b: Corner | undefined) =>
     ? a == null && b == null
     : Math.abs(a[0] - b[0]) <= SAME_PX && Math.abs(a[1] - b[1]) <= SAME_PX;
 
-/** Whether two layout states give the fit the same corners (and unseen-wall distance). */
+/** Whether two layout states give the fit the same corners (unseen-wall distance, camera
+ * height). */
 export function sameLayout(a: LayoutState, b: LayoutState): boolean {
   return (
     a.unseenDistance === b.unseenDistance &&
+    (a.cameraHeightM ?? null) === (b.cameraHeightM ?? null) &&
     a.used.every((u, i) => u === b.used[i]) &&
     a.corners.every((c, i) => !a.used[i] || samePoint(c, b.corners[i]))
   );
@@ -104,7 +111,8 @@ export function sameLayout(a: LayoutState, b: LayoutState): boolean {
 
 const cornerName = (index: number) => `${index < 4 ? "floor" : "ceiling"} corner ${index}`;
 
-/** Metres from the camera to the floor, in the order layout_edit.py's camera_height uses. */
+/** Metres from the camera to the floor stored with the scene, in the order layout_edit.py's
+ * camera_height uses. */
 export function cameraHeight(doc: SceneDocument): number {
   const height = doc.scene.camera?.height_m;
   if (height != null && height > 0) return height;
@@ -149,6 +157,8 @@ export class LayoutDraft {
   /** Which corners the fit uses: those in view on the photo when editing began. */
   private used: boolean[] = [];
   private unseenDistance: number | null = null;
+  /** The camera's height set by hand in this draft (metres), or null for the scene's. */
+  private cameraHeightM: number | null = null;
   private moved = false;
   private frame = 0;
   /** The state when the corner being dragged was grabbed. */
@@ -168,6 +178,29 @@ export class LayoutDraft {
   /** Whether there is a stored layout to edit (its corners in the image and the room). */
   get available(): boolean {
     return storedRoom(this.doc) !== null && this.corners.some((c) => c !== null);
+  }
+
+  /** The camera's height the room is fitted with: set by hand in this draft, else the scene's. */
+  get cameraHeight(): number {
+    return this.cameraHeightM ?? cameraHeight(this.doc);
+  }
+
+  /**
+   * Set the camera's height by hand (metres; the scale of the whole room, which no photo
+   * tells): one undoable step. A wall no corner places keeps its place relative to the room,
+   * so the room scales about the camera.
+   */
+  setCameraHeight(metres: number): void {
+    const [low, high] = CAMERA_HEIGHT_RANGE_M;
+    if (!(metres >= low && metres <= high)) return;
+    if (Math.abs(metres - this.cameraHeight) < 1e-9) return;
+    const before = this.snapshot();
+    const ratio = metres / this.cameraHeight;
+    if (this.unseenDistance !== null) this.unseenDistance *= ratio;
+    this.cameraHeightM = metres;
+    this.version++;
+    this.settle();
+    this.record(`set the camera's height to ${metres.toFixed(2)} m`, before);
   }
 
   /** Whether the corners were moved since the stored layout (unsaved). */
@@ -216,7 +249,7 @@ export class LayoutDraft {
     const camera = this.doc.scene.camera;
     if (!camera) return;
     try {
-      fitRoom(camera.K, this.fitCorners(), cameraHeight(this.doc), {
+      fitRoom(camera.K, this.fitCorners(), this.cameraHeight, {
         unseenWallDistance: this.unseenDistance,
       });
     } catch {
@@ -260,6 +293,7 @@ export class LayoutDraft {
       corners: this.corners,
       used: this.used,
       unseenDistance: this.unseenDistance,
+      cameraHeightM: this.cameraHeightM,
     });
   }
 
@@ -321,7 +355,7 @@ export class LayoutDraft {
     if (!camera) return;
     const start = performance.now();
     try {
-      const fit = fitRoom(camera.K, this.fitCorners(), cameraHeight(this.doc), {
+      const fit = fitRoom(camera.K, this.fitCorners(), this.cameraHeight, {
         unseenWallDistance: this.unseenDistance,
       });
       const { width, height } = this.doc.scene.image;
@@ -350,6 +384,7 @@ export class LayoutDraft {
       kind: "set_layout",
       corners_2d: corners as SetLayout["corners_2d"],
       unseen_wall_distance: this.unseenDistance,
+      camera_height_m: this.cameraHeightM,
     };
   }
 
@@ -363,6 +398,7 @@ export class LayoutDraft {
     this.corners = state.corners;
     this.used = state.used;
     this.unseenDistance = state.unseenDistance;
+    this.cameraHeightM = state.cameraHeightM ?? null;
     this.version++;
   }
 
@@ -422,7 +458,7 @@ export class LayoutDraft {
     };
     const visible = choose(corners.map((c, i) => c !== null && (this.inView(c) || !!pinned[i])));
     const chosen = visible.usable ? visible : choose(corners.map((c) => c !== null));
-    return { corners, used: chosen.used, unseenDistance: chosen.distance };
+    return { corners, used: chosen.used, unseenDistance: chosen.distance, cameraHeightM: null };
   }
 
   private emit(change: LayoutChange): void {
