@@ -396,6 +396,11 @@ test("the camera's height set by hand scales the room about the camera, undoes a
   await page.getByTestId("layout-toggle").click();
   const estimated = doc.scene.camera?.height_m ?? Number.NaN;
   await expect(field).toHaveValue(estimated.toFixed(2));
+  // Its help says where the pipeline's scale came from, and how sure it is.
+  await expect(page.getByTestId("camera-height-field")).toHaveAttribute(
+    "title",
+    /scale from camera height.*about ±\d+%/,
+  );
   const room = (await scene3d(page, (p) => p.roomCorners())) ?? [];
 
   // 25% higher: every corner of the room 25% further from the camera, and the status says so.

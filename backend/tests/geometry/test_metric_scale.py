@@ -10,6 +10,7 @@ from holiscene.geometry.camera import PinholeCamera
 from holiscene.geometry.metric_scale import (
     CAMERA_HEIGHT_PRIOR,
     MIN_CALIBRATION_COUNT,
+    SPREAD_WIDENING,
     ClassCalibration,
     ScaleCalibration,
     bottom_may_be_hidden,
@@ -62,13 +63,17 @@ def test_the_shipped_calibration_covers_the_common_floor_classes() -> None:
 
 def test_without_evidence_the_camera_prior_decides() -> None:
     camera = PinholeCamera(np.array([[500.0, 0, 320], [0, 500, 240], [0, 0, 1]]), 10.0, 0.0)
-    metres, used = camera_height(camera, [], None, 640)
-    assert metres == pytest.approx(CAMERA_HEIGHT_PRIOR[0])
-    assert used == "camera height"
-    # A seen ceiling 1.2 camera heights up pulls towards 2.75 m / 2.2 = 1.25 m.
-    metres, used = camera_height(camera, [], 1.2, 640)
-    assert 1.25 < metres < CAMERA_HEIGHT_PRIOR[0] and "room height" in used
-    assert math.isfinite(metres)
+    alone = camera_height(camera, [], None, 640)
+    assert alone.metres == pytest.approx(CAMERA_HEIGHT_PRIOR[0])
+    assert alone.priors == "camera height"
+    assert alone.spread == pytest.approx(SPREAD_WIDENING * CAMERA_HEIGHT_PRIOR[1])
+    assert alone.describe() == "camera height, about ±14%"
+    # A seen ceiling 1.2 camera heights up pulls towards 2.75 m / 2.2 = 1.25 m, and the two
+    # priors together leave less doubt than either.
+    both = camera_height(camera, [], 1.2, 640)
+    assert 1.25 < both.metres < CAMERA_HEIGHT_PRIOR[0] and "room height" in both.priors
+    assert math.isfinite(both.metres)
+    assert both.spread < alone.spread
 
 
 def test_a_bottom_edge_behind_a_nearer_object_may_be_hidden() -> None:

@@ -69,6 +69,10 @@ export function mountLayoutEditing(
   };
 }
 
+const HEIGHT_HELP =
+  "The camera's height above the floor: the scale of the whole room, which the photo cannot " +
+  "tell (the pipeline guesses it from the objects' typical sizes)";
+
 const errorText = (error: unknown) => (error instanceof Error ? error.message : String(error));
 
 function mountLayoutEditor(
@@ -106,9 +110,6 @@ function mountLayoutEditor(
     heightInput,
     " m",
   );
-  heightField.title =
-    "The camera's height above the floor: the scale of the whole room, which the photo " +
-    "cannot tell (the pipeline guesses it from the objects' typical sizes)";
   const status = el("span", { className: "layout-status", testid: "layout-status" });
   const progress = jobProgress("placement-progress");
   progress.element.hidden = true;
@@ -173,6 +174,9 @@ function mountLayoutEditor(
     toggle.disabled = !draft.available || !editable;
     toggle.setAttribute("aria-pressed", String(draft.editing));
     heightField.hidden = !draft.editing;
+    // The stored layout's note says where its scale came from (which priors, how sure).
+    const note = session.doc.scene.layout?.note;
+    heightField.title = note ? `${HEIGHT_HELP}\nThe saved layout: ${note}` : HEIGHT_HELP;
     heightInput.disabled = !editable || saving;
     if (document.activeElement !== heightInput) heightInput.value = draft.cameraHeight.toFixed(2);
     toggle.classList.toggle("is-active", draft.editing);

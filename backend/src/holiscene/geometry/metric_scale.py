@@ -41,6 +41,10 @@ ROOM_HEIGHT_PRIOR = (2.75, 0.15)
 MEASUREMENT_SD = 0.1  # log error of one uncalibrated height measurement (edges, occlusion)
 MIN_CALIBRATION_COUNT = 8  # fewer measurements of a class and its calibration is not used
 MIN_CALIBRATED_SD = 0.05
+# The measurements of one photo share errors (its pitch, its occluders), so the fused spread
+# understates the real error: on 150 synthetic rooms (seeds 300000+) the errors were 1.17
+# times the fused spread (root mean square of their ratio).
+SPREAD_WIDENING = 1.2
 # Classes standing on the floor whose bottom edge is where they meet it (doors included:
 # their heights vary least of all, so they weigh most).
 FLOOR_CLASSES = frozenset(
@@ -188,15 +192,26 @@ def measurements(
         yield "width", width
 
 
+@dataclass(frozen=True)
+class ScaleEstimate:
+    metres: float  # the camera's height: metres per unit
+    spread: float  # how far off it may be: standard deviation of log(metres)
+    priors: str  # which priors decided it
+
+    def describe(self) -> str:
+        return f"{self.priors}, about ±{100 * self.spread:.0f}%"
+
+
 def camera_height(
     camera: PinholeCamera,
     contacts: list[tuple[SceneObject, FloatArray]],
     ceiling_above_camera: float | None,
     image_width: int,
     calibration: ScaleCalibration | None = None,
-) -> tuple[float, str]:
-    """Metres per unit (the camera's height), and which priors decided it.
-    `ceiling_above_camera` is the seen ceiling's height in camera heights, or None."""
+) -> ScaleEstimate:
+    """The camera's height in metres (metres per unit), how far off it may be, and which
+    priors decided it. `ceiling_above_camera` is the seen ceiling's height in camera heights,
+    or None."""
     calibration = calibration or default_calibration()
     logs = [(math.log(CAMERA_HEIGHT_PRIOR[0]), CAMERA_HEIGHT_PRIOR[1])]
     used = ["camera height"]
@@ -218,7 +233,11 @@ def camera_height(
         used.append(f"{len(kept)} object height(s) and width(s)")
     weights = np.array([1 / sd**2 for _, sd in logs])
     values = np.array([v for v, _ in logs])
-    return float(math.exp((weights @ values) / weights.sum())), " + ".join(used)
+    return ScaleEstimate(
+        metres=float(math.exp((weights @ values) / weights.sum())),
+        spread=SPREAD_WIDENING / math.sqrt(float(weights.sum())),
+        priors=" + ".join(used),
+    )
 
 
 Residual = tuple[Measurement, str, float]  # (kind, class, measured - true log camera height)

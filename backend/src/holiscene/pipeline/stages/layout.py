@@ -55,7 +55,7 @@ class LayoutEstimate:
     to_room: FloatArray  # room axes -> world
     room: RoomHypothesis  # camera heights
     metres: float  # the camera's height
-    priors: str  # which priors decided `metres`
+    priors: str  # which priors decided `metres`, and how far off it may be
 
     def corners_world(self) -> FloatArray:
         """The room's 8 corners in the world frame, metres (contract order)."""
@@ -85,7 +85,7 @@ def estimate_layout(
     inside = [p for o, p in contacts if not bottom_may_be_hidden(o, objects)]
     # The objects' scale turns the priors on wall distances (metres) into camera heights; the
     # seen ceiling then joins the final scale.
-    metres_from_objects, _ = camera_height(camera, contacts, None, width)
+    metres_from_objects = camera_height(camera, contacts, None, width).metres
     room = estimate_room(
         camera,
         frame,
@@ -97,11 +97,9 @@ def estimate_layout(
         SurfaceMap.predict(surface_model, image, camera, to_room) if surface_model else None,
         metres_from_objects,
     )
-    metres, priors = camera_height(
-        camera, contacts, room.ceiling if room.ceiling_seen else None, width
-    )
-    room = unseen_parts_from_priors(room, metres)
-    return LayoutEstimate(frame, camera, to_room, room, metres, priors)
+    scale = camera_height(camera, contacts, room.ceiling if room.ceiling_seen else None, width)
+    room = unseen_parts_from_priors(room, scale.metres)
+    return LayoutEstimate(frame, camera, to_room, room, scale.metres, scale.describe())
 
 
 @register_stage
