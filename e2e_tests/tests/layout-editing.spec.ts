@@ -393,8 +393,11 @@ test("the camera's height set by hand scales the room about the camera, undoes a
   const bar = page.getByTestId("layout-bar");
   const field = page.getByTestId("camera-height");
   await expect(page.getByTestId("camera-height-field")).toBeHidden();
-  await page.getByTestId("layout-toggle").click();
   const estimated = doc.scene.camera?.height_m ?? Number.NaN;
+  const meta = page.getByTestId("scene-meta");
+  await expect(meta).toContainText(`camera ${estimated.toFixed(2)} m high (estimated)`);
+  await expect(meta).toHaveAttribute("title", /scale from .*about ±\d+%/);
+  await page.getByTestId("layout-toggle").click();
   await expect(field).toHaveValue(estimated.toFixed(2));
   // Its help says where the pipeline's scale came from, and how sure it is.
   await expect(page.getByTestId("camera-height-field")).toHaveAttribute(
@@ -444,6 +447,7 @@ test("the camera's height set by hand scales the room about the camera, undoes a
   const saved = await getScene(page.request, doc.scene_id);
   expect(saved.revision).toBe(doc.revision + 1);
   expect(saved.scene.camera).toMatchObject({ height_m: higher, height_source: "manual" });
+  await expect(meta).toContainText(`camera ${higher.toFixed(2)} m high (set by hand)`);
   expect(maxDifference(scaled, saved.scene.layout?.corners_3d ?? null)).toBeLessThan(2e-3);
   const revisions = await getRevisions(page.request, doc.scene_id);
   expect(revisions.at(-1)?.edits?.[0]).toMatchObject({

@@ -1,6 +1,6 @@
 // The scene page: waits for a running pipeline job, then shows the photo with overlays, the
 // 3D scene and the support editor, all on one SceneSession.
-import type { Job, SceneDocument } from "@holiscene/schema";
+import type { Camera, Job, SceneDocument } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { ApiError } from "../../api/errors";
 import { isFinished, pollJob } from "../../api/jobs";
@@ -82,6 +82,14 @@ function readOnlyBanner(session: SceneSession): { element: HTMLElement; dispose:
   };
 }
 
+/** How the camera's height was found, in words. */
+const HEIGHT_SOURCES: Record<NonNullable<Camera["height_source"]>, string> = {
+  prior: "a prior",
+  estimated: "estimated",
+  manual: "set by hand",
+  ground_truth: "ground truth",
+};
+
 export function mountScenePage(container: HTMLElement, sceneId: string): () => void {
   const abort = new AbortController();
   const disposers: (() => void)[] = [];
@@ -126,8 +134,15 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     const session = new SceneSession(doc);
     title.textContent = doc.scene.name;
     const updateMeta = () => {
-      const { width, height } = session.doc.scene.image;
-      meta.textContent = `${width}×${height} · revision ${session.doc.revision}`;
+      const { image, camera, layout } = session.doc.scene;
+      const parts = [`${image.width}×${image.height}`, `revision ${session.doc.revision}`];
+      // The scale of the whole scene, and where it came from (the layout's note says more).
+      if (camera?.height_m != null) {
+        const source = HEIGHT_SOURCES[camera.height_source ?? "estimated"];
+        parts.push(`camera ${camera.height_m.toFixed(2)} m high (${source})`);
+      }
+      meta.textContent = parts.join(" · ");
+      meta.title = layout?.note ?? "";
     };
     updateMeta();
     const photo = panel("Photo", "panel--photo", "photo-panel");
