@@ -242,6 +242,11 @@ def test_layout_edit_and_placement_job_through_the_api(client: TestClient, t3d5:
     assert refused.status_code == 422  # type: ignore[attr-defined]
     assert "room layout" in refused.json()["detail"]  # type: ignore[attr-defined]
     assert client.get(f"/api/scenes/{scene_id}").json()["revision"] == edited["revision"]
+    too_high = {**edit, "camera_height_m": 25.0}
+    refused = _edit(client, scene_id, edited["revision"], too_high)
+    assert refused.status_code == 422  # type: ignore[attr-defined]
+    assert "camera_height_m" in refused.text  # type: ignore[attr-defined]
+    assert client.get(f"/api/scenes/{scene_id}").json()["revision"] == edited["revision"]
 
     # Re-place the objects in the new room: a placement job makes a new revision.
     started = client.post(f"/api/scenes/{scene_id}/placement-jobs")
