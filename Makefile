@@ -86,7 +86,7 @@ bench-geometry: install-python
 
 # Where the layout IoU goes: each part of the layout stage against the truth.
 bench-layout: install-python
-	$(PY) benchmarks/bench_layout_parts.py --seed 7000 --count 20
+	$(PY) benchmarks/bench_layout_parts.py --seed 7000 --count 20 --plot docs/img/layout_parts.png
 
 # The learned parts of the layout stage, both from synthetic rooms (commit what they write):
 # the Surface Network (floor/ceiling/wall labels) and the per-class metric-scale calibration.

@@ -6,7 +6,8 @@ error (in camera heights), and the layout IoU when that one part is replaced by 
 The part whose replacement gains most is where work pays. Two more rows bound what reading
 the photo better can give: the parts the photo shows (the faces of the true room in view) made
 true, and those with the true scale too (the parts out of view keep their size in metres).
-Prints a row per scene and means.
+Prints a row per scene and means; `--plot FILE` draws the means as a bar chart (the README's
+docs/img/layout_parts.png).
 """
 
 from __future__ import annotations
@@ -87,10 +88,50 @@ def scene_parts(folder: Path) -> dict[str, float]:
     return row
 
 
+# The bars of the picture: (key of the row's means, label).
+PLOT_BARS = (
+    ("iou", "estimate"),
+    ("iou_true_front", "front wall true"),
+    ("iou_true_ceiling", "ceiling true"),
+    ("iou_true_scale", "scale true"),
+    ("iou_true_back", "back wall true"),
+    ("iou_true_right", "right wall true"),
+    ("iou_true_left", "left wall true"),
+    ("iou_parts_in_view_true", "parts in view true"),
+    ("iou_all_walls_true", "all walls true"),
+    ("iou_in_view_and_scale_true", "in view + scale true"),
+)
+
+
+def plot_means(means: dict[str, float], count: int, seed: int, path: Path) -> None:
+    """A horizontal bar per row of PLOT_BARS, the estimate's IoU marked across them."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    labels = [label for _, label in PLOT_BARS]
+    values = [means[key] for key, _ in PLOT_BARS]
+    fig, axis = plt.subplots(figsize=(7, 3.8), dpi=100)
+    colours = ["tab:grey"] + ["tab:blue"] * (len(values) - 1)
+    axis.barh(labels[::-1], values[::-1], color=colours[::-1])
+    axis.axvline(means["iou"], color="black", linewidth=0.8)
+    axis.axvline(0.75, color="tab:red", linestyle="--", linewidth=0.8, label="issue 4 target")
+    for y, value in enumerate(values[::-1]):
+        axis.text(value + 0.003, y, f"{value:.3f}", va="center", fontsize=8)
+    axis.set_xlim(0.6, 0.9)
+    axis.set_xlabel(f"mean layout 3D IoU, {count} synthetic scenes from seed {seed}")
+    axis.legend(loc="upper right", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--seed", type=int, default=7000)
     parser.add_argument("--count", type=int, default=20)
+    parser.add_argument("--plot", type=Path, help="draw the means as a bar chart (PNG)")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         synth = ["synth", "--seed", str(args.seed), "--count", str(args.count), "-o", tmp]
@@ -104,6 +145,9 @@ def main() -> int:
         print(f"{name:12s} " + " ".join(f"{row.get(k, float('nan')):18.3f}" for k in keys))
     means = {k: float(np.nanmean([r.get(k, np.nan) for r in rows.values()])) for k in keys}
     print("mean         " + " ".join(f"{means[k]:18.3f}" for k in keys))
+    if args.plot:
+        plot_means(means, len(rows), args.seed, args.plot)
+        print(f"wrote {args.plot}")
     return 0
 
 
