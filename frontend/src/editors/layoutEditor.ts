@@ -226,7 +226,9 @@ function mountLayoutEditor(
   });
   const unsubscribeDraft = draft.subscribe((change) => {
     if (change === "saved") {
-      message = { text: `Layout saved (revision ${session.doc.revision}).`, alert: false };
+      // The objects keep their places until they are placed again in the new room.
+      const text = `Layout saved (revision ${session.doc.revision}). "Re-place objects" moves the objects into it.`;
+      message = { text, alert: false };
     } else if (change !== "fit" || draft.dirty) message = null;
     draw();
   });
