@@ -3,12 +3,12 @@
 // compared with gt.json. Object ids match: the pipeline names detection i "o{i}", and the
 // generator writes detection i for gt object "o{i}".
 import { execFileSync } from "node:child_process";
-import { mkdtempSync, readFileSync } from "node:fs";
-import { tmpdir } from "node:os";
+import { readFileSync } from "node:fs";
 import path from "node:path";
 import type { ImportResult, SceneDocument, SupportRelation } from "@holiscene/schema";
 import { type APIRequestContext, expect } from "@playwright/test";
 import { getScene, waitForJob } from "./api";
+import { scratchDir } from "./scratch";
 
 const HOLISCENE = path.resolve(import.meta.dirname, "../../.venv/bin/holiscene");
 
@@ -19,7 +19,7 @@ export interface SyntheticScene {
 
 /** Generate `count` synthetic scenes from `seed` (scene i uses seed + i). */
 export function synthesize(seed: number, count: number): SyntheticScene[] {
-  const out = mkdtempSync(path.join(tmpdir(), "holiscene-synth-"));
+  const out = scratchDir("holiscene-synth-");
   execFileSync(
     HOLISCENE,
     ["synth", "--seed", String(seed), "--count", String(count), "-o", out, "--workers", "1"],

@@ -16,13 +16,13 @@
 // Edit-to-arrow time: from the input event's timestamp (the click or key press that makes the
 // edit) to the moment the arrow's SVG element shows the new supporter (a MutationObserver),
 // and to the next animation frame after it; medians over all edits.
-import { cpSync, mkdtempSync, readFileSync, writeFileSync } from "node:fs";
-import { tmpdir } from "node:os";
+import { cpSync, readFileSync, writeFileSync } from "node:fs";
 import path from "node:path";
 import type { SupportRelation } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getScene } from "../helpers/api";
 import { clickArrow, clickObject, openScene, setAuthor, waitForModel } from "../helpers/photo";
+import { scratchDir } from "../helpers/scratch";
 import { importSynthetic, type SyntheticScene, synthesize, wrongEdges } from "../helpers/synthetic";
 
 const TARGET_MS = 50;
@@ -52,7 +52,7 @@ interface SceneFigures {
 
 /** A copy of the scene whose first supporting object is detected as a pillow. */
 function relabelled(scene: SyntheticScene): SyntheticScene {
-  const dir = mkdtempSync(path.join(tmpdir(), "holiscene-relabelled-"));
+  const dir = scratchDir("holiscene-relabelled-");
   cpSync(scene.dir, dir, { recursive: true });
   const file = path.join(dir, "detections.json");
   const detections = JSON.parse(readFileSync(file, "utf8")) as { class: string }[];

@@ -2,12 +2,12 @@
 // and sees the room, the objects, the photo's camera and the support arrows, with a panel
 // listing every object and its supporter.
 import { execFileSync } from "node:child_process";
-import { mkdirSync, mkdtempSync, readFileSync } from "node:fs";
-import { tmpdir } from "node:os";
+import { mkdirSync, readFileSync } from "node:fs";
 import path from "node:path";
 import type { ImportResult } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getScene, waitForJob } from "../helpers/api";
+import { scratchDir } from "../helpers/scratch";
 
 const HOLISCENE = path.resolve(import.meta.dirname, "../../.venv/bin/holiscene");
 const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
@@ -15,7 +15,7 @@ mkdirSync(SCREENSHOTS, { recursive: true });
 
 /** A synthetic room (seed 14: shelves with things on them, a door and a picture on walls). */
 function synthesize(): string {
-  const out = mkdtempSync(path.join(tmpdir(), "holiscene-viewer-e2e-"));
+  const out = scratchDir("holiscene-viewer-e2e-");
   execFileSync(HOLISCENE, ["synth", "--seed", "14", "--count", "1", "--workers", "1", "-o", out]);
   return path.join(out, "synth-14");
 }
