@@ -232,7 +232,12 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
     timeout: 90_000,
   });
   const original = guess("o0");
-  await clickArrow(page, "o0");
+  // Selected before the key (a click landing while the arrows are redrawn, after an autosave
+  // or the live suggestions, would leave o3's arrow selected, and R would reject that).
+  await expect(async () => {
+    await clickArrow(page, "o0");
+    await expect(arrow("o0")).toHaveClass(/is-selected/, { timeout: 2_000 });
+  }).toPass({ timeout: 30_000 });
   await page.keyboard.press("r");
   await expect
     .poll(async () => {
