@@ -105,7 +105,9 @@ def test_a_wall_out_of_view_keeps_its_distance_in_metres() -> None:
     boxes = [o.bbox for o in synthetic.truth.objects]
     evidence = SurfaceEvidence(camera, image, boxes, to_room)
     short, tall = (
-        estimate_room(camera, frame, segments, (640, 480), None, evidence, boxes, surface_map, m)
+        estimate_room(
+            camera, frame, segments, (640, 480), None, evidence, boxes, surface_map, metres=m
+        )
         for m in (1.2, 1.6)
     )
     seen = {SURFACES[i] for i in np.unique(short.surfaces_seen(surface_map.rays_room))}

@@ -154,16 +154,13 @@ function mountLayoutEditor(
   };
 
   const setHeight = () => {
-    const metres = heightInput.valueAsNumber;
-    const [low, high] = CAMERA_HEIGHT_RANGE_M;
-    if (!(metres >= low && metres <= high)) {
+    if (draft.setCameraHeight(heightInput.valueAsNumber)) {
+      message = null;
+    } else {
+      const [low, high] = CAMERA_HEIGHT_RANGE_M;
       message = { text: `The camera's height must be between ${low} and ${high} m.`, alert: true };
       heightInput.value = draft.cameraHeight.toFixed(2);
-      draw();
-      return;
     }
-    message = null;
-    draft.setCameraHeight(metres);
     draw();
   };
 

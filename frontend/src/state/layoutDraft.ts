@@ -188,12 +188,13 @@ export class LayoutDraft {
   /**
    * Set the camera's height by hand (metres; the scale of the whole room, which no photo
    * tells): one undoable step. A wall no corner places keeps its place relative to the room,
-   * so the room scales about the camera.
+   * so the room scales about the camera. False (and nothing changes) for a height outside
+   * CAMERA_HEIGHT_RANGE_M.
    */
-  setCameraHeight(metres: number): void {
+  setCameraHeight(metres: number): boolean {
     const [low, high] = CAMERA_HEIGHT_RANGE_M;
-    if (!(metres >= low && metres <= high)) return;
-    if (Math.abs(metres - this.cameraHeight) < 1e-9) return;
+    if (!(metres >= low && metres <= high)) return false;
+    if (Math.abs(metres - this.cameraHeight) < 1e-9) return true;
     const before = this.snapshot();
     const ratio = metres / this.cameraHeight;
     if (this.unseenDistance !== null) this.unseenDistance *= ratio;
@@ -201,6 +202,7 @@ export class LayoutDraft {
     this.version++;
     this.settle();
     this.record(`set the camera's height to ${metres.toFixed(2)} m`, before);
+    return true;
   }
 
   /** Whether the corners were moved since the stored layout (unsaved). */

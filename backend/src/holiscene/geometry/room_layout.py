@@ -26,7 +26,6 @@ from .manhattan import ManhattanFrame, room_directions
 from .surface_labels import nearest_surface
 from .surface_map import SurfaceMap
 
-PRIOR_CAMERA_HEIGHT = 1.4  # metres: turns priors in metres into camera heights by default
 BACK_WALL_PRIOR = 0.5  # the wall behind the camera is never seen: its distance is a prior
 CEILING_PRIOR = 0.96  # ceiling above the camera / camera height (2.75 m room, 1.4 m camera)
 EDGE_TOLERANCE_FRAC = 0.006  # of the image diagonal
@@ -220,7 +219,8 @@ def estimate_room(
     evidence: SurfaceEvidence | None = None,
     object_boxes: list[list[float]] | None = None,
     surface_map: SurfaceMap | None = None,
-    metres: float = PRIOR_CAMERA_HEIGHT,
+    *,
+    metres: float,
 ) -> RoomHypothesis:
     """The best room for the segments; `floor_points` (N, 3, world, camera height 1) are
     points known to lie inside the room (where floor-standing objects touch the floor).
@@ -287,7 +287,7 @@ def estimate_room(
             evidence,
             minimum,
             surface_map,
-            metres,
+            metres=metres,
         )
         for h in hypotheses[:RESTARTS]
     ]
@@ -303,8 +303,8 @@ ROUNDS = 2
 EDGE_WEIGHT = 0.3  # share of the score from line support (the rest: surface colours)
 EDGE_NORM = 0.3  # line support is counted in tenths of all segment length
 # A weak prior on each wall's distance from the camera (metres, log-normal; converted with the
-# camera height the objects tell): it decides walls the photo does not show and breaks ties between
-# floor-texture lines. People photograph a room from near one wall, away from the others.
+# camera height the objects tell): it decides walls the photo does not show and breaks ties
+# between floor-texture lines. People photograph a room from near one wall, away from the rest.
 WALL_DISTANCE_PRIOR = {"front": (4.2, 0.35), "left": (2.2, 0.4), "right": (2.2, 0.4)}
 ROOM_WIDTH_PRIOR = (4.4, 0.25)  # metres across, sd of log: one side wall seen places the other
 PRIOR_WEIGHT = 0.1
@@ -332,7 +332,8 @@ def _refine_by_surfaces(
     evidence: SurfaceEvidence,
     minimum: tuple[float, float, float],
     surface_map: SurfaceMap | None = None,
-    metres: float = PRIOR_CAMERA_HEIGHT,
+    *,
+    metres: float,
 ) -> RoomHypothesis:
     """Coordinate ascent over each wall distance and the ceiling on a log grid, scoring
     surface colour consistency plus line support along the edges (plus agreement with the

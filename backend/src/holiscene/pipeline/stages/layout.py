@@ -95,7 +95,7 @@ def estimate_layout(
         SurfaceEvidence(camera, image, boxes, to_room),
         boxes,
         SurfaceMap.predict(surface_model, image, camera, to_room) if surface_model else None,
-        metres_from_objects,
+        metres=metres_from_objects,
     )
     scale = camera_height(camera, contacts, room.ceiling if room.ceiling_seen else None, width)
     room = unseen_parts_from_priors(room, scale.metres)
