@@ -1,9 +1,10 @@
 """Learn the per-class bias and spread of single-view size measurements (`make calibrate-scale`).
 
 Renders synthetic rooms from seeds no test or benchmark uses (300000+), measures every
-floor-standing object the way the layout stage does (camera pitch and roll from the photo's
-lines, the object's box), compares with the true camera height and writes
-`backend/src/holiscene/knowledge/scale_calibration.json`.
+floor-standing object and every wall object the way the layout stage does (camera pitch, roll
+and room from the photo, the object's box), compares with the true camera height and writes
+`backend/src/holiscene/knowledge/scale_calibration.json`. The room search does not depend on
+the calibration of wall objects, so measuring them with it is not circular.
 """
 
 from __future__ import annotations
@@ -16,9 +17,6 @@ import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
-from holiscene.geometry.camera import PinholeCamera
-from holiscene.geometry.lines import detect_segments
-from holiscene.geometry.manhattan import estimate_manhattan_frame
 from holiscene.geometry.metric_scale import (
     CALIBRATION_FILE,
     Residual,
@@ -26,9 +24,11 @@ from holiscene.geometry.metric_scale import (
     floor_contacts,
     measurement_residuals,
 )
+from holiscene.geometry.surface_map import load_surface_model
 from holiscene.inputs.validation import read_input_folder
 from holiscene.pipeline import SceneContext, build_pipeline
 from holiscene.pipeline.base import required
+from holiscene.pipeline.stages.layout import estimate_layout, mounted_heights
 from tqdm import tqdm
 
 
@@ -38,12 +38,15 @@ def scene_residuals(folder: Path) -> Iterator[Residual]:
     ctx = SceneContext(image=inputs.photo.rgb, given_K=inputs.K, detections=inputs.detections)
     build_pipeline(["objects_from_detections", "intrinsics"]).run(ctx)
     K, _ = required(ctx.intrinsics, "intrinsics")
-    frame = estimate_manhattan_frame(detect_segments(ctx.image), K)
-    if frame is None:
+    objects = required(ctx.objects, "objects")
+    estimate = estimate_layout(ctx.image, K, objects, load_surface_model())
+    if estimate is None:
         return
-    camera = PinholeCamera(K, frame.pitch_deg, frame.roll_deg)
-    contacts = floor_contacts(camera, required(ctx.objects, "objects"), ctx.height)
-    yield from measurement_residuals(camera, contacts, truth["camera"]["height_m"], ctx.width)
+    camera = estimate.camera
+    contacts = floor_contacts(camera, objects, ctx.height)
+    mounted = mounted_heights(estimate.room, camera, estimate.to_room, objects, ctx.height)
+    true_height = truth["camera"]["height_m"]
+    yield from measurement_residuals(camera, contacts, mounted, true_height, ctx.width)
 
 
 def main() -> int:

@@ -11,11 +11,17 @@ from holiscene.evaluation.box_iou import iou_3d
 from holiscene.geometry.camera import PinholeCamera, rot_y
 from holiscene.geometry.lines import detect_segments
 from holiscene.geometry.manhattan import estimate_manhattan_frame
-from holiscene.geometry.room_layout import SurfaceEvidence, estimate_room, room_to_world
+from holiscene.geometry.room_layout import (
+    RoomHypothesis,
+    SurfaceEvidence,
+    estimate_room,
+    room_to_world,
+)
 from holiscene.geometry.surface_labels import SURFACES
 from holiscene.geometry.surface_map import SurfaceMap, load_surface_model
 from holiscene.pipeline import SceneContext, build_pipeline
 from holiscene.pipeline.base import Detection
+from holiscene.pipeline.stages.layout import mounted_heights
 from holiscene.synth.generate import SyntheticScene, synthesize
 
 SEEDS = range(4100, 4108)
@@ -116,3 +122,32 @@ def test_a_wall_out_of_view_keeps_its_distance_in_metres() -> None:
         assert getattr(tall, wall) == pytest.approx(getattr(short, wall), rel=0.05)
     # 1.6 / 1.2 = 1.33 in a perfect search; its grid steps by about 17%.
     assert 1.15 < short.left / tall.left < 1.6
+
+
+def test_wall_objects_edges_are_measured_at_their_heights_in_the_true_room() -> None:
+    """In the true room, the ray through the lower edge of a thing hung on a wall (a picture,
+    a window) meets the wall at that edge's true height above the floor."""
+    measured = 0
+    for seed in SEEDS:
+        synthetic = scene(seed)
+        truth = synthetic.truth
+        assert truth.camera is not None and truth.camera.height_m is not None
+        frame = estimate_manhattan_frame(detect_segments(synthetic.frame.rgb), synthetic.K)
+        assert frame is not None
+        camera = PinholeCamera(synthetic.K, frame.pitch_deg, frame.roll_deg)
+        to_room = room_to_world(frame)
+        height = truth.camera.height_m
+        local = np.array(truth.layout.corners_3d) @ to_room / height
+        room = RoomHypothesis(
+            front=local[:, 0].max(), left=-local[:, 2].min(), right=local[:, 2].max(),
+            back=-local[:, 0].min(), ceiling=local[:, 1].max(), score=0.0, ceiling_seen=True,
+        )  # fmt: skip
+        for obj, measured_height in mounted_heights(room, camera, to_room, truth.objects, 480):
+            assert obj.corners_3d is not None
+            true_height = (np.array(obj.corners_3d)[:, 1].min() + height) / height
+            if obj.box_3d is not None and obj.box_3d.size[0] < 0.1:  # flat on the wall
+                assert measured_height == pytest.approx(true_height, rel=0.03), obj.id
+            else:  # a box standing out of the wall: its near edge's ray meets the wall beyond
+                assert measured_height == pytest.approx(true_height, rel=0.08), obj.id
+            measured += 1
+    assert measured >= 4  # the seeds hang enough pictures and windows to mean something

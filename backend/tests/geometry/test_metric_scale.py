@@ -17,8 +17,10 @@ from holiscene.geometry.metric_scale import (
     camera_height,
     default_calibration,
     fit_calibration,
+    mounting_points,
 )
-from holiscene.knowledge.object_sizes import height_spread
+from holiscene.geometry.room_layout import RoomHypothesis
+from holiscene.knowledge.object_sizes import height_spread, mounting_height
 from holiscene_schema import SceneObject
 
 
@@ -43,6 +45,7 @@ def test_rare_classes_fall_back_to_the_library_spread_or_are_not_used() -> None:
     error = calibration.measurement_error("height", "bed")  # too few to trust
     assert error is not None and error[0] == 0.0 and error[1] > height_spread("bed")
     assert calibration.measurement_error("width", "bed") is None  # raw widths are not used
+    assert calibration.measurement_error("mounting", "door") is None  # nor raw mountings
     assert MIN_CALIBRATION_COUNT > 2
 
 
@@ -59,6 +62,9 @@ def test_the_shipped_calibration_covers_the_common_floor_classes() -> None:
         for cls in ("chair", "table", "door", "sofa"):
             assert calibration.kinds[kind][cls].count >= MIN_CALIBRATION_COUNT
             assert abs(calibration.kinds[kind][cls].bias) < 0.5
+    for cls in ("picture", "window"):
+        assert calibration.kinds["mounting"][cls].count >= MIN_CALIBRATION_COUNT
+        assert calibration.kinds["mounting"][cls].sd < CAMERA_HEIGHT_PRIOR[1] * 2
 
 
 def test_without_evidence_the_camera_prior_decides() -> None:
@@ -89,3 +95,51 @@ def test_a_bottom_edge_behind_a_nearer_object_may_be_hidden() -> None:
     # Beside the table the chair's bottom edge is seen.
     chair_beside = chair.model_copy(update={"bbox": [420.0, 150.0, 480.0, 300.0]})
     assert not bottom_may_be_hidden(chair_beside, [chair_beside, table])
+
+
+def test_wall_objects_offer_the_ends_of_their_telling_edge() -> None:
+    picture = SceneObject(id="picture", cls="picture", bbox=[100.0, 40.0, 220.0, 130.0])
+    window = SceneObject(id="window", cls="window", bbox=[400.0, 0.0, 480.0, 200.0])
+    # A television standing on a dresser: its lower edge is on the dresser's box.
+    dresser = SceneObject(id="dresser", cls="dresser", bbox=[240.0, 200.0, 380.0, 330.0])
+    television = SceneObject(id="tv", cls="television", bbox=[260.0, 120.0, 360.0, 202.0])
+    cut_off = SceneObject(id="mirror", cls="mirror", bbox=[10.0, 300.0, 90.0, 479.0])
+    chair = SceneObject(id="chair", cls="chair", bbox=[500.0, 250.0, 560.0, 380.0])
+    door = SceneObject(id="door", cls="door", bbox=[560.0, 30.0, 620.0, 300.0])
+    objects = [picture, window, dresser, television, cut_off, chair, door]
+    points = {obj.id: ends for obj, ends in mounting_points(objects, 480)}
+    assert set(points) == {"picture", "window"}  # a window cut off at the top still counts
+    assert points["picture"].tolist() == [[100.0, 130.0], [220.0, 130.0]]  # lower corners
+    assert mounting_height("chair") is None and mounting_height("door") is None
+    assert mounting_height("window") == pytest.approx(0.85)
+
+
+def test_a_calibrated_wall_object_joins_the_scale() -> None:
+    camera = PinholeCamera(np.array([[500.0, 0, 320], [0, 500, 240], [0, 0, 1]]), 10.0, 0.0)
+    picture = SceneObject(id="picture", cls="picture", bbox=[100.0, 40.0, 220.0, 130.0])
+    typical = mounting_height("picture")
+    assert typical is not None
+    # Its lower edge seen 0.8 camera heights above the floor says the camera is typical / 0.8
+    # metres high; a sure calibration lets it outweigh the camera prior.
+    sure = ScaleCalibration({"mounting": {"picture": ClassCalibration(0.0, 0.02, 50)}})
+    scale = camera_height(camera, [], None, 640, sure, mounted=[(picture, 0.8)])
+    assert scale.metres == pytest.approx(typical / 0.8, rel=0.05)
+    assert scale.priors == "camera height + 1 wall object(s)"
+    # Uncalibrated, it is not used.
+    alone = camera_height(camera, [], None, 640, ScaleCalibration(), mounted=[(picture, 0.8)])
+    assert alone.metres == pytest.approx(CAMERA_HEIGHT_PRIOR[0])
+
+
+def test_rays_meet_the_walls_at_their_heights() -> None:
+    room = RoomHypothesis(front=3.0, left=1.0, right=2.0, back=0.5, ceiling=1.0, score=0.0,
+                          ceiling_seen=True)  # fmt: skip
+    rays = np.array([
+        [1.0, -0.1, 0.0],  # meets the front wall 0.3 below the camera
+        [0.0, 0.2, 1.0],  # the right wall, 0.4 above
+        [0.0, -0.5, -1.0],  # the left wall, 0.5 below
+        [1.0, -1.0, 0.0],  # the floor first
+        [1.0, 0.5, 0.0],  # the ceiling first
+    ])  # fmt: skip
+    heights = room.height_on_walls(rays)
+    assert heights[:3] == pytest.approx([0.7, 1.4, 0.5])
+    assert np.isnan(heights[3:]).all()

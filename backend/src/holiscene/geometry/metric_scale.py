@@ -6,7 +6,10 @@ priors fused in log space, each weighted by how little it varies:
 - the camera's height (1.4 m, sd of log 0.12: people hold cameras at chest to eye height);
 - the room's height, when the ceiling's edges are seen (2.75 m, sd 0.15);
 - the typical height of each floor-standing object whose bottom and top are in the photo,
-  and its typical width when both its sides are in the photo.
+  and its typical width when both its sides are in the photo;
+- the typical height above the floor of the lower edge of a thing hung on a wall (a window's
+  sill, a picture's lower edge), read where its ray meets the room's walls: this needs the
+  room, so it joins the final scale only (`layout.mounted_heights`).
 
 An object's height is read with the vertical through its floor contact (`ground.height_above`),
 which is biased in a way that depends on the class (a box's top edge in the photo is its far
@@ -15,7 +18,7 @@ the measurement's real spread are learned per class on synthetic rooms with exac
 (`scripts/calibrate_scale.py`, stored in `knowledge/scale_calibration.json`); a width is
 read where the box's bottom edge meets the floor, and how the object is turned is left to the
 same calibration. Classes with too few measurements fall back to the spread of the furniture
-library's height range (heights) or are not used (widths).
+library's height range (heights) or are not used (widths, mountings).
 """
 
 from __future__ import annotations
@@ -32,7 +35,7 @@ from typing import Literal
 import numpy as np
 from holiscene_schema import SceneObject
 
-from ..knowledge.object_sizes import height_spread, middle_size
+from ..knowledge.object_sizes import height_spread, middle_size, mounting_height
 from .camera import FloatArray, PinholeCamera
 from .ground import height_above, hit_horizontal_plane
 
@@ -61,8 +64,8 @@ class ClassCalibration:
     count: int
 
 
-Measurement = Literal["height", "width"]
-MEASUREMENTS: tuple[Measurement, ...] = ("height", "width")
+Measurement = Literal["height", "width", "mounting"]
+MEASUREMENTS: tuple[Measurement, ...] = ("height", "width", "mounting")
 
 
 @dataclass(frozen=True)
@@ -74,10 +77,11 @@ class ScaleCalibration:
 
     def measurement_error(self, kind: Measurement, cls: str) -> tuple[float, float] | None:
         """(bias, sd) of one log camera-height measurement of `kind` from an object of class
-        `cls`; None for a width that was not calibrated (widths vary too much to use raw)."""
+        `cls`; None for a width or mounting that was not calibrated (they vary too much, or
+        depend too much on the room's walls, to use raw)."""
         calibrated = self.kinds.get(kind, {}).get(cls)
         if calibrated is None or calibrated.count < MIN_CALIBRATION_COUNT:
-            if kind == "width":
+            if kind != "height":
                 return None
             return 0.0, math.hypot(height_spread(cls), MEASUREMENT_SD)
         return calibrated.bias, max(calibrated.sd, MIN_CALIBRATED_SD)
@@ -192,6 +196,40 @@ def measurements(
         yield "width", width
 
 
+def mounting_points(
+    objects: list[SceneObject], image_height: int
+) -> list[tuple[SceneObject, FloatArray]]:
+    """The two ends (2, 2) of the lower edge of each thing hung on a wall, as its box shows
+    it: a horizontal edge on a wall reaches the box's bottom line only at its nearer end, so
+    of the two rays the one meeting the wall highest is the true one. Edges the photo cuts off
+    are left out, and so are edges touching another object's box: the object may stand on
+    that furniture (a television on a dresser), or the furniture may hide the edge."""
+    out = []
+    for obj in objects:
+        if mounting_height(obj.cls) is None:
+            continue
+        x1, _, x2, bottom = obj.bbox
+        if bottom >= image_height - 2:
+            continue
+        if any(
+            o is not obj and o.bbox[1] < bottom + 3 < o.bbox[3] and o.bbox[0] < x < o.bbox[2]
+            for o in objects
+            for x in (x1, (x1 + x2) / 2, x2)
+        ):
+            continue
+        out.append((obj, np.array([[x1, bottom], [x2, bottom]])))
+    return out
+
+
+def measured_log_camera_height_from_mounting(obj: SceneObject, height: float) -> float | None:
+    """log(camera height in metres) implied by the typical height of the object's lower edge,
+    seen `height` camera heights above the floor; None for an edge at or below the floor."""
+    typical = mounting_height(obj.cls)
+    if typical is None or not height > 0.05:
+        return None
+    return math.log(typical / height)
+
+
 @dataclass(frozen=True)
 class ScaleEstimate:
     metres: float  # the camera's height: metres per unit
@@ -202,16 +240,37 @@ class ScaleEstimate:
         return f"{self.priors}, about ±{100 * self.spread:.0f}%"
 
 
+Mounted = list[tuple[SceneObject, float]]  # things on walls, lower edges' heights (camera heights)
+
+
+def object_measurements(
+    camera: PinholeCamera,
+    contacts: list[tuple[SceneObject, FloatArray]],
+    mounted: Mounted,
+    image_width: int,
+) -> Iterator[tuple[SceneObject, Measurement, float]]:
+    """Every uncorrected log camera-height measurement the objects offer."""
+    for obj, base in contacts:
+        for kind, measured in measurements(camera, obj, base, image_width):
+            yield obj, kind, measured
+    for obj, height in mounted:
+        on_wall = measured_log_camera_height_from_mounting(obj, height)
+        if on_wall is not None:
+            yield obj, "mounting", on_wall
+
+
 def camera_height(
     camera: PinholeCamera,
     contacts: list[tuple[SceneObject, FloatArray]],
     ceiling_above_camera: float | None,
     image_width: int,
     calibration: ScaleCalibration | None = None,
+    mounted: Mounted | None = None,
 ) -> ScaleEstimate:
     """The camera's height in metres (metres per unit), how far off it may be, and which
     priors decided it. `ceiling_above_camera` is the seen ceiling's height in camera heights,
-    or None."""
+    or None; `mounted` are things on walls with the heights of their lower edges (camera
+    heights), when the room is known."""
     calibration = calibration or default_calibration()
     logs = [(math.log(CAMERA_HEIGHT_PRIOR[0]), CAMERA_HEIGHT_PRIOR[1])]
     used = ["camera height"]
@@ -219,18 +278,21 @@ def camera_height(
         room_log = math.log(ROOM_HEIGHT_PRIOR[0] / (1.0 + ceiling_above_camera))
         logs.append((room_log, ROOM_HEIGHT_PRIOR[1]))
         used.append("room height")
-    sized = []
-    for obj, base in contacts:
-        for kind, measured in measurements(camera, obj, base, image_width):
-            error = calibration.measurement_error(kind, obj.cls)
-            if error is not None:
-                sized.append((measured - error[0], error[1]))
+    sized: list[tuple[float, float, Measurement]] = []
+    for obj, kind, measured in object_measurements(camera, contacts, mounted or [], image_width):
+        error = calibration.measurement_error(kind, obj.cls)
+        if error is not None:
+            sized.append((measured - error[0], error[1], kind))
     if sized:
         # Drop measurements far from the others (a box measured across an occluder, say).
-        centre = float(np.median([e for e, _ in sized]))
-        kept = [(e, sd) for e, sd in sized if abs(e - centre) < 2.5 * sd]
-        logs += kept
-        used.append(f"{len(kept)} object height(s) and width(s)")
+        centre = float(np.median([e for e, _, _ in sized]))
+        kept = [(e, sd, kind) for e, sd, kind in sized if abs(e - centre) < 2.5 * sd]
+        logs += [(e, sd) for e, sd, _ in kept]
+        on_walls = sum(kind == "mounting" for _, _, kind in kept)
+        if len(kept) > on_walls:
+            used.append(f"{len(kept) - on_walls} object height(s) and width(s)")
+        if on_walls:
+            used.append(f"{on_walls} wall object(s)")
     weights = np.array([1 / sd**2 for _, sd in logs])
     values = np.array([v for v, _ in logs])
     return ScaleEstimate(
@@ -246,13 +308,13 @@ Residual = tuple[Measurement, str, float]  # (kind, class, measured - true log c
 def measurement_residuals(
     camera: PinholeCamera,
     contacts: list[tuple[SceneObject, FloatArray]],
+    mounted: Mounted,
     true_camera_height: float,
     image_width: int,
 ) -> Iterator[Residual]:
     """Every measurement of every object that can be measured, against the truth."""
-    for obj, base in contacts:
-        for kind, measured in measurements(camera, obj, base, image_width):
-            yield kind, obj.cls, measured - math.log(true_camera_height)
+    for obj, kind, measured in object_measurements(camera, contacts, mounted, image_width):
+        yield kind, obj.cls, measured - math.log(true_camera_height)
 
 
 def fit_calibration(residuals: Iterable[Residual], source: str) -> ScaleCalibration:

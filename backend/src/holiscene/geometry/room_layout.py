@@ -23,7 +23,7 @@ from numpy.typing import NDArray
 from .camera import FloatArray, PinholeCamera
 from .lines import Segments
 from .manhattan import ManhattanFrame, room_directions
-from .surface_labels import nearest_surface
+from .surface_labels import SURFACES, nearest_surface
 from .surface_map import SurfaceMap
 
 BACK_WALL_PRIOR = 0.5  # the wall behind the camera is never seen: its distance is a prior
@@ -47,6 +47,17 @@ class RoomHypothesis:
         return nearest_surface(
             rays_room, self.front, self.back, self.left, self.right, 1.0, self.ceiling
         )
+
+    def height_on_walls(self, rays_room: FloatArray) -> FloatArray:
+        """Height above the floor (camera heights) where each ray meets this room's walls;
+        NaN for a ray that meets the floor or the ceiling first, or no wall ahead."""
+        faces = self.surfaces_seen(rays_room)
+        walls = {"front": (0, self.front), "left": (2, -self.left), "right": (2, self.right)}
+        heights = np.full(len(rays_room), np.nan)
+        for name, (axis, plane) in walls.items():
+            on = faces == SURFACES.index(name)
+            heights[on] = 1.0 + rays_room[on, 1] * plane / rays_room[on, axis]
+        return heights
 
     def corners_room(self) -> FloatArray:
         """The 8 corners in room axes (x, y, z) relative to the camera, contract order."""

@@ -19,6 +19,7 @@ import trimesh
 from numpy.typing import NDArray
 
 from ..geometry.camera import rot_y
+from ..knowledge.object_sizes import MOUNTING_BOTTOM_M
 from ..shapes import Shape, generate_shape, typical_size
 from . import ranges
 
@@ -494,7 +495,8 @@ def _wall_items(p: Planner) -> None:
         if p.rng.random() < 0.3:
             size = p.size_of("window")
             along = p.rng.uniform(-half + size[2], half - size[2]) if half > size[2] else 0.0
-            window = p.on_wall("window", wall, along, p.rng.uniform(0.7, 1.0), size)
+            sill = p.rng.uniform(*MOUNTING_BOTTOM_M["window"])
+            window = p.on_wall("window", wall, along, sill, size)
             if window is not None and p.rng.random() < 0.6:
                 for side in (-1, 1):
                     curtain_size = np.array([0.08, p.plan.height - 0.15, p.rng.uniform(0.35, 0.6)])
@@ -513,9 +515,8 @@ def _wall_items(p: Planner) -> None:
         ):
             if p.rng.random() < probability:
                 size = p.size_of(cls)
-                p.on_wall(
-                    cls, wall, p.rng.uniform(-half + 0.4, half - 0.4), p.rng.uniform(1.0, 1.6), size
-                )
+                along = p.rng.uniform(-half + 0.4, half - 0.4)
+                p.on_wall(cls, wall, along, p.rng.uniform(*MOUNTING_BOTTOM_M[cls]), size)
 
 
 def _floor_boxes(p: Planner) -> None:

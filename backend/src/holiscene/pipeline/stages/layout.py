@@ -16,9 +16,11 @@ from ...geometry.lines import detect_segments
 from ...geometry.manhattan import ManhattanFrame, estimate_manhattan_frame
 from ...geometry.metric_scale import (
     ROOM_HEIGHT_PRIOR,
+    Mounted,
     bottom_may_be_hidden,
     camera_height,
     floor_contacts,
+    mounting_points,
 )
 from ...geometry.room_layout import RoomHypothesis, SurfaceEvidence, estimate_room, room_to_world
 from ...geometry.surface_map import (
@@ -44,6 +46,28 @@ def unseen_parts_from_priors(room: RoomHypothesis, metres: float) -> RoomHypothe
         return dataclasses.replace(room, back=back)
     ceiling = max(ROOM_HEIGHT_PRIOR[0] / metres - 1.0, MIN_CEILING_ABOVE_CAMERA)
     return dataclasses.replace(room, back=back, ceiling=ceiling)
+
+
+def mounted_heights(
+    room: RoomHypothesis,
+    camera: PinholeCamera,
+    to_room: FloatArray,
+    objects: list[SceneObject],
+    image_height: int,
+) -> Mounted:
+    """Things on walls with the height above the floor (camera heights) where their lower edge
+    meets the room's walls (`metric_scale.mounting_points` says which end of it to believe)."""
+    points = mounting_points(objects, image_height)
+    if not points:
+        return []
+    rays = camera.ray(np.concatenate([ends for _, ends in points])) @ to_room
+    heights = room.height_on_walls(rays).reshape(len(points), 2)
+    out = []
+    for (obj, _), pair in zip(points, heights, strict=True):
+        seen = pair[np.isfinite(pair)]  # the other end's ray may meet the floor first
+        if len(seen):
+            out.append((obj, float(seen.max())))
+    return out
 
 
 @dataclass(frozen=True)
@@ -97,7 +121,10 @@ def estimate_layout(
         SurfaceMap.predict(surface_model, image, camera, to_room) if surface_model else None,
         metres=metres_from_objects,
     )
-    scale = camera_height(camera, contacts, room.ceiling if room.ceiling_seen else None, width)
+    # The room found, things on walls join the scale: their lower edges' heights.
+    mounted = mounted_heights(room, camera, to_room, objects, height)
+    ceiling = room.ceiling if room.ceiling_seen else None
+    scale = camera_height(camera, contacts, ceiling, width, mounted=mounted)
     room = unseen_parts_from_priors(room, scale.metres)
     return LayoutEstimate(frame, camera, to_room, room, scale.metres, scale.describe())
 
