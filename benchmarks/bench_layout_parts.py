@@ -47,11 +47,8 @@ def scene_parts(folder: Path) -> dict[str, float]:
 
     true_corners = np.array(truth["layout"]["corners_3d"])
     true_height = truth["camera"]["height_m"]
-    local = true_corners @ to_room / true_height  # room axes, camera heights
-    true_room = {
-        "front": local[:, 0].max(), "back": -local[:, 0].min(),
-        "left": -local[:, 2].min(), "right": local[:, 2].max(), "ceiling": local[:, 1].max(),
-    }  # fmt: skip
+    truth_room = RoomHypothesis.enclosing(true_corners @ to_room / true_height)
+    true_room = {part: getattr(truth_room, part) for part in PARTS}
 
     def iou(hypothesis: RoomHypothesis, scale: float) -> float:
         return iou_3d(hypothesis.corners_room() @ to_room.T * scale, true_corners)

@@ -21,14 +21,13 @@ from holiscene.geometry.metric_scale import (
     CALIBRATION_FILE,
     Residual,
     fit_calibration,
-    floor_contacts,
     measurement_residuals,
 )
 from holiscene.geometry.surface_map import load_surface_model
 from holiscene.inputs.validation import read_input_folder
 from holiscene.pipeline import SceneContext, build_pipeline
 from holiscene.pipeline.base import required
-from holiscene.pipeline.stages.layout import estimate_layout, mounted_heights
+from holiscene.pipeline.stages.layout import estimate_layout
 from tqdm import tqdm
 
 
@@ -38,15 +37,12 @@ def scene_residuals(folder: Path) -> Iterator[Residual]:
     ctx = SceneContext(image=inputs.photo.rgb, given_K=inputs.K, detections=inputs.detections)
     build_pipeline(["objects_from_detections", "intrinsics"]).run(ctx)
     K, _ = required(ctx.intrinsics, "intrinsics")
-    objects = required(ctx.objects, "objects")
-    estimate = estimate_layout(ctx.image, K, objects, load_surface_model())
+    estimate = estimate_layout(ctx.image, K, required(ctx.objects, "objects"), load_surface_model())
     if estimate is None:
         return
-    camera = estimate.camera
-    contacts = floor_contacts(camera, objects, ctx.height)
-    mounted = mounted_heights(estimate.room, camera, estimate.to_room, objects, ctx.height)
-    true_height = truth["camera"]["height_m"]
-    yield from measurement_residuals(camera, contacts, mounted, true_height, ctx.width)
+    yield from measurement_residuals(
+        estimate.camera, estimate.contacts, estimate.mounted, truth["camera"]["height_m"], ctx.width
+    )
 
 
 def main() -> int:

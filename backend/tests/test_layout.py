@@ -137,11 +137,7 @@ def test_wall_objects_edges_are_measured_at_their_heights_in_the_true_room() -> 
         camera = PinholeCamera(synthetic.K, frame.pitch_deg, frame.roll_deg)
         to_room = room_to_world(frame)
         height = truth.camera.height_m
-        local = np.array(truth.layout.corners_3d) @ to_room / height
-        room = RoomHypothesis(
-            front=local[:, 0].max(), left=-local[:, 2].min(), right=local[:, 2].max(),
-            back=-local[:, 0].min(), ceiling=local[:, 1].max(), score=0.0, ceiling_seen=True,
-        )  # fmt: skip
+        room = RoomHypothesis.enclosing(np.array(truth.layout.corners_3d) @ to_room / height)
         for obj, measured_height in mounted_heights(room, camera, to_room, truth.objects, 480):
             assert obj.corners_3d is not None
             true_height = (np.array(obj.corners_3d)[:, 1].min() + height) / height

@@ -129,17 +129,24 @@ def floor_contacts(
     return out
 
 
+def _inside_another_box(
+    obj: SceneObject, objects: list[SceneObject], x: float, y: float, bottom_margin: float = 0.0
+) -> bool:
+    """Whether the pixel (x, y) lies inside the box of an object other than `obj` (at least
+    `bottom_margin` above that box's bottom edge)."""
+    return any(
+        o is not obj and o.bbox[0] < x < o.bbox[2] and o.bbox[1] < y < o.bbox[3] - bottom_margin
+        for o in objects
+    )
+
+
 def bottom_may_be_hidden(obj: SceneObject, objects: list[SceneObject]) -> bool:
     """Whether the middle of the box's bottom edge lies inside the box of an object that
     reaches lower in the photo (nearer the camera, so possibly in front of it): the box then
     ends where the view is cut off, and its floor contact may lie too far away, even beyond
     the walls. (The scale still uses such objects: its calibration counts that error in.)"""
     x1, _, x2, y2 = obj.bbox
-    centre = (x1 + x2) / 2
-    return any(
-        o is not obj and o.bbox[0] < centre < o.bbox[2] and o.bbox[1] < y2 < o.bbox[3] - 2
-        for o in objects
-    )
+    return _inside_another_box(obj, objects, (x1 + x2) / 2, y2, bottom_margin=2)
 
 
 def measured_log_camera_height(
@@ -211,11 +218,8 @@ def mounting_points(
         x1, _, x2, bottom = obj.bbox
         if bottom >= image_height - 2:
             continue
-        if any(
-            o is not obj and o.bbox[1] < bottom + 3 < o.bbox[3] and o.bbox[0] < x < o.bbox[2]
-            for o in objects
-            for x in (x1, (x1 + x2) / 2, x2)
-        ):
+        # 3 px below the edge: a television's box ends where the dresser's top begins.
+        if any(_inside_another_box(obj, objects, x, bottom + 3) for x in (x1, (x1 + x2) / 2, x2)):
             continue
         out.append((obj, np.array([[x1, bottom], [x2, bottom]])))
     return out

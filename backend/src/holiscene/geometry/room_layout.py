@@ -42,6 +42,16 @@ class RoomHypothesis:
     score: float
     ceiling_seen: bool
 
+    @classmethod
+    def enclosing(cls, points_room: FloatArray) -> RoomHypothesis:
+        """The room whose box just holds the points (room axes, camera heights, camera at the
+        origin): a true room from its corners."""
+        low, high = points_room.min(axis=0), points_room.max(axis=0)
+        return cls(
+            front=float(high[0]), left=float(-low[2]), right=float(high[2]),
+            back=float(-low[0]), ceiling=float(high[1]), score=0.0, ceiling_seen=True,
+        )  # fmt: skip
+
     def surfaces_seen(self, rays_room: FloatArray) -> NDArray[np.int64]:
         """The face of this room (an index into `surface_labels.SURFACES`) each ray meets."""
         return nearest_surface(

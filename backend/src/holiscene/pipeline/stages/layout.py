@@ -80,6 +80,9 @@ class LayoutEstimate:
     room: RoomHypothesis  # camera heights
     metres: float  # the camera's height
     priors: str  # which priors decided `metres`, and how far off it may be
+    # The measurements `metres` was fused from (the scale's calibration measures these).
+    contacts: list[tuple[SceneObject, FloatArray]]  # floor contacts, camera height 1
+    mounted: Mounted  # things on walls, their lower edges' heights
 
     def corners_world(self) -> FloatArray:
         """The room's 8 corners in the world frame, metres (contract order)."""
@@ -126,7 +129,9 @@ def estimate_layout(
     ceiling = room.ceiling if room.ceiling_seen else None
     scale = camera_height(camera, contacts, ceiling, width, mounted=mounted)
     room = unseen_parts_from_priors(room, scale.metres)
-    return LayoutEstimate(frame, camera, to_room, room, scale.metres, scale.describe())
+    return LayoutEstimate(
+        frame, camera, to_room, room, scale.metres, scale.describe(), contacts, mounted
+    )
 
 
 @register_stage
