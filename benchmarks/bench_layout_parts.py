@@ -6,6 +6,9 @@ error (in camera heights), and the layout IoU when that one part is replaced by 
 The part whose replacement gains most is where work pays. Two more rows bound what reading
 the photo better can give: the parts the photo shows (the faces of the true room in view) made
 true, and those with the true scale too (the parts out of view keep their size in metres).
+A last pair of columns asks whether reading the objects better could help the scale: the
+scale fused from measurements whose only error is each object's true size against its class's
+typical size (the limit of class-size priors), and the IoU with it.
 Prints a row per scene and means; `--plot FILE` draws the means as a bar chart (the README's
 docs/img/layout_parts.png).
 """
@@ -14,24 +17,83 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import subprocess
 import sys
 import tempfile
 from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from holiscene.evaluation.box_iou import iou_3d, iou_3d_in_view
 from holiscene.geometry.camera import PinholeCamera
+from holiscene.geometry.metric_scale import (
+    CAMERA_HEIGHT_PRIOR,
+    ROOM_HEIGHT_PRIOR,
+    Measurement,
+    default_calibration,
+    object_measurements,
+)
 from holiscene.geometry.room_layout import RoomHypothesis
 from holiscene.geometry.surface_labels import SURFACES, map_pixels
 from holiscene.geometry.surface_map import load_surface_model
 from holiscene.inputs import read_input_folder
+from holiscene.knowledge.object_sizes import middle_size, mounting_height
 from holiscene.pipeline import SceneContext, build_pipeline
 from holiscene.pipeline.base import required
-from holiscene.pipeline.stages.layout import estimate_layout
+from holiscene.pipeline.stages.layout import LayoutEstimate, estimate_layout
+from holiscene_schema import SceneObject
 
 PARTS = ("front", "left", "right", "back", "ceiling")
+
+
+def size_off_typical(
+    kind: Measurement, obj: SceneObject, truth_obj: dict[str, Any], true_height: float
+) -> float:
+    """log(typical / true) of the size a measurement of `kind` reads: what even an exact
+    measurement of the object would get wrong about the scale."""
+    depth, height, width = truth_obj["box_3d"]["size"]
+    typical_depth, typical_height, typical_width = middle_size(obj.cls)
+    if kind == "height":
+        return math.log(typical_height / height)
+    if kind == "width":
+        return math.log(max(typical_depth, typical_width) / max(depth, width))
+    typical_bottom = mounting_height(obj.cls)
+    assert typical_bottom is not None, f"{obj.cls} is measured on a wall but has no mounting"
+    bottom = truth_obj["box_3d"]["center"][1] - height / 2 + true_height  # above the floor
+    return math.log(typical_bottom / bottom)
+
+
+def scale_at_class_size_limit(
+    estimate: LayoutEstimate, truth: dict[str, Any], image_width: int
+) -> float:
+    """The camera height fused from the same priors and measurements as the estimate, each
+    measurement exact but for its object's size (and the priors off by the truth's own camera
+    and room heights), with the same weights: the best the class-size priors can do for this
+    photo."""
+    true_height = truth["camera"]["height_m"]
+    corners = np.array(truth["layout"]["corners_3d"])
+    logs = [(math.log(CAMERA_HEIGHT_PRIOR[0]), CAMERA_HEIGHT_PRIOR[1])]
+    if estimate.room.ceiling_seen:
+        room_height = float(corners[:, 1].max() - corners[:, 1].min())
+        logs.append(
+            (math.log(true_height * ROOM_HEIGHT_PRIOR[0] / room_height), ROOM_HEIGHT_PRIOR[1])
+        )
+    truth_by_box = {tuple(o["bbox"]): o for o in truth["objects"]}
+    calibration = default_calibration()
+    measured = object_measurements(
+        estimate.camera, estimate.contacts, estimate.mounted, image_width
+    )
+    for obj, kind, _ in measured:
+        error = calibration.measurement_error(kind, obj.cls)
+        truth_obj = truth_by_box.get(tuple(obj.bbox))
+        if error is None or truth_obj is None:
+            continue
+        off = size_off_typical(kind, obj, truth_obj, true_height)
+        logs.append((math.log(true_height) + off, error[1]))
+    weights = np.array([1 / sd**2 for _, sd in logs])
+    return float(math.exp(weights @ np.array([v for v, _ in logs]) / weights.sum()))
 
 
 def scene_parts(folder: Path) -> dict[str, float]:
@@ -82,12 +144,16 @@ def scene_parts(folder: Path) -> dict[str, float]:
     view = PinholeCamera(np.array(camera["K"]), camera["pitch_deg"], camera["roll_deg"])
     size = (ctx.width, ctx.height)
     row["iou_in_view"] = iou_3d_in_view(estimate.corners_world(), true_corners, view, size)
+    limit = scale_at_class_size_limit(estimate, truth, ctx.width)
+    row["limit_scale_error"] = abs(limit / true_height - 1)
+    row["iou_limit_scale"] = iou(room, limit)
     return row
 
 
 # The bars of the picture: (key of the row's means, label).
 PLOT_BARS = (
     ("iou", "estimate"),
+    ("iou_limit_scale", "scale at class-size limit"),
     ("iou_true_front", "front wall true"),
     ("iou_true_ceiling", "ceiling true"),
     ("iou_true_scale", "scale true"),
