@@ -92,7 +92,7 @@ bench-layout: install-python
 # the Surface Network (floor/ceiling/wall labels) and the per-class metric-scale calibration.
 surface-model: install-python
 	rm -rf /tmp/holiscene-surface-model
-	$(PY) -m holiscene.cli train-surfaces -o /tmp/holiscene-surface-model --scenes 3000 --epochs 30
+	$(PY) -m holiscene.cli train-surfaces -o /tmp/holiscene-surface-model --scenes 6000 --epochs 30
 	cp /tmp/holiscene-surface-model/* backend/src/holiscene/learning/default_surface_model/
 
 calibrate-scale: install-python
