@@ -29,15 +29,15 @@ import numpy as np
 from holiscene.evaluation.box_iou import iou_3d, iou_3d_in_view
 from holiscene.geometry.camera import PinholeCamera
 from holiscene.geometry.metric_scale import (
-    CAMERA_HEIGHT_PRIOR,
-    ROOM_HEIGHT_PRIOR,
     Measurement,
     default_calibration,
+    fuse,
     object_measurements,
+    room_priors,
 )
 from holiscene.geometry.room_layout import RoomHypothesis
 from holiscene.geometry.surface_labels import SURFACES, map_pixels
-from holiscene.geometry.surface_map import load_surface_model
+from holiscene.geometry.surface_map import SurfaceModel, load_surface_model
 from holiscene.inputs import read_input_folder
 from holiscene.knowledge.object_sizes import middle_size, mounting_height
 from holiscene.pipeline import SceneContext, build_pipeline
@@ -73,13 +73,11 @@ def scale_at_class_size_limit(
     and room heights), with the same weights: the best the class-size priors can do for this
     photo."""
     true_height = truth["camera"]["height_m"]
-    corners = np.array(truth["layout"]["corners_3d"])
-    logs = [(math.log(CAMERA_HEIGHT_PRIOR[0]), CAMERA_HEIGHT_PRIOR[1])]
-    if estimate.room.ceiling_seen:
-        room_height = float(corners[:, 1].max() - corners[:, 1].min())
-        logs.append(
-            (math.log(true_height * ROOM_HEIGHT_PRIOR[0] / room_height), ROOM_HEIGHT_PRIOR[1])
-        )
+    ceiling = None
+    if estimate.room.ceiling_seen:  # seen exactly: the room's own height above the camera
+        corners = np.array(truth["layout"]["corners_3d"])
+        ceiling = float(corners[:, 1].max() - corners[:, 1].min()) / true_height - 1.0
+    logs = room_priors(ceiling)
     truth_by_box = {tuple(o["bbox"]): o for o in truth["objects"]}
     calibration = default_calibration()
     measured = object_measurements(
@@ -92,17 +90,16 @@ def scale_at_class_size_limit(
             continue
         off = size_off_typical(kind, obj, truth_obj, true_height)
         logs.append((math.log(true_height) + off, error[1]))
-    weights = np.array([1 / sd**2 for _, sd in logs])
-    return float(math.exp(weights @ np.array([v for v, _ in logs]) / weights.sum()))
+    return fuse(logs)[0]
 
 
-def scene_parts(folder: Path) -> dict[str, float]:
+def scene_parts(folder: Path, surface_model: SurfaceModel) -> dict[str, float]:
     inputs = read_input_folder(folder)
     truth = json.loads((folder / "gt.json").read_text())
     ctx = SceneContext(image=inputs.photo.rgb, given_K=inputs.K, detections=inputs.detections)
     build_pipeline(["objects_from_detections", "intrinsics"]).run(ctx)
     K, _ = required(ctx.intrinsics, "intrinsics")
-    estimate = estimate_layout(ctx.image, K, required(ctx.objects, "objects"), load_surface_model())
+    estimate = estimate_layout(ctx.image, K, required(ctx.objects, "objects"), surface_model)
     if estimate is None:
         return {}
     room, to_room, metres = estimate.room, estimate.to_room, estimate.metres
@@ -200,8 +197,9 @@ def main() -> int:
         synth = ["synth", "--seed", str(args.seed), "--count", str(args.count), "-o", tmp]
         subprocess.run([sys.executable, "-m", "holiscene.cli", *synth], check=True)
         rows = {}
+        surface_model = load_surface_model()  # once: an ONNX session per scene is slow
         for folder in sorted(p for p in Path(tmp).iterdir() if (p / "gt.json").is_file()):
-            rows[folder.name] = scene_parts(folder)
+            rows[folder.name] = scene_parts(folder, surface_model)
     keys = list(next(iter(rows.values())))
     print("scene        " + " ".join(f"{k:>18s}" for k in keys))
     for name, row in rows.items():

@@ -263,6 +263,26 @@ def object_measurements(
             yield obj, "mounting", on_wall
 
 
+LogMeasurement = tuple[float, float]  # (log metres per camera height, sd of that log)
+
+
+def room_priors(ceiling_above_camera: float | None) -> list[LogMeasurement]:
+    """The priors every photo starts from: the camera's height, and the room's height when the
+    ceiling is seen `ceiling_above_camera` camera heights above the camera."""
+    logs = [(math.log(CAMERA_HEIGHT_PRIOR[0]), CAMERA_HEIGHT_PRIOR[1])]
+    if ceiling_above_camera is not None:
+        room_log = math.log(ROOM_HEIGHT_PRIOR[0] / (1.0 + ceiling_above_camera))
+        logs.append((room_log, ROOM_HEIGHT_PRIOR[1]))
+    return logs
+
+
+def fuse(logs: list[LogMeasurement]) -> tuple[float, float]:
+    """Inverse-variance mean of log measurements: (metres, sd of the fused log)."""
+    weights = np.array([1 / sd**2 for _, sd in logs])
+    values = np.array([v for v, _ in logs])
+    return float(math.exp((weights @ values) / weights.sum())), 1 / math.sqrt(weights.sum())
+
+
 def camera_height(
     camera: PinholeCamera,
     contacts: list[tuple[SceneObject, FloatArray]],
@@ -276,12 +296,8 @@ def camera_height(
     or None; `mounted` are things on walls with the heights of their lower edges (camera
     heights), when the room is known."""
     calibration = calibration or default_calibration()
-    logs = [(math.log(CAMERA_HEIGHT_PRIOR[0]), CAMERA_HEIGHT_PRIOR[1])]
-    used = ["camera height"]
-    if ceiling_above_camera is not None:
-        room_log = math.log(ROOM_HEIGHT_PRIOR[0] / (1.0 + ceiling_above_camera))
-        logs.append((room_log, ROOM_HEIGHT_PRIOR[1]))
-        used.append("room height")
+    logs = room_priors(ceiling_above_camera)
+    used = ["camera height"] + (["room height"] if ceiling_above_camera is not None else [])
     sized: list[tuple[float, float, Measurement]] = []
     for obj, kind, measured in object_measurements(camera, contacts, mounted or [], image_width):
         error = calibration.measurement_error(kind, obj.cls)
@@ -297,13 +313,8 @@ def camera_height(
             used.append(f"{len(kept) - on_walls} object height(s) and width(s)")
         if on_walls:
             used.append(f"{on_walls} wall object(s)")
-    weights = np.array([1 / sd**2 for _, sd in logs])
-    values = np.array([v for v, _ in logs])
-    return ScaleEstimate(
-        metres=float(math.exp((weights @ values) / weights.sum())),
-        spread=SPREAD_WIDENING / math.sqrt(float(weights.sum())),
-        priors=" + ".join(used),
-    )
+    metres, spread = fuse(logs)
+    return ScaleEstimate(metres=metres, spread=SPREAD_WIDENING * spread, priors=" + ".join(used))
 
 
 Residual = tuple[Measurement, str, float]  # (kind, class, measured - true log camera height)
