@@ -10,6 +10,7 @@ from holiscene.geometry.camera import PinholeCamera
 from holiscene.geometry.metric_scale import (
     CAMERA_HEIGHT_PRIOR,
     MIN_CALIBRATION_COUNT,
+    PRIOR_GATE,
     SPREAD_WIDENING,
     ClassCalibration,
     ScaleCalibration,
@@ -128,6 +129,26 @@ def test_a_calibrated_wall_object_joins_the_scale() -> None:
     # Uncalibrated, it is not used.
     alone = camera_height(camera, [], None, 640, ScaleCalibration(), mounted=[(picture, 0.8)])
     assert alone.metres == pytest.approx(CAMERA_HEIGHT_PRIOR[0])
+
+
+def test_a_lone_measurement_far_from_the_camera_prior_is_dropped() -> None:
+    """One object alone cannot be outvoted by the others' median: a picture whose lower edge
+    reads a fifth of a camera height above the floor would put the camera several metres up."""
+    camera = PinholeCamera(np.array([[500.0, 0, 320], [0, 500, 240], [0, 0, 1]]), 10.0, 0.0)
+    picture = SceneObject(id="picture", cls="picture", bbox=[100.0, 40.0, 220.0, 130.0])
+    typical = mounting_height("picture")
+    assert typical is not None
+    sd = 0.15
+    sure = ScaleCalibration({"mounting": {"picture": ClassCalibration(0.0, sd, 50)}})
+    gate = PRIOR_GATE * math.hypot(sd, CAMERA_HEIGHT_PRIOR[1])
+    just_inside = typical / (CAMERA_HEIGHT_PRIOR[0] * math.exp(gate - 0.01))
+    kept = camera_height(camera, [], None, 640, sure, mounted=[(picture, just_inside)])
+    assert kept.metres > CAMERA_HEIGHT_PRIOR[0] * 1.3
+    assert kept.priors == "camera height + 1 wall object(s)"
+    beyond = typical / (CAMERA_HEIGHT_PRIOR[0] * math.exp(gate + 0.01))
+    dropped = camera_height(camera, [], None, 640, sure, mounted=[(picture, beyond)])
+    assert dropped.metres == pytest.approx(CAMERA_HEIGHT_PRIOR[0])
+    assert dropped.priors == "camera height"
 
 
 def test_rays_meet_the_walls_at_their_heights() -> None:
