@@ -37,7 +37,7 @@ from holiscene.geometry.metric_scale import (
 )
 from holiscene.geometry.room_layout import RoomHypothesis
 from holiscene.geometry.surface_labels import SURFACES, map_pixels
-from holiscene.geometry.surface_map import SurfaceModel, load_surface_model
+from holiscene.geometry.surface_map import load_surface_model
 from holiscene.inputs import read_input_folder
 from holiscene.knowledge.object_sizes import middle_size, mounting_height
 from holiscene.pipeline import SceneContext, build_pipeline
@@ -93,13 +93,13 @@ def scale_at_class_size_limit(
     return fuse(logs)[0]
 
 
-def scene_parts(folder: Path, surface_model: SurfaceModel) -> dict[str, float]:
+def scene_parts(folder: Path) -> dict[str, float]:
     inputs = read_input_folder(folder)
     truth = json.loads((folder / "gt.json").read_text())
     ctx = SceneContext(image=inputs.photo.rgb, given_K=inputs.K, detections=inputs.detections)
     build_pipeline(["objects_from_detections", "intrinsics"]).run(ctx)
     K, _ = required(ctx.intrinsics, "intrinsics")
-    estimate = estimate_layout(ctx.image, K, required(ctx.objects, "objects"), surface_model)
+    estimate = estimate_layout(ctx.image, K, required(ctx.objects, "objects"), load_surface_model())
     if estimate is None:
         return {}
     room, to_room, metres = estimate.room, estimate.to_room, estimate.metres
@@ -197,9 +197,8 @@ def main() -> int:
         synth = ["synth", "--seed", str(args.seed), "--count", str(args.count), "-o", tmp]
         subprocess.run([sys.executable, "-m", "holiscene.cli", *synth], check=True)
         rows = {}
-        surface_model = load_surface_model()  # once: an ONNX session per scene is slow
         for folder in sorted(p for p in Path(tmp).iterdir() if (p / "gt.json").is_file()):
-            rows[folder.name] = scene_parts(folder, surface_model)
+            rows[folder.name] = scene_parts(folder)
     keys = list(next(iter(rows.values())))
     print("scene        " + " ".join(f"{k:>18s}" for k in keys))
     for name, row in rows.items():

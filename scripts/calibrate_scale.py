@@ -23,7 +23,7 @@ from holiscene.geometry.metric_scale import (
     fit_calibration,
     measurement_residuals,
 )
-from holiscene.geometry.surface_map import SurfaceModel, load_surface_model
+from holiscene.geometry.surface_map import load_surface_model
 from holiscene.inputs.validation import read_input_folder
 from holiscene.pipeline import SceneContext, build_pipeline
 from holiscene.pipeline.base import required
@@ -31,13 +31,13 @@ from holiscene.pipeline.stages.layout import estimate_layout
 from tqdm import tqdm
 
 
-def scene_residuals(folder: Path, surface_model: SurfaceModel) -> Iterator[Residual]:
+def scene_residuals(folder: Path) -> Iterator[Residual]:
     inputs = read_input_folder(folder)
     truth = json.loads((folder / "gt.json").read_text())
     ctx = SceneContext(image=inputs.photo.rgb, given_K=inputs.K, detections=inputs.detections)
     build_pipeline(["objects_from_detections", "intrinsics"]).run(ctx)
     K, _ = required(ctx.intrinsics, "intrinsics")
-    estimate = estimate_layout(ctx.image, K, required(ctx.objects, "objects"), surface_model)
+    estimate = estimate_layout(ctx.image, K, required(ctx.objects, "objects"), load_surface_model())
     if estimate is None:
         return
     yield from measurement_residuals(
@@ -64,11 +64,8 @@ def main() -> int:
         if not folders:
             print(f"error: no synthetic scenes (gt.json) in {scenes}", file=sys.stderr)
             return 2
-        surface_model = load_surface_model()  # once: an ONNX session per scene is slow
         residuals = [
-            r
-            for f in tqdm(folders, desc="measure", unit="scene")
-            for r in scene_residuals(f, surface_model)
+            r for f in tqdm(folders, desc="measure", unit="scene") for r in scene_residuals(f)
         ]
     source = f"{len(folders)} synthetic scenes, seeds {args.seed}+ ({len(residuals)} measurements)"
     calibration = fit_calibration(residuals, source)

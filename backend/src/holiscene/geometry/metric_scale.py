@@ -305,7 +305,7 @@ def camera_height(
     calibration = calibration or default_calibration()
     logs = room_priors(ceiling_above_camera)
     used = ["camera height"] + (["room height"] if ceiling_above_camera is not None else [])
-    prior_log, prior_sd = logs[0]
+    prior_log, prior_sd = math.log(CAMERA_HEIGHT_PRIOR[0]), CAMERA_HEIGHT_PRIOR[1]
     sized: list[tuple[float, float, Measurement]] = []
     for obj, kind, measured in object_measurements(camera, contacts, mounted or [], image_width):
         error = calibration.measurement_error(kind, obj.cls)
