@@ -6,9 +6,10 @@ error (in camera heights), and the layout IoU when that one part is replaced by 
 The part whose replacement gains most is where work pays. Two more rows bound what reading
 the photo better can give: the parts the photo shows (the faces of the true room in view) made
 true, and those with the true scale too (the parts out of view keep their size in metres).
-A last pair of columns asks whether reading the objects better could help the scale: the
+A last set of columns asks whether reading the objects better could help the scale: the
 scale fused from measurements whose only error is each object's true size against its class's
-typical size (the limit of class-size priors), and the IoU with it.
+typical size (the limit of class-size priors), the IoU with it, and the IoU with it and the
+parts in view true: the best these priors allow, however well the photo is read.
 Prints a row per scene and means; `--plot FILE` draws the means as a bar chart (the README's
 docs/img/layout_parts.png).
 """
@@ -128,14 +129,20 @@ def scene_parts(folder: Path) -> dict[str, float]:
     in_view = [part for part in ("front", "left", "right", "ceiling") if part in faces_seen]
     seen_true = replace(room, **{part: true_room[part] for part in in_view})
     row["iou_parts_in_view_true"] = iou(seen_true, metres)
-    # ... and the true scale, the parts out of view keeping their size in metres.
-    ratio = metres / true_height
-    out_of_view = {
-        p: getattr(room, p) * ratio for p in PARTS if p not in in_view and p != "ceiling"
-    }
-    if "ceiling" not in in_view:
-        out_of_view["ceiling"] = (room.ceiling + 1.0) * ratio - 1.0
-    row["iou_in_view_and_scale_true"] = iou(replace(seen_true, **out_of_view), true_height)
+
+    def rescaled(scale: float) -> RoomHypothesis:
+        """`seen_true` for a camera `scale` metres high, the parts out of view keeping their
+        size in metres (they come from priors in metres)."""
+        ratio = metres / scale
+        out_of_view = {
+            p: getattr(room, p) * ratio for p in PARTS if p not in in_view and p != "ceiling"
+        }
+        if "ceiling" not in in_view:
+            out_of_view["ceiling"] = (room.ceiling + 1.0) * ratio - 1.0
+        return replace(seen_true, **out_of_view)
+
+    # ... and the true scale.
+    row["iou_in_view_and_scale_true"] = iou(rescaled(true_height), true_height)
 
     camera = truth["camera"]
     view = PinholeCamera(np.array(camera["K"]), camera["pitch_deg"], camera["roll_deg"])
@@ -144,6 +151,8 @@ def scene_parts(folder: Path) -> dict[str, float]:
     limit = scale_at_class_size_limit(estimate, truth, ctx.width)
     row["limit_scale_error"] = abs(limit / true_height - 1)
     row["iou_limit_scale"] = iou(room, limit)
+    # What these priors allow at best: the photo read exactly, the scale at the limit.
+    row["iou_in_view_true_limit_scale"] = iou(rescaled(limit), limit)
     return row
 
 
@@ -158,6 +167,7 @@ PLOT_BARS = (
     ("iou_true_right", "right wall true"),
     ("iou_true_left", "left wall true"),
     ("iou_parts_in_view_true", "parts in view true"),
+    ("iou_in_view_true_limit_scale", "in view true + scale at limit"),
     ("iou_all_walls_true", "all walls true"),
     ("iou_in_view_and_scale_true", "in view + scale true"),
 )
