@@ -14,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import cv2
@@ -321,6 +322,12 @@ def estimate_room(
 RESTARTS = 3  # coordinate ascent from the best few line-vote hypotheses
 GRID_STEPS = {"front": 28, "left": 24, "right": 24, "ceiling": 20}
 ROUNDS = 2
+# After the grid (steps of 11% for the front wall, 17% for the side walls), steps of 8%, 4%
+# and 2% from the best: on 390 synthetic rooms (seeds 1, 7000-7099, 300000+, 700000+) layout
+# IoU +0.40 points (standard error 0.18; 172 rooms better, 146 worse), seen walls nearer the
+# truth (front 3.9% -> 3.4% on seed 1). Steps (0.04, 0.02), (0.12, 0.06, 0.03) and down to
+# 1% did about as well; interpolating the Surface Network's map to a finer grid added nothing.
+FINE_STEPS = (0.08, 0.04, 0.02)
 EDGE_WEIGHT = 0.3  # share of the score from line support (the rest: surface colours)
 EDGE_NORM = 0.3  # line support is counted in tenths of all segment length
 # A weak prior on each wall's distance from the camera (metres, log-normal; converted with the
@@ -362,7 +369,8 @@ def _refine_by_surfaces(
     *,
     metres: float,
 ) -> RoomHypothesis:
-    """Coordinate ascent over each wall distance and the ceiling on a log grid, scoring
+    """Coordinate ascent over each wall distance and the ceiling on a log grid and then in
+    finer steps (`coordinate_search`), scoring
     surface colour consistency plus line support along the edges (plus agreement with the
     Surface Network's labels when there is a map)."""
     norm = max(float(segments.lengths.sum()), 1.0) * EDGE_NORM
@@ -377,24 +385,52 @@ def _refine_by_surfaces(
             )
         return fit - PRIOR_WEIGHT * prior
 
-    best, best_score = start, score(start)
     grids = {
         "front": np.geomspace(max(minimum[0], 0.8), 14.0, GRID_STEPS["front"]),
         "left": np.geomspace(max(minimum[1], 0.2), 8.0, GRID_STEPS["left"]),
         "right": np.geomspace(max(minimum[2], 0.2), 8.0, GRID_STEPS["right"]),
         "ceiling": np.geomspace(0.5, 2.5, GRID_STEPS["ceiling"]),
     }
+    return coordinate_search(start, score, grids)
+
+
+def coordinate_search(
+    start: RoomHypothesis,
+    score: Callable[[RoomHypothesis], float],
+    grids: dict[str, FloatArray],
+) -> RoomHypothesis:
+    """The best-scoring room from `start`, one field at a time: every value of the field's
+    grid (increasing), for up to ROUNDS rounds; then steps of FINE_STEPS (log) up and down
+    from the best, each size until no step helps, never leaving the grid's range. The result
+    carries its score."""
+    best, best_score = start, score(start)
+
+    def try_value(field: str, value: float) -> bool:
+        nonlocal best, best_score
+        trial = RoomHypothesis(**{**best.__dict__, field: value, "score": 0.0})
+        trial_score = score(trial)
+        if trial_score > best_score + 1e-9:
+            best, best_score = trial, trial_score
+            return True
+        return False
+
     for _ in range(ROUNDS):
         improved = False
         for field, values in grids.items():
             for value in values:
-                trial = RoomHypothesis(**{**best.__dict__, field: float(value), "score": 0.0})
-                trial_score = score(trial)
-                if trial_score > best_score + 1e-9:
-                    best, best_score, improved = trial, trial_score, True
+                improved |= try_value(field, float(value))
         if not improved:
             break
-    return RoomHypothesis(**{**best.__dict__, "score": best_score})
+    for step in FINE_STEPS:
+        improved = True
+        while improved:
+            improved = False
+            for field, values in grids.items():
+                for factor in (math.exp(step), math.exp(-step)):
+                    value = getattr(best, field) * factor
+                    if values[0] <= value <= values[-1]:
+                        improved |= try_value(field, value)
+    return dataclasses.replace(best, score=best_score)
 
 
 def _edges(hyp: RoomHypothesis, to_room: FloatArray) -> list[tuple[FloatArray, FloatArray, int]]:
