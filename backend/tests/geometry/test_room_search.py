@@ -21,9 +21,9 @@ START = RoomHypothesis(
 )
 
 
-def log_distance_score(room: RoomHypothesis) -> float:
-    """Highest at TARGET, falling with each field's log distance from it."""
-    return -sum(math.log(getattr(room, f) / v) ** 2 for f, v in TARGET.items())
+def log_distance_score(room: RoomHypothesis, target: dict[str, float] = TARGET) -> float:
+    """Highest at `target`, falling with each field's log distance from it."""
+    return -sum(math.log(getattr(room, f) / v) ** 2 for f, v in target.items())
 
 
 def worst_log_error(room: RoomHypothesis) -> float:
@@ -45,8 +45,7 @@ def test_the_fine_steps_reach_between_the_grid_values(monkeypatch: pytest.Monkey
 def test_the_fine_steps_never_leave_the_grid_range() -> None:
     # The best front wall lies below the grid's range (say, inside the floor's objects).
     def score(room: RoomHypothesis) -> float:
-        others = sum(math.log(getattr(room, f) / v) ** 2 for f, v in TARGET.items() if f != "front")
-        return -others - math.log(room.front / 0.3) ** 2
+        return log_distance_score(room, {**TARGET, "front": 0.3})
 
     found = coordinate_search(START, score, GRIDS)
     assert found.front >= GRIDS["front"][0]

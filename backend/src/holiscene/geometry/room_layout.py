@@ -369,10 +369,9 @@ def _refine_by_surfaces(
     *,
     metres: float,
 ) -> RoomHypothesis:
-    """Coordinate ascent over each wall distance and the ceiling on a log grid and then in
-    finer steps (`coordinate_search`), scoring
-    surface colour consistency plus line support along the edges (plus agreement with the
-    Surface Network's labels when there is a map)."""
+    """Coordinate ascent (`coordinate_search`) over each wall distance and the ceiling,
+    scoring surface colour consistency plus line support along the edges (plus agreement with
+    the Surface Network's labels when there is a map)."""
     norm = max(float(segments.lengths.sum()), 1.0) * EDGE_NORM
 
     def score(h: RoomHypothesis) -> float:
