@@ -9,7 +9,8 @@ true, and those with the true scale too (the parts out of view keep their size i
 A last set of columns asks whether reading the objects better could help the scale: the
 scale fused from measurements whose only error is each object's true size against its class's
 typical size (the limit of class-size priors), the IoU with it, and the IoU with it and the
-parts in view true: the best these priors allow, however well the photo is read.
+parts in view true: the best class sizes allow for the scale, however well the photo is read,
+while the parts out of view stay as estimated (in metres).
 Prints a row per scene and means; `--plot FILE` draws the means as a bar chart (the README's
 docs/img/layout_parts.png).
 """
@@ -28,7 +29,7 @@ from typing import Any
 
 import numpy as np
 from holiscene.evaluation.box_iou import iou_3d, iou_3d_in_view
-from holiscene.geometry.camera import PinholeCamera
+from holiscene.geometry.camera import FloatArray, PinholeCamera
 from holiscene.geometry.metric_scale import (
     Measurement,
     default_calibration,
@@ -37,7 +38,7 @@ from holiscene.geometry.metric_scale import (
     room_priors,
 )
 from holiscene.geometry.room_layout import RoomHypothesis
-from holiscene.geometry.surface_labels import SURFACES, map_pixels
+from holiscene.geometry.surface_labels import map_pixels
 from holiscene.geometry.surface_map import load_surface_model
 from holiscene.inputs import read_input_folder
 from holiscene.knowledge.object_sizes import middle_size, mounting_height
@@ -67,18 +68,20 @@ def size_off_typical(
 
 
 def scale_at_class_size_limit(
-    estimate: LayoutEstimate, truth: dict[str, Any], image_width: int
+    estimate: LayoutEstimate, truth: dict[str, Any], image_width: int, rays_room: FloatArray
 ) -> float:
     """The camera height fused from the same priors and measurements as the estimate, each
     measurement exact but for its object's size (and the priors off by the truth's own camera
-    and room heights), with the same weights: the best the class-size priors can do for this
-    photo."""
+    and room heights and front wall distance), with the same weights: the best the class-size
+    priors can do for this photo. `rays_room` are the photo's rays (which walls it shows)."""
     true_height = truth["camera"]["height_m"]
-    ceiling = None
+    corners = np.array(truth["layout"]["corners_3d"])
+    ceiling = front = None
     if estimate.room.ceiling_seen:  # seen exactly: the room's own height above the camera
-        corners = np.array(truth["layout"]["corners_3d"])
         ceiling = float(corners[:, 1].max() - corners[:, 1].min()) / true_height - 1.0
-    logs = room_priors(ceiling)
+    if "front" in estimate.room.faces_in_view(rays_room):
+        front = RoomHypothesis.enclosing(corners @ estimate.to_room / true_height).front
+    logs = room_priors(ceiling, front)
     truth_by_box = {tuple(o["bbox"]): o for o in truth["objects"]}
     calibration = default_calibration()
     measured = object_measurements(
@@ -125,7 +128,7 @@ def scene_parts(folder: Path) -> dict[str, float]:
 
     # The parts whose faces the photo shows (on the true room).
     rays = estimate.camera.ray(map_pixels(ctx.width, ctx.height)) @ to_room
-    faces_seen = {SURFACES[i] for i in np.unique(replace(room, **true_room).surfaces_seen(rays))}
+    faces_seen = replace(room, **true_room).faces_in_view(rays)
     in_view = [part for part in ("front", "left", "right", "ceiling") if part in faces_seen]
     seen_true = replace(room, **{part: true_room[part] for part in in_view})
     row["iou_parts_in_view_true"] = iou(seen_true, metres)
@@ -148,10 +151,10 @@ def scene_parts(folder: Path) -> dict[str, float]:
     view = PinholeCamera(np.array(camera["K"]), camera["pitch_deg"], camera["roll_deg"])
     size = (ctx.width, ctx.height)
     row["iou_in_view"] = iou_3d_in_view(estimate.corners_world(), true_corners, view, size)
-    limit = scale_at_class_size_limit(estimate, truth, ctx.width)
+    limit = scale_at_class_size_limit(estimate, truth, ctx.width, rays)
     row["limit_scale_error"] = abs(limit / true_height - 1)
     row["iou_limit_scale"] = iou(room, limit)
-    # What these priors allow at best: the photo read exactly, the scale at the limit.
+    # What class sizes allow at best: the photo read exactly, the scale at the limit.
     row["iou_in_view_true_limit_scale"] = iou(rescaled(limit), limit)
     return row
 

@@ -17,11 +17,12 @@ from holiscene.geometry.room_layout import (
     estimate_room,
     room_to_world,
 )
-from holiscene.geometry.surface_labels import SURFACES
+from holiscene.geometry.room_width import unseen_side_wall_distance
+from holiscene.geometry.surface_labels import SURFACES, map_pixels
 from holiscene.geometry.surface_map import SurfaceMap, load_surface_model
 from holiscene.pipeline import SceneContext, build_pipeline
 from holiscene.pipeline.base import Detection
-from holiscene.pipeline.stages.layout import mounted_heights
+from holiscene.pipeline.stages.layout import mounted_heights, unseen_parts_from_priors
 from holiscene.synth.generate import SyntheticScene, synthesize
 
 SEEDS = range(4100, 4108)
@@ -122,6 +123,29 @@ def test_a_wall_out_of_view_keeps_its_distance_in_metres() -> None:
         assert getattr(tall, wall) == pytest.approx(getattr(short, wall), rel=0.05)
     # 1.6 / 1.2 = 1.33 in a perfect search; its grid steps by about 17%.
     assert 1.15 < short.left / tall.left < 1.6
+
+
+def test_a_side_wall_out_of_view_is_placed_from_the_seen_one() -> None:
+    """With one side wall in view the other goes where the room's width prior puts it, in
+    metres; with both in view the search's walls stay."""
+    camera = PinholeCamera(np.array([[400.0, 0, 320], [0, 400, 240], [0, 0, 1]]), 12.0, 0.0)
+    rays = camera.ray(map_pixels(640, 480))  # no yaw: room axes are the world's
+    metres = 1.4
+    one_side = RoomHypothesis(3.0, 1.2, 9.0, 0.5, 1.0, 0.0, True)
+    assert one_side.faces_in_view(rays) >= {"front", "left"}
+    assert "right" not in one_side.faces_in_view(rays)
+    placed = unseen_parts_from_priors(one_side, metres, rays)
+    expected = unseen_side_wall_distance(
+        1.2 * metres, placed.nearest_out_of_view("right", rays) * metres
+    )
+    assert expected is not None
+    assert placed.right * metres == pytest.approx(expected)
+    assert (placed.front, placed.left) == (3.0, 1.2)
+    assert "right" not in placed.faces_in_view(rays)
+    both_sides = RoomHypothesis(3.0, 1.2, 1.5, 0.5, 1.0, 0.0, True)
+    assert {"left", "right"} <= both_sides.faces_in_view(rays)
+    kept = unseen_parts_from_priors(both_sides, metres, rays)
+    assert (kept.left, kept.right) == (1.2, 1.5)
 
 
 def test_wall_objects_edges_are_measured_at_their_heights_in_the_true_room() -> None:

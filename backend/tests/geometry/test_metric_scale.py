@@ -9,6 +9,7 @@ import pytest
 from holiscene.geometry.camera import PinholeCamera
 from holiscene.geometry.metric_scale import (
     CAMERA_HEIGHT_PRIOR,
+    FRONT_WALL_PRIOR,
     MIN_CALIBRATION_COUNT,
     PRIOR_GATE,
     SPREAD_WIDENING,
@@ -164,3 +165,14 @@ def test_rays_meet_the_walls_at_their_heights() -> None:
     heights = room.height_on_walls(rays)
     assert heights[:3] == pytest.approx([0.7, 1.4, 0.5])
     assert np.isnan(heights[3:]).all()
+
+
+def test_a_seen_front_wall_pulls_towards_the_typical_room_depth() -> None:
+    camera = PinholeCamera(np.array([[500.0, 0, 320], [0, 500, 240], [0, 0, 1]]), 10.0, 0.0)
+    alone = camera_height(camera, [], None, 640)
+    # A front wall 4 camera heights away says 4.67 m / 4 = 1.17 m; 3 says 1.56 m.
+    near = camera_height(camera, [], None, 640, front_wall=4.0)
+    far = camera_height(camera, [], None, 640, front_wall=3.0)
+    assert FRONT_WALL_PRIOR[0] / 4.0 < near.metres < alone.metres < far.metres
+    assert near.priors == "camera height + front wall distance"
+    assert near.spread < alone.spread

@@ -24,7 +24,7 @@ from numpy.typing import NDArray
 from .camera import FloatArray, PinholeCamera
 from .lines import Segments
 from .manhattan import ManhattanFrame, room_directions
-from .surface_labels import SURFACES, nearest_surface
+from .surface_labels import SURFACES, hit_distances, nearest_surface
 from .surface_map import SurfaceMap
 
 BACK_WALL_PRIOR = 0.5  # the wall behind the camera is never seen: its distance is a prior
@@ -58,6 +58,25 @@ class RoomHypothesis:
         return nearest_surface(
             rays_room, self.front, self.back, self.left, self.right, 1.0, self.ceiling
         )
+
+    def faces_in_view(self, rays_room: FloatArray) -> set[str]:
+        """The names (SURFACES) of the faces some ray meets first."""
+        return {SURFACES[i] for i in np.unique(self.surfaces_seen(rays_room))}
+
+    def nearest_out_of_view(self, wall: str, rays_room: FloatArray) -> float:
+        """The nearest distance of `wall` (a wall's field, named as in SURFACES) at which no
+        ray meets it before the room's other faces: how near a wall out of view can be."""
+        t = hit_distances(
+            rays_room, self.front, self.back, self.left, self.right, 1.0, self.ceiling
+        )
+        face = SURFACES.index(wall)
+        others = np.delete(t, face, axis=1).min(axis=1)
+        towards = np.isfinite(t[:, face]) & np.isfinite(others)
+        if not towards.any():
+            return 0.0
+        # Along a ray the wall's hit distance grows in proportion to the wall's distance.
+        per_unit_distance = t[towards, face] / getattr(self, wall)
+        return float((others[towards] / per_unit_distance).max())
 
     def height_on_walls(self, rays_room: FloatArray) -> FloatArray:
         """Height above the floor (camera heights) where each ray meets this room's walls;

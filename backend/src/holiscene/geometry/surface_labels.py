@@ -51,19 +51,29 @@ def network_input(rgb: NDArray[np.uint8]) -> NDArray[np.float32]:
     return normalised_batch(cv2.resize(rgb, INPUT_SIZE, interpolation=cv2.INTER_AREA)[None])
 
 
-def nearest_surface(
+def hit_distances(
     rays_room: FloatArray, front: float, back: float, left: float, right: float,
     floor: float, ceiling: float,
-) -> NDArray[np.int64]:  # fmt: skip
-    """The surface (an index into SURFACES) each ray (room axes: x front, y up, z right) meets
-    first in the box x in [-back, front], y in [-floor, ceiling], z in [-left, right]."""
+) -> FloatArray:  # fmt: skip
+    """How far along each ray (room axes: x front, y up, z right) it meets the plane of each
+    face (columns in SURFACES order) of the box x in [-back, front], y in [-floor, ceiling],
+    z in [-left, right]; infinite for a face the ray runs away from."""
     rx, ry, rz = rays_room[:, 0], rays_room[:, 1], rays_room[:, 2]
     with np.errstate(divide="ignore", invalid="ignore"):
-        t = np.column_stack([
+        t: FloatArray = np.column_stack([
             np.where(rx > 0, front / rx, np.inf), np.where(rx < 0, -back / rx, np.inf),
             np.where(rz < 0, -left / rz, np.inf), np.where(rz > 0, right / rz, np.inf),
             np.where(ry < 0, -floor / ry, np.inf), np.where(ry > 0, ceiling / ry, np.inf),
         ])  # fmt: skip
+    return t
+
+
+def nearest_surface(
+    rays_room: FloatArray, front: float, back: float, left: float, right: float,
+    floor: float, ceiling: float,
+) -> NDArray[np.int64]:  # fmt: skip
+    """The surface (an index into SURFACES) each ray meets first (`hit_distances`' box)."""
+    t = hit_distances(rays_room, front, back, left, right, floor, ceiling)
     result: NDArray[np.int64] = np.argmin(t, axis=1)
     return result
 

@@ -145,7 +145,7 @@ class Planner:
             [
                 -depth / 2 + rng.uniform(*ranges.CAMERA_BACK_OFFSET_M),
                 rng.uniform(*ranges.CAMERA_HEIGHT_M),
-                rng.uniform(-0.25, 0.25) * width,
+                rng.uniform(*ranges.CAMERA_SIDEWAYS_SHARE) * width,
             ]
         )
         return RoomPlan(

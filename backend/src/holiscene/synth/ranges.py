@@ -8,6 +8,7 @@ ROOM_HEIGHT_M = (2.4, 3.1)
 ROOM_YAW_DEG = (-35.0, 35.0)  # the room's turn relative to the camera's heading
 CAMERA_HEIGHT_M = (1.1, 1.7)
 CAMERA_BACK_OFFSET_M = (0.25, 1.0)  # camera distance from the wall behind it
+CAMERA_SIDEWAYS_SHARE = (-0.25, 0.25)  # camera off the room's centre line, share of width
 CAMERA_PITCH_DEG = (0.0, 30.0)  # down
 CAMERA_ROLL_DEG = (-10.0, 10.0)
 CAMERA_HFOV_DEG = (45.0, 75.0)

@@ -23,6 +23,8 @@ from ...geometry.metric_scale import (
     mounting_points,
 )
 from ...geometry.room_layout import RoomHypothesis, SurfaceEvidence, estimate_room, room_to_world
+from ...geometry.room_width import unseen_side_wall_distance
+from ...geometry.surface_labels import map_pixels
 from ...geometry.surface_map import (
     DEFAULT_SURFACE_MODEL,
     SurfaceMap,
@@ -36,16 +38,33 @@ MIN_CEILING_ABOVE_CAMERA = 0.15  # camera heights: a camera is never at the ceil
 BACK_WALL_DISTANCE_M = 0.65  # people photograph a room standing a little way from a wall
 
 
-def unseen_parts_from_priors(room: RoomHypothesis, metres: float) -> RoomHypothesis:
+def unseen_parts_from_priors(
+    room: RoomHypothesis, metres: float, rays_room: FloatArray
+) -> RoomHypothesis:
     """The parts the photo does not show, in metres now that the scale is known: the wall
-    behind the camera at a typical distance, and a ceiling not seen at the typical room height
+    behind the camera at a typical distance, a ceiling not seen at the typical room height
     (the line search's guess, from wall colours alone, was off by a quarter on average; this
-    is off by about the room-height prior's spread)."""
+    is off by about the room-height prior's spread), and a side wall not seen when the other
+    is, from the room's width prior (`room_width`). `rays_room` are the photo's rays."""
     back = BACK_WALL_DISTANCE_M / metres
     if room.ceiling_seen:
-        return dataclasses.replace(room, back=back)
-    ceiling = max(ROOM_HEIGHT_PRIOR[0] / metres - 1.0, MIN_CEILING_ABOVE_CAMERA)
-    return dataclasses.replace(room, back=back, ceiling=ceiling)
+        room = dataclasses.replace(room, back=back)
+    else:
+        ceiling = max(ROOM_HEIGHT_PRIOR[0] / metres - 1.0, MIN_CEILING_ABOVE_CAMERA)
+        room = dataclasses.replace(room, back=back, ceiling=ceiling)
+    sides_seen = [wall for wall in ("left", "right") if wall in room.faces_in_view(rays_room)]
+    if len(sides_seen) != 1:  # both seen, or neither: the room search's priors decide
+        return room
+    seen = sides_seen[0]
+    unseen = "right" if seen == "left" else "left"
+    distance = unseen_side_wall_distance(
+        getattr(room, seen) * metres, room.nearest_out_of_view(unseen, rays_room) * metres
+    )
+    if distance is None:
+        return room
+    if unseen == "left":
+        return dataclasses.replace(room, left=distance / metres)
+    return dataclasses.replace(room, right=distance / metres)
 
 
 def mounted_heights(
@@ -97,7 +116,8 @@ def estimate_layout(
     surface_model: SurfaceModel | None,
 ) -> LayoutEstimate | None:
     """Manhattan frame -> room search (with the Surface Network's labels when there is a
-    model) -> metric scale -> the parts out of view in metres (back wall, unseen ceiling);
+    model) -> metric scale -> the parts out of view in metres (back wall, unseen ceiling and
+    side wall);
     None when too few vertical lines are seen."""
     height, width = image.shape[:2]
     segments = detect_segments(image)
@@ -111,7 +131,7 @@ def estimate_layout(
     # Points surely inside the room: contacts whose bottom edge no nearer object may hide.
     inside = [p for o, p in contacts if not bottom_may_be_hidden(o, objects)]
     # The objects' scale turns the priors on wall distances (metres) into camera heights; the
-    # seen ceiling then joins the final scale.
+    # seen ceiling and front wall then join the final scale.
     metres_from_objects = camera_height(camera, contacts, None, width).metres
     room = estimate_room(
         camera,
@@ -127,8 +147,10 @@ def estimate_layout(
     # The room found, things on walls join the scale: their lower edges' heights.
     mounted = mounted_heights(room, camera, to_room, objects, height)
     ceiling = room.ceiling if room.ceiling_seen else None
-    scale = camera_height(camera, contacts, ceiling, width, mounted=mounted)
-    room = unseen_parts_from_priors(room, scale.metres)
+    rays_room = camera.ray(map_pixels(width, height)) @ to_room
+    front = room.front if "front" in room.faces_in_view(rays_room) else None
+    scale = camera_height(camera, contacts, ceiling, width, mounted=mounted, front_wall=front)
+    room = unseen_parts_from_priors(room, scale.metres, rays_room)
     return LayoutEstimate(
         frame, camera, to_room, room, scale.metres, scale.describe(), contacts, mounted
     )
