@@ -56,6 +56,7 @@ def test_perfect_prediction_scores_perfectly(truth: Scene) -> None:
     assert summary["support"]["accuracy"] == 1.0
     assert summary["camera"]["pitch_mae_deg"] == 0.0
     assert summary["detection_3d"]["map"] == pytest.approx(1.0)
+    assert summary["detection_3d"]["recall"] == 1.0
     assert summary["mask"]["mean_iou"] == 1.0
 
 
@@ -97,6 +98,7 @@ def test_missing_values_score_as_wrong(truth: Scene) -> None:
     assert s["camera"]["scenes_without_estimate"] == 1
     assert s["mask"]["mean_iou"] == 0.0
     assert s["detection_3d"]["map"] == 0.0
+    assert s["detection_3d"]["recall"] == 0.0
 
 
 def test_average_precision_with_a_false_positive_ranked_first() -> None:
@@ -105,6 +107,20 @@ def test_average_precision_with_a_false_positive_ranked_first() -> None:
     # Ranked: false positive, then two hits -> precision 0, 1/2, 2/3 at recall 0, 1/2, 1.
     evaluation.detections["chair"] = [(0.9, False), (0.8, True), (0.7, True)]
     assert evaluation.average_precision()["chair"] == pytest.approx(2 / 3)
+
+
+def test_box_recall_counts_every_box_the_same(truth: Scene) -> None:
+    """Three lamps found and a table missed: recall 3/4, while mAP (lamp 1, table 0) is 1/2."""
+    lamps = [obj(f"l{i}", "lamp", [i, 0, i + 1, 2], (3 * i, 5, 0)) for i in range(3)]
+    table = obj("t", "table", [0, 4, 10, 10], (3, 0, 0))
+    truth = truth.model_copy(update={"objects": [*lamps, table], "supports": []})
+    moved = table.model_copy(update={"corners_3d": (np.array(table.corners_3d) + 5).tolist()})
+    predicted = truth.model_copy(update={"objects": [*lamps, moved]})
+    evaluation = Evaluation()
+    evaluation.add(predicted, truth)
+    detection = evaluation.summary()["detection_3d"]
+    assert detection["recall"] == pytest.approx(3 / 4)
+    assert detection["map"] == pytest.approx(1 / 2)
 
 
 def test_layout_in_view_leaves_out_the_room_behind_the_camera() -> None:

@@ -29,6 +29,8 @@ def markdown_report(summary: dict[str, Any], title: str) -> str:
         f"| layout 3D IoU of the parts in view (%) | {_fmt(layout['iou_3d_in_view'], 100)} |",
         f"| scenes without a layout (IoU 0) | {layout['scenes_without_layout']} |",
         f"| 3D detection mAP at IoU {det['iou_threshold']} (%) | {_fmt(det['map'], 100)} |",
+        f"| 3D boxes found at IoU {det['iou_threshold']}, all classes (%) | "
+        f"{_fmt(det['recall'], 100)} |",
         f"| 2D mask IoU (%) | {_fmt(mask['mean_iou'], 100)} over {mask['objects']} objects |",
         "",
         f"## Support types ({support['objects']} supported objects)",
