@@ -160,50 +160,52 @@ def _edge_score(
     tolerance: float,
     size: tuple[int, int],
 ) -> float:
-    """Segment length lying along the projected edges (each edge checked against its family)."""
+    """Segment length lying along the projected edges (each edge checked against its family).
+    All edges of a family are checked at once: the room search calls this hundreds of times
+    per photo, and a loop over edges spent most of its time outside numpy."""
+    starts = np.array([start for start, _, _ in edges])
+    ends = np.array([end for _, end, _ in edges])
+    families = np.array([fam for _, _, fam in edges])
+    image = _visible_parts(camera, starts, ends)
+    a, direction = image[:, :2], image[:, 2:] - image[:, :2]
+    with np.errstate(invalid="ignore"):  # NaN rows: segments behind the camera
+        length = np.hypot(direction[:, 0], direction[:, 1])
+        usable: NDArray[np.bool_] = np.isfinite(length) & (length >= 1e-6)
     total = 0.0
-    for start, end, fam in edges:
-        pts = _visible_part(camera, start, end)
-        if pts is None:
+    for fam in np.unique(families[usable]):
+        rows = usable & (families == fam)
+        segment_ends = segments.endpoints[family == fam]
+        if len(segment_ends) == 0:
             continue
-        a, b = pts
-        direction = b - a
-        length = float(np.hypot(*direction))
-        if length < 1e-6:
-            continue
-        unit = direction / length
-        normal = np.array([-unit[1], unit[0]])
-        sel = family == fam
-        ends = segments.endpoints[sel]
-        if len(ends) == 0:
-            continue
-        d1 = (ends[:, :2] - a) @ normal
-        d2 = (ends[:, 2:] - a) @ normal
-        t1 = (ends[:, :2] - a) @ unit
-        t2 = (ends[:, 2:] - a) @ unit
+        origin, edge_length = a[rows][:, None, :], length[rows][:, None]  # (edges, 1, ...)
+        unit = (direction[rows] / length[rows][:, None])[:, None, :]
+        normal = np.concatenate([-unit[..., 1:], unit[..., :1]], axis=2)
+        first, second = segment_ends[None, :, :2] - origin, segment_ends[None, :, 2:] - origin
+        d1, d2 = (first * normal).sum(axis=2), (second * normal).sum(axis=2)
+        t1, t2 = (first * unit).sum(axis=2), (second * unit).sum(axis=2)
         near = (np.abs(d1) < tolerance) & (np.abs(d2) < tolerance)
-        overlap = np.clip(np.maximum(t1, t2), 0, length) - np.clip(np.minimum(t1, t2), 0, length)
+        overlap = np.clip(np.maximum(t1, t2), 0, edge_length) - np.clip(
+            np.minimum(t1, t2), 0, edge_length
+        )
         total += float(overlap[near].sum())
     return total
 
 
-def _visible_part(
-    camera: PinholeCamera, start: FloatArray, end: FloatArray
-) -> tuple[FloatArray, FloatArray] | None:
-    """The image segment of the part of a 3D segment in front of the camera."""
+def _visible_parts(camera: PinholeCamera, starts: FloatArray, ends: FloatArray) -> FloatArray:
+    """Image segments (N, 4: x1, y1, x2, y2) of the parts of 3D segments (N, 3 each) in front
+    of the camera; NaN for a segment wholly behind it."""
     forward = camera.optical_axis
-    ds, de = float(start @ forward), float(end @ forward)
     near = 0.05
-    if ds < near and de < near:
-        return None
-    if ds < near:
-        start = start + (end - start) * (near - ds) / (de - ds)
-    if de < near:
-        end = end + (start - end) * (near - de) / (ds - de)
-    projected = camera.project(np.array([start, end]))
-    if np.isnan(projected).any():
-        return None
-    return projected[0], projected[1]
+    ds, de = starts @ forward, ends @ forward
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cut_starts = starts + (ends - starts) * ((near - ds) / (de - ds))[:, None]
+        cut_ends = ends + (starts - ends) * ((near - de) / (ds - de))[:, None]
+    starts = np.where((ds < near)[:, None], cut_starts, starts)
+    ends = np.where((de < near)[:, None], cut_ends, ends)
+    projected = camera.project(np.vstack([starts, ends]))
+    image: FloatArray = np.hstack([projected[: len(starts)], projected[len(starts) :]])
+    image[(ds < near) & (de < near)] = np.nan
+    return image
 
 
 class SurfaceEvidence:
@@ -239,15 +241,20 @@ class SurfaceEvidence:
         self.colours = lab[keep]
         self.rays_room = camera.ray(pixels[keep]) @ to_room  # room axes
         self.total = float(((self.colours - self.colours.mean(axis=0)) ** 2).sum()) or 1.0
+        self.squares = float((self.colours**2).sum())
 
     def explained(self, hyp: RoomHypothesis) -> float:
         if len(self.colours) == 0:
             return 0.0
         label = hyp.surfaces_seen(self.rays_room)
-        within = 0.0
-        for surface in np.unique(label):
-            part = self.colours[label == surface]
-            within += float(((part - part.mean(axis=0)) ** 2).sum())
+        # Within-surface variance = sum of squares - sum over surfaces of |colour sum|^2 / count
+        # (counted per surface in one pass instead of a mask per surface).
+        count = np.bincount(label, minlength=len(SURFACES))
+        sums = np.stack(
+            [np.bincount(label, self.colours[:, c], len(SURFACES)) for c in range(3)], axis=1
+        )
+        seen = count > 0
+        within = self.squares - float(((sums[seen] ** 2).sum(axis=1) / count[seen]).sum())
         return 1.0 - within / self.total
 
 
