@@ -17,7 +17,7 @@ FLOOR_EDGE: Edge = (np.array([4.0, -1.0, -1.0]), np.array([4.0, -1.0, 1.0]), 2) 
 
 def score(endpoints: list[list[float]], family: list[int], edges: list[Edge]) -> float:
     segments = Segments(np.array(endpoints, dtype=float))
-    return _edge_score(CAMERA, segments, np.array(family), edges, TOLERANCE, (640, 480))
+    return _edge_score(CAMERA, segments, np.array(family), edges, TOLERANCE)
 
 
 def test_a_segment_on_the_edge_counts_its_length_and_no_other_does() -> None:

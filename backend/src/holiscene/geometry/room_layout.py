@@ -158,7 +158,6 @@ def _edge_score(
     family: NDArray[np.int64],
     edges: list[tuple[FloatArray, FloatArray, int]],
     tolerance: float,
-    size: tuple[int, int],
 ) -> float:
     """Segment length lying along the projected edges (each edge checked against its family).
     All edges of a family are checked at once: the room search calls this hundreds of times
@@ -317,7 +316,7 @@ def estimate_room(
                 continue
             seen = ceiling != CEILING_PRIOR
             hyp = RoomHypothesis(front, left, right, BACK_WALL_PRIOR, ceiling, 0.0, seen)
-            score = _edge_score(camera, segments, family, _edges(hyp, to_room), tolerance, size)
+            score = _edge_score(camera, segments, family, _edges(hyp, to_room), tolerance)
             hypotheses.append(RoomHypothesis(**{**hyp.__dict__, "score": score}))
     hypotheses.sort(key=lambda h: -h.score)
     if evidence is None:
@@ -331,7 +330,6 @@ def estimate_room(
             family,
             to_room,
             tolerance,
-            size,
             evidence,
             minimum,
             surface_map,
@@ -388,7 +386,6 @@ def _refine_by_surfaces(
     family: NDArray[np.int64],
     to_room: FloatArray,
     tolerance: float,
-    size: tuple[int, int],
     evidence: SurfaceEvidence,
     minimum: tuple[float, float, float],
     surface_map: SurfaceMap | None = None,
@@ -401,7 +398,7 @@ def _refine_by_surfaces(
     norm = max(float(segments.lengths.sum()), 1.0) * EDGE_NORM
 
     def score(h: RoomHypothesis) -> float:
-        edges = _edge_score(camera, segments, family, _edges(h, to_room), tolerance, size) / norm
+        edges = _edge_score(camera, segments, family, _edges(h, to_room), tolerance) / norm
         prior = _layout_prior(h, metres)
         fit = (1 - EDGE_WEIGHT) * evidence.explained(h) + EDGE_WEIGHT * edges
         if surface_map is not None:

@@ -133,6 +133,9 @@ def estimate_layout(
     # The objects' scale turns the priors on wall distances (metres) into camera heights; the
     # seen ceiling and front wall then join the final scale.
     metres_from_objects = camera_height(camera, contacts, None, width).metres
+    surface_map = (
+        SurfaceMap.predict(surface_model, image, camera, to_room) if surface_model else None
+    )
     room = estimate_room(
         camera,
         frame,
@@ -141,13 +144,16 @@ def estimate_layout(
         np.array(inside) if inside else None,
         SurfaceEvidence(camera, image, boxes, to_room),
         boxes,
-        SurfaceMap.predict(surface_model, image, camera, to_room) if surface_model else None,
+        surface_map,
         metres=metres_from_objects,
     )
     # The room found, things on walls join the scale: their lower edges' heights.
     mounted = mounted_heights(room, camera, to_room, objects, height)
     ceiling = room.ceiling if room.ceiling_seen else None
-    rays_room = camera.ray(map_pixels(width, height)) @ to_room
+    # The rays of the map's cells say which faces the photo shows (the map has them already).
+    rays_room = (
+        surface_map.rays_room if surface_map else camera.ray(map_pixels(width, height)) @ to_room
+    )
     front = room.front if "front" in room.faces_in_view(rays_room) else None
     scale = camera_height(camera, contacts, ceiling, width, mounted=mounted, front_wall=front)
     room = unseen_parts_from_priors(room, scale.metres, rays_room)
