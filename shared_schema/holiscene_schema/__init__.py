@@ -1,6 +1,7 @@
 """HoliScene's contract: the scene and every message between the app and the server."""
 
 from .api import (
+    AddObject,
     Conflict,
     ConflictDetail,
     CurrentUser,
@@ -25,6 +26,7 @@ from .api import (
     PersonStats,
     PromoteRequest,
     RejectRequest,
+    RemoveObject,
     RemoveSupport,
     RestoreSupport,
     RetrainRequest,
@@ -76,6 +78,7 @@ __all__ = [
     "NYU40_CLASSES",
     "STRUCTURAL_CLASSES",
     "STRUCTURAL_SUPPORTERS",
+    "AddObject",
     "Box3D",
     "Camera",
     "Conflict",
@@ -108,6 +111,7 @@ __all__ = [
     "PersonStats",
     "PromoteRequest",
     "RejectRequest",
+    "RemoveObject",
     "RemoveSupport",
     "RestoreSupport",
     "RetrainRequest",

@@ -7,7 +7,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import Field
 
-from .scene import Point2, Scene, SchemaModel, SupportType
+from .scene import Box2D, Mask, Point2, Scene, SchemaModel, SupportType
 
 
 class SetSupport(SchemaModel):
@@ -66,8 +66,44 @@ class SetLayout(SchemaModel):
     )
 
 
+class AddObject(SchemaModel):
+    """Add an object to the scene (a person's box, or an object detector's suggestion the
+    annotator accepted). It starts without a supporter. Without a `mask` the server cuts one
+    with GrabCut in the box (Mask.source "grabcut", or "box" when the cut fails) and stores
+    it in the new revision."""
+
+    kind: Literal["add_object"] = "add_object"
+    id: str = Field(
+        pattern=r"^[A-Za-z0-9_-]{1,64}$",
+        description="Chosen by the client, unique in the scene, so later edits of the same "
+        "request can name the object",
+    )
+    cls: str = Field(
+        alias="class",
+        min_length=1,
+        max_length=64,
+        description="An NYU-40 class or a known alias of one (stored as the NYU-40 class, the "
+        "name given as the object's source_class when it differs)",
+    )
+    bbox: Box2D = Field(description="[x1, y1, x2, y2] in pixels, inside the photo")
+    mask: Mask | None = Field(default=None, description="Null: the server cuts one in the box")
+    score: float | None = Field(default=None, ge=0.0, le=1.0, description="Detection confidence")
+    source: Literal["detector", "manual"] = Field(
+        default="manual", description="An accepted detector suggestion, or drawn by a person"
+    )
+
+
+class RemoveObject(SchemaModel):
+    """Remove an object: its supporter goes with it, and the objects it supported are left
+    without one (flagged for labelling)."""
+
+    kind: Literal["remove_object"] = "remove_object"
+    id: str = Field(min_length=1)
+
+
 Edit = Annotated[
-    SetSupport | RemoveSupport | RestoreSupport | SetLayout, Field(discriminator="kind")
+    SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject,
+    Field(discriminator="kind"),
 ]
 
 

@@ -2,6 +2,7 @@
 // Do not edit: change the pydantic models and run `make schema`.
 
 export interface HoliSceneContract {
+AddObject?: AddObject
 Box3D?: Box3D
 Camera?: Camera
 Conflict?: Conflict
@@ -27,6 +28,7 @@ PasswordReset?: PasswordReset
 PersonStats?: PersonStats
 PromoteRequest?: PromoteRequest
 RejectRequest?: RejectRequest
+RemoveObject?: RemoveObject
 RemoveSupport?: RemoveSupport
 RestoreSupport?: RestoreSupport
 RetrainRequest?: RetrainRequest
@@ -47,6 +49,71 @@ SubmitRequest?: SubmitRequest
 SupportRelation?: SupportRelation
 UserInfo?: UserInfo
 WorkflowEvent?: WorkflowEvent
+}
+/**
+ * Add an object to the scene (a person's box, or an object detector's suggestion the
+ * annotator accepted). It starts without a supporter. Without a `mask` the server cuts one
+ * with GrabCut in the box (Mask.source "grabcut", or "box" when the cut fails) and stores
+ * it in the new revision.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "AddObject".
+ */
+export interface AddObject {
+/**
+ * [x1, y1, x2, y2] in pixels, inside the photo
+ * 
+ * @minItems 4
+ * @maxItems 4
+ */
+bbox: [number, number, number, number]
+/**
+ * An NYU-40 class or a known alias of one (stored as the NYU-40 class, the name given as the object's source_class when it differs)
+ */
+class: string
+/**
+ * Chosen by the client, unique in the scene, so later edits of the same request can name the object
+ */
+id: string
+kind: "add_object"
+/**
+ * Null: the server cuts one in the box
+ */
+mask: (Mask | null)
+/**
+ * Detection confidence
+ */
+score: (number | null)
+/**
+ * An accepted detector suggestion, or drawn by a person
+ */
+source: ("detector" | "manual")
+}
+/**
+ * A binary mask inside a window of the image, run-length encoded row by row.
+ * 
+ * `rle` alternates runs of 0 and 1 pixels, starting with a (possibly empty) run of 0.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "Mask".
+ */
+export interface Mask {
+/**
+ * [x, y] of the window's top-left pixel
+ * 
+ * @minItems 2
+ * @maxItems 2
+ */
+origin: [number, number]
+rle: number[]
+/**
+ * [width, height] of the window
+ * 
+ * @minItems 2
+ * @maxItems 2
+ */
+size: [number, number]
+source: ("given" | "box" | "grabcut" | "model" | "ground_truth")
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -226,7 +293,7 @@ base_revision: number
  * @minItems 1
  * @maxItems 500
  */
-edits: [(SetSupport | RemoveSupport | RestoreSupport | SetLayout), ...((SetSupport | RemoveSupport | RestoreSupport | SetLayout))[]]
+edits: [(SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject), ...((SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject))[]]
 }
 /**
  * Make `parent` the supporter of `child` (replacing any supporter it had).
@@ -292,6 +359,17 @@ kind: "set_layout"
  * Metres from the camera to a wall without known corners (the fit needs it when only two adjacent vertical room edges are known)
  */
 unseen_wall_distance: (number | null)
+}
+/**
+ * Remove an object: its supporter goes with it, and the objects it supported are left
+ * without one (flagged for labelling).
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "RemoveObject".
+ */
+export interface RemoveObject {
+id: string
+kind: "remove_object"
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -377,7 +455,7 @@ object_count: number
 revision: number
 state: ("new" | "predicted" | "in_annotation" | "submitted" | "accepted" | "rejected")
 /**
- * Mean over the objects of 1 - confidence of their supporter (1 without one, 0 when a person set it); 'Next scene' picks the highest
+ * Mean over the objects of 1 - confidence of their supporter (1 without one, 0 when a person set it); 1 for a scene without objects; 'Next scene' picks the highest
  */
 uncertainty: (number | null)
 updated_at: string
@@ -416,32 +494,6 @@ export interface LoginResult {
 expires_at: string
 token: (string | null)
 user: CurrentUser
-}
-/**
- * A binary mask inside a window of the image, run-length encoded row by row.
- * 
- * `rle` alternates runs of 0 and 1 pixels, starting with a (possibly empty) run of 0.
- * 
- * This interface was referenced by `HoliSceneContract`'s JSON-Schema
- * via the `definition` "Mask".
- */
-export interface Mask {
-/**
- * [x, y] of the window's top-left pixel
- * 
- * @minItems 2
- * @maxItems 2
- */
-origin: [number, number]
-rle: number[]
-/**
- * [width, height] of the window
- * 
- * @minItems 2
- * @maxItems 2
- */
-size: [number, number]
-source: ("given" | "box" | "grabcut" | "model" | "ground_truth")
 }
 /**
  * Where an object's mesh comes from: the built-in library (class + seed) or a file.
@@ -596,7 +648,7 @@ revision: number
 export interface RevisionInfo {
 author: string
 created_at: string
-edits: ((SetSupport | RemoveSupport | RestoreSupport | SetLayout)[] | null)
+edits: ((SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject)[] | null)
 kind: ("import" | "pipeline" | "edit" | "reset")
 number: number
 summary: string
@@ -653,6 +705,10 @@ note: (string | null)
  */
 score: (number | null)
 /**
+ * Where the object came from: boxes given with the photo, the object detector, or a person; null in scenes stored before sources were recorded
+ */
+source: (("given" | "detector" | "manual") | null)
+/**
  * The class name as imported, before mapping to NYU-40
  */
 source_class: (string | null)
@@ -665,6 +721,10 @@ export interface StageRun {
 name: string
 note: (string | null)
 seconds: number
+/**
+ * The note tells what the stage could not do (shown as a warning), not just what it found
+ */
+warning: boolean
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema

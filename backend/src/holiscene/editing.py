@@ -3,15 +3,20 @@
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from datetime import datetime
 
+import numpy as np
 from holiscene_schema import (
     STRUCTURAL_CLASSES,
     STRUCTURAL_SUPPORTERS,
+    AddObject,
     Edit,
+    RemoveObject,
     RemoveSupport,
     RestoreSupport,
     Scene,
+    SceneObject,
     SetLayout,
     SetSupport,
     SupportRelation,
@@ -19,6 +24,9 @@ from holiscene_schema import (
 )
 
 from .layout_edit import LayoutEditError, apply_set_layout, describe_set_layout
+from .object_edit import ObjectEditError, new_object, remove_object
+
+SupportEdit = SetSupport | RemoveSupport | RestoreSupport
 
 
 class InvalidEditError(ValueError):
@@ -30,65 +38,130 @@ def restore_revisions(edits: Sequence[Edit]) -> set[int]:
     return {e.from_revision for e in edits if isinstance(e, RestoreSupport)}
 
 
+def needs_photo(edits: Sequence[Edit]) -> bool:
+    """Whether applying the edits needs the scene's photo (to cut an added object's mask)."""
+    return any(isinstance(e, AddObject) and e.mask is None for e in edits)
+
+
+@dataclass
+class _Draft:
+    """The scene being edited: its objects and their supports by id, in the scene's order."""
+
+    scene: Scene
+    objects: dict[str, SceneObject]
+    supports: dict[str, SupportRelation]
+
+    @classmethod
+    def of(cls, scene: Scene) -> _Draft:
+        return cls(scene, {o.id: o for o in scene.objects}, {s.child: s for s in scene.supports})
+
+    def result(self) -> Scene:
+        """The edited scene; InvalidEditError when its supports are not a valid forest."""
+        objects = list(self.objects.values())
+        ordered = [self.supports[o.id] for o in objects if o.id in self.supports]
+        edges = [(s.child, s.parent) for s in ordered]
+        problems = support_graph_problems([o.id for o in objects], edges)
+        if problems:
+            raise InvalidEditError("; ".join(problems))
+        return self.scene.model_copy(update={"objects": objects, "supports": ordered})
+
+
 def apply_edits(
     scene: Scene,
     edits: Sequence[Edit],
     author: str,
     now: datetime,
     earlier: Mapping[int, Scene] | None = None,
+    photo: np.ndarray | None = None,
 ) -> Scene:
     """The scene after the edits, in order; raises InvalidEditError and changes nothing if any
     edit is invalid or the result is not a valid support forest. `earlier` holds the revisions
-    named by RestoreSupport edits (restore_revisions)."""
-    objects = {o.id: o for o in scene.objects}
-    supports = {s.child: s for s in scene.supports}
+    named by RestoreSupport edits (restore_revisions); `photo`, the scene's RGB photo, is
+    needed by AddObject edits without a mask (needs_photo)."""
+    draft = _Draft.of(scene)
     for edit in edits:
         if isinstance(edit, SetLayout):
-            try:
-                scene = apply_set_layout(scene, edit)
-            except LayoutEditError as error:
-                raise InvalidEditError(f"room layout: {error}") from error
-            continue
-        child = objects.get(edit.child)
-        if child is None:
-            raise InvalidEditError(f"no object {edit.child!r} in this scene")
-        if child.cls in STRUCTURAL_CLASSES:
-            raise InvalidEditError(f"{edit.child!r} is a {child.cls}: structure has no supporter")
-        if isinstance(edit, SetSupport):
-            if edit.parent not in objects and edit.parent not in STRUCTURAL_SUPPORTERS:
-                raise InvalidEditError(
-                    f"supporter {edit.parent!r} is neither an object of this scene nor "
-                    "floor, wall or ceiling"
-                )
-            supports[edit.child] = SupportRelation(
-                child=edit.child,
-                parent=edit.parent,
-                type=edit.type,
-                source="manual",
-                confidence=None,
-                author=author,
-                time=now,
-            )
-        elif isinstance(edit, RestoreSupport):
-            restored = _restored_support(edit, (earlier or {}).get(edit.from_revision))
-            if restored is None:
-                supports.pop(edit.child, None)
-            elif restored.parent not in objects and restored.parent not in STRUCTURAL_SUPPORTERS:
-                raise InvalidEditError(
-                    f"supporter {restored.parent!r} of {edit.child!r} in revision "
-                    f"{edit.from_revision} is no longer in this scene"
-                )
-            else:
-                supports[edit.child] = restored
-        elif isinstance(edit, RemoveSupport):
-            if edit.child not in supports:
-                raise InvalidEditError(f"object {edit.child!r} has no supporter to remove")
-            del supports[edit.child]
-    ordered = [supports[o.id] for o in scene.objects if o.id in supports]
-    problems = support_graph_problems(list(objects), [(s.child, s.parent) for s in ordered])
-    if problems:
-        raise InvalidEditError("; ".join(problems))
-    return scene.model_copy(update={"supports": ordered})
+            draft.scene = _with_layout(draft.scene, edit)
+        elif isinstance(edit, AddObject | RemoveObject):
+            _apply_object_edit(draft, edit, photo)
+        else:
+            _apply_support_edit(draft, edit, author, now, earlier or {})
+    return draft.result()
+
+
+def _with_layout(scene: Scene, edit: SetLayout) -> Scene:
+    try:
+        return apply_set_layout(scene, edit)
+    except LayoutEditError as error:
+        raise InvalidEditError(f"room layout: {error}") from error
+
+
+def _apply_object_edit(
+    draft: _Draft, edit: AddObject | RemoveObject, photo: np.ndarray | None
+) -> None:
+    try:
+        if isinstance(edit, AddObject):
+            taken = set(draft.objects)
+            draft.objects[edit.id] = new_object(edit, draft.scene.image, taken, photo)
+        else:
+            remove_object(edit.id, draft.objects, draft.supports)
+    except ObjectEditError as error:
+        raise InvalidEditError(str(error)) from error
+
+
+def _apply_support_edit(
+    draft: _Draft,
+    edit: SupportEdit,
+    author: str,
+    now: datetime,
+    earlier: Mapping[int, Scene],
+) -> None:
+    _check_child(draft, edit.child)
+    if isinstance(edit, SetSupport):
+        _check_supporter(draft, edit.parent)
+        draft.supports[edit.child] = SupportRelation(
+            child=edit.child,
+            parent=edit.parent,
+            type=edit.type,
+            source="manual",
+            confidence=None,
+            author=author,
+            time=now,
+        )
+    elif isinstance(edit, RestoreSupport):
+        _restore_support(draft, edit, earlier.get(edit.from_revision))
+    elif edit.child not in draft.supports:
+        raise InvalidEditError(f"object {edit.child!r} has no supporter to remove")
+    else:
+        del draft.supports[edit.child]
+
+
+def _check_child(draft: _Draft, child_id: str) -> None:
+    child = draft.objects.get(child_id)
+    if child is None:
+        raise InvalidEditError(f"no object {child_id!r} in this scene")
+    if child.cls in STRUCTURAL_CLASSES:
+        raise InvalidEditError(f"{child_id!r} is a {child.cls}: structure has no supporter")
+
+
+def _check_supporter(draft: _Draft, parent: str) -> None:
+    if parent not in draft.objects and parent not in STRUCTURAL_SUPPORTERS:
+        raise InvalidEditError(
+            f"supporter {parent!r} is neither an object of this scene nor floor, wall or ceiling"
+        )
+
+
+def _restore_support(draft: _Draft, edit: RestoreSupport, earlier: Scene | None) -> None:
+    restored = _restored_support(edit, earlier)
+    if restored is None:
+        draft.supports.pop(edit.child, None)
+    elif restored.parent not in draft.objects and restored.parent not in STRUCTURAL_SUPPORTERS:
+        raise InvalidEditError(
+            f"supporter {restored.parent!r} of {edit.child!r} in revision "
+            f"{edit.from_revision} is no longer in this scene"
+        )
+    else:
+        draft.supports[edit.child] = restored
 
 
 def _restored_support(edit: RestoreSupport, earlier: Scene | None) -> SupportRelation | None:
@@ -107,6 +180,10 @@ def describe_edits(edits: Sequence[Edit]) -> str:
             parts.append(describe_set_layout(edit))
         elif isinstance(edit, RestoreSupport):
             parts.append(f"{edit.child} support as in revision {edit.from_revision}")
+        elif isinstance(edit, AddObject):
+            parts.append(f"{edit.id} added ({edit.cls}, {edit.source})")
+        elif isinstance(edit, RemoveObject):
+            parts.append(f"{edit.id} removed")
         else:
             parts.append(f"{edit.child} support removed")
     return "; ".join(parts)
@@ -119,7 +196,7 @@ def keep_manual_supports(result: Scene, current: Scene) -> Scene:
     now close a cycle falls back to the structural supporter of its type.
     """
     ids = [o.id for o in result.objects]
-    manual = [s for s in current.supports if s.source == "manual" and s.child in ids]
+    manual = [s for s in current.supports if s.source == "manual" and _within(s, ids)]
     merged = {s.child: s for s in manual}
     for auto in result.supports:
         if auto.child in merged:
@@ -131,3 +208,10 @@ def keep_manual_supports(result: Scene, current: Scene) -> Scene:
         merged[auto.child] = auto
     ordered = [merged[i] for i in ids if i in merged]
     return result.model_copy(update={"supports": ordered})
+
+
+def _within(support: SupportRelation, ids: Sequence[str]) -> bool:
+    """Whether the support's child and supporter are among these objects (or structural): a
+    person's support of an object added by hand is not kept when a run lacks that object."""
+    parent_ok = support.parent in ids or support.parent in STRUCTURAL_SUPPORTERS
+    return support.child in ids and parent_ok

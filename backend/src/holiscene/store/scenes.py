@@ -13,6 +13,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 from holiscene_schema import (
     Edit,
     EditRequest,
@@ -28,8 +29,14 @@ from pydantic import TypeAdapter
 from sqlalchemy import Engine, select, update
 from sqlalchemy.orm import Session
 
-from ..editing import apply_edits, describe_edits, keep_manual_supports, restore_revisions
-from ..inputs import InputFiles
+from ..editing import (
+    apply_edits,
+    describe_edits,
+    keep_manual_supports,
+    needs_photo,
+    restore_revisions,
+)
+from ..inputs import InputFiles, load_photo
 from ..workflow import scene_uncertainty
 from .clock import as_utc, utcnow
 from .files import SceneFiles
@@ -187,7 +194,8 @@ class SceneStore:
         base = self._document_for_write(scene_id, request.base_revision)
         now = utcnow()
         earlier = self._earlier_scenes(scene_id, restore_revisions(request.edits))
-        edited = apply_edits(base.scene, request.edits, request.author, now, earlier)
+        photo = self._photo(scene_id) if needs_photo(request.edits) else None
+        edited = apply_edits(base.scene, request.edits, request.author, now, earlier, photo)
         self._commit_revision(
             scene_id,
             request.base_revision,
@@ -328,6 +336,10 @@ class SceneStore:
             except SceneNotFoundError:
                 continue
         return found
+
+    def _photo(self, scene_id: str) -> np.ndarray:
+        """The scene's photo, RGB."""
+        return load_photo(self.image_path(scene_id).read_bytes()).rgb
 
     def _document_for_write(self, scene_id: str, base_revision: int) -> SceneDocument:
         current = self.document(scene_id)

@@ -10,7 +10,12 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from holiscene_schema import STRUCTURAL_CLASSES, SceneObject, SupportRelation
+from holiscene_schema import (
+    STRUCTURAL_CLASSES,
+    STRUCTURAL_SUPPORTERS,
+    SceneObject,
+    SupportRelation,
+)
 from holiscene_schema.relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER
 
 from ...learning.decode import DecodeMode, decode_supports
@@ -99,9 +104,16 @@ class SupportsFromPriors(Stage):
     def run(self, ctx: SceneContext) -> None:
         objects = [o for o in required(ctx.objects, "objects") if o.cls not in STRUCTURAL_CLASSES]
         ids = [o.id for o in objects]
-        pinned = [s for s in ctx.pinned_supports if s.child in ids]
+        pinned = kept_pins(ctx, ids)
         candidates = {o.id: prior_candidates(o, objects, self.priors) for o in objects}
         ctx.supports = tree_from_candidates(ids, candidates, pinned)
+
+
+def kept_pins(ctx: SceneContext, ids: list[str]) -> list[SupportRelation]:
+    """The supports people pinned on the objects `ids` whose supporter this run also has: an
+    object added by hand is not among a run's objects, so a support naming it is dropped."""
+    supporters = {o.id for o in required(ctx.objects, "objects")} | STRUCTURAL_SUPPORTERS
+    return [s for s in ctx.pinned_supports if s.child in ids and s.parent in supporters]
 
 
 def tree_from_candidates(
@@ -149,7 +161,7 @@ class SupportsFromNetwork(Stage):
         objects = [o for o in required(ctx.objects, "objects") if o.cls not in STRUCTURAL_CLASSES]
         masks = required(ctx.masks, "masks")
         ids = [o.id for o in objects]
-        pinned = [s for s in ctx.pinned_supports if s.child in ids]
+        pinned = kept_pins(ctx, ids)
         if not objects:
             ctx.supports = pinned
             return

@@ -1,0 +1,252 @@
+"""AddObject and RemoveObject edits through the edit API, on the real t3d-5 photo (730x530,
+objects o0 bed, o1 night stand, o2 and o3 dressers)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+from holiscene.rle import decode_mask
+from holiscene_schema import Mask
+
+from .conftest import upload, wait_for_job
+
+WIDTH, HEIGHT = 730, 530
+# A box around the left dresser's drawers (o2's box is [419, 226, 564, 343]).
+DRESSER_BOX = [425.0, 230.0, 560.0, 340.0]
+
+
+def _imported(client: TestClient, folder: Path, run_pipeline: bool = False) -> dict[str, Any]:
+    result = upload(client, folder, name="t3d-5", run_pipeline=str(run_pipeline).lower())
+    if run_pipeline:
+        job = wait_for_job(client, result["job"]["id"])
+        assert job["status"] == "succeeded", job
+    doc: dict[str, Any] = client.get(f"/api/scenes/{result['scene']['id']}").json()
+    return doc
+
+
+def _edit(client: TestClient, doc: dict[str, Any], *edits: dict[str, Any]) -> Any:
+    body = {"base_revision": doc["revision"], "author": "ann", "edits": list(edits)}
+    return client.post(f"/api/scenes/{doc['scene_id']}/edits", json=body)
+
+
+def _add(object_id: str, cls: str, bbox: list[float], **extra: Any) -> dict[str, Any]:
+    return {"kind": "add_object", "id": object_id, "class": cls, "bbox": bbox, **extra}
+
+
+def _object(doc: dict[str, Any], object_id: str) -> dict[str, Any] | None:
+    return next((o for o in doc["scene"]["objects"] if o["id"] == object_id), None)
+
+
+def _support(doc: dict[str, Any], child: str) -> dict[str, Any] | None:
+    return next((s for s in doc["scene"]["supports"] if s["child"] == child), None)
+
+
+def _history(client: TestClient, doc: dict[str, Any]) -> list[dict[str, Any]]:
+    history: list[dict[str, Any]] = client.get(f"/api/scenes/{doc['scene_id']}/revisions").json()
+    return history
+
+
+def _pixels(mask: dict[str, Any]) -> np.ndarray:
+    return decode_mask(Mask.model_validate(mask), WIDTH, HEIGHT)
+
+
+def _inside(pixels: np.ndarray, bbox: list[float]) -> bool:
+    ys, xs = np.nonzero(pixels)
+    x1, y1, x2, y2 = bbox
+    return bool(xs.min() >= np.floor(x1) and xs.max() < np.ceil(x2)) and bool(
+        ys.min() >= np.floor(y1) and ys.max() < np.ceil(y2)
+    )
+
+
+def test_add_object_without_mask_gets_a_grabcut_mask_in_its_box(
+    client: TestClient, t3d5: Path
+) -> None:
+    doc = _imported(client, t3d5)
+    edit = _add("det-1", "Night Stand", DRESSER_BOX, score=0.8, source="detector")
+    response = _edit(client, doc, edit)
+    assert response.status_code == 200, response.text
+    added = response.json()
+    assert added["revision"] == doc["revision"] + 1
+    obj = _object(added, "det-1")
+    assert obj is not None
+    assert obj["class"] == "night_stand" and obj["source_class"] == "Night Stand"
+    assert obj["source"] == "detector" and obj["score"] == 0.8
+    assert obj["bbox"] == DRESSER_BOX and obj["box_3d"] is None
+    assert obj["mask"]["source"] == "grabcut"
+    pixels = _pixels(obj["mask"])
+    box_area = (DRESSER_BOX[2] - DRESSER_BOX[0]) * (DRESSER_BOX[3] - DRESSER_BOX[1])
+    assert 0.1 * box_area <= pixels.sum() <= box_area
+    assert _inside(pixels, DRESSER_BOX)
+    assert _support(added, "det-1") is None  # no supporter yet: flagged like any other
+    last = _history(client, added)[-1]
+    assert last["kind"] == "edit" and last["author"] == "ann"
+    assert last["edits"] == [{**edit, "mask": None}]
+    assert "det-1 added" in last["summary"]
+
+
+def test_a_box_too_small_to_cut_gets_its_own_pixels(client: TestClient, t3d5: Path) -> None:
+    doc = _imported(client, t3d5)
+    bbox = [100.5, 50.0, 106.0, 58.0]
+    added = _edit(client, doc, _add("cup", "cup", bbox)).json()
+    obj = _object(added, "cup")
+    assert obj is not None
+    assert obj["class"] == "otherprop" and obj["source_class"] == "cup"
+    assert obj["source"] == "manual" and obj["score"] is None
+    assert obj["mask"] == {"origin": [100, 50], "size": [6, 8], "rle": [0, 48], "source": "box"}
+
+
+def test_add_object_keeps_the_mask_it_was_given(client: TestClient, t3d5: Path) -> None:
+    doc = _imported(client, t3d5)
+    mask = {"origin": [10, 20], "size": [3, 2], "rle": [1, 4, 1], "source": "model"}
+    added = _edit(client, doc, _add("lamp1", "lamp", [10, 20, 13, 22], mask=mask)).json()
+    obj = _object(added, "lamp1")
+    assert obj is not None and obj["mask"] == mask
+    assert obj["class"] == "lamp" and obj["source_class"] is None
+
+
+def test_add_object_and_set_its_support_in_one_request(client: TestClient, t3d5: Path) -> None:
+    doc = _imported(client, t3d5)
+    response = _edit(
+        client,
+        doc,
+        _add("pillow1", "pillow", [200, 200, 300, 260]),
+        {"kind": "set_support", "child": "pillow1", "parent": "o0", "type": "below"},
+        {"kind": "set_support", "child": "o0", "parent": "floor", "type": "below"},
+    )
+    assert response.status_code == 200, response.text
+    edited = response.json()
+    assert edited["revision"] == doc["revision"] + 1
+    assert _object(edited, "pillow1") is not None
+    support = _support(edited, "pillow1")
+    assert support is not None
+    assert (support["parent"], support["type"], support["source"]) == ("o0", "below", "manual")
+    assert support["author"] == "ann"
+
+
+def test_remove_object_frees_the_objects_it_supported(client: TestClient, t3d5: Path) -> None:
+    doc = _imported(client, t3d5)
+    supported = _edit(
+        client,
+        doc,
+        {"kind": "set_support", "child": "o0", "parent": "floor", "type": "below"},
+        {"kind": "set_support", "child": "o1", "parent": "floor", "type": "below"},
+        _add("pillow1", "pillow", [200, 200, 300, 260]),
+        {"kind": "set_support", "child": "pillow1", "parent": "o0", "type": "below"},
+        {"kind": "set_support", "child": "o2", "parent": "o0", "type": "behind"},
+    ).json()
+    response = _edit(client, supported, {"kind": "remove_object", "id": "o0"})
+    assert response.status_code == 200, response.text
+    removed = response.json()
+    assert removed["revision"] == supported["revision"] + 1
+    assert [o["id"] for o in removed["scene"]["objects"]] == ["o1", "o2", "o3", "pillow1"]
+    assert [s["child"] for s in removed["scene"]["supports"]] == ["o1"]
+    current = client.get(f"/api/scenes/{doc['scene_id']}").json()
+    assert current["scene"] == removed["scene"]
+    # History is kept: the revision before still has the object and its supports.
+    before = client.get(f"/api/scenes/{doc['scene_id']}/revisions/{supported['revision']}").json()
+    assert _object(before, "o0") is not None and _support(before, "pillow1") is not None
+    assert "o0 removed" in _history(client, removed)[-1]["summary"]
+
+
+def test_remove_object_takes_its_3d_data_and_a_rerun_stays_valid(
+    client: TestClient, t3d5: Path
+) -> None:
+    doc = _imported(client, t3d5, run_pipeline=True)
+    placed = _object(doc, "o1")
+    assert placed is not None and placed["box_3d"] is not None
+    edited = _edit(
+        client,
+        doc,
+        {"kind": "remove_object", "id": "o1"},
+        _add("vase1", "vase", [450, 200, 480, 240]),
+        {"kind": "set_support", "child": "o3", "parent": "vase1", "type": "below"},
+    ).json()
+    assert _object(edited, "o1") is None
+    assert all(o["box_3d"] is not None for o in edited["scene"]["objects"] if o["id"] != "vase1")
+    # A full re-run works from the photo's boxes again: a supporter added by hand that the run
+    # lacks must not leave a support naming it.
+    job = client.post(f"/api/scenes/{doc['scene_id']}/pipeline-jobs").json()
+    assert wait_for_job(client, job["id"])["status"] == "succeeded"
+    rerun = client.get(f"/api/scenes/{doc['scene_id']}").json()
+    ids = {o["id"] for o in rerun["scene"]["objects"]}
+    assert all(
+        s["parent"] in ids | {"floor", "wall", "ceiling"} for s in rerun["scene"]["supports"]
+    )
+
+
+_VALID = {"kind": "set_support", "child": "o1", "parent": "floor", "type": "below"}
+BAD_REQUESTS: dict[str, tuple[list[dict[str, Any]], str]] = {
+    "box outside the photo": (
+        [_add("x1", "chair", [700, 100, WIDTH + 10, 200])],
+        "is not inside the 730x530 photo",
+    ),
+    "box above the photo": ([_add("x1", "chair", [10, -5, 50, 40])], "is not inside"),
+    "empty box": ([_add("x1", "chair", [100, 100, 100, 150])], "is empty"),
+    "inverted box": ([_add("x1", "chair", [100, 150, 150, 100])], "is empty"),
+    "existing id": ([_add("o2", "chair", [10, 10, 50, 50])], "'o2' is already used"),
+    "id added twice": (
+        [_add("x1", "chair", [10, 10, 50, 50]), _add("x1", "lamp", [60, 10, 90, 50])],
+        "'x1' is already used",
+    ),
+    "structural id": ([_add("floor", "chair", [10, 10, 50, 50])], "reserved"),
+    "id with a space": ([_add("a b", "chair", [10, 10, 50, 50])], "should match pattern"),
+    "unknown class": ([_add("x1", "spaceship", [10, 10, 50, 50])], "unknown class name"),
+    "mask runs": (
+        [
+            _add(
+                "x1",
+                "lamp",
+                [10, 20, 13, 22],
+                mask={"origin": [10, 20], "size": [3, 2], "rle": [1, 4], "source": "model"},
+            )
+        ],
+        "mask runs do not add up",
+    ),
+    "mask outside the photo": (
+        [
+            _add(
+                "x1",
+                "lamp",
+                [720, 20, 730, 22],
+                mask={"origin": [728, 20], "size": [3, 2], "rle": [0, 6], "source": "model"},
+            )
+        ],
+        "mask window",
+    ),
+    "score above 1": ([_add("x1", "lamp", [10, 10, 50, 50], score=1.5)], "score"),
+    "unknown source": ([_add("x1", "lamp", [10, 10, 50, 50], source="given")], "source"),
+    "remove a missing object": ([{"kind": "remove_object", "id": "ghost"}], "'ghost'"),
+    "remove twice": (
+        [{"kind": "remove_object", "id": "o3"}, {"kind": "remove_object", "id": "o3"}],
+        "cannot remove 'o3'",
+    ),
+    "support of a removed object": (
+        [{"kind": "remove_object", "id": "o3"}, {**_VALID, "child": "o3"}],
+        "no object 'o3'",
+    ),
+}
+
+
+@pytest.mark.parametrize("case", list(BAD_REQUESTS))
+def test_bad_object_edits_are_refused_whole(client: TestClient, t3d5: Path, case: str) -> None:
+    doc = _imported(client, t3d5)
+    edits, reason = BAD_REQUESTS[case]
+    response = _edit(client, doc, _VALID, *edits)
+    assert response.status_code == 422, response.text
+    assert reason in response.json()["detail"]
+    assert len(_history(client, doc)) == 1
+    assert client.get(f"/api/scenes/{doc['scene_id']}").json()["revision"] == doc["revision"]
+
+
+def test_object_edits_on_a_stale_revision_conflict(client: TestClient, t3d5: Path) -> None:
+    doc = _imported(client, t3d5)
+    assert _edit(client, doc, _VALID).status_code == 200
+    for edit in (_add("x1", "chair", [10, 10, 50, 50]), {"kind": "remove_object", "id": "o1"}):
+        stale = _edit(client, doc, edit)
+        assert stale.status_code == 409, stale.text
+        assert stale.json()["detail"]["current_revision"] == doc["revision"] + 1
+    assert len(_history(client, doc)) == 2
