@@ -152,23 +152,11 @@ class Evaluation:
 
     def average_precision(self) -> dict[str, float]:
         """AP per class that has ground-truth boxes (all-point interpolated precision)."""
-        result: dict[str, float] = {}
-        for cls, count in sorted(self.gt_boxes.items()):
-            if count == 0:
-                continue
-            ranked = sorted(self.detections.get(cls, []), key=lambda d: -d[0])
-            hits = np.array([hit for _, hit in ranked], dtype=float)
-            if len(hits) == 0:
-                result[cls] = 0.0
-                continue
-            tp = np.cumsum(hits)
-            recall = tp / count
-            precision = tp / np.arange(1, len(hits) + 1)
-            # Precision envelope, then area under the recall steps.
-            envelope = np.maximum.accumulate(precision[::-1])[::-1]
-            recall_steps = np.concatenate([[0.0], recall])
-            result[cls] = float(np.sum((recall_steps[1:] - recall_steps[:-1]) * envelope))
-        return result
+        return {
+            cls: all_point_average_precision(self.detections.get(cls, []), count)
+            for cls, count in sorted(self.gt_boxes.items())
+            if count > 0
+        }
 
     def box_recall(self) -> float | None:
         """Share of all ground-truth boxes some prediction matched at AP_IOU, every box
@@ -212,3 +200,19 @@ class Evaluation:
             },
             "mask": {"mean_iou": mean(self.mask_ious), "objects": len(self.mask_ious)},
         }
+
+
+def all_point_average_precision(scored_hits: list[tuple[float, bool]], truth_count: int) -> float:
+    """VOC all-point AP of one class: (score, is a true positive) per prediction, against
+    `truth_count` ground-truth boxes."""
+    if truth_count <= 0 or not scored_hits:
+        return 0.0
+    ranked = sorted(scored_hits, key=lambda d: -d[0])
+    hits = np.array([hit for _, hit in ranked], dtype=float)
+    tp = np.cumsum(hits)
+    recall = tp / truth_count
+    precision = tp / np.arange(1, len(hits) + 1)
+    # Precision envelope, then area under the recall steps.
+    envelope = np.maximum.accumulate(precision[::-1])[::-1]
+    recall_steps = np.concatenate([[0.0], recall])
+    return float(np.sum((recall_steps[1:] - recall_steps[:-1]) * envelope))

@@ -1,0 +1,105 @@
+"""The COCO detector's frozen part as a feature extractor (onnxruntime), and its box head's
+weights, for fine-tuning an NYU-40 head on top (training only: needs the `onnx` package).
+
+The converted COCO model keeps the TF.js tensor names, so the neck's output
+(`tower_0/CenternetHead/mul`, 128 channels at a quarter of the input's size, NCHW) and the
+COCO class heatmap before its last transpose can be made graph outputs of a sub-model.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import onnx
+import onnxruntime as ort
+from holiscene_schema.detector_model import COCO_CLASSES, INPUT_NAME, INPUT_SIZE
+from onnx import TensorProto, helper, numpy_helper
+
+FEATURES = "tower_0/CenternetHead/mul"
+COCO_HEATMAP_NHWC = "tower_0/keypoints"
+BOX_HEAD_DEPTHWISE = "tower_0/CenternetHead/centernet_wh_output/separable_conv2d/depthwise"
+BOX_HEAD_POINTWISE = "tower_0/CenternetHead/centernet_wh_output/BiasAdd"
+BOX_SCALE_NODE = "tower_0/mul"
+FEATURE_CHANNELS = 128
+COCO_CLASS_COUNT = len(COCO_CLASSES)
+
+
+@dataclass(frozen=True)
+class BoxHeadWeights:
+    depthwise: np.ndarray  # (C, 1, 3, 3)
+    pointwise: np.ndarray  # (4, C, 1, 1)
+    bias: np.ndarray  # (4,)
+    scale: float  # the head's output is multiplied by this
+
+
+def _producer(model: onnx.ModelProto, output: str) -> onnx.NodeProto:
+    for node in model.graph.node:
+        if output in node.output:
+            found: onnx.NodeProto = node
+            return found
+    raise ValueError(f"no node makes {output!r}: not the converted COCO detector")
+
+
+def coco_heatmap_nchw(model: onnx.ModelProto) -> str:
+    """The tensor the COCO heatmap is transposed from (the class probabilities in NCHW)."""
+    return str(_producer(model, COCO_HEATMAP_NHWC).input[0])
+
+
+def backbone_model(coco_model: Path) -> onnx.ModelProto:
+    """The COCO model cut after its neck: images -> (features, COCO heatmap), both NCHW
+    [1, C, S / 4, S / 4], with only the nodes they need."""
+    model = onnx.load(str(coco_model))
+    outputs = {FEATURES: FEATURE_CHANNELS, coco_heatmap_nchw(model): COCO_CLASS_COUNT}
+    needed: set[str] = set(outputs)
+    kept: list[onnx.NodeProto] = []
+    for node in reversed(model.graph.node):
+        if needed.intersection(node.output):
+            kept.append(node)
+            needed.update(node.input)
+    cells = INPUT_SIZE // 4
+    del model.graph.node[:]
+    model.graph.node.extend(reversed(kept))
+    del model.graph.output[:]
+    model.graph.output.extend(
+        helper.make_tensor_value_info(name, TensorProto.FLOAT, [1, channels, cells, cells])
+        for name, channels in outputs.items()
+    )
+    initializers = [t for t in model.graph.initializer if t.name in needed]
+    del model.graph.initializer[:]
+    model.graph.initializer.extend(initializers)
+    onnx.checker.check_model(model)
+    return model
+
+
+def box_head_weights(coco_model: Path) -> BoxHeadWeights:
+    model = onnx.load(str(coco_model))
+    init = {t.name: numpy_helper.to_array(t) for t in model.graph.initializer}
+    depthwise = _producer(model, BOX_HEAD_DEPTHWISE)
+    pointwise = _producer(model, BOX_HEAD_POINTWISE)
+    scale = _producer(model, BOX_SCALE_NODE)
+    return BoxHeadWeights(
+        depthwise=init[depthwise.input[1]],
+        pointwise=init[pointwise.input[1]],
+        bias=init[pointwise.input[2]],
+        scale=float(init[scale.input[1]]),
+    )
+
+
+class FeatureExtractor:
+    """Runs the cut COCO model; `__call__` gives (features, COCO heatmap) for one input."""
+
+    def __init__(self, coco_model: Path, threads: int = 2) -> None:
+        options = ort.SessionOptions()
+        options.intra_op_num_threads = threads
+        self.session = ort.InferenceSession(
+            backbone_model(coco_model).SerializeToString(),
+            options,
+            providers=["CPUExecutionProvider"],
+        )
+        self.outputs = [o.name for o in self.session.get_outputs()]
+
+    def __call__(self, tensor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        features, heatmap = self.session.run(self.outputs, {INPUT_NAME: tensor})
+        return np.asarray(features), np.asarray(heatmap)

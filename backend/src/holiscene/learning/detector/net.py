@@ -1,0 +1,175 @@
+"""The NYU-40 detector head (PyTorch, training only) on the COCO detector's frozen features,
+its decoding, and the export of backbone + head as one ONNX file of the detector contract.
+
+Head: a 1x1 convolution, a 3x3 convolution and a 1x1 convolution (ReLUs between) to one
+heatmap per class (CenterNet), and the COCO model's own box head (left, top, right, bottom
+distances from each cell), its last layer fine-tuned. For the classes COCO knows, the COCO
+heatmap can join by a rule (`coco_weight`): each class's score is the larger of the new
+head's and `coco_weight` times COCO's (0: the new head alone).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import onnx
+import torch
+import torch.nn.functional as F
+from holiscene_schema.detector_model import (
+    COCO_TO_NYU40,
+    INPUT_NAME,
+    MAX_DETECTIONS,
+    OPSET,
+    OUTPUT_NAME,
+)
+from torch import nn
+
+from ..export import keep_if_faithful
+from .backbone import (
+    FEATURE_CHANNELS,
+    FEATURES,
+    BoxHeadWeights,
+    backbone_model,
+)
+
+STRIDE = 4
+EXPORT_TOLERANCE = 1e-3  # pixels of the 512-pixel input and score units
+
+
+class DetectorHead(nn.Module):
+    def __init__(self, num_classes: int, box: BoxHeadWeights, hidden: int = 64) -> None:
+        super().__init__()
+        # A full 3x3 convolution on few channels: PyTorch's depthwise backward is several
+        # times slower on CPU than this.
+        self.classes = nn.Sequential(
+            nn.Conv2d(FEATURE_CHANNELS, hidden, 1),
+            nn.ReLU(inplace=True),
+            nn.Conv2d(hidden, hidden, 3, padding=1),
+            nn.ReLU(inplace=True),
+            nn.Conv2d(hidden, num_classes, 1),
+        )
+        last = self.classes[-1]
+        assert isinstance(last, nn.Conv2d) and last.bias is not None
+        nn.init.constant_(last.bias, -2.19)  # a prior of 0.1 per cell, as CenterNet starts
+        # The COCO box head: its depthwise part stays as trained, its last layer is tuned.
+        self.box_depthwise = nn.Conv2d(
+            FEATURE_CHANNELS, FEATURE_CHANNELS, 3, padding=1, groups=FEATURE_CHANNELS, bias=False
+        )
+        self.box_pointwise = nn.Conv2d(FEATURE_CHANNELS, 4, 1)
+        with torch.no_grad():
+            self.box_depthwise.weight.copy_(torch.from_numpy(box.depthwise.copy()))
+            self.box_pointwise.weight.copy_(torch.from_numpy(box.pointwise.copy()))
+            assert self.box_pointwise.bias is not None
+            self.box_pointwise.bias.copy_(torch.from_numpy(box.bias.copy()))
+        self.box_depthwise.requires_grad_(False)
+        self.box_scale = box.scale
+
+    def forward(self, features: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+        """(class logits [B, K, H, W], box sides [B, 4, H, W] in input pixels)."""
+        sides = self.box_pointwise(self.box_depthwise(features)) * self.box_scale
+        return self.classes(features), sides
+
+
+def coco_sources(classes: list[str]) -> tuple[np.ndarray, np.ndarray]:
+    """For each class, up to three COCO channels that map to it (index array [K, 3]) and
+    whether it has any (mask [K])."""
+    sources = [[i for i, nyu in enumerate(COCO_TO_NYU40) if nyu == cls] for cls in classes]
+    width = max(3, max((len(s) for s in sources), default=0))
+    index = np.array([(s or [0]) + [(s or [0])[0]] * (width - len(s or [0])) for s in sources])
+    mask = np.array([1.0 if s else 0.0 for s in sources], dtype=np.float32)
+    return index.astype(np.int64), mask
+
+
+class ExportedHead(nn.Module):
+    """Features and the COCO heatmap (both NCHW) -> the contract's raw detections."""
+
+    def __init__(
+        self, head: DetectorHead, trained: list[str], classes: list[str], coco_weight: float
+    ) -> None:
+        super().__init__()
+        self.head = head
+        index, mask = coco_sources(classes)
+        # Each class's channel of the head's output, or the zero channel after the last one.
+        own = [trained.index(c) if c in trained else len(trained) for c in classes]
+        self.own_channel: torch.Tensor
+        self.coco_index: torch.Tensor
+        self.coco_weight: torch.Tensor
+        self.register_buffer("own_channel", torch.tensor(own, dtype=torch.int64))
+        self.register_buffer("coco_index", torch.from_numpy(index))
+        self.register_buffer("coco_weight", torch.from_numpy(mask) * coco_weight)
+
+    def forward(self, features: torch.Tensor, coco_heatmap: torch.Tensor) -> torch.Tensor:
+        logits, sides = self.head(features)
+        zero = torch.zeros_like(logits[:, :1])
+        ours = torch.cat([torch.sigmoid(logits), zero], dim=1)[:, self.own_channel]
+        coco = coco_heatmap[:, self.coco_index[:, 0]]
+        for j in range(1, self.coco_index.shape[1]):
+            coco = torch.maximum(coco, coco_heatmap[:, self.coco_index[:, j]])
+        heat = torch.maximum(ours, coco * self.coco_weight.view(1, -1, 1, 1))
+        return centernet_decode(heat, sides, STRIDE, MAX_DETECTIONS)
+
+
+def centernet_decode(
+    heatmap: torch.Tensor, sides: torch.Tensor, stride: int, top_k: int
+) -> torch.Tensor:
+    """Raw detections [1, top_k, 6] from class probabilities [1, C, H, W] and box sides
+    [1, 4, H, W]: 3x3 peaks, the best top_k over (y, x, class) as the COCO model orders them,
+    boxes about each peak's cell."""
+    classes, width = heatmap.shape[1], heatmap.shape[3]
+    peaks = heatmap * (F.max_pool2d(heatmap, 3, stride=1, padding=1) == heatmap).float()
+    scores, index = torch.topk(peaks.permute(0, 2, 3, 1).reshape(1, -1), top_k, dim=1)
+    cls = index % classes
+    cell = torch.div(index, classes, rounding_mode="floor")
+    cx = ((cell % width) * stride).float()[0]
+    cy = (torch.div(cell, width, rounding_mode="floor") * stride).float()[0]
+    box_sides = sides.permute(0, 2, 3, 1).reshape(-1, 4)[cell[0]]
+    boxes = torch.stack(
+        [
+            cx - box_sides[:, 0],
+            cy - box_sides[:, 1],
+            cx + box_sides[:, 2],
+            cy + box_sides[:, 3],
+        ],
+        dim=1,
+    )
+    return torch.cat([boxes, scores[0, :, None], cls[0, :, None].float()], dim=1)[None]
+
+
+def export_detector(
+    exported_head: ExportedHead, coco_model: Path, example: np.ndarray, path: Path
+) -> float:
+    """Backbone (from the COCO model) and head as one ONNX file at `path`, checked against
+    onnxruntime's backbone + PyTorch's head on `example` (an input tensor [1, S, S, 3]);
+    returns the largest difference."""
+    from .backbone import FeatureExtractor
+
+    exported_head = exported_head.eval()
+    features, coco = FeatureExtractor(coco_model)(example)
+    args = (torch.from_numpy(features), torch.from_numpy(coco))
+    head_file = path.with_suffix(".head.onnx")
+    torch.onnx.export(
+        exported_head,
+        args,
+        str(head_file),
+        input_names=["features", "coco_heatmap"],
+        output_names=[OUTPUT_NAME],
+        opset_version=OPSET,
+        dynamo=False,
+    )
+    head = onnx.load(str(head_file))
+    head_file.unlink()
+    backbone = backbone_model(coco_model)
+    merged = onnx.compose.merge_models(
+        backbone,
+        head,
+        io_map=[(FEATURES, "features"), (backbone.graph.output[1].name, "coco_heatmap")],
+    )
+    merged.doc_string = "NYU-40 detector: COCO CenterNet backbone, head fine-tuned by HoliScene"
+    tmp = path.with_suffix(".tmp.onnx")
+    onnx.save(merged, str(tmp))
+    with torch.no_grad():
+        expected = exported_head(*args).numpy()
+    return keep_if_faithful(
+        tmp, path, {INPUT_NAME: example}, OUTPUT_NAME, expected, EXPORT_TOLERANCE
+    )

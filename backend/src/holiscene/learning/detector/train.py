@@ -1,0 +1,268 @@
+"""Fine-tune an NYU-40 detector head on the COCO detector's frozen features (PyTorch).
+
+`holiscene train-detector` calls `train_detector`. Each training photo is randomised once
+(data.randomise) and passed through the frozen COCO backbone once (onnxruntime); the head then
+trains on random windows of those feature maps, so an epoch costs the head alone. The best
+epoch by validation mAP@0.5 is kept, exported with the backbone as one ONNX file of the
+detector contract, and written with metadata.json, metrics.json and curve.png.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import torch
+from holiscene_schema import NYU40_CLASSES
+from holiscene_schema.detector_model import COCO_TO_NYU40, INPUT_SIZE
+
+from ...evaluation.detection_2d import DetectionEvaluation, ScoredBox
+from ..train import plot_curve, run_record
+from ..training_api import TrainProgress
+from .backbone import FeatureExtractor, box_head_weights
+from .data import BoxedPhoto, center_targets, randomise
+from .net import STRIDE, DetectorHead, ExportedHead, export_detector
+from .runtime import COCO_DETECTOR_DIR, METADATA_FILE, MODEL_FILE, decode, preprocess
+
+CELLS = INPUT_SIZE // STRIDE
+
+
+@dataclass(frozen=True)
+class DetectorTrainConfig:
+    seed: int = 0
+    epochs: int = 24
+    batch: int = 16
+    window: int = 64  # feature cells per side of each training window
+    learning_rate: float = 3e-3
+    hidden: int = 64
+    coco_weight: float = 1.0  # 0: the new head alone for every class
+    views: int = 1  # randomised views of each training photo
+    coco_model: Path = COCO_DETECTOR_DIR / MODEL_FILE
+
+
+@dataclass
+class FeatureSet:
+    features: np.ndarray  # (N, 128, CELLS, CELLS) float16
+    coco: np.ndarray | None  # (N, 80, CELLS, CELLS) float16, validation only
+    boxes: list[np.ndarray] = field(default_factory=list)  # input pixels, per sample
+    class_index: list[np.ndarray] = field(default_factory=list)
+    photo_boxes: list[list[ScoredBox]] = field(default_factory=list)  # photo pixels
+    photo_sizes: list[tuple[int, int]] = field(default_factory=list)  # (width, height)
+
+
+def final_classes(trained: Sequence[str]) -> list[str]:
+    """The model's class list: the classes it learned and those COCO knows, NYU-40 order."""
+    known = set(trained) | {c for c in COCO_TO_NYU40 if c is not None}
+    return [c for c in NYU40_CLASSES if c in known]
+
+
+def extract(
+    photos: Sequence[BoxedPhoto],
+    classes: list[str],
+    extractor: FeatureExtractor,
+    rng: np.random.Generator | None,
+    keep_coco: bool,
+    say: TrainProgress,
+    label: str,
+) -> FeatureSet:
+    """Backbone features of each photo (randomised first when `rng` is given)."""
+    index_of = {c: i for i, c in enumerate(classes)}
+    feature_set = FeatureSet(
+        features=np.zeros((len(photos), 128, CELLS, CELLS), np.float16),
+        coco=np.zeros((len(photos), 80, CELLS, CELLS), np.float16) if keep_coco else None,
+    )
+    for n, original in enumerate(photos):
+        photo = randomise(original, rng) if rng is not None else original
+        height, width = photo.rgb.shape[:2]
+        features, coco = extractor(preprocess(photo.rgb))
+        feature_set.features[n] = features[0]
+        if feature_set.coco is not None:
+            feature_set.coco[n] = coco[0]
+        known = [i for i, c in enumerate(photo.classes) if c in index_of]
+        scale = np.array([INPUT_SIZE / width, INPUT_SIZE / height] * 2)
+        feature_set.boxes.append(photo.boxes[known] * scale if known else np.zeros((0, 4)))
+        feature_set.class_index.append(np.array([index_of[photo.classes[i]] for i in known]))
+        feature_set.photo_boxes.append(
+            [ScoredBox(_box(photo.boxes[i]), photo.classes[i]) for i in known]
+        )
+        feature_set.photo_sizes.append((width, height))
+        if n % 20 == 0 or n == len(photos) - 1:
+            say(0.0, f"{label}: features {n + 1}/{len(photos)}")
+    return feature_set
+
+
+def _box(row: np.ndarray) -> tuple[float, float, float, float]:
+    return float(row[0]), float(row[1]), float(row[2]), float(row[3])
+
+
+def focal_loss(logits: torch.Tensor, target: torch.Tensor) -> torch.Tensor:
+    """CenterNet's penalty-reduced focal loss, per object."""
+    p = torch.sigmoid(logits).clamp(1e-4, 1 - 1e-4)
+    positive = target.eq(1).float()
+    pos = -torch.log(p) * (1 - p) ** 2 * positive
+    neg = -torch.log(1 - p) * p**2 * (1 - target) ** 4 * (1 - positive)
+    return (pos.sum() + neg.sum()) / positive.sum().clamp(min=1)
+
+
+def box_loss(predicted: torch.Tensor, target: torch.Tensor) -> torch.Tensor:
+    """GIoU loss of boxes given as sides about one point, plus a little L1."""
+    pl, pt, pr, pb = predicted.unbind(1)
+    tl, tt, tr, tb = target.unbind(1)
+    inter = (torch.minimum(pl, tl) + torch.minimum(pr, tr)).clamp(min=0) * (
+        torch.minimum(pt, tt) + torch.minimum(pb, tb)
+    ).clamp(min=0)
+    union = (pl + pr) * (pt + pb) + (tl + tr) * (tt + tb) - inter
+    hull = (torch.maximum(pl, tl) + torch.maximum(pr, tr)) * (
+        torch.maximum(pt, tt) + torch.maximum(pb, tb)
+    )
+    giou = inter / union.clamp(min=1e-6) - (hull - union) / hull.clamp(min=1e-6)
+    return (1 - giou).mean() + 0.01 * (predicted - target).abs().mean()
+
+
+def _batch(
+    data: FeatureSet, index: np.ndarray, window: int, num_classes: int, rng: np.random.Generator
+) -> tuple[torch.Tensor, torch.Tensor, list[tuple[int, int, int]], torch.Tensor]:
+    """Features and targets of random windows: (features, heatmaps, centre cells as
+    (sample, row, column), their target sides)."""
+    features, heatmaps, cells, sides = [], [], [], []
+    for b, n in enumerate(index):
+        y0, x0 = (int(v) for v in rng.integers(0, CELLS - window + 1, size=2))
+        heat, centres, box_sides = center_targets(
+            data.boxes[n], data.class_index[n], num_classes, CELLS, STRIDE
+        )
+        features.append(data.features[n, :, y0 : y0 + window, x0 : x0 + window])
+        heatmaps.append(heat[:, y0 : y0 + window, x0 : x0 + window])
+        for (row, col), side in zip(centres, box_sides, strict=True):
+            if y0 <= row < y0 + window and x0 <= col < x0 + window:
+                cells.append((b, int(row - y0), int(col - x0)))
+                sides.append(side)
+    target_sides = torch.from_numpy(np.array(sides, np.float32).reshape(-1, 4))
+    return (
+        torch.from_numpy(np.stack(features).astype(np.float32)),
+        torch.from_numpy(np.stack(heatmaps)),
+        cells,
+        target_sides,
+    )
+
+
+def validation_map(
+    head: DetectorHead, data: FeatureSet, trained: list[str], classes: list[str], coco_weight: float
+) -> tuple[float, DetectionEvaluation]:
+    """mAP@0.5 over the trained classes on validation photos (the contract's decoding)."""
+    exported = ExportedHead(head, trained, classes, coco_weight).eval()
+    evaluation = DetectionEvaluation(iou=0.5)
+    assert data.coco is not None
+    with torch.no_grad():
+        for n in range(len(data.features)):
+            raw = exported(
+                torch.from_numpy(data.features[n : n + 1].astype(np.float32)),
+                torch.from_numpy(data.coco[n : n + 1].astype(np.float32)),
+            ).numpy()
+            width, height = data.photo_sizes[n]
+            found = decode(raw, width, height, classes, list(classes))
+            evaluation.add([ScoredBox(d.bbox, d.cls, d.score) for d in found], data.photo_boxes[n])
+    summary = evaluation.summary(set(trained))
+    return float(summary["map"] or 0.0), evaluation
+
+
+def train_detector(
+    train_photos: Sequence[BoxedPhoto],
+    validation_photos: Sequence[BoxedPhoto],
+    config: DetectorTrainConfig,
+    out_dir: Path,
+    progress: TrainProgress | None = None,
+) -> dict[str, Any]:
+    say = progress or (lambda fraction, line: None)
+    started = time.perf_counter()
+    torch.manual_seed(config.seed)
+    rng = np.random.default_rng(config.seed)
+    trained = [c for c in NYU40_CLASSES if any(c in p.classes for p in train_photos)]
+    classes = final_classes(trained)
+    learned = [classes.index(c) for c in trained]
+    extractor = FeatureExtractor(config.coco_model)
+    views = [p for p in train_photos for _ in range(config.views)]
+    train = extract(views, trained, extractor, rng, False, say, "training photos")
+    validation = extract(validation_photos, trained, extractor, None, True, say, "validation")
+    head = DetectorHead(len(trained), box_head_weights(config.coco_model), config.hidden)
+    optimiser = torch.optim.AdamW(head.parameters(), lr=config.learning_rate, weight_decay=1e-4)
+    steps = -(-len(views) // config.batch)
+    schedule = torch.optim.lr_scheduler.OneCycleLR(
+        optimiser, config.learning_rate, total_steps=steps * config.epochs
+    )
+    curve: list[dict[str, float]] = []
+    best, best_state, best_epoch = -1.0, head.state_dict(), 0
+    for epoch in range(1, config.epochs + 1):
+        head.train()
+        total = 0.0
+        order = rng.permutation(len(views))
+        for start in range(0, len(views), config.batch):
+            index = order[start : start + config.batch]
+            features, heat, cells, target_sides = _batch(
+                train, index, config.window, len(trained), rng
+            )
+            logits, sides = head(features)
+            loss = focal_loss(logits, heat)
+            if cells:
+                b, r, c = (torch.tensor(v) for v in zip(*cells, strict=True))
+                loss = loss + box_loss(sides[b, :, r, c], target_sides)
+            optimiser.zero_grad()
+            loss.backward()  # type: ignore[no-untyped-call]
+            optimiser.step()
+            schedule.step()
+            total += loss.item() * len(index)
+        head.eval()
+        score, _ = validation_map(head, validation, trained, classes, 0.0)
+        curve.append({
+            "epoch": epoch, "train_loss": total / len(views), "validation_accuracy": score,
+            "seconds": time.perf_counter() - started,
+        })  # fmt: skip
+        if score > best:
+            best, best_epoch = score, epoch
+            best_state = {k: v.clone() for k, v in head.state_dict().items()}
+        say(
+            epoch / config.epochs,
+            f"epoch {epoch}: loss {curve[-1]['train_loss']:.3f}, "
+            f"validation mAP@0.5 {score:.3f} (best {best:.3f})",
+        )
+    head.load_state_dict(best_state)
+    head.eval()
+    rules = {
+        weight: validation_map(head, validation, trained, classes, weight)[1].summary(set(trained))
+        for weight in (0.0, config.coco_weight)
+    }
+    out_dir.mkdir(parents=True, exist_ok=True)
+    exported = ExportedHead(head, trained, classes, config.coco_weight)
+    example = preprocess(validation_photos[0].rgb)
+    difference = export_detector(exported, config.coco_model, example, out_dir / MODEL_FILE)
+    metrics = {
+        "classes": classes,
+        "trained_classes": trained,
+        "learned_channels": learned,
+        "best_epoch": best_epoch,
+        "validation_map_at_0_5": best,
+        "validation_by_rule": {str(w): s for w, s in rules.items()},
+        "train_photos": len(train_photos),
+        "validation_photos": len(validation_photos),
+        "export_difference": difference,
+        "curve": curve,
+        **run_record(started, config),
+    }
+    (out_dir / "metrics.json").write_text(json.dumps(metrics, indent=1, default=str) + "\n")
+    metadata = {
+        "name": "NYU-40 detector (COCO backbone, head fine-tuned on synthetic rooms)",
+        "label_space": "nyu40",
+        "classes": classes,
+        "coco_weight": config.coco_weight,
+        "provenance": {
+            "backbone": "the COCO CenterNet of ../coco_detector (see its metadata.json)",
+            "head": "trained by holiscene train-detector on the photos in metrics.json",
+        },
+    }
+    (out_dir / METADATA_FILE).write_text(json.dumps(metadata, indent=2) + "\n")
+    plot_curve(curve, out_dir / "curve.png", "validation mAP@0.5", "train loss per photo")
+    return metrics

@@ -1,0 +1,83 @@
+"""Objects from the object detector when no boxes are given with the photo (and, on request,
+the objects the given boxes lack)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from holiscene_schema import SceneObject
+from holiscene_schema.detector_model import NMS_IOU, SCORE_THRESHOLD
+
+from ...learning.detector.runtime import (
+    DEFAULT_DETECTOR_DIR,
+    DetectedBox,
+    Detector,
+    DetectorModelError,
+    box_iou,
+)
+from ..base import PipelineBuildError, SceneContext, Stage
+from ..registry import register_stage
+from .detections import objects_from_detections
+
+
+@register_stage
+class ObjectsFromDetector(Stage):
+    """Given boxes become objects as they are (source "given"); without them the detector's
+    boxes do (source "detector", with their score). `add_missing=True` also adds the
+    detector's boxes that overlap no given box (IoU at most the NMS threshold)."""
+
+    name = "objects_from_detector"
+    requires = frozenset({"image", "detections"})
+    provides = frozenset({"objects"})
+
+    def __init__(
+        self,
+        model_dir: str | Path | None = None,
+        score_threshold: float = SCORE_THRESHOLD,
+        add_missing: bool = False,
+        **rest: Any,
+    ) -> None:
+        super().__init__(**rest)
+        if not 0.0 < score_threshold <= 1.0:
+            raise PipelineBuildError(f"stage {self.name!r}: score_threshold must be in (0, 1]")
+        try:
+            self.detector = Detector.load(Path(model_dir) if model_dir else DEFAULT_DETECTOR_DIR)
+        except DetectorModelError as error:
+            raise PipelineBuildError(f"stage {self.name!r}: {error}") from None
+        self.score_threshold = score_threshold
+        self.add_missing = add_missing
+
+    def run(self, ctx: SceneContext) -> None:
+        given = objects_from_detections(ctx.detections or [])
+        for obj in given:
+            obj.source = "given"
+        if ctx.detections is not None and not self.add_missing:
+            ctx.objects = given
+            return
+        found = self.detector.detect(ctx.image, self.score_threshold)
+        if given:
+            found = [box for box in found if not _overlaps_any(box, given)]
+        added = [
+            SceneObject(
+                id=f"o{len(given) + index}",
+                cls=box.cls,
+                source_class=box.source_class,
+                bbox=list(box.bbox),
+                score=round(box.score, 4),
+                source="detector",
+            )
+            for index, box in enumerate(found)
+        ]
+        ctx.objects = given + added
+        if not ctx.objects:
+            ctx.notes[self.name] = (
+                f"the detector found no objects (score at least {self.score_threshold:g}) "
+                "and no boxes were given: draw the objects' boxes"
+            )
+
+
+def _overlaps_any(box: DetectedBox, objects: list[SceneObject]) -> bool:
+    boxes = np.array([o.bbox for o in objects], dtype=np.float64)
+    return bool(box_iou(np.array(box.bbox), boxes).max() > NMS_IOU)

@@ -1,0 +1,119 @@
+"""Object detectors against given boxes: `make bench-detector`.
+
+- Real photos (../shared/data/real): the boxes that come with them are the truth. mm3d-* hold
+  the dataset's complete boxes, so the share of predicted boxes that are real is measured
+  there only; t3d-* and im3d-* hold furniture only (recall only).
+- Held-out synthetic rooms (seeds no training uses): exact boxes for every object the
+  generator makes; mAP@0.5 over the generator's classes.
+- Time per photo of the detector alone (preprocessing, onnxruntime one thread, decoding).
+
+Each --model is a detector directory (model.onnx + metadata.json); the default is the
+committed one. Figures are printed as a table, and --json writes them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from holiscene.evaluation.detection_2d import DetectionEvaluation, ScoredBox
+from holiscene.inputs import read_input_folder
+from holiscene.learning.detector.runtime import DEFAULT_DETECTOR_DIR, Detector
+from holiscene.synth.generate import synthesize_to
+from holiscene_schema.detector_model import SCORE_THRESHOLD
+from tqdm import tqdm
+
+REPO = Path(__file__).resolve().parent.parent
+REAL = REPO.parent / "shared" / "data" / "real"
+IOU = 0.5
+
+
+def truth_of(folder: Path) -> tuple[object, list[ScoredBox]]:
+    inputs = read_input_folder(folder)
+    boxes = [ScoredBox(d.bbox, d.cls) for d in inputs.detections or []]
+    return inputs.photo.rgb, boxes
+
+
+def evaluate(
+    detector: Detector, folders: list[Path], threshold: float, desc: str
+) -> tuple[DetectionEvaluation, list[float]]:
+    evaluation = DetectionEvaluation(iou=IOU)
+    seconds: list[float] = []
+    for folder in tqdm(folders, desc=desc, unit="photo", file=sys.stderr):
+        rgb, truth = truth_of(folder)
+        start = time.perf_counter()
+        found = detector.detect(rgb, threshold)  # type: ignore[arg-type]
+        seconds.append(time.perf_counter() - start)
+        evaluation.add([ScoredBox(d.bbox, d.cls, d.score) for d in found], truth)
+    return evaluation, seconds
+
+
+def synthetic_folders(seed: int, count: int, scratch: Path) -> list[Path]:
+    for s in tqdm(range(seed, seed + count), desc="synth", unit="scene", file=sys.stderr):
+        synthesize_to(s, scratch)
+    return sorted(p for p in scratch.iterdir() if p.is_dir())
+
+
+def percent(value: float | None) -> str:
+    return "-" if value is None else f"{100 * value:.1f}"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--model", type=Path, action="append", help="detector directory")
+    parser.add_argument("--real", type=Path, default=REAL)
+    parser.add_argument("--synth-seed", type=int, default=950000)
+    parser.add_argument("--synth-count", type=int, default=40)
+    parser.add_argument("--threshold", type=float, default=SCORE_THRESHOLD)
+    parser.add_argument("--json", type=Path, help="write the figures here too")
+    args = parser.parse_args(argv)
+    models = args.model or [DEFAULT_DETECTOR_DIR]
+    real = sorted(p for p in args.real.iterdir() if (p / "detections.json").is_file())
+    complete = [p for p in real if p.name.startswith("mm3d")]
+    results: dict[str, dict[str, object]] = {}
+    with tempfile.TemporaryDirectory(prefix="bench-detector-") as scratch:
+        synthetic = synthetic_folders(args.synth_seed, args.synth_count, Path(scratch))
+        synth_classes = {b.cls for f in synthetic for b in truth_of(f)[1]}
+        for model_dir in models:
+            detector = Detector.load(model_dir)
+            name = str(detector.metadata.get("name", model_dir.name))
+            on_real, seconds = evaluate(detector, real, args.threshold, f"real {name}")
+            on_complete, _ = evaluate(detector, complete, args.threshold, f"mm3d {name}")
+            on_synth, _ = evaluate(detector, synthetic, args.threshold, f"synthetic {name}")
+            results[name] = {
+                "model_dir": str(model_dir),
+                "real": on_real.summary(),
+                "mm3d": on_complete.summary(),
+                "synthetic": on_synth.summary(synth_classes),
+                "seconds_median": statistics.median(seconds),
+            }
+    print(
+        f"\nIoU {IOU}, score >= {args.threshold}; real: {len(real)} photos; synthetic: "
+        f"{args.synth_count} rooms from seed {args.synth_seed}, {len(synth_classes)} classes\n"
+    )
+    print(
+        "| model | real: boxes found % | with right class % | mm3d: predictions real % "
+        "| synthetic mAP@0.5 | synthetic found % | s per photo |"
+    )
+    print("| --- | --- | --- | --- | --- | --- | --- |")
+    for name, r in results.items():
+        real_s, mm3d_s, synth_s = r["real"], r["mm3d"], r["synthetic"]
+        assert isinstance(real_s, dict) and isinstance(mm3d_s, dict) and isinstance(synth_s, dict)
+        print(
+            f"| {name} | {percent(real_s['recall_any_class'])} "
+            f"| {percent(real_s['recall_right_class'])} | {percent(mm3d_s['precision'])} "
+            f"| {percent(synth_s['map'])} | {percent(synth_s['recall_right_class'])} "
+            f"| {r['seconds_median']:.3f} |"
+        )
+    if args.json:
+        args.json.write_text(json.dumps(results, indent=1) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
