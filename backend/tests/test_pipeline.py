@@ -1,4 +1,5 @@
-"""Pipelines are checked when built; stages keep people's supports."""
+"""Pipelines are checked when built; stages keep people's supports and say which of their
+notes are warnings."""
 
 from __future__ import annotations
 
@@ -6,7 +7,7 @@ from pathlib import Path
 
 import pytest
 from holiscene.inference import infer_scene
-from holiscene.inputs import read_input_folder
+from holiscene.inputs import InputFiles, read_input_folder
 from holiscene.learning.runtime import DEFAULT_MODEL_DIR, SupportModel
 from holiscene.pipeline import DEFAULT_STAGES, PipelineBuildError, build_pipeline, registered_stages
 from holiscene_schema import SupportRelation
@@ -67,3 +68,18 @@ def test_real_photos_get_one_supporter_each_and_floor_furniture(real_photos: Pat
         for obj in scene.objects:
             if obj.cls in floor_classes:
                 assert by_child[obj.id].parent == "floor", (folder.name, obj.id, obj.cls)
+
+
+def test_stage_notes_are_warnings_only_when_a_stage_could_not_do_something(t3d5: Path) -> None:
+    given = read_input_folder(t3d5)
+    full = infer_scene(given, name="x", image_file="img.jpg").scene
+    layout = next(run for run in full.stages if run.name == "layout_from_lines")
+    assert layout.note and "scale from" in layout.note and not layout.warning
+    assert not any(run.warning for run in full.stages if run.note is None)
+
+    bare = InputFiles(photo=given.photo, K=None, detections=None)
+    stages = ("objects_from_detections", "intrinsics")
+    runs = infer_scene(bare, name="x", image_file="img.jpg", stages=stages).scene.stages
+    warnings = {run.name: run.note for run in runs if run.warning}
+    assert "no detections.json" in (warnings["objects_from_detections"] or "")
+    assert "no cam_K.txt" in (warnings["intrinsics"] or "")

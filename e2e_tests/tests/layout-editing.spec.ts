@@ -65,9 +65,12 @@ async function cornerAt(page: Page, index: number): Promise<[number, number]> {
   return [Number(await handle.getAttribute("data-x")), Number(await handle.getAttribute("data-y"))];
 }
 
-/** The centre of a corner's handle on the screen. */
+/** The centre of a corner's handle on the screen, scrolled into view (the mouse acts only
+ * inside the viewport). */
 async function handleCentre(page: Page, index: number): Promise<{ x: number; y: number }> {
-  const box = await page.getByTestId(`layout-handle-${index}`).boundingBox();
+  const handle = page.getByTestId(`layout-handle-${index}`);
+  await handle.scrollIntoViewIfNeeded();
+  const box = await handle.boundingBox();
   if (!box) throw new Error(`no handle for corner ${index}`);
   return { x: box.x + box.width / 2, y: box.y + box.height / 2 };
 }

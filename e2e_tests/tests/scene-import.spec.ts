@@ -1,10 +1,10 @@
 // User story: an annotator imports a photo with its intrinsics and detections, follows the
 // pipeline's progress and opens the new scene.
-import { mkdirSync } from "node:fs";
+import { mkdirSync, readFileSync } from "node:fs";
 import path from "node:path";
-import type { Job, SceneSummary } from "@holiscene/schema";
+import type { ImportResult, Job, SceneSummary } from "@holiscene/schema";
 import { expect, test } from "@playwright/test";
-import { seedScene, T3D_5 } from "../helpers/api";
+import { seedScene, T3D_5, waitForJob } from "../helpers/api";
 
 test("imports a photo through the form and opens the scene", async ({ page }) => {
   await page.goto("/#/");
@@ -68,4 +68,44 @@ test("a scene whose pipeline is still running shows progress, then opens", async
   await expect(page.getByTestId("object-table")).toBeVisible();
   await expect(progress).toBeHidden();
   await expect(page.getByTestId("arrow-layer").locator("[data-testid^='arrow-']")).toHaveCount(4);
+});
+
+test("a scene without objects says so and shows the pipeline's warnings", async ({
+  page,
+  request,
+}) => {
+  // No cam_K.txt and an empty detections.json: the intrinsics are assumed, no object is given.
+  const response = await request.post("/api/scenes", {
+    multipart: {
+      image: {
+        name: "img.jpg",
+        mimeType: "image/jpeg",
+        buffer: readFileSync(path.join(T3D_5, "img.jpg")),
+      },
+      detections: {
+        name: "detections.json",
+        mimeType: "application/json",
+        buffer: Buffer.from("[]"),
+      },
+      name: "t3d-5 without objects",
+    },
+  });
+  expect(response.status(), await response.text()).toBe(201);
+  const imported = (await response.json()) as ImportResult;
+  if (!imported.job) throw new Error("the import started no pipeline job");
+  expect((await waitForJob(request, imported.job.id)).status).toBe("succeeded");
+
+  await page.goto(`/#/scenes/${imported.scene.id}`);
+  const summary = page.getByTestId("support-summary");
+  await expect(summary).toHaveText(
+    /^No objects yet\. Import the photo again with a detections\.json/,
+  );
+  await expect(summary).not.toContainText("supported");
+  const warnings = page.getByTestId("pipeline-warnings");
+  await expect(warnings).toBeVisible();
+  await expect(
+    warnings.getByTestId("pipeline-warning").filter({ hasText: "intrinsics" }),
+  ).toContainText("no cam_K.txt");
+  // A note that is no problem (the room's scale and where it came from) is not a warning.
+  await expect(warnings).not.toContainText("scale from");
 });

@@ -204,7 +204,8 @@ class SceneSummary(SchemaModel):
         ge=0.0,
         le=1.0,
         description="Mean over the objects of 1 - confidence of their supporter (1 without "
-        "one, 0 when a person set it); 'Next scene' picks the highest",
+        "one, 0 when a person set it); 1 for a scene without objects; 'Next scene' picks the "
+        "highest",
     )
     latest_job: Job | None = None
 

@@ -151,6 +151,11 @@ class StageRun(SchemaModel):
     name: str
     seconds: float = Field(ge=0.0)
     note: str | None = None
+    warning: bool = Field(
+        default=False,
+        description="The note tells what the stage could not do (shown as a warning), "
+        "not just what it found",
+    )
 
 
 class Scene(SchemaModel):

@@ -168,10 +168,11 @@ def _needs_supporter(scene: Scene) -> list[str]:
 def scene_uncertainty(scene: Scene) -> float:
     """Mean over the objects that need a supporter of how unsure their supporter is:
     1 - confidence for the pipeline's guess (0.5 when it gave none), 1 without a supporter,
-    0 when a person set it. 0 for a scene with no such objects (nothing to label)."""
+    0 when a person set it. 1 for a scene with no such objects: nothing in it is known yet
+    (its objects are still to be found), so it comes first for annotation."""
     ids = _needs_supporter(scene)
     if not ids:
-        return 0.0
+        return 1.0
     supports = {s.child: s for s in scene.supports}
     total = 0.0
     for object_id in ids:

@@ -67,12 +67,15 @@ def store_predicted_scene(
     name: str = "hand-made",
     confidences: dict[str, float | None] | None = None,
     supports: list[Support] | None = None,
+    with_objects: bool = True,
 ) -> str:
     """Import a scene (state new) and store a pipeline result on it (state predicted), by
-    the store's own code paths."""
+    the store's own code paths; `with_objects=False`: the pipeline found no objects."""
     photo = load_photo(_png())
     imported = make_scene([]).model_copy(update={"name": name, "supports": []})
     scene_id = scenes.create(InputFiles(photo=photo, K=None, detections=None), imported, "test").id
     predicted = make_scene(supports if supports is not None else PREDICTED, confidences)
+    if not with_objects:
+        predicted = predicted.model_copy(update={"objects": [], "supports": []})
     scenes.commit_pipeline_result(scene_id, predicted.model_copy(update={"name": name}), None)
     return scene_id

@@ -1,5 +1,6 @@
 """Migrations on databases written by earlier versions: 0003 on scenes stored before accounts
-and states existed, 0004 on accounts and sessions stored before idle timeouts and disabling."""
+and states existed, 0004 on accounts and sessions stored before idle timeouts and disabling,
+0005 on scenes without objects stored as the least uncertain."""
 
 from __future__ import annotations
 
@@ -96,4 +97,45 @@ def test_open_sessions_get_a_last_seen_time_and_accounts_stay_enabled(tmp_path: 
     with engine.connect() as connection:
         columns = [row[1] for row in connection.execute(text("PRAGMA table_info('sessions')"))]
     assert "last_seen_at" not in columns and len(columns) == 4
+    engine.dispose()
+
+
+def test_scenes_without_objects_become_the_most_uncertain(tmp_path: Path) -> None:
+    engine = make_engine(f"sqlite:///{tmp_path / 'old.db'}")
+    _migrate(engine, "0004")
+    predicted = make_scene([("o0", "floor", "below")], {"o0": 0.6})  # (0.4 + 1 * 3) / 4
+    walls = [o for o in predicted.objects if o.cls == "wall"]
+    stored = {
+        "objects": (predicted, 0.85),
+        "empty": (predicted.model_copy(update={"objects": [], "supports": []}), 0.0),
+        "walls": (predicted.model_copy(update={"objects": walls, "supports": []}), 0.0),
+    }
+    with engine.begin() as connection:
+        for scene_id, (scene, uncertainty) in stored.items():
+            connection.execute(
+                text(
+                    "INSERT INTO scenes (id, name, created_at, updated_at, current_revision, "
+                    "image_file, width, height, object_count, state, annotation_round, "
+                    "uncertainty) VALUES (:id, :id, '2026-01-01', '2026-01-01', 1, 'img.png', "
+                    "64, 48, :count, 'predicted', 1, :u)"
+                ),
+                {"id": scene_id, "count": len(scene.objects), "u": uncertainty},
+            )
+            connection.execute(
+                text(
+                    "INSERT INTO revisions (scene_id, number, created_at, author, kind, "
+                    "summary, scene) VALUES (:id, 1, '2026-01-01', 'x', 'pipeline', '', :scene)"
+                ),
+                {"id": scene_id, "scene": json.dumps(scene.model_dump(mode="json"))},
+            )
+
+    def uncertainties() -> dict[str, float]:
+        with engine.connect() as connection:
+            rows = connection.execute(text("SELECT id, uncertainty FROM scenes")).all()
+        return {row[0]: row[1] for row in rows}
+
+    _migrate(engine, "head")
+    assert uncertainties() == {"objects": 0.85, "empty": 1.0, "walls": 1.0}
+    _migrate(engine, "0004", step=command.downgrade)
+    assert uncertainties() == {"objects": 0.85, "empty": 0.0, "walls": 0.0}
     engine.dispose()

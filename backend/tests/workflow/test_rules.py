@@ -41,6 +41,13 @@ def test_uncertainty_is_the_mean_doubt_over_objects_that_need_a_supporter() -> N
     assert scene_uncertainty(manual) == pytest.approx(1.0 / 4)
 
 
+def test_a_scene_without_objects_to_support_is_the_most_uncertain() -> None:
+    scene = make_scene([])
+    assert scene_uncertainty(scene.model_copy(update={"objects": []})) == 1.0
+    walls_only = [o for o in scene.objects if o.cls == "wall"]
+    assert scene_uncertainty(scene.model_copy(update={"objects": walls_only})) == 1.0
+
+
 def test_agreement_on_a_hand_made_pair() -> None:
     first = make_scene(PREDICTED)
     # o1 on the floor instead of the table (supporter differs), o2 behind instead of below

@@ -189,6 +189,20 @@ def test_next_scene_picks_the_most_uncertain_first(api: Api, accounts: Accounts)
     assert api.post("ann", "/api/scenes/next").json()["id"] == newer
 
 
+def test_next_scene_offers_a_scene_without_objects_first(api: Api, accounts: Accounts) -> None:
+    scenes = accounts.workbench.scenes
+    # Stored before the empty one: as uncertain (no object has a supporter), and less.
+    unsupported = store_predicted_scene(scenes, "unsupported", supports=[])
+    unsure = store_predicted_scene(scenes, "unsure", {"o1": 0.4, "o2": 0.4, "o3": 0.4})
+    empty = store_predicted_scene(scenes, "empty", with_objects=False)
+    listed = {s["name"]: s["uncertainty"] for s in api.get("ann", "/api/scenes")}
+    assert listed == pytest.approx({"unsupported": 1.0, "unsure": 0.475, "empty": 1.0})
+
+    assert api.post("ann", "/api/scenes/next").json()["id"] == empty
+    assert api.post("bob", "/api/scenes/next").json()["id"] == unsupported
+    assert api.post("ann", "/api/scenes/next").json()["id"] == unsure
+
+
 def test_second_annotation_agreement_and_dashboard(api: Api, accounts: Accounts) -> None:
     scenes = accounts.workbench.scenes
     scene_id = store_predicted_scene(scenes, "twice")

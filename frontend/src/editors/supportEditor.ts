@@ -13,6 +13,7 @@ import {
   wouldCycle,
 } from "../state/supportGraph";
 import { classCss } from "../views/classColors";
+import { supportSummary } from "./supportSummary";
 
 const NONE = "";
 
@@ -195,10 +196,9 @@ export function mountSupportEditor(container: HTMLElement, session: SceneSession
   const update = () => {
     for (const row of rows) row.update();
     const missing = rows.filter((r) => !session.shown().has(r.object.id)).length;
-    summary.textContent =
-      `${rows.length} objects` +
-      (missing > 0 ? ` · ${missing} without a supporter` : " · all supported");
-    summary.classList.toggle("is-warn", missing > 0);
+    const { text, warn } = supportSummary(session.objects, missing);
+    summary.textContent = text;
+    summary.classList.toggle("is-warn", warn);
   };
   // Only scrolls: taking the focus would send the photo's shortcut keys into the select.
   const scrollToSelected = () => {

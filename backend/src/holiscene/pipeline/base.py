@@ -69,7 +69,10 @@ class SceneContext:
     boxes_3d: dict[str, Box3D | None] | None = None
     object_meshes: dict[str, ObjectMesh] | None = None
     scene_glb: bytes | None = None
-    notes: dict[str, str] = field(default_factory=dict)  # stage name -> what it could not do
+    # Stage name -> what it could not do: stored as the stage's note, marked as a warning.
+    notes: dict[str, str] = field(default_factory=dict)
+    # Stage name -> what it found that is no problem (e.g. a fit's quality): a plain note.
+    reports: dict[str, str] = field(default_factory=dict)
     object_notes: dict[str, str] = field(default_factory=dict)  # object id -> why a value is null
 
     @property
@@ -82,7 +85,11 @@ class SceneContext:
 
 
 INPUT_SLOTS: frozenset[str] = frozenset({"image", "given_K", "detections", "pinned_supports"})
-SLOTS: frozenset[str] = frozenset(f.name for f in fields(SceneContext)) - {"notes", "object_notes"}
+SLOTS: frozenset[str] = frozenset(f.name for f in fields(SceneContext)) - {
+    "notes",
+    "reports",
+    "object_notes",
+}
 
 
 def required(value: T | None, slot: str) -> T:

@@ -60,11 +60,13 @@ class Pipeline:
                 progress(stage.name, index / len(self.stages))
             start = time.perf_counter()
             stage.run(ctx)
+            warning = ctx.notes.get(stage.name) or None
             runs.append(
                 StageRun(
                     name=stage.name,
                     seconds=round(time.perf_counter() - start, 4),
-                    note=ctx.notes.get(stage.name),
+                    note=warning or ctx.reports.get(stage.name),
+                    warning=warning is not None,
                 )
             )
         if progress:

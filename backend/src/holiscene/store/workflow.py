@@ -166,6 +166,7 @@ class WorkflowStore:
             .order_by(
                 SceneRow.uncertainty.is_(None),  # unknown last
                 SceneRow.uncertainty.desc(),
+                SceneRow.object_count > 0,  # of the most uncertain, scenes without objects first
                 SceneRow.created_at,
             )
             .limit(50)

@@ -18,6 +18,7 @@ import { jobProgress } from "../common/jobProgress";
 import { mountPhotoView } from "../photo/photoView";
 import { mountScene3d } from "../scene3d/scene3dView";
 import { mountWorkflowBar } from "../workflow/workflowBar";
+import { pipelineWarningsPanel } from "./pipelineWarnings";
 import { mountRevisionHistory } from "./revisionHistory";
 import { viserLink } from "./viserLink";
 
@@ -157,8 +158,10 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     const edgeInfo = el("div");
     photo.element.append(edgeInfo);
     const banner = readOnlyBanner(session);
+    const warnings = pipelineWarningsPanel(session);
     content.append(
       banner.element,
+      warnings.element,
       el("div", { className: "scene-main" }, photo.element, scene3d.element),
       editor.element,
     );
@@ -176,6 +179,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       mountRevisionHistory(history, session),
       mountWorkflowBar(workflow, session),
       banner.dispose,
+      warnings.dispose,
       session.subscribe((change) => {
         if (change === "document") updateMeta();
         if (change === "lock") rerun.disabled = !session.editable;

@@ -213,4 +213,4 @@ class LayoutFromLines(Stage):
             source="estimated",
             note=note,
         )
-        ctx.notes[self.name] = note
+        ctx.reports[self.name] = note

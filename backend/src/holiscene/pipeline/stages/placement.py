@@ -76,10 +76,13 @@ class PlacementStage(Stage):
             boxes[obj.id] = result.box
         self.last = dict(placer.placed)
         missing = [obj_id for obj_id, box in boxes.items() if box is None]
+        problems = []
         if room is None:
-            ctx.notes[self.name] = "no room layout: objects on walls are not placed"
+            problems.append("no room layout: objects on walls are not placed")
         if missing:
-            ctx.notes[self.name] = f"no 3D box for {', '.join(missing)}"
-        elif self.last:
+            problems.append(f"no 3D box for {', '.join(missing)}")
+        if problems:
+            ctx.notes[self.name] = "; ".join(problems)
+        if self.last:
             ious = [p.iou for p in self.last.values()]
-            ctx.notes[self.name] = f"mean IoU(projection, mask) {float(np.mean(ious)):.2f}"
+            ctx.reports[self.name] = f"mean IoU(projection, mask) {float(np.mean(ious)):.2f}"

@@ -110,9 +110,12 @@ class LayoutFromRevision(Stage):
         note = (
             "kept the room layout set by hand, and the camera's pitch, roll and height fitted to it"
         )
-        if not np.allclose(K, np.asarray(camera.K, dtype=float)):
-            note += " (with the intrinsics it was fitted under, not this run's)"
-        ctx.notes[self.name] = note
+        if np.allclose(K, np.asarray(camera.K, dtype=float)):
+            ctx.reports[self.name] = note
+        else:
+            ctx.notes[self.name] = (
+                f"{note} (with the intrinsics it was fitted under, not this run's)"
+            )
 
 
 def vanishing_points(camera: Camera, corners: list[list[float]]) -> FloatArray:

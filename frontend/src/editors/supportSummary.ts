@@ -1,0 +1,34 @@
+// The line above the object list: how many objects need a supporter and how many lack one,
+// or, when there is nothing to support, that the objects are still to be added.
+import type { SceneObject } from "@holiscene/schema";
+import { plural } from "../state/sceneSession";
+import { isStructural } from "../state/supportGraph";
+
+export interface SupportSummary {
+  text: string;
+  warn: boolean;
+}
+
+const ADD_OBJECTS = "Import the photo again with a detections.json (2D boxes and classes)";
+
+export function supportSummary(
+  objects: readonly SceneObject[],
+  unsupported: number,
+): SupportSummary {
+  const toSupport = objects.filter((o) => !isStructural(o.class)).length;
+  if (objects.length === 0) {
+    return { text: `No objects yet. ${ADD_OBJECTS} to add them.`, warn: true };
+  }
+  if (toSupport === 0) {
+    return {
+      text: `No objects to support, only the room's walls, floor or ceiling. ${ADD_OBJECTS} to add objects.`,
+      warn: true,
+    };
+  }
+  return {
+    text:
+      `${plural(toSupport, "object")} · ` +
+      (unsupported > 0 ? `${unsupported} without a supporter` : "all supported"),
+    warn: unsupported > 0,
+  };
+}

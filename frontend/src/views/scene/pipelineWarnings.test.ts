@@ -1,0 +1,30 @@
+// Only the notes the pipeline marked as warnings are listed, each with its stage.
+import type { StageRun } from "@holiscene/schema";
+import { describe, expect, it } from "vitest";
+import { pipelineWarnings } from "./pipelineWarnings";
+
+const run = (name: string, note: string | null, warning: boolean): StageRun => ({
+  name,
+  seconds: 0.1,
+  note,
+  warning,
+});
+
+describe("pipeline warnings", () => {
+  it("lists each warning with its stage and leaves plain notes out", () => {
+    const stages = [
+      run("objects_from_detections", "no detections.json was given", true),
+      run("intrinsics", null, false),
+      run("layout_from_lines", "scale from camera height", false),
+      run("heights_by_metrology", "class prior for 1: o2 (measured 9.00 m)", true),
+    ];
+    expect(pipelineWarnings(stages)).toEqual([
+      { stage: "objects from detections", text: "no detections.json was given" },
+      { stage: "heights by metrology", text: "class prior for 1: o2 (measured 9.00 m)" },
+    ]);
+  });
+
+  it("has none for a scene without stages", () => {
+    expect(pipelineWarnings([])).toEqual([]);
+  });
+});

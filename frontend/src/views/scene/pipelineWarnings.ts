@@ -1,0 +1,57 @@
+// The pipeline's warnings on the scene page: one line per stage that could not do something
+// (its note, marked as a warning in the stored scene), above the photo and the editor.
+import type { StageRun } from "@holiscene/schema";
+import { el } from "../../dom";
+import { plural, type SceneSession } from "../../state/sceneSession";
+
+export interface PipelineWarning {
+  stage: string;
+  text: string;
+}
+
+export function pipelineWarnings(stages: readonly StageRun[]): PipelineWarning[] {
+  return stages.flatMap((run) =>
+    run.warning && run.note ? [{ stage: run.name.replaceAll("_", " "), text: run.note }] : [],
+  );
+}
+
+/** The panel (hidden while there is no warning) and how to stop updating it. */
+export function pipelineWarningsPanel(session: SceneSession): {
+  element: HTMLElement;
+  dispose: () => void;
+} {
+  const title = el("summary", { testid: "pipeline-warnings-title" });
+  const list = el("ul", { className: "pipeline-warnings-list" });
+  const element = el(
+    "details",
+    {
+      className: "pipeline-warnings",
+      testid: "pipeline-warnings",
+      attrs: { open: true, "aria-label": "Pipeline warnings" },
+    },
+    title,
+    list,
+  );
+  const update = () => {
+    const warnings = pipelineWarnings(session.doc.scene.stages);
+    element.hidden = warnings.length === 0;
+    title.textContent = plural(warnings.length, "pipeline warning");
+    list.replaceChildren(
+      ...warnings.map((w) =>
+        el(
+          "li",
+          { testid: "pipeline-warning" },
+          el("span", { className: "pipeline-warning-stage", text: w.stage }),
+          el("span", { text: w.text }),
+        ),
+      ),
+    );
+  };
+  update();
+  return {
+    element,
+    dispose: session.subscribe((change) => {
+      if (change === "document") update();
+    }),
+  };
+}
