@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: surface-model calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors decode-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
+.PHONY: surface-model calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -106,6 +106,12 @@ vectors:
 # backend and the browser; run after changing the default model or the preprocessing.
 relation-vectors:
 	$(PY) -m holiscene_schema.relation_vectors
+
+# The object detector's vectors (preprocessing, the default detector's raw rows, decoding)
+# shared by the backend and the browser; run after changing the default detector, its
+# preprocessing or its decoding.
+detector-vectors:
+	$(PY) -m holiscene_schema.detector_vectors
 
 # The support-tree decoder's vectors (Python decode.py <-> frontend/src/inference/treeDecode.ts).
 decode-vectors:

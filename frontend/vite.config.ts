@@ -17,11 +17,13 @@ export default defineConfig({
     sourcemap: true,
     chunkSizeWarningLimit: 1024,
     rolldownOptions: {
-      // The workbench, and a page that runs the Relation Network in the browser (for its
-      // end-to-end test and benchmark). onnxruntime-web's wasm file is emitted beside them.
+      // The workbench, and pages that run the Relation Network and the object detector in the
+      // browser (for their end-to-end tests and benchmarks). onnxruntime-web's wasm file is
+      // emitted beside them.
       input: {
         main: fileURLToPath(new URL("index.html", import.meta.url)),
         relationCheck: fileURLToPath(new URL("relation-check.html", import.meta.url)),
+        detectorCheck: fileURLToPath(new URL("detector-check.html", import.meta.url)),
       },
     },
   },

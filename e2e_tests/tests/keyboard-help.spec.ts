@@ -10,7 +10,8 @@ import { openScene } from "../helpers/photo";
 const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
 mkdirSync(SCREENSHOTS, { recursive: true });
 
-// The actions of support editing, live suggestions and no-lost-work, by their keys.
+// The actions of support editing, live suggestions, object suggestions and no-lost-work, by
+// their keys.
 const SCENE_KEYS: Record<string, string> = {
   A: "accept the selected edge",
   "Shift+A": "accept every remaining edge",
@@ -33,6 +34,10 @@ const SCENE_KEYS: Record<string, string> = {
   "Shift+R": "reload after a conflict",
   "Shift+U": "restore unsaved changes",
   "Shift+H": "revision history",
+  D: "detect objects",
+  Y: "accept the selected suggested box",
+  "Shift+Y": "accept every suggested box",
+  X: "reject the selected suggested box",
   "?": "this list",
 };
 
@@ -63,7 +68,13 @@ test("? lists every shortcut of the scene page, and Escape closes the list", asy
     );
   }
   // Grouped by what they act on.
-  for (const scope of ["Support editing", "Saving and history", "Photo", "General"]) {
+  for (const scope of [
+    "Support editing",
+    "Saving and history",
+    "Photo",
+    "Object suggestions",
+    "General",
+  ]) {
     await expect(help.locator(`section[data-scope="${scope}"]`)).toBeVisible();
   }
   await page.screenshot({ path: path.join(SCREENSHOTS, "keyboard-help.png") });

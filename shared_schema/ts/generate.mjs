@@ -50,6 +50,7 @@ const vocabularyTs = [
   `export const STRUCTURAL_SUPPORTERS = ${JSON.stringify(vocabulary.structural_supporters)} as const;`,
   `export const SUPPORT_TYPES = ${JSON.stringify(vocabulary.support_types)} as const;`,
   `export const RELATION_MODEL = ${JSON.stringify(vocabulary.relation_model)} as const;`,
+  `export const DETECTOR_MODEL = ${JSON.stringify(vocabulary.detector_model)} as const;`,
   "",
 ].join("\n");
 

@@ -1,35 +1,18 @@
-// The Relation Network in the browser: onnxruntime-web (WASM, one thread) on the same ONNX file
-// the backend runs, fed by preprocess.ts. The runtime is loaded on first use as its own chunk
-// (`import("onnxruntime-web/wasm")`); Vite emits its wasm file with the app, so the app serves
-// it itself. A session costs about a second to create (mostly compiling the wasm), so each
-// model URL gets one session, kept and reused.
+// The Relation Network in the browser: onnxruntime-web (WASM, one thread, ortRuntime.ts) on the
+// same ONNX file the backend runs, fed by preprocess.ts. A session costs about a second to
+// create (mostly compiling the wasm), so each model URL gets one session, kept and reused.
 import type { Scene, SceneObject } from "@holiscene/schema";
 import { RELATION_MODEL } from "@holiscene/schema";
 import type { InferenceSession } from "onnxruntime-web";
+import { loadRuntime, type Ort } from "./ortRuntime";
 import { modelObjects, type PixelImage, type RelationInputs, sceneInputs } from "./preprocess";
 import { type PriorsFile, SupportPriors } from "./supportPriors";
 
-type Ort = typeof import("onnxruntime-web/wasm");
 export type SupportTypeName = (typeof RELATION_MODEL.support_types)[number];
 
 export const STRUCTURAL_COLUMNS: readonly string[] = RELATION_MODEL.structural_columns;
 export const SUPPORT_TYPE_ORDER: readonly SupportTypeName[] = RELATION_MODEL.support_types;
 const TYPES = SUPPORT_TYPE_ORDER.length;
-
-let runtime: Promise<Ort> | null = null;
-
-/** onnxruntime-web's WASM build, configured for one thread on the page's own thread. */
-function loadRuntime(): Promise<Ort> {
-  runtime ??= import("onnxruntime-web/wasm").then((ort) => {
-    ort.env.wasm.numThreads = 1;
-    ort.env.wasm.proxy = false;
-    return ort;
-  });
-  runtime.catch(() => {
-    runtime = null;
-  });
-  return runtime;
-}
 
 /** One answer for an object: a supporter (object id or ceiling/floor/wall) and a type. */
 export interface SupportSuggestion {

@@ -542,6 +542,17 @@ export class SceneSession {
     }
   }
 
+  /**
+   * A revision the server made from edits sent outside the save (objects accepted from the
+   * detector) becomes the loaded one; the unsaved edits stay on top, as after a save.
+   */
+  adopt(doc: SceneDocument): void {
+    if (doc.scene_id !== this.sceneId) return;
+    this.setDocument(doc);
+    for (const edit of this.pending) this.stage(edit);
+    this.editsChanged();
+  }
+
   /** After a conflict: the latest revision with the unsaved edits on top, saved at once. */
   async merge(author: string): Promise<void> {
     await this.reloadLatest();

@@ -18,6 +18,7 @@ import { jobProgress } from "../common/jobProgress";
 import { mountPhotoView } from "../photo/photoView";
 import { mountScene3d } from "../scene3d/scene3dView";
 import { mountWorkflowBar } from "../workflow/workflowBar";
+import { mountObjectSuggestions } from "./objectSuggestions";
 import { pipelineWarningsPanel } from "./pipelineWarnings";
 import { mountRevisionHistory } from "./revisionHistory";
 import { viserLink } from "./viserLink";
@@ -165,7 +166,10 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       el("div", { className: "scene-main" }, photo.element, scene3d.element),
       editor.element,
     );
-    disposers.push(mountPhotoView(photo.body, session));
+    disposers.push(
+      mountPhotoView(photo.body, session),
+      mountObjectSuggestions(photo.body, session), // after the photo view: it draws in its SVG
+    );
     const layout = mountLayoutEditing(photo.element, photo.body, session);
     disposers.push(
       layout.dispose,

@@ -1,0 +1,93 @@
+"""The object detector's files, for the browser: which detector is active, and its model.onnx
+and metadata.json (the scene page runs the model with onnxruntime-web to suggest objects).
+
+As with the Relation Network's registry (models.py), the files live under an id that changes
+whenever the model does (the start of the model file's sha256), so browsers may keep them for
+good. Any logged-in user may fetch them.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from functools import lru_cache
+from pathlib import Path
+
+from fastapi import APIRouter, HTTPException
+from fastapi.responses import FileResponse
+from holiscene_schema import ErrorMessage
+from pydantic import BaseModel, Field
+
+from ...learning.detector import runtime
+from ...learning.detector.active import active_detector_dir
+
+router = APIRouter(prefix="/api/detector", tags=["detector"])
+
+_404: dict[int | str, dict[str, object]] = {404: {"model": ErrorMessage}}
+_IMMUTABLE = {"Cache-Control": "public, max-age=31536000, immutable"}
+DETECTOR_FILES = {
+    runtime.MODEL_FILE: "application/octet-stream",
+    runtime.METADATA_FILE: "application/json",
+}
+
+
+class DetectorInfo(BaseModel):
+    """The active detector: where its files are and what it detects."""
+
+    id: str = Field(description="Changes with the model file; its files are under this id")
+    name: str
+    label_space: str = Field(description="coco80 (mapped to NYU-40) or nyu40")
+    classes: list[str] = Field(description="The model's own classes, by class index")
+    model_sha256: str
+    model_bytes: int
+    model_url: str
+    metadata_url: str
+
+
+@lru_cache(maxsize=4)
+def _digest(path: Path, mtime_ns: int, size: int) -> str:
+    # Keyed by modification time and size too, so a replaced file is hashed afresh.
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def _info(model_dir: Path) -> DetectorInfo:
+    try:
+        metadata = runtime.read_metadata(model_dir)
+        model = model_dir / runtime.MODEL_FILE
+        stat = model.stat()
+    except (runtime.DetectorModelError, FileNotFoundError) as error:
+        raise HTTPException(404, f"no object detector is installed: {error}") from None
+    sha256 = _digest(model.resolve(), stat.st_mtime_ns, stat.st_size)
+    detector_id = sha256[:16]
+    return DetectorInfo(
+        id=detector_id,
+        name=str(metadata.get("name") or "object detector"),
+        label_space=metadata["label_space"],
+        classes=[str(c) for c in metadata["classes"]],
+        model_sha256=sha256,
+        model_bytes=stat.st_size,
+        model_url=f"/api/detector/{detector_id}/{runtime.MODEL_FILE}",
+        metadata_url=f"/api/detector/{detector_id}/{runtime.METADATA_FILE}",
+    )
+
+
+@router.get("/active", response_model=DetectorInfo, responses=_404)
+def active_detector() -> DetectorInfo:
+    """The detector the browser runs; 404 when none is installed."""
+    return _info(active_detector_dir())
+
+
+@router.get(
+    "/{detector_id}/{file_name}",
+    responses={200: {"content": {media: {} for media in set(DETECTOR_FILES.values())}}, **_404},
+)
+def detector_file(detector_id: str, file_name: str) -> FileResponse:
+    """The active detector's model.onnx or metadata.json (404 under an older id)."""
+    model_dir = active_detector_dir()
+    info = _info(model_dir)
+    if detector_id != info.id:
+        raise HTTPException(404, f"detector {detector_id} is not the active one ({info.id})")
+    if file_name not in DETECTOR_FILES:
+        raise HTTPException(404, f"the detector has no file {file_name!r}")
+    return FileResponse(
+        model_dir / file_name, media_type=DETECTOR_FILES[file_name], headers=_IMMUTABLE
+    )

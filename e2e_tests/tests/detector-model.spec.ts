@@ -1,0 +1,233 @@
+// The object detector in the browser agrees with the backend: the app's detector-check page
+// fetches the active detector from the app (GET /api/detector/active, then its model.onnx),
+// runs it with onnxruntime-web (WASM, one thread, the wasm file served by the app) on each photo
+// of the shared vectors (shared_schema/vectors/detector_model.json), stretching the photo itself,
+// and its raw rows must match onnxruntime's in Python within 1e-4 (scores, and box corners as
+// shares of the 512-pixel input; rows of near-equal scores in either order: matchRows); its
+// input tensor is the backend's bit for bit, and its decoded boxes are the backend's.
+import { createHash } from "node:crypto";
+import { readFileSync } from "node:fs";
+import path from "node:path";
+import { expect, test } from "@playwright/test";
+import type { DetectorInfo } from "../../frontend/src/inference/detector";
+import type { EncodedPhoto } from "../../frontend/src/inference/detectorCheck";
+
+const VECTORS = path.resolve(
+  import.meta.dirname,
+  "../../shared_schema/vectors/detector_model.json",
+);
+const RAW_TOLERANCE = 1e-4;
+const INPUT_SIZE = 512;
+// Decoded boxes in photo pixels: the corners' differences (a few thousandths of an input pixel)
+// scaled to the photo.
+const BOX_TOLERANCE = 0.01;
+
+interface ExpectedBox {
+  bbox: number[];
+  score: number;
+  class: string;
+  source_class: string;
+}
+
+interface PhotoCase {
+  name: string;
+  image: EncodedPhoto;
+  expected: {
+    images: { float32_sha256: string };
+    detections: { shape: number[]; data: number[] };
+    boxes: ExpectedBox[];
+    boxes_low_threshold: ExpectedBox[];
+  };
+}
+
+interface Vectors {
+  model: { sha256: string };
+  low_threshold: number;
+  tolerance: { detections: number };
+  cases: PhotoCase[];
+  preprocess_cases: { name: string; image: EncodedPhoto; expected: PhotoCase["expected"] }[];
+}
+
+/**
+ * How far apart two values of column `k` of a row are: box corners (0-3) in shares of the input
+ * size (as the model's boxes are relative to it), scores (4) as they are, class indices (5)
+ * infinitely unless equal.
+ */
+function difference(a: number, b: number, k: number): number {
+  if (k < 4) return Math.abs(a - b) / INPUT_SIZE;
+  if (k === 4) return Math.abs(a - b);
+  return a === b ? 0 : Number.POSITIVE_INFINITY;
+}
+
+interface RowMatch {
+  /** Largest difference (see `difference`) between matched rows. */
+  worst: number;
+  worstScore: number;
+  /** In input pixels. */
+  worstCorner: number;
+  /** Rows matched to a row at another place (near-equal scores in another order). */
+  reordered: number;
+  /** Rows on one side only, at the end, with scores within the tolerance of the cut. */
+  swappedAtCut: number;
+  problems: string[];
+}
+
+/**
+ * The browser's rows against the backend's. The model lists its best peaks best first; peaks
+ * whose scores differ by less than the tolerance may come in another order on another runtime
+ * (a photo of one colour has dozens), and the last rows may be others when their scores are
+ * that close to the 100th. So each row must match a row of the other side (same class, every
+ * value within the tolerance) at its own place, else at another place where the scores are
+ * within the tolerance; a row left over must score within the tolerance of the cut.
+ */
+function matchRows(actual: readonly number[], expected: readonly number[], tol: number): RowMatch {
+  const rows = expected.length / 6;
+  const row = (values: readonly number[], i: number) => values.slice(i * 6, i * 6 + 6);
+  const close = (a: number[], e: number[]) =>
+    a.every((v, k) => difference(v, e[k] as number, k) <= tol);
+  const partner = new Int32Array(rows).fill(-1);
+  const taken = new Uint8Array(rows);
+  for (let i = 0; i < rows; i++) {
+    if (close(row(actual, i), row(expected, i))) {
+      partner[i] = i;
+      taken[i] = 1;
+    }
+  }
+  let reordered = 0;
+  for (let i = 0; i < rows; i++) {
+    if ((partner[i] as number) >= 0) continue;
+    const a = row(actual, i);
+    let best = -1;
+    for (let j = 0; j < rows; j++) {
+      if (taken[j] || !close(a, row(expected, j))) continue;
+      if (Math.abs((a[4] as number) - (expected[i * 6 + 4] as number)) > tol) continue;
+      if (best < 0 || Math.abs(j - i) < Math.abs(best - i)) best = j;
+    }
+    if (best >= 0) {
+      partner[i] = best;
+      taken[best] = 1;
+      reordered++;
+    }
+  }
+  const cut = expected[(rows - 1) * 6 + 4] as number;
+  const problems: string[] = [];
+  let swappedAtCut = 0;
+  const leftOver = (side: string, values: readonly number[], i: number) => {
+    const score = values[i * 6 + 4] as number;
+    if (Math.abs(score - cut) <= tol) swappedAtCut++;
+    else problems.push(`${side} row ${i} [${row(values, i).join(", ")}] has no match`);
+  };
+  for (let i = 0; i < rows; i++) if ((partner[i] as number) < 0) leftOver("browser", actual, i);
+  for (let j = 0; j < rows; j++) if (!taken[j]) leftOver("backend", expected, j);
+  const match = { worst: 0, worstScore: 0, worstCorner: 0, reordered, swappedAtCut, problems };
+  partner.forEach((j, i) => {
+    if (j < 0) return;
+    const a = row(actual, i);
+    const e = row(expected, j);
+    a.forEach((v, k) => {
+      const d = Math.abs(v - (e[k] as number));
+      match.worst = Math.max(match.worst, difference(v, e[k] as number, k));
+      if (k === 4) match.worstScore = Math.max(match.worstScore, d);
+      if (k < 4) match.worstCorner = Math.max(match.worstCorner, d);
+    });
+  });
+  return match;
+}
+
+test("the browser runs the app's detector and agrees with the backend on the shared vectors", async ({
+  page,
+  request,
+  baseURL,
+}) => {
+  const vectors = JSON.parse(readFileSync(VECTORS, "utf8")) as Vectors;
+  expect(vectors.tolerance.detections).toBe(RAW_TOLERANCE);
+
+  const active = await request.get("/api/detector/active");
+  expect(active.status(), await active.text()).toBe(200);
+  const info = (await active.json()) as DetectorInfo;
+  const modelFile = await request.get(info.model_url);
+  expect(modelFile.status()).toBe(200);
+  const sha256 = createHash("sha256")
+    .update(await modelFile.body())
+    .digest("hex");
+  expect(sha256).toBe(info.model_sha256);
+  expect(sha256, "the vectors are stale: run `make detector-vectors`").toBe(vectors.model.sha256);
+
+  const origin = new URL(baseURL ?? "").origin;
+  const foreign: string[] = [];
+  const wasm: { url: string; status: number; type: string | undefined }[] = [];
+  page.on("request", (r) => {
+    if (!r.url().startsWith(origin) && !r.url().startsWith("data:")) foreign.push(r.url());
+  });
+  page.on("response", (r) => {
+    if (new URL(r.url()).pathname.endsWith(".wasm")) {
+      wasm.push({ url: r.url(), status: r.status(), type: r.headers()["content-type"] });
+    }
+  });
+  const modelFetched = page.waitForResponse((r) => new URL(r.url()).pathname === info.model_url);
+  await page.goto("/detector-check.html");
+  const loaded = await page.evaluate(() => {
+    if (!window.holisceneDetector) throw new Error("the detector check page did not start");
+    return window.holisceneDetector.load();
+  });
+  expect(loaded.info.model_url).toBe(info.model_url);
+  expect((await modelFetched).status()).toBe(200);
+  expect(wasm.length).toBeGreaterThan(0);
+  for (const w of wasm) {
+    expect(w.url.startsWith(`${origin}/assets/`), w.url).toBe(true);
+    expect(w.status).toBe(200);
+    expect(w.type).toBe("application/wasm");
+  }
+
+  const report: string[] = [];
+  for (const c of vectors.cases) {
+    for (const [threshold, expected] of [
+      [undefined, c.expected.boxes],
+      [vectors.low_threshold, c.expected.boxes_low_threshold],
+    ] as const) {
+      const result = await page.evaluate(
+        ({ image, threshold }) => {
+          if (!window.holisceneDetector) throw new Error("the detector check page did not start");
+          return window.holisceneDetector.raw(image, threshold);
+        },
+        { image: c.image, threshold },
+      );
+      expect(result.inputSha256, `${c.name}: input tensor`).toBe(c.expected.images.float32_sha256);
+      const want = c.expected.detections.data;
+      expect(result.raw.length).toBe(want.length);
+      const match = matchRows(result.raw, want, RAW_TOLERANCE);
+      expect(match.problems, c.name).toEqual([]);
+      expect(match.worst, c.name).toBeLessThanOrEqual(RAW_TOLERANCE);
+      expect(result.boxes.map((b) => `${b.cls} ${b.sourceClass}`)).toEqual(
+        expected.map((b) => `${b.class} ${b.source_class}`),
+      );
+      let boxWorst = 0;
+      result.boxes.forEach((box, i) => {
+        box.bbox.forEach((v, k) => {
+          boxWorst = Math.max(boxWorst, Math.abs(v - (expected[i]?.bbox[k] as number)));
+        });
+      });
+      expect(boxWorst, `${c.name}: boxes`).toBeLessThanOrEqual(BOX_TOLERANCE);
+      if (threshold !== undefined) {
+        report.push(
+          `${c.name}: max |browser - backend| scores ${match.worstScore.toExponential(2)}, ` +
+            `box corners ${match.worstCorner.toExponential(2)} input px; ` +
+            `${match.reordered} rows reordered, ${match.swappedAtCut} swapped at the cut; ` +
+            `decoded boxes ${boxWorst.toExponential(2)} px over ${result.boxes.length} boxes ` +
+            `(preprocess ${result.preprocessMs.toFixed(1)} ms, run ${result.runMs.toFixed(0)} ms)`,
+        );
+      }
+    }
+  }
+  // The photos the model is not run on (a pixel, a column, a row): the input tensor alone.
+  for (const c of vectors.preprocess_cases) {
+    const sha = await page.evaluate(
+      (image) => window.holisceneDetector?.inputSha256(image) ?? "",
+      c.image,
+    );
+    expect(sha, `${c.name}: input tensor`).toBe(c.expected.images.float32_sha256);
+  }
+  console.log(`object detector, browser vs backend (session ${loaded.loadMs.toFixed(0)} ms):`);
+  for (const line of report) console.log(`  ${line}`);
+  expect(foreign).toEqual([]);
+});

@@ -1,0 +1,138 @@
+// User story: an annotator opens a scene that has no objects yet; the object detector runs in
+// the browser by itself and suggests boxes on the photo; accepting one adds it to the scene
+// (the server makes its mask), rejecting one drops it. After a reload the accepted object is
+// there, with a mask, and nothing is suggested again (the scene has an object now).
+import { mkdirSync, readFileSync } from "node:fs";
+import path from "node:path";
+import type { ImportResult, SceneDocument } from "@holiscene/schema";
+import { expect, type Page, test } from "@playwright/test";
+import { getScene, T3D_5, waitForJob } from "../helpers/api";
+
+const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
+mkdirSync(SCREENSHOTS, { recursive: true });
+
+/** The real photo t3d-5 with an empty detections.json: a scene without objects. */
+async function importWithoutObjects(page: Page, name: string): Promise<string> {
+  const response = await page.request.post("/api/scenes", {
+    multipart: {
+      image: {
+        name: "img.jpg",
+        mimeType: "image/jpeg",
+        buffer: readFileSync(path.join(T3D_5, "img.jpg")),
+      },
+      cam_k: {
+        name: "cam_K.txt",
+        mimeType: "text/plain",
+        buffer: readFileSync(path.join(T3D_5, "cam_K.txt")),
+      },
+      detections: {
+        name: "detections.json",
+        mimeType: "application/json",
+        buffer: Buffer.from("[]"),
+      },
+      name,
+    },
+  });
+  expect(response.status(), await response.text()).toBe(201);
+  const imported = (await response.json()) as ImportResult;
+  if (imported.job)
+    expect((await waitForJob(page.request, imported.job.id)).status).toBe("succeeded");
+  return imported.scene.id;
+}
+
+test("a scene without objects gets the detector's suggestions to accept or reject", async ({
+  page,
+}) => {
+  const sceneId = await importWithoutObjects(page, "t3d-5 detector suggestions");
+  await page.goto(`/#/scenes/${sceneId}`);
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+
+  // The detector runs by itself: progress first, then the suggestions.
+  const status = page.getByTestId("detector-status");
+  await expect(status).toContainText(/Loading the object detector|Detecting objects|suggested/);
+  await expect(status).toContainText("suggested in", { timeout: 90_000 });
+  const boxes = page.getByTestId("detector-suggestion");
+  const count = await boxes.count();
+  expect(count).toBeGreaterThanOrEqual(2);
+  const classes = await boxes.evaluateAll((nodes) =>
+    nodes.map((n) => (n as SVGGElement).dataset.class ?? ""),
+  );
+  expect(classes).toContain("bed");
+  expect(classes).toContain("television");
+  await expect(page.getByTestId("detector-actions")).toBeVisible();
+  await expect(boxes.first().locator(".detector-label")).toHaveText(/^\w+ \d+%$/);
+  await page.screenshot({ path: path.join(SCREENSHOTS, "object-suggestions.png") });
+
+  // Accept the bed: click its box, then Accept. The edit is the contract's add_object.
+  const bed = page.locator('[data-testid="detector-suggestion"][data-class="bed"]');
+  await bed.click();
+  await expect(bed).toHaveClass(/is-selected/);
+  await expect(page.getByTestId("detector-selection")).toHaveText(/^Selected: bed \d+%$/);
+  const posted = page.waitForRequest(
+    (r) => r.method() === "POST" && r.url().endsWith(`/api/scenes/${sceneId}/edits`),
+  );
+  await page.getByTestId("accept-suggestion").click();
+  const body = (await posted).postDataJSON() as { base_revision: number; edits: unknown[] };
+  expect(body.edits).toHaveLength(1);
+  const edit = body.edits[0] as Record<string, unknown>;
+  expect(Object.keys(edit).sort()).toEqual(["bbox", "class", "id", "kind", "score", "source"]);
+  expect(edit).toMatchObject({ kind: "add_object", id: "d1", class: "bed", source: "detector" });
+  expect((edit.bbox as number[]).length).toBe(4);
+  expect(edit.score as number).toBeGreaterThan(0.3);
+  await expect(status).toContainText("Added d1 (bed)");
+  await expect(bed).toHaveCount(0);
+  await expect(boxes).toHaveCount(count - 1);
+  await expect(page.locator('.masks [data-object="d1"]')).toHaveCount(1);
+
+  // Reject the television with the key: it goes, the others stay.
+  const tv = page.locator('[data-testid="detector-suggestion"][data-class="television"]');
+  await tv.click();
+  await page.keyboard.press("x");
+  await expect(tv).toHaveCount(0);
+  await expect(boxes).toHaveCount(count - 2);
+  await expect(status).toContainText("Rejected television");
+  await page.screenshot({ path: path.join(SCREENSHOTS, "object-suggestions-accepted.png") });
+
+  // After a reload: the bed is an object with a mask made by the server; the scene has an
+  // object now, so the detector does not run by itself.
+  const doc: SceneDocument = await getScene(page.request, sceneId);
+  const added = (doc.scene.objects ?? []).find((o) => o.id === "d1");
+  expect(added?.class).toBe("bed");
+  expect(added?.mask?.rle.length ?? 0).toBeGreaterThan(1);
+  await page.reload();
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await expect(page.locator('.masks [data-object="d1"]')).toHaveCount(1);
+  await expect(page.locator('tr[data-object="d1"]')).toBeVisible();
+  await expect(boxes).toHaveCount(0);
+  await expect(status).toHaveText("");
+
+  // Detecting again offers what is still unlabelled: not the bed.
+  await page.getByTestId("detect-objects").click();
+  await expect(status).toContainText("suggested in", { timeout: 60_000 });
+  await expect(bed).toHaveCount(0);
+  await expect(boxes).toHaveCount(count - 1);
+});
+
+test("the detector's failure is said plainly, and Detect objects can try again", async ({
+  page,
+}) => {
+  const sceneId = await importWithoutObjects(page, "t3d-5 detector missing");
+  await page.route("**/api/detector/active", (route) =>
+    route.fulfill({
+      status: 404,
+      contentType: "application/json",
+      body: JSON.stringify({ detail: "no object detector is installed: test" }),
+    }),
+  );
+  await page.goto(`/#/scenes/${sceneId}`);
+  const status = page.getByTestId("detector-status");
+  await expect(status).toHaveText(
+    "Could not detect objects: no object detector is installed: test",
+  );
+  await expect(status).toHaveAttribute("role", "alert");
+  await expect(page.getByTestId("detector-actions")).toBeHidden();
+  await page.unroute("**/api/detector/active");
+  await page.getByTestId("detect-objects").click();
+  await expect(status).toContainText("suggested in", { timeout: 90_000 });
+  await expect(status).not.toHaveAttribute("role", "alert");
+});
