@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: surface-model calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
+.PHONY: surface-model coco-detector detector-model bench-detector calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -90,6 +90,21 @@ bench-layout: install-python
 
 # The learned parts of the layout stage, both from synthetic rooms (commit what they write):
 # the Surface Network (floor/ceiling/wall labels) and the per-class metric-scale calibration.
+# Build time only: npm fetches @vladmandic/human and TensorFlow.js into a scratch folder; the
+# COCO detector is converted to ONNX and checked against TensorFlow.js on the real photos.
+coco-detector: install-python
+	$(PY) scripts/convert_coco_detector.py
+
+# The NYU-40 detector: a head fine-tuned on synthetic rooms over the COCO backbone.
+detector-model: install-python
+	rm -rf /tmp/holiscene-detector-model
+	$(PY) -m holiscene.cli train-detector -o /tmp/holiscene-detector-model --scenes 800 --epochs 12
+	cp /tmp/holiscene-detector-model/* backend/src/holiscene/learning/default_detector/
+
+bench-detector: install-python
+	$(PY) benchmarks/bench_detector.py --model backend/src/holiscene/learning/coco_detector \
+		--model backend/src/holiscene/learning/default_detector
+
 surface-model: install-python
 	rm -rf /tmp/holiscene-surface-model
 	$(PY) -m holiscene.cli train-surfaces -o /tmp/holiscene-surface-model --scenes 6000 --epochs 30

@@ -8,6 +8,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import cv2
+import numpy as np
 import pytest
 import trimesh
 from holiscene.cli import main
@@ -113,17 +115,43 @@ def test_infer_refuses_unknown_stage(
     assert "unknown stage 'nope'" in capsys.readouterr().err
 
 
-def test_infer_without_detections_says_why_there_are_no_objects(t3d5: Path, tmp_path: Path) -> None:
-    folder = _input_folder(tmp_path, t3d5)
+def test_infer_on_a_plain_photo_makes_objects_with_the_detector(
+    real_photos: Path, tmp_path: Path
+) -> None:
+    folder = _input_folder(tmp_path, real_photos / "mm3d-1")
     (folder / "detections.json").unlink()
     (folder / "cam_K.txt").unlink()
     out = tmp_path / "out"
     assert main(["infer", str(folder), "-o", str(out)]) == 0
     scene = Scene.model_validate_json((out / "scene.json").read_text())
-    assert scene.objects == []
+    assert scene.objects, "the detector found nothing in a bedroom"
+    assert all(o.source == "detector" and o.score is not None for o in scene.objects)
+    assert all(o.mask is not None for o in scene.objects)
     assert scene.camera is not None and scene.camera.K_source == "assumed"
-    notes = {s.name: s.note for s in scene.stages}
-    assert notes["objects_from_detections"] and "detector" in notes["objects_from_detections"]
+    assert (out / "scene.glb").is_file()
+
+
+def test_infer_on_a_black_photo_gives_an_empty_flagged_scene(tmp_path: Path) -> None:
+    folder = tmp_path / "black"
+    folder.mkdir()
+    cv2.imwrite(str(folder / "img.jpg"), np.zeros((240, 320, 3), np.uint8))
+    assert main(["infer", str(folder), "-o", str(tmp_path / "out")]) == 0
+    scene = Scene.model_validate_json((tmp_path / "out" / "scene.json").read_text())
+    assert scene.objects == []
+    runs = {s.name: s for s in scene.stages}
+    assert runs["objects_from_detector"].warning
+    assert "found no objects" in (runs["objects_from_detector"].note or "")
+
+
+def test_infer_refuses_a_strip_of_a_photo(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    folder = tmp_path / "strip"
+    folder.mkdir()
+    cv2.imwrite(str(folder / "img.png"), np.full((1, 4000, 3), 90, np.uint8))
+    assert main(["infer", str(folder), "-o", str(tmp_path / "out")]) == 2
+    assert "4000x1 pixels" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
 
 
 def test_infer_refuses_a_missing_models_folder(

@@ -42,6 +42,7 @@ from .api import (
     UserInfo,
 )
 from .classes import NYU40_CLASSES
+from .detector_model import detector_contract
 from .relation_model import relation_model_contract
 from .scene import Scene
 from .support_graph import STRUCTURAL_SUPPORTERS
@@ -99,6 +100,7 @@ def render_schemas() -> dict[str, str]:
             "structural_supporters": sorted(STRUCTURAL_SUPPORTERS),
             "support_types": ["below", "behind"],
             "relation_model": relation_model_contract(),
+            "detector_model": detector_contract(),
         }
     )
     return out

@@ -134,6 +134,11 @@ class SceneObject(SchemaModel):
     corners_3d: BoxCorners | None = None
     mesh: MeshRef | None = None
     score: float | None = Field(default=None, ge=0.0, le=1.0, description="Detection confidence")
+    source: Literal["given", "detector", "manual"] | None = Field(
+        default=None,
+        description="Where the object came from: boxes given with the photo, the object "
+        "detector, or a person; null in scenes stored before sources were recorded",
+    )
     note: str | None = None
 
 

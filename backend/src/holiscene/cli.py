@@ -126,6 +126,26 @@ def _parser() -> argparse.ArgumentParser:
     surfaces.add_argument("--epochs", type=int, default=16)
     surfaces.set_defaults(handler=_train_surfaces)
 
+    detector = sub.add_parser(
+        "train-detector",
+        help="fine-tune the NYU-40 object detector's head on synthetic rooms (COCO backbone)",
+    )
+    detector.add_argument("-o", "--out", type=Path, required=True, help="new model directory")
+    detector.add_argument("--seed", type=int, default=0)
+    detector.add_argument("--scenes", type=int, default=1400, help="synthetic training rooms")
+    detector.add_argument("--validation-scenes", type=int, default=100)
+    detector.add_argument("--epochs", type=int, default=16)
+    detector.add_argument(
+        "--coco-weight",
+        type=float,
+        default=1.0,
+        help="weight of the COCO model's heatmap for the classes COCO knows (0: new head only)",
+    )
+    detector.add_argument(
+        "--cache", type=Path, help="where rendered rooms are kept (default: ~/.cache/holiscene)"
+    )
+    detector.set_defaults(handler=_train_detector)
+
     view = sub.add_parser("view", help="review a scene in a viser viewer on 127.0.0.1")
     view.add_argument("scene", help="a scene id of the store, or a scene.json path (or folder)")
     view.add_argument("--port", type=int, default=8080, help="port (default 8080; 0: any free)")
@@ -268,6 +288,45 @@ def _train_surfaces(args: argparse.Namespace) -> int:
     with _training_progress("train-surfaces") as progress:
         metrics = train_surface_model(config, args.out, progress)
     print(f"validation pixel accuracy {metrics['validation_pixel_accuracy']:.4f} -> {args.out}")
+    return 0
+
+
+# Synthetic rooms for the detector: seeds no benchmark or other training uses.
+DETECTOR_TRAIN_SEED = 400_000
+DETECTOR_VALIDATION_SEED = 460_000
+
+
+def _train_detector(args: argparse.Namespace) -> int:
+    try:
+        from .learning.detector.data import synthetic_photos
+        from .learning.detector.train import DetectorTrainConfig, train_detector
+    except ImportError as error:
+        raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
+    if args.out.exists() and any(args.out.iterdir()):
+        raise CliError(f"{args.out} is not empty; give a new directory")
+    if min(args.scenes, args.validation_scenes, args.epochs) < 1:
+        raise CliError("--scenes, --validation-scenes and --epochs must be at least 1")
+    if not 0.0 <= args.coco_weight <= 1.0:
+        raise CliError("--coco-weight must be between 0 and 1")
+    cache = args.cache or Path.home() / ".cache" / "holiscene" / "detector-rooms"
+    with _training_progress("train-detector") as progress:
+
+        def rendered(done: int, total: int) -> None:
+            progress(0.0, f"rendering rooms {done}/{total}")
+
+        train = synthetic_photos(
+            range(DETECTOR_TRAIN_SEED, DETECTOR_TRAIN_SEED + args.scenes), cache, rendered
+        )
+        validation = synthetic_photos(
+            range(DETECTOR_VALIDATION_SEED, DETECTOR_VALIDATION_SEED + args.validation_scenes),
+            cache,
+            rendered,
+        )
+        config = DetectorTrainConfig(
+            seed=args.seed, epochs=args.epochs, coco_weight=args.coco_weight
+        )
+        metrics = train_detector(train, validation, config, args.out, progress)
+    print(f"validation mAP@0.5 {metrics['validation_map_at_0_5']:.3f} -> {args.out}")
     return 0
 
 

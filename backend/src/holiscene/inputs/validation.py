@@ -17,6 +17,9 @@ from PIL import Image, UnidentifiedImageError
 from ..pipeline.base import Detection
 
 MAX_IMAGE_PIXELS = 40_000_000  # 40 MP: far above any indoor photo we expect, far below a bomb
+# A room photo, not a strip: the pipeline's line, mask and layout steps need both sides.
+MIN_IMAGE_SIDE = 32
+MAX_ASPECT_RATIO = 8.0
 BOX_TOLERANCE_PX = 2.0  # boxes may overhang the border by rounding, not more
 _FORMATS = {"JPEG": ".jpg", "PNG": ".png"}
 
@@ -62,6 +65,13 @@ def load_photo(data: bytes, max_pixels: int = MAX_IMAGE_PIXELS) -> Photo:
             f"the photo is too large: {width}x{height} pixels, at most "
             f"{max_pixels // 1_000_000} MP are accepted",
             413,
+        )
+    if min(width, height) < MIN_IMAGE_SIDE or max(width, height) > MAX_ASPECT_RATIO * min(
+        width, height
+    ):
+        raise InputError(
+            f"the photo is {width}x{height} pixels: a room photo needs both sides at least "
+            f"{MIN_IMAGE_SIDE} pixels and the longer at most {MAX_ASPECT_RATIO:g} times the shorter"
         )
     try:
         image.load()

@@ -13,7 +13,7 @@ from .registry import build_stages
 
 # The stages of `holiscene infer` and of the server's pipeline jobs, in order.
 DEFAULT_STAGES: tuple[str, ...] = (
-    "objects_from_detections",
+    "objects_from_detector",
     "intrinsics",
     "masks_grabcut",
     "layout_from_lines",

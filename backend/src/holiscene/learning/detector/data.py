@@ -8,7 +8,10 @@ JPEG compression. Numpy and OpenCV only.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import partial
+from multiprocessing import get_context
 from pathlib import Path
 
 import cv2
@@ -137,3 +140,24 @@ def boxed_photo(folder: Path) -> BoxedPhoto:
     detections = inputs.detections or []
     boxes = np.array([d.bbox for d in detections], dtype=np.float64).reshape(-1, 4)
     return BoxedPhoto(inputs.photo.rgb, boxes, [d.cls for d in detections])
+
+
+def synthetic_photos(
+    seeds: Sequence[int],
+    cache_dir: Path,
+    progress: Callable[[int, int], None] | None = None,
+    workers: int = 2,
+) -> list[BoxedPhoto]:
+    """Synthetic rooms of `seeds` (rendered into `cache_dir` once, as `holiscene synth` writes
+    them) with their exact boxes."""
+    from ...synth.generate import synthesize_to  # the renderer is heavy: only when rendering
+
+    missing = [s for s in seeds if not (cache_dir / f"synth-{s}" / "detections.json").is_file()]
+    if missing:
+        cache_dir.mkdir(parents=True, exist_ok=True)
+        with get_context("spawn").Pool(workers) as pool:
+            jobs = pool.imap_unordered(partial(synthesize_to, out_dir=cache_dir), missing)
+            for done, _ in enumerate(jobs, start=1):
+                if progress:
+                    progress(done, len(missing))
+    return [boxed_photo(cache_dir / f"synth-{s}") for s in seeds]

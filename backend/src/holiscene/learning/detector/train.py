@@ -30,6 +30,7 @@ from .net import STRIDE, DetectorHead, ExportedHead, export_detector
 from .runtime import COCO_DETECTOR_DIR, METADATA_FILE, MODEL_FILE, decode, preprocess
 
 CELLS = INPUT_SIZE // STRIDE
+HEAD_FILE = "head.pt"
 
 
 @dataclass(frozen=True)
@@ -236,6 +237,8 @@ def train_detector(
         for weight in (0.0, config.coco_weight)
     }
     out_dir.mkdir(parents=True, exist_ok=True)
+    # The head's weights alone, so the COCO rule can be changed without training again.
+    torch.save({"state": head.state_dict(), "trained": trained}, out_dir / HEAD_FILE)
     exported = ExportedHead(head, trained, classes, config.coco_weight)
     example = preprocess(validation_photos[0].rgb)
     difference = export_detector(exported, config.coco_model, example, out_dir / MODEL_FILE)

@@ -1,10 +1,19 @@
 """Built-in stages; importing this package registers them."""
 
-from . import boxes, camera, detections, layout, masks, mesh, supports
+from . import boxes, camera, detections, detector, layout, masks, mesh, supports
 from .grabcut import MasksGrabCut  # noqa: F401
 from .metrology import HeightsByMetrology  # noqa: F401
 from .placement import PlacementStage  # noqa: F401
 from .restore import SceneFromRevision  # noqa: F401
 from .shapes_fit import ShapesFit  # noqa: F401
 
-__all__ = ["boxes", "camera", "detections", "layout", "masks", "mesh", "supports"]
+__all__ = [
+    "boxes",
+    "camera",
+    "detections",
+    "detector",
+    "layout",
+    "masks",
+    "mesh",
+    "supports",
+]
