@@ -97,9 +97,7 @@ test("a scene without objects says so and shows the pipeline's warnings", async 
 
   await page.goto(`/#/scenes/${imported.scene.id}`);
   const summary = page.getByTestId("support-summary");
-  await expect(summary).toHaveText(
-    /^No objects yet\. Import the photo again with a detections\.json/,
-  );
+  await expect(summary).toHaveText(/^No objects yet\. Press Detect objects \(D\)/);
   await expect(summary).not.toContainText("supported");
   const warnings = page.getByTestId("pipeline-warnings");
   await expect(warnings).toBeVisible();

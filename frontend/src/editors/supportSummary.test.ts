@@ -9,9 +9,7 @@ const object = (id: string, cls: string) =>
 describe("support summary", () => {
   it("tells an empty scene to get objects, as a warning", () => {
     const summary = supportSummary([], 0);
-    expect(summary.text).toMatch(
-      /^No objects yet\. Import the photo again with a detections\.json/,
-    );
+    expect(summary.text).toMatch(/^No objects yet\. Press Detect objects \(D\)/);
     expect(summary.text).not.toContain("supported");
     expect(summary.warn).toBe(true);
   });

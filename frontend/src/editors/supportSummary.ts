@@ -9,7 +9,8 @@ export interface SupportSummary {
   warn: boolean;
 }
 
-const ADD_OBJECTS = "Import the photo again with a detections.json (2D boxes and classes)";
+const ADD_OBJECTS =
+  "Press Detect objects (D) and accept the suggestions you want, or import the photo again with a detections.json";
 
 export function supportSummary(
   objects: readonly SceneObject[],
