@@ -17,6 +17,10 @@ from ..learning.detector.runtime import box_iou
 from .metrics import all_point_average_precision
 
 Box = tuple[float, float, float, float]
+# mAP ranks every prediction down to this score (an operating threshold such as the pipeline's
+# 0.3 would cut the precision-recall curve short); recall and precision are figures at the
+# operating threshold.
+MAP_SCORE_THRESHOLD = 0.05
 
 
 @dataclass(frozen=True)

@@ -21,7 +21,7 @@ import torch
 from holiscene_schema import NYU40_CLASSES
 from holiscene_schema.detector_model import COCO_TO_NYU40, INPUT_SIZE
 
-from ...evaluation.detection_2d import DetectionEvaluation, ScoredBox
+from ...evaluation.detection_2d import MAP_SCORE_THRESHOLD, DetectionEvaluation, ScoredBox
 from ..train import plot_curve, run_record
 from ..training_api import TrainProgress
 from .backbone import FeatureExtractor, box_head_weights
@@ -40,7 +40,7 @@ class DetectorTrainConfig:
     batch: int = 16
     window: int = 64  # feature cells per side of each training window
     learning_rate: float = 3e-3
-    hidden: int = 64
+    hidden: int = 96
     coco_weight: float = 1.0  # 0: the new head alone for every class
     views: int = 1  # randomised views of each training photo
     coco_model: Path = COCO_DETECTOR_DIR / MODEL_FILE
@@ -165,7 +165,7 @@ def validation_map(
                 torch.from_numpy(data.coco[n : n + 1].astype(np.float32)),
             ).numpy()
             width, height = data.photo_sizes[n]
-            found = decode(raw, width, height, classes, list(classes))
+            found = decode(raw, width, height, classes, list(classes), MAP_SCORE_THRESHOLD)
             evaluation.add([ScoredBox(d.bbox, d.cls, d.score) for d in found], data.photo_boxes[n])
     summary = evaluation.summary(set(trained))
     return float(summary["map"] or 0.0), evaluation
