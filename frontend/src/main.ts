@@ -47,7 +47,7 @@ function mount(root: HTMLElement): () => void {
       return mountScenePage(root, route.sceneId);
     case "models":
       document.title = "Models · HoliScene";
-      return mountModelsPage(root);
+      return mountModelsPage(root, route.kind);
     case "dashboard":
       document.title = "Dashboard · HoliScene";
       return mountDashboardPage(root);

@@ -1,10 +1,15 @@
 // Hash routes: `#/` is the scene list, `#/scenes/{id}` a scene, `#/models` the Relation
-// Network models (admin), `#/dashboard` the workflow dashboard, `#/login` the login page.
+// Network models and `#/models/detector` the object detectors (admin), `#/dashboard` the
+// workflow dashboard, `#/login` the login page.
+import type { ModelInfo } from "@holiscene/schema";
+
+/** The kinds of model the registry holds. */
+export type ModelKind = ModelInfo["kind"];
 
 export type Route =
   | { page: "list" }
   | { page: "scene"; sceneId: string }
-  | { page: "models" }
+  | { page: "models"; kind: ModelKind }
   | { page: "dashboard" }
   | { page: "login" }
   | { page: "unknown" };
@@ -12,7 +17,9 @@ export type Route =
 export function parseRoute(hash: string): Route {
   const path = hash.replace(/^#/, "") || "/";
   if (path === "/") return { page: "list" };
-  if (/^\/models\/?$/.test(path)) return { page: "models" };
+  if (/^\/models\/?$/.test(path)) return { page: "models", kind: "relation" };
+  const models = /^\/models\/(relation|detector)\/?$/.exec(path);
+  if (models?.[1]) return { page: "models", kind: models[1] as ModelKind };
   if (/^\/dashboard\/?$/.test(path)) return { page: "dashboard" };
   if (/^\/login\/?$/.test(path)) return { page: "login" };
   const scene = /^\/scenes\/([^/]+)\/?$/.exec(path);

@@ -150,13 +150,14 @@ class RevisionInfo(SchemaModel):
 
 
 JobStatus = Literal["queued", "running", "succeeded", "failed"]
-# placement: the placement stages only, on a scene's stored camera, layout, masks and supports.
-JobKind = Literal["pipeline", "placement", "retrain"]
+# placement: the placement stages only, on a scene's stored camera, layout, masks and supports;
+# retrain: retraining the Relation Network; detector_retrain: retraining the object detector.
+JobKind = Literal["pipeline", "placement", "retrain", "detector_retrain"]
 
 
 class Job(SchemaModel):
     """A background job: a pipeline run on one scene (all stages, or placement only), or
-    retraining the Relation Network."""
+    retraining a model of the registry (the Relation Network or the object detector)."""
 
     id: str
     kind: JobKind
@@ -228,8 +229,10 @@ class Conflict(SchemaModel):
     detail: ConflictDetail
 
 
-# -- the Relation Network model registry (admin) -------------------------------------------
+# -- the model registry (admin): the Relation Network and the object detector ---------------
 
+# Each kind has its own versions, active model, history and retraining.
+ModelKind = Literal["relation", "detector"]
 # default: the committed model the registry started with; accepted: trained here and at least
 # as good as the active model on the held-out scenes (so it was promoted); candidate: as good,
 # but the active model changed while it trained, so it was not promoted by itself; rejected:
@@ -240,7 +243,10 @@ ModelAction = Literal["seed", "promote", "rollback"]
 
 class ModelInfo(SchemaModel):
     id: str
-    version: int = Field(ge=1)
+    kind: ModelKind = Field(
+        description="relation: a Relation Network (supports); detector: an object detector"
+    )
+    version: int = Field(ge=1, description="Counted per kind")
     created_at: datetime
     status: ModelStatus
     active: bool
@@ -250,13 +256,25 @@ class ModelInfo(SchemaModel):
     parent_version: int | None = None
     job_id: str | None = Field(default=None, description="The retrain job that made it")
     heldout_accuracy: float | None = Field(
-        default=None, description="Support accuracy on the held-out labelled scenes"
+        default=None,
+        description="On the held-out labelled scenes: support accuracy (relation), or mAP@0.5 "
+        "of the confirmed boxes (detector); promotion compares this figure",
     )
     parent_heldout_accuracy: float | None = Field(
-        default=None, description="The parent's accuracy on the same held-out scenes"
+        default=None, description="The parent's figure on the same held-out scenes"
+    )
+    heldout_recall: float | None = Field(
+        default=None,
+        description="Detector: share of the held-out confirmed boxes found with the right class "
+        "(IoU 0.5)",
+    )
+    parent_heldout_recall: float | None = Field(
+        default=None, description="Detector: the parent's recall on the same held-out scenes"
     )
     validation_accuracy: float | None = Field(
-        default=None, description="Accuracy on the training run's own validation split"
+        default=None,
+        description="On the training run's own validation split: accuracy (relation), or "
+        "mAP@0.5 on synthetic rooms (detector)",
     )
     training_scenes: int = Field(ge=0, description="Labelled scenes it was trained on")
     heldout_scenes: int = Field(ge=0, description="Labelled scenes it was evaluated on")
@@ -281,8 +299,15 @@ class ModelEvent(SchemaModel):
 
 class RetrainRequest(SchemaModel):
     author: str = Field(default="admin", min_length=1, max_length=64)
-    max_epochs: int | None = Field(default=None, ge=1, le=500)
-    synthetic_scenes: int | None = Field(default=None, ge=0, le=20_000)
+    max_epochs: int | None = Field(
+        default=None, ge=1, le=500, description="Null: the kind's default (detector: epochs)"
+    )
+    synthetic_scenes: int | None = Field(
+        default=None,
+        ge=0,
+        le=20_000,
+        description="Synthetic rooms trained on beside the stored scenes; null: the default",
+    )
 
 
 class PromoteRequest(SchemaModel):

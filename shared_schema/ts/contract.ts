@@ -400,7 +400,7 @@ scene: SceneSummary
 }
 /**
  * A background job: a pipeline run on one scene (all stages, or placement only), or
- * retraining the Relation Network.
+ * retraining a model of the registry (the Relation Network or the object detector).
  * 
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "Job".
@@ -414,7 +414,7 @@ created_at: string
 error: (string | null)
 finished_at: (string | null)
 id: string
-kind: ("pipeline" | "placement" | "retrain")
+kind: ("pipeline" | "placement" | "retrain" | "detector_retrain")
 /**
  * What the job did so far, one line per step
  */
@@ -533,9 +533,13 @@ active: boolean
 created_at: string
 has_curve: boolean
 /**
- * Support accuracy on the held-out labelled scenes
+ * On the held-out labelled scenes: support accuracy (relation), or mAP@0.5 of the confirmed boxes (detector); promotion compares this figure
  */
 heldout_accuracy: (number | null)
+/**
+ * Detector: share of the held-out confirmed boxes found with the right class (IoU 0.5)
+ */
+heldout_recall: (number | null)
 /**
  * Labelled scenes it was evaluated on
  */
@@ -546,6 +550,10 @@ id: string
  */
 job_id: (string | null)
 /**
+ * relation: a Relation Network (supports); detector: an object detector
+ */
+kind: ("relation" | "detector")
+/**
  * The model's metrics.json
  */
 metrics: {
@@ -553,9 +561,13 @@ metrics: {
 }
 note: (string | null)
 /**
- * The parent's accuracy on the same held-out scenes
+ * The parent's figure on the same held-out scenes
  */
 parent_heldout_accuracy: (number | null)
+/**
+ * Detector: the parent's recall on the same held-out scenes
+ */
+parent_heldout_recall: (number | null)
 /**
  * The model that was active when this one was trained
  */
@@ -567,9 +579,12 @@ status: ("default" | "accepted" | "candidate" | "rejected")
  */
 training_scenes: number
 /**
- * Accuracy on the training run's own validation split
+ * On the training run's own validation split: accuracy (relation), or mAP@0.5 on synthetic rooms (detector)
  */
 validation_accuracy: (number | null)
+/**
+ * Counted per kind
+ */
 version: number
 }
 /**
@@ -627,7 +642,13 @@ revision: number
  */
 export interface RetrainRequest {
 author: string
+/**
+ * Null: the kind's default (detector: epochs)
+ */
 max_epochs: (number | null)
+/**
+ * Synthetic rooms trained on beside the stored scenes; null: the default
+ */
 synthetic_scenes: (number | null)
 }
 /**

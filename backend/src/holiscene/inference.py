@@ -34,12 +34,14 @@ def infer_scene(
     stages: Sequence[str] = DEFAULT_STAGES,
     models_dir: Path | None = None,
     support_model_dir: Path | None = None,
+    detector_model_dir: Path | None = None,
     stage_options: Mapping[str, Mapping[str, Any]] | None = None,
     progress: ProgressCallback | None = None,
 ) -> InferenceResult:
     """Run the stages on one photo. `models_dir` holds the user's own models
     (`<class>/*.obj|glb|ply`), offered to `shapes_fit` beside the built-in library;
-    `support_model_dir` is the Relation Network to use (default: the committed model);
+    `support_model_dir` is the Relation Network to use (default: the committed model),
+    `detector_model_dir` the object detector (default: the committed detector);
     `stage_options` adds options by stage name (e.g. the stored scene a placement job
     starts from)."""
     options: dict[str, dict[str, Any]] = {k: dict(v) for k, v in (stage_options or {}).items()}
@@ -48,6 +50,8 @@ def infer_scene(
     for stage in ("supports_from_network", "supports_from_priors"):
         if support_model_dir and stage in stages:
             options[stage] = {"model_dir": support_model_dir}
+    if detector_model_dir and "objects_from_detector" in stages:
+        options.setdefault("objects_from_detector", {})["model_dir"] = detector_model_dir
     pipeline = build_pipeline(stages, options)
     ctx = SceneContext(
         image=inputs.photo.rgb,

@@ -39,7 +39,7 @@ MIN_LABELLED_SCENES = 2  # one to learn from, one to judge by
 # "<what> <done>/<total>": a counter line of the training log.
 _COUNTER = re.compile(r"^(.*?)\s*\d+\s*/\s*\d+\s*$")
 # Share of the job's progress bar each step takes (training is nearly all of it).
-_GATHER, _TRAIN_END = 0.05, 0.9
+GATHER_END, TRAIN_END = 0.05, 0.9
 
 
 class NotEnoughLabelsError(ValueError):
@@ -140,16 +140,17 @@ def check_can_retrain(scenes: SceneStore) -> int:
     return count
 
 
-@dataclass
-class RetrainJob:
-    """One retrain job's run; `run` records every outcome on the job and never raises."""
+@dataclass(kw_only=True)
+class TrainingJob:
+    """What every retrain job shares (the Relation Network's below, the object detector's in
+    detector_retraining.py): `run` records every outcome on the job and never raises, the
+    training folder is removed at the end, and progress and log lines go to the job."""
 
     job_id: str
     jobs: JobStore
     scenes: SceneStore
-    models: ModelStore
+    models: ModelStore  # the registry of the kind being retrained
     work_root: Path  # <data_dir>/training
-    config: TrainConfig
     author: str
     stop: threading.Event = dataclasses.field(default_factory=threading.Event)
     _started: float = dataclasses.field(default_factory=time.monotonic, init=False)
@@ -172,6 +173,44 @@ class RetrainJob:
             )
         finally:
             shutil.rmtree(work_dir, ignore_errors=True)
+
+    def _run(self, work_dir: Path) -> None:
+        raise NotImplementedError
+
+    # -- job reporting -------------------------------------------------------------------
+
+    def _step(self, stage: str, fraction: float) -> None:
+        self._check_stop()
+        self.jobs.progress(self.job_id, stage, fraction)
+        self._log(f"{stage}…")
+
+    def _training_progress(self, fraction: float, line: str) -> None:
+        """A training run's report: its share of the progress bar, and its line in the log."""
+        self._check_stop()
+        share = GATHER_END + (TRAIN_END - GATHER_END) * min(max(fraction, 0.0), 1.0)
+        self.jobs.progress(self.job_id, "training", share)
+        if line:
+            self._log(line)
+
+    def _log(self, line: str) -> None:
+        # A counter ("synthetic scenes 7/1200") replaces its previous value instead of
+        # adding a line per step; everything else is kept.
+        counter = _COUNTER.match(line)
+        replace = counter is not None and counter.group(1) == self._last_counter
+        self._last_counter = counter.group(1) if counter else None
+        elapsed = time.monotonic() - self._started
+        self.jobs.append_log(self.job_id, f"[{elapsed:6.1f} s] {line}", replace_last=replace)
+
+    def _check_stop(self) -> None:
+        if self.stop.is_set():
+            raise RetrainStopped("the server stopped while this job ran")
+
+
+@dataclass(kw_only=True)
+class RetrainJob(TrainingJob):
+    """One Relation Network retrain job's run."""
+
+    config: TrainConfig
 
     # -- steps ---------------------------------------------------------------------------
 
@@ -197,12 +236,12 @@ class RetrainJob:
         parent = self.models.active_or_none()
         self._log(f"active model: v{parent.version}" if parent else "no model is active yet")
 
-        self._step("training", _GATHER)
+        self._step("training", GATHER_END)
         result = self._train(train, work_dir / "model")
         self._check_stop()
         self._log(f"trained: validation accuracy {result.validation_accuracy:.3f}")
 
-        self._step("evaluating on the held-out scenes", _TRAIN_END)
+        self._step("evaluating on the held-out scenes", TRAIN_END)
         new_accuracy = _accuracy(result.model_dir, heldout)
         self._log(f"new model: held-out accuracy {new_accuracy:.3f}")
         parent_accuracy: float | None = None
@@ -237,16 +276,10 @@ class RetrainJob:
         from .learning.train import train_relation_model
 
         out_dir.mkdir(parents=True, exist_ok=True)
-
-        def progress(fraction: float, line: str) -> None:
-            self._check_stop()
-            share = _GATHER + (_TRAIN_END - _GATHER) * min(max(fraction, 0.0), 1.0)
-            self.jobs.progress(self.job_id, "training", share)
-            if line:
-                self._log(line)
-
         started = time.monotonic()
-        result = train_relation_model(self.config, samples, out_dir, progress=progress)
+        result = train_relation_model(
+            self.config, samples, out_dir, progress=self._training_progress
+        )
         self._log(f"training took {time.monotonic() - started:.1f} s")
         return result
 
@@ -271,7 +304,7 @@ class RetrainJob:
             data={
                 "training_scenes": train_keys,
                 "heldout_scenes": heldout_keys,
-                "config": _jsonable(dataclasses.asdict(self.config)),
+                "config": jsonable(dataclasses.asdict(self.config)),
                 "started_by": self.author,
             },
         )
@@ -282,26 +315,6 @@ class RetrainJob:
             expected_active=parent.id if parent else None,
             actor=self.author,
         )
-
-    # -- job reporting -------------------------------------------------------------------
-
-    def _step(self, stage: str, fraction: float) -> None:
-        self._check_stop()
-        self.jobs.progress(self.job_id, stage, fraction)
-        self._log(f"{stage}…")
-
-    def _log(self, line: str) -> None:
-        # A counter ("synthetic scenes 7/1200") replaces its previous value instead of
-        # adding a line per step; everything else is kept.
-        counter = _COUNTER.match(line)
-        replace = counter is not None and counter.group(1) == self._last_counter
-        self._last_counter = counter.group(1) if counter else None
-        elapsed = time.monotonic() - self._started
-        self.jobs.append_log(self.job_id, f"[{elapsed:6.1f} s] {line}", replace_last=replace)
-
-    def _check_stop(self) -> None:
-        if self.stop.is_set():
-            raise RetrainStopped("the server stopped while this job ran")
 
 
 def _accuracy(model_dir: Path, samples: Sequence[SupportSample]) -> float:
@@ -325,11 +338,11 @@ def _outcome(
     return f"v{info.version} rejected: held-out accuracy {accuracy:.3f} is worse than {against}"
 
 
-def _jsonable(value: Any) -> Any:
+def jsonable(value: Any) -> Any:
     if isinstance(value, dict):
-        return {str(k): _jsonable(v) for k, v in value.items()}
+        return {str(k): jsonable(v) for k, v in value.items()}
     if isinstance(value, list | tuple):
-        return [_jsonable(v) for v in value]
+        return [jsonable(v) for v in value]
     if isinstance(value, Path):
         return str(value)
     return value

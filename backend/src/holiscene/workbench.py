@@ -1,6 +1,6 @@
 """The application's use cases, shared by the HTTP API and the CLI: import a photo, run the
-pipeline on a scene as a background job, retrain the Relation Network, and read jobs. No HTTP
-here."""
+pipeline on a scene as a background job, retrain the Relation Network or the object detector,
+and read jobs. No HTTP here."""
 
 from __future__ import annotations
 
@@ -12,20 +12,34 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Any
 
-from holiscene_schema import ImageInfo, ImportResult, Job, RetrainRequest, Scene
+from holiscene_schema import (
+    ImageInfo,
+    ImportResult,
+    Job,
+    JobKind,
+    ModelKind,
+    RetrainRequest,
+    Scene,
+)
 
 from .core.db import make_engine, migrate
 from .core.settings import Settings
+from .detector_retraining import (
+    ROOMS_FOLDER,
+    DetectorRetrainJob,
+    check_can_retrain_detector,
+    detector_train_config,
+)
 from .inference import infer_scene
 from .inputs import InputFiles, read_input_folder
 from .pipeline import DEFAULT_STAGES, KEPT_LAYOUT_STAGES, PLACEMENT_STAGES
 from .pipeline.stages.detections import objects_from_detections
 from .pipeline.stages.restore import has_hand_set_layout
-from .retraining import RetrainJob, check_can_retrain, train_config
+from .retraining import RetrainJob, TrainingJob, check_can_retrain, train_config
 from .store import models as model_registry
 from .store.files import SceneFiles
 from .store.jobs import JobStore
-from .store.models import ModelStore
+from .store.models import KIND_FOLDERS, ModelNotFoundError, ModelStore
 from .store.scenes import SceneChangedError, SceneStore
 from .store.users import UserStore
 from .store.workflow import WorkflowStore
@@ -38,10 +52,22 @@ class PlacementNotPossibleError(ValueError):
     """The scene has no camera pitch/roll or room layout to place its objects in."""
 
 
+# The retrain job kind of each model kind.
+RETRAIN_JOB_KINDS: dict[ModelKind, JobKind] = {
+    "relation": "retrain",
+    "detector": "detector_retrain",
+}
+
+
 class Workbench:
-    def __init__(self, settings: Settings, default_model_dir: Path | None = None) -> None:
-        """`default_model_dir`: the model an empty registry starts from (the committed one
-        unless given)."""
+    def __init__(
+        self,
+        settings: Settings,
+        default_model_dir: Path | None = None,
+        default_detector_dir: Path | None = None,
+    ) -> None:
+        """`default_model_dir`, `default_detector_dir`: the Relation Network and the detector
+        empty registries start from (the committed ones unless given)."""
         settings.data_dir.mkdir(parents=True, exist_ok=True)
         self.settings = settings
         self.engine = make_engine(settings.resolved_database_url)
@@ -52,11 +78,18 @@ class Workbench:
         self.workflow = WorkflowStore(self.engine, self.scenes)
         self.models = ModelStore(
             self.engine,
-            settings.data_dir / "models",
+            settings.data_dir / KIND_FOLDERS["relation"],
             # Looked up per instance (not as a default argument) so tests can point it away.
             default_model_dir or model_registry.DEFAULT_MODEL_DIR,
         )
         self.models.seed_if_empty()
+        self.detectors = ModelStore(
+            self.engine,
+            settings.data_dir / KIND_FOLDERS["detector"],
+            default_detector_dir or model_registry.default_detector_dir(),
+            kind="detector",
+        )
+        self.detectors.seed_if_empty()
         # One worker: the pipeline uses both cores through numpy/OpenCV already.
         self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="pipeline")
         # Retraining gets its own single worker: a run takes minutes and must not hold up
@@ -70,10 +103,38 @@ class Workbench:
         """Where retrain jobs train; nothing in it outlives its job."""
         return self.settings.data_dir / "training"
 
+    def registry(self, kind: ModelKind) -> ModelStore:
+        """The registry of one kind of model."""
+        return self.detectors if kind == "detector" else self.models
+
+    def registry_of(self, model_id: str) -> ModelStore:
+        """The registry holding a model, whatever its kind; ModelNotFoundError otherwise."""
+        for store in (self.models, self.detectors):
+            try:
+                store.get(model_id)
+            except ModelNotFoundError:
+                continue
+            return store
+        raise ModelNotFoundError(f"no model {model_id!r}")
+
     def recover_after_restart(self) -> None:
-        for job in self.jobs.unfinished("retrain"):
+        for kind, job_kind in RETRAIN_JOB_KINDS.items():
+            self._recover_retrain_jobs(job_kind, self.registry(kind))
+        count = self.jobs.fail_unfinished(
+            "the server stopped before this job finished; run it again"
+        )
+        if count:
+            log.warning("marked %d unfinished job(s) failed after restart", count)
+        # Half-trained models and half-copied registry folders of the jobs just failed.
+        shutil.rmtree(self.training_dir, ignore_errors=True)
+        for registry in (self.models, self.detectors):
+            for path in registry.remove_leftovers():
+                log.warning("removed an incomplete model folder %s", path)
+
+    def _recover_retrain_jobs(self, job_kind: JobKind, registry: ModelStore) -> None:
+        for job in self.jobs.unfinished(job_kind):
             # Registration is the job's last step: a model from it is complete and in use.
-            model = self.models.by_job(job.id)
+            model = registry.by_job(job.id)
             if model is not None:
                 self.jobs.succeed_retrain(
                     job.id, model.id, f"v{model.version} was registered before the restart"
@@ -84,15 +145,6 @@ class Workbench:
                     "the server stopped while this model was training; no model was "
                     "registered from it and the active model is unchanged: retrain again",
                 )
-        count = self.jobs.fail_unfinished(
-            "the server stopped before this job finished; run it again"
-        )
-        if count:
-            log.warning("marked %d unfinished job(s) failed after restart", count)
-        # Half-trained models and half-copied registry folders of the jobs just failed.
-        shutil.rmtree(self.training_dir, ignore_errors=True)
-        for path in self.models.remove_leftovers():
-            log.warning("removed an incomplete model folder %s", path)
 
     def close(self) -> None:
         self._stop.set()  # a running retrain stops at its next progress report
@@ -129,18 +181,28 @@ class Workbench:
         self._executor.submit(self.run_job, job.id)
         return job
 
-    def start_retrain(self, request: RetrainRequest) -> Job:
-        """Queue a retrain job (admin). NotEnoughLabelsError when too few scenes are labelled,
-        RetrainRunningError when one is queued or running."""
-        check_can_retrain(self.scenes)
+    def start_retrain(self, request: RetrainRequest, kind: ModelKind = "relation") -> Job:
+        """Queue a retrain job of a kind of model (admin). NotEnoughLabelsError when too few
+        scenes are labelled, RetrainRunningError when a retrain job is queued or running."""
+        if kind == "detector":
+            check_can_retrain_detector(self.scenes)
+        else:
+            check_can_retrain(self.scenes)
         with self._retrain_lock:
-            job = self.jobs.create_retrain()
-        retrain = self.retrain_job(job.id, request)
-        self.jobs.append_log(
-            job.id,
-            f"queued by {request.author}: max_epochs={retrain.config.max_epochs}, "
-            f"synthetic_scenes={retrain.config.synthetic_scenes}",
-        )
+            job = self.jobs.create_retrain(RETRAIN_JOB_KINDS[kind])
+        retrain: TrainingJob
+        if kind == "detector":
+            retrain = self.retrain_detector_job(job.id, request)
+            options = (
+                f"epochs={retrain.config.epochs}, synthetic_rooms={retrain.config.synthetic_rooms}"
+            )
+        else:
+            retrain = self.retrain_job(job.id, request)
+            options = (
+                f"max_epochs={retrain.config.max_epochs}, "
+                f"synthetic_scenes={retrain.config.synthetic_scenes}"
+            )
+        self.jobs.append_log(job.id, f"queued by {request.author}: {options}")
         self._training.submit(retrain.run)
         return self.jobs.get(job.id)
 
@@ -152,6 +214,18 @@ class Workbench:
             models=self.models,
             work_root=self.training_dir,
             config=train_config(request),
+            author=request.author,
+            stop=self._stop,
+        )
+
+    def retrain_detector_job(self, job_id: str, request: RetrainRequest) -> DetectorRetrainJob:
+        return DetectorRetrainJob(
+            job_id=job_id,
+            jobs=self.jobs,
+            scenes=self.scenes,
+            models=self.detectors,
+            work_root=self.training_dir,
+            config=detector_train_config(request, self.settings.data_dir / ROOMS_FOLDER),
             author=request.author,
             stop=self._stop,
         )
@@ -175,8 +249,9 @@ class Workbench:
                 pinned_supports=[s for s in current.scene.supports if s.source == "manual"],
                 stages=stages,
                 models_dir=self.settings.models_dir,
-                # The promoted Relation Network (None: the committed default model).
+                # The promoted Relation Network and detector (None: the committed defaults).
                 support_model_dir=self.models.active_dir(),
+                detector_model_dir=self.detectors.active_dir(),
                 stage_options=stage_options,
                 progress=lambda stage, fraction: self.jobs.progress(job_id, stage, fraction),
             )

@@ -17,8 +17,12 @@ class JobNotFoundError(LookupError):
     pass
 
 
+# Jobs that train a model; only one of them runs at a time, whatever its kind.
+RETRAIN_KINDS: tuple[JobKind, ...] = ("retrain", "detector_retrain")
+
+
 class RetrainRunningError(Exception):
-    """Only one retrain job at a time: training uses the whole machine."""
+    """Only one retrain job at a time (of any model kind): training uses the whole machine."""
 
     def __init__(self, job_id: str) -> None:
         super().__init__(f"a retrain job is already running ({job_id}); wait for it to finish")
@@ -38,20 +42,24 @@ class JobStore:
         """A queued pipeline job (or placement job) on a scene's revision."""
         return self._create(JobRow(scene_id=scene_id, kind=kind, base_revision=base_revision))
 
-    def create_retrain(self) -> Job:
-        """A queued retrain job, unless one is queued or running: then RetrainRunningError.
+    def create_retrain(self, kind: JobKind = "retrain") -> Job:
+        """A queued retrain job ("retrain": the Relation Network, "detector_retrain": the object
+        detector), unless a retrain job of either kind is queued or running: then
+        RetrainRunningError.
 
         The check and the insert are one transaction; the caller also serialises them with a
         lock, since SQLite's default isolation does not stop two transactions reading alike."""
+        if kind not in RETRAIN_KINDS:
+            raise ValueError(f"{kind!r} is not a retrain job kind")
         with Session(self.engine) as session:
             running = session.scalar(
                 select(JobRow.id).where(
-                    JobRow.kind == "retrain", JobRow.status.in_(["queued", "running"])
+                    JobRow.kind.in_(RETRAIN_KINDS), JobRow.status.in_(["queued", "running"])
                 )
             )
             if running is not None:
                 raise RetrainRunningError(running)
-            row = self._new(JobRow(scene_id=None, kind="retrain", base_revision=None))
+            row = self._new(JobRow(scene_id=None, kind=kind, base_revision=None))
             session.add(row)
             session.commit()
             return _job(row)
@@ -92,8 +100,8 @@ class JobStore:
         with Session(self.engine) as session:
             return {row.scene_id: _job(row) for row in session.scalars(query) if row.scene_id}
 
-    def latest_retrain(self) -> Job | None:
-        query = select(JobRow).where(JobRow.kind == "retrain").order_by(JobRow.created_at.desc())
+    def latest_retrain(self, kind: JobKind = "retrain") -> Job | None:
+        query = select(JobRow).where(JobRow.kind == kind).order_by(JobRow.created_at.desc())
         with Session(self.engine) as session:
             row = session.scalars(query.limit(1)).first()
             return _job(row) if row is not None else None

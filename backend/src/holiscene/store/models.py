@@ -1,10 +1,15 @@
-"""The Relation Network model registry: versioned model directories plus who made which active.
+"""The model registry: versioned model directories plus who made which active, per kind.
 
-A model is a directory (model.onnx, metrics.json, priors.json, data.json, curve.png) copied
-into `<data_dir>/models/<id>/` under a temporary name and renamed into place; its database row
+Two kinds of model are registered, each with its own versions, active model and history: the
+Relation Network ("relation": model.onnx, metrics.json, priors.json, data.json, curve.png in
+`<data_dir>/models/<id>/`) and the object detector ("detector": model.onnx, metadata.json,
+metrics.json, curve.png in `<data_dir>/detectors/<id>/`). A `ModelStore` serves one kind.
+
+A model directory is copied in under a temporary name and renamed into place; its database row
 is inserted only after that, so a row always names complete files and a failed copy leaves no
-row. Models never change once registered. The active model is the one named by the newest row
-of `model_events`, so promoting and rolling back are one insert each and keep the history.
+row. Models never change once registered. A kind's active model is the one named by the newest
+row of `model_events` among its models, so promoting and rolling back are one insert each and
+keep the history.
 """
 
 from __future__ import annotations
@@ -19,15 +24,16 @@ import uuid
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVarTuple
 
-from holiscene_schema import ModelAction, ModelEvent, ModelInfo, ModelStatus
-from sqlalchemy import Engine, create_engine, func, make_url, select
+from holiscene_schema import ModelAction, ModelEvent, ModelInfo, ModelKind, ModelStatus
+from sqlalchemy import Engine, Select, create_engine, func, make_url, select
 from sqlalchemy.exc import OperationalError, ProgrammingError
 from sqlalchemy.orm import Session
 from sqlalchemy.pool import NullPool
 
 from ..core.settings import Settings
+from ..learning.detector import runtime as detector_runtime
 from ..learning.training_api import (
     CURVE_FILE,
     DATA_FILE,
@@ -40,7 +46,23 @@ from .tables import ModelEventRow, ModelRow
 
 # The model committed with the code; an empty registry starts from it (version 1, active).
 DEFAULT_MODEL_DIR = Path(__file__).resolve().parents[1] / "learning" / "default_model"
+# The detectors an empty detector registry starts from: the first with a model file.
+DEFAULT_DETECTOR_DIRS: tuple[Path, ...] = (
+    detector_runtime.DEFAULT_DETECTOR_DIR,
+    detector_runtime.COCO_DETECTOR_DIR,
+)
 NO_MODEL_MESSAGE = "no Relation Network model is registered"
+NO_MODEL_MESSAGES: Mapping[ModelKind, str] = {
+    "relation": NO_MODEL_MESSAGE,
+    "detector": "no object detector model is registered",
+}
+# Where each kind's model folders live, under the data directory.
+KIND_FOLDERS: Mapping[ModelKind, str] = {"relation": "models", "detector": "detectors"}
+# The metrics.json entry a seeded model's validation figure comes from.
+_VALIDATION_KEYS: Mapping[ModelKind, str] = {
+    "relation": "validation_accuracy",
+    "detector": "validation_map_at_0_5",
+}
 
 # The files a model directory may hold, and how they are served.
 MODEL_FILES: Mapping[str, str] = {
@@ -50,7 +72,28 @@ MODEL_FILES: Mapping[str, str] = {
     DATA_FILE: "application/json",
     CURVE_FILE: "image/png",
 }
+DETECTOR_FILES: Mapping[str, str] = {
+    detector_runtime.MODEL_FILE: "application/octet-stream",
+    detector_runtime.METADATA_FILE: "application/json",
+    METRICS_FILE: "application/json",
+    CURVE_FILE: "image/png",
+    "LICENSE": "text/plain; charset=utf-8",
+}
+FILES_BY_KIND: Mapping[ModelKind, Mapping[str, str]] = {
+    "relation": MODEL_FILES,
+    "detector": DETECTOR_FILES,
+}
 _STAGING_PREFIX = ".staging-"
+_Columns = TypeVarTuple("_Columns")
+
+
+def default_detector_dir() -> Path | None:
+    """The detector an empty detector registry starts from (the committed default detector,
+    or while there is none the COCO model it is made from), or None."""
+    for folder in DEFAULT_DETECTOR_DIRS:
+        if (folder / detector_runtime.MODEL_FILE).is_file():
+            return folder
+    return None
 
 
 class ModelNotFoundError(LookupError):
@@ -58,8 +101,8 @@ class ModelNotFoundError(LookupError):
 
 
 class NoActiveModelError(ModelNotFoundError):
-    def __init__(self) -> None:
-        super().__init__(NO_MODEL_MESSAGE)
+    def __init__(self, kind: ModelKind = "relation") -> None:
+        super().__init__(NO_MODEL_MESSAGES[kind])
 
 
 class InvalidModelDirError(ValueError):
@@ -78,14 +121,26 @@ class Registration:
     validation_accuracy: float | None = None
     data: dict[str, Any] = field(default_factory=dict)  # scenes it saw, its config
     note: str | None = None
+    heldout_recall: float | None = None  # detectors: kept in `data`
+    parent_heldout_recall: float | None = None
 
 
 class ModelStore:
-    def __init__(self, engine: Engine, root: Path, default_dir: Path | None) -> None:
-        """`default_dir`: the model an empty registry starts from (DEFAULT_MODEL_DIR), or None."""
+    def __init__(
+        self,
+        engine: Engine,
+        root: Path,
+        default_dir: Path | None,
+        kind: ModelKind = "relation",
+    ) -> None:
+        """The registry of one kind of model, its folders under `root`. `default_dir`: the
+        model an empty registry starts from (DEFAULT_MODEL_DIR, default_detector_dir()), or
+        None."""
         self.engine = engine
         self.root = root
         self.default_dir = default_dir
+        self.kind: ModelKind = kind
+        self.files = FILES_BY_KIND[kind]
         self.root.mkdir(parents=True, exist_ok=True)
         # Version numbers and compare-and-set promotion read then write; in one server process
         # this lock makes them atomic (the unique version column catches anything else).
@@ -97,31 +152,32 @@ class ModelStore:
         return self.root / model_id
 
     def list_models(self) -> list[ModelInfo]:
-        """Every model, newest first."""
+        """Every model of this kind, newest first."""
         with Session(self.engine) as session:
-            rows = session.scalars(select(ModelRow).order_by(ModelRow.version.desc())).all()
-            active = _active_id(session)
+            query = self._of_kind(select(ModelRow)).order_by(ModelRow.version.desc())
+            rows = session.scalars(query).all()
+            active = _active_id(session, self.kind)
             versions = {r.id: r.version for r in rows}
             return [self._info(r, active, versions) for r in rows]
 
     def get(self, model_id: str) -> ModelInfo:
         with Session(self.engine) as session:
             row = self._row(session, model_id)
-            return self._info(row, _active_id(session), self._versions(session))
+            return self._info(row, _active_id(session, self.kind), self._versions(session))
 
     def by_job(self, job_id: str) -> ModelInfo | None:
         with Session(self.engine) as session:
-            row = session.scalar(select(ModelRow).where(ModelRow.job_id == job_id))
+            row = session.scalar(self._of_kind(select(ModelRow)).where(ModelRow.job_id == job_id))
             if row is None:
                 return None
-            return self._info(row, _active_id(session), self._versions(session))
+            return self._info(row, _active_id(session, self.kind), self._versions(session))
 
     def active(self) -> ModelInfo:
         """The active model; NoActiveModelError when the registry is empty."""
         with Session(self.engine) as session:
-            active = _active_id(session)
+            active = _active_id(session, self.kind)
             if active is None:
-                raise NoActiveModelError()
+                raise NoActiveModelError(self.kind)
             return self._info(self._row(session, active), active, self._versions(session))
 
     def active_or_none(self) -> ModelInfo | None:
@@ -132,22 +188,23 @@ class ModelStore:
 
     def active_dir(self) -> Path | None:
         with Session(self.engine) as session:
-            active = _active_id(session)
+            active = _active_id(session, self.kind)
         return self.folder(active) if active is not None else None
 
     def file(self, model_id: str, name: str) -> Path:
         """One of a registered model's files; ModelNotFoundError when it has no such file."""
         self.get(model_id)  # the id must be registered before it becomes a path
         path = self.folder(model_id) / name
-        if name not in MODEL_FILES or not path.is_file():
+        if name not in self.files or not path.is_file():
             raise ModelNotFoundError(f"model {model_id} has no file {name!r}")
         return path
 
     def events(self) -> list[ModelEvent]:
-        """Every change of the active model, newest first."""
+        """Every change of this kind's active model, newest first."""
         with Session(self.engine) as session:
             versions = self._versions(session)
-            rows = session.scalars(select(ModelEventRow).order_by(ModelEventRow.id.desc())).all()
+            query = _events_of_kind(select(ModelEventRow), self.kind)
+            rows = session.scalars(query.order_by(ModelEventRow.id.desc())).all()
             return [
                 ModelEvent(
                     id=r.id,
@@ -171,10 +228,10 @@ class ModelStore:
         if self.default_dir is None or not (self.default_dir / MODEL_FILE).is_file():
             return None
         with Session(self.engine) as session:
-            if session.scalar(select(func.count()).select_from(ModelRow)):
+            if session.scalar(self._of_kind(select(func.count()).select_from(ModelRow))):
                 return None
         metrics = _read_json(self.default_dir / METRICS_FILE)
-        accuracy = metrics.get("validation_accuracy")
+        accuracy = metrics.get(_VALIDATION_KEYS[self.kind])
         return self.register(
             self.default_dir,
             Registration(
@@ -210,18 +267,19 @@ class ModelStore:
         self._copy_in(source, model_id)
         try:
             with self._lock, Session(self.engine) as session:
-                active = _active_id(session)
+                active = _active_id(session, self.kind)
                 status = registration.status
                 note = registration.note
                 promoted = promote and (action == "seed" or active == expected_active)
                 if promote and not promoted and status == "accepted":
                     status = "candidate"
                     note = _join(note, "the active model changed while this one trained")
-                version = (session.scalar(select(func.max(ModelRow.version))) or 0) + 1
+                newest = session.scalar(self._of_kind(select(func.max(ModelRow.version))))
                 session.add(
                     ModelRow(
                         id=model_id,
-                        version=version,
+                        kind=self.kind,
+                        version=(newest or 0) + 1,
                         created_at=utcnow(),
                         status=status,
                         parent_id=registration.parent_id,
@@ -230,7 +288,7 @@ class ModelStore:
                         parent_heldout_accuracy=registration.parent_heldout_accuracy,
                         validation_accuracy=registration.validation_accuracy,
                         metrics=metrics,
-                        data=registration.data,
+                        data=_registration_data(registration),
                         note=note,
                     )
                 )
@@ -248,7 +306,7 @@ class ModelStore:
         Promoting the active model changes nothing."""
         with self._lock, Session(self.engine) as session:
             target = self._row(session, model_id)
-            active = _active_id(session)
+            active = _active_id(session, self.kind)
             if active != model_id:
                 current = session.get(ModelRow, active) if active else None
                 action: ModelAction = (
@@ -262,7 +320,7 @@ class ModelStore:
         """Delete staging folders and folders without a row (a crash between the rename and the
         insert); call only when nothing is registering, e.g. at start-up."""
         with Session(self.engine) as session:
-            known = set(session.scalars(select(ModelRow.id)))
+            known = set(session.scalars(select(ModelRow.id)))  # of any kind: never a model's
         removed = []
         for path in self.root.iterdir():
             if path.is_dir() and path.name not in known:
@@ -275,7 +333,7 @@ class ModelStore:
     def _copy_in(self, source: Path, model_id: str) -> None:
         staging = Path(tempfile.mkdtemp(prefix=_STAGING_PREFIX, dir=self.root))
         try:
-            for name in MODEL_FILES:
+            for name in self.files:
                 if (source / name).is_file():
                     _copy_durably(source / name, staging / name)
             _fsync_dir(staging)
@@ -305,21 +363,24 @@ class ModelStore:
             )
         )
 
-    @staticmethod
-    def _row(session: Session, model_id: str) -> ModelRow:
+    def _of_kind(self, query: Select[*_Columns]) -> Select[*_Columns]:
+        return query.where(ModelRow.kind == self.kind)
+
+    def _row(self, session: Session, model_id: str) -> ModelRow:
         row = session.get(ModelRow, model_id)
-        if row is None:
-            raise ModelNotFoundError(f"no model {model_id!r}")
+        if row is None or row.kind != self.kind:
+            raise ModelNotFoundError(f"no {self.kind} model {model_id!r}")
         return row
 
-    @staticmethod
-    def _versions(session: Session) -> dict[str, int]:
-        return {mid: v for mid, v in session.execute(select(ModelRow.id, ModelRow.version))}
+    def _versions(self, session: Session) -> dict[str, int]:
+        query = self._of_kind(select(ModelRow.id, ModelRow.version))
+        return {mid: v for mid, v in session.execute(query)}
 
     def _info(self, row: ModelRow, active: str | None, versions: dict[str, int]) -> ModelInfo:
         data = row.data or {}
         return ModelInfo(
             id=row.id,
+            kind=self.kind,
             version=row.version,
             created_at=as_utc(row.created_at),
             status=row.status,
@@ -329,6 +390,8 @@ class ModelStore:
             job_id=row.job_id,
             heldout_accuracy=row.heldout_accuracy,
             parent_heldout_accuracy=row.parent_heldout_accuracy,
+            heldout_recall=_figure(data.get("heldout_recall")),
+            parent_heldout_recall=_figure(data.get("parent_heldout_recall")),
             validation_accuracy=row.validation_accuracy,
             training_scenes=len(data.get("training_scenes", [])),
             heldout_scenes=len(data.get("heldout_scenes", [])),
@@ -338,8 +401,26 @@ class ModelStore:
         )
 
 
-def _active_id(session: Session) -> str | None:
-    return session.scalar(select(ModelEventRow.model_id).order_by(ModelEventRow.id.desc()).limit(1))
+def _events_of_kind(query: Select[*_Columns], kind: ModelKind) -> Select[*_Columns]:
+    return query.join(ModelRow, ModelRow.id == ModelEventRow.model_id).where(ModelRow.kind == kind)
+
+
+def _active_id(session: Session, kind: ModelKind) -> str | None:
+    query = _events_of_kind(select(ModelEventRow.model_id), kind)
+    return session.scalar(query.order_by(ModelEventRow.id.desc()).limit(1))
+
+
+def _registration_data(registration: Registration) -> dict[str, Any]:
+    data = dict(registration.data)
+    for key in ("heldout_recall", "parent_heldout_recall"):
+        value = getattr(registration, key)
+        if value is not None:
+            data[key] = value
+    return data
+
+
+def _figure(value: object) -> float | None:
+    return float(value) if isinstance(value, int | float) else None
 
 
 def _read_json(path: Path) -> dict[str, Any]:
@@ -386,12 +467,13 @@ def _lookup_engine(url: str) -> Engine:
     return create_engine(url, poolclass=NullPool, connect_args=connect_args)
 
 
-def active_model_dir(settings: Settings) -> Path | None:
-    """The directory of the promoted Relation Network (model.onnx, priors.json, ...), or None
-    when no model is registered or there is no database yet.
+def active_model_dir(settings: Settings, kind: ModelKind = "relation") -> Path | None:
+    """The directory of the promoted model of a kind (the Relation Network's model.onnx,
+    priors.json, ...; the detector's model.onnx, metadata.json), or None when no model of the
+    kind is registered or there is no database yet.
 
-    The pipeline's support stage calls this to use whatever an admin promoted. It only reads:
-    it never creates or migrates a database (`holiscene infer` may run without one)."""
+    For running the pipeline with whatever an admin promoted. It only reads: it never creates
+    or migrates a database (`holiscene infer` may run without one)."""
     url = settings.resolved_database_url
     parsed = make_url(url)
     if parsed.get_backend_name() == "sqlite":
@@ -400,18 +482,18 @@ def active_model_dir(settings: Settings) -> Path | None:
             return None
     try:
         with Session(_lookup_engine(url)) as session:
-            model_id = _active_id(session)
+            model_id = _active_id(session, kind)
     except (OperationalError, ProgrammingError):
-        return None  # a database from before the registry existed (not migrated yet)
+        return None  # a database from before the registry (or its kinds) existed
     if model_id is None:
         return None
-    folder = settings.data_dir / "models" / model_id
+    folder = settings.data_dir / KIND_FOLDERS[kind] / model_id
     return folder if (folder / MODEL_FILE).is_file() else None
 
 
-def require_active_model_dir(settings: Settings) -> Path:
+def require_active_model_dir(settings: Settings, kind: ModelKind = "relation") -> Path:
     """Like active_model_dir, but NoActiveModelError (a clear message) instead of None."""
-    folder = active_model_dir(settings)
+    folder = active_model_dir(settings, kind)
     if folder is None:
-        raise NoActiveModelError()
+        raise NoActiveModelError(kind)
     return folder

@@ -72,13 +72,16 @@ class JobRow(Base):
 
 
 class ModelRow(Base):
-    """A registered Relation Network: its files live in <data_dir>/models/<id>/. Rows are only
-    added once the files are complete, and never change afterwards."""
+    """A registered model: a Relation Network (files in <data_dir>/models/<id>/) or an object
+    detector (<data_dir>/detectors/<id>/). Rows are only added once the files are complete,
+    and never change afterwards. Versions count per kind (migration 0006)."""
 
     __tablename__ = "models"
+    __table_args__ = (UniqueConstraint("kind", "version", name="uq_models_kind_version"),)
 
     id: Mapped[str] = mapped_column(String(32), primary_key=True)
-    version: Mapped[int] = mapped_column(Integer, unique=True)
+    kind: Mapped[str] = mapped_column(String(16), default="relation")
+    version: Mapped[int] = mapped_column(Integer)
     created_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
     status: Mapped[str] = mapped_column(String(16))
     parent_id: Mapped[str | None] = mapped_column(String(32), nullable=True)
@@ -93,7 +96,8 @@ class ModelRow(Base):
 
 
 class ModelEventRow(Base):
-    """Every change of the active model; the newest row names the active one."""
+    """Every change of an active model; the newest row of a kind's models names its active
+    one."""
 
     __tablename__ = "model_events"
 

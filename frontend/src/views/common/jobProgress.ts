@@ -4,14 +4,20 @@ import { el } from "../../dom";
 
 export function describeJob(job: Job): string {
   const percent = `${Math.round(job.progress * 100)}%`;
-  const what = { retrain: "Retraining", placement: "Placement", pipeline: "Pipeline" }[job.kind];
+  const what = {
+    retrain: "Retraining",
+    detector_retrain: "Retraining",
+    placement: "Placement",
+    pipeline: "Pipeline",
+  }[job.kind];
+  const retraining = job.kind === "retrain" || job.kind === "detector_retrain";
   switch (job.status) {
     case "queued":
       return `${what} queued…`;
     case "running":
       return `Running${job.stage ? ` ${job.stage}` : ""} · ${percent}${job.message ? ` · ${job.message}` : ""}`;
     case "succeeded":
-      return job.kind === "retrain"
+      return retraining
         ? `Retraining finished: ${job.message ?? "done"}`
         : `${what} finished (revision ${job.result_revision ?? "?"})`;
     case "failed":

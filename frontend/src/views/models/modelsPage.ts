@@ -1,14 +1,83 @@
-// The admin page of the Relation Network: every registered model, its training curve, the
-// history of the active model, retraining (with live progress and log) and roll-back.
-// Admin only once accounts exist (issue 6); for now anyone who reaches the server may use it.
+// The admin page of the model registry, one kind at a time (a switch at the top): the
+// Relation Network (#/models) or the object detector (#/models/detector). Every registered
+// model of the kind, its training curve, the history of the active model, retraining (with
+// live progress and log) and roll-back. Retraining and changing the active model are for
+// admins (the server checks).
 import type { Job, ModelEvent, ModelInfo } from "@holiscene/schema";
 import { isFinished, pollJob } from "../../api/jobs";
 import { modelsApi } from "../../api/models";
 import { el, formatTime, hiddenErrorAlert, labelledField } from "../../dom";
+import type { ModelKind } from "../../router";
 import { getAuthor } from "../../state/author";
 import { jobProgress } from "../common/jobProgress";
 
 const POLL_MS = 1000;
+
+interface KindText {
+  switchLabel: string;
+  title: string;
+  usedBy: string;
+  empty: string;
+  heldoutColumn: string;
+  validationColumn: string;
+  retrainHint: string;
+  epochs: [label: string, placeholder: string];
+  synthetic: [label: string, placeholder: string];
+}
+
+const KIND_TEXT: Record<ModelKind, KindText> = {
+  relation: {
+    switchLabel: "Relation Network",
+    title: "Relation Network models",
+    usedBy:
+      "The pipeline and the browser use the active model. Any model can be made active again.",
+    empty: "No Relation Network model is registered yet: retrain to make one.",
+    heldoutColumn: "Held-out accuracy",
+    validationColumn: "Validation accuracy",
+    retrainHint:
+      "Trains a new Relation Network on the synthetic scenes and on every scene whose supports " +
+      "a person set. A fixed fifth of those scenes is held out: the new model becomes active " +
+      "only if it is at least as accurate on them as the active one. Every model is kept.",
+    epochs: ["Epochs at most", "default (40)"],
+    synthetic: ["Synthetic scenes", "default (1200)"],
+  },
+  detector: {
+    switchLabel: "Object detector",
+    title: "Object detector models",
+    usedBy:
+      "The pipeline finds objects with the active detector. Any detector can be made active again.",
+    empty: "No object detector is registered yet: retrain to make one.",
+    heldoutColumn: "Held-out mAP@0.5 · recall",
+    validationColumn: "Validation mAP@0.5",
+    retrainHint:
+      "Fine-tunes a new detector on synthetic rooms and on every scene whose boxes a person " +
+      "confirmed: drawn, given with the photo, accepted suggestions, or all of a scene a " +
+      "reviewer accepted. A fixed fifth of those scenes is held out: the new detector becomes " +
+      "active only if its mAP@0.5 on them is at least the active one's. Every detector is kept.",
+    epochs: ["Epochs", "default (12)"],
+    synthetic: ["Synthetic rooms", "default (300)"],
+  },
+};
+
+const KINDS: ModelKind[] = ["relation", "detector"];
+
+/** Links to each kind's page; the current one marked. */
+function kindSwitch(current: ModelKind): HTMLElement {
+  return el(
+    "nav",
+    { className: "model-kinds", testid: "model-kinds", attrs: { "aria-label": "Model kind" } },
+    ...KINDS.map((kind) =>
+      el("a", {
+        text: KIND_TEXT[kind].switchLabel,
+        testid: `model-kind-${kind}`,
+        attrs: {
+          href: kind === "relation" ? "#/models" : `#/models/${kind}`,
+          ...(kind === current ? { "aria-current": "page" } : {}),
+        },
+      }),
+    ),
+  );
+}
 
 const STATUS_TEXT: Record<ModelInfo["status"], string> = {
   default: "committed default",
@@ -20,13 +89,17 @@ const STATUS_TEXT: Record<ModelInfo["status"], string> = {
 const percent = (value: number | null) =>
   value === null || value < 0 ? "—" : `${(value * 100).toFixed(1)} %`;
 
+// A detector's held-out figures are its mAP@0.5 and recall; a Relation Network's its accuracy.
+const figures = (value: number, recall: number | null) =>
+  recall === null ? percent(value) : `${percent(value)} · ${percent(recall)}`;
+
 function heldoutText(model: ModelInfo): string {
   if (model.heldout_accuracy === null) return "—";
   const parent =
     model.parent_version !== null && model.parent_heldout_accuracy !== null
-      ? ` (v${model.parent_version}: ${percent(model.parent_heldout_accuracy)})`
+      ? ` (v${model.parent_version}: ${figures(model.parent_heldout_accuracy, model.parent_heldout_recall)})`
       : "";
-  return `${percent(model.heldout_accuracy)}${parent}`;
+  return `${figures(model.heldout_accuracy, model.heldout_recall)}${parent}`;
 }
 
 function numberField(label: string, name: string, placeholder: string, max: number) {
@@ -41,10 +114,11 @@ function numberField(label: string, name: string, placeholder: string, max: numb
 const readNumber = (input: HTMLInputElement) =>
   input.value.trim() === "" ? null : Math.round(Number(input.value));
 
-export function mountModelsPage(container: HTMLElement): () => void {
+export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relation"): () => void {
   const abort = new AbortController();
-  const epochs = numberField("Epochs at most", "epochs", "default (40)", 500);
-  const synthetic = numberField("Synthetic scenes", "synthetic", "default (1200)", 20000);
+  const text = KIND_TEXT[kind];
+  const epochs = numberField(text.epochs[0], "epochs", text.epochs[1], 500);
+  const synthetic = numberField(text.synthetic[0], "synthetic", text.synthetic[1], 20000);
   const retrain = el("button", {
     className: "primary",
     text: "Retrain",
@@ -59,13 +133,7 @@ export function mountModelsPage(container: HTMLElement): () => void {
     "form",
     { className: "card", testid: "retrain-form" },
     el("h2", { text: "Retrain" }),
-    el("p", {
-      className: "field-hint",
-      text:
-        "Trains a new Relation Network on the synthetic scenes and on every scene whose supports " +
-        "a person set. A fixed fifth of those scenes is held out: the new model becomes active " +
-        "only if it is at least as accurate on them as the active one. Every model is kept.",
-    }),
+    el("p", { className: "field-hint", text: text.retrainHint }),
     el("div", { className: "field-grid" }, epochs.field, synthetic.field),
     el("div", { className: "form-actions" }, retrain),
     retrainError,
@@ -93,8 +161,8 @@ export function mountModelsPage(container: HTMLElement): () => void {
           "Version",
           "Created",
           "Status",
-          "Held-out accuracy",
-          "Validation accuracy",
+          text.heldoutColumn,
+          text.validationColumn,
           "Labelled scenes",
           "",
           "",
@@ -204,16 +272,13 @@ export function mountModelsPage(container: HTMLElement): () => void {
   async function refresh(): Promise<void> {
     try {
       const [listed, events] = await Promise.all([
-        modelsApi.listModels(abort.signal),
-        modelsApi.listEvents(abort.signal),
+        modelsApi.listModels(abort.signal, kind),
+        modelsApi.listEvents(abort.signal, kind),
       ]);
       models = listed;
       body.replaceChildren(...models.map(modelRow));
       table.hidden = models.length === 0;
-      status.textContent =
-        models.length === 0
-          ? "No Relation Network model is registered yet: retrain to make one."
-          : "";
+      status.textContent = models.length === 0 ? text.empty : "";
       history.replaceChildren(...events.map(eventItem));
       const shown = models.find((m) => m.id === shownCurve) ?? models.find((m) => m.active);
       showCurve(shown ?? models[0]);
@@ -255,11 +320,14 @@ export function mountModelsPage(container: HTMLElement): () => void {
     retrain.disabled = true;
     retrainError.hidden = true;
     try {
-      const job = await modelsApi.startRetrain({
-        author: getAuthor(),
-        max_epochs: readNumber(epochs.input),
-        synthetic_scenes: readNumber(synthetic.input),
-      });
+      const job = await modelsApi.startRetrain(
+        {
+          author: getAuthor(),
+          max_epochs: readNumber(epochs.input),
+          synthetic_scenes: readNumber(synthetic.input),
+        },
+        kind,
+      );
       void follow(job);
     } catch (error) {
       retrain.disabled = false;
@@ -271,20 +339,22 @@ export function mountModelsPage(container: HTMLElement): () => void {
   container.replaceChildren(
     el(
       "div",
-      { className: "list-page models-page", testid: "models-page" },
+      {
+        className: "list-page models-page",
+        testid: "models-page",
+        attrs: { "data-kind": kind },
+      },
       el(
         "p",
         { className: "breadcrumb" },
         el("a", { text: "← All scenes", attrs: { href: "#/" } }),
       ),
+      kindSwitch(kind),
       el(
         "section",
         { className: "card" },
-        el("h2", { text: "Relation Network models" }),
-        el("p", {
-          className: "field-hint",
-          text: "The pipeline and the browser use the active model. Any model can be made active again.",
-        }),
+        el("h2", { text: text.title }),
+        el("p", { className: "field-hint", text: text.usedBy }),
         status,
         notice,
         el("div", { className: "table-scroll" }, table),
@@ -297,7 +367,7 @@ export function mountModelsPage(container: HTMLElement): () => void {
 
   void refresh();
   void modelsApi
-    .latestRetrainJob(abort.signal)
+    .latestRetrainJob(abort.signal, kind)
     .then((job) => {
       if (!job) return;
       if (isFinished(job)) showJob(job);

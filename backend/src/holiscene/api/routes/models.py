@@ -1,4 +1,9 @@
-"""The Relation Network model registry: list, files, retrain, promote and roll back.
+"""The model registry: list, files, retrain, promote and roll back, for each kind of model.
+
+Two kinds are registered, each with its own versions, active model and history: the Relation
+Network (`kind=relation`, the default, so the routes read as before) and the object detector
+(`kind=detector`). Routes about a kind take it as a query parameter (`?kind=detector`); routes
+about one model find its kind from its id.
 
 Any logged-in user may read the registry and fetch model files (the browser scores supports
 with the active model); retraining and changing the active model are for admins.
@@ -6,18 +11,22 @@ with the active model); retraining and changing the active model are for admins.
 
 from __future__ import annotations
 
-from fastapi import APIRouter
+from typing import Annotated
+
+from fastapi import APIRouter, Query
 from fastapi.responses import FileResponse
 from holiscene_schema import (
     ErrorMessage,
     Job,
     ModelEvent,
     ModelInfo,
+    ModelKind,
     PromoteRequest,
     RetrainRequest,
 )
 
-from ...store.models import MODEL_FILES
+from ...store.models import DETECTOR_FILES, MODEL_FILES
+from ...workbench import RETRAIN_JOB_KINDS
 from ..deps import AdminDep, WorkbenchDep
 
 router = APIRouter(prefix="/api/models", tags=["models"])
@@ -25,30 +34,39 @@ router = APIRouter(prefix="/api/models", tags=["models"])
 _404: dict[int | str, dict[str, object]] = {404: {"model": ErrorMessage}}
 # A model's files never change under its id, so browsers and proxies may keep them for good.
 _IMMUTABLE = {"Cache-Control": "public, max-age=31536000, immutable"}
+_MEDIA_TYPES = {*MODEL_FILES.values(), *DETECTOR_FILES.values()}
+
+KindQuery = Annotated[
+    ModelKind,
+    Query(description="relation: the Relation Network; detector: the object detector"),
+]
 
 
 @router.get("", response_model=list[ModelInfo])
-def list_models(workbench: WorkbenchDep) -> list[ModelInfo]:
-    """Every registered model, newest first, with metrics, status and the active flag."""
-    return workbench.models.list_models()
+def list_models(workbench: WorkbenchDep, kind: KindQuery = "relation") -> list[ModelInfo]:
+    """Every registered model of a kind, newest first, with metrics, status and the active
+    flag."""
+    return workbench.registry(kind).list_models()
 
 
 @router.get("/active", response_model=ModelInfo, responses=_404)
-def active_model(workbench: WorkbenchDep) -> ModelInfo:
-    """The model the pipeline and the browser use; 404 when none is registered."""
-    return workbench.models.active()
+def active_model(workbench: WorkbenchDep, kind: KindQuery = "relation") -> ModelInfo:
+    """The model of a kind the pipeline (and, for the Relation Network, the browser) uses;
+    404 when none is registered."""
+    return workbench.registry(kind).active()
 
 
 @router.get("/events", response_model=list[ModelEvent])
-def model_events(workbench: WorkbenchDep) -> list[ModelEvent]:
-    """Who made which model active and when, newest first."""
-    return workbench.models.events()
+def model_events(workbench: WorkbenchDep, kind: KindQuery = "relation") -> list[ModelEvent]:
+    """Who made which model of a kind active and when, newest first."""
+    return workbench.registry(kind).events()
 
 
 @router.get("/retrain", response_model=Job | None)
-def latest_retrain_job(workbench: WorkbenchDep) -> Job | None:
-    """The newest retrain job (so a page opened later can follow a running one), or null."""
-    return workbench.jobs.latest_retrain()
+def latest_retrain_job(workbench: WorkbenchDep, kind: KindQuery = "relation") -> Job | None:
+    """The newest retrain job of a kind (so a page opened later can follow a running one),
+    or null."""
+    return workbench.jobs.latest_retrain(RETRAIN_JOB_KINDS[kind])
 
 
 @router.post(
@@ -58,39 +76,43 @@ def latest_retrain_job(workbench: WorkbenchDep) -> Job | None:
     responses={409: {"model": ErrorMessage}, 422: {"model": ErrorMessage}},
 )
 def start_retrain(
-    workbench: WorkbenchDep, user: AdminDep, request: RetrainRequest | None = None
+    workbench: WorkbenchDep,
+    user: AdminDep,
+    request: RetrainRequest | None = None,
+    kind: KindQuery = "relation",
 ) -> Job:
-    """Start retraining on the stored labelled scenes; follow it at GET /api/jobs/{id}.
-    409 while another retrain job runs, 422 when fewer than two scenes are labelled."""
+    """Start retraining a kind of model on the stored scenes people labelled (the detector:
+    their confirmed boxes); follow it at GET /api/jobs/{id}. 409 while another retrain job
+    (of either kind) runs, 422 when fewer than two scenes are labelled."""
     request = request or RetrainRequest()
     if not user.local:  # with accounts, the account is the author
         request = request.model_copy(update={"author": user.name})
-    return workbench.start_retrain(request)
+    return workbench.start_retrain(request, kind)
 
 
 @router.get("/{model_id}", response_model=ModelInfo, responses=_404)
 def get_model(model_id: str, workbench: WorkbenchDep) -> ModelInfo:
-    return workbench.models.get(model_id)
+    return workbench.registry_of(model_id).get(model_id)
 
 
 @router.post("/{model_id}/promote", response_model=ModelInfo, responses=_404)
 def promote_model(
     model_id: str, workbench: WorkbenchDep, user: AdminDep, request: PromoteRequest | None = None
 ) -> ModelInfo:
-    """Make any registered model the active one (promote a newer, or roll back to an older)."""
+    """Make any registered model the active one of its kind (promote a newer, or roll back to
+    an older); the other kind's active model stays."""
     request = request or PromoteRequest()
     author = request.author if user.local else user.name
-    return workbench.models.promote(model_id, author, request.note)
+    return workbench.registry_of(model_id).promote(model_id, author, request.note)
 
 
 @router.get(
     "/{model_id}/{file_name}",
-    responses={
-        200: {"content": {media: {} for media in set(MODEL_FILES.values())}},
-        **_404,
-    },
+    responses={200: {"content": {media: {} for media in _MEDIA_TYPES}}, **_404},
 )
 def model_file(model_id: str, file_name: str, workbench: WorkbenchDep) -> FileResponse:
-    """A model's files: model.onnx, curve.png, metrics.json, priors.json, data.json."""
-    path = workbench.models.file(model_id, file_name)
-    return FileResponse(path, media_type=MODEL_FILES[file_name], headers=_IMMUTABLE)
+    """A model's files: model.onnx, curve.png, metrics.json, and priors.json, data.json (a
+    Relation Network) or metadata.json, LICENSE (a detector)."""
+    registry = workbench.registry_of(model_id)
+    path = registry.file(model_id, file_name)
+    return FileResponse(path, media_type=registry.files[file_name], headers=_IMMUTABLE)
