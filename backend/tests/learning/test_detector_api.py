@@ -7,10 +7,10 @@ import json
 import shutil
 from pathlib import Path
 
-import pytest
 from fastapi.testclient import TestClient
 from holiscene.learning.detector import runtime
 from holiscene.learning.detector.active import active_detector_dir
+from holiscene.store.models import Registration
 
 
 def test_serves_the_committed_default_detector(client: TestClient) -> None:
@@ -40,40 +40,16 @@ def test_refuses_other_ids_and_files(client: TestClient) -> None:
         assert client.get(f"/api/detector/{info['id']}/{name}").status_code == 404
 
 
-def test_a_replaced_model_gets_a_new_id(
-    client: TestClient, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
+def test_a_promoted_detector_is_served_under_a_new_id(client: TestClient, tmp_path: Path) -> None:
+    first = client.get("/api/detector/active").json()
     folder = tmp_path / "detector"
     folder.mkdir()
     shutil.copy(runtime.COCO_DETECTOR_DIR / runtime.METADATA_FILE, folder)
-    (folder / runtime.MODEL_FILE).write_bytes(b"first")
-    monkeypatch.setattr(runtime, "DEFAULT_DETECTOR_DIR", folder)
-    first = client.get("/api/detector/active").json()
-    assert first["id"] == hashlib.sha256(b"first").hexdigest()[:16]
-    assert client.get(first["model_url"]).content == b"first"
-
-    (folder / runtime.MODEL_FILE).write_bytes(b"second model")
+    (folder / runtime.MODEL_FILE).write_bytes(b"another model")
+    workbench = client.app.state.workbench  # type: ignore[attr-defined]
+    registered = workbench.detectors.register(folder, Registration(status="accepted"))
+    workbench.detectors.promote(registered.id, "admin")
     second = client.get("/api/detector/active").json()
-    assert second["id"] != first["id"]
+    assert second["id"] == hashlib.sha256(b"another model").hexdigest()[:16] != first["id"]
     assert client.get(first["model_url"]).status_code == 404
-    assert client.get(second["model_url"]).content == b"second model"
-
-
-def test_the_coco_model_stands_in_for_a_missing_default(
-    client: TestClient, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    monkeypatch.setattr(runtime, "DEFAULT_DETECTOR_DIR", tmp_path / "none")
-    info = client.get("/api/detector/active").json()
-    coco = runtime.COCO_DETECTOR_DIR / runtime.MODEL_FILE
-    assert info["model_sha256"] == hashlib.sha256(coco.read_bytes()).hexdigest()
-    assert info["label_space"] == "coco80" and len(info["classes"]) == 80
-
-
-def test_no_detector_installed(
-    client: TestClient, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    monkeypatch.setattr(runtime, "DEFAULT_DETECTOR_DIR", tmp_path / "none")
-    monkeypatch.setattr(runtime, "COCO_DETECTOR_DIR", tmp_path / "none either")
-    missing = client.get("/api/detector/active")
-    assert missing.status_code == 404
-    assert missing.json()["detail"].startswith("no object detector is installed")
+    assert client.get(second["model_url"]).content == b"another model"

@@ -1,5 +1,6 @@
-"""The object detector's files, for the browser: which detector is active, and its model.onnx
-and metadata.json (the scene page runs the model with onnxruntime-web to suggest objects).
+"""The object detector's files, for the browser: which detector is active (the registry's active
+one of kind "detector", the one pipeline jobs use), and its model.onnx and metadata.json (the
+scene page runs the model with onnxruntime-web to suggest objects).
 
 As with the Relation Network's registry (models.py), the files live under an id that changes
 whenever the model does (the start of the model file's sha256), so browsers may keep them for
@@ -19,6 +20,7 @@ from pydantic import BaseModel, Field
 
 from ...learning.detector import runtime
 from ...learning.detector.active import active_detector_dir
+from ..deps import WorkbenchDep
 
 router = APIRouter(prefix="/api/detector", tags=["detector"])
 
@@ -70,19 +72,23 @@ def _info(model_dir: Path) -> DetectorInfo:
     )
 
 
+def _active_dir(workbench: WorkbenchDep) -> Path:
+    return workbench.detectors.active_dir() or active_detector_dir()
+
+
 @router.get("/active", response_model=DetectorInfo, responses=_404)
-def active_detector() -> DetectorInfo:
+def active_detector(workbench: WorkbenchDep) -> DetectorInfo:
     """The detector the browser runs; 404 when none is installed."""
-    return _info(active_detector_dir())
+    return _info(_active_dir(workbench))
 
 
 @router.get(
     "/{detector_id}/{file_name}",
     responses={200: {"content": {media: {} for media in set(DETECTOR_FILES.values())}}, **_404},
 )
-def detector_file(detector_id: str, file_name: str) -> FileResponse:
+def detector_file(detector_id: str, file_name: str, workbench: WorkbenchDep) -> FileResponse:
     """The active detector's model.onnx or metadata.json (404 under an older id)."""
-    model_dir = active_detector_dir()
+    model_dir = _active_dir(workbench)
     info = _info(model_dir)
     if detector_id != info.id:
         raise HTTPException(404, f"detector {detector_id} is not the active one ({info.id})")
