@@ -98,12 +98,12 @@ coco-detector: install-python
 # The NYU-40 detector: a head fine-tuned on synthetic rooms over the COCO backbone.
 detector-model: install-python
 	rm -rf /tmp/holiscene-detector-model
-	$(PY) -m holiscene.cli train-detector -o /tmp/holiscene-detector-model --scenes 800 --epochs 12
-	cp /tmp/holiscene-detector-model/* backend/src/holiscene/learning/default_detector/
+	$(PY) -m holiscene.cli train-detector -o /tmp/holiscene-detector-model --scenes 1000 --epochs 20
+	cp /tmp/holiscene-detector-model/* backend/src/holiscene/learning/nyu_detector/
 
 bench-detector: install-python
 	$(PY) benchmarks/bench_detector.py --model backend/src/holiscene/learning/coco_detector \
-		--model backend/src/holiscene/learning/default_detector
+		--model backend/src/holiscene/learning/nyu_detector
 
 surface-model: install-python
 	rm -rf /tmp/holiscene-surface-model

@@ -42,8 +42,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from holiscene.learning.detector.active import active_detector_dir
 from holiscene.learning.detector.runtime import (
+    DEFAULT_DETECTOR_DIR,
     MODEL_FILE,
     DetectedBox,
     Detector,
@@ -359,7 +359,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument(
         "--model-dir",
         type=Path,
-        default=active_detector_dir(),
+        default=DEFAULT_DETECTOR_DIR,
         help="model.onnx + metadata.json (default: the detector the app serves)",
     )
     parser.add_argument("-o", "--output", type=Path, default=DETECTOR_VECTORS)

@@ -9,15 +9,15 @@ from pathlib import Path
 
 from fastapi.testclient import TestClient
 from holiscene.learning.detector import runtime
-from holiscene.learning.detector.active import active_detector_dir
+from holiscene.learning.detector.runtime import DEFAULT_DETECTOR_DIR
 from holiscene.store.models import Registration
 
 
 def test_serves_the_committed_default_detector(client: TestClient) -> None:
     info = client.get("/api/detector/active").json()
-    model = active_detector_dir() / runtime.MODEL_FILE
+    model = DEFAULT_DETECTOR_DIR / runtime.MODEL_FILE
     sha256 = hashlib.sha256(model.read_bytes()).hexdigest()
-    metadata = json.loads((active_detector_dir() / runtime.METADATA_FILE).read_text())
+    metadata = json.loads((DEFAULT_DETECTOR_DIR / runtime.METADATA_FILE).read_text())
     assert info["model_sha256"] == sha256 and info["id"] == sha256[:16]
     assert info["label_space"] == metadata["label_space"]
     assert info["classes"] == metadata["classes"]

@@ -16,8 +16,8 @@ from typing import Any
 
 import numpy as np
 import pytest
-from holiscene.learning.detector.active import active_detector_dir
 from holiscene.learning.detector.runtime import (
+    DEFAULT_DETECTOR_DIR,
     MODEL_FILE,
     DetectedBox,
     Detector,
@@ -64,7 +64,7 @@ def decode_cases() -> list[Any]:
 
 @cache
 def detector() -> Detector:
-    return Detector(active_detector_dir())
+    return Detector(DEFAULT_DETECTOR_DIR)
 
 
 def raw_rows(entry: dict[str, Any]) -> np.ndarray:
@@ -120,7 +120,7 @@ def assert_same_boxes(actual: list[dict[str, Any]], expected: list[dict[str, Any
 
 def test_vectors_come_from_the_committed_model() -> None:
     model = vector_file()["model"]
-    served = active_detector_dir() / MODEL_FILE
+    served = DEFAULT_DETECTOR_DIR / MODEL_FILE
     assert served.is_file(), f"no detector at {served}"
     # The same bytes, wherever they are (the default detector's folder, or the COCO model's).
     assert model["sha256"] == dv.sha256(served), (

@@ -47,10 +47,7 @@ from .tables import ModelEventRow, ModelRow
 # The model committed with the code; an empty registry starts from it (version 1, active).
 DEFAULT_MODEL_DIR = Path(__file__).resolve().parents[1] / "learning" / "default_model"
 # The detectors an empty detector registry starts from: the first with a model file.
-DEFAULT_DETECTOR_DIRS: tuple[Path, ...] = (
-    detector_runtime.DEFAULT_DETECTOR_DIR,
-    detector_runtime.COCO_DETECTOR_DIR,
-)
+DEFAULT_DETECTOR_DIRS: tuple[Path, ...] = (detector_runtime.DEFAULT_DETECTOR_DIR,)
 NO_MODEL_MESSAGE = "no Relation Network model is registered"
 NO_MODEL_MESSAGES: Mapping[ModelKind, str] = {
     "relation": NO_MODEL_MESSAGE,
@@ -88,8 +85,7 @@ _Columns = TypeVarTuple("_Columns")
 
 
 def default_detector_dir() -> Path | None:
-    """The detector an empty detector registry starts from (the committed default detector,
-    or while there is none the COCO model it is made from), or None."""
+    """The detector an empty detector registry starts from (the committed default), or None."""
     for folder in DEFAULT_DETECTOR_DIRS:
         if (folder / detector_runtime.MODEL_FILE).is_file():
             return folder

@@ -19,7 +19,7 @@ from holiscene_schema import ErrorMessage
 from pydantic import BaseModel, Field
 
 from ...learning.detector import runtime
-from ...learning.detector.active import active_detector_dir
+from ...learning.detector.runtime import DEFAULT_DETECTOR_DIR
 from ..deps import WorkbenchDep
 
 router = APIRouter(prefix="/api/detector", tags=["detector"])
@@ -73,7 +73,7 @@ def _info(model_dir: Path) -> DetectorInfo:
 
 
 def _active_dir(workbench: WorkbenchDep) -> Path:
-    return workbench.detectors.active_dir() or active_detector_dir()
+    return workbench.detectors.active_dir() or DEFAULT_DETECTOR_DIR
 
 
 @router.get("/active", response_model=DetectorInfo, responses=_404)
