@@ -4,6 +4,7 @@ and read jobs. No HTTP here."""
 
 from __future__ import annotations
 
+import json
 import logging
 import shutil
 import threading
@@ -32,6 +33,8 @@ from .detector_retraining import (
 )
 from .inference import infer_scene
 from .inputs import InputFiles, read_input_folder
+from .learning.detector import runtime as detector_runtime
+from .learning.training_api import METRICS_FILE
 from .pipeline import DEFAULT_STAGES, KEPT_LAYOUT_STAGES, PLACEMENT_STAGES
 from .pipeline.stages.detections import objects_from_detections
 from .pipeline.stages.restore import has_hand_set_layout
@@ -39,7 +42,7 @@ from .retraining import RetrainJob, TrainingJob, check_can_retrain, train_config
 from .store import models as model_registry
 from .store.files import SceneFiles
 from .store.jobs import JobStore
-from .store.models import KIND_FOLDERS, ModelNotFoundError, ModelStore
+from .store.models import KIND_FOLDERS, ModelNotFoundError, ModelStore, Registration
 from .store.scenes import SceneChangedError, SceneStore
 from .store.users import UserStore
 from .store.workflow import WorkflowStore
@@ -89,7 +92,8 @@ class Workbench:
             default_detector_dir or model_registry.default_detector_dir(),
             kind="detector",
         )
-        self.detectors.seed_if_empty()
+        if self.detectors.seed_if_empty() is not None and default_detector_dir is None:
+            self._offer_shipped_detectors()
         # One worker: the pipeline uses both cores through numpy/OpenCV already.
         self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="pipeline")
         # Retraining gets its own single worker: a run takes minutes and must not hold up
@@ -97,6 +101,23 @@ class Workbench:
         self._training = ThreadPoolExecutor(max_workers=1, thread_name_prefix="retrain")
         self._retrain_lock = threading.Lock()
         self._stop = threading.Event()
+
+    def _offer_shipped_detectors(self) -> None:
+        """Register the detectors shipped beside the default one, not active
+        (model_registry.OFFERED_DETECTOR_DIRS): an admin chooses on the models page."""
+        for folder in model_registry.OFFERED_DETECTOR_DIRS:
+            if not (folder / detector_runtime.MODEL_FILE).is_file():
+                continue
+            metrics = json.loads((folder / METRICS_FILE).read_text())
+            self.detectors.register(
+                folder,
+                Registration(
+                    status="candidate",
+                    validation_accuracy=metrics.get("validation_map_at_0_5"),
+                    data={"source": f"committed detector {folder.name}"},
+                    note="shipped with the code, not the default (see docs/detector.md)",
+                ),
+            )
 
     @property
     def training_dir(self) -> Path:

@@ -138,6 +138,7 @@ def test_detector_retrain_through_the_api(
     settings: Settings, never_detecting: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.setattr(registry_module, "DEFAULT_DETECTOR_DIRS", (never_detecting,))
+    monkeypatch.setattr(registry_module, "OFFERED_DETECTOR_DIRS", ())
     with TestClient(create_app(settings)) as client:
         workbench: Workbench = client.app.state.workbench  # type: ignore[attr-defined]
         store_boxed_scene(workbench.scenes, BOXED_SEEDS[0])

@@ -160,13 +160,17 @@ def test_an_empty_detector_registry_says_so(engine: Engine, settings: Settings) 
 def test_the_detector_kind_is_seeded_from_the_committed_detector(settings: Settings) -> None:
     workbench = Workbench(settings)
     try:
-        [seeded] = workbench.detectors.list_models()
+        seeded, offered = sorted(workbench.detectors.list_models(), key=lambda m: m.version)
         assert (seeded.kind, seeded.version, seeded.status, seeded.active) == (
             "detector",
             1,
             "default",
             True,
         )
+        # The NYU-40 detector shipped beside it waits for an admin to choose it.
+        assert (offered.version, offered.status, offered.active) == (2, "candidate", False)
+        nyu = registry_module.OFFERED_DETECTOR_DIRS[0] / "model.onnx"
+        assert workbench.detectors.file(offered.id, "model.onnx").read_bytes() == nyu.read_bytes()
         source = registry_module.default_detector_dir()
         assert source is not None
         copied = workbench.detectors.file(seeded.id, "model.onnx")
@@ -184,6 +188,7 @@ def client(
     monkeypatch.setattr(registry_module, "DEFAULT_MODEL_DIR", fake_model_dir(tmp_path / "rn"))
     detector = fake_detector_dir(tmp_path / "detector", b"default-detector")
     monkeypatch.setattr(registry_module, "DEFAULT_DETECTOR_DIRS", (detector,))
+    monkeypatch.setattr(registry_module, "OFFERED_DETECTOR_DIRS", ())
     with TestClient(create_app(settings)) as test_client:
         yield test_client
 

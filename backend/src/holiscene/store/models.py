@@ -48,6 +48,9 @@ from .tables import ModelEventRow, ModelRow
 DEFAULT_MODEL_DIR = Path(__file__).resolve().parents[1] / "learning" / "default_model"
 # The detectors an empty detector registry starts from: the first with a model file.
 DEFAULT_DETECTOR_DIRS: tuple[Path, ...] = (detector_runtime.DEFAULT_DETECTOR_DIR,)
+# Detectors shipped beside the default and registered with it, not active, for an admin to
+# choose: the NYU-40 head is better on synthetic rooms and worse on real photos.
+OFFERED_DETECTOR_DIRS: tuple[Path, ...] = (detector_runtime.NYU_DETECTOR_DIR,)
 NO_MODEL_MESSAGE = "no Relation Network model is registered"
 NO_MODEL_MESSAGES: Mapping[ModelKind, str] = {
     "relation": NO_MODEL_MESSAGE,
