@@ -22,9 +22,8 @@ import time
 from pathlib import Path
 
 from holiscene.evaluation.detection_2d import MAP_SCORE_THRESHOLD, DetectionEvaluation, ScoredBox
-from holiscene.inputs import read_input_folder
+from holiscene.learning.detector.data import BoxedPhoto, boxed_photo, synthetic_photos
 from holiscene.learning.detector.runtime import DEFAULT_DETECTOR_DIR, Detector
-from holiscene.synth.generate import synthesize_to
 from holiscene_schema.detector_model import SCORE_THRESHOLD
 from tqdm import tqdm
 
@@ -33,34 +32,29 @@ REAL = REPO.parent / "shared" / "data" / "real"
 IOU = 0.5
 
 
-def truth_of(folder: Path) -> tuple[object, list[ScoredBox]]:
-    inputs = read_input_folder(folder)
-    boxes = [ScoredBox(d.bbox, d.cls) for d in inputs.detections or []]
-    return inputs.photo.rgb, boxes
+def truth_of(photo: BoxedPhoto) -> list[ScoredBox]:
+    return [
+        ScoredBox((b[0], b[1], b[2], b[3]), c)
+        for b, c in zip(photo.boxes.tolist(), photo.classes, strict=True)
+    ]
 
 
 def evaluate(
-    detector: Detector, folders: list[Path], threshold: float, desc: str
+    detector: Detector, photos: list[BoxedPhoto], threshold: float, desc: str
 ) -> tuple[DetectionEvaluation, DetectionEvaluation, list[float]]:
     """Scores at the operating threshold (recall, precision) and down to the mAP threshold
     (mAP), and the seconds each photo took."""
     at_threshold, ranked = DetectionEvaluation(iou=IOU), DetectionEvaluation(iou=IOU)
     seconds: list[float] = []
-    for folder in tqdm(folders, desc=desc, unit="photo", file=sys.stderr):
-        rgb, truth = truth_of(folder)
+    for photo in tqdm(photos, desc=desc, unit="photo", file=sys.stderr):
         start = time.perf_counter()
-        found = detector.detect(rgb, MAP_SCORE_THRESHOLD)  # type: ignore[arg-type]
+        found = detector.detect(photo.rgb, MAP_SCORE_THRESHOLD)
         seconds.append(time.perf_counter() - start)
         boxes = [ScoredBox(d.bbox, d.cls, d.score) for d in found]
+        truth = truth_of(photo)
         ranked.add(boxes, truth)
         at_threshold.add([b for b in boxes if b.score >= threshold], truth)
     return at_threshold, ranked, seconds
-
-
-def synthetic_folders(seed: int, count: int, scratch: Path) -> list[Path]:
-    for s in tqdm(range(seed, seed + count), desc="synth", unit="scene", file=sys.stderr):
-        synthesize_to(s, scratch)
-    return sorted(p for p in scratch.iterdir() if p.is_dir())
 
 
 def percent(value: float | None) -> str:
@@ -77,12 +71,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--json", type=Path, help="write the figures here too")
     args = parser.parse_args(argv)
     models = args.model or [DEFAULT_DETECTOR_DIR]
-    real = sorted(p for p in args.real.iterdir() if (p / "detections.json").is_file())
-    complete = [p for p in real if p.name.startswith("mm3d")]
+    folders = sorted(p for p in args.real.iterdir() if (p / "detections.json").is_file())
+    real = [boxed_photo(f) for f in folders]
+    complete = [p for f, p in zip(folders, real, strict=True) if f.name.startswith("mm3d")]
     results: dict[str, dict[str, object]] = {}
     with tempfile.TemporaryDirectory(prefix="bench-detector-") as scratch:
-        synthetic = synthetic_folders(args.synth_seed, args.synth_count, Path(scratch))
-        synth_classes = {b.cls for f in synthetic for b in truth_of(f)[1]}
+        seeds = range(args.synth_seed, args.synth_seed + args.synth_count)
+        synthetic = synthetic_photos(seeds, Path(scratch))
+        synth_classes = {c for p in synthetic for c in p.classes}
         for model_dir in models:
             detector = Detector.load(model_dir)
             name = str(detector.metadata.get("name", model_dir.name))

@@ -105,6 +105,7 @@ def decode(
 ) -> list[DetectedBox]:
     """The contract's decoding of a [1, MAX_DETECTIONS, 6] output for a W x H photo."""
     rows = np.asarray(raw, dtype=np.float64).reshape(-1, 6)
+    scale = np.array([width, height, width, height]) / INPUT_SIZE
     kept: list[tuple[int, np.ndarray, float, str, str]] = []
     for index, row in enumerate(rows):
         score = float(row[4])
@@ -114,7 +115,6 @@ def decode(
         nyu = to_nyu40[class_index]
         if nyu is None:
             continue
-        scale = np.array([width, height, width, height]) / INPUT_SIZE
         box = np.clip(row[:4] * scale, 0, [width, height, width, height])
         kept.append((index, box, score, nyu, model_classes[class_index]))
     kept.sort(key=lambda item: (-item[2], item[0]))

@@ -34,7 +34,6 @@ class _Builder:
     nodes: list[onnx.NodeProto] = field(default_factory=list)
     initializers: dict[str, onnx.TensorProto] = field(default_factory=dict)
     nchw: set[str] = field(default_factory=set)  # tensors held transposed to NCHW
-    rank4: set[str] = field(default_factory=set)  # 4D activations (either layout)
     counter: int = 0
 
     def fresh(self, hint: str) -> str:
@@ -138,7 +137,6 @@ def _conv(b: _Builder, node: dict[str, Any], depthwise: bool) -> None:
             [name],
         )
     b.nchw.add(name)
-    b.rank4.add(name)
 
 
 def _elementwise(b: _Builder, node: dict[str, Any], op: str) -> None:
@@ -148,8 +146,6 @@ def _elementwise(b: _Builder, node: dict[str, Any], op: str) -> None:
     b.add(op, [b.operand(i, like) for i in inputs], [node["name"]])
     if any(t in b.nchw for t in computed):
         b.nchw.add(node["name"])
-    if any(t in b.rank4 for t in computed):
-        b.rank4.add(node["name"])
 
 
 def _unary(b: _Builder, node: dict[str, Any], op: str, **attrs: Any) -> None:
@@ -161,8 +157,6 @@ def _unary(b: _Builder, node: dict[str, Any], op: str, **attrs: Any) -> None:
         b.add(op, [source], [name], **attrs)
     if source in b.nchw:
         b.nchw.add(name)
-    if source in b.rank4:
-        b.rank4.add(name)
 
 
 def _constant_int(b: _Builder, node: dict[str, Any], index: int) -> np.ndarray:
@@ -182,7 +176,6 @@ def _mean(b: _Builder, node: dict[str, Any]) -> None:
     b.add("ReduceMean", [source], [node["name"]], axes=axes, keepdims=keep)
     if source in b.nchw and keep:
         b.nchw.add(node["name"])
-        b.rank4.add(node["name"])
 
 
 def _concat(b: _Builder, node: dict[str, Any]) -> None:
@@ -193,7 +186,6 @@ def _concat(b: _Builder, node: dict[str, Any]) -> None:
     if layouts == {True}:
         axis = _NCHW_AXIS[axis]
         b.nchw.add(node["name"])
-        b.rank4.add(node["name"])
     elif len(layouts) > 1:
         raise UnsupportedGraphError(f"{node['name']}: concatenation of mixed layouts")
     b.add("Concat", [b.operand(p, None) for p in parts], [node["name"]], axis=axis)
@@ -232,7 +224,6 @@ def _resize_bilinear(b: _Builder, node: dict[str, Any]) -> None:
         coordinate_transformation_mode=mode,
     )
     b.nchw.add(node["name"])
-    b.rank4.add(node["name"])
 
 
 def _max_pool(b: _Builder, node: dict[str, Any]) -> None:
@@ -258,7 +249,6 @@ def _max_pool(b: _Builder, node: dict[str, Any]) -> None:
         b.add("Transpose", [pooled], [node["name"]], perm=[0, 2, 3, 1])
     else:
         b.nchw.add(node["name"])
-    b.rank4.add(node["name"])
 
 
 def _strided_slice(b: _Builder, node: dict[str, Any]) -> None:
@@ -386,7 +376,6 @@ def convert(
     # The NHWC input, transposed once for the convolutions.
     b.add("Transpose", [graph_input["name"] + "/nhwc"], [graph_input["name"]], perm=[0, 3, 1, 2])
     b.nchw.add(graph_input["name"])
-    b.rank4.add(graph_input["name"])
     for node in topological(nodes):
         if node["op"] in ("Const", "Placeholder"):
             continue

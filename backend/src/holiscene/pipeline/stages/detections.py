@@ -32,6 +32,7 @@ def objects_from_detections(detections: list[Detection]) -> list[SceneObject]:
             cls=det.cls,  # normalised to NYU-40 on import
             source_class=det.source_class,
             bbox=list(det.bbox),
+            source="given",
         )
         for index, det in enumerate(detections)
     ]

@@ -51,8 +51,6 @@ class ObjectsFromDetector(Stage):
 
     def run(self, ctx: SceneContext) -> None:
         given = objects_from_detections(ctx.detections or [])
-        for obj in given:
-            obj.source = "given"
         if ctx.detections is not None and not self.add_missing:
             ctx.objects = given
             return
