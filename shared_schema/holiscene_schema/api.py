@@ -101,10 +101,73 @@ class RemoveObject(SchemaModel):
     id: str = Field(min_length=1)
 
 
+class SetClass(SchemaModel):
+    """Give an object another class (an NYU-40 class or a known alias, stored as for
+    AddObject). A pipeline re-run keeps it."""
+
+    kind: Literal["set_class"] = "set_class"
+    id: str = Field(min_length=1)
+    cls: str = Field(alias="class", min_length=1, max_length=64)
+
+
+class SetBbox(SchemaModel):
+    """Move or resize an object's box (inside the photo). A mask made from the box (GrabCut's
+    or the box's own) is cut again in the new box; a mask a person drew is clipped to it. A
+    pipeline re-run keeps the box."""
+
+    kind: Literal["set_bbox"] = "set_bbox"
+    id: str = Field(min_length=1)
+    bbox: Box2D = Field(description="[x1, y1, x2, y2] in pixels, inside the photo")
+
+
+class SetMask(SchemaModel):
+    """Replace an object's mask with one a person drew (brush, eraser, polygon or refined
+    strokes). It is stored with source "manual" and the object's box becomes the mask's
+    extent. A pipeline re-run keeps it."""
+
+    kind: Literal["set_mask"] = "set_mask"
+    id: str = Field(min_length=1)
+    mask: Mask
+
+
+class RestoreObject(SchemaModel):
+    """Put an object back exactly as it was in revision `from_revision` (class, box, mask and
+    all), with every support it took part in there whose objects still exist: undo of a
+    removal, a class, a box or a mask change. An object that revision did not have is removed
+    (undo of an addition)."""
+
+    kind: Literal["restore_object"] = "restore_object"
+    id: str = Field(min_length=1)
+    from_revision: int = Field(ge=1)
+
+
+ObjectEdit = AddObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject
+
 Edit = Annotated[
-    SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject,
+    SetSupport | RemoveSupport | RestoreSupport | SetLayout | ObjectEdit,
     Field(discriminator="kind"),
 ]
+
+
+class Stroke(SchemaModel):
+    """A brush stroke: a polyline of pixel points painted with a round brush."""
+
+    points: list[Point2] = Field(min_length=1, max_length=5000)
+    radius: float = Field(gt=0.0, le=500.0, description="Brush radius in pixels")
+
+
+class MaskRefineRequest(SchemaModel):
+    """GrabCut in a box, steered by strokes a person painted: pixels under `foreground`
+    strokes are the object, under `background` strokes they are not. Nothing is stored."""
+
+    bbox: Box2D = Field(description="[x1, y1, x2, y2] in pixels, inside the photo")
+    foreground: list[Stroke] = Field(default_factory=list, max_length=200)
+    background: list[Stroke] = Field(default_factory=list, max_length=200)
+
+
+class MaskRefineResult(SchemaModel):
+    mask: Mask = Field(description="Source 'manual': made by a person's strokes")
+    milliseconds: float = Field(description="Time the cut took on the server")
 
 
 class EditRequest(SchemaModel):

@@ -23,6 +23,8 @@ from .api import (
     Job,
     LoginRequest,
     LoginResult,
+    MaskRefineRequest,
+    MaskRefineResult,
     ModelEvent,
     ModelInfo,
     NewUser,
@@ -78,6 +80,8 @@ TOP_LEVEL: dict[str, type[BaseModel]] = {
     "reject_request": RejectRequest,
     "second_annotation_request": SecondAnnotationRequest,
     "dashboard": Dashboard,
+    "mask_refine_request": MaskRefineRequest,
+    "mask_refine_result": MaskRefineResult,
 }
 
 

@@ -93,7 +93,7 @@ class Mask(SchemaModel):
         description="[width, height] of the window"
     )
     rle: list[Annotated[int, Field(ge=0)]]
-    source: Literal["given", "box", "grabcut", "model", "ground_truth"]
+    source: Literal["given", "box", "grabcut", "model", "ground_truth", "manual"]
 
     @model_validator(mode="after")
     def _runs_fill_window(self) -> Mask:
@@ -138,6 +138,12 @@ class SceneObject(SchemaModel):
         default=None,
         description="Where the object came from: boxes given with the photo, the object "
         "detector, or a person; null in scenes stored before sources were recorded",
+    )
+    set_by_person: list[Literal["object", "class", "bbox", "mask"]] = Field(
+        default_factory=list,
+        description="What people set: 'object' when a person added it (drawn, or a detector "
+        "suggestion accepted), and its class, box or mask when a person changed them. A "
+        "pipeline re-run keeps all of these.",
     )
     note: str | None = None
 

@@ -19,6 +19,8 @@ Layout?: Layout
 LoginRequest?: LoginRequest
 LoginResult?: LoginResult
 Mask?: Mask
+MaskRefineRequest?: MaskRefineRequest
+MaskRefineResult?: MaskRefineResult
 MeshRef?: MeshRef
 ModelEvent?: ModelEvent
 ModelInfo?: ModelInfo
@@ -30,6 +32,7 @@ PromoteRequest?: PromoteRequest
 RejectRequest?: RejectRequest
 RemoveObject?: RemoveObject
 RemoveSupport?: RemoveSupport
+RestoreObject?: RestoreObject
 RestoreSupport?: RestoreSupport
 RetrainRequest?: RetrainRequest
 ReviewRequest?: ReviewRequest
@@ -42,9 +45,13 @@ SceneObject?: SceneObject
 SceneSummary?: SceneSummary
 SceneWorkflow?: SceneWorkflow
 SecondAnnotationRequest?: SecondAnnotationRequest
+SetBbox?: SetBbox
+SetClass?: SetClass
 SetLayout?: SetLayout
+SetMask?: SetMask
 SetSupport?: SetSupport
 StageRun?: StageRun
+Stroke?: Stroke
 SubmitRequest?: SubmitRequest
 SupportRelation?: SupportRelation
 UserInfo?: UserInfo
@@ -113,7 +120,7 @@ rle: number[]
  * @maxItems 2
  */
 size: [number, number]
-source: ("given" | "box" | "grabcut" | "model" | "ground_truth")
+source: ("given" | "box" | "grabcut" | "model" | "ground_truth" | "manual")
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -293,7 +300,7 @@ base_revision: number
  * @minItems 1
  * @maxItems 500
  */
-edits: [(SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject), ...((SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject))[]]
+edits: [(SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject), ...((SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject))[]]
 }
 /**
  * Make `parent` the supporter of `child` (replacing any supporter it had).
@@ -370,6 +377,64 @@ unseen_wall_distance: (number | null)
 export interface RemoveObject {
 id: string
 kind: "remove_object"
+}
+/**
+ * Give an object another class (an NYU-40 class or a known alias, stored as for
+ * AddObject). A pipeline re-run keeps it.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SetClass".
+ */
+export interface SetClass {
+class: string
+id: string
+kind: "set_class"
+}
+/**
+ * Move or resize an object's box (inside the photo). A mask made from the box (GrabCut's
+ * or the box's own) is cut again in the new box; a mask a person drew is clipped to it. A
+ * pipeline re-run keeps the box.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SetBbox".
+ */
+export interface SetBbox {
+/**
+ * [x1, y1, x2, y2] in pixels, inside the photo
+ * 
+ * @minItems 4
+ * @maxItems 4
+ */
+bbox: [number, number, number, number]
+id: string
+kind: "set_bbox"
+}
+/**
+ * Replace an object's mask with one a person drew (brush, eraser, polygon or refined
+ * strokes). It is stored with source "manual" and the object's box becomes the mask's
+ * extent. A pipeline re-run keeps it.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SetMask".
+ */
+export interface SetMask {
+id: string
+kind: "set_mask"
+mask: Mask
+}
+/**
+ * Put an object back exactly as it was in revision `from_revision` (class, box, mask and
+ * all), with every support it took part in there whose objects still exist: undo of a
+ * removal, a class, a box or a mask change. An object that revision did not have is removed
+ * (undo of an addition).
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "RestoreObject".
+ */
+export interface RestoreObject {
+from_revision: number
+id: string
+kind: "restore_object"
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -494,6 +559,81 @@ export interface LoginResult {
 expires_at: string
 token: (string | null)
 user: CurrentUser
+}
+/**
+ * GrabCut in a box, steered by strokes a person painted: pixels under `foreground`
+ * strokes are the object, under `background` strokes they are not. Nothing is stored.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "MaskRefineRequest".
+ */
+export interface MaskRefineRequest {
+/**
+ * @maxItems 200
+ */
+background: Stroke[]
+/**
+ * [x1, y1, x2, y2] in pixels, inside the photo
+ * 
+ * @minItems 4
+ * @maxItems 4
+ */
+bbox: [number, number, number, number]
+/**
+ * @maxItems 200
+ */
+foreground: Stroke[]
+}
+/**
+ * A brush stroke: a polyline of pixel points painted with a round brush.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "Stroke".
+ */
+export interface Stroke {
+/**
+ * @minItems 1
+ * @maxItems 5000
+ */
+points: [[number, number], ...([number, number])[]]
+/**
+ * Brush radius in pixels
+ */
+radius: number
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "MaskRefineResult".
+ */
+export interface MaskRefineResult {
+mask: Mask1
+/**
+ * Time the cut took on the server
+ */
+milliseconds: number
+}
+/**
+ * A binary mask inside a window of the image, run-length encoded row by row.
+ * 
+ * `rle` alternates runs of 0 and 1 pixels, starting with a (possibly empty) run of 0.
+ */
+export interface Mask1 {
+/**
+ * [x, y] of the window's top-left pixel
+ * 
+ * @minItems 2
+ * @maxItems 2
+ */
+origin: [number, number]
+rle: number[]
+/**
+ * [width, height] of the window
+ * 
+ * @minItems 2
+ * @maxItems 2
+ */
+size: [number, number]
+source: ("given" | "box" | "grabcut" | "model" | "ground_truth" | "manual")
 }
 /**
  * Where an object's mesh comes from: the built-in library (class + seed) or a file.
@@ -669,7 +809,7 @@ revision: number
 export interface RevisionInfo {
 author: string
 created_at: string
-edits: ((SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject)[] | null)
+edits: ((SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject)[] | null)
 kind: ("import" | "pipeline" | "edit" | "reset")
 number: number
 summary: string
@@ -725,6 +865,10 @@ note: (string | null)
  * Detection confidence
  */
 score: (number | null)
+/**
+ * What people set: 'object' when a person added it (drawn, or a detector suggestion accepted), and its class, box or mask when a person changed them. A pipeline re-run keeps all of these.
+ */
+set_by_person: ("object" | "class" | "bbox" | "mask")[]
 /**
  * Where the object came from: boxes given with the photo, the object detector, or a person; null in scenes stored before sources were recorded
  */
