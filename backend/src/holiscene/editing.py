@@ -1,4 +1,5 @@
-"""Applying the app's edits to a scene, and keeping people's supports through pipeline re-runs."""
+"""Applying the app's edits to a scene, and keeping people's supports through pipeline re-runs
+(their objects are kept by object_edit.keep_people_objects, inside the run)."""
 
 from __future__ import annotations
 
@@ -12,21 +13,35 @@ from holiscene_schema import (
     STRUCTURAL_SUPPORTERS,
     AddObject,
     Edit,
+    ObjectEdit,
     RemoveObject,
     RemoveSupport,
+    RestoreObject,
     RestoreSupport,
     Scene,
     SceneObject,
+    SetBbox,
+    SetClass,
     SetLayout,
+    SetMask,
     SetSupport,
     SupportRelation,
     support_graph_problems,
 )
 
 from .layout_edit import LayoutEditError, apply_set_layout, describe_set_layout
-from .object_edit import ObjectEditError, new_object, remove_object
+from .object_edit import (
+    ObjectEditError,
+    new_object,
+    remove_object,
+    restore_object,
+    with_bbox,
+    with_class,
+    with_mask,
+)
 
 SupportEdit = SetSupport | RemoveSupport | RestoreSupport
+OBJECT_EDITS = (AddObject, RemoveObject, SetClass, SetBbox, SetMask, RestoreObject)
 
 
 class InvalidEditError(ValueError):
@@ -34,13 +49,15 @@ class InvalidEditError(ValueError):
 
 
 def restore_revisions(edits: Sequence[Edit]) -> set[int]:
-    """The earlier revisions the edits restore supports from."""
-    return {e.from_revision for e in edits if isinstance(e, RestoreSupport)}
+    """The earlier revisions the edits restore supports or objects from."""
+    return {e.from_revision for e in edits if isinstance(e, RestoreSupport | RestoreObject)}
 
 
 def needs_photo(edits: Sequence[Edit]) -> bool:
-    """Whether applying the edits needs the scene's photo (to cut an added object's mask)."""
-    return any(isinstance(e, AddObject) and e.mask is None for e in edits)
+    """Whether applying the edits may need the scene's photo (to cut a mask in a box)."""
+    return any(
+        (isinstance(e, AddObject) and e.mask is None) or isinstance(e, SetBbox) for e in edits
+    )
 
 
 @dataclass
@@ -76,14 +93,14 @@ def apply_edits(
 ) -> Scene:
     """The scene after the edits, in order; raises InvalidEditError and changes nothing if any
     edit is invalid or the result is not a valid support forest. `earlier` holds the revisions
-    named by RestoreSupport edits (restore_revisions); `photo`, the scene's RGB photo, is
-    needed by AddObject edits without a mask (needs_photo)."""
+    named by RestoreSupport and RestoreObject edits (restore_revisions); `photo`, the scene's
+    RGB photo, is needed to cut masks in boxes (needs_photo)."""
     draft = _Draft.of(scene)
     for edit in edits:
         if isinstance(edit, SetLayout):
             draft.scene = _with_layout(draft.scene, edit)
-        elif isinstance(edit, AddObject | RemoveObject):
-            _apply_object_edit(draft, edit, photo)
+        elif isinstance(edit, OBJECT_EDITS):
+            _apply_object_edit(draft, edit, photo, earlier or {})
         else:
             _apply_support_edit(draft, edit, author, now, earlier or {})
     return draft.result()
@@ -97,16 +114,41 @@ def _with_layout(scene: Scene, edit: SetLayout) -> Scene:
 
 
 def _apply_object_edit(
-    draft: _Draft, edit: AddObject | RemoveObject, photo: np.ndarray | None
+    draft: _Draft, edit: ObjectEdit, photo: np.ndarray | None, earlier: Mapping[int, Scene]
 ) -> None:
+    image = draft.scene.image
     try:
         if isinstance(edit, AddObject):
             taken = set(draft.objects)
-            draft.objects[edit.id] = new_object(edit, draft.scene.image, taken, photo)
-        else:
+            draft.objects[edit.id] = new_object(edit, image, taken, photo)
+        elif isinstance(edit, RemoveObject):
             remove_object(edit.id, draft.objects, draft.supports)
+        elif isinstance(edit, RestoreObject):
+            scene = earlier.get(edit.from_revision)
+            if scene is None:
+                raise ObjectEditError(f"no revision {edit.from_revision} to restore from")
+            draft.objects = restore_object(edit.id, scene, draft.objects, draft.supports)
+        else:
+            obj = draft.objects.get(edit.id)
+            if obj is None:
+                raise ObjectEditError(f"no object {edit.id!r} in this scene")
+            if isinstance(edit, SetClass):
+                changed = with_class(obj, edit.cls)
+            elif isinstance(edit, SetBbox):
+                changed = with_bbox(obj, edit.bbox, image, photo)
+            else:
+                changed = with_mask(obj, edit.mask, image)
+            draft.objects[edit.id] = changed
     except ObjectEditError as error:
         raise InvalidEditError(str(error)) from error
+    _check_structure_unsupported(draft, edit.id)
+
+
+def _check_structure_unsupported(draft: _Draft, object_id: str) -> None:
+    """An object that became structure (a wall, floor or ceiling class) has no supporter."""
+    obj = draft.objects.get(object_id)
+    if obj is not None and obj.cls in STRUCTURAL_CLASSES and object_id in draft.supports:
+        del draft.supports[object_id]
 
 
 def _apply_support_edit(
@@ -184,6 +226,14 @@ def describe_edits(edits: Sequence[Edit]) -> str:
             parts.append(f"{edit.id} added ({edit.cls}, {edit.source})")
         elif isinstance(edit, RemoveObject):
             parts.append(f"{edit.id} removed")
+        elif isinstance(edit, SetClass):
+            parts.append(f"{edit.id} is a {edit.cls}")
+        elif isinstance(edit, SetBbox):
+            parts.append(f"{edit.id} box set")
+        elif isinstance(edit, SetMask):
+            parts.append(f"{edit.id} mask drawn")
+        elif isinstance(edit, RestoreObject):
+            parts.append(f"{edit.id} as in revision {edit.from_revision}")
         else:
             parts.append(f"{edit.child} support removed")
     return "; ".join(parts)

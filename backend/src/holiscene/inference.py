@@ -31,6 +31,7 @@ def infer_scene(
     name: str,
     image_file: str,
     pinned_supports: Sequence[SupportRelation] = (),
+    pinned_objects: Sequence[SceneObject] = (),
     stages: Sequence[str] = DEFAULT_STAGES,
     models_dir: Path | None = None,
     support_model_dir: Path | None = None,
@@ -42,6 +43,7 @@ def infer_scene(
     (`<class>/*.obj|glb|ply`), offered to `shapes_fit` beside the built-in library;
     `support_model_dir` is the Relation Network to use (default: the committed model),
     `detector_model_dir` the object detector (default: the committed detector);
+    `pinned_supports` and `pinned_objects` are people's, kept by the stages;
     `stage_options` adds options by stage name (e.g. the stored scene a placement job
     starts from)."""
     options: dict[str, dict[str, Any]] = {k: dict(v) for k, v in (stage_options or {}).items()}
@@ -58,6 +60,7 @@ def infer_scene(
         given_K=inputs.K,
         detections=inputs.detections,
         pinned_supports=list(pinned_supports),
+        pinned_objects=list(pinned_objects),
     )
     runs = pipeline.run(ctx, progress)
     scene = Scene(

@@ -7,7 +7,7 @@ from typing import Literal
 import numpy as np
 from holiscene_schema import Mask
 
-MaskSource = Literal["given", "box", "grabcut", "model", "ground_truth"]
+MaskSource = Literal["given", "box", "grabcut", "model", "ground_truth", "manual"]
 
 
 def encode_mask(mask: np.ndarray, source: MaskSource) -> Mask | None:

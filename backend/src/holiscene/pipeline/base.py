@@ -48,7 +48,8 @@ class ObjectMask:
 class SceneContext:
     """Everything a pipeline knows about one photo; stages fill the slots they provide.
 
-    Input slots (always present, possibly empty): image, given_K, detections, pinned_supports.
+    Input slots (always present, possibly empty): image, given_K, detections, pinned_supports,
+    pinned_objects.
     """
 
     image: np.ndarray  # RGB uint8, (H, W, 3)
@@ -56,6 +57,9 @@ class SceneContext:
     detections: list[Detection] | None = None
     # Supports set by people; stages that infer supports must keep them as they are.
     pinned_supports: list[SupportRelation] = field(default_factory=list)
+    # Objects people added or changed (SceneObject.set_by_person); the stages that find
+    # objects keep them (pipeline/people.py), the masks stage keeps their drawn masks.
+    pinned_objects: list[SceneObject] = field(default_factory=list)
 
     objects: list[SceneObject] | None = None
     intrinsics: tuple[FloatArray, str] | None = None  # K and its source
@@ -84,7 +88,9 @@ class SceneContext:
         return int(self.image.shape[1])
 
 
-INPUT_SLOTS: frozenset[str] = frozenset({"image", "given_K", "detections", "pinned_supports"})
+INPUT_SLOTS: frozenset[str] = frozenset(
+    {"image", "given_K", "detections", "pinned_supports", "pinned_objects"}
+)
 SLOTS: frozenset[str] = frozenset(f.name for f in fields(SceneContext)) - {
     "notes",
     "reports",

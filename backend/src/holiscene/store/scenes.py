@@ -37,6 +37,7 @@ from ..editing import (
     restore_revisions,
 )
 from ..inputs import InputFiles, load_photo
+from ..pipeline.people import keep_people_objects, people_objects_changed_since
 from ..workflow import scene_uncertainty
 from .clock import as_utc, utcnow
 from .files import SceneFiles
@@ -251,7 +252,7 @@ class SceneStore:
         attempts: int = 5,
     ) -> int:
         """Store a whole pipeline run as a new revision on top of whatever is current, keeping
-        every manual support people set meanwhile. Returns the new revision number.
+        every manual support and every object people set meanwhile. Returns the new revision number.
 
         `base_revision`: the revision the run started from. A room layout set by hand after it
         cannot be merged (the run estimated its own): SceneChangedError, nothing written."""
@@ -259,7 +260,12 @@ class SceneStore:
             current = self.document(scene_id)
             if base_revision is not None and self._layout_set_since(scene_id, base_revision):
                 raise SceneChangedError(base_revision, current.revision)
-            merged = keep_manual_supports(result, current.scene)
+            # People's objects and supports set while the run worked are kept too.
+            changed = people_objects_changed_since(result.objects, current.scene.objects)
+            objects = keep_people_objects(result.objects, changed)
+            merged = keep_manual_supports(
+                result.model_copy(update={"objects": objects}), current.scene
+            )
             try:
                 return self._commit_result(scene_id, current.revision, merged, glb)
             except RevisionConflictError:

@@ -5,6 +5,7 @@ from __future__ import annotations
 from holiscene_schema import SceneObject
 
 from ..base import Detection, SceneContext, Stage
+from ..people import keep_people_objects
 from ..registry import register_stage
 
 
@@ -16,12 +17,14 @@ class ObjectsFromDetections(Stage):
 
     def run(self, ctx: SceneContext) -> None:
         if ctx.detections is None:
-            ctx.objects = []
+            ctx.objects = keep_people_objects([], ctx.pinned_objects)
             ctx.notes[self.name] = (
                 "no detections.json was given and this pipeline has no object detector"
             )
             return
-        ctx.objects = objects_from_detections(ctx.detections)
+        ctx.objects = keep_people_objects(
+            objects_from_detections(ctx.detections), ctx.pinned_objects
+        )
 
 
 def objects_from_detections(detections: list[Detection]) -> list[SceneObject]:

@@ -8,6 +8,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 from holiscene_schema import SceneObject
 
+from ...rle import decode_mask
 from ...segmentation import grabcut_in_box
 from ..base import ObjectMask, SceneContext, Stage, required
 from ..registry import register_stage
@@ -24,14 +25,20 @@ class MasksGrabCut(Stage):
     provides = frozenset({"masks"})
 
     def run(self, ctx: SceneContext) -> None:
-        objects = occlusion_order(required(ctx.objects, "objects"))
+        drawn = people_masks(ctx)
+        objects = occlusion_order(
+            [o for o in required(ctx.objects, "objects") if o.id not in drawn]
+        )
         # Each box is cut on its own, so the cuts run in parallel (OpenCV releases the GIL).
         # Fixing front masks as background for the boxes behind was tried: it carried the
         # front masks' errors backwards and scored worse on the synthetic scenes.
         with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
             cuts = list(pool.map(lambda obj: _cut(ctx.image, obj), objects))
+        # Masks people drew are kept as they are and claim their pixels first.
+        masks: dict[str, ObjectMask] = dict(drawn)
         taken = np.zeros((ctx.height, ctx.width), dtype=bool)
-        masks: dict[str, ObjectMask] = {}
+        for mask in drawn.values():
+            taken |= mask.pixels
         for obj, cut in zip(objects, cuts, strict=True):
             box = box_pixels(obj.bbox, ctx.width, ctx.height)
             free = box & ~taken  # front objects have claimed the rest
@@ -41,7 +48,7 @@ class MasksGrabCut(Stage):
                 pixels = free if free.any() else box
             masks[obj.id] = ObjectMask(pixels, source="grabcut")
             taken |= pixels
-        ctx.masks = masks
+        ctx.masks = {o.id: masks[o.id] for o in required(ctx.objects, "objects")}
         uncut = {obj.id for obj, cut in zip(objects, cuts, strict=True) if cut is None}
         if uncut:
             ids = ", ".join(o.id for o in required(ctx.objects, "objects") if o.id in uncut)
@@ -57,3 +64,12 @@ def _cut(image: np.ndarray, obj: SceneObject) -> np.ndarray | None:
     if min(x2 - x1, y2 - y1) < MIN_SIDE:
         return None
     return grabcut_in_box(image, obj.bbox)
+
+
+def people_masks(ctx: SceneContext) -> dict[str, ObjectMask]:
+    """The masks people drew (a `set_by_person` mask) on the objects of this run, by id."""
+    return {
+        o.id: ObjectMask(decode_mask(o.mask, ctx.width, ctx.height), source=o.mask.source)
+        for o in ctx.objects or []
+        if o.mask is not None and "mask" in o.set_by_person
+    }
