@@ -423,3 +423,19 @@ def test_a_pipeline_rerun_keeps_what_people_set_on_objects(client: TestClient, t
     # Placement ran on the kept objects too: a 3D box, or a note saying why there is none.
     unplaced = [o["id"] for o in rerun["scene"]["objects"] if not (o["box_3d"] or o["note"])]
     assert not unplaced, unplaced
+
+
+def test_an_object_a_person_removed_stays_out_after_a_rerun_until_undone(
+    client: TestClient, t3d5: Path
+) -> None:
+    doc = _imported(client, t3d5, run_pipeline=True)
+    removed = _edit(client, doc, {"kind": "remove_object", "id": "o2"}).json()
+    assert [r["id"] for r in removed["scene"]["removed_by_person"]] == ["o2"]
+    job = client.post(f"/api/scenes/{doc['scene_id']}/pipeline-jobs").json()
+    assert wait_for_job(client, job["id"])["status"] == "succeeded"
+    rerun = client.get(f"/api/scenes/{doc['scene_id']}").json()
+    assert _object(rerun, "o2") is None
+    assert len(rerun["scene"]["objects"]) == len(doc["scene"]["objects"]) - 1
+    undo = {"kind": "restore_object", "id": "o2", "from_revision": doc["revision"]}
+    restored = _edit(client, rerun, undo).json()
+    assert _object(restored, "o2") is not None and restored["scene"]["removed_by_person"] == []

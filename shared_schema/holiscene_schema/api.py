@@ -170,6 +170,15 @@ class MaskRefineResult(SchemaModel):
     milliseconds: float = Field(description="Time the cut took on the server")
 
 
+class SceneArchiveRequest(SchemaModel):
+    """Scenes to download as one zip: per scene its scene.json, coco.json, photo and
+    scene.glb (when it has one)."""
+
+    scene_ids: list[Annotated[str, Field(min_length=1, max_length=64)]] = Field(
+        min_length=1, max_length=500
+    )
+
+
 class EditRequest(SchemaModel):
     base_revision: int = Field(ge=1, description="The revision the edits were made on")
     author: str = Field(min_length=1, max_length=64)

@@ -36,6 +36,7 @@ from .api import (
     ReviewRequest,
     RevisionInfo,
     RoleChange,
+    SceneArchiveRequest,
     SceneDocument,
     SceneSummary,
     SceneWorkflow,
@@ -82,6 +83,7 @@ TOP_LEVEL: dict[str, type[BaseModel]] = {
     "dashboard": Dashboard,
     "mask_refine_request": MaskRefineRequest,
     "mask_refine_result": MaskRefineResult,
+    "scene_archive_request": SceneArchiveRequest,
 }
 
 

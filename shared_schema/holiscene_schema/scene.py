@@ -169,6 +169,15 @@ class StageRun(SchemaModel):
     )
 
 
+class RemovedObject(SchemaModel):
+    """An object a person removed: a pipeline re-run does not bring it back (an object it
+    finds overlapping this box is taken as the same one)."""
+
+    id: str
+    cls: Nyu40Class = Field(alias="class")
+    bbox: Box2D
+
+
 class Scene(SchemaModel):
     schema_version: Literal[1] = 1
     name: str
@@ -178,6 +187,9 @@ class Scene(SchemaModel):
     depth: DepthRef | None = Field(default=None, description="Depth along the optical axis")
     objects: list[SceneObject] = Field(default_factory=list)
     supports: list[SupportRelation] = Field(default_factory=list)
+    removed_by_person: list[RemovedObject] = Field(
+        default_factory=list, description="Objects people removed; a re-run leaves them out"
+    )
     stages: list[StageRun] = Field(
         default_factory=list, description="Pipeline stages that produced this scene"
     )

@@ -32,6 +32,7 @@ PromoteRequest?: PromoteRequest
 RejectRequest?: RejectRequest
 RemoveObject?: RemoveObject
 RemoveSupport?: RemoveSupport
+RemovedObject?: RemovedObject
 RestoreObject?: RestoreObject
 RestoreSupport?: RestoreSupport
 RetrainRequest?: RetrainRequest
@@ -40,6 +41,7 @@ RevisionInfo?: RevisionInfo
 RoleChange?: RoleChange
 Scene?: Scene
 SceneAgreement?: SceneAgreement
+SceneArchiveRequest?: SceneArchiveRequest
 SceneDocument?: SceneDocument
 SceneObject?: SceneObject
 SceneSummary?: SceneSummary
@@ -777,6 +779,24 @@ comment: string
 revision: number
 }
 /**
+ * An object a person removed: a pipeline re-run does not bring it back (an object it
+ * finds overlapping this box is taken as the same one).
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "RemovedObject".
+ */
+export interface RemovedObject {
+/**
+ * [x1, y1, x2, y2]
+ * 
+ * @minItems 4
+ * @maxItems 4
+ */
+bbox: [number, number, number, number]
+class: ("wall" | "floor" | "cabinet" | "bed" | "chair" | "sofa" | "table" | "door" | "window" | "bookshelf" | "picture" | "counter" | "blinds" | "desk" | "shelves" | "curtain" | "dresser" | "pillow" | "mirror" | "floor_mat" | "clothes" | "ceiling" | "books" | "refrigerator" | "television" | "paper" | "towel" | "shower_curtain" | "box" | "whiteboard" | "person" | "night_stand" | "toilet" | "sink" | "lamp" | "bathtub" | "bag" | "otherstructure" | "otherfurniture" | "otherprop")
+id: string
+}
+/**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "RetrainRequest".
  */
@@ -835,6 +855,10 @@ image: ImageInfo
 layout: Layout
 name: string
 objects: SceneObject[]
+/**
+ * Objects people removed; a re-run leaves them out
+ */
+removed_by_person: RemovedObject[]
 schema_version: 1
 /**
  * Pipeline stages that produced this scene
@@ -906,6 +930,20 @@ parent: string
 source: ("auto" | "manual")
 time: (string | null)
 type: ("below" | "behind")
+}
+/**
+ * Scenes to download as one zip: per scene its scene.json, coco.json, photo and
+ * scene.glb (when it has one).
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "SceneArchiveRequest".
+ */
+export interface SceneArchiveRequest {
+/**
+ * @minItems 1
+ * @maxItems 500
+ */
+scene_ids: [string, ...(string)[]]
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema

@@ -14,6 +14,7 @@ from holiscene_schema import (
     AddObject,
     Edit,
     ObjectEdit,
+    RemovedObject,
     RemoveObject,
     RemoveSupport,
     RestoreObject,
@@ -67,10 +68,13 @@ class _Draft:
     scene: Scene
     objects: dict[str, SceneObject]
     supports: dict[str, SupportRelation]
+    removed: list[RemovedObject]
 
     @classmethod
     def of(cls, scene: Scene) -> _Draft:
-        return cls(scene, {o.id: o for o in scene.objects}, {s.child: s for s in scene.supports})
+        objects = {o.id: o for o in scene.objects}
+        supports = {s.child: s for s in scene.supports}
+        return cls(scene, objects, supports, list(scene.removed_by_person))
 
     def result(self) -> Scene:
         """The edited scene; InvalidEditError when its supports are not a valid forest."""
@@ -80,7 +84,8 @@ class _Draft:
         problems = support_graph_problems([o.id for o in objects], edges)
         if problems:
             raise InvalidEditError("; ".join(problems))
-        return self.scene.model_copy(update={"objects": objects, "supports": ordered})
+        update = {"objects": objects, "supports": ordered, "removed_by_person": self.removed}
+        return self.scene.model_copy(update=update)
 
 
 def apply_edits(
@@ -122,12 +127,18 @@ def _apply_object_edit(
             taken = set(draft.objects)
             draft.objects[edit.id] = new_object(edit, image, taken, photo)
         elif isinstance(edit, RemoveObject):
+            gone = draft.objects.get(edit.id)
             remove_object(edit.id, draft.objects, draft.supports)
+            if gone is not None:  # remembered, so a pipeline re-run leaves it out
+                draft.removed.append(RemovedObject(id=gone.id, cls=gone.cls, bbox=gone.bbox))
         elif isinstance(edit, RestoreObject):
             scene = earlier.get(edit.from_revision)
             if scene is None:
                 raise ObjectEditError(f"no revision {edit.from_revision} to restore from")
             draft.objects = restore_object(edit.id, scene, draft.objects, draft.supports)
+            draft.removed = [r for r in draft.removed if r.id != edit.id] + [
+                r for r in scene.removed_by_person if r.id == edit.id
+            ]
         else:
             obj = draft.objects.get(edit.id)
             if obj is None:

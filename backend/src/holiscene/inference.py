@@ -8,7 +8,14 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from holiscene_schema import ImageInfo, Layout, Scene, SceneObject, SupportRelation
+from holiscene_schema import (
+    ImageInfo,
+    Layout,
+    RemovedObject,
+    Scene,
+    SceneObject,
+    SupportRelation,
+)
 
 from .geometry.boxes import box_corners
 from .inputs import InputFiles
@@ -32,6 +39,7 @@ def infer_scene(
     image_file: str,
     pinned_supports: Sequence[SupportRelation] = (),
     pinned_objects: Sequence[SceneObject] = (),
+    removed_objects: Sequence[RemovedObject] = (),
     stages: Sequence[str] = DEFAULT_STAGES,
     models_dir: Path | None = None,
     support_model_dir: Path | None = None,
@@ -43,7 +51,8 @@ def infer_scene(
     (`<class>/*.obj|glb|ply`), offered to `shapes_fit` beside the built-in library;
     `support_model_dir` is the Relation Network to use (default: the committed model),
     `detector_model_dir` the object detector (default: the committed detector);
-    `pinned_supports` and `pinned_objects` are people's, kept by the stages;
+    `pinned_supports`, `pinned_objects` and `removed_objects` are people's, kept by the
+    stages;
     `stage_options` adds options by stage name (e.g. the stored scene a placement job
     starts from)."""
     options: dict[str, dict[str, Any]] = {k: dict(v) for k, v in (stage_options or {}).items()}
@@ -61,6 +70,7 @@ def infer_scene(
         detections=inputs.detections,
         pinned_supports=list(pinned_supports),
         pinned_objects=list(pinned_objects),
+        removed_objects=list(removed_objects),
     )
     runs = pipeline.run(ctx, progress)
     scene = Scene(
@@ -70,6 +80,7 @@ def infer_scene(
         layout=ctx.layout or Layout(note=LAYOUT_NOT_ESTIMATED),
         objects=[_finished_object(ctx, obj) for obj in ctx.objects or []],
         supports=ctx.supports or [],
+        removed_by_person=ctx.removed_objects,
         stages=runs,
     )
     return InferenceResult(scene=scene, glb=ctx.scene_glb)

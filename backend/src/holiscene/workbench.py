@@ -269,6 +269,7 @@ class Workbench:
                 image_file=current.scene.image.file,
                 pinned_supports=[s for s in current.scene.supports if s.source == "manual"],
                 pinned_objects=[o for o in current.scene.objects if o.set_by_person],
+                removed_objects=current.scene.removed_by_person,
                 stages=stages,
                 models_dir=self.settings.models_dir,
                 # The promoted Relation Network and detector (None: the committed defaults).

@@ -13,7 +13,15 @@ from typing import Any, ClassVar, TypeVar
 
 import numpy as np
 import trimesh
-from holiscene_schema import Box3D, Camera, Layout, MeshRef, SceneObject, SupportRelation
+from holiscene_schema import (
+    Box3D,
+    Camera,
+    Layout,
+    MeshRef,
+    RemovedObject,
+    SceneObject,
+    SupportRelation,
+)
 
 from ..geometry.camera import FloatArray
 from ..rle import MaskSource
@@ -49,7 +57,7 @@ class SceneContext:
     """Everything a pipeline knows about one photo; stages fill the slots they provide.
 
     Input slots (always present, possibly empty): image, given_K, detections, pinned_supports,
-    pinned_objects.
+    pinned_objects, removed_objects.
     """
 
     image: np.ndarray  # RGB uint8, (H, W, 3)
@@ -60,6 +68,7 @@ class SceneContext:
     # Objects people added or changed (SceneObject.set_by_person); the stages that find
     # objects keep them (pipeline/people.py), the masks stage keeps their drawn masks.
     pinned_objects: list[SceneObject] = field(default_factory=list)
+    removed_objects: list[RemovedObject] = field(default_factory=list)
 
     objects: list[SceneObject] | None = None
     intrinsics: tuple[FloatArray, str] | None = None  # K and its source
@@ -89,7 +98,7 @@ class SceneContext:
 
 
 INPUT_SLOTS: frozenset[str] = frozenset(
-    {"image", "given_K", "detections", "pinned_supports", "pinned_objects"}
+    {"image", "given_K", "detections", "pinned_supports", "pinned_objects", "removed_objects"}
 )
 SLOTS: frozenset[str] = frozenset(f.name for f in fields(SceneContext)) - {
     "notes",

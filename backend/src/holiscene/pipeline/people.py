@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from holiscene_schema import SceneObject
+from holiscene_schema import RemovedObject, SceneObject
 
 from ..evaluation.box_iou import iou_2d
 
@@ -16,20 +16,25 @@ SAME_OBJECT_IOU = 0.5
 
 
 def keep_people_objects(
-    found: Sequence[SceneObject], kept: Sequence[SceneObject]
+    found: Sequence[SceneObject],
+    kept: Sequence[SceneObject],
+    removed: Sequence[RemovedObject] = (),
 ) -> list[SceneObject]:
     """A pipeline run's objects with the objects people set (`kept`: any `set_by_person`) kept
     as they left them. A run's object is dropped as the same object found again when it
     overlaps a kept one (IoU at least SAME_OBJECT_IOU), or when it is a given box with a kept
     object's id (given ids are stable; a person may have moved that box far). A run's object
-    whose id a kept object holds gets a fresh one."""
+    whose id a kept object holds gets a fresh one. The objects people `removed` stay out the
+    same way (a given box by its id, any other by overlap)."""
     people = [_without_placement(o) for o in kept if o.set_by_person]
     people_ids = {o.id for o in people}
 
+    removed_ids = {r.id for r in removed}
+
     def found_again(obj: SceneObject) -> bool:
-        if obj.source == "given" and obj.id in people_ids:
+        if obj.source == "given" and obj.id in people_ids | removed_ids:
             return True
-        return any(iou_2d(obj.bbox, p.bbox) >= SAME_OBJECT_IOU for p in people)
+        return any(iou_2d(obj.bbox, p.bbox) >= SAME_OBJECT_IOU for p in [*people, *removed])
 
     by_id = {o.id: o for o in people}
     taken = people_ids | {o.id for o in found}

@@ -262,10 +262,10 @@ class SceneStore:
                 raise SceneChangedError(base_revision, current.revision)
             # People's objects and supports set while the run worked are kept too.
             changed = people_objects_changed_since(result.objects, current.scene.objects)
-            objects = keep_people_objects(result.objects, changed)
-            merged = keep_manual_supports(
-                result.model_copy(update={"objects": objects}), current.scene
-            )
+            removed = current.scene.removed_by_person
+            objects = keep_people_objects(result.objects, changed, removed)
+            update = {"objects": objects, "removed_by_person": removed}
+            merged = keep_manual_supports(result.model_copy(update=update), current.scene)
             try:
                 return self._commit_result(scene_id, current.revision, merged, glb)
             except RevisionConflictError:

@@ -17,13 +17,13 @@ class ObjectsFromDetections(Stage):
 
     def run(self, ctx: SceneContext) -> None:
         if ctx.detections is None:
-            ctx.objects = keep_people_objects([], ctx.pinned_objects)
+            ctx.objects = keep_people_objects([], ctx.pinned_objects, ctx.removed_objects)
             ctx.notes[self.name] = (
                 "no detections.json was given and this pipeline has no object detector"
             )
             return
         ctx.objects = keep_people_objects(
-            objects_from_detections(ctx.detections), ctx.pinned_objects
+            objects_from_detections(ctx.detections), ctx.pinned_objects, ctx.removed_objects
         )
 
 

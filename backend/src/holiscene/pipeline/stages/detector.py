@@ -53,7 +53,7 @@ class ObjectsFromDetector(Stage):
     def run(self, ctx: SceneContext) -> None:
         given = objects_from_detections(ctx.detections or [])
         if ctx.detections is not None and not self.add_missing:
-            ctx.objects = keep_people_objects(given, ctx.pinned_objects)
+            ctx.objects = keep_people_objects(given, ctx.pinned_objects, ctx.removed_objects)
             return
         found = self.detector.detect(ctx.image, self.score_threshold)
         if given:
@@ -69,7 +69,7 @@ class ObjectsFromDetector(Stage):
             )
             for index, box in enumerate(found)
         ]
-        ctx.objects = keep_people_objects(given + added, ctx.pinned_objects)
+        ctx.objects = keep_people_objects(given + added, ctx.pinned_objects, ctx.removed_objects)
         if not ctx.objects:
             ctx.notes[self.name] = (
                 f"the detector found no objects (score at least {self.score_threshold:g}) "
