@@ -30,11 +30,12 @@ def keep_people_objects(
     people_ids = {o.id for o in people}
 
     removed_ids = {r.id for r in removed}
+    taken_boxes = [o.bbox for o in people] + [r.bbox for r in removed]
 
     def found_again(obj: SceneObject) -> bool:
         if obj.source == "given" and obj.id in people_ids | removed_ids:
             return True
-        return any(iou_2d(obj.bbox, p.bbox) >= SAME_OBJECT_IOU for p in [*people, *removed])
+        return any(iou_2d(obj.bbox, box) >= SAME_OBJECT_IOU for box in taken_boxes)
 
     by_id = {o.id: o for o in people}
     taken = people_ids | {o.id for o in found}
