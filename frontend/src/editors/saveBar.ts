@@ -1,12 +1,15 @@
-// Saving: status, Undo / Redo, Save / Discard, the list of unsaved edits, edits a previous
+// Saving: status, Undo / Redo (of the last action: an unsaved support or layout edit, or a
+// saved object action, see state/undoOrder.ts), Save / Discard, the list of unsaved edits, edits a previous
 // visit left unsaved (restore or discard), and the conflict message with its merge and reload
 // actions. Edits are autosaved (state/autosave.ts) and kept in localStorage until the server
 // has them, so leaving the page needs no warning: nothing is lost.
 import { el } from "../dom";
 import { registerShortcut } from "../shortcuts";
 import { getAuthor } from "../state/author";
+import type { ObjectEditor } from "../state/objectEditor";
 import { plural, type SaveState, type SceneSession } from "../state/sceneSession";
 import { describeEdit } from "../state/supportGraph";
+import { latestRedo, latestUndo } from "../state/undoOrder";
 
 /** The room layout's line in the lists of unsaved changes. */
 const LAYOUT_CHANGE = "room layout changed (corners or camera height)";
@@ -43,8 +46,15 @@ function conflictText(state: Extract<SaveState, { kind: "conflict" }>, pending: 
   );
 }
 
-export function mountSaveBar(container: HTMLElement, session: SceneSession): () => void {
+export function mountSaveBar(
+  container: HTMLElement,
+  session: SceneSession,
+  objects: ObjectEditor | null = null,
+): () => void {
   const author = () => getAuthor();
+  const histories = objects ? [session, objects] : [session];
+  const undoLast = () => void latestUndo(histories)?.undo();
+  const redoLast = () => void latestRedo(histories)?.redo();
   const status = el("span", {
     className: "save-status",
     testid: "save-status",
@@ -54,13 +64,13 @@ export function mountSaveBar(container: HTMLElement, session: SceneSession): () 
     text: "Undo",
     testid: "undo-button",
     attrs: { type: "button" },
-    on: { click: () => session.undo() },
+    on: { click: undoLast },
   });
   const redo = el("button", {
     text: "Redo",
     testid: "redo-button",
     attrs: { type: "button" },
-    on: { click: () => session.redo() },
+    on: { click: redoLast },
   });
   const save = el("button", {
     className: "primary",
@@ -167,12 +177,12 @@ export function mountSaveBar(container: HTMLElement, session: SceneSession): () 
     const busy = state.kind === "saving";
     save.disabled = !editable || busy || !session.savable || state.kind === "conflict";
     discard.disabled = !editable || busy || unsaved === 0;
-    undo.disabled = !editable || session.undoLabel === null;
-    redo.disabled = !editable || session.redoLabel === null;
-    undo.title = session.undoLabel ? `Undo: ${session.undoLabel} (Ctrl+Z)` : "Nothing to undo";
-    redo.title = session.redoLabel
-      ? `Redo: ${session.redoLabel} (Ctrl+Shift+Z)`
-      : "Nothing to redo";
+    const undoLabel = latestUndo(histories)?.undoLabel ?? null;
+    const redoLabel = latestRedo(histories)?.redoLabel ?? null;
+    undo.disabled = !editable || undoLabel === null;
+    redo.disabled = !editable || redoLabel === null;
+    undo.title = undoLabel ? `Undo: ${undoLabel} (Ctrl+Z)` : "Nothing to undo";
+    redo.title = redoLabel ? `Redo: ${redoLabel} (Ctrl+Shift+Z)` : "Nothing to redo";
     conflict.hidden = state.kind !== "conflict";
     if (state.kind === "conflict") {
       conflictMessage.textContent = conflictText(state, unsaved);
@@ -214,17 +224,17 @@ export function mountSaveBar(container: HTMLElement, session: SceneSession): () 
   const removers = [
     registerShortcut({
       keys: ["Ctrl+Z"],
-      description: "Undo the last edit (a support or a room corner)",
+      description: "Undo the last edit (a support, a room corner or an object)",
       scope,
       enabled: editable,
-      run: () => session.undo(),
+      run: undoLast,
     }),
     registerShortcut({
       keys: ["Ctrl+Shift+Z", "Ctrl+Y"],
       description: "Redo",
       scope,
       enabled: editable,
-      run: () => session.redo(),
+      run: redoLast,
     }),
     registerShortcut({
       keys: "Ctrl+S",
@@ -261,8 +271,10 @@ export function mountSaveBar(container: HTMLElement, session: SceneSession): () 
   const unsubscribe = session.subscribe((change) => {
     if (change !== "hover" && change !== "select" && change !== "suggestions") update();
   });
+  const unsubscribeObjects = objects?.subscribe(update);
   return () => {
     unsubscribe();
+    unsubscribeObjects?.();
     for (const remove of removers) remove();
   };
 }

@@ -1,5 +1,7 @@
 // Undo and redo: a list of actions, each the states of the things it changed before and after
 // (one object's supporter, ...). The session applies the states; this only keeps the order.
+// Every move of an action (done, undone, redone) takes a stamp from one counter shared by all
+// histories, so the page can tell which of several histories acted last (state/undoOrder.ts).
 
 export interface HistoryChange<S> {
   key: string;
@@ -14,14 +16,19 @@ export interface HistoryEntry<S> {
 
 const LIMIT = 500;
 
+let lastStamp = 0;
+const nextStamp = () => ++lastStamp;
+
+type Stamped<S> = HistoryEntry<S> & { stamp: number };
+
 export class EditHistory<S> {
-  private readonly done: HistoryEntry<S>[] = [];
-  private readonly undone: HistoryEntry<S>[] = [];
+  private readonly done: Stamped<S>[] = [];
+  private readonly undone: Stamped<S>[] = [];
 
   /** Add an action; a new action forgets what was undone. */
   record(entry: HistoryEntry<S>): void {
     if (entry.changes.length === 0) return;
-    this.done.push(entry);
+    this.done.push({ ...entry, stamp: nextStamp() });
     if (this.done.length > LIMIT) this.done.shift();
     this.undone.length = 0;
   }
@@ -29,14 +36,14 @@ export class EditHistory<S> {
   /** The action to take back (its `before` states are to be applied), or null. */
   undo(): HistoryEntry<S> | null {
     const entry = this.done.pop() ?? null;
-    if (entry) this.undone.push(entry);
+    if (entry) this.undone.push({ ...entry, stamp: nextStamp() });
     return entry;
   }
 
   /** The action to do again (its `after` states are to be applied), or null. */
   redo(): HistoryEntry<S> | null {
     const entry = this.undone.pop() ?? null;
-    if (entry) this.done.push(entry);
+    if (entry) this.done.push({ ...entry, stamp: nextStamp() });
     return entry;
   }
 
@@ -46,5 +53,15 @@ export class EditHistory<S> {
 
   get redoLabel(): string | null {
     return this.undone.at(-1)?.label ?? null;
+  }
+
+  /** When the action undo would take back was done (or redone); null: nothing to undo. */
+  get undoStamp(): number | null {
+    return this.done.at(-1)?.stamp ?? null;
+  }
+
+  /** When the action redo would do again was undone; null: nothing to redo. */
+  get redoStamp(): number | null {
+    return this.undone.at(-1)?.stamp ?? null;
   }
 }

@@ -326,6 +326,14 @@ export class SceneSession {
     return this.history.redoLabel;
   }
 
+  get undoStamp(): number | null {
+    return this.history.undoStamp;
+  }
+
+  get redoStamp(): number | null {
+    return this.history.redoStamp;
+  }
+
   /** Take back the last action; returns its label (null: nothing to undo, or read only). */
   undo(): string | null {
     if (!this.editable) return null;

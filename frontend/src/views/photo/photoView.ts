@@ -3,12 +3,19 @@ import type { SceneObject } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { el, svgEl } from "../../dom";
 import { mountArrowEditing } from "../../editors/arrowEditing";
+import { mountObjectEditBar } from "../../editors/objectEditBar";
+import { mountPhotoTools, type PhotoTools, toolOverlay } from "../../editors/photoTools";
 import { registerShortcut } from "../../shortcuts";
+import type { ObjectEditor } from "../../state/objectEditor";
 import type { SceneSession } from "../../state/sceneSession";
+import type { Rgb } from "../classColors";
+import { maskColours } from "../objectColors";
 import { frameFor, strokeWidth } from "./arrowGeometry";
-import { renderArrows, renderLabels } from "./arrowLayer";
+import { renderArrows } from "./arrowLayer";
+import { renderLabels } from "./labelLayer";
 import { renderMasks, renderOutlines } from "./maskLayer";
 import { HitMap, objectRegion, type Region } from "./maskRaster";
+import { maskStyle, maskStyleControls } from "./maskStyle";
 
 function toggle(label: string, testid: string, onChange: (on: boolean) => void) {
   const input = el("input", {
@@ -41,7 +48,17 @@ function legend(): HTMLElement {
 const geometryKey = (objects: readonly SceneObject[]) =>
   JSON.stringify(objects.map((o) => [o.id, o.class, o.bbox, o.mask]));
 
-export function mountPhotoView(container: HTMLElement, session: SceneSession): () => void {
+export interface PhotoViewHandle {
+  /** The photo's tools: others add theirs (box, mask tools) with `tools.add`. */
+  tools: PhotoTools;
+  dispose(): void;
+}
+
+export function mountPhotoView(
+  container: HTMLElement,
+  session: SceneSession,
+  objectEditor: ObjectEditor,
+): PhotoViewHandle {
   const { width, height } = session.doc.scene.image;
   const frame = frameFor(width, height);
   const m = frame.margin;
@@ -49,6 +66,7 @@ export function mountPhotoView(container: HTMLElement, session: SceneSession): (
   const outlines = svgEl("g", { class: "outlines" });
   const arrows = svgEl("g", { class: "arrows", "data-testid": "arrow-layer" });
   const labels = svgEl("g", { class: "labels" });
+  const overlay = toolOverlay();
   const photo = svgEl("image", {
     href: api.imageUrl(session.sceneId),
     x: 0,
@@ -79,6 +97,7 @@ export function mountPhotoView(container: HTMLElement, session: SceneSession): (
     outlines,
     arrows,
     labels,
+    overlay,
   );
   const status = el("p", { className: "photo-status", testid: "photo-status" });
   photo.addEventListener("load", () => {
@@ -105,30 +124,43 @@ export function mountPhotoView(container: HTMLElement, session: SceneSession): (
       run: () => input.click(),
     }),
   );
+  const styleControls = maskStyleControls();
+  const toolbar = el("div", { className: "photo-toolbar", testid: "photo-tools" });
   container.replaceChildren(
-    el("div", { className: "photo-toolbar" }, ...layerToggles.map((t) => t.label), legend()),
+    toolbar,
+    el(
+      "div",
+      { className: "photo-toolbar" },
+      ...layerToggles.map((t) => t.label),
+      styleControls.element,
+      legend(),
+    ),
     el("div", { className: "photo-box" }, svg),
     status,
   );
 
   let regions = new Map<string, Region>();
   let hitMap: HitMap | null = null;
+  let colours = new Map<string, Rgb>();
   let drawnGeometry = "";
 
   const drawGeometry = () => {
     const objects = session.objects;
-    const key = geometryKey(objects);
+    const { colouring, opacity } = maskStyle.get();
+    svg.style.setProperty("--mask-opacity", String(opacity));
+    const key = `${colouring} ${geometryKey(objects)}`;
     if (key === drawnGeometry) return;
     drawnGeometry = key;
     const placed = objects.map((object) => ({ object, region: objectRegion(object) }));
     regions = new Map(placed.map((p) => [p.object.id, p.region]));
     hitMap = new HitMap(width, height, placed);
-    renderMasks(masks, objects, regions);
+    colours = maskColours(objects, colouring);
+    renderMasks(masks, objects, regions, colours);
   };
   const drawSupports = () => {
     const shown = session.shown();
     renderArrows(arrows, session.objects, regions, shown, frame, session.suggestions());
-    renderLabels(labels, session.objects, regions, shown, frame);
+    renderLabels(labels, session.objects, regions, shown, frame, colours);
   };
   const drawHighlight = () => {
     const { hovered, selected } = session;
@@ -140,7 +172,7 @@ export function mountPhotoView(container: HTMLElement, session: SceneSession): (
       // An arrow from the hovered object to what it holds up stays in view too.
       node.classList.toggle("is-related", hovered !== null && node.dataset.parent === hovered);
     }
-    renderOutlines(outlines, session.objects, hovered, selected, strokeWidth(frame) * 0.8);
+    renderOutlines(outlines, session.objects, hovered, selected, strokeWidth(frame) * 0.8, colours);
   };
   const drawAll = () => {
     drawGeometry();
@@ -176,7 +208,21 @@ export function mountPhotoView(container: HTMLElement, session: SceneSession): (
     session,
   );
 
+  const tools = mountPhotoTools(toolbar, {
+    svg,
+    overlay,
+    session,
+    objects: objectEditor,
+    width,
+    height,
+    toImage,
+    objectAt: maskAt,
+    pixelSize: () => 1 / (svg.getScreenCTM()?.a || 1),
+  });
+  const stopEditBar = mountObjectEditBar(toolbar, objectEditor);
+
   drawAll();
+  const stopStyle = maskStyle.subscribe(drawAll);
   const unsubscribe = session.subscribe((change) => {
     if (change === "document") drawAll();
     else if (change === "edits" || change === "suggestions") {
@@ -184,9 +230,16 @@ export function mountPhotoView(container: HTMLElement, session: SceneSession): (
       drawHighlight();
     } else if (change === "hover" || change === "select") drawHighlight();
   });
-  return () => {
-    unsubscribe();
-    stopEditing();
-    for (const remove of removeKeys) remove();
+  return {
+    tools,
+    dispose: () => {
+      tools.dispose();
+      stopEditBar();
+      unsubscribe();
+      stopStyle();
+      styleControls.dispose();
+      stopEditing();
+      for (const remove of removeKeys) remove();
+    },
   };
 }

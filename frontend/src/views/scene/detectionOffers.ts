@@ -58,7 +58,7 @@ export function openOffers(
 }
 
 /** `count` new object ids d1, d2, ... that no object of the scene has. */
-export function freshIds(objects: readonly SceneObject[], count: number): string[] {
+export function freshIds(objects: readonly { id: string }[], count: number): string[] {
   const used = new Set(objects.map((o) => o.id));
   const ids: string[] = [];
   for (let n = 1; ids.length < count; n++) {

@@ -5,19 +5,16 @@
 // left out). Click one to select it; Accept adds it to the scene (an add_object edit: the
 // server makes its mask and answers with the new revision), Reject drops it for this visit.
 // The bar above the photo says what the detector is doing, or why it failed.
-import type { SceneDocument } from "@holiscene/schema";
-import { api, jsonBody, request } from "../../api/client";
-import { ConflictError } from "../../api/errors";
+import { api } from "../../api/client";
 import { el, svgEl } from "../../dom";
 import { activeDetector, detectorModel } from "../../inference/detector";
 import { photoPixels } from "../../inference/supportSuggestions";
 import { registerShortcut } from "../../shortcuts";
-import { getAuthor } from "../../state/author";
+import type { ObjectEditor } from "../../state/objectEditor";
 import { plural, type SceneSession } from "../../state/sceneSession";
 import { isStructural } from "../../state/supportGraph";
 import { frameFor, strokeWidth } from "../photo/arrowGeometry";
 import {
-  type AddObjectEdit,
   addObjectEdit,
   freshIds,
   type Offer,
@@ -38,32 +35,15 @@ type Busy = "loading" | "detecting" | "adding" | null;
 const MB = (bytes: number) => `${(bytes / 1e6).toFixed(1)} MB`;
 const message = (error: unknown) => (error instanceof Error ? error.message : String(error));
 
-/** POST the add_object edits on the loaded revision (the server makes the masks). */
-function postAddObjects(session: SceneSession, edits: AddObjectEdit[]): Promise<SceneDocument> {
-  return request<SceneDocument>(
-    `/scenes/${encodeURIComponent(session.sceneId)}/edits`,
-    jsonBody({ base_revision: session.doc.revision, author: getAuthor(), edits }),
-  );
-}
-
-/** Until the session is not saving (an add must not race a save for the same revision). */
-function saveDone(session: SceneSession): Promise<void> {
-  if (session.saveState.kind !== "saving") return Promise.resolve();
-  return new Promise((resolve) => {
-    const stop = session.subscribe((change) => {
-      if (change === "save" && session.saveState.kind !== "saving") {
-        stop();
-        resolve();
-      }
-    });
-  });
-}
-
 /**
  * The bar (inserted at the top of `photoBody`, above the photo) and the layer of dashed boxes
  * (in the photo's SVG, which mountPhotoView made). Returns the function that removes them.
  */
-export function mountObjectSuggestions(photoBody: HTMLElement, session: SceneSession): () => void {
+export function mountObjectSuggestions(
+  photoBody: HTMLElement,
+  session: SceneSession,
+  objectEditor: ObjectEditor,
+): () => void {
   const svg = photoBody.querySelector<SVGSVGElement>("svg.photo-svg");
   if (!svg) throw new Error("mount the photo view before the object suggestions");
   const { width, height } = session.doc.scene.image;
@@ -292,33 +272,20 @@ export function mountObjectSuggestions(photoBody: HTMLElement, session: SceneSes
         ? `Adding ${offerLabel(chosen[0] as Offer)}…`
         : `Adding ${plural(chosen.length, "object")}…`,
     );
-    try {
-      await saveDone(session);
-      const send = async () => {
-        const ids = freshIds(session.objects, chosen.length);
-        const edits = chosen.map((offer, i) => addObjectEdit(offer, ids[i] as string));
-        return { ids, doc: await postAddObjects(session, edits) };
-      };
-      let result: { ids: string[]; doc: SceneDocument };
-      try {
-        result = await send();
-      } catch (error) {
-        // Someone saved first: load their revision and add on top of it (once).
-        if (!(error instanceof ConflictError) || error.currentRevision === null) throw error;
-        await session.reloadLatest();
-        result = await send();
-      }
-      if (disposed) return;
-      session.adopt(result.doc);
-      busy = null;
-      const names = result.ids.map((id, i) => `${id} (${chosen[i]?.cls})`).join(", ");
-      const left = shown().length;
-      say(`Added ${names}.${left > 0 ? ` ${plural(left, "suggestion")} left.` : ""}`);
-    } catch (error) {
-      if (disposed) return;
-      busy = null;
-      say(`Could not add the object${chosen.length === 1 ? "" : "s"}: ${message(error)}`, true);
+    // One undoable action; after a conflict the editor re-sends it on the latest revision.
+    const ids = freshIds(session.objects, chosen.length);
+    const edits = chosen.map((offer, i) => addObjectEdit(offer, ids[i] as string));
+    const names = edits.map((e) => `${e.id} (${e.class})`).join(", ");
+    const saved = await objectEditor.apply(edits, `add ${names}`);
+    if (disposed) return;
+    busy = null;
+    if (!saved) {
+      const why = objectEditor.failure?.message ?? "not saved";
+      say(`Could not add the object${chosen.length === 1 ? "" : "s"}: ${why}`, true);
+      return;
     }
+    const left = shown().length;
+    say(`Added ${names}.${left > 0 ? ` ${plural(left, "suggestion")} left.` : ""}`);
   };
 
   const reject = (chosen: Offer[]) => {

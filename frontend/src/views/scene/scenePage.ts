@@ -13,6 +13,7 @@ import { mountSupportShortcuts } from "../../editors/supportShortcuts";
 import { mountSupportSuggestions } from "../../inference/supportSuggestions";
 import { getAuthor } from "../../state/author";
 import { startAutosave } from "../../state/autosave";
+import { ObjectEditor } from "../../state/objectEditor";
 import { plural, SceneSession } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
 import { mountPhotoView } from "../photo/photoView";
@@ -166,9 +167,12 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       el("div", { className: "scene-main" }, photo.element, scene3d.element),
       editor.element,
     );
+    const objectEditor = new ObjectEditor(session);
+    const photoView = mountPhotoView(photo.body, session, objectEditor);
     disposers.push(
-      mountPhotoView(photo.body, session),
-      mountObjectSuggestions(photo.body, session), // after the photo view: it draws in its SVG
+      photoView.dispose,
+      // after the photo view: it draws in its SVG
+      mountObjectSuggestions(photo.body, session, objectEditor),
     );
     const layout = mountLayoutEditing(photo.element, photo.body, session);
     disposers.push(
@@ -177,7 +181,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       mountSupportShortcuts(session),
       startAutosave(session, { author: getAuthor }),
       mountScene3d(scene3d.body, session, layout.draft),
-      mountSaveBar(saveBar, session),
+      mountSaveBar(saveBar, session, objectEditor),
       mountSupportEditor(table, session),
       mountSupportSuggestions(suggestions, table, session),
       mountRevisionHistory(history, session),

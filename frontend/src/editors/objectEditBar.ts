@@ -1,0 +1,60 @@
+// What the object editor is doing, above the photo: saving an action, what the last one did
+// (e.g. that it was applied on top of someone else's revision), and an action that could not
+// be saved, kept with Retry and Discard until the person chooses.
+import { el } from "../dom";
+import type { ObjectEditor } from "../state/objectEditor";
+
+export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor): () => void {
+  const status = el("span", {
+    className: "object-edit-status",
+    testid: "object-edit-status",
+    attrs: { role: "status", "aria-live": "polite" },
+  });
+  const failureText = el("span", { testid: "object-edit-failure-text" });
+  const failure = el(
+    "span",
+    {
+      className: "alert alert--conflict object-edit-failure",
+      testid: "object-edit-failure",
+      attrs: { role: "alert" },
+    },
+    failureText,
+    el("button", {
+      className: "primary",
+      text: "Retry",
+      testid: "object-edit-retry",
+      attrs: { type: "button" },
+      on: { click: () => void editor.retry() },
+    }),
+    el("button", {
+      text: "Discard",
+      testid: "object-edit-discard",
+      attrs: { type: "button", title: "Drop this change" },
+      on: { click: () => editor.discardFailed() },
+    }),
+  );
+  const bar = el(
+    "div",
+    { className: "object-edit-bar", testid: "object-edit-bar" },
+    status,
+    failure,
+  );
+  container.append(bar);
+
+  const update = () => {
+    const state = editor.status;
+    status.textContent = state.kind === "busy" ? `Saving: ${state.label}…` : (state.message ?? "");
+    status.classList.toggle("is-error", state.kind === "idle" && state.error);
+    status.dataset.state = state.kind;
+    const failed = editor.failure;
+    failure.hidden = failed === null;
+    failureText.textContent = failed ? `Not saved: ${failed.label}. ${failed.message} ` : "";
+    bar.hidden = failed === null && status.textContent === "";
+  };
+  update();
+  const unsubscribe = editor.subscribe(update);
+  return () => {
+    unsubscribe();
+    bar.remove();
+  };
+}

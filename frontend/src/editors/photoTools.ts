@@ -1,0 +1,236 @@
+// Tools on the photo: a toolbar of tools (each with a one-key shortcut; Esc goes back to
+// Select) and the routing of pointer presses on the photo, in image pixels, to the active
+// tool. "Select" is the photo's own behaviour (hover, click, dragging arrows): it handles
+// nothing here, so those listeners get the events. Any other tool gets the primary button's
+// presses and the clicks are kept from the photo's own listeners. Other modules add tools
+// with `tools.add(tool)` (the box tool, the mask tools), drawing in `host.overlay`.
+import { el, svgEl } from "../dom";
+import { registerShortcut } from "../shortcuts";
+import type { ObjectEditor } from "../state/objectEditor";
+import type { SceneSession } from "../state/sceneSession";
+
+/** A point in image pixels (x right, y down from the photo's top-left corner). */
+export type ImagePoint = [number, number];
+
+export interface PhotoTool {
+  /** Unique on the page: "select", "box", "brush", ... */
+  id: string;
+  /** The toolbar button's text. */
+  label: string;
+  /** Its one-key shortcut (must be free on the scene page: see the help overlay, "?"). */
+  key: string;
+  /** What it does, for the button's title and the shortcut help. */
+  description: string;
+  /** CSS cursor over the photo while active. */
+  cursor?: string;
+  /** Whether it changes the scene (off while the scene is read only). */
+  edits?: boolean;
+  down?(at: ImagePoint, event: PointerEvent): void;
+  /** Every pointer move over the photo while active (pressed or not: e.g. a brush outline). */
+  move?(at: ImagePoint, event: PointerEvent): void;
+  up?(at: ImagePoint, event: PointerEvent): void;
+  /** Drop whatever is half drawn (Esc, or another tool chosen). */
+  cancel?(): void;
+  /** Told when it becomes the active tool. */
+  activate?(): void;
+  /** Controls shown beside the toolbar while it is active (a brush size, ...). */
+  options?(): HTMLElement | null;
+}
+
+export interface PhotoToolHost {
+  svg: SVGSVGElement;
+  /** A layer above masks, arrows and labels, for the tools' drawings. */
+  overlay: SVGGElement;
+  session: SceneSession;
+  objects: ObjectEditor;
+  /** The photo's size in pixels. */
+  width: number;
+  height: number;
+  /** The pointer in image pixels. */
+  toImage(event: MouseEvent): ImagePoint | null;
+  /** The object whose mask is under the pointer. */
+  objectAt(event: MouseEvent): string | null;
+  /** Image pixels per screen pixel now (changes with zoom): handles and lines scale by it. */
+  pixelSize(): number;
+}
+
+export interface PhotoTools {
+  readonly host: PhotoToolHost;
+  /** Add a tool (a button and its key); returns the function that removes it. */
+  add(tool: PhotoTool): () => void;
+  activate(id: string): void;
+  readonly active: PhotoTool;
+  /** Told when the active tool changes. */
+  onChange(listener: (tool: PhotoTool) => void): () => void;
+  dispose(): void;
+}
+
+export const SELECT_TOOL_KEY = "V";
+const SCOPE = "Photo tools";
+
+const selectTool: PhotoTool = {
+  id: "select",
+  label: "Select",
+  key: SELECT_TOOL_KEY,
+  description: "Select: click objects and arrows, drag arrows to a new supporter",
+};
+
+/** The toolbar goes into `toolbar`; pointer events of `host.svg` go to the active tool. */
+export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): PhotoTools {
+  const tools: PhotoTool[] = [];
+  const buttons = new Map<string, HTMLButtonElement>();
+  const removers = new Map<string, () => void>();
+  const listeners = new Set<(tool: PhotoTool) => void>();
+  const buttonRow = el("span", {
+    className: "photo-tools",
+    attrs: { role: "toolbar", "aria-label": "Photo tools" },
+  });
+  const optionsBox = el("span", { className: "photo-tool-options", testid: "photo-tool-options" });
+  toolbar.append(buttonRow, optionsBox);
+  let active: PhotoTool = selectTool;
+  let pressed: number | null = null; // the pointer a tool is drawing with
+
+  const usable = (tool: PhotoTool) => !tool.edits || host.session.editable;
+
+  const show = () => {
+    for (const [id, button] of buttons) {
+      const tool = tools.find((t) => t.id === id);
+      button.setAttribute("aria-pressed", String(id === active.id));
+      button.classList.toggle("is-active", id === active.id);
+      button.disabled = tool ? !usable(tool) : true;
+    }
+    host.svg.dataset.tool = active.id;
+    host.svg.style.cursor = active.cursor ?? "";
+    optionsBox.replaceChildren(...[active.options?.() ?? null].filter((n) => n !== null));
+  };
+
+  const activate = (id: string) => {
+    const next = tools.find((t) => t.id === id);
+    if (!next || !usable(next)) return;
+    if (next !== active) {
+      active.cancel?.();
+      pressed = null;
+      active = next;
+      next.activate?.();
+    }
+    show();
+    for (const listener of listeners) listener(active);
+  };
+
+  const add = (tool: PhotoTool): (() => void) => {
+    if (tools.some((t) => t.id === tool.id)) throw new Error(`a photo tool "${tool.id}" exists`);
+    tools.push(tool);
+    const button = el("button", {
+      text: tool.label,
+      testid: `photo-tool-${tool.id}`,
+      attrs: {
+        type: "button",
+        title: `${tool.description} (${tool.key})`,
+        "aria-pressed": "false",
+      },
+      on: { click: () => activate(tool.id) },
+    });
+    buttons.set(tool.id, button);
+    buttonRow.append(button);
+    const removeKey = registerShortcut({
+      keys: tool.key,
+      description: tool.description,
+      scope: SCOPE,
+      run: () => activate(tool.id),
+      enabled: () => usable(tool),
+    });
+    const remove = () => {
+      removeKey();
+      button.remove();
+      buttons.delete(tool.id);
+      removers.delete(tool.id);
+      const index = tools.indexOf(tool);
+      if (index >= 0) tools.splice(index, 1);
+      if (active === tool) activate(selectTool.id);
+    };
+    removers.set(tool.id, remove);
+    show();
+    return remove;
+  };
+
+  // Capture phase: a tool's press is not also a click or drag for the photo's own listeners.
+  const routed = (event: PointerEvent) => active !== selectTool && event.isPrimary;
+  const onDown = (event: PointerEvent) => {
+    if (!routed(event) || event.button !== 0 || !active.down) return;
+    const at = host.toImage(event);
+    if (!at) return;
+    event.preventDefault();
+    event.stopPropagation();
+    pressed = event.pointerId;
+    host.svg.setPointerCapture?.(event.pointerId);
+    active.down(at, event);
+  };
+  const onMove = (event: PointerEvent) => {
+    if (!routed(event) || !active.move) return;
+    const at = host.toImage(event);
+    if (at) active.move(at, event);
+  };
+  const onUp = (event: PointerEvent) => {
+    if (pressed !== event.pointerId) return;
+    pressed = null;
+    if (host.svg.hasPointerCapture?.(event.pointerId))
+      host.svg.releasePointerCapture(event.pointerId);
+    const at = host.toImage(event);
+    if (at && routed(event)) active.up?.(at, event);
+  };
+  const onClick = (event: MouseEvent) => {
+    if (active !== selectTool) event.stopPropagation();
+  };
+  const svg = host.svg;
+  svg.addEventListener("pointerdown", onDown, true);
+  svg.addEventListener("pointermove", onMove);
+  svg.addEventListener("pointerup", onUp);
+  svg.addEventListener("pointercancel", onUp);
+  svg.addEventListener("click", onClick, true);
+
+  add(selectTool);
+  const removeEscape = registerShortcut({
+    keys: "Escape",
+    description: "Cancel the photo tool's drawing and go back to Select",
+    scope: SCOPE,
+    run: () => activate(selectTool.id),
+    enabled: () => active !== selectTool,
+  });
+  // A scene turning read only drops the editing tools.
+  const unsubscribe = host.session.subscribe((change) => {
+    if (change !== "lock") return;
+    if (!usable(active)) activate(selectTool.id);
+    else show();
+  });
+
+  return {
+    host,
+    add,
+    activate,
+    get active() {
+      return active;
+    },
+    onChange(listener) {
+      listeners.add(listener);
+      return () => listeners.delete(listener);
+    },
+    dispose() {
+      active.cancel?.();
+      unsubscribe();
+      removeEscape();
+      for (const remove of [...removers.values()]) remove();
+      svg.removeEventListener("pointerdown", onDown, true);
+      svg.removeEventListener("pointermove", onMove);
+      svg.removeEventListener("pointerup", onUp);
+      svg.removeEventListener("pointercancel", onUp);
+      svg.removeEventListener("click", onClick, true);
+      buttonRow.remove();
+      optionsBox.remove();
+    },
+  };
+}
+
+/** The overlay layer tools draw in (above everything else on the photo). */
+export function toolOverlay(): SVGGElement {
+  return svgEl("g", { class: "tool-overlay", "data-testid": "tool-overlay" });
+}

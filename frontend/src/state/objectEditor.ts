@@ -1,0 +1,355 @@
+// Object edits (add, remove, class, box, mask): unlike support edits they are not kept as
+// unsaved drafts; every action is one POST /api/scenes/{id}/edits on the loaded revision, and the
+// revision the server answers becomes the loaded one (session.adopt). Undo of an action is one
+// restore_object per object it touched, naming the revision before it; redo names the revision
+// it made (revisions never change, so both stay exact). Actions run one after another. On a
+// conflict (someone saved first) the latest revision is loaded and the action sent again on top
+// of it when the objects it changes still exist; otherwise it stays, with Retry and Discard, so
+// nothing a person did is silently lost.
+import type {
+  AddObject,
+  EditRequest,
+  RemoveObject,
+  RestoreObject,
+  SceneDocument,
+  SceneObject,
+  SetBbox,
+  SetClass,
+  SetMask,
+} from "@holiscene/schema";
+import { api } from "../api/client";
+import { ConflictError } from "../api/errors";
+import { freshIds } from "../views/scene/detectionOffers";
+import { getAuthor } from "./author";
+import { EditHistory } from "./editHistory";
+import { lockText } from "./editLock";
+import type { SceneSession } from "./sceneSession";
+import type { Undoable } from "./undoOrder";
+
+/** The contract's AddObject, its defaults left out (no mask: the server cuts one; no score). */
+export type NewObject = Omit<AddObject, "mask" | "score"> &
+  Partial<Pick<AddObject, "mask" | "score">>;
+
+export type ObjectEdit = NewObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject;
+
+/** What the editor is doing: nothing (with what the last action did), or saving an action. */
+export type ObjectEditStatus =
+  | { kind: "idle"; message: string | null; error: boolean }
+  | { kind: "busy"; label: string };
+
+/** An action that could not be saved, kept until the person retries or drops it. */
+export interface FailedAction {
+  label: string;
+  message: string;
+}
+
+/** Sends one request of edits on a revision; the API by default (tests give their server). */
+export type PostEdits = (
+  sceneId: string,
+  baseRevision: number,
+  author: string,
+  edits: ObjectEdit[],
+) => Promise<SceneDocument>;
+
+/** An edit as the API takes it (a new object's defaults written out). */
+const wire = (edit: ObjectEdit): EditRequest["edits"][number] =>
+  edit.kind === "add_object" ? { mask: null, score: null, ...edit } : edit;
+
+const postToApi: PostEdits = (sceneId, baseRevision, author, edits) => {
+  const [first, ...rest] = edits.map(wire);
+  if (!first) return Promise.reject(new Error("no edits to send"));
+  return api.postEdits(sceneId, { base_revision: baseRevision, author, edits: [first, ...rest] });
+};
+
+/** The objects an action names, each once, in order. */
+export function touchedIds(edits: readonly ObjectEdit[]): string[] {
+  return [...new Set(edits.map((edit) => edit.id))];
+}
+
+/** The edits that put the objects back as they were in `revision` (or remove them). */
+export function restoreEdits(ids: readonly string[], revision: number): RestoreObject[] {
+  return ids.map((id) => ({ kind: "restore_object", id, from_revision: revision }));
+}
+
+export type Rebased =
+  | { edits: ObjectEdit[]; renamed: [string, string][] }
+  | { edits: null; missing: string[] };
+
+/**
+ * An action made on an older revision, for `objects` (a newer one's): a new object whose id was
+ * taken meanwhile gets a free one (the action's later edits follow it); an action changing an
+ * object that is gone cannot be applied (restore_object always can: it may bring one back).
+ */
+export function rebaseEdits(
+  edits: readonly ObjectEdit[],
+  objects: readonly SceneObject[],
+): Rebased {
+  const present = new Set(objects.map((o) => o.id));
+  const renamed = new Map<string, string>();
+  const missing: string[] = [];
+  const out: ObjectEdit[] = [];
+  for (const edit of edits) {
+    const id = renamed.get(edit.id) ?? edit.id;
+    if (edit.kind === "add_object") {
+      const free = present.has(id)
+        ? (freshIds(
+            [...present].map((i) => ({ id: i })),
+            1,
+          )[0] ?? id)
+        : id;
+      if (free !== id) renamed.set(edit.id, free);
+      present.add(free);
+      out.push({ ...edit, id: free });
+      continue;
+    }
+    if (edit.kind !== "restore_object" && !present.has(id)) {
+      if (!missing.includes(id)) missing.push(id);
+      continue;
+    }
+    if (edit.kind === "remove_object") present.delete(id);
+    if (edit.kind === "restore_object") present.add(id);
+    out.push({ ...edit, id });
+  }
+  return missing.length > 0 ? { edits: null, missing } : { edits: out, renamed: [...renamed] };
+}
+
+/** Until the session is not saving (an object edit must not race a support save). */
+export function saveDone(session: SceneSession): Promise<void> {
+  if (session.saveState.kind !== "saving") return Promise.resolve();
+  return new Promise((resolve) => {
+    const stop = session.subscribe((change) => {
+      if (change === "save" && session.saveState.kind !== "saving") {
+        stop();
+        resolve();
+      }
+    });
+  });
+}
+
+const errorText = (error: unknown) => (error instanceof Error ? error.message : String(error));
+const capital = (text: string) => text.charAt(0).toUpperCase() + text.slice(1);
+
+/** What one sent action did: the revisions before and after it, and the edits as sent. */
+interface Sent {
+  before: number;
+  after: number;
+  edits: ObjectEdit[];
+}
+
+export class ObjectEditor implements Undoable {
+  status: ObjectEditStatus = { kind: "idle", message: null, error: false };
+  failure: FailedAction | null = null;
+
+  /** Each step: the objects one action touched, keyed by id, with the revisions around it. */
+  private readonly history = new EditHistory<number>();
+  private readonly listeners = new Set<() => void>();
+  private queue: Promise<unknown> = Promise.resolve();
+  private waiting = 0;
+  private retryFailed: (() => Promise<unknown>) | null = null;
+
+  constructor(
+    readonly session: SceneSession,
+    private readonly options: { author?: () => string; post?: PostEdits } = {},
+  ) {}
+
+  /** Told after every change of status, failure or history. */
+  subscribe(listener: () => void): () => void {
+    this.listeners.add(listener);
+    return () => this.listeners.delete(listener);
+  }
+
+  /** Whether an action is being saved or waits its turn. */
+  get busy(): boolean {
+    return this.waiting > 0;
+  }
+
+  /** Save one action (e.g. "add chair d3"); true once the server has it. */
+  apply(edits: readonly ObjectEdit[], label: string): Promise<boolean> {
+    return this.enqueue(async () => {
+      const sent = await this.send(label, edits, () => this.apply(edits, label));
+      if (!sent) return false;
+      this.history.record({
+        label,
+        changes: touchedIds(sent.edits).map((key) => ({
+          key,
+          before: sent.before,
+          after: sent.after,
+        })),
+      });
+      this.changed();
+      return true;
+    });
+  }
+
+  get undoLabel(): string | null {
+    return this.history.undoLabel;
+  }
+
+  get redoLabel(): string | null {
+    return this.history.redoLabel;
+  }
+
+  get undoStamp(): number | null {
+    return this.history.undoStamp;
+  }
+
+  get redoStamp(): number | null {
+    return this.history.redoStamp;
+  }
+
+  /** Take back the last action; resolves to its label (null: nothing to undo, or it failed). */
+  undo(): Promise<string | null> {
+    return this.enqueue(async () => {
+      const entry = this.history.undo();
+      if (!entry) return null;
+      const ids = entry.changes.map((c) => c.key);
+      const before = entry.changes[0]?.before ?? 0;
+      const sent = await this.send(`undo ${entry.label}`, restoreEdits(ids, before), () =>
+        this.undo(),
+      );
+      if (!sent) this.history.redo(); // not undone: it stays the one to undo
+      this.changed();
+      return sent ? entry.label : null;
+    });
+  }
+
+  /** Do the last undone action again; resolves to its label (null: nothing, or it failed). */
+  redo(): Promise<string | null> {
+    return this.enqueue(async () => {
+      const entry = this.history.redo();
+      if (!entry) return null;
+      const ids = entry.changes.map((c) => c.key);
+      const after = entry.changes[0]?.after ?? 0;
+      const sent = await this.send(`redo ${entry.label}`, restoreEdits(ids, after), () =>
+        this.redo(),
+      );
+      if (!sent) this.history.undo();
+      this.changed();
+      return sent ? entry.label : null;
+    });
+  }
+
+  /** Send the failed action again (on the latest revision). */
+  retry(): Promise<unknown> {
+    const again = this.retryFailed;
+    this.clearFailure();
+    return again ? again() : Promise.resolve(false);
+  }
+
+  /** Drop the failed action (the person chose to). */
+  discardFailed(): void {
+    const label = this.failure?.label;
+    this.clearFailure();
+    if (label) this.setStatus({ kind: "idle", message: `Dropped: ${label}.`, error: false });
+  }
+
+  private clearFailure(): void {
+    this.failure = null;
+    this.retryFailed = null;
+    this.changed();
+  }
+
+  private enqueue<T>(task: () => Promise<T>): Promise<T> {
+    this.waiting++;
+    const run = async () => {
+      try {
+        return await task();
+      } finally {
+        this.waiting--;
+        this.changed();
+      }
+    };
+    const next = this.queue.then(run, run);
+    this.queue = next.catch(() => undefined);
+    return next;
+  }
+
+  /**
+   * Post `edits` on the loaded revision and adopt the answer. After a conflict, load the
+   * latest revision and send them once more on top of it if they still apply.
+   */
+  private async send(
+    label: string,
+    edits: readonly ObjectEdit[],
+    retry: () => Promise<unknown>,
+  ): Promise<Sent | null> {
+    const session = this.session;
+    const lock = session.lock;
+    if (lock) {
+      this.setStatus({ kind: "idle", message: lockText(lock), error: true });
+      return null;
+    }
+    this.setStatus({ kind: "busy", label });
+    try {
+      await saveDone(session);
+      const before = session.doc.revision;
+      try {
+        return this.adopt(label, before, [...edits], await this.post(before, [...edits]), null);
+      } catch (error) {
+        if (!(error instanceof ConflictError) || error.currentRevision === null) throw error;
+      }
+      await session.reloadLatest();
+      const latest = session.doc.revision;
+      const who = await this.authorsSince(before, latest);
+      const rebased = rebaseEdits(edits, session.objects);
+      if (rebased.edits === null) {
+        const gone = rebased.missing.join(", ");
+        this.fail(
+          label,
+          `${who} saved revision ${latest} meanwhile, and ${gone} ${rebased.missing.length === 1 ? "is" : "are"} ` +
+            "no longer in the scene: your change was not applied.",
+          retry,
+        );
+        return null;
+      }
+      const renames = rebased.renamed.map(([from, to]) => ` ${from} was taken: yours is ${to}.`);
+      const note = `${who} saved revision ${latest} meanwhile; your change was applied on top.${renames.join("")}`;
+      return this.adopt(label, latest, rebased.edits, await this.post(latest, rebased.edits), note);
+    } catch (error) {
+      this.fail(label, errorText(error), retry);
+      return null;
+    }
+  }
+
+  private adopt(
+    label: string,
+    before: number,
+    edits: ObjectEdit[],
+    doc: SceneDocument,
+    note: string | null,
+  ): Sent {
+    this.session.adopt(doc);
+    const message = note ?? `${capital(label)}: saved as revision ${doc.revision}.`;
+    this.setStatus({ kind: "idle", message, error: false });
+    return { before, after: doc.revision, edits };
+  }
+
+  private post(baseRevision: number, edits: ObjectEdit[]): Promise<SceneDocument> {
+    const post = this.options.post ?? postToApi;
+    return post(this.session.sceneId, baseRevision, (this.options.author ?? getAuthor)(), edits);
+  }
+
+  /** Who saved the revisions after `before` up to `latest` ("Someone" if that is unknown). */
+  private async authorsSince(before: number, latest: number): Promise<string> {
+    const revisions = await api.listRevisions(this.session.sceneId).catch(() => []);
+    const names = revisions
+      .filter((r) => r.number > before && r.number <= latest)
+      .map((r) => r.author);
+    return [...new Set(names)].join(", ") || "Someone";
+  }
+
+  private fail(label: string, message: string, retry: () => Promise<unknown>): void {
+    this.failure = { label, message };
+    this.retryFailed = retry;
+    this.setStatus({ kind: "idle", message: null, error: false });
+  }
+
+  private setStatus(status: ObjectEditStatus): void {
+    this.status = status;
+    this.changed();
+  }
+
+  private changed(): void {
+    for (const listener of this.listeners) listener();
+  }
+}
