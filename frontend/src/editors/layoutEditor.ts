@@ -4,8 +4,7 @@
 // objects in the saved room (a placement job, with its progress).
 import "./layoutEditor.css";
 import type { Job } from "@holiscene/schema";
-import { isFinished, pollJob } from "../api/jobs";
-import { startPlacement } from "../api/placement";
+import { isFinished } from "../api/jobs";
 import { el } from "../dom";
 import type { Point2 } from "../geometry/camera";
 import { registerShortcut } from "../shortcuts";
@@ -16,6 +15,7 @@ import { jobProgress } from "../views/common/jobProgress";
 import { frameFor } from "../views/photo/arrowGeometry";
 import { drawingRect, insideRect } from "../views/photo/cornerHandles";
 import { mountLayoutLayer } from "../views/photo/layoutLayer";
+import { replaceObjects } from "./replaceObjects";
 
 export const LAYOUT_EDIT_KEY = "E";
 
@@ -89,7 +89,7 @@ function mountLayoutEditor(
   save.title = "Save the moved corners now (they are also saved by themselves after a pause)";
   const reset = button("Reset", "layout-reset", () => draft.reset());
   reset.title = "Back to the saved layout (Ctrl+Z undoes this)";
-  const replace = button("Re-place objects", "replace-objects", () => void replaceObjects());
+  const replace = button("Re-place objects", "replace-objects", () => void replace3d());
   replace.title = "Place the objects again in the saved room (a placement job)";
   // The scale of the whole room: no photo tells it, an annotator may know it.
   const heightInput = el("input", {
@@ -193,20 +193,19 @@ function mountLayoutEditor(
     if (last !== undefined) bar.dataset.fitMs = last.toFixed(3);
   };
 
-  const replaceObjects = async () => {
+  const replace3d = async () => {
     message = null;
     progress.element.hidden = false;
     try {
-      job = await startPlacement(session.sceneId);
-      draw();
-      job = await pollJob(job, {
+      job = await replaceObjects(session, {
         signal: abort.signal,
         onUpdate: (update) => {
+          const first = job === null || job.id !== update.id;
           job = update;
           progress.update(update);
+          if (first) draw();
         },
       });
-      if (job.status === "succeeded") await session.reloadLatest();
     } catch (error) {
       if (abort.signal.aborted) return;
       message = { text: `Could not re-place the objects: ${errorText(error)}`, alert: true };

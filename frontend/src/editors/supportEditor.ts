@@ -12,7 +12,10 @@ import {
   type SupportType,
   wouldCycle,
 } from "../state/supportGraph";
-import { classCss } from "../views/classColors";
+import { rgbCss } from "../views/classColors";
+import { maskColours } from "../views/objectColors";
+import { maskStyle } from "../views/photo/maskStyle";
+import { objectSource } from "./objectSource";
 import { supportSummary } from "./supportSummary";
 
 const NONE = "";
@@ -64,6 +67,7 @@ function objectRow(object: SceneObject, session: SceneSession): Row {
     ...SUPPORT_TYPES.map((t) => el("option", { text: t, attrs: { value: t } })),
   );
   const status = el("span", { className: "badge", testid: `support-status-${id}` });
+  const source = objectSource(object);
   const element = el(
     "tr",
     {
@@ -84,10 +88,18 @@ function objectRow(object: SceneObject, session: SceneSession): Row {
         { className: "object-name" },
         el("span", {
           className: "swatch",
-          attrs: { style: `background:${classCss(object.class)}` },
+          testid: `object-swatch-${id}`,
+          attrs: { "data-swatch-of": id },
         }),
         el("span", { className: "object-id", text: id }),
         el("span", { className: "object-class", text: object.class.replaceAll("_", " ") }),
+        source.text &&
+          el("span", {
+            className: `object-source object-source--${source.kind}`,
+            testid: `object-source-${id}`,
+            text: source.text,
+            attrs: { title: source.title },
+          }),
       ),
       status,
     ),
@@ -186,12 +198,23 @@ export function mountSupportEditor(container: HTMLElement, session: SceneSession
   let rows: Row[] = [];
   let builtFor = "";
   const build = () => {
-    const key = session.objects.map((o) => `${o.id}:${o.class}`).join(",");
+    const key = JSON.stringify(
+      session.objects.map((o) => [o.id, o.class, o.source, o.score, o.set_by_person]),
+    );
     if (key === builtFor) return;
     builtFor = key;
     rows = session.objects.filter((o) => !isStructural(o.class)).map((o) => objectRow(o, session));
     const structure = session.objects.filter((o) => isStructural(o.class)).map(structureRow);
     body.replaceChildren(...rows.map((r) => r.element), ...structure);
+    paintSwatches();
+  };
+  // The swatches match the masks on the photo (by object or by class).
+  const paintSwatches = () => {
+    const colours = maskColours(session.objects, maskStyle.get().colouring);
+    for (const swatch of body.querySelectorAll<HTMLElement>("[data-swatch-of]")) {
+      const colour = colours.get(swatch.dataset.swatchOf ?? "");
+      swatch.style.background = colour ? rgbCss(colour) : "";
+    }
   };
   const update = () => {
     for (const row of rows) row.update();
@@ -210,9 +233,14 @@ export function mountSupportEditor(container: HTMLElement, session: SceneSession
 
   build();
   update();
-  return session.subscribe((change) => {
+  const stopStyle = maskStyle.subscribe(paintSwatches);
+  const unsubscribe = session.subscribe((change) => {
     if (change === "document") build();
     if (change === "select") scrollToSelected();
     update();
   });
+  return () => {
+    stopStyle();
+    unsubscribe();
+  };
 }

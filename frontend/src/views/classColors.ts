@@ -3,7 +3,7 @@ import { NYU40_CLASSES } from "@holiscene/schema";
 
 export type Rgb = readonly [number, number, number];
 
-function hslToRgb(h: number, s: number, l: number): Rgb {
+export function hslToRgb(h: number, s: number, l: number): Rgb {
   const a = s * Math.min(l, 1 - l);
   const channel = (n: number) => {
     const k = (n + h / 30) % 12;
@@ -21,9 +21,13 @@ export function classRgb(cls: string): Rgb {
   return hslToRgb((index * GOLDEN_ANGLE) % 360, 0.7, 0.52);
 }
 
-export function classCss(cls: string, alpha = 1): string {
-  const [r, g, b] = classRgb(cls);
+/** A colour as CSS, with an alpha when below 1. */
+export function rgbCss([r, g, b]: Rgb, alpha = 1): string {
   return alpha === 1 ? `rgb(${r} ${g} ${b})` : `rgb(${r} ${g} ${b} / ${alpha})`;
+}
+
+export function classCss(cls: string, alpha = 1): string {
+  return rgbCss(classRgb(cls), alpha);
 }
 
 /** The class's colour as a 0xRRGGBB number (three.js). */

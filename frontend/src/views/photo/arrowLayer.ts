@@ -1,7 +1,7 @@
 // Support arrows (red: from below, blue: from behind; dashed: not saved yet; dotted with a
-// glow: the model's suggestion replacing a guess), anchors of structural supporters, object
-// labels and flags on objects that have no supporter. Each arrow carries its provenance
-// (source, author, time, confidence) as data attributes and in its tooltip.
+// glow: the model's suggestion replacing a guess) and anchors of structural supporters (the
+// labels and "?" flags are labelLayer.ts's). Each arrow carries its provenance (source,
+// author, time, confidence) as data attributes and in its tooltip.
 import type { SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
 import type { SuggestedSupport } from "../../state/sceneSession";
@@ -152,36 +152,4 @@ export function renderArrows(
     if (arrow) arrows.push(arrow);
   }
   group.replaceChildren(...arrows);
-}
-
-/** Id labels at the objects' centroids, and a "?" flag on objects without a supporter. */
-export function renderLabels(
-  group: SVGGElement,
-  objects: readonly SceneObject[],
-  regions: ReadonlyMap<string, Region>,
-  supports: ReadonlyMap<string, ShownSupport>,
-  frame: Frame,
-): void {
-  const size = strokeWidth(frame) * 5.5;
-  const nodes = objects.flatMap((object) => {
-    const region = regions.get(object.id);
-    if (!region) return [];
-    const [x, y] = region.centroid;
-    const label = svgEl(
-      "text",
-      { class: "object-label", x, y: y - size * 0.6, "font-size": size, "data-object": object.id },
-      object.id,
-    );
-    if (supports.has(object.id) || isRoomPart(object)) return [label];
-    const [x1, y1] = object.bbox;
-    const flag = svgEl(
-      "g",
-      { class: "unsupported-flag", "data-testid": `unsupported-${object.id}` },
-      svgEl("title", {}, `${object.id} has no supporter`),
-      svgEl("circle", { cx: x1 + size, cy: y1 + size, r: size * 0.9 }),
-      svgEl("text", { x: x1 + size, y: y1 + size, dy: "0.35em", "font-size": size * 1.2 }, "?"),
-    );
-    return [label, flag];
-  });
-  group.replaceChildren(...nodes);
 }

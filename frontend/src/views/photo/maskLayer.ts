@@ -1,27 +1,33 @@
-// The mask overlay: one tinted image per object (its box when it has no mask).
+// The mask overlay: one tinted image per object (its box when it has no mask), in the colour
+// `colours` gives it (by object or by class, see objectColors.ts).
 import type { SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
-import { classCss, classRgb } from "../classColors";
+import { type Rgb, rgbCss } from "../classColors";
 import { maskImageUrl, type Region } from "./maskRaster";
+
+const GREY: Rgb = [128, 128, 128];
 
 export function renderMasks(
   group: SVGGElement,
   objects: readonly SceneObject[],
   regions: ReadonlyMap<string, Region>,
+  colours: ReadonlyMap<string, Rgb>,
 ): void {
   const nodes = objects.map((object) => {
     const region = regions.get(object.id);
+    const colour = colours.get(object.id) ?? GREY;
     const common = {
       class: "mask",
       "data-testid": `mask-${object.id}`,
       "data-object": object.id,
+      "data-colour": rgbCss(colour),
     };
     if (object.mask && region?.bits) {
       const [x, y] = object.mask.origin;
       const [width, height] = object.mask.size;
       return svgEl("image", {
         ...common,
-        href: maskImageUrl(object.mask, region.bits, classRgb(object.class)),
+        href: maskImageUrl(object.mask, region.bits, colour),
         x,
         y,
         width,
@@ -37,7 +43,7 @@ export function renderMasks(
       y: y1,
       width: x2 - x1,
       height: y2 - y1,
-      fill: classCss(object.class),
+      fill: rgbCss(colour),
       "data-source": "none",
     });
   });
@@ -51,6 +57,7 @@ export function renderOutlines(
   hovered: string | null,
   selected: string | null,
   width: number,
+  colours: ReadonlyMap<string, Rgb>,
 ): void {
   const outline = (id: string | null, kind: string) => {
     const object = id ? objects.find((o) => o.id === id) : undefined;
@@ -62,7 +69,7 @@ export function renderOutlines(
       y: y1,
       width: x2 - x1,
       height: y2 - y1,
-      stroke: classCss(object.class),
+      stroke: rgbCss(colours.get(object.id) ?? GREY),
       "stroke-width": width,
     });
   };

@@ -17,6 +17,7 @@ import { ObjectEditor } from "../../state/objectEditor";
 import { plural, SceneSession } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
 import { mountPhotoView } from "../photo/photoView";
+import { mountPlacementNotice } from "../scene3d/placementNotice";
 import { mountScene3d } from "../scene3d/scene3dView";
 import { mountWorkflowBar } from "../workflow/workflowBar";
 import { mountObjectSuggestions } from "./objectSuggestions";
@@ -181,6 +182,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       mountSupportShortcuts(session),
       startAutosave(session, { author: getAuthor }),
       mountScene3d(scene3d.body, session, layout.draft),
+      mountPlacementNotice(scene3d.element, scene3d.body, session),
       mountSaveBar(saveBar, session, objectEditor),
       mountSupportEditor(table, session),
       mountSupportSuggestions(suggestions, table, session),

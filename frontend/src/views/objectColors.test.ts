@@ -1,0 +1,49 @@
+// Object colours: every object of a crowded scene its own colour, the same after objects are
+// added, and class colouring gives objects of one class one colour.
+import { describe, expect, it } from "vitest";
+import { classRgb, type Rgb } from "./classColors";
+import { maskColours, objectColours } from "./objectColors";
+
+const distance = (a: Rgb, b: Rgb) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+
+function closest(colours: Map<string, Rgb>): number {
+  const list = [...colours.values()];
+  let min = Number.POSITIVE_INFINITY;
+  list.forEach((a, i) => {
+    for (const b of list.slice(i + 1)) min = Math.min(min, distance(a, b));
+  });
+  return min;
+}
+
+const ids = (n: number, prefix = "o") =>
+  Array.from({ length: n }, (_, i) => ({ id: `${prefix}${i}` }));
+
+describe("object colours", () => {
+  it("gives the 25 objects of a crowded scene 25 clearly different colours", () => {
+    for (const prefix of ["o", "obj_", "chair-"]) {
+      const colours = objectColours(ids(25, prefix));
+      expect(new Set([...colours.values()].map(String)).size).toBe(25);
+      expect(closest(colours)).toBeGreaterThan(30);
+    }
+  });
+
+  it("keeps the colours of existing objects when one is added or the page reloads", () => {
+    const before = objectColours(ids(12));
+    const after = objectColours([...ids(12), { id: "new_box" }]);
+    for (const [id, colour] of before) expect(after.get(id)).toEqual(colour);
+    expect(objectColours(ids(12))).toEqual(before);
+  });
+
+  it("colours by class on request", () => {
+    const objects = [
+      { id: "a", class: "chair" as const },
+      { id: "b", class: "chair" as const },
+      { id: "c", class: "table" as const },
+    ];
+    const byClass = maskColours(objects, "class");
+    expect(byClass.get("a")).toEqual(classRgb("chair"));
+    expect(byClass.get("b")).toEqual(byClass.get("a"));
+    const byObject = maskColours(objects, "object");
+    expect(byObject.get("b")).not.toEqual(byObject.get("a"));
+  });
+});
