@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: surface-model coco-detector detector-model bench-detector calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
+.PHONY: surface-model coco-detector detector-model bench-detector bench-refine calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors test-frontend run test install install-python install-node install-chromium build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -104,6 +104,10 @@ detector-model: install-python
 bench-detector: install-python
 	$(PY) benchmarks/bench_detector.py --model backend/src/holiscene/learning/coco_detector \
 		--model backend/src/holiscene/learning/nyu_detector
+
+# The mask tools' refine call (GrabCut steered by strokes) on 400x400 boxes of the real photos.
+bench-refine: install-python
+	$(PY) benchmarks/bench_refine.py
 
 surface-model: install-python
 	rm -rf /tmp/holiscene-surface-model

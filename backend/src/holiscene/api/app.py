@@ -15,7 +15,18 @@ from ..core.settings import Settings
 from ..workbench import Workbench
 from .deps import current_user, is_loopback
 from .errors import install_error_handlers
-from .routes import auth, detector, jobs, models, scenes, users, viewer, workflow
+from .routes import (
+    auth,
+    detector,
+    downloads,
+    jobs,
+    mask_refine,
+    models,
+    scenes,
+    users,
+    viewer,
+    workflow,
+)
 from .workflow_errors import install_workflow_error_handlers
 
 # The only API routes an anonymous request may use (the built frontend is public too: the
@@ -57,6 +68,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.include_router(auth.router)
     app.include_router(workflow.router, dependencies=logged_in)
     app.include_router(scenes.router, dependencies=logged_in)
+    app.include_router(mask_refine.router, dependencies=logged_in)
+    app.include_router(downloads.router, dependencies=logged_in)
     app.include_router(jobs.router, dependencies=logged_in)
     app.include_router(models.router, dependencies=logged_in)
     app.include_router(detector.router, dependencies=logged_in)

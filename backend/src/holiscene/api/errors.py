@@ -10,6 +10,7 @@ from ..editing import InvalidEditError
 from ..inputs import InputError
 from ..pipeline import PipelineBuildError
 from ..retraining import NotEnoughLabelsError
+from ..segmentation.refine import RefineInputError
 from ..store.jobs import JobNotFoundError, RetrainRunningError
 from ..store.models import ModelNotFoundError
 from ..store.scenes import RevisionConflictError, SceneNotFoundError
@@ -45,6 +46,10 @@ def install_error_handlers(app: FastAPI) -> None:
     @app.exception_handler(RetrainRunningError)
     async def _retrain_running(_: Request, exc: RetrainRunningError) -> JSONResponse:
         return JSONResponse({"detail": str(exc)}, status_code=409)
+
+    @app.exception_handler(RefineInputError)
+    async def _refine(_: Request, exc: RefineInputError) -> JSONResponse:
+        return JSONResponse({"detail": f"cannot refine the mask: {exc}"}, status_code=422)
 
     @app.exception_handler(NotEnoughLabelsError)
     async def _few_labels(_: Request, exc: NotEnoughLabelsError) -> JSONResponse:

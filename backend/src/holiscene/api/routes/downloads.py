@@ -1,0 +1,81 @@
+"""Files to download: a scene's scene.json and COCO JSON, and several scenes as one zip."""
+
+from __future__ import annotations
+
+from fastapi import APIRouter, Response
+from holiscene_schema import ErrorMessage, SceneArchiveRequest
+
+from ...export.archive import (
+    ArchivedScene,
+    coco_description,
+    coco_json,
+    file_stem,
+    scene_json,
+    scenes_zip,
+)
+from ...store.scenes import SceneNotFoundError
+from ...workbench import Workbench
+from ..deps import WorkbenchDep
+
+router = APIRouter(prefix="/api/scenes", tags=["downloads"])
+
+_ERRORS: dict[int | str, dict[str, object]] = {
+    404: {"model": ErrorMessage},
+    422: {"model": ErrorMessage},
+}
+
+
+def attachment(name: str) -> dict[str, str]:
+    return {"Content-Disposition": f'attachment; filename="{name}"'}
+
+
+def _archived(workbench: Workbench, scene_id: str) -> ArchivedScene:
+    doc = workbench.scenes.document(scene_id)
+    glb = workbench.scenes.glb_path(scene_id)
+    return ArchivedScene(
+        scene_id=scene_id,
+        revision=doc.revision,
+        scene=doc.scene,
+        photo=workbench.scenes.image_path(scene_id),
+        glb=glb if glb is not None and glb.is_file() else None,
+    )
+
+
+@router.get("/{scene_id}/scene.json", responses=_ERRORS)
+def download_scene_json(scene_id: str, workbench: WorkbenchDep) -> Response:
+    """The current revision's scene, as `holiscene infer` writes scene.json."""
+    scene = workbench.scenes.document(scene_id).scene
+    return Response(
+        scene_json(scene),
+        media_type="application/json",
+        headers=attachment(f"{file_stem(scene.name, scene_id)}.scene.json"),
+    )
+
+
+@router.get("/{scene_id}/coco.json", responses=_ERRORS)
+def download_coco_json(scene_id: str, workbench: WorkbenchDep) -> Response:
+    """The current revision's objects as a COCO instances file of the photo."""
+    doc = workbench.scenes.document(scene_id)
+    return Response(
+        coco_json(doc.scene, coco_description(scene_id, doc.revision, doc.scene)),
+        media_type="application/json",
+        headers=attachment(f"{file_stem(doc.scene.name, scene_id)}.coco.json"),
+    )
+
+
+@router.post(
+    "/archive",
+    responses={200: {"content": {"application/zip": {}}}, **_ERRORS},
+    response_class=Response,
+)
+def download_archive(request: SceneArchiveRequest, workbench: WorkbenchDep) -> Response:
+    """The scenes as one zip (see export/archive.py); 404 naming every unknown id, and
+    nothing is made then."""
+    scene_ids = list(dict.fromkeys(request.scene_ids))  # the same scene once
+    known = {s.id for s in workbench.scenes.list_summaries()}
+    unknown = [i for i in scene_ids if i not in known]
+    if unknown:
+        raise SceneNotFoundError(f"no scene with the id {', '.join(unknown)}: nothing archived")
+    data = scenes_zip([_archived(workbench, i) for i in scene_ids])
+    name = f"holiscene-{len(scene_ids)}-scenes.zip"
+    return Response(data, media_type="application/zip", headers=attachment(name))

@@ -1,0 +1,71 @@
+"""Several scenes as one zip: a folder per scene with what a tool outside the workbench
+needs (scene.json as `holiscene infer` writes it, coco.json, the photo, scene.glb)."""
+
+from __future__ import annotations
+
+import io
+import json
+import re
+import zipfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from holiscene_schema import Scene
+
+from .coco import coco_instances
+
+
+def file_stem(name: str, fallback: str) -> str:
+    """A scene name made safe as a file or folder name on every system."""
+    stem = re.sub(r"[^A-Za-z0-9._-]+", "_", name).strip("._")[:60]
+    return stem or fallback
+
+
+def scene_json(scene: Scene) -> bytes:
+    """The scene file as `holiscene infer` writes it."""
+    return (json.dumps(scene.model_dump(mode="json"), indent=1) + "\n").encode()
+
+
+def coco_json(scene: Scene, description: str) -> bytes:
+    return (json.dumps(coco_instances(scene, description)) + "\n").encode()
+
+
+@dataclass(frozen=True)
+class ArchivedScene:
+    scene_id: str
+    revision: int
+    scene: Scene
+    photo: Path
+    glb: Path | None
+
+
+def coco_description(scene_id: str, revision: int, scene: Scene) -> str:
+    return f"HoliScene scene {scene.name} ({scene_id}, revision {revision})"
+
+
+def scenes_zip(scenes: list[ArchivedScene]) -> bytes:
+    """The zip: `<name>-<id>/scene.json`, `coco.json`, the photo, and `scene.glb` when the
+    scene has one; `index.json` lists the folders with their scene id and revision."""
+    buffer = io.BytesIO()
+    index: list[dict[str, Any]] = []
+    with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_DEFLATED) as archive:
+        for item in scenes:
+            folder = f"{file_stem(item.scene.name, item.scene_id)}-{item.scene_id}"
+            description = coco_description(item.scene_id, item.revision, item.scene)
+            archive.writestr(f"{folder}/scene.json", scene_json(item.scene))
+            archive.writestr(f"{folder}/coco.json", coco_json(item.scene, description))
+            # Photos and GLBs are compressed already.
+            archive.write(item.photo, f"{folder}/{item.scene.image.file}", zipfile.ZIP_STORED)
+            if item.glb is not None:
+                archive.write(item.glb, f"{folder}/scene.glb", zipfile.ZIP_STORED)
+            index.append(
+                {
+                    "folder": folder,
+                    "scene_id": item.scene_id,
+                    "revision": item.revision,
+                    "has_glb": item.glb is not None,
+                }
+            )
+        archive.writestr("index.json", json.dumps({"scenes": index}, indent=1) + "\n")
+    return buffer.getvalue()
