@@ -98,6 +98,7 @@ export function mountSupportSuggestions(
   );
 
   let scores: SceneScores | null = null;
+  /** The objects the scores (or the run under way) are for. */
   let scoredFor = "";
   let photo: Promise<PixelImage> | null = null;
   let run = 0;
@@ -140,17 +141,16 @@ export function mountSupportSuggestions(
     try {
       photo ??= photoPixels(api.imageUrl(session.sceneId), abort.signal);
       const start = performance.now();
-      const key = inputsKey(session.objects);
+      scoredFor = inputsKey(session.objects);
       const result = await scoreScene(session.doc.scene, await photo);
       if (mine !== run || abort.signal.aborted) return;
       scores = result;
-      scoredFor = key;
       scoredMs = performance.now() - start;
       session.setSuggester(live.checked ? makeSuggester(result) : null);
       render();
       describe(scoredMs);
     } catch (error) {
-      if (abort.signal.aborted) return;
+      if (abort.signal.aborted || mine !== run) return;
       photo = null;
       status.textContent = `No suggestions: ${error instanceof Error ? error.message : String(error)}`;
     } finally {
@@ -167,9 +167,12 @@ export function mountSupportSuggestions(
     if (scores) describe(scoredMs);
   });
   const unsubscribe = session.subscribe((change) => {
-    // A revision that moved masks or objects needs scoring again; edits only need decoding
-    // again, which the session does itself. Rows may have been rebuilt: put badges back.
-    if (change === "document" && scores && inputsKey(session.objects) !== scoredFor) {
+    // A revision that added, removed or changed objects (an object edit, a placement) needs
+    // scoring again, also while a run for the old objects is under way (its answer is
+    // dropped); support edits only need decoding again, which the session does itself. Rows
+    // may have been rebuilt: put badges back.
+    const wanted = scores !== null || live.checked;
+    if (change === "document" && wanted && inputsKey(session.objects) !== scoredFor) {
       scores = null;
       session.setSuggester(null);
       render();

@@ -27,6 +27,11 @@ describe("object colours", () => {
     }
   });
 
+  it("gives a numbered series (the pipeline's o0, o1, ...) neighbouring, far-apart slots", () => {
+    expect(closest(objectColours(ids(10)))).toBeGreaterThan(40);
+    expect(closest(objectColours(ids(10, "d")))).toBeGreaterThan(40);
+  });
+
   it("keeps the colours of existing objects when one is added or the page reloads", () => {
     const before = objectColours(ids(12));
     const after = objectColours([...ids(12), { id: "new_box" }]);

@@ -23,6 +23,16 @@ function idHash(id: string): number {
 }
 
 /**
+ * An id's preferred palette slot. Ids numbered in a series ("o0", "o1", ... from the pipeline,
+ * "d1", "d2", ... from the detector) take consecutive slots, which are far apart in hue.
+ */
+function preferredSlot(id: string): number {
+  const numbered = /^(.*?)(\d+)$/.exec(id);
+  if (!numbered) return idHash(id) % PALETTE.length;
+  return (idHash(numbered[1] ?? "") + Number(numbered[2])) % PALETTE.length;
+}
+
+/**
  * Each object's colour, in document order: its id's slot of the palette, or the next free
  * one when an earlier object has it (new objects come last, so they never move others).
  */
@@ -30,7 +40,7 @@ export function objectColours(objects: readonly Pick<SceneObject, "id">[]): Map<
   const used = new Set<number>();
   const colours = new Map<string, Rgb>();
   for (const { id } of objects) {
-    let slot = idHash(id) % PALETTE.length;
+    let slot = preferredSlot(id);
     for (let tries = 0; used.has(slot) && tries < PALETTE.length; tries++) {
       slot = (slot + 1) % PALETTE.length;
     }

@@ -1,6 +1,7 @@
 // Object labels on the photo (each object's id on a dark tag with its mask colour), placed
 // apart by labelPlacement.ts, with a leader line when a crowd pushed the tag off its object;
-// and a "?" flag on objects without a supporter, which labels keep clear of.
+// and a "?" flag on objects without a supporter. Labels keep clear of the flags and of the
+// centroids, where the support arrows end.
 import type { SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
 import { isStructural, type ShownSupport } from "../../state/supportGraph";
@@ -116,10 +117,15 @@ export function renderLabels(
       { id: object.id, anchor: region.centroid, box: object.bbox, width, height: HEIGHT * size },
     ];
   });
+  // Arrowheads end on the centroids: labels keep them in view.
+  const heads = requests.map(({ anchor: [x, y] }) => {
+    const r = size * 0.45;
+    return { left: x - r, top: y - r, right: x + r, bottom: y + r };
+  });
   const placed = placeLabels(
     requests,
     drawingRect(frame),
-    flags.map((f) => f.rect),
+    [...flags.map((f) => f.rect), ...heads],
     size * 0.1,
   );
   const byId = new Map(objects.map((o) => [o.id, o]));

@@ -1,0 +1,233 @@
+// User story: an annotator opens a crowded room (20+ objects) and can still read every label:
+// none covers another. Masks are coloured by object (each its own colour, the object list's
+// swatch the same), or by class on request, with an opacity slider; both stay after a reload.
+// After an object edit (a detector box accepted) the Relation Network scores the new objects
+// and the 3D panel offers to re-place the objects, which a placement job does.
+import { copyFileSync, mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import path from "node:path";
+import type { ImportResult } from "@holiscene/schema";
+import { expect, type Page, test } from "@playwright/test";
+import { getScene, seedScene, T3D_5, waitForJob } from "../helpers/api";
+import { openScene, waitForModel } from "../helpers/photo";
+import { scratchDir } from "../helpers/scratch";
+import { importSynthetic, synthesizeFolder } from "../helpers/synthetic";
+
+const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
+mkdirSync(SCREENSHOTS, { recursive: true });
+const REAL = path.resolve(import.meta.dirname, "../../../shared/data/real");
+
+interface Box {
+  id: string;
+  left: number;
+  top: number;
+  right: number;
+  bottom: number;
+}
+
+/** A synthetic room with a pile of small boxes on top of its own objects: 20+ objects. */
+function crowdedFolder(): string {
+  const source = synthesizeFolder(8);
+  const dir = scratchDir("holiscene-crowded-");
+  for (const name of ["img.png", "cam_K.txt", "gt.json"]) {
+    copyFileSync(path.join(source, name), path.join(dir, name));
+  }
+  const own = JSON.parse(readFileSync(path.join(source, "detections.json"), "utf8")) as unknown[];
+  const pile = Array.from({ length: 14 }, (_, i) => {
+    const x = 200 + (i % 6) * 26;
+    const y = 260 + Math.floor(i / 6) * 22;
+    return { bbox: [x, y, x + 40, y + 30], class: i % 3 === 0 ? "books" : "box" };
+  });
+  writeFileSync(path.join(dir, "detections.json"), JSON.stringify([...own, ...pile]));
+  return dir;
+}
+
+/** Every label's tag and text on the screen, and the masks' colours. */
+async function readOverlays(page: Page) {
+  return page.evaluate(() => {
+    const box = (id: string, r: DOMRect) => ({
+      id,
+      left: r.left,
+      top: r.top,
+      right: r.right,
+      bottom: r.bottom,
+    });
+    const labels = [...document.querySelectorAll<SVGGElement>(".object-label")];
+    return {
+      tags: labels.map((g) =>
+        box(
+          g.dataset.object ?? "",
+          (g.querySelector(".label-box") as Element).getBoundingClientRect(),
+        ),
+      ),
+      texts: labels.map((g) =>
+        box(
+          g.dataset.object ?? "",
+          (g.querySelector(".label-text") as Element).getBoundingClientRect(),
+        ),
+      ),
+      leaders: labels.filter((g) => g.dataset.leader === "true").length,
+      masks: [...document.querySelectorAll<SVGElement>(".mask")].map((m) => ({
+        id: m.dataset.object ?? "",
+        colour: m.dataset.colour ?? "",
+        opacity: Number(getComputedStyle(m).opacity),
+      })),
+    };
+  });
+}
+
+const overlap = (a: Box, b: Box) =>
+  a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom;
+
+function overlappingPairs(boxes: readonly Box[]): string[] {
+  return boxes.flatMap((a, i) =>
+    boxes
+      .slice(i + 1)
+      .filter((b) => overlap(a, b))
+      .map((b) => `${a.id}/${b.id}`),
+  );
+}
+
+test("a crowded scene's labels do not overlap; mask colouring and opacity are remembered", async ({
+  page,
+}) => {
+  const doc = await importSynthetic(
+    page.request,
+    { dir: crowdedFolder(), truth: [] },
+    "crowded synthetic room",
+  );
+  const objects = doc.scene.objects ?? [];
+  expect(objects.length).toBeGreaterThanOrEqual(20);
+  await page.addInitScript(() => localStorage.setItem("holiscene.liveSuggestions", "off"));
+  await openScene(page, doc.scene_id);
+
+  const before = await readOverlays(page);
+  expect(before.tags).toHaveLength(objects.length);
+  expect(overlappingPairs(before.tags)).toEqual([]);
+  expect(overlappingPairs(before.texts)).toEqual([]);
+  // Each id's text sits inside its own tag.
+  before.texts.forEach((text, i) => {
+    const tag = before.tags[i] as Box;
+    expect(text.left).toBeGreaterThanOrEqual(tag.left - 0.5);
+    expect(text.right).toBeLessThanOrEqual(tag.right + 0.5);
+  });
+  // The pile is dense: some labels had to move off their objects, with a leader line.
+  expect(before.leaders).toBeGreaterThan(0);
+  await page.getByTestId("photo-panel").screenshot({
+    path: path.join(SCREENSHOTS, "photo-crowded-labels.png"),
+  });
+
+  // By object (the default): every mask its own colour, the object list's swatch the same.
+  await expect(page.getByTestId("mask-colouring")).toHaveValue("object");
+  const byObject = new Set(before.masks.map((m) => m.colour));
+  expect(byObject.size).toBe(objects.length);
+  const first = before.masks[0];
+  if (!first) throw new Error("no masks drawn");
+  await expect(page.getByTestId(`object-swatch-${first.id}`)).toHaveCSS(
+    "background-color",
+    first.colour.replace(/rgb\((\d+) (\d+) (\d+)\)/, "rgb($1, $2, $3)"),
+  );
+  // The masks fade in and out (a short transition): read the opacity once it settled.
+  const firstMaskOpacity = async () => (await readOverlays(page)).masks[0]?.opacity;
+  await expect.poll(firstMaskOpacity).toBeCloseTo(0.42, 2);
+
+  // By class: the pile's 14 boxes take two colours (box, books).
+  await page.getByTestId("mask-colouring").selectOption("class");
+  await page.getByTestId("mask-opacity").fill("0.8");
+  const byClass = await readOverlays(page);
+  const classes = new Set(objects.map((o) => o.class));
+  expect(new Set(byClass.masks.map((m) => m.colour)).size).toBe(classes.size);
+  await expect.poll(firstMaskOpacity).toBeCloseTo(0.8, 2);
+
+  await page.reload();
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await expect(page.getByTestId("mask-colouring")).toHaveValue("class");
+  await expect(page.getByTestId("mask-opacity")).toHaveValue("0.8");
+  await expect.poll(firstMaskOpacity).toBeCloseTo(0.8, 2);
+  const reloaded = await readOverlays(page);
+  expect(new Set(reloaded.masks.map((m) => m.colour)).size).toBe(classes.size);
+  expect(overlappingPairs(reloaded.tags)).toEqual([]);
+  // Back to the default for the other tests in this browser profile.
+  await page.getByTestId("mask-colouring").selectOption("object");
+  await page.getByTestId("mask-opacity").fill("0.42");
+});
+
+test("a real photo: labels apart, sources in the object list", async ({ page }) => {
+  const doc = await seedScene(page.request, path.join(REAL, "im3d-1"), "im3d-1 overlays");
+  await page.addInitScript(() => localStorage.setItem("holiscene.liveSuggestions", "off"));
+  await openScene(page, doc.scene_id);
+  const overlays = await readOverlays(page);
+  expect(overlays.tags).toHaveLength(doc.scene.objects?.length ?? 0);
+  expect(overlappingPairs(overlays.tags)).toEqual([]);
+  const given = doc.scene.objects?.find((o) => o.source === "given" && o.class !== "floor");
+  if (given) await expect(page.getByTestId(`object-source-${given.id}`)).toHaveText("given");
+  await page.getByTestId("photo-panel").screenshot({
+    path: path.join(SCREENSHOTS, "photo-real-labels.png"),
+  });
+});
+
+/** The real photo t3d-5 without objects (empty detections.json). */
+async function importWithoutObjects(page: Page, name: string): Promise<string> {
+  const file = (file: string, mimeType: string) => ({
+    name: file,
+    mimeType,
+    buffer: readFileSync(path.join(T3D_5, file)),
+  });
+  const response = await page.request.post("/api/scenes", {
+    multipart: {
+      image: file("img.jpg", "image/jpeg"),
+      cam_k: file("cam_K.txt", "text/plain"),
+      detections: {
+        name: "detections.json",
+        mimeType: "application/json",
+        buffer: Buffer.from("[]"),
+      },
+      name,
+    },
+  });
+  expect(response.status(), await response.text()).toBe(201);
+  const imported = (await response.json()) as ImportResult;
+  if (imported.job)
+    expect((await waitForJob(page.request, imported.job.id)).status).toBe("succeeded");
+  return imported.scene.id;
+}
+
+test("after an object edit the model scores again and the 3D panel offers Re-place objects", async ({
+  page,
+}) => {
+  const sceneId = await importWithoutObjects(page, "t3d-5 object edit follow-up");
+  await page.addInitScript(() => localStorage.setItem("holiscene.liveSuggestions", "on"));
+  await page.goto(`/#/scenes/${sceneId}`);
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await waitForModel(page);
+  await expect(page.getByTestId("suggestion-status")).toContainText("0 objects scored");
+  await expect(page.getByTestId("placement-notice")).toBeHidden();
+
+  // The detector runs by itself on a scene without objects; accept its first box.
+  await expect(page.getByTestId("detector-status")).toContainText("suggested in", {
+    timeout: 90_000,
+  });
+  await page.getByTestId("detector-suggestion").first().click();
+  await page.getByTestId("accept-suggestion").click();
+
+  // The new object is scored by the Relation Network without a reload...
+  await expect(page.getByTestId("suggestion-status")).toContainText("1 objects scored", {
+    timeout: 60_000,
+  });
+  const [added] = (await getScene(page.request, sceneId)).scene.objects ?? [];
+  if (!added) throw new Error("the accepted box is not in the scene");
+  await expect(page.getByTestId(`object-source-${added.id}`)).toContainText("detector");
+  // ... and the 3D panel says the 3D scene does not have it yet.
+  const notice = page.getByTestId("placement-notice");
+  await expect(notice).toBeVisible();
+  await expect(page.getByTestId("placement-notice-text")).toContainText("1 object added");
+  await page.getByTestId("scene3d-panel").screenshot({
+    path: path.join(SCREENSHOTS, "placement-notice.png"),
+  });
+
+  await page.getByTestId("placement-notice-replace").click();
+  await expect(notice).toBeHidden({ timeout: 120_000 });
+  const placed = (await getScene(page.request, sceneId)).scene.objects?.find(
+    (o) => o.id === added.id,
+  );
+  expect(placed?.box_3d).toBeTruthy();
+});
