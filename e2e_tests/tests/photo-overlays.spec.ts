@@ -66,6 +66,9 @@ async function readOverlays(page: Page) {
         ),
       ),
       leaders: labels.filter((g) => g.dataset.leader === "true").length,
+      anchors: [...document.querySelectorAll(".anchor rect")].map((r, i) =>
+        box(`anchor ${i}`, r.getBoundingClientRect()),
+      ),
       masks: [...document.querySelectorAll<SVGElement>(".mask")].map((m) => ({
         id: m.dataset.object ?? "",
         colour: m.dataset.colour ?? "",
@@ -104,6 +107,10 @@ test("a crowded scene's labels do not overlap; mask colouring and opacity are re
   expect(before.tags).toHaveLength(objects.length);
   expect(overlappingPairs(before.tags)).toEqual([]);
   expect(overlappingPairs(before.texts)).toEqual([]);
+  // Nor do they cover the support arrows' floor and wall tags.
+  expect(before.anchors.length).toBeGreaterThan(0);
+  const covered = before.tags.filter((tag) => before.anchors.some((a) => overlap(tag, a)));
+  expect(covered.map((t) => t.id)).toEqual([]);
   // Each id's text sits inside its own tag.
   before.texts.forEach((text, i) => {
     const tag = before.tags[i] as Box;

@@ -7,6 +7,8 @@ import { svgEl } from "../../dom";
 import type { SuggestedSupport } from "../../state/sceneSession";
 import { isStructural, type ShownSupport } from "../../state/supportGraph";
 import { arrowShape, type Frame, type Point, strokeWidth, structuralAnchor } from "./arrowGeometry";
+import { drawingRect, type Rect } from "./cornerHandles";
+import { type LabelRequest, placeLabels } from "./labelPlacement";
 import type { Region } from "./maskRaster";
 import "./supportEditing.css";
 
@@ -59,20 +61,23 @@ interface ArrowEdge {
   suggestion?: SuggestedSupport;
 }
 
+/** The size of the anchors' tags (floor, wall, ceiling). */
+const anchorLabelSize = (frame: Frame) => strokeWidth(frame) * 5;
+
+/** `anchor`: where a structural supporter's tag is (placed apart from the other tags). */
 function arrowFor(
   edge: ArrowEdge,
   object: SceneObject,
   centroids: ReadonlyMap<string, Point>,
   frame: Frame,
+  anchor: Point | undefined,
 ): SVGGElement | null {
   const to = centroids.get(object.id);
   if (!to) return null;
   const width = strokeWidth(frame);
-  const labelSize = width * 5;
+  const labelSize = anchorLabelSize(frame);
   const structural = isStructural(edge.parent) ? edge.parent : null;
-  const from = structural
-    ? structuralAnchor(structural, object, to, frame, labelHalf(structural, labelSize))
-    : centroids.get(edge.parent);
+  const from = structural ? anchor : centroids.get(edge.parent);
   if (!from) return null;
   const shape = arrowShape(from, to, width, structural ? labelSize * 0.8 : width * 1.5);
   const support = edge.support;
@@ -136,20 +141,41 @@ export function renderArrows(
   supports: ReadonlyMap<string, ShownSupport>,
   frame: Frame,
   suggestions: ReadonlyMap<string, SuggestedSupport> = new Map(),
-): void {
+): Rect[] {
   const centroids = new Map<string, Point>(
     [...regions].map(([id, region]) => [id, region.centroid]),
   );
-  const arrows: SVGGElement[] = [];
-  for (const object of objects) {
-    if (isRoomPart(object)) continue;
+  const edges = objects.flatMap((object) => {
+    if (isRoomPart(object)) return [];
     const support = supports.get(object.id) ?? null;
     const suggestion = suggestions.get(object.id);
     const edge: ArrowEdge | null = suggestion
       ? { parent: suggestion.parent, type: suggestion.type, support, suggestion }
       : support && { parent: support.parent, type: support.type, support };
-    const arrow = edge && arrowFor(edge, object, centroids, frame);
-    if (arrow) arrows.push(arrow);
-  }
+    return edge ? [{ object, edge }] : [];
+  });
+  // The floor, wall and ceiling tags of objects side by side would pile up: placed apart.
+  const size = anchorLabelSize(frame);
+  const requests: LabelRequest[] = edges.flatMap(({ object, edge }) => {
+    const to = centroids.get(object.id);
+    if (!to || !isStructural(edge.parent)) return [];
+    const [hw, hh] = labelHalf(edge.parent, size);
+    const [x, y] = structuralAnchor(edge.parent, object, to, frame, [hw, hh]);
+    const box = [x - hw, y - hh, x + hw, y + hh] as const;
+    return [{ id: object.id, anchor: [x, y], box, width: 2 * hw, height: 2 * hh }];
+  });
+  const anchors = placeLabels(requests, drawingRect(frame), [], size * 0.1);
+  const anchorAt = new Map(
+    anchors.map(({ id, rect }) => [
+      id,
+      [(rect.left + rect.right) / 2, (rect.top + rect.bottom) / 2] as Point,
+    ]),
+  );
+  const arrows = edges.flatMap(({ object, edge }) => {
+    const arrow = arrowFor(edge, object, centroids, frame, anchorAt.get(object.id));
+    return arrow ? [arrow] : [];
+  });
   group.replaceChildren(...arrows);
+  // Where the anchors' tags are, for the objects' labels to keep clear of.
+  return anchors.map((a) => a.rect);
 }

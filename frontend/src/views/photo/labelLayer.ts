@@ -96,7 +96,10 @@ function tag(
   return group;
 }
 
-/** Labels and flags for every object; `colours` as the masks are coloured. */
+/**
+ * Labels and flags for every object; `colours` as the masks are coloured; `keepClear`: more
+ * places labels must not cover (the support arrows' anchor tags).
+ */
 export function renderLabels(
   group: SVGGElement,
   objects: readonly SceneObject[],
@@ -104,6 +107,7 @@ export function renderLabels(
   supports: ReadonlyMap<string, ShownSupport>,
   frame: Frame,
   colours: ReadonlyMap<string, Rgb>,
+  keepClear: readonly Rect[] = [],
 ): void {
   const size = strokeWidth(frame) * 5.5;
   const flags = objects
@@ -125,7 +129,7 @@ export function renderLabels(
   const placed = placeLabels(
     requests,
     drawingRect(frame),
-    [...flags.map((f) => f.rect), ...heads],
+    [...flags.map((f) => f.rect), ...heads, ...keepClear],
     size * 0.1,
   );
   const byId = new Map(objects.map((o) => [o.id, o]));

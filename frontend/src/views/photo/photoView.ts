@@ -159,8 +159,15 @@ export function mountPhotoView(
   };
   const drawSupports = () => {
     const shown = session.shown();
-    renderArrows(arrows, session.objects, regions, shown, frame, session.suggestions());
-    renderLabels(labels, session.objects, regions, shown, frame, colours);
+    const anchors = renderArrows(
+      arrows,
+      session.objects,
+      regions,
+      shown,
+      frame,
+      session.suggestions(),
+    );
+    renderLabels(labels, session.objects, regions, shown, frame, colours, anchors);
   };
   const drawHighlight = () => {
     const { hovered, selected } = session;
