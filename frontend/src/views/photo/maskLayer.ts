@@ -1,11 +1,29 @@
 // The mask overlay: one tinted image per object (its box when it has no mask), in the colour
 // `colours` gives it (by object or by class, see objectColors.ts).
-import type { SceneObject } from "@holiscene/schema";
+import type { Mask, SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
 import { type Rgb, rgbCss } from "../classColors";
 import { maskImageUrl, type Region } from "./maskRaster";
 
 const GREY: Rgb = [128, 128, 128];
+
+/**
+ * Tinted mask images already encoded, by mask and colour: an object edit redraws the overlay
+ * but encodes only the masks that changed (encoding is most of a redraw's time).
+ */
+const encoded = new Map<string, string>();
+const ENCODED_KEPT = 400;
+
+function tintedMask(mask: Mask, bits: Uint8Array, colour: Rgb): string {
+  const key = `${colour.join(",")}|${mask.origin.join(",")}|${mask.size.join(",")}|${mask.rle.join(",")}`;
+  let url = encoded.get(key);
+  if (url === undefined) {
+    url = maskImageUrl(mask, bits, colour);
+    if (encoded.size >= ENCODED_KEPT) encoded.delete(encoded.keys().next().value ?? "");
+  } else encoded.delete(key); // most recently used last
+  encoded.set(key, url);
+  return url;
+}
 
 export function renderMasks(
   group: SVGGElement,
@@ -27,7 +45,7 @@ export function renderMasks(
       const [width, height] = object.mask.size;
       return svgEl("image", {
         ...common,
-        href: maskImageUrl(object.mask, region.bits, colour),
+        href: tintedMask(object.mask, region.bits, colour),
         x,
         y,
         width,
