@@ -107,3 +107,16 @@ def test_unknown_scenes_are_404_naming_them_and_an_empty_list_is_422(
     for file in ("scene.json", "coco.json"):
         missing = client.get(f"/api/scenes/nope1/{file}")
         assert missing.status_code == 404 and "nope1" in missing.json()["detail"]
+
+
+def test_scene_glb_is_a_named_file_and_answers_a_range(client: TestClient, t3d5: Path) -> None:
+    """The Download menu asks for the first bytes only, to learn whether there is one."""
+    placed = _import(client, t3d5, "placed room", run_pipeline=True)
+    plain = _import(client, t3d5, "plain")
+    first = client.get(f"/api/scenes/{placed}/scene.glb", headers={"Range": "bytes=0-3"})
+    assert first.status_code == 206 and first.content == b"glTF"
+    whole = client.get(f"/api/scenes/{placed}/scene.glb")
+    assert 'filename="placed_room.glb"' in whole.headers["content-disposition"]
+    assert whole.content[:4] == b"glTF" and len(whole.content) > 1000
+    missing = client.get(f"/api/scenes/{plain}/scene.glb", headers={"Range": "bytes=0-3"})
+    assert missing.status_code == 404

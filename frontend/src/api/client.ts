@@ -26,10 +26,10 @@ async function readDetail(response: Response): Promise<unknown> {
 /** Told when an answer is 401 (no session, or it ended): main.ts then shows the login page. */
 export const sessionEvents: { onUnauthorized: (() => void) | null } = { onUnauthorized: null };
 
-export async function request<T>(path: string, init: RequestInit = {}): Promise<T> {
+async function fetchOk(path: string, init: RequestInit, accept: string): Promise<Response> {
   const response = await fetch(`${BASE}${path}`, {
     ...init,
-    headers: { Accept: "application/json", ...init.headers },
+    headers: { Accept: accept, ...init.headers },
   });
   if (!response.ok) {
     const detail = await readDetail(response);
@@ -37,8 +37,24 @@ export async function request<T>(path: string, init: RequestInit = {}): Promise<
     if (response.status === 409) throw new ConflictError(detail);
     throw new ApiError(response.status, detail, `${response.status} ${response.statusText}`);
   }
+  return response;
+}
+
+export async function request<T>(path: string, init: RequestInit = {}): Promise<T> {
+  const response = await fetchOk(path, init, "application/json");
   if (response.status === 204) return undefined as T; // no content (logout, ...)
   return (await response.json()) as T;
+}
+
+/** A file the server sends (zip, ...), with the name its Content-Disposition gives. */
+export async function requestFile(
+  path: string,
+  init: RequestInit = {},
+): Promise<{ blob: Blob; filename: string | null }> {
+  const response = await fetchOk(path, init, "*/*");
+  const disposition = response.headers.get("Content-Disposition") ?? "";
+  const filename = /filename="([^"]+)"/.exec(disposition)?.[1] ?? null;
+  return { blob: await response.blob(), filename };
 }
 
 /**

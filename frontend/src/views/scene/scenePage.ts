@@ -20,6 +20,7 @@ import { mountPhotoView } from "../photo/photoView";
 import { mountPlacementNotice } from "../scene3d/placementNotice";
 import { mountScene3d } from "../scene3d/scene3dView";
 import { mountWorkflowBar } from "../workflow/workflowBar";
+import { downloadMenu } from "./downloadMenu";
 import { mountObjectSuggestions } from "./objectSuggestions";
 import { pipelineWarningsPanel } from "./pipelineWarnings";
 import { mountRevisionHistory } from "./revisionHistory";
@@ -108,6 +109,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     attrs: { type: "button", disabled: true },
   });
   const content = el("div", { className: "scene-grid" });
+  const downloads = downloadMenu(sceneId);
   container.replaceChildren(
     el(
       "div",
@@ -119,6 +121,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
         title,
         meta,
         el("span", { className: "spacer" }),
+        downloads.element,
         viserLink(sceneId),
         rerun,
       ),
@@ -259,5 +262,6 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
   return () => {
     abort.abort();
     disposeContent();
+    downloads.dispose();
   };
 }

@@ -1,4 +1,5 @@
 // "Export PNG": the 3D view as it is now, downloaded as a PNG file.
+import { saveBlob } from "../../saveFile";
 
 /** Download the canvas's current picture; `draw` renders a fresh frame into it first. */
 export async function downloadCanvasPng(
@@ -9,15 +10,7 @@ export async function downloadCanvasPng(
   draw(); // the drawing buffer is kept (preserveDrawingBuffer), so this frame is what is read
   const blob = await new Promise<Blob | null>((resolve) => canvas.toBlob(resolve, "image/png"));
   if (!blob) throw new Error("the browser could not encode the 3D view as PNG");
-  const url = URL.createObjectURL(blob);
-  const link = document.createElement("a");
-  link.href = url;
-  link.download = fileName;
-  document.body.append(link);
-  link.click();
-  link.remove();
-  // Revoked later: the download may read the URL after click() returns.
-  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+  saveBlob(blob, fileName);
 }
 
 /** A file name safe on every system: letters, digits, '-', '_' and '.'. */

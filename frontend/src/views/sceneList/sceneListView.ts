@@ -8,16 +8,18 @@ import { el, formatTime } from "../../dom";
 import { describeJob } from "../common/jobProgress";
 import { nextSceneControl } from "../workflow/nextScene";
 import "../workflow/workflow.css";
+import { SceneSelection } from "./sceneSelection";
 import { uploadForm } from "./uploadForm";
 
 const REFRESH_WHILE_RUNNING_MS = 2000;
 
-function sceneRow(scene: SceneSummary): HTMLTableRowElement {
+function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowElement {
   const href = `#/scenes/${encodeURIComponent(scene.id)}`;
   const job = scene.latest_job;
   return el(
     "tr",
     { testid: `scene-row-${scene.id}` },
+    el("td", { className: "select-cell" }, selection.checkbox(scene.id, scene.name)),
     el(
       "td",
       { className: "thumb-cell" },
@@ -57,6 +59,7 @@ function sceneRow(scene: SceneSummary): HTMLTableRowElement {
 export function mountSceneList(container: HTMLElement): () => void {
   const abort = new AbortController();
   const body = el("tbody");
+  const selection = new SceneSelection();
   const status = el("p", { className: "list-status", testid: "scene-list-status" });
   const table = el(
     "table",
@@ -67,6 +70,7 @@ export function mountSceneList(container: HTMLElement): () => void {
       el(
         "tr",
         {},
+        el("th", { className: "select-cell", attrs: { scope: "col" } }, selection.allBox),
         ...[
           "",
           "Scene",
@@ -99,7 +103,8 @@ export function mountSceneList(container: HTMLElement): () => void {
     try {
       const state = (filter.value || null) as SceneState | null;
       const scenes = await workflowApi.listScenes(state, abort.signal, background);
-      body.replaceChildren(...scenes.map(sceneRow));
+      body.replaceChildren(...scenes.map((scene) => sceneRow(scene, selection)));
+      selection.listed(scenes.map((scene) => scene.id));
       table.hidden = scenes.length === 0;
       status.textContent =
         scenes.length > 0
@@ -137,6 +142,7 @@ export function mountSceneList(container: HTMLElement): () => void {
           { className: "list-filters" },
           el("label", { className: "field-inline" }, "State ", filter),
           next.element,
+          selection.element,
         ),
         status,
         el("div", { className: "table-scroll" }, table),

@@ -18,6 +18,7 @@ from holiscene_schema import (
     SceneSummary,
 )
 
+from ...export.archive import file_stem
 from ...inputs import InputError, InputFiles, load_photo, parse_detections, parse_intrinsics
 from ...store.scenes import SceneNotFoundError
 from ..deps import AnnotatorDep, UserDep, WorkbenchDep, author_of
@@ -98,7 +99,8 @@ def get_glb(scene_id: str, workbench: WorkbenchDep) -> FileResponse:
     path = workbench.scenes.glb_path(scene_id)
     if path is None or not path.is_file():
         raise SceneNotFoundError(f"scene {scene_id} has no 3D scene yet: run the pipeline")
-    return FileResponse(path, media_type="model/gltf-binary")
+    name = file_stem(workbench.scenes.summary(scene_id).name, scene_id)
+    return FileResponse(path, media_type="model/gltf-binary", filename=f"{name}.glb")
 
 
 @router.post("/{scene_id}/pipeline-jobs", status_code=202, response_model=Job, responses=_ERRORS)

@@ -1,0 +1,32 @@
+// Files to download: a scene's scene.json, scene.glb and COCO JSON, and several scenes as one
+// zip (backend api/routes/downloads.py). The server names each file (Content-Disposition).
+import type { SceneArchiveRequest } from "@holiscene/schema";
+import { saveBlob } from "../saveFile";
+import { BASE, jsonBody, requestFile } from "./client";
+
+const sceneUrl = (sceneId: string) => `${BASE}/scenes/${encodeURIComponent(sceneId)}`;
+
+export const downloadUrls = {
+  sceneJson: (sceneId: string) => `${sceneUrl(sceneId)}/scene.json`,
+  coco: (sceneId: string) => `${sceneUrl(sceneId)}/coco.json`,
+  glb: (sceneId: string) => `${sceneUrl(sceneId)}/scene.glb`,
+};
+
+/** Whether the scene has a 3D scene yet; asks for its first bytes only. */
+export async function hasGlb(sceneId: string, signal?: AbortSignal): Promise<boolean> {
+  const response = await fetch(downloadUrls.glb(sceneId), {
+    headers: { Range: "bytes=0-3" },
+    signal,
+  });
+  void response.body?.cancel(); // the answer itself is all we wanted
+  if (response.status === 404) return false;
+  if (!response.ok) throw new Error(`scene.glb: ${response.status} ${response.statusText}`);
+  return true;
+}
+
+/** Download the scenes as one zip (a folder per scene). */
+export async function downloadArchive(sceneIds: SceneArchiveRequest["scene_ids"]): Promise<void> {
+  const body: SceneArchiveRequest = { scene_ids: sceneIds };
+  const { blob, filename } = await requestFile("/scenes/archive", jsonBody(body));
+  saveBlob(blob, filename ?? "holiscene-scenes.zip");
+}

@@ -1,0 +1,89 @@
+// The scene page's "Download" menu: the saved scene as scene.json, the 3D scene as scene.glb
+// (once the pipeline made one) and the photo's objects as COCO JSON.
+import { downloadUrls, hasGlb } from "../../api/downloads";
+import { el } from "../../dom";
+import "./downloadMenu.css";
+
+function item(testid: string, href: string, label: string, hint: string): HTMLAnchorElement {
+  return el(
+    "a",
+    { className: "download-item", testid, attrs: { href, download: "", role: "menuitem" } },
+    el("span", { className: "download-label", text: label }),
+    el("span", { className: "download-hint", text: hint }),
+  );
+}
+
+export function downloadMenu(sceneId: string): { element: HTMLElement; dispose: () => void } {
+  const glb = item(
+    "download-glb",
+    downloadUrls.glb(sceneId),
+    "3D scene (scene.glb)",
+    "the placed objects and the room, for Blender or any glTF viewer",
+  );
+  const noGlb = el("p", {
+    className: "download-none",
+    testid: "download-no-glb",
+    text: "3D scene (scene.glb): none yet; the pipeline makes it",
+  });
+  glb.hidden = noGlb.hidden = true;
+  const list = el(
+    "div",
+    { className: "download-list", attrs: { role: "menu" } },
+    item(
+      "download-scene-json",
+      downloadUrls.sceneJson(sceneId),
+      "Scene (scene.json)",
+      "the saved revision: objects, supports, camera and room",
+    ),
+    glb,
+    noGlb,
+    item(
+      "download-coco",
+      downloadUrls.coco(sceneId),
+      "Objects as COCO JSON",
+      "boxes, NYU-40 classes and masks of the photo's objects",
+    ),
+  );
+  const element = el(
+    "details",
+    { className: "download-menu", testid: "download-menu" },
+    el("summary", { text: "Download", testid: "download-button" }),
+    list,
+  );
+  let probe: AbortController | null = null;
+  // Asked on every opening: a pipeline run or "Re-place objects" may have made one since.
+  element.addEventListener("toggle", () => {
+    probe?.abort();
+    if (!element.open) return;
+    probe = new AbortController();
+    hasGlb(sceneId, probe.signal)
+      .then((has) => {
+        glb.hidden = !has;
+        noGlb.hidden = has;
+      })
+      .catch(() => {
+        glb.hidden = noGlb.hidden = true;
+      });
+  });
+  list.addEventListener("click", (event) => {
+    if ((event.target as Element).closest("a")) element.open = false;
+  });
+  element.addEventListener("keydown", (event) => {
+    if (event.key === "Escape" && element.open) {
+      event.stopPropagation(); // closes the menu, not the photo's tool
+      element.open = false;
+      element.querySelector("summary")?.focus();
+    }
+  });
+  const closeOutside = (event: PointerEvent) => {
+    if (element.open && !element.contains(event.target as Node)) element.open = false;
+  };
+  document.addEventListener("pointerdown", closeOutside);
+  return {
+    element,
+    dispose: () => {
+      probe?.abort();
+      document.removeEventListener("pointerdown", closeOutside);
+    },
+  };
+}
