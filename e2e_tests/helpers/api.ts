@@ -40,6 +40,29 @@ export async function seedScene(
   return getScene(request, imported.scene.id);
 }
 
+/** The real photo t3d-5 with an empty detections.json: a scene without objects. */
+export async function importWithoutObjects(
+  request: APIRequestContext,
+  name: string,
+): Promise<string> {
+  const response = await request.post("/api/scenes", {
+    multipart: {
+      image: filePart(T3D_5, "img.jpg", "image/jpeg"),
+      cam_k: filePart(T3D_5, "cam_K.txt", "text/plain"),
+      detections: {
+        name: "detections.json",
+        mimeType: "application/json",
+        buffer: Buffer.from("[]"),
+      },
+      name,
+    },
+  });
+  expect(response.status(), await response.text()).toBe(201);
+  const imported = (await response.json()) as ImportResult;
+  if (imported.job) expect((await waitForJob(request, imported.job.id)).status).toBe("succeeded");
+  return imported.scene.id;
+}
+
 export async function waitForJob(
   request: APIRequestContext,
   jobId: string,

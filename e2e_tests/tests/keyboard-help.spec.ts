@@ -10,14 +10,22 @@ import { openScene } from "../helpers/photo";
 const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
 mkdirSync(SCREENSHOTS, { recursive: true });
 
-// The actions of support editing, live suggestions, object suggestions and no-lost-work, by
-// their keys.
+// The actions of support editing, live suggestions, object suggestions, object editing, the
+// photo's tools and zoom, and no-lost-work, by their keys.
 const SCENE_KEYS: Record<string, string> = {
   A: "accept the selected edge",
   "Shift+A": "accept every remaining edge",
   R: "reject the selected edge",
   T: "flip below/behind",
-  "Delete Backspace": "remove the supporter",
+  "Shift+Delete Shift+Backspace": "remove the supporter",
+  Delete: "remove the selected object",
+  "Shift+C": "change the selected object's class",
+  V: "the select tool",
+  B: "the box tool",
+  "+ =": "zoom in",
+  "-": "zoom out",
+  "0": "fit the photo",
+  Space: "pan the photo",
   F: "floor",
   W: "wall",
   C: "ceiling",
@@ -41,12 +49,17 @@ const SCENE_KEYS: Record<string, string> = {
   "?": "this list",
 };
 
-async function listed(page: Page): Promise<Map<string, string>> {
-  const rows = page.getByTestId("shortcut-help").getByTestId("shortcut-row");
-  const entries = await rows.evaluateAll((nodes) =>
+/** The help's rows (those on now only): keys ("A", "Ctrl+Shift+Z Ctrl+Y") and text. */
+function listedRows(page: Page, onlyOn = false): Promise<(readonly [string, string])[]> {
+  const all = page.getByTestId("shortcut-help").getByTestId("shortcut-row");
+  const rows = onlyOn ? all.and(page.locator('[data-enabled="true"]')) : all;
+  return rows.evaluateAll((nodes) =>
     nodes.map((n) => [(n as HTMLElement).dataset.keys ?? "", n.textContent ?? ""] as const),
   );
-  return new Map(entries);
+}
+
+async function listed(page: Page): Promise<Map<string, string>> {
+  return new Map(await listedRows(page));
 }
 
 test("? lists every shortcut of the scene page, and Escape closes the list", async ({
@@ -77,6 +90,14 @@ test("? lists every shortcut of the scene page, and Escape closes the list", asy
   ]) {
     await expect(help.locator(`section[data-scope="${scope}"]`)).toBeVisible();
   }
+  // One key never means two things on the page at once (Escape aside: it always closes or
+  // cancels the innermost thing open, the help itself first).
+  const owners = new Map<string, string[]>();
+  for (const [keys, text] of await listedRows(page, true)) {
+    for (const key of keys.split(" ")) owners.set(key, [...(owners.get(key) ?? []), text]);
+  }
+  const twice = [...owners].filter(([key, texts]) => key !== "Escape" && texts.length > 1);
+  expect(twice, "keys with two meanings").toEqual([]);
   await page.screenshot({ path: path.join(SCREENSHOTS, "keyboard-help.png") });
 
   await page.keyboard.press("Escape");

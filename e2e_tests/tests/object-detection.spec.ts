@@ -2,48 +2,19 @@
 // the browser by itself and suggests boxes on the photo; accepting one adds it to the scene
 // (the server makes its mask), rejecting one drops it. After a reload the accepted object is
 // there, with a mask, and nothing is suggested again (the scene has an object now).
-import { mkdirSync, readFileSync } from "node:fs";
+import { mkdirSync } from "node:fs";
 import path from "node:path";
-import type { ImportResult, SceneDocument } from "@holiscene/schema";
-import { expect, type Page, test } from "@playwright/test";
-import { getScene, T3D_5, waitForJob } from "../helpers/api";
+import type { SceneDocument } from "@holiscene/schema";
+import { expect, test } from "@playwright/test";
+import { getScene, importWithoutObjects } from "../helpers/api";
 
 const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
 mkdirSync(SCREENSHOTS, { recursive: true });
 
-/** The real photo t3d-5 with an empty detections.json: a scene without objects. */
-async function importWithoutObjects(page: Page, name: string): Promise<string> {
-  const response = await page.request.post("/api/scenes", {
-    multipart: {
-      image: {
-        name: "img.jpg",
-        mimeType: "image/jpeg",
-        buffer: readFileSync(path.join(T3D_5, "img.jpg")),
-      },
-      cam_k: {
-        name: "cam_K.txt",
-        mimeType: "text/plain",
-        buffer: readFileSync(path.join(T3D_5, "cam_K.txt")),
-      },
-      detections: {
-        name: "detections.json",
-        mimeType: "application/json",
-        buffer: Buffer.from("[]"),
-      },
-      name,
-    },
-  });
-  expect(response.status(), await response.text()).toBe(201);
-  const imported = (await response.json()) as ImportResult;
-  if (imported.job)
-    expect((await waitForJob(page.request, imported.job.id)).status).toBe("succeeded");
-  return imported.scene.id;
-}
-
 test("a scene without objects gets the detector's suggestions to accept or reject", async ({
   page,
 }) => {
-  const sceneId = await importWithoutObjects(page, "t3d-5 detector suggestions");
+  const sceneId = await importWithoutObjects(page.request, "t3d-5 detector suggestions");
   await page.goto(`/#/scenes/${sceneId}`);
   await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
 
@@ -116,7 +87,7 @@ test("a scene without objects gets the detector's suggestions to accept or rejec
 test("the detector's failure is said plainly, and Detect objects can try again", async ({
   page,
 }) => {
-  const sceneId = await importWithoutObjects(page, "t3d-5 detector missing");
+  const sceneId = await importWithoutObjects(page.request, "t3d-5 detector missing");
   await page.route("**/api/detector/active", (route) =>
     route.fulfill({
       status: 404,

@@ -204,11 +204,11 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   await expect(arrow("o1")).toHaveAttribute("data-source", "manual");
   await expect(page.getByTestId("edge-info-provenance")).toHaveText("your edit, not saved yet");
 
-  // T flips below/behind; Delete removes; Ctrl+Z brings it back.
+  // T flips below/behind; Shift+Delete removes the supporter; Ctrl+Z brings it back.
   const typeBefore = (await arrowOf(page, "o1"))?.type ?? "";
   await page.keyboard.press("t");
   await expect(arrow("o1")).toHaveAttribute("data-type", flipped(typeBefore));
-  await page.keyboard.press("Delete");
+  await page.keyboard.press("Shift+Delete");
   await expect(arrow("o1")).toHaveCount(0);
   await expect(page.getByTestId("unsupported-o1")).toBeVisible();
   await page.keyboard.press("Control+z");

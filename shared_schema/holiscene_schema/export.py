@@ -44,7 +44,7 @@ from .api import (
     SubmitRequest,
     UserInfo,
 )
-from .classes import NYU40_CLASSES
+from .classes import CLASS_ALIASES, NYU40_CLASSES
 from .detector_model import detector_contract
 from .relation_model import relation_model_contract
 from .scene import Scene
@@ -103,6 +103,7 @@ def render_schemas() -> dict[str, str]:
     out["vocabulary.json"] = _dump(
         {
             "nyu40_classes": list(NYU40_CLASSES),
+            "class_aliases": CLASS_ALIASES,
             "structural_supporters": sorted(STRUCTURAL_SUPPORTERS),
             "support_types": ["below", "behind"],
             "relation_model": relation_model_contract(),

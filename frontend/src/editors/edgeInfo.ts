@@ -44,7 +44,7 @@ export function mountEdgeInfo(container: HTMLElement, session: SceneSession): ()
           (suggestion && was ? ` (was ${was.parent}, ${was.type})` : "")
         : "";
       hint.textContent = session.editable
-        ? "click the new supporter (F floor, W wall, C ceiling) · A accept · R reject · T below/behind · Del remove · Esc"
+        ? "click the new supporter (F floor, W wall, C ceiling) · A accept · R reject · T below/behind · Shift+Del no supporter · Del remove the object · Esc"
         : "read only: nothing can be changed now · Esc";
     }
     message.textContent = session.message ?? "";

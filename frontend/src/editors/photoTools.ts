@@ -8,6 +8,7 @@ import { el, svgEl } from "../dom";
 import { registerShortcut } from "../shortcuts";
 import type { ObjectEditor } from "../state/objectEditor";
 import type { SceneSession } from "../state/sceneSession";
+import "./photoTools.css";
 
 /** A point in image pixels (x right, y down from the photo's top-left corner). */
 export type ImagePoint = [number, number];
@@ -52,6 +53,8 @@ export interface PhotoToolHost {
   objectAt(event: MouseEvent): string | null;
   /** Image pixels per screen pixel now (changes with zoom): handles and lines scale by it. */
   pixelSize(): number;
+  /** Told after the photo was zoomed or panned (redraw what is sized by pixelSize). */
+  onView(listener: () => void): () => void;
 }
 
 export interface PhotoTools {

@@ -31,7 +31,11 @@ export function mountSupportShortcuts(session: SceneSession): () => void {
     ["Shift+A", "Accept every remaining edge as shown", () => session.say(acceptAll(session))],
     ["R", "Reject the selected edge: the model's next answer is suggested", onSelected(rejectEdge)],
     ["T", "Flip the selected edge between below and behind", onSelected(flipType)],
-    [["Delete", "Backspace"], "Remove the selected object's supporter", onSelected(removeSupport)],
+    [
+      ["Shift+Delete", "Shift+Backspace"],
+      "Remove the selected object's supporter (Delete alone removes the object)",
+      onSelected(removeSupport),
+    ],
     [
       "F",
       "The floor holds up the selected object",

@@ -24,11 +24,13 @@ type Stamped<S> = HistoryEntry<S> & { stamp: number };
 export class EditHistory<S> {
   private readonly done: Stamped<S>[] = [];
   private readonly undone: Stamped<S>[] = [];
+  private recorded: number | null = null;
 
   /** Add an action; a new action forgets what was undone. */
   record(entry: HistoryEntry<S>): void {
     if (entry.changes.length === 0) return;
-    this.done.push({ ...entry, stamp: nextStamp() });
+    this.recorded = nextStamp();
+    this.done.push({ ...entry, stamp: this.recorded });
     if (this.done.length > LIMIT) this.done.shift();
     this.undone.length = 0;
   }
@@ -58,6 +60,11 @@ export class EditHistory<S> {
   /** When the action undo would take back was done (or redone); null: nothing to undo. */
   get undoStamp(): number | null {
     return this.done.at(-1)?.stamp ?? null;
+  }
+
+  /** When the last new action was recorded (not redone); null: none yet. */
+  get recordStamp(): number | null {
+    return this.recorded;
   }
 
   /** When the action redo would do again was undone; null: nothing to redo. */

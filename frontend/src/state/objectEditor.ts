@@ -197,6 +197,10 @@ export class ObjectEditor implements Undoable {
     return this.history.redoStamp;
   }
 
+  get recordStamp(): number | null {
+    return this.history.recordStamp;
+  }
+
   /** Take back the last action; resolves to its label (null: nothing to undo, or it failed). */
   undo(): Promise<string | null> {
     return this.enqueue(async () => {

@@ -334,6 +334,10 @@ export class SceneSession {
     return this.history.redoStamp;
   }
 
+  get recordStamp(): number | null {
+    return this.history.recordStamp;
+  }
+
   /** Take back the last action; returns its label (null: nothing to undo, or read only). */
   undo(): string | null {
     if (!this.editable) return null;

@@ -6,6 +6,8 @@
 export interface Undoable {
   readonly undoStamp: number | null;
   readonly redoStamp: number | null;
+  /** When the last new action (not a redo) was recorded. */
+  readonly recordStamp: number | null;
   readonly undoLabel: string | null;
   readonly redoLabel: string | null;
   undo(): unknown;
@@ -26,10 +28,10 @@ export function latestUndo(histories: readonly Undoable[]): Undoable | null {
   return newest(histories, (h) => h.undoStamp);
 }
 
-/** The history whose undone action is the most recent, unless something was done after it. */
+/** The history whose undone action is the most recent, unless a new action came after it. */
 export function latestRedo(histories: readonly Undoable[]): Undoable | null {
   const redo = newest(histories, (h) => h.redoStamp);
-  const done = latestUndo(histories)?.undoStamp ?? null;
+  const recorded = newest(histories, (h) => h.recordStamp)?.recordStamp ?? null;
   const stamp = redo?.redoStamp ?? null;
-  return stamp !== null && (done === null || stamp > done) ? redo : null;
+  return stamp !== null && (recorded === null || stamp > recorded) ? redo : null;
 }

@@ -16,6 +16,7 @@ import { renderLabels } from "./labelLayer";
 import { renderMasks, renderOutlines } from "./maskLayer";
 import { HitMap, objectRegion, type Region } from "./maskRaster";
 import { maskStyle, maskStyleControls } from "./maskStyle";
+import { mountPhotoZoom } from "./photoZoom";
 
 function toggle(label: string, testid: string, onChange: (on: boolean) => void) {
   const input = el("input", {
@@ -215,6 +216,8 @@ export function mountPhotoView(
     session,
   );
 
+  // Before the tools: a pan's press is nobody else's.
+  const zoom = mountPhotoZoom(svg, { x: -m, y: -m, width: width + 2 * m, height: height + 2 * m });
   const tools = mountPhotoTools(toolbar, {
     svg,
     overlay,
@@ -225,6 +228,7 @@ export function mountPhotoView(
     toImage,
     objectAt: maskAt,
     pixelSize: () => 1 / (svg.getScreenCTM()?.a || 1),
+    onView: (listener) => zoom.onChange(listener),
   });
   const stopEditBar = mountObjectEditBar(toolbar, objectEditor);
 
@@ -241,6 +245,7 @@ export function mountPhotoView(
     tools,
     dispose: () => {
       tools.dispose();
+      zoom.dispose();
       stopEditBar();
       unsubscribe();
       stopStyle();

@@ -1,0 +1,88 @@
+// User story: on a photo without objects an annotator draws boxes with the box tool, names
+// each with the class picker (typing part of a name, or an alias), and gives it a supporter;
+// the server cuts each object's mask. Moving a box with its handle is one more saved edit.
+// After a reload everything is there: objects, classes, boxes, masks and supports.
+import { mkdirSync } from "node:fs";
+import path from "node:path";
+import { expect, test } from "@playwright/test";
+import { getScene, importWithoutObjects, supportOf } from "../helpers/api";
+import {
+  chooseTool,
+  dragOnPhoto,
+  objectEditsSaved,
+  pickClass,
+  screenPoint,
+} from "../helpers/objects";
+
+const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
+mkdirSync(SCREENSHOTS, { recursive: true });
+
+test("boxes drawn on an empty photo become objects with masks and supporters", async ({ page }) => {
+  const sceneId = await importWithoutObjects(page.request, "t3d-5 box tool");
+  await page.goto(`/#/scenes/${sceneId}`);
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+
+  // The box tool by its key; a drag where there is no object draws a box.
+  await page.keyboard.press("b");
+  await expect(page.getByTestId("photo-tool-box")).toHaveAttribute("aria-pressed", "true");
+  const a = await screenPoint(page, 150, 190);
+  const b = await screenPoint(page, 625, 525);
+  await page.mouse.move(a.x, a.y);
+  await page.mouse.down();
+  await page.mouse.move(b.x, b.y, { steps: 5 });
+  await expect(page.getByTestId("box-tool-drawing")).toHaveCount(1);
+  await page.mouse.up();
+  // The picker opens beside the box: type part of the name.
+  await expect(page.getByTestId("class-picker")).toBeVisible();
+  await page.getByTestId("class-picker-input").fill("be");
+  await page.screenshot({ path: path.join(SCREENSHOTS, "box-tool-class-picker.png") });
+  await pickClass(page, "bed", "bed");
+  await expect(page.locator('.masks [data-object="d1"]')).toHaveCount(1);
+  await objectEditsSaved(page);
+  await expect(page.getByTestId("object-edit-status")).toContainText("saved as revision");
+
+  // The new object is selected: the floor holds it up (F).
+  await expect(page.getByTestId("box-tool-selected")).toHaveCount(1);
+  await page.keyboard.press("f");
+
+  // A second one, named by an alias: "nightstand" is stored as night_stand.
+  await dragOnPhoto(page, [3, 288], [148, 445]);
+  await pickClass(page, "nightstand", "nightstand");
+  await expect(page.locator('.masks [data-object="d2"]')).toHaveCount(1);
+  await page.keyboard.press("f");
+
+  // Resize the night stand with its right handle (it is selected, handles shown).
+  await expect(page.getByTestId("box-handle")).toHaveCount(8);
+  await page.screenshot({ path: path.join(SCREENSHOTS, "box-tool-handles.png") });
+  await dragOnPhoto(page, [148, 366.5], [156, 366.5]);
+  await objectEditsSaved(page);
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", /saved|clean/, {
+    timeout: 15_000,
+  });
+
+  const doc = await getScene(page.request, sceneId);
+  const objects = doc.scene.objects ?? [];
+  const bed = objects.find((o) => o.id === "d1");
+  const stand = objects.find((o) => o.id === "d2");
+  expect(bed?.class).toBe("bed");
+  expect(bed?.source).toBe("manual");
+  expect(bed?.mask?.rle.length ?? 0).toBeGreaterThan(1);
+  expect(bed?.bbox[0]).toBeCloseTo(150, 0);
+  expect(stand?.class).toBe("night_stand");
+  expect(stand?.bbox[2]).toBeCloseTo(156, 0);
+  expect(stand?.mask?.rle.length ?? 0).toBeGreaterThan(1);
+  expect(supportOf(doc, "d1")?.parent).toBe("floor");
+  expect(supportOf(doc, "d2")?.parent).toBe("floor");
+
+  // A reload keeps everything.
+  await page.reload();
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await expect(page.locator('.masks [data-object="d1"]')).toHaveCount(1);
+  await expect(page.locator('.masks [data-object="d2"]')).toHaveCount(1);
+  await expect(page.locator('tr[data-object="d2"]')).toBeVisible();
+  const again = await getScene(page.request, sceneId);
+  expect(again.revision).toBe(doc.revision);
+  expect(again.scene.objects).toEqual(doc.scene.objects);
+  expect(again.scene.supports).toEqual(doc.scene.supports);
+  await chooseTool(page, "select");
+});

@@ -1,0 +1,68 @@
+// Keys for the selected object itself (in every photo tool): Delete removes it (its supports
+// go; undo brings everything back), Shift+C changes its class with the class picker.
+import { registerShortcut } from "../shortcuts";
+import type { ObjectEditor } from "../state/objectEditor";
+import { pickClass } from "../views/scene/classPicker";
+import { classKey } from "../views/scene/classRanking";
+import { objectName, screenRect } from "./boxTool";
+
+export const REMOVE_OBJECT_KEYS = ["Delete"];
+export const SET_CLASS_KEY = "Shift+C";
+const SCOPE = "Objects";
+
+/** Remove the selected object (one undoable action). */
+export async function removeSelected(editor: ObjectEditor): Promise<void> {
+  const { session } = editor;
+  const object = session.selected ? session.object(session.selected) : undefined;
+  if (!object) {
+    session.say("Select an object first (click it).");
+    return;
+  }
+  session.select(null);
+  await editor.apply([{ kind: "remove_object", id: object.id }], `remove ${objectName(object)}`);
+}
+
+/** Pick a new class for the selected object (near its box on `svg`). */
+export async function changeSelectedClass(editor: ObjectEditor, svg: SVGSVGElement): Promise<void> {
+  const { session } = editor;
+  const object = session.selected ? session.object(session.selected) : undefined;
+  if (!object) {
+    session.say("Select an object first (click it).");
+    return;
+  }
+  const cls = await pickClass({
+    near: screenRect(svg, object.bbox),
+    title: `Class of ${objectName(object)}`,
+    objects: session.objects,
+    current: object.class,
+  });
+  if (!cls || classKey(cls) === object.class) return;
+  await editor.apply(
+    [{ kind: "set_class", id: object.id, class: cls }],
+    `${objectName(object)} → ${cls.replaceAll("_", " ")}`,
+  );
+}
+
+export function mountObjectShortcuts(editor: ObjectEditor, svg: SVGSVGElement): () => void {
+  const editable = () => editor.session.editable;
+  const removers = [
+    registerShortcut({
+      keys: REMOVE_OBJECT_KEYS,
+      description:
+        "Remove the selected object (its mask and supports too; Ctrl+Z brings them back)",
+      scope: SCOPE,
+      run: () => void removeSelected(editor),
+      enabled: editable,
+    }),
+    registerShortcut({
+      keys: SET_CLASS_KEY,
+      description: "Change the selected object's class (type to search, Enter or 1-9 to pick)",
+      scope: SCOPE,
+      run: () => void changeSelectedClass(editor, svg),
+      enabled: editable,
+    }),
+  ];
+  return () => {
+    for (const remove of removers) remove();
+  };
+}

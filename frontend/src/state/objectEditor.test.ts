@@ -1,0 +1,220 @@
+// The object editor's bookkeeping against a server that keeps every revision (as the real one
+// does): each action is one revision, undo and redo restore the revision before or after it,
+// a new action forgets what was undone, a failed action is kept until retried or dropped; and
+// how an action is re-applied on a newer revision after a conflict.
+import type { SceneDocument, SceneObject } from "@holiscene/schema";
+import { beforeEach, describe, expect, it } from "vitest";
+import { ApiError } from "../api/errors";
+import { MemoryStorage } from "../testing/memoryStorage";
+import { DraftStore } from "./draftStore";
+import {
+  type ObjectEdit,
+  ObjectEditor,
+  rebaseEdits,
+  restoreEdits,
+  touchedIds,
+} from "./objectEditor";
+import { SceneSession } from "./sceneSession";
+
+const object = (id: string, cls = "chair"): SceneObject =>
+  ({ id, class: cls, bbox: [0, 0, 10, 10] }) as unknown as SceneObject;
+
+const documentOf = (revision: number, objects: SceneObject[]): SceneDocument =>
+  ({
+    scene_id: "s1",
+    revision,
+    updated_at: "2026-01-01T00:00:00Z",
+    scene: {
+      schema_version: 1,
+      name: "test",
+      image: { file: "img.png", width: 100, height: 100 },
+      objects,
+      supports: [],
+    },
+  }) as unknown as SceneDocument;
+
+/** Keeps every revision; applies object edits as the API does (objects only). */
+class RevisionServer {
+  readonly revisions: SceneDocument[];
+  readonly requests: { base: number; edits: ObjectEdit[] }[] = [];
+  refuseNext: string | null = null;
+
+  constructor(first: SceneDocument) {
+    this.revisions = [first];
+  }
+
+  get latest(): SceneDocument {
+    return this.revisions.at(-1) as SceneDocument;
+  }
+
+  post = async (_scene: string, base: number, _author: string, edits: ObjectEdit[]) => {
+    this.requests.push({ base, edits });
+    if (this.refuseNext) {
+      const reason = this.refuseNext;
+      this.refuseNext = null;
+      throw new ApiError(422, reason, "422");
+    }
+    let objects = [...(this.latest.scene.objects ?? [])];
+    for (const edit of edits) {
+      if (edit.kind === "add_object") objects.push(object(edit.id, edit.class));
+      else if (edit.kind === "remove_object") objects = objects.filter((o) => o.id !== edit.id);
+      else if (edit.kind === "set_class")
+        objects = objects.map((o) => (o.id === edit.id ? object(o.id, edit.class) : o));
+      else if (edit.kind === "restore_object") {
+        const then = this.revisions.find((r) => r.revision === edit.from_revision);
+        const old = then?.scene.objects?.find((o) => o.id === edit.id);
+        objects = objects.filter((o) => o.id !== edit.id);
+        if (old) objects.push(old);
+      }
+    }
+    const doc = documentOf(this.latest.revision + 1, objects);
+    this.revisions.push(doc);
+    return doc;
+  };
+}
+
+const classes = (session: SceneSession) =>
+  Object.fromEntries(session.objects.map((o) => [o.id, o.class]));
+
+describe("ObjectEditor", () => {
+  let server: RevisionServer;
+  let session: SceneSession;
+  let editor: ObjectEditor;
+  beforeEach(() => {
+    server = new RevisionServer(documentOf(1, [object("o1", "chair")]));
+    session = new SceneSession(server.latest, { drafts: new DraftStore(new MemoryStorage()) });
+    editor = new ObjectEditor(session, { author: () => "tester", post: server.post });
+  });
+
+  it("saves each action as one revision on the loaded one, and adopts the answer", async () => {
+    expect(
+      await editor.apply(
+        [{ kind: "add_object", id: "d1", class: "bed", bbox: [1, 1, 9, 9], source: "manual" }],
+        "add bed d1",
+      ),
+    ).toBe(true);
+    expect(await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa")).toBe(
+      true,
+    );
+    expect(server.requests.map((r) => r.base)).toEqual([1, 2]);
+    expect(session.doc.revision).toBe(3);
+    expect(classes(session)).toEqual({ o1: "sofa", d1: "bed" });
+    expect(editor.undoLabel).toBe("o1 → sofa");
+    expect(editor.status).toMatchObject({
+      kind: "idle",
+      message: "O1 → sofa: saved as revision 3.",
+    });
+  });
+
+  it("undo restores the revision before the action, redo the one it made, exactly", async () => {
+    await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
+    await editor.apply([{ kind: "remove_object", id: "o1" }], "remove o1");
+    expect(classes(session)).toEqual({});
+
+    expect(await editor.undo()).toBe("remove o1");
+    expect(server.requests.at(-1)?.edits).toEqual(restoreEdits(["o1"], 2));
+    expect(classes(session)).toEqual({ o1: "sofa" });
+    expect(await editor.undo()).toBe("o1 → sofa");
+    expect(classes(session)).toEqual({ o1: "chair" });
+    expect(editor.undoLabel).toBeNull();
+    expect(await editor.undo()).toBeNull();
+
+    expect(await editor.redo()).toBe("o1 → sofa");
+    expect(server.requests.at(-1)?.edits).toEqual(restoreEdits(["o1"], 2));
+    expect(classes(session)).toEqual({ o1: "sofa" });
+    expect(editor.redoLabel).toBe("remove o1");
+    // A new action forgets what was undone.
+    await editor.apply([{ kind: "set_class", id: "o1", class: "desk" }], "o1 → desk");
+    expect(editor.redoLabel).toBeNull();
+    expect(editor.undoLabel).toBe("o1 → desk");
+  });
+
+  it("actions made quickly run one after another, each on the revision before it", async () => {
+    const results = await Promise.all([
+      editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "a"),
+      editor.apply([{ kind: "set_class", id: "o1", class: "desk" }], "b"),
+      editor.undo(),
+    ]);
+    expect(results).toEqual([true, true, "b"]);
+    expect(server.requests.map((r) => r.base)).toEqual([1, 2, 3]);
+    expect(classes(session)).toEqual({ o1: "sofa" });
+    expect(editor.busy).toBe(false);
+  });
+
+  it("a refused action is kept with its reason until retried (then saved once) or dropped", async () => {
+    server.refuseNext = "unknown class 'sofaa'";
+    expect(await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa")).toBe(
+      false,
+    );
+    expect(editor.failure).toEqual({ label: "o1 → sofa", message: "unknown class 'sofaa'" });
+    expect(editor.undoLabel).toBeNull();
+    expect(session.doc.revision).toBe(1);
+
+    await editor.retry();
+    expect(editor.failure).toBeNull();
+    expect(classes(session)).toEqual({ o1: "sofa" });
+    expect(editor.undoLabel).toBe("o1 → sofa");
+
+    server.refuseNext = "no";
+    await editor.apply([{ kind: "remove_object", id: "o1" }], "remove o1");
+    editor.discardFailed();
+    expect(editor.failure).toBeNull();
+    expect(editor.status).toMatchObject({ message: "Dropped: remove o1." });
+    expect(classes(session)).toEqual({ o1: "sofa" });
+  });
+
+  it("an undo the server refuses stays the one to undo", async () => {
+    await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
+    server.refuseNext = "down";
+    expect(await editor.undo()).toBeNull();
+    expect(editor.undoLabel).toBe("o1 → sofa");
+    expect(editor.redoLabel).toBeNull();
+    expect(editor.failure?.label).toBe("undo o1 → sofa");
+    await editor.retry();
+    expect(classes(session)).toEqual({ o1: "chair" });
+    expect(editor.redoLabel).toBe("o1 → sofa");
+  });
+});
+
+describe("rebaseEdits", () => {
+  it("gives a new object whose id was taken meanwhile a free one, and its later edits follow", () => {
+    const rebased = rebaseEdits(
+      [
+        { kind: "add_object", id: "d1", class: "bed", bbox: [0, 0, 5, 5], source: "manual" },
+        { kind: "set_class", id: "d1", class: "sofa" },
+      ],
+      [object("d1"), object("d2")],
+    );
+    expect(rebased).toEqual({
+      edits: [
+        { kind: "add_object", id: "d3", class: "bed", bbox: [0, 0, 5, 5], source: "manual" },
+        { kind: "set_class", id: "d3", class: "sofa" },
+      ],
+      renamed: [["d1", "d3"]],
+    });
+  });
+
+  it("cannot apply a change to an object that is gone; a restore always applies", () => {
+    expect(
+      rebaseEdits(
+        [
+          { kind: "set_class", id: "o9", class: "sofa" },
+          { kind: "remove_object", id: "o1" },
+        ],
+        [object("o1")],
+      ),
+    ).toEqual({ edits: null, missing: ["o9"] });
+    const restore = restoreEdits(["o9"], 4);
+    expect(rebaseEdits(restore, [])).toEqual({ edits: restore, renamed: [] });
+  });
+
+  it("touchedIds names each object once", () => {
+    expect(
+      touchedIds([
+        { kind: "set_class", id: "a", class: "bed" },
+        { kind: "set_bbox", id: "a", bbox: [0, 0, 5, 5] },
+        { kind: "remove_object", id: "b" },
+      ]),
+    ).toEqual(["a", "b"]);
+  });
+});

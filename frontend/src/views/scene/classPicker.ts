@@ -1,0 +1,195 @@
+// The class picker: a small box near the pointer with a search field and the matching classes
+// (classRanking.ts), the most used first. Typing filters; ↑/↓ move; Enter or a click picks;
+// 1-9 pick the n-th line (class names have no digits); Esc or a click elsewhere cancels.
+// Picks are counted in this browser (with the scene's own objects) to order the list.
+import type { SceneObject } from "@holiscene/schema";
+import { el } from "../../dom";
+import { CLASS_OPTIONS, type ClassOption, classKey, rankClasses } from "./classRanking";
+import "./classPicker.css";
+
+const USES_KEY = "holiscene.classUses";
+
+function storedUses(): Record<string, number> {
+  try {
+    const value: unknown = JSON.parse(localStorage.getItem(USES_KEY) ?? "{}");
+    return value && typeof value === "object" ? (value as Record<string, number>) : {};
+  } catch {
+    return {};
+  }
+}
+
+/** Remember a pick (for the order of the list next time). */
+export function countPick(cls: string): void {
+  const uses = storedUses();
+  uses[cls] = (uses[cls] ?? 0) + 1;
+  try {
+    localStorage.setItem(USES_KEY, JSON.stringify(uses));
+  } catch {
+    // Storage may be unavailable: the order then follows this scene only.
+  }
+}
+
+/** Uses per NYU-40 class: objects of the scene and picks in this browser. */
+export function classUses(objects: readonly SceneObject[]): Map<string, number> {
+  const uses = new Map(Object.entries(storedUses()).filter(([, n]) => typeof n === "number"));
+  for (const object of objects) uses.set(object.class, (uses.get(object.class) ?? 0) + 1);
+  return uses;
+}
+
+export interface PickerOptions {
+  /** Where to show it (client pixels): beside this rectangle. */
+  near: { left: number; top: number; right: number; bottom: number };
+  title: string;
+  objects: readonly SceneObject[];
+  /** The class now (listed first when nothing is typed). */
+  current?: string;
+}
+
+/** Open the picker; resolves to the name picked (a class or an alias), or null if cancelled. */
+export function pickClass(options: PickerOptions): Promise<string | null> {
+  document.querySelector(".class-picker")?.remove(); // one at a time
+  const uses = classUses(options.objects);
+  const input = el("input", {
+    className: "class-picker-input",
+    testid: "class-picker-input",
+    attrs: {
+      type: "text",
+      placeholder: "Type a class…",
+      "aria-label": "Class",
+      autocomplete: "off",
+      spellcheck: false,
+      role: "combobox",
+      "aria-expanded": true,
+      "aria-controls": "class-picker-list",
+    },
+  });
+  const list = el("ul", {
+    className: "class-picker-list",
+    testid: "class-picker-list",
+    attrs: { role: "listbox", id: "class-picker-list" },
+  });
+  const hint = el("p", {
+    className: "class-picker-hint",
+    text: "↑↓ move · Enter or 1–9 pick · Esc cancel",
+  });
+  const box = el(
+    "div",
+    {
+      className: "class-picker",
+      testid: "class-picker",
+      attrs: { role: "dialog", "aria-label": options.title },
+    },
+    el("strong", { className: "class-picker-title", text: options.title }),
+    input,
+    list,
+    hint,
+  );
+  let shown: ClassOption[] = [];
+  let active = 0;
+
+  const draw = () => {
+    shown = rankClasses(input.value, uses);
+    if (!input.value.trim() && options.current) {
+      const current = options.current;
+      shown = [
+        ...shown.filter((o) => o.name === current),
+        ...shown.filter((o) => o.name !== current),
+      ];
+    }
+    active = Math.min(active, Math.max(0, shown.length - 1));
+    list.replaceChildren(
+      ...shown.map((option, i) =>
+        el(
+          "li",
+          {
+            className: i === active ? "is-active" : "",
+            testid: "class-option",
+            attrs: {
+              role: "option",
+              "aria-selected": i === active,
+              "data-name": option.name,
+              "data-class": option.cls,
+            },
+            on: {
+              mousedown: (event) => event.preventDefault(), // keep the field's focus
+              click: () => finish(option.name),
+            },
+          },
+          i < 9
+            ? el("kbd", { text: String(i + 1) })
+            : el("span", { className: "class-picker-pad" }),
+          el("span", { text: option.name.replaceAll("_", " ") }),
+          option.name !== option.cls
+            ? el("span", {
+                className: "class-picker-alias",
+                text: `→ ${option.cls.replaceAll("_", " ")}`,
+              })
+            : null,
+        ),
+      ),
+    );
+    if (shown.length === 0) {
+      list.append(
+        el("li", { className: "class-picker-none", text: `No class matches "${input.value}"` }),
+      );
+    }
+    // Keep the active line in the list's view (not scrollIntoView: it would scroll the page).
+    const line = list.children[active] as HTMLElement | undefined;
+    if (line && line.offsetTop < list.scrollTop) list.scrollTop = line.offsetTop;
+    else if (line && line.offsetTop + line.offsetHeight > list.scrollTop + list.clientHeight)
+      list.scrollTop = line.offsetTop + line.offsetHeight - list.clientHeight;
+  };
+
+  let resolve: (value: string | null) => void = () => {};
+  const done = new Promise<string | null>((r) => {
+    resolve = r;
+  });
+  const onOutside = (event: PointerEvent) => {
+    if (!box.contains(event.target as Node)) finish(null);
+  };
+  const finish = (name: string | null) => {
+    window.removeEventListener("pointerdown", onOutside, true);
+    box.remove();
+    if (name) countPick(CLASS_OPTIONS.find((o) => o.name === name)?.cls ?? name);
+    resolve(name);
+  };
+
+  input.addEventListener("input", () => {
+    active = 0;
+    draw();
+  });
+  input.addEventListener("keydown", (event) => {
+    if (event.key === "ArrowDown" || event.key === "ArrowUp") {
+      const step = event.key === "ArrowDown" ? 1 : -1;
+      active = (active + step + shown.length) % Math.max(1, shown.length);
+      draw();
+    } else if (event.key === "Enter") {
+      const option = shown[active];
+      if (option) finish(option.name);
+    } else if (event.key === "Escape") {
+      finish(null);
+    } else if (/^[1-9]$/.test(event.key) && !event.ctrlKey && !event.altKey) {
+      const option = shown[Number(event.key) - 1];
+      if (option) finish(option.name);
+    } else return;
+    event.preventDefault();
+    event.stopPropagation();
+  });
+
+  document.body.append(box);
+  draw();
+  // Beside the rectangle, inside the window.
+  const { near } = options;
+  const width = box.offsetWidth;
+  const height = box.offsetHeight;
+  const left = near.right + 8 + width <= window.innerWidth ? near.right + 8 : near.left - 8 - width;
+  const top = Math.min(window.innerHeight - height - 8, Math.max(8, near.top));
+  box.style.left = `${Math.max(8, left) + window.scrollX}px`;
+  box.style.top = `${top + window.scrollY}px`;
+  input.focus({ preventScroll: true });
+  window.addEventListener("pointerdown", onOutside, true);
+  return done;
+}
+
+/** The name shown for a class ("night stand"). */
+export const className = (cls: string) => classKey(cls).replaceAll("_", " ");

@@ -1,0 +1,44 @@
+// The class picker's list: NYU-40 classes and aliases matched the server's way, whole names
+// before starts before word starts before the rest, the most used first among equals.
+import { NYU40_CLASSES } from "@holiscene/schema";
+import { describe, expect, it } from "vitest";
+import { CLASS_OPTIONS, rankClasses } from "./classRanking";
+
+const names = (query: string, uses = new Map<string, number>(), limit = 12) =>
+  rankClasses(query, uses, limit).map((o) => o.name);
+
+describe("rankClasses", () => {
+  it("offers every NYU-40 class but the room's own structure, and the aliases", () => {
+    const classes = new Set(CLASS_OPTIONS.filter((o) => o.name === o.cls).map((o) => o.name));
+    expect(classes.size).toBe(NYU40_CLASSES.length - 3);
+    expect(classes.has("wall")).toBe(false);
+    expect(CLASS_OPTIONS).toContainEqual({ name: "nightstand", cls: "night_stand" });
+    // night_stand is its own alias: listed once.
+    expect(CLASS_OPTIONS.filter((o) => o.name === "night_stand")).toHaveLength(1);
+  });
+
+  it("ranks the whole name, then its start, then a word's start, then anywhere", () => {
+    expect(names("box")[0]).toBe("box");
+    expect(names("tab")).toEqual([
+      "table",
+      "coffee_table",
+      "dining_table",
+      "end_table",
+      "endtable",
+    ]);
+    expect(names("stand")).toEqual(["night_stand", "nightstand"]);
+    expect(names("Night Stand")[0]).toBe("night_stand");
+    expect(names("zzz")).toEqual([]);
+  });
+
+  it("puts the most used first, among equal matches and with nothing typed", () => {
+    const uses = new Map([
+      ["chair", 5],
+      ["lamp", 2],
+    ]);
+    expect(names("", uses, 3)).toEqual(["chair", "lamp", "cabinet"]);
+    expect(names("c", uses, 3)).toEqual(["chair", "cabinet", "counter"]);
+    // Aliases of a used class rank with it.
+    expect(names("s", new Map([["chair", 3]]), 2)).toEqual(["sofa_chair", "stool"]);
+  });
+});

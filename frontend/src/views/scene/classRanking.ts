@@ -1,0 +1,68 @@
+// What the class picker lists for what was typed: the NYU-40 classes (room structure aside:
+// the layout gives walls, floor and ceiling) and the names other datasets use for them, best
+// match first (the whole name, its start, a word's start, anywhere), then the most used.
+import { CLASS_ALIASES, NYU40_CLASSES, STRUCTURAL_SUPPORTERS } from "@holiscene/schema";
+
+export interface ClassOption {
+  /** What is sent as the class: an NYU-40 class or a known alias of one. */
+  name: string;
+  /** The NYU-40 class it is stored as. */
+  cls: string;
+}
+
+const structural = new Set<string>(STRUCTURAL_SUPPORTERS);
+
+/** Every option: the NYU-40 classes first, in their order, then the aliases. */
+export const CLASS_OPTIONS: readonly ClassOption[] = [
+  ...NYU40_CLASSES.filter((c) => !structural.has(c)).map((c) => ({ name: c, cls: c })),
+  ...Object.entries(CLASS_ALIASES)
+    .filter(([alias, cls]) => alias !== cls && !structural.has(cls))
+    .map(([alias, cls]) => ({ name: alias, cls })),
+];
+
+/** A name as typed or stored, compared the server's way (lower case, "_" for spaces). */
+export const classKey = (text: string) =>
+  text
+    .trim()
+    .toLowerCase()
+    .replace(/[\s-]+/g, "_");
+
+/** How well `name` matches `query`: 0 the whole name, 1 its start, 2 a word's start, 3 inside. */
+function matchRank(name: string, query: string): number | null {
+  if (query === "") return 1;
+  if (name === query) return 0;
+  if (name.startsWith(query)) return 1;
+  if (name.split("_").some((word) => word.startsWith(query))) return 2;
+  return name.includes(query) ? 3 : null;
+}
+
+/**
+ * The options matching `query`, best first: by match, then by use (`uses`: picks or objects per
+ * NYU-40 class), then classes before aliases, then in the vocabulary's order.
+ */
+export function rankClasses(
+  query: string,
+  uses: ReadonlyMap<string, number>,
+  limit = 12,
+): ClassOption[] {
+  const key = classKey(query);
+  const scored: {
+    option: ClassOption;
+    rank: number;
+    used: number;
+    alias: number;
+    index: number;
+  }[] = [];
+  CLASS_OPTIONS.forEach((option, index) => {
+    const rank = matchRank(option.name, key);
+    if (rank === null) return;
+    const alias = option.name === option.cls ? 0 : 1;
+    // With nothing typed, only the classes: the aliases would just repeat them.
+    if (key === "" && alias) return;
+    scored.push({ option, rank, used: uses.get(option.cls) ?? 0, alias, index });
+  });
+  scored.sort(
+    (a, b) => a.rank - b.rank || b.used - a.used || a.alias - b.alias || a.index - b.index,
+  );
+  return scored.slice(0, limit).map((s) => s.option);
+}
