@@ -5,8 +5,11 @@ import { api } from "../../api/client";
 import { ApiError } from "../../api/errors";
 import { isFinished, pollJob } from "../../api/jobs";
 import { el } from "../../dom";
+import { mountBoxTool } from "../../editors/boxTool";
 import { mountEdgeInfo } from "../../editors/edgeInfo";
 import { mountLayoutEditing } from "../../editors/layoutEditor";
+import { mountMaskTools } from "../../editors/maskTools";
+import { mountObjectShortcuts } from "../../editors/objectShortcuts";
 import { mountSaveBar } from "../../editors/saveBar";
 import { mountSupportEditor } from "../../editors/supportEditor";
 import { mountSupportShortcuts } from "../../editors/supportShortcuts";
@@ -183,6 +186,10 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       layout.dispose,
       mountEdgeInfo(edgeInfo, session),
       mountSupportShortcuts(session),
+      mountBoxTool(photoView.tools),
+      mountObjectShortcuts(objectEditor, photoView.tools.host.svg),
+      // after the support keys: the polygon's Backspace wins while a polygon is drawn
+      mountMaskTools(photoView.tools),
       startAutosave(session, { author: getAuthor }),
       mountScene3d(scene3d.body, session, layout.draft),
       mountPlacementNotice(scene3d.element, scene3d.body, session),

@@ -1,0 +1,84 @@
+// User story: an annotator fixes objects the pipeline got wrong. Shift+C opens the class
+// picker on the selected object (its class listed first) and the new class is saved at once;
+// Delete removes an object with its mask and every support it took part in; Ctrl+Z takes
+// either back exactly, and Ctrl+Shift+Z does it again.
+import { mkdirSync } from "node:fs";
+import path from "node:path";
+import type { SceneDocument } from "@holiscene/schema";
+import { expect, type Page, test } from "@playwright/test";
+import { getScene, seedScene, T3D_5 } from "../helpers/api";
+import { chooseTool, objectEditsSaved, pickClass } from "../helpers/objects";
+import { clickObject, openScene } from "../helpers/photo";
+
+const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
+mkdirSync(SCREENSHOTS, { recursive: true });
+
+const objectOf = (doc: SceneDocument, id: string) => doc.scene.objects?.find((o) => o.id === id);
+const supportsOf = (doc: SceneDocument, id: string) =>
+  (doc.scene.supports ?? []).filter((s) => s.child === id || s.parent === id);
+
+/** Wait until the server's latest revision is `revision`, and return it. */
+async function revisionSaved(page: Page, sceneId: string, revision: number) {
+  await objectEditsSaved(page);
+  await expect.poll(async () => (await getScene(page.request, sceneId)).revision).toBe(revision);
+  return getScene(page.request, sceneId);
+}
+
+test("a class changed with the picker, and an object deleted, come back with undo", async ({
+  page,
+  request,
+}) => {
+  const seeded = await seedScene(request, T3D_5, "t3d-5 class and delete");
+  const sceneId = seeded.scene_id;
+  const start = seeded.revision;
+  await openScene(page, sceneId);
+  // The box tool selects what is clicked (the select tool would pick a supporter instead).
+  await chooseTool(page, "box");
+
+  // Shift+C on the selected dresser: the picker lists its class first.
+  const dresser = (seeded.scene.objects ?? []).find((o) => o.class === "dresser");
+  if (!dresser) throw new Error("t3d-5 has a dresser");
+  await clickObject(page, dresser.id);
+  await expect(page.getByTestId("box-tool-selected")).toHaveCount(1);
+  await page.keyboard.press("Shift+C");
+  await expect(page.getByTestId("class-option").first()).toHaveAttribute("data-name", "dresser");
+  await page.getByTestId("class-picker-input").fill("sh");
+  await page.screenshot({ path: path.join(SCREENSHOTS, "class-picker-change.png") });
+  await pickClass(page, "shelv", "shelves");
+  let doc = await revisionSaved(page, sceneId, start + 1);
+  expect(objectOf(doc, dresser.id)?.class).toBe("shelves");
+  await expect(page.getByTestId("undo-button")).toHaveAttribute("title", /Undo: dresser .* → shelves/);
+
+  // Ctrl+Z: the class is back, exactly as it was; Ctrl+Shift+Z sets it again.
+  await page.keyboard.press("Control+z");
+  doc = await revisionSaved(page, sceneId, start + 2);
+  expect(objectOf(doc, dresser.id)).toEqual(objectOf(seeded, dresser.id));
+  await page.keyboard.press("Control+Shift+z");
+  doc = await revisionSaved(page, sceneId, start + 3);
+  expect(objectOf(doc, dresser.id)?.class).toBe("shelves");
+
+  // Delete an object that takes part in supports (a supporter if there is one).
+  const supports = doc.scene.supports ?? [];
+  const target =
+    supports.find((s) => !["floor", "wall", "ceiling"].includes(s.parent))?.parent ??
+    supports[0]?.child;
+  if (!target) throw new Error("the pipeline gave t3d-5 supports");
+  const before = doc;
+  expect(supportsOf(before, target).length).toBeGreaterThan(0);
+  await clickObject(page, target);
+  await page.keyboard.press("Delete");
+  doc = await revisionSaved(page, sceneId, start + 4);
+  expect(objectOf(doc, target)).toBeUndefined();
+  expect(supportsOf(doc, target)).toEqual([]);
+  await expect(page.getByTestId(`mask-${target}`)).toHaveCount(0);
+  await expect(page.locator(`tr[data-object="${target}"]`)).toHaveCount(0);
+
+  // Undo brings the object, its mask and every support it took part in back.
+  await page.keyboard.press("Control+z");
+  doc = await revisionSaved(page, sceneId, start + 5);
+  expect(objectOf(doc, target)).toEqual(objectOf(before, target));
+  expect(supportsOf(doc, target)).toEqual(supportsOf(before, target));
+  await expect(page.getByTestId(`mask-${target}`)).toHaveCount(1);
+  await expect(page.locator(`tr[data-object="${target}"]`)).toBeVisible();
+  await expect(page.getByTestId("object-edit-status")).toContainText("Undo remove");
+});
