@@ -195,6 +195,9 @@ test("a real photo: labels apart, sources in the object list", async ({ page }) 
   await page.getByTestId("photo-panel").screenshot({
     path: path.join(SCREENSHOTS, "photo-real-labels.png"),
   });
+  await page.getByTestId("object-table").screenshot({
+    path: path.join(SCREENSHOTS, "object-list-sources.png"),
+  });
 });
 
 /** The real photo t3d-5 without objects (empty detections.json). */
