@@ -45,17 +45,32 @@ test("boxes drawn on an empty photo become objects with masks and supporters", a
   await expect(page.getByTestId("box-tool-selected")).toHaveCount(1);
   await page.keyboard.press("f");
 
-  // A second one, named by an alias: "nightstand" is stored as night_stand.
+  // Zoom in on the night stand with the wheel (about the pointer), and draw it there, named
+  // by an alias: "nightstand" is stored as night_stand.
+  const photo = page.getByTestId("photo");
+  const standCentre = await screenPoint(page, 75, 366);
+  await page.mouse.move(standCentre.x, standCentre.y);
+  await page.mouse.wheel(0, -200);
+  await expect.poll(async () => Number(await photo.getAttribute("data-zoom"))).toBeGreaterThan(1.2);
+  const after = await screenPoint(page, 75, 366);
+  expect(Math.hypot(after.x - standCentre.x, after.y - standCentre.y)).toBeLessThan(2);
   await dragOnPhoto(page, [3, 288], [148, 445]);
   await pickClass(page, "nightstand", "nightstand");
   await expect(page.locator('.masks [data-object="d2"]')).toHaveCount(1);
   await page.keyboard.press("f");
 
-  // Resize the night stand with its right handle (it is selected, handles shown).
+  // Resize the night stand with its right handle (it is selected, handles shown at their
+  // screen size whatever the zoom).
   await expect(page.getByTestId("box-handle")).toHaveCount(8);
+  const handle = await page.locator('[data-handle="e"]').boundingBox();
+  expect(handle?.width ?? 0).toBeGreaterThan(7);
+  expect(handle?.width ?? 0).toBeLessThan(12);
   await page.screenshot({ path: path.join(SCREENSHOTS, "box-tool-handles.png") });
   await dragOnPhoto(page, [148, 366.5], [156, 366.5]);
   await objectEditsSaved(page);
+  // 0 fits the whole photo again.
+  await page.keyboard.press("0");
+  await expect(photo).toHaveAttribute("data-zoom", "1.000");
   await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", /saved|clean/, {
     timeout: 15_000,
   });

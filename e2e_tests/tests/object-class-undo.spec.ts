@@ -17,6 +17,25 @@ const objectOf = (doc: SceneDocument, id: string) => doc.scene.objects?.find((o)
 const supportsOf = (doc: SceneDocument, id: string) =>
   (doc.scene.supports ?? []).filter((s) => s.child === id || s.parent === id);
 
+/** Milliseconds from pressing `key` until `selector` is (or is no longer) on the page. */
+async function timeTo(page: Page, key: string, selector: string, present: boolean) {
+  const waited = page.evaluate(
+    ({ selector, present }) =>
+      new Promise<number>((resolve) => {
+        const start = performance.now();
+        const check = () => {
+          if ((document.querySelector(selector) !== null) === present)
+            resolve(performance.now() - start);
+          else requestAnimationFrame(check);
+        };
+        check();
+      }),
+    { selector, present },
+  );
+  await page.keyboard.press(key);
+  return waited;
+}
+
 /** Wait until the server's latest revision is `revision`, and return it. */
 async function revisionSaved(page: Page, sceneId: string, revision: number) {
   await objectEditsSaved(page);
@@ -47,7 +66,10 @@ test("a class changed with the picker, and an object deleted, come back with und
   await pickClass(page, "shelv", "shelves");
   let doc = await revisionSaved(page, sceneId, start + 1);
   expect(objectOf(doc, dresser.id)?.class).toBe("shelves");
-  await expect(page.getByTestId("undo-button")).toHaveAttribute("title", /Undo: dresser .* → shelves/);
+  await expect(page.getByTestId("undo-button")).toHaveAttribute(
+    "title",
+    /Undo: dresser .* → shelves/,
+  );
 
   // Ctrl+Z: the class is back, exactly as it was; Ctrl+Shift+Z sets it again.
   await page.keyboard.press("Control+z");
@@ -66,7 +88,8 @@ test("a class changed with the picker, and an object deleted, come back with und
   const before = doc;
   expect(supportsOf(before, target).length).toBeGreaterThan(0);
   await clickObject(page, target);
-  await page.keyboard.press("Delete");
+  // How long a person waits from the key to the photo without the object (saved first).
+  const gone = await timeTo(page, "Delete", `[data-testid="mask-${target}"]`, false);
   doc = await revisionSaved(page, sceneId, start + 4);
   expect(objectOf(doc, target)).toBeUndefined();
   expect(supportsOf(doc, target)).toEqual([]);
@@ -74,11 +97,16 @@ test("a class changed with the picker, and an object deleted, come back with und
   await expect(page.locator(`tr[data-object="${target}"]`)).toHaveCount(0);
 
   // Undo brings the object, its mask and every support it took part in back.
-  await page.keyboard.press("Control+z");
+  const back = await timeTo(page, "Control+z", `[data-testid="mask-${target}"]`, true);
   doc = await revisionSaved(page, sceneId, start + 5);
   expect(objectOf(doc, target)).toEqual(objectOf(before, target));
   expect(supportsOf(doc, target)).toEqual(supportsOf(before, target));
   await expect(page.getByTestId(`mask-${target}`)).toHaveCount(1);
   await expect(page.locator(`tr[data-object="${target}"]`)).toBeVisible();
   await expect(page.getByTestId("object-edit-status")).toContainText("Undo remove");
+  test.info().annotations.push({
+    type: "timing",
+    description: `delete to redrawn ${gone.toFixed(0)} ms, undo to redrawn ${back.toFixed(0)} ms`,
+  });
+  console.log(`delete to redrawn ${gone.toFixed(0)} ms, undo to redrawn ${back.toFixed(0)} ms`);
 });
