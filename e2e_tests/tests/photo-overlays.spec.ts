@@ -259,6 +259,9 @@ test("after an object edit the model scores again and the 3D panel offers Re-pla
     path: path.join(SCREENSHOTS, "placement-notice.png"),
   });
 
+  // The object a person added is not in 3D until placed: the notice stays after a reload.
+  await page.reload();
+  await expect(page.getByTestId("placement-notice-text")).toContainText("1 object added");
   await page.getByTestId("placement-notice-replace").click();
   await expect(notice).toBeHidden({ timeout: 120_000 });
   const placed = (await getScene(page.request, sceneId)).scene.objects?.find(

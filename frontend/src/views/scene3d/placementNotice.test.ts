@@ -34,9 +34,11 @@ describe("changes since placement", () => {
     expect(describeChanges(changes)).toBe("1 object added, 1 removed, 2 changed");
   });
 
-  it("ignore room structure and count an object without a 3D box as not placed", () => {
-    const current = [...placed.slice(0, 3), object("b2", { box_3d: null })];
-    expect(changesSincePlacement(placed, current).added).toEqual(["b2"]);
+  it("ignore room structure; count an object a person added without a 3D box as added", () => {
+    const drawn = object("b2", { box_3d: null, set_by_person: ["object"] });
+    const unplacedByPipeline = object("b3", { box_3d: null });
+    const loaded = [...placed, drawn, unplacedByPipeline];
+    expect(changesSincePlacement(loaded, loaded).added).toEqual(["b2"]);
     const noStructure = placed.filter((o) => o.class !== "floor");
     expect(changesSincePlacement(placed, noStructure).removed).toEqual([]);
   });

@@ -33,7 +33,8 @@ export function newlyPlaced(previous: readonly SceneObject[], next: readonly Sce
 
 /**
  * The objects that differ between the ones the 3D scene was made from (`placed`) and the
- * current ones; an object without a 3D box was never placed and counts as added.
+ * current ones. An object a person added that has no 3D box yet counts as added even when
+ * it was already there when the page opened (the notice comes back after a reload).
  */
 export function changesSincePlacement(
   placed: readonly SceneObject[],
@@ -48,7 +49,8 @@ export function changesSincePlacement(
   const changed: string[] = [];
   for (const object of now) {
     const old = before.get(object.id);
-    if (!old || !object.box_3d) added.push(object.id);
+    const unplaced = !object.box_3d && (object.set_by_person ?? []).includes("object");
+    if (!old || unplaced) added.push(object.id);
     else if (placementInput(old) !== placementInput(object)) changed.push(object.id);
   }
   const removed = [...before.keys()].filter((id) => !nowIds.has(id));
