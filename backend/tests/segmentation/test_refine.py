@@ -50,6 +50,29 @@ def test_foreground_strokes_add_their_pixels_and_background_strokes_remove_their
     assert not steered[painted_out].any()
 
 
+def test_a_few_strokes_take_out_the_vases_on_the_dresser_not_only_where_painted(
+    t3d5: Path,
+) -> None:
+    """A loose box over the dresser and the vases on it: the plain cut keeps some of the
+    vases; two short background strokes on them teach GrabCut their colours, so all of them
+    go, and a foreground stroke keeps the dresser."""
+    image = photo(t3d5)
+    box = [400.0, 160.0, 580.0, 360.0]
+    vases = (slice(170, 215), slice(440, 500))
+    dresser = (slice(240, 320), slice(440, 540))
+    on_vases = [
+        BrushStroke(points=[[450, 185], [470, 185]], radius=6),
+        BrushStroke(points=[[485, 180], [485, 215]], radius=5),
+    ]
+    on_dresser = [BrushStroke(points=[[440, 250], [520, 300]], radius=5)]
+    plain = refine_in_box(image, box)
+    steered = refine_in_box(image, box, foreground=on_dresser, background=on_vases)
+    unpainted = ~paint_strokes(plain.shape, on_vases)
+    assert plain[vases][unpainted[vases]].mean() > 0.25
+    assert steered[vases][unpainted[vases]].mean() < 0.02
+    assert steered[dresser].mean() > 0.97
+
+
 def test_the_mask_stays_inside_the_box_whatever_is_painted(t3d5: Path) -> None:
     outside = BrushStroke(points=[[300, 150], [650, 420]], radius=20)  # leaves the box
     mask = refine_in_box(photo(t3d5), BOX, foreground=[outside])
