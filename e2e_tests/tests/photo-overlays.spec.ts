@@ -9,6 +9,7 @@ import type { ImportResult } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getScene, seedScene, T3D_5, waitForJob } from "../helpers/api";
 import { openScene, waitForModel } from "../helpers/photo";
+import { scene3d } from "../helpers/scene3d";
 import { scratchDir } from "../helpers/scratch";
 import { importSynthetic, synthesizeFolder } from "../helpers/synthetic";
 
@@ -155,7 +156,22 @@ test("a crowded scene's labels do not overlap; mask colouring and opacity are re
   // By class: the pile's 14 boxes take two colours (box, books). The first switch encodes
   // every mask in its new colour; switching back finds them encoded, as an object edit finds
   // the masks it did not change, and the whole photo is redrawn within 50 ms.
+  // In 3D, two boxes of the pile have the colours of their masks: different by object, one
+  // colour by class (compared as proportions: the 3D view shades each face).
+  await expect(page.getByTestId("scene3d-canvas")).toHaveAttribute("data-status", "ready", {
+    timeout: 120_000,
+  });
+  const [boxA, boxB] = objects.filter((o) => o.class === "box").map((o) => o.id);
+  const hue3d = async (id: string | undefined) => {
+    const rgb = (await scene3d(page, (p, i) => p.objectColour(i), id ?? "")) ?? [0, 0, 0];
+    const sum = rgb.reduce((a, b) => a + b, 0) || 1;
+    return rgb.map((v) => v / sum);
+  };
+  const spread = (a: number[], b: number[]) =>
+    Math.max(...a.map((v, i) => Math.abs(v - (b[i] ?? 0))));
+  expect(spread(await hue3d(boxA), await hue3d(boxB))).toBeGreaterThan(0.05);
   const classMs = await timeChange(page, "mask-colouring", "class");
+  expect(spread(await hue3d(boxA), await hue3d(boxB))).toBeLessThan(0.01);
   const objectMs = await timeChange(page, "mask-colouring", "object");
   console.log(
     `redraw: support edit ${editMs.toFixed(1)} ms, colouring by class ${classMs.toFixed(1)} ms, ` +

@@ -30,8 +30,10 @@ export function classCss(cls: string, alpha = 1): string {
   return rgbCss(classRgb(cls), alpha);
 }
 
+/** A colour as a 0xRRGGBB number (three.js). */
+export const rgbHex = ([r, g, b]: Rgb): number => (r << 16) | (g << 8) | b;
+
 /** The class's colour as a 0xRRGGBB number (three.js). */
 export function classHex(cls: string): number {
-  const [r, g, b] = classRgb(cls);
-  return (r << 16) | (g << 8) | b;
+  return rgbHex(classRgb(cls));
 }

@@ -10,6 +10,8 @@ import { api } from "../../api/client";
 import { el } from "../../dom";
 import { type LayoutDraft, storedRoom } from "../../state/layoutDraft";
 import type { SceneSession } from "../../state/sceneSession";
+import { maskColours } from "../objectColors";
+import { maskStyle } from "../photo/maskStyle";
 import { planArrows } from "./arrowPlan";
 import { PhotoFrustum } from "./photoFrustum";
 import { downloadCanvasPng, pngFileName } from "./pngExport";
@@ -304,7 +306,7 @@ export function mountScene3d(
       return;
     }
     if (!response.ok) throw new Error(`scene.glb: ${response.status} ${response.statusText}`);
-    const loaded = await SceneModel.parse(await response.arrayBuffer(), session.objects);
+    const loaded = await SceneModel.parse(await response.arrayBuffer(), session.objects, colours());
     if (abort.signal.aborted) {
       loaded.dispose();
       return;
@@ -396,6 +398,13 @@ export function mountScene3d(
   });
   canvas.addEventListener("pointerleave", () => session.hover(null));
 
+  // Objects in 3D have the colours of their masks on the photo.
+  const colours = () => maskColours(session.objects, maskStyle.get().colouring);
+  const stopColours = maskStyle.subscribe(() => {
+    model?.recolour(colours());
+    requestRender();
+  });
+
   const highlight = () => {
     canvas.dataset.selected = session.selected ?? "";
     if (!model) return;
@@ -422,6 +431,7 @@ export function mountScene3d(
   return () => {
     abort.abort();
     unsubscribe();
+    stopColours();
     unsubscribeLayout();
     observer.disconnect();
     cancelAnimationFrame(frame);

@@ -1,11 +1,12 @@
-// The GLB scene as loaded for display: meshes coloured by class, found by object id. What is
+// The GLB scene as loaded for display: meshes coloured as the photo's masks (by object or by
+// class, objectColors.ts), found by object id. What is
 // drawn is baked (bakedMesh.ts): the objects lit once and merged, closed solids into one mesh
 // drawn one-sided and the rest into one drawn two-sided, and the GLB's room surfaces as a
 // third; the GLB's own nodes stay, undrawn, for picking and bounds.
 import type { SceneObject } from "@holiscene/schema";
 import * as THREE from "three";
 import { GLTFLoader } from "three/examples/jsm/loaders/GLTFLoader.js";
-import { classHex } from "../classColors";
+import { classHex, type Rgb, rgbHex } from "../classColors";
 import { BakedGeometry, type BakedPart, solidWinding } from "./bakedMesh";
 
 const FLOOR_COLOUR = 0xb9b4aa;
@@ -40,7 +41,11 @@ export class SceneModel {
   private readonly roomNodes: THREE.Mesh[] = [];
   private lit = new Set<string>();
 
-  private constructor(root: THREE.Object3D, objects: readonly SceneObject[]) {
+  private constructor(
+    root: THREE.Object3D,
+    objects: readonly SceneObject[],
+    colours: ReadonlyMap<string, Rgb>,
+  ) {
     this.root = root;
     root.updateMatrixWorld(true); // not in the drawn scene: nothing else updates it
     const classOf = new Map(objects.map((o) => [o.id, o.class]));
@@ -60,9 +65,10 @@ export class SceneModel {
       } else {
         // A mesh of no object (none in the pipeline's GLB) keeps its own colour.
         const own = Array.isArray(glbMaterial) ? undefined : glbColour(glbMaterial);
+        const given = id === null ? undefined : colours.get(id);
         const colour =
           cls !== undefined
-            ? new THREE.Color(classHex(cls))
+            ? new THREE.Color(given ? rgbHex(given) : classHex(cls))
             : (own ?? new THREE.Color(FLOOR_COLOUR));
         const winding = solidWinding(node.geometry, node.matrixWorld);
         const baked = winding === 0 ? "others" : "solids";
@@ -94,10 +100,30 @@ export class SceneModel {
     this.roomMesh.visible = roomParts.length > 0;
   }
 
-  /** Parse GLB bytes; meshes named by object id take their class colour. */
-  static async parse(bytes: ArrayBuffer, objects: readonly SceneObject[]): Promise<SceneModel> {
+  /** Parse GLB bytes; meshes named by object id take the object's colour in `colours`. */
+  static async parse(
+    bytes: ArrayBuffer,
+    objects: readonly SceneObject[],
+    colours: ReadonlyMap<string, Rgb> = new Map(),
+  ): Promise<SceneModel> {
     const gltf = await new GLTFLoader().parseAsync(bytes, "");
-    return new SceneModel(gltf.scene, objects);
+    return new SceneModel(gltf.scene, objects, colours);
+  }
+
+  /** Colour the objects anew (the masks' colouring changed); glowing ones keep glowing. */
+  recolour(colours: ReadonlyMap<string, Rgb>): void {
+    for (const [id, parts] of this.partsOf) {
+      const rgb = colours.get(id);
+      if (!rgb) continue;
+      for (const entry of parts) {
+        entry.colour = new THREE.Color(rgbHex(rgb));
+        this[entry.baked].setColour(
+          entry.part,
+          entry.colour,
+          this.lit.has(id) ? HIGHLIGHT : undefined,
+        );
+      }
+    }
   }
 
   /** The object id a mesh belongs to: the nearest node named by an object id (or a room surface). */
