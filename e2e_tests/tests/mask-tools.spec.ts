@@ -1,0 +1,299 @@
+// User story: an annotator corrects an object's mask on the photo. With the object selected,
+// the Brush paints more of it (the stroke shows at once), the Eraser takes some away, a
+// Polygon adds a part, and Refine cuts the mask again from strokes; each is saved as one
+// revision holding a "manual" mask, and a reload shows the same mask.
+import { mkdirSync } from "node:fs";
+import path from "node:path";
+import type { Mask, SceneDocument, SceneObject } from "@holiscene/schema";
+import { expect, type Page, test } from "@playwright/test";
+import { getRevisions, getScene, seedScene, T3D_5 } from "../helpers/api";
+import { clickObject, openScene, setAuthor } from "../helpers/photo";
+
+const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
+mkdirSync(SCREENSHOTS, { recursive: true });
+
+type Xy = [number, number];
+
+/** Whether the photo pixel (x, y) is in the mask (runs of 0 and 1 from a run of 0). */
+function maskHas(mask: Mask | null | undefined, [x, y]: Xy): boolean {
+  if (!mask) return false;
+  const [ox, oy] = mask.origin;
+  const [width, height] = mask.size;
+  const col = Math.floor(x) - ox;
+  const row = Math.floor(y) - oy;
+  if (col < 0 || row < 0 || col >= width || row >= height) return false;
+  let index = row * width + col;
+  for (let i = 0; i < mask.rle.length; i++) {
+    const run = mask.rle[i] as number;
+    if (index < run) return i % 2 === 1;
+    index -= run;
+  }
+  return false;
+}
+
+const area = (mask: Mask | null | undefined) =>
+  mask ? mask.rle.reduce((sum, run, i) => (i % 2 === 1 ? sum + run : sum), 0) : 0;
+
+/** The screen point of a photo pixel. */
+async function toScreen(page: Page, [x, y]: Xy): Promise<{ x: number; y: number }> {
+  return page.getByTestId("photo").evaluate(
+    (svg, [px, py]) => {
+      const matrix = (svg as SVGSVGElement).getScreenCTM();
+      if (!matrix) throw new Error("the photo is not laid out");
+      const p = new DOMPoint(px, py).matrixTransform(matrix);
+      return { x: p.x, y: p.y };
+    },
+    [x, y] as Xy,
+  );
+}
+
+/**
+ * Press at the first point, move through the others in steps, release; returns the saved
+ * document. A brush's mask is shown while the button is down (`live`); a refine waits for the
+ * server.
+ */
+async function drag(
+  page: Page,
+  sceneId: string,
+  points: Xy[],
+  live = true,
+): Promise<SceneDocument> {
+  const saved = waitForEdit(page, sceneId);
+  const [first, ...rest] = points;
+  if (!first) throw new Error("no points to drag through");
+  const start = await toScreen(page, first);
+  await page.mouse.move(start.x, start.y);
+  await page.mouse.down();
+  for (const point of rest) {
+    const at = await toScreen(page, point);
+    await page.mouse.move(at.x, at.y, { steps: 6 });
+  }
+  if (live) await expect(page.getByTestId("mask-preview")).toHaveCount(1);
+  await page.mouse.up();
+  return saved;
+}
+
+/** The next saved object edit: its set_mask body checked, the answered document returned. */
+async function waitForEdit(page: Page, sceneId: string): Promise<SceneDocument> {
+  const response = await page.waitForResponse(
+    (r) => r.request().method() === "POST" && r.url().endsWith(`/api/scenes/${sceneId}/edits`),
+  );
+  const body = response.request().postDataJSON() as { edits: { kind: string }[] };
+  expect(body.edits.map((e) => e.kind)).toEqual(["set_mask"]);
+  expect(response.status(), await response.text()).toBe(200);
+  return (await response.json()) as SceneDocument;
+}
+
+/**
+ * From now on, for each pointer move over the photo with a button down: the time the page's
+ * pointermove handlers take (the mask repainted: a press keeps mouse events away), and the time to
+ * the next frame (which includes the browser's drawing of the whole page, 3D view included).
+ */
+async function recordRedraws(page: Page): Promise<void> {
+  await page.evaluate(() => {
+    const record = { handlers: [] as number[], frames: [] as number[] };
+    (window as unknown as { redraws: typeof record }).redraws = record;
+    let started = 0;
+    window.addEventListener(
+      "pointermove",
+      (event) => {
+        if (!event.buttons) return;
+        started = performance.now();
+        requestAnimationFrame(() => record.frames.push(performance.now() - event.timeStamp));
+      },
+      true,
+    );
+    window.addEventListener("pointermove", (event) => {
+      if (event.buttons && started) record.handlers.push(performance.now() - started);
+      started = 0;
+    });
+  });
+}
+
+/** The times recorded, shortest first. */
+function redraws(page: Page): Promise<{ handlers: number[]; frames: number[] }> {
+  return page.evaluate(() => {
+    const { handlers, frames } = (window as unknown as { redraws: Record<string, number[]> })
+      .redraws as { handlers: number[]; frames: number[] };
+    const sorted = (values: number[]) => [...values].sort((a, b) => a - b);
+    return { handlers: sorted(handlers), frames: sorted(frames) };
+  });
+}
+
+const objectIn = (doc: SceneDocument, id: string): SceneObject => {
+  const object = doc.scene.objects?.find((o) => o.id === id);
+  if (!object) throw new Error(`${id} is not in revision ${doc.revision}`);
+  return object;
+};
+
+test("brush, eraser, polygon and refine edit the selected object's mask, saved as revisions", async ({
+  page,
+  request,
+}) => {
+  const seeded = await seedScene(request, T3D_5, "t3d-5 mask tools");
+  const { width, height } = seeded.scene.image;
+  // The object nearest the photo's centre, with room to paint beside it.
+  const objects = [...(seeded.scene.objects ?? [])].filter(
+    (o) => o.mask && o.bbox[2] < width - 60 && o.bbox[1] > 40,
+  );
+  const centre = (o: SceneObject) =>
+    Math.hypot((o.bbox[0] + o.bbox[2]) / 2 - width / 2, (o.bbox[1] + o.bbox[3]) / 2 - height / 2);
+  objects.sort((a, b) => centre(a) - centre(b));
+  const target = objects[0];
+  if (!target) throw new Error("no object to paint on");
+  const id = target.id;
+  const [x1, y1, x2, y2] = target.bbox;
+  const midY = (y1 + y2) / 2;
+
+  await openScene(page, seeded.scene_id);
+  await setAuthor(page, "e2e-painter");
+
+  // A mask tool with nothing selected says what to do.
+  await page.keyboard.press("P");
+  await expect(page.getByTestId("photo-tool-brush")).toHaveAttribute("aria-pressed", "true");
+  await expect(page.getByTestId("mask-tool-status")).toHaveText(/Select an object first/);
+  await page.keyboard.press("V");
+  await clickObject(page, id);
+  await page.keyboard.press("P");
+  await expect(page.getByTestId("mask-tool-status")).toHaveText(
+    new RegExp(`Mask of ${target.class} ${id}`),
+  );
+  // [ and ] size the brush.
+  await expect(page.getByTestId("brush-size-value")).toHaveText("16 px");
+  await page.keyboard.press("]");
+  await page.keyboard.press("]");
+  await expect(page.getByTestId("brush-size-value")).toHaveText("25 px");
+
+  // Brush: a stroke from inside the box out to its right grows the mask there.
+  const outside: Xy = [Math.min(width - 20, x2 + 35), midY];
+  expect(maskHas(target.mask, outside)).toBe(false);
+  const revisionsBefore = (await getRevisions(request, seeded.scene_id)).length;
+  await recordRedraws(page);
+  const brushed = await drag(page, seeded.scene_id, [[x2 - 10, midY], [x2 + 20, midY], outside]);
+  let object = objectIn(brushed, id);
+  expect(object.mask?.source).toBe("manual");
+  expect(maskHas(object.mask, outside)).toBe(true);
+  expect(maskHas(object.mask, [x2 + 20, midY + 6])).toBe(true);
+  expect(area(object.mask)).toBeGreaterThan(area(target.mask));
+  // The box follows the mask.
+  expect(object.bbox[2]).toBeGreaterThan(x2 + 35);
+  expect((await getRevisions(request, seeded.scene_id)).length).toBe(revisionsBefore + 1);
+  await expect(page.getByTestId(`mask-${id}`)).toHaveAttribute("data-source", "manual");
+  await expect(page.getByTestId("mask-preview")).toHaveCount(0);
+  await page.screenshot({ path: path.join(SCREENSHOTS, "mask-tools-brush.png") });
+  // Live drawing kept up: each pointer move was painted well within 50 ms.
+  const { handlers, frames } = await redraws(page);
+  expect(handlers.length).toBeGreaterThan(10);
+  const median = (values: number[]) => (values[Math.floor(values.length / 2)] ?? 0).toFixed(1);
+  const worst = (values: number[]) => (values[values.length - 1] ?? 0).toFixed(1);
+  console.log(
+    `brush per pointer move: handlers median ${median(handlers)} ms, worst ${worst(handlers)} ms; ` +
+      `to the next frame median ${median(frames)} ms, worst ${worst(frames)} ms`,
+  );
+  expect(handlers[handlers.length - 1]).toBeLessThan(50);
+
+  // Eraser: a stroke across the middle takes those pixels out.
+  await page.keyboard.press("Shift+P");
+  await expect(page.getByTestId("photo-tool-eraser")).toHaveAttribute("aria-pressed", "true");
+  const middle: Xy = [(x1 + x2) / 2, midY];
+  expect(maskHas(object.mask, middle) || maskHas(object.mask, [middle[0] + 4, midY])).toBe(true);
+  const areaBrushed = area(object.mask);
+  const erased = await drag(page, seeded.scene_id, [
+    [middle[0] - 8, midY],
+    [middle[0] + 8, midY],
+  ]);
+  object = objectIn(erased, id);
+  expect(object.mask?.source).toBe("manual");
+  expect(maskHas(object.mask, middle)).toBe(false);
+  expect(area(object.mask)).toBeLessThan(areaBrushed);
+  await page.screenshot({ path: path.join(SCREENSHOTS, "mask-tools-eraser.png") });
+
+  // Polygon: four clicks below-left of the box, Backspace takes a stray point back, Enter
+  // closes it; its inside joins the mask.
+  await page.keyboard.press("G");
+  await expect(page.getByTestId("photo-tool-polygon")).toHaveAttribute("aria-pressed", "true");
+  // Left of the box and above its middle: on screen without scrolling.
+  const px = Math.max(12, x1 - 40);
+  const py = Math.max(12, midY - 80);
+  const corners: Xy[] = [
+    [px, py],
+    [px + 30, py],
+    [px + 30, py + 30],
+    [px, py + 30],
+  ];
+  for (const corner of [...corners, [px + 15, py + 15] as Xy]) {
+    const at = await toScreen(page, corner);
+    await page.mouse.click(at.x, at.y);
+  }
+  await expect(page.getByTestId("polygon-draft")).toHaveAttribute("data-points", "5");
+  await page.keyboard.press("Backspace");
+  await expect(page.getByTestId("polygon-draft")).toHaveAttribute("data-points", "4");
+  await page.screenshot({ path: path.join(SCREENSHOTS, "mask-tools-polygon.png") });
+  const polygonSaved = waitForEdit(page, seeded.scene_id);
+  await page.keyboard.press("Enter");
+  object = objectIn(await polygonSaved, id);
+  expect(maskHas(object.mask, [px + 15, py + 15])).toBe(true);
+  expect(maskHas(object.mask, [px + 2, py + 28])).toBe(true);
+  await expect(page.getByTestId("polygon-draft")).toHaveCount(0);
+
+  // A polygon closed on its first point with Shift takes its inside out.
+  const cut: Xy[] = [
+    [px + 5, py + 5],
+    [px + 20, py + 5],
+    [px + 20, py + 20],
+  ];
+  for (const corner of cut) {
+    const at = await toScreen(page, corner);
+    await page.mouse.click(at.x, at.y);
+  }
+  const cutSaved = waitForEdit(page, seeded.scene_id);
+  const close = await toScreen(page, cut[0] as Xy);
+  await page.keyboard.down("Shift");
+  await page.mouse.click(close.x, close.y);
+  await page.keyboard.up("Shift");
+  object = objectIn(await cutSaved, id);
+  expect(maskHas(object.mask, [px + 17, py + 8])).toBe(false);
+  expect(maskHas(object.mask, [px + 3, py + 25])).toBe(true);
+
+  // Refine: a foreground stroke over the object; the server's cut is saved as the mask.
+  await page.keyboard.press("K");
+  await expect(page.getByTestId("photo-tool-refine")).toHaveAttribute("aria-pressed", "true");
+  const refineResponse = page.waitForResponse((r) => r.url().endsWith("/mask-refine"));
+  const refined = drag(
+    page,
+    seeded.scene_id,
+    [
+      [(x1 + x2) / 2 - 10, midY - 10],
+      [(x1 + x2) / 2 + 10, midY + 10],
+    ],
+    false,
+  );
+  const answer = await refineResponse;
+  expect(answer.status(), await answer.text()).toBe(200);
+  object = objectIn(await refined, id);
+  expect(object.mask?.source).toBe("manual");
+  expect(maskHas(object.mask, [(x1 + x2) / 2, midY])).toBe(true);
+  await expect(page.getByTestId("refine-strokes")).toHaveAttribute("data-foreground", "1");
+  await expect(page.getByTestId("mask-tool-status")).toHaveText(/Mask of/);
+  await page.screenshot({ path: path.join(SCREENSHOTS, "mask-tools-refine.png") });
+
+  // The shortcut help lists the new keys.
+  await page.keyboard.press("?");
+  const help = page.getByTestId("shortcut-help");
+  await expect(help).toBeVisible();
+  for (const keys of ["P", "Shift+P", "G", "K", "[", "]"]) {
+    await expect(help.locator(`[data-keys="${keys}"]`)).toHaveCount(1);
+  }
+  await page.keyboard.press("Escape");
+
+  // A reload shows the last saved mask.
+  const latest = await getScene(request, seeded.scene_id);
+  expect(objectIn(latest, id).mask).toEqual(object.mask);
+  await page.reload();
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await expect(page.getByTestId(`mask-${id}`)).toHaveAttribute("data-source", "manual");
+  const shown = await page
+    .getByTestId(`mask-${id}`)
+    .evaluate((node) => ["x", "y", "width", "height"].map((a) => Number(node.getAttribute(a))));
+  expect(shown).toEqual([...(object.mask?.origin ?? []), ...(object.mask?.size ?? [])]);
+});
