@@ -114,6 +114,13 @@ test("the scene page downloads scene.json, scene.glb and COCO JSON", async ({ pa
   await expect(page.getByTestId("download-no-glb")).toBeVisible();
   await expect(page.getByTestId("download-glb")).toBeHidden();
   await expect(page.getByTestId("download-coco")).toBeVisible();
+  await page.screenshot({
+    path: path.join(SCREENSHOTS, "download-menu-no-glb.png"),
+    clip: { x: 0, y: 0, width: 1440, height: 400 },
+  });
+  // A click elsewhere closes it too.
+  await page.getByTestId("scene-title").click();
+  await expect(page.getByTestId("download-menu")).not.toHaveAttribute("open");
 });
 
 test("the list downloads the selected scenes as one zip", async ({ page }) => {
