@@ -1,4 +1,5 @@
-// One colour per NYU-40 class, shared by the mask overlay, the object list and the 3D view.
+// One colour per NYU-40 class: the masks, the object list and the 3D view use it when colouring
+// by class (objectColors.ts colours by object, the default).
 import { NYU40_CLASSES } from "@holiscene/schema";
 
 export type Rgb = readonly [number, number, number];
