@@ -89,7 +89,7 @@ export function maskStyleControls(setting: MaskStyleSetting = maskStyle): {
       type: "range",
       min: MIN_OPACITY,
       max: 1,
-      step: 0.05,
+      step: 0.01,
       "aria-label": "Mask opacity",
       title: "How opaque the masks are",
     },
