@@ -163,6 +163,33 @@ describe("ObjectEditor", () => {
     expect(classes(session)).toEqual({ o1: "sofa" });
   });
 
+  it("shows what an action does before the server answers, and takes it back if refused", async () => {
+    let answer: () => void = () => {};
+    const slow: typeof server.post = (...args) =>
+      new Promise((resolve, reject) => {
+        answer = () => server.post(...args).then(resolve, reject);
+      });
+    editor = new ObjectEditor(session, { author: () => "tester", post: slow });
+    const saved = editor.apply([{ kind: "remove_object", id: "o1" }], "remove o1");
+    await Promise.resolve();
+    await new Promise((resolve) => setTimeout(resolve, 0));
+    expect(classes(session)).toEqual({}); // at once, still on revision 1
+    expect(session.doc.revision).toBe(1);
+    answer();
+    expect(await saved).toBe(true);
+    expect(session.doc.revision).toBe(2);
+
+    // The undo shows the object again at once too (revision 1 was seen here).
+    const undone = editor.undo();
+    await new Promise((resolve) => setTimeout(resolve, 0));
+    expect(classes(session)).toEqual({ o1: "chair" });
+    server.refuseNext = "down";
+    answer();
+    expect(await undone).toBeNull();
+    expect(classes(session)).toEqual({}); // refused: back to what the server has
+    expect(editor.failure?.label).toBe("undo remove o1");
+  });
+
   it("an undo the server refuses stays the one to undo", async () => {
     await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
     server.refuseNext = "down";

@@ -23,6 +23,7 @@ import { freshIds } from "../views/scene/detectionOffers";
 import { getAuthor } from "./author";
 import { EditHistory } from "./editHistory";
 import { lockText } from "./editLock";
+import { predictDocument } from "./objectPrediction";
 import type { SceneSession } from "./sceneSession";
 import type { Undoable } from "./undoOrder";
 
@@ -146,6 +147,8 @@ export class ObjectEditor implements Undoable {
   private queue: Promise<unknown> = Promise.resolve();
   private waiting = 0;
   private retryFailed: (() => Promise<unknown>) | null = null;
+  /** Revisions this page had loaded, by number (an undo shows the one it restores at once). */
+  private readonly seen = new Map<number, SceneDocument>();
 
   constructor(
     readonly session: SceneSession,
@@ -284,14 +287,23 @@ export class ObjectEditor implements Undoable {
       return null;
     }
     this.setStatus({ kind: "busy", label });
+    let shown: SceneDocument | null = null; // the revision under a prediction
     try {
       await saveDone(session);
       const before = session.doc.revision;
+      this.remember(session.doc);
+      // Redraw now what the action will do; the server's answer replaces it.
+      const predicted = predictDocument(session.doc, edits, (n) => this.seen.get(n));
+      if (predicted) {
+        shown = session.doc;
+        session.adopt(predicted);
+      }
       try {
         return this.adopt(label, before, [...edits], await this.post(before, [...edits]), null);
       } catch (error) {
         if (!(error instanceof ConflictError) || error.currentRevision === null) throw error;
       }
+      shown = null; // the reload below replaces the prediction
       await session.reloadLatest();
       const latest = session.doc.revision;
       const who = await this.authorsSince(before, latest);
@@ -310,9 +322,16 @@ export class ObjectEditor implements Undoable {
       const note = `${who} saved revision ${latest} meanwhile; your change was applied on top.${renames.join("")}`;
       return this.adopt(label, latest, rebased.edits, await this.post(latest, rebased.edits), note);
     } catch (error) {
+      if (shown) session.adopt(shown); // not saved: back to what the server has
       this.fail(label, errorText(error), retry);
       return null;
     }
+  }
+
+  private remember(doc: SceneDocument): void {
+    this.seen.set(doc.revision, doc);
+    // The revisions an undo or redo may name: those of the last actions.
+    if (this.seen.size > 100) this.seen.delete(this.seen.keys().next().value as number);
   }
 
   private adopt(
@@ -323,6 +342,7 @@ export class ObjectEditor implements Undoable {
     note: string | null,
   ): Sent {
     this.session.adopt(doc);
+    this.remember(doc);
     const message = note ?? `${capital(label)}: saved as revision ${doc.revision}.`;
     this.setStatus({ kind: "idle", message, error: false });
     return { before, after: doc.revision, edits };

@@ -1,0 +1,87 @@
+// The scene as an object action will leave it, before the server answers.
+import type { SceneDocument, SceneObject, SupportRelation } from "@holiscene/schema";
+import { describe, expect, it } from "vitest";
+import { supportRelation } from "../testing/supports";
+import { predictDocument } from "./objectPrediction";
+
+const object = (id: string, cls = "chair"): SceneObject =>
+  ({ id, class: cls, bbox: [0, 0, 10, 10] }) as unknown as SceneObject;
+
+const documentOf = (revision: number, objects: SceneObject[], supports: SupportRelation[]) =>
+  ({
+    scene_id: "s1",
+    revision,
+    updated_at: "2026-01-01T00:00:00Z",
+    scene: {
+      schema_version: 1,
+      name: "test",
+      image: { file: "img.png", width: 100, height: 100 },
+      objects,
+      supports,
+    },
+  }) as unknown as SceneDocument;
+
+const table = object("t", "table");
+const cup = object("c", "otherprop");
+const lamp = object("l", "lamp");
+const original = documentOf(
+  3,
+  [table, cup, lamp],
+  [supportRelation("t", "floor"), supportRelation("c", "t"), supportRelation("l", "t")],
+);
+const none = () => undefined;
+const ids = (doc: SceneDocument | null) => doc?.scene.objects?.map((o) => o.id);
+const edges = (doc: SceneDocument | null) =>
+  doc?.scene.supports?.map((s) => `${s.child}>${s.parent}`).sort();
+
+describe("predictDocument", () => {
+  it("a removal takes the object and every support it took part in", () => {
+    const after = predictDocument(original, [{ kind: "remove_object", id: "t" }], none);
+    expect(ids(after)).toEqual(["c", "l"]);
+    expect(edges(after)).toEqual([]);
+    expect(after?.revision).toBe(3);
+    expect(original.scene.objects).toHaveLength(3); // the loaded revision is left alone
+  });
+
+  it("a class is shown as stored (aliases mapped), a box as given", () => {
+    const after = predictDocument(
+      original,
+      [
+        { kind: "set_class", id: "c", class: "Coffee Table" },
+        { kind: "set_bbox", id: "l", bbox: [1, 2, 3, 4] },
+      ],
+      none,
+    );
+    expect(after?.scene.objects?.find((o) => o.id === "c")?.class).toBe("table");
+    expect(after?.scene.objects?.find((o) => o.id === "l")?.bbox).toEqual([1, 2, 3, 4]);
+  });
+
+  it("what cannot be foreseen is not predicted", () => {
+    expect(
+      predictDocument(original, [{ kind: "set_class", id: "c", class: "spaceship" }], none),
+    ).toBeNull();
+    expect(predictDocument(original, [{ kind: "remove_object", id: "zz" }], none)).toBeNull();
+    expect(
+      predictDocument(
+        original,
+        [{ kind: "add_object", id: "d1", class: "bed", bbox: [0, 0, 5, 5], source: "manual" }],
+        none,
+      ),
+    ).toBeNull();
+    expect(
+      predictDocument(original, [{ kind: "restore_object", id: "t", from_revision: 2 }], none),
+    ).toBeNull();
+  });
+
+  it("a restore from a revision at hand brings the object and its supports back", () => {
+    const removed = predictDocument(original, [{ kind: "remove_object", id: "t" }], none);
+    if (!removed) throw new Error("predicted");
+    const restored = predictDocument(
+      { ...removed, revision: 4 },
+      [{ kind: "restore_object", id: "t", from_revision: 3 }],
+      (n) => (n === 3 ? original : undefined),
+    );
+    expect(ids(restored)?.sort()).toEqual(["c", "l", "t"]);
+    expect(edges(restored)).toEqual(edges(original));
+  });
+});

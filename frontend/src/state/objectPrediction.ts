@@ -1,0 +1,76 @@
+// What an object action will do to the scene, shown before the server answers (so an edit is
+// redrawn at once, not after the round trip): a removal takes the object and every support it
+// took part in away, a class or box change shows the new class or box, and a restore puts
+// back the object and its supports of a revision seen before. The server's revision replaces
+// the prediction as soon as it comes (masks the server cuts are only known then); actions it
+// cannot foresee (a new object) are not predicted.
+import {
+  CLASS_ALIASES,
+  NYU40_CLASSES,
+  type SceneDocument,
+  type SupportRelation,
+} from "@holiscene/schema";
+import type { ObjectEdit } from "./objectEditor";
+
+const ALIASES: Record<string, string> = CLASS_ALIASES;
+const CLASSES = new Set<string>(NYU40_CLASSES);
+
+/** The NYU-40 class a name is stored as (null: the server will refuse it). */
+function storedClass(name: string): string | null {
+  const key = name
+    .trim()
+    .toLowerCase()
+    .replace(/[\s-]+/g, "_");
+  return CLASSES.has(key) ? key : (ALIASES[key] ?? null);
+}
+
+const involves = (support: SupportRelation, id: string) =>
+  support.child === id || support.parent === id;
+
+/**
+ * `doc` after `edits`, as far as can be told here; null when an edit cannot be foreseen (a
+ * new object, a restore from a revision not at hand, a class the server would refuse).
+ * `revision(n)`: a document of revision n seen before, if any.
+ */
+export function predictDocument(
+  doc: SceneDocument,
+  edits: readonly ObjectEdit[],
+  revision: (number: number) => SceneDocument | undefined,
+): SceneDocument | null {
+  let objects = [...(doc.scene.objects ?? [])];
+  let supports = [...(doc.scene.supports ?? [])];
+  for (const edit of edits) {
+    const index = objects.findIndex((o) => o.id === edit.id);
+    const object = objects[index];
+    if (edit.kind === "remove_object") {
+      if (!object) return null;
+      objects = objects.filter((o) => o.id !== edit.id);
+      supports = supports.filter((s) => !involves(s, edit.id));
+    } else if (edit.kind === "set_class") {
+      const cls = storedClass(edit.class);
+      if (!object || !cls) return null;
+      objects[index] = { ...object, class: cls as typeof object.class };
+    } else if (edit.kind === "set_bbox") {
+      if (!object) return null;
+      objects[index] = { ...object, bbox: edit.bbox };
+    } else if (edit.kind === "restore_object") {
+      const then = revision(edit.from_revision);
+      if (!then) return null;
+      const old = then.scene.objects?.find((o) => o.id === edit.id);
+      objects = objects.filter((o) => o.id !== edit.id);
+      supports = supports.filter((s) => !involves(s, edit.id));
+      if (old) {
+        objects.splice(Math.min(index < 0 ? objects.length : index, objects.length), 0, old);
+        const present = new Set(objects.map((o) => o.id));
+        const held = (id: string) => present.has(id) || ["floor", "wall", "ceiling"].includes(id);
+        const back = (then.scene.supports ?? []).filter(
+          (s) => involves(s, edit.id) && held(s.child) && held(s.parent),
+        );
+        // A child has one supporter: the restored one replaces the one it has now.
+        const children = new Set(back.map((s) => s.child));
+        supports = [...supports.filter((s) => !children.has(s.child)), ...back];
+      }
+    } else return null;
+  }
+  return { ...doc, scene: { ...doc.scene, objects, supports } };
+}
