@@ -52,9 +52,11 @@ export type PostEdits = (
   edits: ObjectEdit[],
 ) => Promise<SceneDocument>;
 
-/** An edit as the API takes it (a new object's defaults written out). */
-const wire = (edit: ObjectEdit): EditRequest["edits"][number] =>
-  edit.kind === "add_object" ? { mask: null, score: null, ...edit } : edit;
+/**
+ * An edit as the API takes it: as it is (the contract's types list a new object's mask and
+ * score as always present, but the API takes them left out, as null).
+ */
+const wire = (edit: ObjectEdit) => edit as EditRequest["edits"][number];
 
 const postToApi: PostEdits = (sceneId, baseRevision, author, edits) => {
   const [first, ...rest] = edits.map(wire);
