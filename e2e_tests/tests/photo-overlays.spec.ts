@@ -134,6 +134,28 @@ test("a crowded scene's labels do not overlap; mask colouring and opacity are re
     path: path.join(SCREENSHOTS, "photo-crowded-labels.png"),
   });
 
+  // Zoomed in on the pile, the labels and the arrows' tags keep their size on the screen,
+  // and the labels stay apart.
+  const photo = page.getByTestId("photo");
+  const pile = await photo.boundingBox();
+  if (!pile) throw new Error("no photo on the page");
+  await page.mouse.move(pile.x + pile.width * 0.45, pile.y + pile.height * 0.6);
+  await page.mouse.wheel(0, -300);
+  await expect.poll(async () => Number(await photo.getAttribute("data-zoom"))).toBeGreaterThan(1.5);
+  await page.mouse.move(2, 2);
+  const height = (b: Box) => b.bottom - b.top;
+  await expect
+    .poll(async () => height((await readOverlays(page)).tags[0] as Box))
+    .toBeCloseTo(height(before.tags[0] as Box), 0);
+  const zoomed = await readOverlays(page);
+  expect(height(zoomed.anchors[0] as Box)).toBeCloseTo(height(before.anchors[0] as Box), 0);
+  expect(overlappingPairs(zoomed.tags)).toEqual([]);
+  await page.getByTestId("photo-panel").screenshot({
+    path: path.join(SCREENSHOTS, "photo-crowded-zoomed.png"),
+  });
+  await page.keyboard.press("0");
+  await expect(photo).toHaveAttribute("data-zoom", "1.000");
+
   // By object (the default): every mask its own colour, the object list's swatch the same.
   await expect(page.getByTestId("mask-colouring")).toHaveValue("object");
   const byObject = new Set(before.masks.map((m) => m.colour));

@@ -61,21 +61,22 @@ interface ArrowEdge {
   suggestion?: SuggestedSupport;
 }
 
-/** The size of the anchors' tags (floor, wall, ceiling). */
-const anchorLabelSize = (frame: Frame) => strokeWidth(frame) * 5;
-
-/** `anchor`: where a structural supporter's tag is (placed apart from the other tags). */
+/**
+ * `anchor`: where a structural supporter's tag is (placed apart from the other tags);
+ * `scale`: of the arrow's width and its tag (1 / the photo's zoom keeps their screen size).
+ */
 function arrowFor(
   edge: ArrowEdge,
   object: SceneObject,
   centroids: ReadonlyMap<string, Point>,
   frame: Frame,
   anchor: Point | undefined,
+  scale: number,
 ): SVGGElement | null {
   const to = centroids.get(object.id);
   if (!to) return null;
-  const width = strokeWidth(frame);
-  const labelSize = anchorLabelSize(frame);
+  const width = strokeWidth(frame) * scale;
+  const labelSize = width * 5;
   const structural = isStructural(edge.parent) ? edge.parent : null;
   const from = structural ? anchor : centroids.get(edge.parent);
   if (!from) return null;
@@ -141,6 +142,7 @@ export function renderArrows(
   supports: ReadonlyMap<string, ShownSupport>,
   frame: Frame,
   suggestions: ReadonlyMap<string, SuggestedSupport> = new Map(),
+  scale = 1,
 ): Rect[] {
   const centroids = new Map<string, Point>(
     [...regions].map(([id, region]) => [id, region.centroid]),
@@ -155,7 +157,7 @@ export function renderArrows(
     return edge ? [{ object, edge }] : [];
   });
   // The floor, wall and ceiling tags of objects side by side would pile up: placed apart.
-  const size = anchorLabelSize(frame);
+  const size = strokeWidth(frame) * scale * 5; // as arrowFor's tags
   const requests: LabelRequest[] = edges.flatMap(({ object, edge }) => {
     const to = centroids.get(object.id);
     if (!to || !isStructural(edge.parent)) return [];
@@ -172,7 +174,7 @@ export function renderArrows(
     ]),
   );
   const arrows = edges.flatMap(({ object, edge }) => {
-    const arrow = arrowFor(edge, object, centroids, frame, anchorAt.get(object.id));
+    const arrow = arrowFor(edge, object, centroids, frame, anchorAt.get(object.id), scale);
     return arrow ? [arrow] : [];
   });
   group.replaceChildren(...arrows);

@@ -98,7 +98,8 @@ function tag(
 
 /**
  * Labels and flags for every object; `colours` as the masks are coloured; `keepClear`: more
- * places labels must not cover (the support arrows' anchor tags).
+ * places labels must not cover (the support arrows' anchor tags); `scale`: of the labels'
+ * size (1 / the photo's zoom keeps them the same size on the screen).
  */
 export function renderLabels(
   group: SVGGElement,
@@ -108,8 +109,9 @@ export function renderLabels(
   frame: Frame,
   colours: ReadonlyMap<string, Rgb>,
   keepClear: readonly Rect[] = [],
+  scale = 1,
 ): void {
-  const size = strokeWidth(frame) * 5.5;
+  const size = strokeWidth(frame) * 5.5 * scale;
   const flags = objects
     .filter((o) => regions.has(o.id) && !supports.has(o.id) && !isStructural(o.class))
     .map((o) => flagFor(o, size));

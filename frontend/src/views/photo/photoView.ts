@@ -158,17 +158,14 @@ export function mountPhotoView(
     colours = maskColours(objects, colouring);
     renderMasks(masks, objects, regions, colours);
   };
+  // 1 / the zoom: arrows and labels keep their size on the screen.
+  let overlayScale = 1;
   const drawSupports = () => {
+    const { objects } = session;
     const shown = session.shown();
-    const anchors = renderArrows(
-      arrows,
-      session.objects,
-      regions,
-      shown,
-      frame,
-      session.suggestions(),
-    );
-    renderLabels(labels, session.objects, regions, shown, frame, colours, anchors);
+    const suggested = session.suggestions();
+    const anchors = renderArrows(arrows, objects, regions, shown, frame, suggested, overlayScale);
+    renderLabels(labels, objects, regions, shown, frame, colours, anchors, overlayScale);
   };
   const drawHighlight = () => {
     const { hovered, selected } = session;
@@ -231,6 +228,13 @@ export function mountPhotoView(
     onView: (listener) => zoom.onChange(listener),
   });
   const stopEditBar = mountObjectEditBar(toolbar, objectEditor);
+  // Arrows and labels keep their size on the screen when the photo is zoomed (placed again).
+  const stopZoomLabels = zoom.onChange(() => {
+    if (1 / zoom.zoom === overlayScale) return;
+    overlayScale = 1 / zoom.zoom;
+    drawSupports();
+    drawHighlight();
+  });
 
   drawAll();
   const stopStyle = maskStyle.subscribe(drawAll);
@@ -246,6 +250,7 @@ export function mountPhotoView(
     dispose: () => {
       tools.dispose();
       zoom.dispose();
+      stopZoomLabels();
       stopEditBar();
       unsubscribe();
       stopStyle();
