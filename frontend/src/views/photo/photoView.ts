@@ -177,7 +177,14 @@ export function mountPhotoView(
       // An arrow from the hovered object to what it holds up stays in view too.
       node.classList.toggle("is-related", hovered !== null && node.dataset.parent === hovered);
     }
-    renderOutlines(outlines, session.objects, hovered, selected, strokeWidth(frame) * 0.8, colours);
+    renderOutlines(
+      outlines,
+      session.objects,
+      hovered,
+      selected,
+      strokeWidth(frame) * 0.8 * overlayScale,
+      colours,
+    );
   };
   const drawAll = () => {
     drawGeometry();
