@@ -68,6 +68,7 @@ function benchmarkScene(): { image: EncodedImage; objects: SceneObject[] } {
     corners_3d: null,
     mesh: null,
     note: null,
+    set_by_person: [],
     source: "given",
     score: null,
     source_class: null,
