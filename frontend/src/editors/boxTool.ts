@@ -160,35 +160,32 @@ export function mountBoxTool(tools: PhotoTools): () => void {
     id: "box",
     label: "Box",
     key: BOX_TOOL_KEY,
-    description: "Box: draw a new object's box; drag an object or its handles to move or resize it",
+    description:
+      "Box: draw a new object's box (Shift: also over an object); drag an object or its handles to move or resize it",
     cursor: "crosshair",
     edits: true,
     down(at, event) {
       const selected = session.selected ? session.object(session.selected) : undefined;
-      const reach = HANDLE_PX * host.pixelSize();
-      const grip = selected ? gripAt(selected.bbox, at, reach) : null;
-      if (selected && grip) {
-        const from = [...selected.bbox] as Box;
-        press = { kind: "edit", id: selected.id, grip, start: at, from, box: from, moved: false };
-      } else {
-        const hit = host.objectAt(event);
-        const object = hit ? session.object(hit) : undefined;
-        if (object) {
-          session.select(object.id);
-          const from = [...object.bbox] as Box;
-          press = {
-            kind: "edit",
-            id: object.id,
-            grip: "move",
-            start: at,
-            from,
-            box: from,
-            moved: false,
-          };
-        } else {
-          session.select(null);
-          press = { kind: "draw", start: at, box: boxFromCorners(at, at, width, height) };
-        }
+      const grip = selected ? gripAt(selected.bbox, at, HANDLE_PX * host.pixelSize()) : null;
+      // Shift: always a new box (one inside another object's, a pillow on a bed).
+      const hit = event.shiftKey ? null : host.objectAt(event);
+      const object = hit ? session.object(hit) : undefined;
+      const edit = (id: string, bbox: readonly number[], how: Grip) => {
+        const from = [...bbox] as Box;
+        press = { kind: "edit", id, grip: how, start: at, from, box: from, moved: false };
+      };
+      // A handle of the selected box first; then the object under the pointer (a smaller one
+      // inside the selected box too); then the selected box's inside; else a new box.
+      if (selected && grip && grip !== "move" && !event.shiftKey)
+        edit(selected.id, selected.bbox, grip);
+      else if (object) {
+        session.select(object.id);
+        edit(object.id, object.bbox, "move");
+      } else if (selected && grip === "move" && !event.shiftKey)
+        edit(selected.id, selected.bbox, "move");
+      else {
+        session.select(null);
+        press = { kind: "draw", start: at, box: boxFromCorners(at, at, width, height) };
       }
       draw();
     },
