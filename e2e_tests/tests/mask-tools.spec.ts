@@ -68,7 +68,14 @@ async function drag(
     const at = await toScreen(page, point);
     await page.mouse.move(at.x, at.y, { steps: 6 });
   }
-  if (live) await expect(page.getByTestId("mask-preview")).toHaveCount(1);
+  if (live) {
+    // The live mask covers the photo exactly (at any zoom).
+    const preview = await page.getByTestId("mask-preview").boundingBox();
+    const photo = await page.getByTestId("photo-image").boundingBox();
+    for (const key of ["x", "y", "width", "height"] as const) {
+      expect(Math.abs((preview?.[key] ?? Number.NaN) - (photo?.[key] ?? 0))).toBeLessThan(1);
+    }
+  }
   await page.mouse.up();
   return saved;
 }
@@ -192,26 +199,68 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   );
   expect(handlers[handlers.length - 1]).toBeLessThan(50);
 
-  // Eraser: a stroke across the middle takes those pixels out.
+  // Undo puts the stored mask back as it was; redo brings the painted one again.
+  const brushedMask = object.mask;
+  await page.keyboard.press("Control+z");
+  await expect
+    .poll(async () => objectIn(await getScene(request, seeded.scene_id), id).mask)
+    .toEqual(target.mask);
+  await expect(page.getByTestId(`mask-${id}`)).toHaveAttribute(
+    "data-source",
+    target.mask?.source ?? "",
+  );
+  await page.keyboard.press("Control+Shift+z");
+  await expect
+    .poll(async () => objectIn(await getScene(request, seeded.scene_id), id).mask)
+    .toEqual(brushedMask);
+  await expect(page.getByTestId(`mask-${id}`)).toHaveAttribute("data-source", "manual");
+
+  // Eraser, zoomed in: a stroke across the middle takes those pixels out.
+  await page.keyboard.press("+");
   await page.keyboard.press("Shift+P");
   await expect(page.getByTestId("photo-tool-eraser")).toHaveAttribute("aria-pressed", "true");
-  const middle: Xy = [(x1 + x2) / 2, midY];
-  expect(maskHas(object.mask, middle) || maskHas(object.mask, [middle[0] + 4, midY])).toBe(true);
+  // Somewhere the mask covers all around, away from the label on its centroid.
+  const solid = (at: Xy) =>
+    [-12, 0, 12].every((dx) =>
+      [-12, 0, 12].every((dy) => maskHas(object.mask, [at[0] + dx, at[1] + dy])),
+    );
+  let middle: Xy | undefined;
+  for (const fx of [0.3, 0.7, 0.5, 0.4, 0.6]) {
+    for (const fy of [0.7, 0.6, 0.5]) {
+      const at: Xy = [x1 + (x2 - x1) * fx, y1 + (y2 - y1) * fy];
+      const screen = await toScreen(page, at);
+      if (!middle && solid(at) && screen.y < (page.viewportSize()?.height ?? 0) - 30) middle = at;
+    }
+  }
+  if (!middle) throw new Error(`no solid part of ${id}'s mask on screen to erase`);
   const areaBrushed = area(object.mask);
   const erased = await drag(page, seeded.scene_id, [
-    [middle[0] - 8, midY],
-    [middle[0] + 8, midY],
+    [middle[0] - 8, middle[1]],
+    [middle[0] + 8, middle[1]],
   ]);
   object = objectIn(erased, id);
   expect(object.mask?.source).toBe("manual");
   expect(maskHas(object.mask, middle)).toBe(false);
   expect(area(object.mask)).toBeLessThan(areaBrushed);
   await page.screenshot({ path: path.join(SCREENSHOTS, "mask-tools-eraser.png") });
+  await page.keyboard.press("0");
 
   // Polygon: four clicks below-left of the box, Backspace takes a stray point back, Enter
   // closes it; its inside joins the mask.
   await page.keyboard.press("G");
   await expect(page.getByTestId("photo-tool-polygon")).toHaveAttribute("aria-pressed", "true");
+  // Escape drops a polygon half drawn; the object stays selected.
+  for (const corner of [
+    [x1 + 10, midY],
+    [x1 + 40, midY],
+  ] as Xy[]) {
+    const at = await toScreen(page, corner);
+    await page.mouse.click(at.x, at.y);
+  }
+  await expect(page.getByTestId("polygon-draft")).toHaveAttribute("data-points", "2");
+  await page.keyboard.press("Escape");
+  await expect(page.getByTestId("polygon-draft")).toHaveCount(0);
+  await expect(page.getByTestId("mask-tool-status")).toHaveText(/Mask of/);
   // Left of the box and above its middle: on screen without scrolling.
   const px = Math.max(12, x1 - 40);
   const py = Math.max(12, midY - 80);

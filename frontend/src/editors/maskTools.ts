@@ -485,6 +485,14 @@ export function mountMaskTools(tools: PhotoTools): () => void {
       run: () => closePolygon(polygon?.subtract ?? false),
       enabled: () => drafting() && (polygon?.points.length ?? 0) >= 3,
     }),
+    // The page's Escape (clear the selection) would leave the half-drawn polygon standing.
+    registerShortcut({
+      keys: "Escape",
+      description: "Drop the polygon being drawn",
+      scope: SCOPE,
+      run: () => polygonTool.cancel?.(),
+      enabled: drafting,
+    }),
     registerShortcut({
       keys: "Backspace",
       description: "Take back the polygon's last point (while drawing one)",
