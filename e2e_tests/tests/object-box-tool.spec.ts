@@ -52,6 +52,7 @@ test("boxes drawn on an empty photo become objects with masks and supporters", a
   await page.mouse.move(standCentre.x, standCentre.y);
   await page.mouse.wheel(0, -200);
   await expect.poll(async () => Number(await photo.getAttribute("data-zoom"))).toBeGreaterThan(1.2);
+  await expect(page.getByTestId("photo-zoom-level")).toHaveText(/^1\d\d%$/);
   const after = await screenPoint(page, 75, 366);
   expect(Math.hypot(after.x - standCentre.x, after.y - standCentre.y)).toBeLessThan(2);
   await dragOnPhoto(page, [3, 288], [148, 445]);
@@ -71,6 +72,7 @@ test("boxes drawn on an empty photo become objects with masks and supporters", a
   // 0 fits the whole photo again.
   await page.keyboard.press("0");
   await expect(photo).toHaveAttribute("data-zoom", "1.000");
+  await expect(page.getByTestId("photo-zoom-fit")).toBeHidden();
   await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", /saved|clean/, {
     timeout: 15_000,
   });

@@ -234,6 +234,7 @@ export function mountPhotoView(
     pixelSize: () => 1 / (svg.getScreenCTM()?.a || 1),
     onView: (listener) => zoom.onChange(listener),
   });
+  toolbar.append(zoom.controls);
   const stopEditBar = mountObjectEditBar(toolbar, objectEditor);
   // Arrows and labels keep their size on the screen when the photo is zoomed (placed again).
   const stopZoomLabels = zoom.onChange(() => {

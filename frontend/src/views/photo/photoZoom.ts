@@ -3,6 +3,7 @@
 // Space held pans, + and - zoom about the middle, 0 fits the whole photo again. The view never
 // leaves the photo's frame and is never smaller than it (arrows and labels, drawn in image
 // pixels, only get larger); tools size their handles by the screen (host.pixelSize).
+import { el } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
 
 export interface ViewBox {
@@ -47,6 +48,8 @@ export function clampView(frame: ViewBox, view: ViewBox): ViewBox {
 export interface PhotoZoom {
   /** 1: the whole photo. */
   readonly zoom: number;
+  /** The zoom in percent and a Fit button, for a toolbar. */
+  readonly controls: HTMLElement;
   fit(): void;
   /** Told after every zoom or pan. */
   onChange(listener: () => void): () => void;
@@ -71,10 +74,28 @@ export function mountPhotoZoom(svg: SVGSVGElement, frame: ViewBox): PhotoZoom {
     if (!cursor) toolCursor = null;
   };
 
+  const percent = el("span", { className: "photo-zoom-level", testid: "photo-zoom-level" });
+  const fitButton = el("button", {
+    text: "Fit",
+    testid: "photo-zoom-fit",
+    attrs: { type: "button", title: "Show the whole photo (0); the wheel zooms, Space+drag pans" },
+    on: { click: () => apply({ ...frame }) },
+  });
+  const controls = el(
+    "span",
+    { className: "photo-zoom", attrs: { hidden: true } },
+    percent,
+    fitButton,
+  );
+
   const apply = (next: ViewBox) => {
     view = next;
     svg.setAttribute("viewBox", `${view.x} ${view.y} ${view.width} ${view.height}`);
-    svg.dataset.zoom = (frame.width / view.width).toFixed(3);
+    const zoom = frame.width / view.width;
+    svg.dataset.zoom = zoom.toFixed(3);
+    // Shown only while zoomed: the way back is then in sight.
+    percent.textContent = `${Math.round(zoom * 100)}%`;
+    controls.hidden = zoom < 1.001;
     for (const listener of listeners) listener();
   };
   const zoomAt = (factor: number, at: [number, number]) =>
@@ -179,6 +200,7 @@ export function mountPhotoZoom(svg: SVGSVGElement, frame: ViewBox): PhotoZoom {
     get zoom() {
       return frame.width / view.width;
     },
+    controls,
     fit: () => apply({ ...frame }),
     onChange(listener) {
       listeners.add(listener);
@@ -194,6 +216,7 @@ export function mountPhotoZoom(svg: SVGSVGElement, frame: ViewBox): PhotoZoom {
       svg.removeEventListener("pointerenter", onEnter);
       svg.removeEventListener("pointerleave", onLeave);
       window.removeEventListener("keyup", onKeyUp);
+      controls.remove();
     },
   };
 }
