@@ -326,6 +326,32 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   await expect(page.getByTestId("mask-tool-status")).toHaveText(/Mask of/);
   await page.screenshot({ path: path.join(SCREENSHOTS, "mask-tools-refine.png") });
 
+  // Alt+drag paints what is not the object: sent with the earlier stroke, and cut away.
+  const notObject: Xy = [(x1 + x2) / 2 + 30, midY + 20];
+  expect(maskHas(object.mask, notObject)).toBe(true);
+  const secondRequest = page.waitForRequest((r) => r.url().endsWith("/mask-refine"));
+  await page.keyboard.down("Alt");
+  const cutAway = drag(
+    page,
+    seeded.scene_id,
+    [
+      [notObject[0] - 6, notObject[1]],
+      [notObject[0] + 6, notObject[1]],
+    ],
+    false,
+  );
+  const sent = (await secondRequest).postDataJSON() as {
+    foreground: unknown[];
+    background: { points: Xy[]; radius: number }[];
+  };
+  await page.keyboard.up("Alt");
+  expect(sent.foreground).toHaveLength(1);
+  expect(sent.background).toHaveLength(1);
+  expect(sent.background[0]?.radius).toBeCloseTo(12.5);
+  object = objectIn(await cutAway, id);
+  expect(maskHas(object.mask, notObject)).toBe(false);
+  await expect(page.getByTestId("refine-strokes")).toHaveAttribute("data-background", "1");
+
   // The shortcut help lists the new keys.
   await page.keyboard.press("?");
   const help = page.getByTestId("shortcut-help");

@@ -44,7 +44,9 @@ export class MaskPreview {
     if (stored) this.sheet.canvas.style.opacity = getComputedStyle(stored).opacity;
     this.shownId = objectId;
     this.raster = raster;
-    this.redraw(raster.window);
+    // A new canvas is clear: only the set pixels' rows need drawing.
+    const extent = raster.extent();
+    if (extent) this.redraw(extent);
   }
 
   /** Draw the part of the raster in `rect` (photo pixels) again. */

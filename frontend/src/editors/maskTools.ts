@@ -351,6 +351,11 @@ export function mountMaskTools(tools: PhotoTools): () => void {
     if (points.length === 1) context.lineTo(points[0]?.[0] ?? 0, (points[0]?.[1] ?? 0) + 0.01);
     context.stroke();
   };
+  /** The point moved into the photo (the server takes no stroke outside it). */
+  const inPhoto = ([x, y]: ImagePoint): Point => [
+    Math.min(host.width, Math.max(0, x)),
+    Math.min(host.height, Math.max(0, y)),
+  ];
   /** The box GrabCut works in: the object's box when refining began, grown to the foreground. */
   const refineBox = (): [number, number, number, number] | null => {
     if (!refine) return null;
@@ -408,16 +413,17 @@ export function mountMaskTools(tools: PhotoTools): () => void {
         refine = { objectId: object.id, box: [x1, y1, x2, y2], foreground: [], background: [] };
       }
       const background = event.altKey;
-      refineStroke = { points: [at], background };
+      refineStroke = { points: [inPhoto(at)], background };
       drawStroke(refineStroke, 0);
     },
     move(at) {
       placeCursor(at);
       if (!refineStroke) return;
+      const next = inPhoto(at);
       const last = refineStroke.points[refineStroke.points.length - 1] as Point;
       // Points closer than a quarter brush add nothing to the stroke's shape.
-      if (Math.hypot(at[0] - last[0], at[1] - last[1]) < Math.max(1, brush.radius / 4)) return;
-      refineStroke.points.push(at);
+      if (Math.hypot(next[0] - last[0], next[1] - last[1]) < Math.max(1, brush.radius / 4)) return;
+      refineStroke.points.push(next);
       drawStroke(refineStroke, refineStroke.points.length - 1);
     },
     up() {
