@@ -1,0 +1,695 @@
+// Benchmark: a scripted annotator turns a plain photo of a synthetic room (about 10 objects,
+// truth from gt.json) into a full scene: boxes, classes, masks and supports. Targets (issue 19):
+// at most 40 recorded actions without the detector's suggestions, at most 20 with them; every
+// edit redrawn within 50 ms.
+//
+// The photo is imported with an empty detections.json: the pipeline still estimates the camera
+// and the room, but there are no objects. The annotator works as a person would, with the
+// truth standing in for their eyes:
+// - Run 1 (no suggestions): the detector's boxes that appear by themselves on an empty scene
+//   are dropped with "Reject all"; then B (box tool) and, for each true object, one drag from
+//   a corner of its box to the opposite one, and its class in the picker (a digit when the
+//   class is among the first nine lines, else a few letters typed, then Enter or a digit).
+// - Run 2 (suggestions): Shift+Y accepts every suggested box; a suggestion matching no true
+//   object is removed (click it, Delete), a wrong class changed (click, Shift+C, pick), and the
+//   objects the detector missed are drawn as in run 1.
+// - Masks: the server cuts each new object's mask (GrabCut); when it overlaps the true mask by
+//   less than 0.5 the annotator refines it: K, one stroke over the object, then back.
+// - Supports: V (select), then as in the support benchmark: the first wrong arrow is clicked,
+//   then its true supporter (or F / W / C), T when the type is wrong; Shift+A accepts the rest.
+// Every click, drag, typed word and key press counts as one action; pointer moves do not.
+//
+// Edit-to-redraw: from the input event that makes an edit (the last click, key press or
+// pointer release before the page shows it) to the moment the page shows it (a MutationObserver
+// on the page), and to the next animation frame. Object edits are saved at once, so that time
+// includes the server's answer (GrabCut for a new object); the redraw itself is measured from
+// the answer's arrival (Resource Timing's responseEnd) to the page showing it.
+import { cpSync, existsSync, mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import path from "node:path";
+import type { Mask, ModelInfo, Scene } from "@holiscene/schema";
+import { type APIRequestContext, expect, type Page, type TestInfo, test } from "@playwright/test";
+import { getScene } from "../helpers/api";
+import { clickObject, openScene, setAuthor, waitForModel } from "../helpers/photo";
+import {
+  maskIou,
+  maskPixels,
+  matchObjects,
+  type SceneScore,
+  scoreScene,
+} from "../helpers/sceneScore";
+import { scratchDir } from "../helpers/scratch";
+import { importSynthetic, synthesize } from "../helpers/synthetic";
+
+const SEED = 1002;
+const ACTIONS_WITHOUT = 40;
+const ACTIONS_WITH = 20;
+const TARGET_MS = 50;
+const POOR_MASK = 0.5;
+const STRUCTURAL_KEYS: Record<string, string> = { floor: "f", wall: "w", ceiling: "c" };
+const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
+const FIGURES = path.resolve(import.meta.dirname, "../test-results/object-annotator-benchmark");
+mkdirSync(SCREENSHOTS, { recursive: true });
+
+type Box = [number, number, number, number];
+
+/** What the page must show for an edit to count as drawn (checked on every DOM change). */
+type Shows =
+  | { kind: "count"; selector: string; atLeast: number }
+  | { kind: "attr"; selector: string; name: string; value: string }
+  | { kind: "changed"; selector: string; name: string; from: string | null }
+  | { kind: "text"; selector: string; text: string }
+  | { kind: "gone"; selector: string };
+
+interface Timing {
+  what: string;
+  /** Input event to the page showing the edit. */
+  dom: number;
+  /** Input event to the next animation frame after that. */
+  frame: number;
+  /** The server's answer to the page showing the edit (null: no request, e.g. a support). */
+  redraw: number | null;
+  /** Input event to the server's answer. */
+  server: number | null;
+}
+
+interface Run {
+  name: string;
+  actions: number;
+  log: string[];
+  times: Timing[];
+  masksFixed: number;
+  score?: SceneScore;
+  /** Suggestions the detector offered (run 2). */
+  suggested?: number;
+}
+
+/** A copy of the synthetic folder with no boxes: the photo alone (with its intrinsics). */
+function plainPhoto(seed: number) {
+  const [scene] = synthesize(seed, 1);
+  if (!scene) throw new Error(`no synthetic scene for seed ${seed}`);
+  const dir = scratchDir("holiscene-plain-");
+  cpSync(scene.dir, dir, { recursive: true });
+  writeFileSync(path.join(dir, "detections.json"), "[]");
+  const truth = JSON.parse(readFileSync(path.join(dir, "gt.json"), "utf8")) as Scene;
+  return { scene: { dir, truth: scene.truth }, truth };
+}
+
+/** Remember the last input event and keep every request's timing (for the redraw figure). */
+async function watchInput(page: Page): Promise<void> {
+  await page.addInitScript(() => {
+    const w = window as unknown as { __hsLastInput: number };
+    w.__hsLastInput = 0;
+    const mark = (event: Event) => {
+      w.__hsLastInput = event.timeStamp;
+    };
+    // A menu's choice arrives as a change event, without a click or key press on the page.
+    for (const type of ["pointerup", "click", "keydown", "change"])
+      addEventListener(type, mark, true);
+    performance.setResourceTimingBufferSize(100_000);
+  });
+}
+
+/** Arm the timer for `shows`; read it with readTimer after the action. */
+async function armTimer(page: Page, shows: Shows): Promise<void> {
+  await page.evaluate((shows) => {
+    const w = window as unknown as {
+      __hsLastInput: number;
+      __hsTiming?: Promise<{ start: number; dom: number; frame: number }>;
+    };
+    const armedAt = performance.now();
+    const holds = () => {
+      const node = document.querySelector(shows.selector);
+      switch (shows.kind) {
+        case "count":
+          return document.querySelectorAll(shows.selector).length >= shows.atLeast;
+        case "attr":
+          return node?.getAttribute(shows.name) === shows.value;
+        case "changed":
+          return node !== null && node.getAttribute(shows.name) !== shows.from;
+        case "text":
+          return node?.textContent === shows.text;
+        case "gone":
+          return node === null;
+      }
+    };
+    w.__hsTiming = new Promise((resolve, reject) => {
+      const late = setTimeout(() => {
+        observer.disconnect();
+        reject(new Error(`the page never showed ${JSON.stringify(shows)}`));
+      }, 20_000);
+      const observer = new MutationObserver(() => {
+        if (w.__hsLastInput < armedAt || !holds()) return;
+        const at = performance.now();
+        observer.disconnect();
+        clearTimeout(late);
+        requestAnimationFrame(() =>
+          resolve({ start: w.__hsLastInput, dom: at, frame: performance.now() }),
+        );
+      });
+      observer.observe(document.body, {
+        childList: true,
+        subtree: true,
+        attributes: true,
+        characterData: true,
+      });
+    });
+  }, shows);
+}
+
+async function readTimer(page: Page, what: string): Promise<Timing> {
+  return page.evaluate(async (what) => {
+    const w = window as unknown as {
+      __hsTiming: Promise<{ start: number; dom: number; frame: number }>;
+    };
+    const { start, dom, frame } = await w.__hsTiming;
+    // The edit's request: the last one to the edits endpoint answered after the input.
+    const answers = performance
+      .getEntriesByType("resource")
+      .filter(
+        (e): e is PerformanceResourceTiming =>
+          /\/api\/scenes\/[^/]+\/edits$/.test(e.name) &&
+          (e as PerformanceResourceTiming).responseEnd >= start &&
+          (e as PerformanceResourceTiming).responseEnd <= dom,
+      )
+      .map((e) => e.responseEnd);
+    const answered = answers.length ? Math.max(...answers) : null;
+    return {
+      what,
+      dom: dom - start,
+      frame: frame - start,
+      redraw: answered === null ? null : dom - answered,
+      server: answered === null ? null : answered - start,
+    };
+  }, what);
+}
+
+/** A point of the photo (image pixels) on the screen. */
+async function toScreen(page: Page, [x, y]: [number, number]): Promise<{ x: number; y: number }> {
+  return page.locator("svg.photo-svg").evaluate(
+    (svg, [x, y]) => {
+      const p = new DOMPoint(x, y).matrixTransform(
+        (svg as SVGSVGElement).getScreenCTM() ?? undefined,
+      );
+      return { x: p.x, y: p.y };
+    },
+    [x, y] as [number, number],
+  );
+}
+
+/** The ids of the objects drawn on the photo. */
+const shownObjects = (page: Page) =>
+  page
+    .getByTestId("mask-layer")
+    .evaluate((layer) =>
+      [...layer.querySelectorAll<SVGElement>("[data-object]")].map((n) => n.dataset.object ?? ""),
+    );
+
+const median = (values: number[]) => {
+  if (values.length === 0) return Number.NaN;
+  const sorted = [...values].sort((a, b) => a - b);
+  const mid = Math.floor(sorted.length / 2);
+  return sorted.length % 2
+    ? (sorted[mid] as number)
+    : ((sorted[mid - 1] as number) + (sorted[mid] as number)) / 2;
+};
+
+/** The annotator: every action it takes goes through `act`, which counts it. */
+class Annotator {
+  actions = 0;
+  readonly log: string[] = [];
+  readonly times: Timing[] = [];
+  masksFixed = 0;
+  /** True object id -> the id the app gave it. */
+  readonly ids = new Map<string, string>();
+
+  constructor(
+    readonly page: Page,
+    readonly sceneId: string,
+    readonly truth: Scene,
+  ) {}
+
+  async act(what: string, action: () => Promise<unknown>): Promise<void> {
+    await action();
+    this.actions += 1;
+    this.log.push(what);
+  }
+
+  /** An action that makes an edit, timed until the page shows it. */
+  async timed(what: string, shows: Shows, action: () => Promise<unknown>): Promise<void> {
+    await armTimer(this.page, shows);
+    await this.act(what, action);
+    this.times.push(await readTimer(this.page, what));
+  }
+
+  async key(key: string, what = key): Promise<void> {
+    await this.act(`key ${what}`, () => this.page.keyboard.press(key));
+  }
+
+  /** Draw `box` with the box tool: one drag between opposite corners, from one not on an object. */
+  async drawBox(box: Box, label: string): Promise<void> {
+    // Half a pixel inside: a press on the photo's very edge may land outside it.
+    const [x1, y1, x2, y2] = [box[0] + 0.5, box[1] + 0.5, box[2] - 0.5, box[3] - 0.5];
+    const corners: [[number, number], [number, number]][] = [
+      [
+        [x1, y1],
+        [x2, y2],
+      ],
+      [
+        [x2, y2],
+        [x1, y1],
+      ],
+      [
+        [x2, y1],
+        [x1, y2],
+      ],
+      [
+        [x1, y2],
+        [x2, y1],
+      ],
+    ];
+    const doc = await getScene(this.page.request, this.sceneId);
+    const onObject = ([x, y]: [number, number]) =>
+      (doc.scene.objects ?? []).some((o) => {
+        const [px, py] = [Math.floor(x), Math.floor(y)];
+        if (!o.mask) return x >= o.bbox[0] && x <= o.bbox[2] && y >= o.bbox[1] && y <= o.bbox[3];
+        return maskPixels(o.mask, this.truth.image.width).has(py * this.truth.image.width + px);
+      });
+    // A press inside the selected object's box (or near its handles) moves or resizes it.
+    const selectedId = await this.page
+      .locator("tr.object-row.is-selected")
+      .first()
+      .getAttribute("data-object", { timeout: 1000 })
+      .catch(() => null);
+    const selected = (doc.scene.objects ?? []).find((o) => o.id === selectedId);
+    const onSelected = ([x, y]: [number, number]) => {
+      if (!selected) return false;
+      const [x1, y1, x2, y2] = selected.bbox;
+      return x >= x1 - 12 && x <= x2 + 12 && y >= y1 - 12 && y <= y2 + 12;
+    };
+    for (const [from, to] of corners) {
+      if (onSelected(from)) continue;
+      if ([-1, 0, 1].some((d) => onObject([from[0] + d, from[1] + d]))) continue;
+      const start = await toScreen(this.page, from);
+      const end = await toScreen(this.page, to);
+      await this.page.mouse.move(start.x, start.y);
+      await this.act(`drag a box for ${label}`, async () => {
+        await this.page.mouse.down();
+        await this.page.mouse.move((start.x + end.x) / 2, (start.y + end.y) / 2, { steps: 3 });
+        await this.page.mouse.move(end.x, end.y, { steps: 3 });
+        await this.page.mouse.up();
+      });
+      return;
+    }
+    throw new Error(`every corner of ${label}'s box is on another object`);
+  }
+
+  /**
+   * Pick `cls` in the open class picker; the last key is the edit, timed until `shows`.
+   * A digit when the class is listed in the first nine lines, else its first letters typed.
+   */
+  async pickClass(cls: string, shows: Shows): Promise<void> {
+    const picker = this.page.getByTestId("class-picker");
+    await expect(picker).toBeVisible();
+    const listed = () =>
+      picker
+        .getByTestId("class-option")
+        .evaluateAll((nodes) => nodes.map((n) => (n as HTMLElement).dataset.name ?? ""));
+    let options = await listed();
+    let index = options.indexOf(cls);
+    if (index < 0 || index >= 9) {
+      const typed = cls.replaceAll("_", " ").slice(0, 3);
+      await this.act(`type "${typed}"`, () => this.page.keyboard.type(typed));
+      await expect.poll(async () => (await listed()).join()).not.toBe(options.join());
+      options = await listed();
+      index = options.indexOf(cls);
+    }
+    if (index < 0 || index >= 9) throw new Error(`${cls} is not among the picker's first lines`);
+    const key = index === 0 ? "Enter" : String(index + 1);
+    await this.timed(`key ${key}: ${cls}`, shows, () => this.page.keyboard.press(key));
+    await expect(picker).toBeHidden();
+  }
+
+  /** Draw a true object with the box tool (active) and give it its class. */
+  async addObject(truthId: string): Promise<string> {
+    const object = this.object(truthId);
+    const before = await shownObjects(this.page);
+    await this.drawBox(object.bbox as Box, `${truthId} (${object.class})`);
+    await this.pickClass(object.class, {
+      kind: "count",
+      selector: ".masks [data-object]",
+      atLeast: before.length + 1,
+    });
+    const added = (await shownObjects(this.page)).filter((id) => !before.includes(id));
+    expect(added, `one new object for ${truthId}`).toHaveLength(1);
+    const id = added[0] as string;
+    this.ids.set(truthId, id);
+    return id;
+  }
+
+  /** Select an object by clicking it; Esc first when one is selected (a click would make it
+   * that one's supporter). */
+  async select(id: string): Promise<void> {
+    if ((await this.page.locator("tr.object-row.is-selected").count()) > 0)
+      await this.key("Escape", "Esc (clear the selection)");
+    await this.act(`click ${id}`, () => clickObject(this.page, id));
+    await expect(this.page.getByTestId(`object-row-${id}`)).toHaveClass(/is-selected/);
+  }
+
+  object(truthId: string) {
+    const object = (this.truth.objects ?? []).find((o) => o.id === truthId);
+    if (!object) throw new Error(`no true object ${truthId}`);
+    return object;
+  }
+
+  /** How well the saved mask of `id` overlaps the truth's (what the annotator sees). */
+  async maskQuality(truthId: string, id: string): Promise<number> {
+    const doc = await getScene(this.page.request, this.sceneId);
+    const saved = (doc.scene.objects ?? []).find((o) => o.id === id);
+    return maskIou(this.object(truthId).mask, saved?.mask, this.truth.image.width);
+  }
+
+  /**
+   * Refine the selected object's mask (`id`) with one foreground stroke down the middle of the
+   * true mask (row by row), then go back to `backKey`'s tool.
+   */
+  async refineMask(truthId: string, id: string, backKey: string): Promise<void> {
+    const path = strokeThrough(this.object(truthId).mask, 8);
+    if (path.length < 2) return;
+    const mask = this.page.getByTestId(`mask-${id}`);
+    const href = await mask.getAttribute("href");
+    await this.key("k", "K (refine)");
+    const points = [];
+    for (const p of path) points.push(await toScreen(this.page, p));
+    const [first, ...rest] = points;
+    if (!first) return;
+    await this.timed(
+      `stroke over ${truthId}`,
+      { kind: "changed", selector: `[data-testid="mask-${id}"]`, name: "href", from: href },
+      async () => {
+        await this.page.mouse.move(first.x, first.y);
+        await this.page.mouse.down();
+        for (const p of rest) await this.page.mouse.move(p.x, p.y, { steps: 2 });
+        await this.page.mouse.up();
+      },
+    );
+    await expect(this.page.getByTestId("object-edit-status")).not.toHaveAttribute(
+      "data-state",
+      "busy",
+    );
+    this.masksFixed += 1;
+    await this.key(backKey, `${backKey} (back)`);
+  }
+
+  /**
+   * Give each true object its true supporter and type, in the object list: click the row's
+   * supporter menu, choose (and the same for the type when it is wrong); Shift+A then accepts
+   * the arrows that were right as shown.
+   */
+  async fixSupports(): Promise<void> {
+    const page = this.page;
+    const asApp = (truthId: string) =>
+      STRUCTURAL_KEYS[truthId] ? truthId : (this.ids.get(truthId) ?? truthId);
+    const wanted = (this.truth.supports ?? [])
+      .filter((s) => this.ids.has(s.child))
+      .map((s) => ({ child: asApp(s.child), parent: asApp(s.parent), type: s.type }));
+    let accepted = 0;
+    for (const { child, parent, type } of wanted) {
+      const arrow = `.arrow[data-child="${child}"]`;
+      if ((await shownGraph(page))[child]?.parent !== parent) {
+        const menu = page.getByTestId(`supporter-select-${child}`);
+        await this.act(`open ${child}'s supporter menu`, () => menu.click());
+        await this.timed(
+          `${child} on ${parent}`,
+          { kind: "attr", selector: arrow, name: "data-parent", value: parent },
+          () => menu.selectOption(parent),
+        );
+      } else accepted += 1;
+      if ((await shownGraph(page))[child]?.type !== type) {
+        const menu = page.getByTestId(`type-select-${child}`);
+        await this.act(`open ${child}'s type menu`, () => menu.click());
+        await this.timed(
+          `${child} ${type}`,
+          { kind: "attr", selector: arrow, name: "data-type", value: type },
+          () => menu.selectOption(type),
+        );
+      }
+    }
+    if (accepted > 0) await this.key("Shift+A", "Shift+A (accept the rest)");
+  }
+}
+
+/** A stroke down the middle of a mask: each `step`-th row's middle inside pixel. */
+function strokeThrough(mask: Mask | null | undefined, step: number): [number, number][] {
+  if (!mask) return [];
+  const [w, h] = mask.size;
+  const [ox, oy] = mask.origin;
+  const rows: number[][] = Array.from({ length: h }, () => []);
+  let at = 0;
+  mask.rle.forEach((run, i) => {
+    if (i % 2 === 1) for (let p = at; p < at + run; p++) rows[Math.floor(p / w)]?.push(p % w);
+    at += run;
+  });
+  const points: [number, number][] = [];
+  for (let y = 0; y < h; y += step) {
+    const xs = rows[y] ?? [];
+    if (xs.length === 0) continue;
+    points.push([ox + (xs[Math.floor(xs.length / 2)] as number) + 0.5, oy + y + 0.5]);
+  }
+  return points;
+}
+
+/** Every arrow on the photo: child -> what it shows (a suggestion counts: it is what is seen). */
+function shownGraph(page: Page): Promise<Record<string, { parent: string; type: string }>> {
+  return page.getByTestId("arrow-layer").evaluate((layer) => {
+    const graph: Record<string, { parent: string; type: string }> = {};
+    for (const a of layer.querySelectorAll<SVGGElement>(".arrow[data-child]")) {
+      graph[a.dataset.child ?? ""] = { parent: a.dataset.parent ?? "", type: a.dataset.type ?? "" };
+    }
+    return graph;
+  });
+}
+
+/** Objects in the order drawn: smallest first, so a larger box's corner is rarely on one. */
+const drawingOrder = (truth: Scene) =>
+  [...(truth.objects ?? [])]
+    .sort(
+      (a, b) =>
+        (a.bbox[2] - a.bbox[0]) * (a.bbox[3] - a.bbox[1]) -
+        (b.bbox[2] - b.bbox[0]) * (b.bbox[3] - b.bbox[1]),
+    )
+    .map((o) => o.id);
+
+async function finish(run: Annotator, name: string): Promise<Run> {
+  const page = run.page;
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved", {
+    timeout: 30_000,
+  });
+  // Not an action: closes the last menu's open list, which would hide the photo's table.
+  await page.keyboard.press("Escape");
+  await page.mouse.move(5, 5);
+  await page.screenshot({ path: path.join(SCREENSHOTS, `object-annotator-${name}.png`) });
+  const saved = await getScene(page.request, run.sceneId);
+  return {
+    name,
+    actions: run.actions,
+    log: run.log,
+    times: run.times,
+    masksFixed: run.masksFixed,
+    score: scoreScene(run.truth, saved.scene),
+  };
+}
+
+// Tall enough for the whole photo under the detector's bar (a press below the window is lost).
+test.use({ viewport: { width: 1440, height: 1200 } });
+
+async function openPlainPhoto(page: Page, name: string) {
+  const { scene, truth } = plainPhoto(SEED);
+  const doc = await importSynthetic(page.request, scene, name);
+  expect(doc.scene.objects ?? []).toHaveLength(0);
+  await watchInput(page);
+  await page.goto("/");
+  await setAuthor(page, "benchmark");
+  await openScene(page, doc.scene_id);
+  // The detector looks at an empty scene by itself: wait for its answer before starting.
+  await expect(page.getByTestId("detector-status")).toContainText(/suggested in|No objects found/, {
+    timeout: 90_000,
+  });
+  return { sceneId: doc.scene_id, truth };
+}
+
+test("run 1: a plain photo annotated without suggestions", async ({ page }, testInfo) => {
+  test.setTimeout(10 * 60_000);
+  const { sceneId, truth } = await openPlainPhoto(page, `synth-${SEED} (annotated by hand)`);
+  const run = new Annotator(page, sceneId, truth);
+  if (await page.getByTestId("reject-all-suggestions").isVisible())
+    await run.act("Reject all suggestions", () =>
+      page.getByTestId("reject-all-suggestions").click(),
+    );
+  await run.key("b", "B (box tool)");
+  for (const truthId of drawingOrder(truth)) {
+    const id = await run.addObject(truthId);
+    if ((await run.maskQuality(truthId, id)) < POOR_MASK) await run.refineMask(truthId, id, "b");
+  }
+  await waitForModel(page);
+  await run.fixSupports();
+  const row = await report(await finish(run, "by-hand"), testInfo);
+  expectComplete(row);
+  expect
+    .soft(row.actions, "TARGET NOT MET (issue 19): actions without suggestions")
+    .toBeLessThanOrEqual(ACTIONS_WITHOUT);
+});
+
+/**
+ * Make the registry's other detector active (the NYU-40 head, better on synthetic rooms: the
+ * default COCO model finds nothing on this photo); returns the one to make active again.
+ */
+async function useSyntheticDetector(request: APIRequestContext): Promise<string> {
+  const listed = await request.get("/api/models?kind=detector");
+  expect(listed.ok()).toBe(true);
+  const models = (await listed.json()) as ModelInfo[];
+  const active = models.find((m) => m.active);
+  const other = models.find((m) => !m.active);
+  if (!active || !other) throw new Error("the registry should offer a second detector");
+  await promote(request, other.id);
+  return active.id;
+}
+
+async function promote(request: APIRequestContext, id: string) {
+  const response = await request.post(`/api/models/${id}/promote`, {
+    data: { author: "benchmark", note: "object annotator benchmark" },
+  });
+  expect(response.ok(), await response.text()).toBe(true);
+}
+
+test("run 2: the same photo annotated from the detector's suggestions", async ({
+  page,
+}, testInfo) => {
+  test.setTimeout(10 * 60_000);
+  const previous = await useSyntheticDetector(page.request);
+  test.info().annotations.push({ type: "detector", description: "the registry's NYU-40 head" });
+  const { sceneId, truth } = await openPlainPhoto(page, `synth-${SEED} (from suggestions)`);
+  const run = new Annotator(page, sceneId, truth);
+  const suggested = await page.getByTestId("detector-suggestion").count();
+  if (suggested > 0) {
+    await run.timed(
+      "Shift+Y (accept all)",
+      { kind: "count", selector: ".masks [data-object]", atLeast: suggested },
+      () => page.keyboard.press("Shift+Y"),
+    );
+  }
+  const doc = await getScene(page.request, sceneId);
+  const accepted = doc.scene.objects ?? [];
+  const match = matchObjects(truth.objects ?? [], accepted);
+  for (const [t, s] of match) run.ids.set(t, s);
+  const matched = new Set(match.values());
+  // False objects go: click one, Delete.
+  for (const object of accepted.filter((o) => !matched.has(o.id))) {
+    await run.select(object.id);
+    await run.timed(
+      `Delete ${object.id}`,
+      { kind: "gone", selector: `[data-testid="mask-${object.id}"]` },
+      () => page.keyboard.press("Delete"),
+    );
+  }
+  // Wrong classes: click, Shift+C, pick.
+  for (const [truthId, id] of match) {
+    const want = run.object(truthId).class;
+    if (accepted.find((o) => o.id === id)?.class === want) continue;
+    await run.select(id);
+    await run.key("Shift+C", "Shift+C (class)");
+    await run.pickClass(want, {
+      kind: "text",
+      selector: `[data-testid="object-row-${id}"] .object-class`,
+      text: want.replaceAll("_", " "),
+    });
+  }
+  // Masks of the accepted objects, then the objects the detector missed.
+  for (const [truthId, id] of match) {
+    if ((await run.maskQuality(truthId, id)) >= POOR_MASK) continue;
+    await run.select(id);
+    await run.refineMask(truthId, id, "v");
+  }
+  const missed = drawingOrder(truth).filter((t) => !run.ids.has(t));
+  if (missed.length > 0) await run.key("b", "B (box tool)");
+  for (const truthId of missed) {
+    const id = await run.addObject(truthId);
+    if ((await run.maskQuality(truthId, id)) < POOR_MASK) await run.refineMask(truthId, id, "b");
+  }
+  await waitForModel(page);
+  await run.fixSupports();
+  const row = await report({ ...(await finish(run, "from-suggestions")), suggested }, testInfo);
+  await promote(page.request, previous);
+  expectComplete(row);
+  expect
+    .soft(row.actions, "TARGET NOT MET (issue 19): actions with the detector's suggestions")
+    .toBeLessThanOrEqual(ACTIONS_WITH);
+});
+
+/** The run's row of figures: printed, merged into the figures file, attached. */
+async function report(run: Run, testInfo: TestInfo) {
+  const s = run.score as SceneScore;
+  const dom = run.times.map((t) => t.dom);
+  const redraw = run.times.map((t) => t.redraw ?? t.dom);
+  const server = run.times.flatMap((t) => (t.server === null ? [] : [t.server]));
+  const row = {
+    run: run.name,
+    seed: SEED,
+    actions: run.actions,
+    actionsTarget: run.name === "by-hand" ? ACTIONS_WITHOUT : ACTIONS_WITH,
+    suggested: run.suggested ?? null,
+    objects: s.objects,
+    matched: s.matched,
+    extra: s.extra,
+    classesRight: s.classesRight,
+    meanMaskIou: Number(s.meanMaskIou.toFixed(3)),
+    masksGood: s.masksGood,
+    masksFixed: run.masksFixed,
+    supportersRight: s.supportersRight,
+    typesRight: s.typesRight,
+    edits: run.times.length,
+    redrawMedianMs: Number(median(redraw).toFixed(1)),
+    redrawMaxMs: Number(Math.max(...redraw).toFixed(1)),
+    shownMedianMs: Number(median(dom).toFixed(1)),
+    shownMaxMs: Number(Math.max(...dom).toFixed(1)),
+    serverMedianMs: Number(median(server).toFixed(1)),
+  };
+  const text = [
+    `object annotator benchmark, ${run.name} (synth-${SEED}, ${s.objects} objects, truth from gt.json):`,
+    `  ${row.actions} actions (target ${row.actionsTarget})` +
+      (row.suggested === null ? "" : `, ${row.suggested} boxes suggested`),
+    `  ${row.matched}/${s.objects} objects matched (box IoU >= 0.5), ${row.extra} extra; ` +
+      `${row.classesRight} classes right; mean mask IoU ${row.meanMaskIou} ` +
+      `(${row.masksGood} >= 0.5, ${row.masksFixed} refined); ` +
+      `${row.supportersRight} supporters right, ${row.typesRight} types right`,
+    `  ${row.edits} edits: redraw (answer or input to the page showing it) median ` +
+      `${row.redrawMedianMs} ms, max ${row.redrawMaxMs} ms (target ${TARGET_MS} ms); ` +
+      `input to shown median ${row.shownMedianMs} ms, max ${row.shownMaxMs} ms ` +
+      `(server answer median ${row.serverMedianMs} ms)`,
+    `  actions: ${run.log.join(" | ")}`,
+  ].join("\n");
+  console.log(text);
+  mkdirSync(FIGURES, { recursive: true });
+  const file = path.join(FIGURES, "figures.json");
+  const all = existsSync(file)
+    ? (JSON.parse(readFileSync(file, "utf8")) as Record<string, unknown>)
+    : {};
+  all[run.name] = { ...row, log: run.log, times: run.times, rows: s.rows };
+  writeFileSync(file, JSON.stringify(all, null, 1));
+  await testInfo.attach(`object-annotator-${run.name}.json`, {
+    body: JSON.stringify(all[run.name], null, 1),
+    contentType: "application/json",
+  });
+  return row;
+}
+
+/** The scene is complete and right, and each edit was redrawn in time. */
+function expectComplete(row: Awaited<ReturnType<typeof report>>) {
+  expect(row.matched, `${row.run}: every true object matched`).toBe(row.objects);
+  expect(row.extra, `${row.run}: no false objects left`).toBe(0);
+  expect(row.classesRight, `${row.run}: classes`).toBe(row.objects);
+  expect(row.supportersRight, `${row.run}: supporters`).toBe(row.objects);
+  // A target of issue 19: when it is not met the test fails with this note (figures above).
+  expect
+    .soft(row.redrawMedianMs, `TARGET NOT MET (issue 19): ${row.run}: median edit-to-redraw ms`)
+    .toBeLessThanOrEqual(TARGET_MS);
+}
