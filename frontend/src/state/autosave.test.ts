@@ -112,4 +112,21 @@ describe("autosave", () => {
     expect(session.saves).toBe(1);
     stop = () => {};
   });
+
+  it("waits while an object action is being saved, and saves right after it", () => {
+    stop();
+    let objectSaving = true;
+    stop = startAutosave(session as unknown as SceneSession, {
+      author: () => "ann",
+      delayMs: 1000,
+      otherSaving: () => objectSaving,
+    });
+    session.edit();
+    vi.advanceTimersByTime(3000);
+    expect(session.saves).toBe(0);
+    // Once the object action is saved, the support edits follow on its revision.
+    objectSaving = false;
+    vi.advanceTimersByTime(250);
+    expect(session.saves).toBe(1);
+  });
 });

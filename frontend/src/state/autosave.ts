@@ -11,9 +11,15 @@ export interface AutosaveOptions {
   delayMs?: number;
   /** Wait before retrying a save that failed (ms). */
   retryMs?: number;
+  /**
+   * True while something else is saving to the scene (an object action): a save based on the
+   * revision it is replacing would only conflict, so it waits (checked every OTHER_SAVE_MS).
+   */
+  otherSaving?: () => boolean;
 }
 
 export const AUTOSAVE_DELAY_MS = 1500;
+const OTHER_SAVE_MS = 250;
 
 /** The idle time before saving: the default, or this browser's setting (ms, 0 = off). */
 export function autosaveDelay(): number {
@@ -50,7 +56,8 @@ export function startAutosave(session: SceneSession, options: AutosaveOptions): 
     if (!canSave() || delay === 0) return;
     timer = setTimeout(() => {
       timer = null;
-      if (canSave()) void session.save(options.author());
+      if (options.otherSaving?.()) schedule(OTHER_SAVE_MS);
+      else if (canSave()) void session.save(options.author());
     }, ms);
   };
 

@@ -190,7 +190,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       mountObjectShortcuts(objectEditor, photoView.tools.host.svg),
       // after the support keys: the polygon's Backspace wins while a polygon is drawn
       mountMaskTools(photoView.tools),
-      startAutosave(session, { author: getAuthor }),
+      startAutosave(session, { author: getAuthor, otherSaving: () => objectEditor.busy }),
       mountScene3d(scene3d.body, session, layout.draft),
       mountPlacementNotice(scene3d.element, scene3d.body, session),
       mountSaveBar(saveBar, session, objectEditor),
