@@ -104,12 +104,14 @@ class WorkflowStore:
             raise WorkflowError(refusal)
 
         def take(session: Session, revision: int) -> None:
+            # The revision's UPDATE already holds the scene's row; the take is still a
+            # compare-and-set, so it cannot overwrite a take that committed in between.
             row = _row(session, scene_id)
             transition = workflow.take_for_annotation(
                 status_of(row), actor, _earlier_annotators(session, row)
             )
             if transition is not None:
-                _apply(session, row, transition, actor, revision)
+                _take_or_refuse(session, row, transition, actor, revision)
 
         return self.scenes.apply_edits(scene_id, request, hook=take)
 
@@ -121,7 +123,7 @@ class WorkflowStore:
                 status_of(row), actor, _earlier_annotators(session, row)
             )
             if transition is not None:
-                _apply(session, row, transition, actor, row.current_revision)
+                _take_or_refuse(session, row, transition, actor, row.current_revision)
                 session.commit()
         return self.scenes.summary(scene_id)
 
@@ -415,6 +417,23 @@ def _apply_if_unchanged(
         return False
     _apply(session, row, transition, actor, revision, comment)
     return True
+
+
+def _take_or_refuse(
+    session: Session, row: SceneRow, transition: Transition, actor: Actor, revision: int
+) -> None:
+    """Take the scene only if nobody changed its state, holder or revision since `row` was
+    read (two annotators taking at once: one wins, the other gets WorkflowError, 409)."""
+    if _apply_if_unchanged(session, row, transition, actor, revision):
+        return
+    session.rollback()
+    now = session.get(SceneRow, row.id, populate_existing=True)
+    holder = now.assignee if now is not None else None
+    raise WorkflowError(
+        f"{holder} took this scene first"
+        if holder and holder != actor.name
+        else "the scene changed meanwhile; reload it and try again"
+    )
 
 
 def _as_action(value: str) -> WorkflowAction:
