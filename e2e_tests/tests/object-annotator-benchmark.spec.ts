@@ -486,6 +486,7 @@ async function finish(run: Annotator, name: string): Promise<Run> {
   });
   // Not an action: closes the last menu's open list, which would hide the photo's table.
   await page.keyboard.press("Escape");
+  await page.evaluate(() => window.scrollTo(0, 0)); // the menus scrolled the page down
   await page.mouse.move(5, 5);
   await page.screenshot({ path: path.join(SCREENSHOTS, `object-annotator-${name}.png`) });
   const saved = await getScene(page.request, run.sceneId);
