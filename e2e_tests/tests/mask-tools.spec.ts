@@ -215,6 +215,34 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
     .toEqual(brushedMask);
   await expect(page.getByTestId(`mask-${id}`)).toHaveAttribute("data-source", "manual");
 
+  // Two quick strokes above the box: the second starts before the first is saved (it paints
+  // on the first), and both are kept, one revision each.
+  const revisionsBeforeQuick = (await getRevisions(request, seeded.scene_id)).length;
+  const above: Xy[] = [
+    [(x1 + x2) / 2 - 40, y1 - 25],
+    [(x1 + x2) / 2 + 40, y1 - 25],
+  ];
+  for (const [x, y] of above) {
+    const from = await toScreen(page, [x - 5, y]);
+    const to = await toScreen(page, [x + 5, y]);
+    await page.mouse.move(from.x, from.y);
+    await page.mouse.down();
+    await page.mouse.move(to.x, to.y, { steps: 3 });
+    await page.mouse.up();
+  }
+  await expect
+    .poll(
+      async () => {
+        const mask = objectIn(await getScene(request, seeded.scene_id), id).mask;
+        return above.map((at) => maskHas(mask, at));
+      },
+      { timeout: 60_000 },
+    )
+    .toEqual([true, true]);
+  expect((await getRevisions(request, seeded.scene_id)).length).toBe(revisionsBeforeQuick + 2);
+  object = objectIn(await getScene(request, seeded.scene_id), id);
+  await expect(page.getByTestId("mask-preview")).toHaveCount(0);
+
   // Eraser, zoomed in: a stroke across the middle takes those pixels out.
   await page.keyboard.press("+");
   await page.keyboard.press("Shift+P");

@@ -23,18 +23,17 @@ export class MaskPreview {
     return this.shownId;
   }
 
+  /** Whether `raster` is the one shown (a newer drawing may have taken its place). */
+  showing(raster: MaskRaster): boolean {
+    return this.raster === raster;
+  }
+
   /** Show `raster` as `objectId`'s mask (its stored mask hidden meanwhile). */
   show(objectId: string, raster: MaskRaster): void {
     this.hide();
-    const stored = this.svg.querySelector<SVGElement>(
-      `[data-testid="mask-${CSS.escape(objectId)}"]`,
-    );
+    const stored = this.hideStored(objectId);
     // Same colour as the object's mask, so painting looks like the mask growing.
     this.colour = stored?.dataset.colour ?? FALLBACK_COLOUR;
-    if (stored) {
-      stored.style.visibility = "hidden";
-      this.hidden = stored;
-    }
     this.sheet = this.layer.sheet(raster.window, {
       className: "mask-preview",
       testid: "mask-preview",
@@ -47,6 +46,16 @@ export class MaskPreview {
     // A new canvas is clear: only the set pixels' rows need drawing.
     const extent = raster.extent();
     if (extent) this.redraw(extent);
+  }
+
+  private hideStored(objectId: string): SVGElement | null {
+    const stored = this.svg.querySelector<SVGElement>(
+      `[data-testid="mask-${CSS.escape(objectId)}"]`,
+    );
+    if (this.hidden && this.hidden !== stored) this.hidden.style.visibility = "";
+    if (stored) stored.style.visibility = "hidden";
+    this.hidden = stored;
+    return stored;
   }
 
   /** Draw the part of the raster in `rect` (photo pixels) again. */
@@ -73,6 +82,11 @@ export class MaskPreview {
         if (x > start) context.fillRect(start, y, x - start, 1);
       }
     }
+  }
+
+  /** Hide the stored mask again after the photo redrew its masks (a new revision came in). */
+  keepStoredHidden(): void {
+    if (this.shownId) this.hideStored(this.shownId);
   }
 
   /** Take the preview away; the object's stored mask shows again. */

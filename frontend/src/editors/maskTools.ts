@@ -155,11 +155,12 @@ export function mountMaskTools(tools: PhotoTools): () => void {
     }
     pending = { objectId, raster };
     const saved = await host.objects.apply([{ kind: "set_mask", id: objectId, mask }], label);
-    if (pending?.raster !== raster) return; // a newer drawing is on its way
-    pending = null;
-    if (preview.objectId === objectId) preview.hide();
+    if (pending?.raster === raster) pending = null;
     if (!saved) say(`${label}: not saved (see the message above the photo).`, true);
-    else describeTarget();
+    // A newer drawing, begun on this one, may be on screen already: it stays.
+    if (!preview.showing(raster)) return;
+    preview.hide();
+    if (saved) describeTarget();
   };
 
   let cursorAt: ImagePoint | null = null;
@@ -465,9 +466,11 @@ export function mountMaskTools(tools: PhotoTools): () => void {
     0,
     "Eraser: take pixels out of the selected object's mask",
   );
-  const removers = [brushTool, eraserTool, polygonTool, refineTool].map((tool) => tools.add(tool));
+  const maskTools: PhotoTool[] = [brushTool, eraserTool, polygonTool, refineTool];
+  const removers = maskTools.map((tool) => tools.add(tool));
 
-  const sized = () => ["brush", "eraser", "refine"].includes(tools.active.id) && session.editable;
+  const sized = () =>
+    [brushTool, eraserTool, refineTool].includes(tools.active) && session.editable;
   const drafting = () => tools.active === polygonTool && polygon !== null;
   removers.push(
     registerShortcut({
@@ -515,9 +518,9 @@ export function mountMaskTools(tools: PhotoTools): () => void {
     placeCursor(cursorAt);
   });
   const stopSelect = session.subscribe((change) => {
-    if (change === "select" && tools.active.id !== "select") {
-      if (["brush", "eraser", "polygon", "refine"].includes(tools.active.id)) describeTarget();
-    }
+    // A revision adopted while a newer drawing is shown must not show through it.
+    if (change === "document") preview.keepStoredHidden();
+    if (change === "select" && maskTools.includes(tools.active)) describeTarget();
   });
   const hideCursor = () => placeCursor(null);
   const replace = () => {
