@@ -2,7 +2,13 @@
 // loop turns that guess into the model's next answer; accepting or rejecting follows.
 import type { SceneDocument, SupportRelation } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
-import { acceptAll, acceptEdge, rejectEdge, setSupporter } from "../editors/supportActions";
+import {
+  acceptAll,
+  acceptEdge,
+  rejectEdge,
+  removeSupport,
+  setSupporter,
+} from "../editors/supportActions";
 import { DraftStore } from "../state/draftStore";
 import { SceneSession } from "../state/sceneSession";
 import { makeSuggester } from "./suggester";
@@ -123,5 +129,31 @@ describe("a correction against a guess", () => {
     const s = session();
     acceptEdge(s, "o1"); // o1 on o2, by a person now
     expect(setSupporter(s, "o2", "o1")).toBe("o1 rests on o2: pick another supporter.");
+  });
+
+  it("an object a person added gets the model's supporter; one whose supporter they removed does not", () => {
+    const s = session();
+    const added = s.objects.map((o) =>
+      o.id === "o2" ? { ...o, set_by_person: ["object" as const] } : o,
+    );
+    s.adopt({
+      ...s.doc,
+      revision: 3,
+      scene: {
+        ...s.doc.scene,
+        objects: added,
+        supports: s.doc.scene.supports.filter((x) => x.child !== "o2"),
+      },
+    });
+    // Its best answer in the tree decoded with the others: the floor.
+    expect(s.suggestions().get("o2")).toMatchObject({ parent: "floor", type: "below" });
+    // Once it has a saved supporter, removing it by hand is a decision: none is offered.
+    s.adopt({
+      ...s.doc,
+      revision: 4,
+      scene: { ...s.doc.scene, supports: [...s.doc.scene.supports, auto("o2", "floor")] },
+    });
+    expect(removeSupport(s, "o2")).toBeNull();
+    expect(s.suggestions().has("o2")).toBe(false);
   });
 });

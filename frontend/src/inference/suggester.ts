@@ -27,6 +27,10 @@ export function makeSuggester({
   const withPriors = priors && classes ? { classes, priors } : null;
   return (session: SceneSession) => {
     const shown = session.shown();
+    // An object a person added starts without a supporter: that is no decision to keep
+    // (a supporter removed by hand and not saved yet is).
+    const awaitsSupporter = (id: string) =>
+      !session.isPending(id) && (session.object(id)?.set_by_person ?? []).includes("object");
     const pinned: PinnedSupport[] = [];
     const excluded = new Set<string>();
     for (const id of ids) {
@@ -43,8 +47,9 @@ export function makeSuggester({
       const current = shown.get(d.child);
       if (current && current.parent === d.parent && current.type === d.type) continue;
       // An object a person left without a supporter stays so, unless they rejected answers
-      // (then the next one is wanted).
-      if (!current && session.rejectedAnswers(d.child).size === 0) continue;
+      // (then the next one is wanted) or it is one they added that never had one.
+      if (!current && session.rejectedAnswers(d.child).size === 0 && !awaitsSupporter(d.child))
+        continue;
       suggestions.set(d.child, {
         child: d.child,
         parent: d.parent,
