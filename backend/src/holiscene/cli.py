@@ -428,10 +428,18 @@ def _serve(args: argparse.Namespace) -> int:
 
     from .api.app import create_app
     from .cli_users import check_can_serve
+    from .core.data_dir_owner import DataDirInUseError, own_data_dir
 
     settings = _settings(args)
-    check_can_serve(settings, args.allow_remote)
-    uvicorn.run(create_app(settings), host=settings.host, port=settings.port, log_level="info")
+    # Owned before anything reads or writes the data: start-up recovery fails unfinished jobs,
+    # which must not happen to the jobs of a server already running on it.
+    with contextlib.ExitStack() as held:
+        try:
+            held.enter_context(own_data_dir(settings.data_dir))
+        except DataDirInUseError as exc:
+            raise CliError(str(exc)) from exc
+        check_can_serve(settings, args.allow_remote)
+        uvicorn.run(create_app(settings), host=settings.host, port=settings.port, log_level="info")
     return 0
 
 

@@ -139,6 +139,9 @@ class Workbench:
         raise ModelNotFoundError(f"no model {model_id!r}")
 
     def recover_after_restart(self) -> None:
+        """Settle what a stopped server left: unfinished jobs, half-written models and
+        import folders. Only for the data directory's owner (`holiscene serve` holds its
+        lock, core.data_dir_owner): another server's jobs would be failed under it."""
         for kind, job_kind in RETRAIN_JOB_KINDS.items():
             self._recover_retrain_jobs(job_kind, self.registry(kind))
         count = self.jobs.fail_unfinished(
@@ -151,6 +154,8 @@ class Workbench:
         for registry in (self.models, self.detectors):
             for path in registry.remove_leftovers():
                 log.warning("removed an incomplete model folder %s", path)
+        for path in self.scenes.files.remove_abandoned_staging():
+            log.warning("removed the folder of an import that did not finish: %s", path)
 
     def _recover_retrain_jobs(self, job_kind: JobKind, registry: ModelStore) -> None:
         for job in self.jobs.unfinished(job_kind):

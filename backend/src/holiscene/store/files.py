@@ -2,7 +2,8 @@
 
 A scene's folder is a valid `holiscene infer` input folder (img.*, cam_K.txt,
 detections.json). Folders are written under a temporary name and renamed into place, so a
-failed import leaves nothing behind.
+failed import leaves nothing behind; one killed midway leaves its staging folder, which the
+next server start removes.
 """
 
 from __future__ import annotations
@@ -14,6 +15,11 @@ import uuid
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
+
+from ..core.data_dir_owner import try_lock
+
+# Scene ids are hex, so no scene folder starts with a dot.
+STAGING_PREFIX = "."
 
 
 class SceneFiles:
@@ -29,14 +35,38 @@ class SceneFiles:
 
     @contextmanager
     def new_folder(self, scene_id: str) -> Iterator[Path]:
-        """A folder to fill; it becomes the scene's folder only if the block succeeds."""
-        staging = Path(tempfile.mkdtemp(prefix=f".{scene_id}-", dir=self.root))
+        """A folder to fill; it becomes the scene's folder only if the block succeeds.
+
+        The staging folder is flock-ed while it is filled, so start-up can tell the folder of
+        a dead import (lock free: remove it) from one another process is still filling."""
+        staging = Path(tempfile.mkdtemp(prefix=f"{STAGING_PREFIX}{scene_id}-", dir=self.root))
+        held = os.open(staging, os.O_RDONLY | os.O_DIRECTORY)
         try:
+            try_lock(held)  # a folder made this instant: nobody else can hold it yet
             yield staging
             os.replace(staging, self.folder(scene_id))
         except BaseException:
             shutil.rmtree(staging, ignore_errors=True)
             raise
+        finally:
+            os.close(held)
+
+    def remove_abandoned_staging(self) -> list[Path]:
+        """Remove the staging folders of imports that died midway (killed, power cut): the
+        ones whose lock nobody holds. Returns what was removed."""
+        removed = []
+        for path in self.root.glob(f"{STAGING_PREFIX}*"):
+            if not path.is_dir() or path.is_symlink():
+                continue
+            fd = os.open(path, os.O_RDONLY | os.O_DIRECTORY)
+            try:
+                if not try_lock(fd):
+                    continue  # an import in another process is filling it now
+                shutil.rmtree(path, ignore_errors=True)
+                removed.append(path)
+            finally:
+                os.close(fd)
+        return removed
 
     def remove(self, scene_id: str) -> None:
         shutil.rmtree(self.folder(scene_id), ignore_errors=True)
