@@ -11,6 +11,11 @@ from fastapi.testclient import TestClient
 from holiscene.api.app import create_app
 from holiscene.core.settings import REPO_ROOT, Settings
 
+# SQLite, and PostgreSQL for tests marked both_databases (see databases.py).
+from .databases import database_url, postgres_server, pytest_configure, pytest_generate_tests
+
+__all__ = ["database_url", "postgres_server", "pytest_configure", "pytest_generate_tests"]
+
 REAL_PHOTOS = REPO_ROOT.parent / "shared" / "data" / "real"
 
 
@@ -27,8 +32,10 @@ def t3d5(real_photos: Path) -> Path:
 
 
 @pytest.fixture()
-def settings(tmp_path: Path) -> Settings:
-    return Settings(data_dir=tmp_path / "data", web_dir=tmp_path / "no-web")
+def settings(tmp_path: Path, database_url: str | None) -> Settings:
+    return Settings(
+        data_dir=tmp_path / "data", web_dir=tmp_path / "no-web", database_url=database_url
+    )
 
 
 @pytest.fixture()

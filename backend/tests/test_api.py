@@ -41,6 +41,7 @@ def test_import_runs_pipeline_and_serves_files(client: TestClient, t3d5: Path) -
     assert glb.status_code == 200 and glb.content[:4] == b"glTF"
 
 
+@pytest.mark.both_databases
 def test_edit_creates_revision_with_history(client: TestClient, t3d5: Path) -> None:
     scene_id, doc = _imported(client, t3d5)
     response = _edit(
@@ -69,6 +70,7 @@ def test_edit_creates_revision_with_history(client: TestClient, t3d5: Path) -> N
     assert next(s for s in before["scene"]["supports"] if s["child"] == "o1")["parent"] == "floor"
 
 
+@pytest.mark.both_databases
 def test_stale_write_gets_409_and_changes_nothing(client: TestClient, t3d5: Path) -> None:
     scene_id, doc = _imported(client, t3d5)
     base = doc["revision"]
@@ -111,6 +113,7 @@ def test_invalid_edits_are_refused(
     assert client.get(f"/api/scenes/{scene_id}").json()["revision"] == doc["revision"]
 
 
+@pytest.mark.both_databases
 def test_edit_closing_a_cycle_is_refused_whole(client: TestClient, t3d5: Path) -> None:
     scene_id, doc = _imported(client, t3d5)
     response = _edit(
@@ -125,6 +128,7 @@ def test_edit_closing_a_cycle_is_refused_whole(client: TestClient, t3d5: Path) -
     assert client.get(f"/api/scenes/{scene_id}/revisions").json()[-1]["kind"] == "pipeline"
 
 
+@pytest.mark.both_databases
 def test_manual_support_survives_pipeline_rerun(client: TestClient, t3d5: Path) -> None:
     scene_id, doc = _imported(client, t3d5)
     edited = _edit(
@@ -193,6 +197,7 @@ def test_unknown_scene_and_job_get_404(client: TestClient) -> None:
     assert "no scene" in client.get("/api/scenes/nope/revisions").json()["detail"]
 
 
+@pytest.mark.both_databases
 def test_edits_are_kept_across_a_restart(settings: Settings, t3d5: Path) -> None:
     from holiscene.api.app import create_app
 
@@ -209,6 +214,7 @@ def test_edits_are_kept_across_a_restart(settings: Settings, t3d5: Path) -> None
         assert next(s for s in again["scene"]["supports"] if s["child"] == "o1")["parent"] == "wall"
 
 
+@pytest.mark.both_databases
 def test_unfinished_jobs_fail_clearly_after_restart(settings: Settings, t3d5: Path) -> None:
     from holiscene.api.app import create_app
     from holiscene.workbench import Workbench

@@ -25,6 +25,9 @@ from .conftest import upload, wait_for_job
 from .test_layout_edit import _moved_corners
 from .workflow.scenes import store_predicted_scene
 
+# The store, as the server uses it, on SQLite and on PostgreSQL (databases.py).
+pytestmark = pytest.mark.both_databases
+
 
 class Gate:
     """Wraps JobStore.progress: once armed, the next job that reports "done" (its result

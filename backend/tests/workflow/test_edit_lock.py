@@ -11,6 +11,9 @@ from .conftest import Accounts
 from .scenes import store_predicted_scene
 from .test_workflow_api import Api, _refused, _set
 
+# The store, as the server uses it, on SQLite and on PostgreSQL (databases.py).
+pytestmark = pytest.mark.both_databases
+
 # Any corners: the lock is checked before the edit is looked at.
 LAYOUT = {"kind": "set_layout", "corners_2d": [[1.0, 1.0], [60.0, 1.0], [60.0, 40.0]] + [None] * 5}
 SUBMITTED = "submitted for review (by ann): a reviewer must reject it before it can be edited"

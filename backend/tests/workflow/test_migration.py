@@ -5,15 +5,28 @@ and states existed, 0004 on accounts and sessions stored before idle timeouts an
 from __future__ import annotations
 
 import json
-from collections.abc import Callable
-from pathlib import Path
+from collections.abc import Callable, Iterator
 
+import pytest
 from alembic import command
 from alembic.config import Config
 from holiscene.core.db import MIGRATIONS_DIR, make_engine
-from sqlalchemy import text
+from holiscene.core.settings import Settings
+from sqlalchemy import Engine, inspect, text
 
 from .scenes import make_scene
+
+# Written for SQLite first: each migration must also run on PostgreSQL (databases.py).
+pytestmark = pytest.mark.both_databases
+
+
+@pytest.fixture()
+def engine(settings: Settings) -> Iterator[Engine]:
+    """The test's empty database (SQLite or PostgreSQL), not migrated yet."""
+    settings.data_dir.mkdir(parents=True)
+    made = make_engine(settings.resolved_database_url)
+    yield made
+    made.dispose()
 
 
 def _migrate(
@@ -27,8 +40,7 @@ def _migrate(
         step(config, target)
 
 
-def test_existing_scenes_get_a_state_and_an_uncertainty(tmp_path: Path) -> None:
-    engine = make_engine(f"sqlite:///{tmp_path / 'old.db'}")
+def test_existing_scenes_get_a_state_and_an_uncertainty(engine: Engine) -> None:
     _migrate(engine, "0002")
     predicted = make_scene([("o0", "floor", "below")], {"o0": 0.6})  # (0.4 + 1 * 3) / 4
     kinds = {"imported": ["import"], "predicted": ["import", "pipeline"]}
@@ -65,11 +77,9 @@ def test_existing_scenes_get_a_state_and_an_uncertainty(tmp_path: Path) -> None:
         "predicted": ("predicted", None, 1, 0.85),
         "edited": ("in_annotation", None, 1, 0.85),
     }
-    engine.dispose()
 
 
-def test_open_sessions_get_a_last_seen_time_and_accounts_stay_enabled(tmp_path: Path) -> None:
-    engine = make_engine(f"sqlite:///{tmp_path / 'old.db'}")
+def test_open_sessions_get_a_last_seen_time_and_accounts_stay_enabled(engine: Engine) -> None:
     _migrate(engine, "0003")
     with engine.begin() as connection:
         connection.execute(
@@ -88,20 +98,18 @@ def test_open_sessions_get_a_last_seen_time_and_accounts_stay_enabled(tmp_path: 
         session = connection.execute(text("SELECT created_at, last_seen_at FROM sessions")).one()
         disabled = connection.execute(text("SELECT disabled_at FROM users")).scalar_one()
         # The index on sessions.user_id survives the copy of the table.
-        indexes = connection.execute(text("PRAGMA index_list('sessions')")).all()
+        indexes = [index["name"] for index in inspect(connection).get_indexes("sessions")]
     assert session[1] == session[0] and disabled is None
-    assert any(row[1] == "ix_sessions_user_id" for row in indexes)
+    assert "ix_sessions_user_id" in indexes
 
     # And back: 0004 can be undone.
     _migrate(engine, "0003", step=command.downgrade)
     with engine.connect() as connection:
-        columns = [row[1] for row in connection.execute(text("PRAGMA table_info('sessions')"))]
+        columns = [column["name"] for column in inspect(connection).get_columns("sessions")]
     assert "last_seen_at" not in columns and len(columns) == 4
-    engine.dispose()
 
 
-def test_scenes_without_objects_become_the_most_uncertain(tmp_path: Path) -> None:
-    engine = make_engine(f"sqlite:///{tmp_path / 'old.db'}")
+def test_scenes_without_objects_become_the_most_uncertain(engine: Engine) -> None:
     _migrate(engine, "0004")
     predicted = make_scene([("o0", "floor", "below")], {"o0": 0.6})  # (0.4 + 1 * 3) / 4
     walls = [o for o in predicted.objects if o.cls == "wall"]
@@ -138,4 +146,3 @@ def test_scenes_without_objects_become_the_most_uncertain(tmp_path: Path) -> Non
     assert uncertainties() == {"objects": 0.85, "empty": 1.0, "walls": 1.0}
     _migrate(engine, "0004", step=command.downgrade)
     assert uncertainties() == {"objects": 0.85, "empty": 0.0, "walls": 0.0}
-    engine.dispose()

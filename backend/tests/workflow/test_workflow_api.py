@@ -12,6 +12,9 @@ from holiscene.workflow import WorkflowError
 from .conftest import Accounts
 from .scenes import store_predicted_scene
 
+# The store, as the server uses it, on SQLite and on PostgreSQL (databases.py).
+pytestmark = pytest.mark.both_databases
+
 
 def _set(child: str, parent: str, kind: str = "below") -> dict[str, str]:
     return {"kind": "set_support", "child": child, "parent": parent, "type": kind}
