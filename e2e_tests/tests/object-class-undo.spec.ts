@@ -7,7 +7,7 @@ import path from "node:path";
 import type { SceneDocument } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getScene, seedScene, T3D_5 } from "../helpers/api";
-import { chooseTool, objectEditsSaved, pickClass } from "../helpers/objects";
+import { chooseTool, objectEditsSaved } from "../helpers/objects";
 import { clickObject, openScene } from "../helpers/photo";
 
 const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
@@ -17,31 +17,34 @@ const objectOf = (doc: SceneDocument, id: string) => doc.scene.objects?.find((o)
 const supportsOf = (doc: SceneDocument, id: string) =>
   (doc.scene.supports ?? []).filter((s) => s.child === id || s.parent === id);
 
+type Timed = Window & { redrawn?: Promise<number> };
+
 /** Milliseconds from pressing `key` until `selector` is (or is no longer) on the page. */
 async function timeTo(page: Page, key: string, selector: string, present: boolean) {
-  const waited = page.evaluate(
-    ({ selector, present }) =>
-      new Promise<number>((resolve) => {
+  // Listening before the key is sent (an evaluate not awaited may arrive after it).
+  await page.evaluate(
+    ({ selector, present }) => {
+      (window as Timed).redrawn = new Promise<number>((resolve) => {
         // From the key's arrival in the page to the photo's SVG showing the change (the
         // frame on screen may come later while the 3D view renders, in software here).
-        window.addEventListener(
-          "keydown",
-          (event) => {
-            const start = event.timeStamp;
-            const observer = new MutationObserver(() => {
-              if ((document.querySelector(selector) !== null) !== present) return;
-              observer.disconnect();
-              resolve(performance.now() - start);
-            });
-            observer.observe(document.body, { subtree: true, childList: true });
-          },
-          { capture: true, once: true },
-        );
-      }),
+        const onKey = (event: KeyboardEvent) => {
+          if (["Control", "Shift", "Alt", "Meta"].includes(event.key)) return;
+          window.removeEventListener("keydown", onKey, true);
+          const start = event.timeStamp;
+          const observer = new MutationObserver(() => {
+            if ((document.querySelector(selector) !== null) !== present) return;
+            observer.disconnect();
+            resolve(performance.now() - start);
+          });
+          observer.observe(document.body, { subtree: true, childList: true });
+        };
+        window.addEventListener("keydown", onKey, true);
+      });
+    },
     { selector, present },
   );
   await page.keyboard.press(key);
-  return waited;
+  return page.evaluate(() => (window as Timed).redrawn as Promise<number>);
 }
 
 /** Wait until the server's latest revision is `revision`, and return it. */
@@ -67,11 +70,26 @@ test("a class changed with the picker, and an object deleted, come back with und
   if (!dresser) throw new Error("t3d-5 has a dresser");
   await clickObject(page, dresser.id);
   await expect(page.getByTestId("box-tool-selected")).toHaveCount(1);
+  // Esc closes the picker and changes nothing.
+  await page.keyboard.press("Shift+C");
+  await expect(page.getByTestId("class-picker")).toBeVisible();
+  await page.keyboard.press("Escape");
+  await expect(page.getByTestId("class-picker")).toHaveCount(0);
+  await expect(page.getByTestId("box-tool-selected")).toHaveCount(1);
   await page.keyboard.press("Shift+C");
   await expect(page.getByTestId("class-option").first()).toHaveAttribute("data-name", "dresser");
   await page.getByTestId("class-picker-input").fill("sh");
   await page.screenshot({ path: path.join(SCREENSHOTS, "class-picker-change.png") });
-  await pickClass(page, "shelv", "shelves");
+  // ↓ moves to the second line (shower curtain), ↑ back; Enter picks.
+  const input = page.getByTestId("class-picker-input");
+  await input.press("ArrowDown");
+  await expect(page.locator('[data-testid="class-option"].is-active')).toHaveAttribute(
+    "data-name",
+    "shower_curtain",
+  );
+  await input.press("ArrowUp");
+  await input.press("Enter");
+  await expect(page.getByTestId("class-picker")).toHaveCount(0);
   let doc = await revisionSaved(page, sceneId, start + 1);
   expect(objectOf(doc, dresser.id)?.class).toBe("shelves");
   await expect(page.getByTestId("undo-button")).toHaveAttribute(

@@ -45,9 +45,11 @@ export interface PickerOptions {
   current?: string;
 }
 
+let closeOpen: (() => void) | null = null;
+
 /** Open the picker; resolves to the name picked (a class or an alias), or null if cancelled. */
 export function pickClass(options: PickerOptions): Promise<string | null> {
-  document.querySelector(".class-picker")?.remove(); // one at a time
+  closeOpen?.(); // one at a time: the one open is cancelled
   const uses = classUses(options.objects);
   const input = el("input", {
     className: "class-picker-input",
@@ -148,11 +150,15 @@ export function pickClass(options: PickerOptions): Promise<string | null> {
     if (!box.contains(event.target as Node)) finish(null);
   };
   const finish = (name: string | null) => {
+    if (closeOpen === cancel) closeOpen = null;
     window.removeEventListener("pointerdown", onOutside, true);
     box.remove();
     if (name) countPick(CLASS_OPTIONS.find((o) => o.name === name)?.cls ?? name);
     resolve(name);
   };
+
+  const cancel = () => finish(null);
+  closeOpen = cancel;
 
   input.addEventListener("input", () => {
     active = 0;
