@@ -1,6 +1,7 @@
 """HoliScene's contract: the scene and every message between the app and the server."""
 
 from .api import (
+    MAX_REVISION,
     AddObject,
     Conflict,
     ConflictDetail,
@@ -38,6 +39,7 @@ from .api import (
     ReviewRequest,
     RevisionInfo,
     RevisionKind,
+    RevisionNumber,
     Role,
     RoleChange,
     SceneAgreement,
@@ -86,6 +88,7 @@ from .support_graph import STRUCTURAL_SUPPORTERS, support_graph_problems
 
 __all__ = [
     "BOX_CORNER_SIGNS",
+    "MAX_REVISION",
     "NYU40_CLASSES",
     "STRUCTURAL_CLASSES",
     "STRUCTURAL_SUPPORTERS",
@@ -135,6 +138,7 @@ __all__ = [
     "ReviewRequest",
     "RevisionInfo",
     "RevisionKind",
+    "RevisionNumber",
     "Role",
     "RoleChange",
     "Scene",

@@ -9,6 +9,11 @@ from pydantic import Field
 
 from .scene import Box2D, Mask, Point2, Scene, SchemaModel, SupportType
 
+# Revisions are stored as 32-bit integers (PostgreSQL's INTEGER; SQLite's are 64-bit): a
+# number beyond that can name no revision, and the database would fail on it, not answer.
+MAX_REVISION = 2**31 - 1
+RevisionNumber = Annotated[int, Field(ge=1, le=MAX_REVISION)]
+
 
 class SetSupport(SchemaModel):
     """Make `parent` the supporter of `child` (replacing any supporter it had)."""
@@ -34,7 +39,7 @@ class RestoreSupport(SchemaModel):
 
     kind: Literal["restore_support"] = "restore_support"
     child: str
-    from_revision: int = Field(ge=1)
+    from_revision: RevisionNumber
 
 
 class SetLayout(SchemaModel):
@@ -138,7 +143,7 @@ class RestoreObject(SchemaModel):
 
     kind: Literal["restore_object"] = "restore_object"
     id: str = Field(min_length=1)
-    from_revision: int = Field(ge=1)
+    from_revision: RevisionNumber
 
 
 ObjectEdit = AddObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject
@@ -180,7 +185,7 @@ class SceneArchiveRequest(SchemaModel):
 
 
 class EditRequest(SchemaModel):
-    base_revision: int = Field(ge=1, description="The revision the edits were made on")
+    base_revision: RevisionNumber = Field(description="The revision the edits were made on")
     author: str = Field(min_length=1, max_length=64)
     edits: list[Edit] = Field(min_length=1, max_length=500)
 
@@ -491,21 +496,21 @@ class SceneWorkflow(EditPermission):
 
 
 class SubmitRequest(SchemaModel):
-    revision: int = Field(ge=1, description="The revision the annotator submits (the latest)")
+    revision: RevisionNumber = Field(description="The revision the annotator submits (the latest)")
 
 
 class ReviewRequest(SchemaModel):
-    revision: int = Field(ge=1, description="The revision the reviewer looked at (the latest)")
+    revision: RevisionNumber = Field(description="The revision the reviewer looked at (the latest)")
     comment: str | None = Field(default=None, max_length=2000)
 
 
 class RejectRequest(SchemaModel):
-    revision: int = Field(ge=1, description="The revision the reviewer looked at (the latest)")
+    revision: RevisionNumber = Field(description="The revision the reviewer looked at (the latest)")
     comment: str = Field(min_length=1, max_length=2000, description="What went wrong")
 
 
 class SecondAnnotationRequest(SchemaModel):
-    revision: int = Field(ge=1, description="The revision the reviewer looked at (the latest)")
+    revision: RevisionNumber = Field(description="The revision the reviewer looked at (the latest)")
     comment: str | None = Field(default=None, max_length=2000)
 
 

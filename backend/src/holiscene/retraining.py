@@ -28,6 +28,7 @@ from holiscene_schema import ModelInfo, RetrainRequest, Scene
 from .inputs import load_photo
 from .learning.samples import SupportSample, sample_from_scene
 from .learning.training_api import TrainConfig
+from .public_errors import user_facing_error
 from .store.jobs import JobStore
 from .store.models import ModelStore, Registration
 from .store.scenes import SceneStore
@@ -166,10 +167,10 @@ class TrainingJob:
             self.jobs.fail(self.job_id, f"{exc}; no model was registered from this job")
         except Exception as exc:
             log.exception("retrain job %s failed", self.job_id)
-            self._log(f"failed: {type(exc).__name__}: {exc}")
+            self._log(f"failed: {user_facing_error(exc)}")
             self.jobs.fail(
                 self.job_id,
-                f"{type(exc).__name__}: {exc}; no model was registered from this job",
+                f"{user_facing_error(exc)}; no model was registered from this job",
             )
         finally:
             shutil.rmtree(work_dir, ignore_errors=True)

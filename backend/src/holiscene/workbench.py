@@ -8,7 +8,6 @@ import json
 import logging
 import shutil
 import threading
-import traceback
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Any
@@ -38,6 +37,7 @@ from .learning.training_api import METRICS_FILE
 from .pipeline import DEFAULT_STAGES, KEPT_LAYOUT_STAGES, PLACEMENT_STAGES
 from .pipeline.stages.detections import objects_from_detections
 from .pipeline.stages.restore import has_hand_set_layout
+from .public_errors import user_facing_error
 from .retraining import RetrainJob, TrainingJob, check_can_retrain, train_config
 from .store import models as model_registry
 from .store.files import SceneFiles
@@ -302,8 +302,8 @@ class Workbench:
             log.warning("job %s not stored: %s", job_id, refused)
             self.jobs.fail(job_id, str(refused))
         except Exception as exc:
-            log.exception("pipeline job %s failed", job_id)
-            self.jobs.fail(job_id, f"{type(exc).__name__}: {exc}\n{traceback.format_exc(limit=3)}")
+            log.exception("pipeline job %s failed", job_id)  # the traceback: for the admin
+            self.jobs.fail(job_id, f"{user_facing_error(exc)} (details in the server log)")
 
     def import_folder(self, folder: Path, name: str | None = None) -> ImportResult:
         """Import an input folder and run the pipeline on it now (for demo data and scripts)."""

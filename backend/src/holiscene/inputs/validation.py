@@ -107,6 +107,8 @@ def parse_detections(data: bytes, width: int, height: int) -> list[Detection]:
         items = json.loads(data)
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise InputError(f"detections.json is not valid JSON: {exc}") from exc
+    except RecursionError as exc:  # the parser recurses once per level of [ or {
+        raise InputError("detections.json is nested too deeply to be a list of boxes") from exc
     if not isinstance(items, list):
         raise InputError('detections.json must be a list of {"bbox": [...], "class": ...}')
     return [_parse_detection(i, item, width, height) for i, item in enumerate(items)]

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 from typing import Annotated
 
-from fastapi import APIRouter, File, Form, UploadFile
+from fastapi import APIRouter, File, Form, Path, UploadFile
 from fastapi.responses import FileResponse
 from holiscene_schema import (
+    MAX_REVISION,
     Conflict,
     EditRequest,
     ErrorMessage,
@@ -25,6 +26,9 @@ from ..deps import AnnotatorDep, UserDep, WorkbenchDep, author_of
 from ..permissions import with_edit_permission
 
 router = APIRouter(prefix="/api/scenes", tags=["scenes"])
+
+# The scenes table's name column is String(200): PostgreSQL refuses a longer one.
+MAX_SCENE_NAME = 200
 
 _ERRORS: dict[int | str, dict[str, object]] = {
     404: {"model": ErrorMessage},
@@ -61,7 +65,7 @@ async def import_scene(
     detections: Annotated[
         UploadFile | None, File(description="detections.json: 2D boxes and classes")
     ] = None,
-    name: Annotated[str | None, Form(max_length=200)] = None,
+    name: Annotated[str | None, Form(max_length=MAX_SCENE_NAME)] = None,
     author: Annotated[str, Form(min_length=1, max_length=64)] = "import",
     run_pipeline: Annotated[bool, Form()] = True,
 ) -> ImportResult:
@@ -79,7 +83,9 @@ async def import_scene(
         raw = await _read_limited(detections, "detections.json", 8 * 1024 * 1024)
         boxes = parse_detections(raw, photo.width, photo.height)
     inputs = InputFiles(photo=photo, K=K, detections=boxes)
-    scene_name = (name or "").strip() or (image.filename or "photo").rsplit(".", 1)[0]
+    # A name from the file name is cut to fit (only a typed name is the user's to shorten).
+    from_file = (image.filename or "photo").rsplit(".", 1)[0].strip()[:MAX_SCENE_NAME]
+    scene_name = (name or "").strip() or from_file or "photo"
     return workbench.import_scene(inputs, scene_name, author_of(user, author), run_pipeline)
 
 
@@ -145,7 +151,10 @@ def list_revisions(scene_id: str, workbench: WorkbenchDep) -> list[RevisionInfo]
 
 @router.get("/{scene_id}/revisions/{number}", response_model=SceneDocument, responses=_ERRORS)
 def get_revision(
-    scene_id: str, number: int, workbench: WorkbenchDep, user: UserDep
+    scene_id: str,
+    number: Annotated[int, Path(ge=1, le=MAX_REVISION)],
+    workbench: WorkbenchDep,
+    user: UserDep,
 ) -> SceneDocument:
     """A revision as stored; only the latest can be `editable`."""
     return with_edit_permission(workbench.scenes.document(scene_id, number), workbench, user)
