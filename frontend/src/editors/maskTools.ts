@@ -99,6 +99,7 @@ export function mountMaskTools(tools: PhotoTools): () => void {
   });
   const say = (text: string, error = false) => {
     status.textContent = text;
+    status.title = text; // the line may cut it short
     status.classList.toggle("is-error", error);
   };
 
@@ -322,7 +323,7 @@ export function mountMaskTools(tools: PhotoTools): () => void {
       drawPolygon();
     },
     options: options(
-      "Click points; Enter or the first point closes; Shift: take it out; Backspace: undo a point.",
+      "Click points; Enter or the first point closes; Shift: cut out; Backspace: drop a point.",
       false,
     ),
   };
