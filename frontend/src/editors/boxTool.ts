@@ -6,7 +6,6 @@
 
 import { svgEl } from "../dom";
 import { pickClass } from "../views/scene/classPicker";
-import { freshIds } from "../views/scene/detectionOffers";
 import {
   type Box,
   boxFromCorners,
@@ -131,13 +130,13 @@ export function mountBoxTool(tools: PhotoTools): () => void {
       draw();
       return;
     }
-    const [id = "d1"] = freshIds(session.objects, 1);
+    const [id = "d1"] = editor.newObjectIds(1);
     const saved = await editor.apply(
       [{ kind: "add_object", id, class: cls, bbox: roundBox(box), source: "manual" }],
       `add ${objectName({ id, class: cls })}`,
     );
     sending.delete(key);
-    // The editor may have renamed it after a conflict: the newest object with this box.
+    // Selected when saved under its id (a conflict may have given it another).
     if (saved) session.select(session.object(id) ? id : null);
     draw();
   };

@@ -8,6 +8,7 @@ import { ApiError } from "../api/errors";
 import { MemoryStorage } from "../testing/memoryStorage";
 import { DraftStore } from "./draftStore";
 import {
+  type NewObject,
   type ObjectEdit,
   ObjectEditor,
   rebaseEdits,
@@ -139,6 +140,31 @@ describe("ObjectEditor", () => {
     expect(server.requests.map((r) => r.base)).toEqual([1, 2, 3]);
     expect(classes(session)).toEqual({ o1: "sofa" });
     expect(editor.busy).toBe(false);
+  });
+
+  it("two new objects made quickly get two ids; a retried one whose id was taken, a free one", async () => {
+    const [first] = editor.newObjectIds(1);
+    const adding = editor.apply(
+      [{ kind: "add_object", id: first ?? "", class: "bed", bbox: [1, 1, 9, 9], source: "manual" }],
+      "add bed",
+    );
+    const [second] = editor.newObjectIds(1);
+    expect([first, second]).toEqual(["d1", "d2"]);
+    await adding;
+    expect(editor.newObjectIds(1)).toEqual(["d2"]); // d1 is in the scene now, d2 free again
+
+    server.refuseNext = "down";
+    const lamp: NewObject = {
+      kind: "add_object",
+      id: "d2",
+      class: "lamp",
+      bbox: [1, 1, 9, 9],
+      source: "manual",
+    };
+    await editor.apply([lamp], "add lamp");
+    await editor.apply([{ ...lamp, id: "d2", class: "desk" }], "add desk"); // took d2
+    await editor.retry();
+    expect(classes(session)).toEqual({ o1: "chair", d1: "bed", d2: "desk", d3: "lamp" });
   });
 
   it("a refused action is kept with its reason until retried (then saved once) or dropped", async () => {

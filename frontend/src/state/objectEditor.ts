@@ -149,6 +149,8 @@ export class ObjectEditor implements Undoable {
   private queue: Promise<unknown> = Promise.resolve();
   private waiting = 0;
   private retryFailed: (() => Promise<unknown>) | null = null;
+  /** Ids of new objects in actions not saved yet. */
+  private readonly reserved = new Set<string>();
   /** Revisions this page had loaded, by number (an undo shows the one it restores at once). */
   private readonly seen = new Map<number, SceneDocument>();
 
@@ -168,10 +170,25 @@ export class ObjectEditor implements Undoable {
     return this.waiting > 0;
   }
 
+  /**
+   * `count` ids for new objects: free in the scene and not given to an action still waiting
+   * (two boxes drawn quickly get two ids).
+   */
+  newObjectIds(count: number): string[] {
+    const used = [...this.session.objects.map((o) => o.id), ...this.reserved];
+    return freshIds(
+      used.map((id) => ({ id })),
+      count,
+    );
+  }
+
   /** Save one action (e.g. "add chair d3"); true once the server has it. */
   apply(edits: readonly ObjectEdit[], label: string): Promise<boolean> {
+    const added = edits.filter((e) => e.kind === "add_object").map((e) => e.id);
+    for (const id of added) this.reserved.add(id);
     return this.enqueue(async () => {
       const sent = await this.send(label, edits, () => this.apply(edits, label));
+      for (const id of added) this.reserved.delete(id);
       if (!sent) return false;
       this.history.record({
         label,
@@ -294,14 +311,17 @@ export class ObjectEditor implements Undoable {
       await saveDone(session);
       const before = session.doc.revision;
       this.remember(session.doc);
+      // A new object's id taken since the action was made (by a retried one) gets a free one;
+      // an edit of an object that is gone goes as it is, for the server to say why not.
+      const sending = rebaseEdits(edits, session.objects).edits ?? [...edits];
       // Redraw now what the action will do; the server's answer replaces it.
-      const predicted = predictDocument(session.doc, edits, (n) => this.seen.get(n));
+      const predicted = predictDocument(session.doc, sending, (n) => this.seen.get(n));
       if (predicted) {
         shown = session.doc;
         session.adopt(predicted);
       }
       try {
-        return this.adopt(label, before, [...edits], await this.post(before, [...edits]), null);
+        return this.adopt(label, before, sending, await this.post(before, sending), null);
       } catch (error) {
         if (!(error instanceof ConflictError) || error.currentRevision === null) throw error;
       }

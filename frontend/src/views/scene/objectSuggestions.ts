@@ -14,14 +14,7 @@ import type { ObjectEditor } from "../../state/objectEditor";
 import { plural, type SceneSession } from "../../state/sceneSession";
 import { isStructural } from "../../state/supportGraph";
 import { frameFor, strokeWidth } from "../photo/arrowGeometry";
-import {
-  addObjectEdit,
-  freshIds,
-  type Offer,
-  offerLabel,
-  offersOf,
-  openOffers,
-} from "./detectionOffers";
+import { addObjectEdit, type Offer, offerLabel, offersOf, openOffers } from "./detectionOffers";
 import "./objectSuggestions.css";
 
 const SCOPE = "Object suggestions";
@@ -273,7 +266,7 @@ export function mountObjectSuggestions(
         : `Adding ${plural(chosen.length, "object")}…`,
     );
     // One undoable action; after a conflict the editor re-sends it on the latest revision.
-    const ids = freshIds(session.objects, chosen.length);
+    const ids = objectEditor.newObjectIds(chosen.length);
     const edits = chosen.map((offer, i) => addObjectEdit(offer, ids[i] as string));
     const names = edits.map((e) => `${e.id} (${e.class})`).join(", ");
     const saved = await objectEditor.apply(edits, `add ${names}`);
