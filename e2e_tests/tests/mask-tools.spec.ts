@@ -243,7 +243,9 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   object = objectIn(await getScene(request, seeded.scene_id), id);
   await expect(page.getByTestId("mask-preview")).toHaveCount(0);
 
-  // Eraser, zoomed in: a stroke across the middle takes those pixels out.
+  // Eraser, zoomed in and in a narrower window: a stroke across the middle takes those pixels
+  // out (drag checks that the live mask still lies over the photo).
+  await page.setViewportSize({ width: 1280, height: 1000 });
   await page.keyboard.press("+");
   await page.keyboard.press("Shift+P");
   await expect(page.getByTestId("photo-tool-eraser")).toHaveAttribute("aria-pressed", "true");

@@ -529,13 +529,15 @@ export function mountMaskTools(tools: PhotoTools): () => void {
     drawPolygon();
   };
   const stopView = host.onView(replace);
-  window.addEventListener("resize", replace);
+  // The photo's size follows its panel (window, side panels), not only the window.
+  const resized = new ResizeObserver(replace);
+  resized.observe(host.svg);
   host.svg.addEventListener("pointerleave", hideCursor);
 
   return () => {
     stopSelect();
     host.svg.removeEventListener("pointerleave", hideCursor);
-    window.removeEventListener("resize", replace);
+    resized.disconnect();
     for (const remove of removers) remove();
     preview.hide();
     stopView();
