@@ -13,6 +13,7 @@ import { LiveLayer, type Sheet } from "./liveLayer";
 import { MaskRaster, type PixelRect, type Point } from "./maskPainting";
 import { MaskPreview } from "./maskPreview";
 import type { ImagePoint, PhotoTool, PhotoTools } from "./photoTools";
+import { intoPhoto, refineBox } from "./refineBox";
 import "./maskTools.css";
 
 export const BRUSH_KEY = "P";
@@ -353,28 +354,9 @@ export function mountMaskTools(tools: PhotoTools): () => void {
     if (points.length === 1) context.lineTo(points[0]?.[0] ?? 0, (points[0]?.[1] ?? 0) + 0.01);
     context.stroke();
   };
-  /** The point moved into the photo (the server takes no stroke outside it). */
-  const inPhoto = ([x, y]: ImagePoint): Point => [
-    Math.min(host.width, Math.max(0, x)),
-    Math.min(host.height, Math.max(0, y)),
-  ];
-  /** The box GrabCut works in: the object's box when refining began, grown to the foreground. */
-  const refineBox = (): [number, number, number, number] | null => {
-    if (!refine) return null;
-    let [x1, y1, x2, y2] = refine.box;
-    for (const stroke of refine.foreground) {
-      for (const [x, y] of stroke.points) {
-        x1 = Math.min(x1, x - stroke.radius);
-        y1 = Math.min(y1, y - stroke.radius);
-        x2 = Math.max(x2, x + stroke.radius);
-        y2 = Math.max(y2, y + stroke.radius);
-      }
-    }
-    return [Math.max(0, x1), Math.max(0, y1), Math.min(host.width, x2), Math.min(host.height, y2)];
-  };
   const runRefine = async () => {
-    const box = refineBox();
-    if (!refine || !box) return;
+    if (!refine) return;
+    const box = refineBox(refine.box, refine.foreground, photo);
     const { objectId, foreground, background } = refine;
     const ticket = ++refineRequest;
     const started = performance.now();
@@ -415,13 +397,13 @@ export function mountMaskTools(tools: PhotoTools): () => void {
         refine = { objectId: object.id, box: [x1, y1, x2, y2], foreground: [], background: [] };
       }
       const background = event.altKey;
-      refineStroke = { points: [inPhoto(at)], background };
+      refineStroke = { points: [intoPhoto(at, photo)], background };
       drawStroke(refineStroke, 0);
     },
     move(at) {
       placeCursor(at);
       if (!refineStroke) return;
-      const next = inPhoto(at);
+      const next = intoPhoto(at, photo);
       const last = refineStroke.points[refineStroke.points.length - 1] as Point;
       // Points closer than a quarter brush add nothing to the stroke's shape.
       if (Math.hypot(next[0] - last[0], next[1] - last[1]) < Math.max(1, brush.radius / 4)) return;
