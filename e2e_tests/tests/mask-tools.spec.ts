@@ -50,13 +50,14 @@ async function toScreen(page: Page, [x, y]: Xy): Promise<{ x: number; y: number 
 /**
  * Press at the first point, move through the others in steps, release; returns the saved
  * document. A brush's mask is shown while the button is down (`live`); a refine waits for the
- * server.
+ * server. `screenshot`: a picture taken before the release.
  */
 async function drag(
   page: Page,
   sceneId: string,
   points: Xy[],
   live = true,
+  screenshot: string | null = null,
 ): Promise<SceneDocument> {
   const saved = waitForEdit(page, sceneId);
   const [first, ...rest] = points;
@@ -68,6 +69,7 @@ async function drag(
     const at = await toScreen(page, point);
     await page.mouse.move(at.x, at.y, { steps: 6 });
   }
+  if (screenshot) await page.screenshot({ path: path.join(SCREENSHOTS, screenshot) });
   if (live) {
     // The live mask covers the photo exactly (at any zoom).
     const preview = await page.getByTestId("mask-preview").boundingBox();
@@ -176,7 +178,13 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   expect(maskHas(target.mask, outside)).toBe(false);
   const revisionsBefore = (await getRevisions(request, seeded.scene_id)).length;
   await recordRedraws(page);
-  const brushed = await drag(page, seeded.scene_id, [[x2 - 10, midY], [x2 + 20, midY], outside]);
+  const brushed = await drag(
+    page,
+    seeded.scene_id,
+    [[x2 - 10, midY], [x2 + 20, midY], outside],
+    true,
+    "mask-tools-brush-live.png",
+  );
   let object = objectIn(brushed, id);
   expect(object.mask?.source).toBe("manual");
   expect(maskHas(object.mask, outside)).toBe(true);
