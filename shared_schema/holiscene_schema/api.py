@@ -252,6 +252,11 @@ class Job(SchemaModel):
     result_model_id: str | None = Field(
         default=None, description="Retrain jobs: the model they registered"
     )
+    started_by: str | None = Field(
+        default=None,
+        description="Who asked for the job: an account's name, or 'import' (unknown for jobs "
+        "from before this was recorded)",
+    )
     created_at: datetime
     finished_at: datetime | None = None
 

@@ -498,6 +498,10 @@ result_revision: (number | null)
  */
 scene_id: (string | null)
 stage: (string | null)
+/**
+ * Who asked for the job: an account's name, or 'import' (unknown for jobs from before this was recorded)
+ */
+started_by: (string | null)
 status: ("queued" | "running" | "succeeded" | "failed")
 }
 /**

@@ -100,6 +100,8 @@ class Workbench:
         # imports queued behind it; one at a time (RetrainRunningError otherwise).
         self._training = ThreadPoolExecutor(max_workers=1, thread_name_prefix="retrain")
         self._retrain_lock = threading.Lock()
+        # The queue bound's count and the insert after it, one request at a time.
+        self._queue_lock = threading.Lock()
         self._stop = threading.Event()
 
     def _offer_shipped_detectors(self) -> None:
@@ -183,17 +185,27 @@ class Workbench:
     def import_scene(
         self, inputs: InputFiles, name: str, author: str, run_pipeline: bool = True
     ) -> ImportResult:
+        if run_pipeline:  # a full queue refuses the import before its scene is stored
+            self.jobs.check_queue_room(self.settings.max_queued_jobs)
         summary = self.scenes.create(inputs, imported_scene(inputs, name), author)
-        job = self.start_pipeline(summary.id) if run_pipeline else None
+        job = self.start_pipeline(summary.id, author) if run_pipeline else None
         return ImportResult(scene=summary.model_copy(update={"latest_job": job}), job=job)
 
-    def start_pipeline(self, scene_id: str) -> Job:
+    def start_pipeline(self, scene_id: str, started_by: str) -> Job:
+        """Queue a pipeline job on the scene's latest revision. SceneJobRunningError when the
+        scene has a job waiting or running, JobQueueFullError when the queue is full."""
         revision = self.scenes.summary(scene_id).revision
-        job = self.jobs.create(scene_id, revision)
+        return self._queue(scene_id, revision, "pipeline", started_by)
+
+    def _queue(self, scene_id: str, revision: int, kind: JobKind, started_by: str) -> Job:
+        with self._queue_lock:
+            job = self.jobs.create(
+                scene_id, revision, kind, started_by, max_waiting=self.settings.max_queued_jobs
+            )
         self._executor.submit(self.run_job, job.id)
         return job
 
-    def start_placement(self, scene_id: str) -> Job:
+    def start_placement(self, scene_id: str, started_by: str) -> Job:
         """Queue a placement job: the stages after the layout, on the current revision's
         camera, layout, masks and supports (after a person moved the layout)."""
         current = self.scenes.document(scene_id)
@@ -203,9 +215,7 @@ class Workbench:
             raise PlacementNotPossibleError(
                 "the scene has no camera pitch/roll or room layout yet: run the whole pipeline"
             )
-        job = self.jobs.create(scene_id, current.revision, kind="placement")
-        self._executor.submit(self.run_job, job.id)
-        return job
+        return self._queue(scene_id, current.revision, "placement", started_by)
 
     def start_retrain(self, request: RetrainRequest, kind: ModelKind = "relation") -> Job:
         """Queue a retrain job of a kind of model (admin). NotEnoughLabelsError when too few
@@ -215,7 +225,7 @@ class Workbench:
         else:
             check_can_retrain(self.scenes)
         with self._retrain_lock:
-            job = self.jobs.create_retrain(RETRAIN_JOB_KINDS[kind])
+            job = self.jobs.create_retrain(RETRAIN_JOB_KINDS[kind], started_by=request.author)
         retrain: TrainingJob
         if kind == "detector":
             retrain = self.retrain_detector_job(job.id, request)
@@ -308,7 +318,7 @@ class Workbench:
     def import_folder(self, folder: Path, name: str | None = None) -> ImportResult:
         """Import an input folder and run the pipeline on it now (for demo data and scripts)."""
         result = self.import_scene(read_input_folder(folder), name or folder.name, "import", False)
-        job = self.jobs.create(result.scene.id, result.scene.revision)
+        job = self.jobs.create(result.scene.id, result.scene.revision, started_by="import")
         self.run_job(job.id)
         finished = self.jobs.get(job.id)
         return ImportResult(scene=self.scenes.summary(result.scene.id, finished), job=finished)

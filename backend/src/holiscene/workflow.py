@@ -157,6 +157,23 @@ def check_pipeline_allowed(status: SceneStatus) -> None:
         )
 
 
+def check_job_allowed(status: SceneStatus, actor: Actor) -> None:
+    """Pipeline and placement jobs rewrite the scene's layout and placement, which would make
+    its annotator's next save stale: on a scene someone holds, only they may start one, or an
+    admin (who may take any scene over too)."""
+    check_pipeline_allowed(status)
+    holder = status.assignee
+    if (
+        status.state in ("in_annotation", "rejected")
+        and holder not in (None, actor.name)
+        and not has_role(actor.role, "admin")
+    ):
+        raise WorkflowError(
+            f"{holder} is annotating this scene: only they (or an admin) can run the pipeline "
+            "or re-place objects on it"
+        )
+
+
 def describe(state: SceneState) -> str:
     return state.replace("_", " ")
 

@@ -1,6 +1,7 @@
 """Migrations on databases written by earlier versions: 0003 on scenes stored before accounts
 and states existed, 0004 on accounts and sessions stored before idle timeouts and disabling,
-0005 on scenes without objects stored as the least uncertain."""
+0005 on scenes without objects stored as the least uncertain, 0007 on scenes with several
+jobs waiting."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ from alembic.config import Config
 from holiscene.core.db import MIGRATIONS_DIR, make_engine
 from holiscene.core.settings import Settings
 from sqlalchemy import Engine, inspect, text
+from sqlalchemy.exc import IntegrityError
 
 from .scenes import make_scene
 
@@ -146,3 +148,49 @@ def test_scenes_without_objects_become_the_most_uncertain(engine: Engine) -> Non
     assert uncertainties() == {"objects": 0.85, "empty": 1.0, "walls": 1.0}
     _migrate(engine, "0004", step=command.downgrade)
     assert uncertainties() == {"objects": 0.85, "empty": 0.0, "walls": 0.0}
+
+
+def test_a_scene_keeps_only_its_newest_waiting_job(engine: Engine) -> None:
+    """0007: a scene may have one pipeline or placement job queued or running; of several
+    from before, the newest stays and the others are failed, saying why."""
+    _migrate(engine, "0006")
+    jobs = {
+        "old": ("pipeline", "queued", "2026-01-01 10:00:00"),
+        "older": ("placement", "running", "2026-01-01 09:00:00"),
+        "newest": ("pipeline", "queued", "2026-01-01 11:00:00"),
+        "done": ("pipeline", "succeeded", "2026-01-01 12:00:00"),
+    }
+    with engine.begin() as connection:
+        connection.execute(
+            text(
+                "INSERT INTO scenes (id, name, created_at, updated_at, current_revision, "
+                "image_file, width, height, object_count, state, annotation_round) VALUES "
+                "('s', 's', '2026-01-01', '2026-01-01', 1, 'img.png', 64, 48, 0, 'new', 1)"
+            )
+        )
+        for job_id, (kind, status, created) in jobs.items():
+            connection.execute(
+                text(
+                    "INSERT INTO jobs (id, scene_id, kind, status, progress, created_at) "
+                    "VALUES (:id, 's', :kind, :status, 0, :created)"
+                ),
+                {"id": job_id, "kind": kind, "status": status, "created": created},
+            )
+    _migrate(engine, "head")
+    with engine.connect() as connection:
+        rows = connection.execute(text("SELECT id, status, error, started_by FROM jobs")).all()
+    statuses = {row[0]: row[1] for row in rows}
+    assert statuses == {"old": "failed", "older": "failed", "newest": "queued", "done": "succeeded"}
+    assert all("a newer job of this scene" in row[2] for row in rows if row[0] in ("old", "older"))
+    assert {row[3] for row in rows} == {None}  # nobody knows who started them
+
+    # The database itself refuses a second waiting job on the scene now.
+    with pytest.raises(IntegrityError), engine.begin() as connection:
+        connection.execute(
+            text(
+                "INSERT INTO jobs (id, scene_id, kind, status, progress, created_at) "
+                "VALUES ('second', 's', 'placement', 'queued', 0, '2026-01-02')"
+            )
+        )
+    _migrate(engine, "0006", step=command.downgrade)
+    assert "started_by" not in {c["name"] for c in inspect(engine).get_columns("jobs")}

@@ -3,14 +3,17 @@ gets it, the other is told who did (409), and the history holds one claim."""
 
 from __future__ import annotations
 
-import threading
 from typing import Any
 
 import pytest
 from httpx import Response
 
+from .at_once import at_once
 from .conftest import Accounts
 from .scenes import store_predicted_scene
+
+# Store and workflow behaviour: on both databases (databases.py).
+pytestmark = pytest.mark.both_databases
 
 TRIES = 8
 
@@ -31,30 +34,11 @@ def _edit(accounts: Accounts, who: str, scene_id: str) -> Response:
     )
 
 
-def _at_once(accounts: Accounts, scene_id: str, *requests: tuple[Any, str]) -> list[Response]:
-    """Run each (request, who) in its own thread, released together by a barrier."""
-    barrier = threading.Barrier(len(requests))
-    answers: list[Response | None] = [None] * len(requests)
-
-    def run(index: int) -> None:
-        request, who = requests[index]
-        barrier.wait()
-        answers[index] = request(accounts, who, scene_id)
-
-    threads = [threading.Thread(target=run, args=(i,)) for i in range(len(requests))]
-    for thread in threads:
-        thread.start()
-    for thread in threads:
-        thread.join(timeout=60)
-    assert all(a is not None for a in answers), "a request did not come back"
-    return [a for a in answers if a is not None]
-
-
 @pytest.mark.parametrize("second", [_take, _edit], ids=["take-take", "take-edit"])
 def test_of_two_annotators_taking_at_once_exactly_one_wins(accounts: Accounts, second: Any) -> None:
     for _ in range(TRIES):
         scene_id = store_predicted_scene(accounts.workbench.scenes)
-        ann, bob = _at_once(accounts, scene_id, (_take, "ann"), (second, "bob"))
+        ann, bob = at_once(accounts, scene_id, (_take, "ann"), (second, "bob"))
         assert sorted([ann.status_code, bob.status_code]) == [200, 409], (ann.text, bob.text)
         winner, loser = ("ann", bob) if ann.status_code == 200 else ("bob", ann)
         detail = loser.json()["detail"]

@@ -11,7 +11,12 @@ from ..inputs import InputError
 from ..pipeline import PipelineBuildError
 from ..retraining import NotEnoughLabelsError
 from ..segmentation.refine import RefineInputError
-from ..store.jobs import JobNotFoundError, RetrainRunningError
+from ..store.jobs import (
+    JobNotFoundError,
+    JobQueueFullError,
+    RetrainRunningError,
+    SceneJobRunningError,
+)
 from ..store.models import ModelNotFoundError
 from ..store.scenes import RevisionConflictError, SceneNotFoundError
 from ..workbench import PlacementNotPossibleError
@@ -44,8 +49,13 @@ def install_error_handlers(app: FastAPI) -> None:
         return JSONResponse({"detail": detail}, status_code=409)
 
     @app.exception_handler(RetrainRunningError)
-    async def _retrain_running(_: Request, exc: RetrainRunningError) -> JSONResponse:
+    @app.exception_handler(SceneJobRunningError)
+    async def _job_running(_: Request, exc: Exception) -> JSONResponse:
         return JSONResponse({"detail": str(exc)}, status_code=409)
+
+    @app.exception_handler(JobQueueFullError)
+    async def _queue_full(_: Request, exc: JobQueueFullError) -> JSONResponse:
+        return JSONResponse({"detail": str(exc)}, status_code=503, headers={"Retry-After": "60"})
 
     @app.exception_handler(RefineInputError)
     async def _refine(_: Request, exc: RefineInputError) -> JSONResponse:

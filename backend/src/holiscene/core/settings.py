@@ -21,6 +21,9 @@ class Settings(BaseSettings):
     port: int = 8000
     max_upload_mb: int = 50
     models_dir: Path | None = None  # the user's own models: <class>/*.obj|glb|ply
+    # Pipeline and placement jobs queued or running at once, on all scenes (503 beyond): one
+    # worker runs them, so a longer queue only means longer waits.
+    max_queued_jobs: int = Field(default=20, gt=0)
     # A login session ends after this long without a request (each request moves it on).
     session_idle_hours: float = Field(default=8.0, gt=0)
 

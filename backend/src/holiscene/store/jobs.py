@@ -7,6 +7,7 @@ import uuid
 
 from holiscene_schema import Job, JobKind
 from sqlalchemy import Engine, func, select, update
+from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
 from .clock import as_utc, utcnow
@@ -29,6 +30,33 @@ class RetrainRunningError(Exception):
         self.job_id = job_id
 
 
+# Jobs on one scene; at most one of them waits or runs per scene (migration 0007).
+SCENE_JOB_KINDS: tuple[JobKind, ...] = ("pipeline", "placement")
+_WAITING = ("queued", "running")
+
+
+class SceneJobRunningError(Exception):
+    """A scene's pipeline or placement job is already queued or running (HTTP 409): a second
+    one would rewrite the scene under the first."""
+
+    def __init__(self, job_id: str) -> None:
+        super().__init__(
+            f"a pipeline or placement job is already queued or running on this scene "
+            f"({job_id}); wait for it to finish"
+        )
+        self.job_id = job_id
+
+
+class JobQueueFullError(Exception):
+    """Too many pipeline and placement jobs wait already (HTTP 503): one worker runs them."""
+
+    def __init__(self, waiting: int) -> None:
+        super().__init__(
+            f"{waiting} pipeline jobs are queued or running, the most this server takes; "
+            "try again when some have finished"
+        )
+
+
 # A job's log keeps its newest lines within this many characters (a long training run
 # reports every epoch; the page only needs the recent ones and the start).
 MAX_LOG_CHARS = 20_000
@@ -38,11 +66,55 @@ class JobStore:
     def __init__(self, engine: Engine) -> None:
         self.engine = engine
 
-    def create(self, scene_id: str, base_revision: int, kind: JobKind = "pipeline") -> Job:
-        """A queued pipeline job (or placement job) on a scene's revision."""
-        return self._create(JobRow(scene_id=scene_id, kind=kind, base_revision=base_revision))
+    def create(
+        self,
+        scene_id: str,
+        base_revision: int,
+        kind: JobKind = "pipeline",
+        started_by: str | None = None,
+        max_waiting: int | None = None,
+    ) -> Job:
+        """A queued pipeline job (or placement job) on a scene's revision. SceneJobRunningError
+        when the scene has one queued or running (the database refuses a second);
+        JobQueueFullError when `max_waiting` of them wait on all scenes (the caller serialises
+        this count and the insert with a lock)."""
+        if kind not in SCENE_JOB_KINDS:
+            raise ValueError(f"{kind!r} is not a scene job kind")
+        with Session(self.engine) as session:
+            if max_waiting is not None:
+                _check_queue_room(session, max_waiting)
+            row = self._new(
+                JobRow(
+                    scene_id=scene_id, kind=kind, base_revision=base_revision, started_by=started_by
+                )
+            )
+            session.add(row)
+            try:
+                session.commit()
+            except IntegrityError as exc:
+                session.rollback()
+                running = self._waiting_on(session, scene_id)
+                if running is None:  # not the one-job index: some other fault
+                    raise
+                raise SceneJobRunningError(running) from exc
+            return _job(row)
 
-    def create_retrain(self, kind: JobKind = "retrain") -> Job:
+    def check_queue_room(self, max_waiting: int) -> None:
+        """JobQueueFullError when `max_waiting` pipeline or placement jobs wait or run."""
+        with Session(self.engine) as session:
+            _check_queue_room(session, max_waiting)
+
+    @staticmethod
+    def _waiting_on(session: Session, scene_id: str) -> str | None:
+        return session.scalar(
+            select(JobRow.id).where(
+                JobRow.scene_id == scene_id,
+                JobRow.kind.in_(SCENE_JOB_KINDS),
+                JobRow.status.in_(_WAITING),
+            )
+        )
+
+    def create_retrain(self, kind: JobKind = "retrain", started_by: str | None = None) -> Job:
         """A queued retrain job ("retrain": the Relation Network, "detector_retrain": the object
         detector), unless a retrain job of either kind is queued or running: then
         RetrainRunningError.
@@ -59,14 +131,10 @@ class JobStore:
             )
             if running is not None:
                 raise RetrainRunningError(running)
-            row = self._new(JobRow(scene_id=None, kind=kind, base_revision=None))
+            row = self._new(
+                JobRow(scene_id=None, kind=kind, base_revision=None, started_by=started_by)
+            )
             session.add(row)
-            session.commit()
-            return _job(row)
-
-    def _create(self, row: JobRow) -> Job:
-        with Session(self.engine) as session:
-            session.add(self._new(row))
             session.commit()
             return _job(row)
 
@@ -172,6 +240,16 @@ class JobStore:
             session.commit()
 
 
+def _check_queue_room(session: Session, max_waiting: int) -> None:
+    waiting = session.scalar(
+        select(func.count())
+        .select_from(JobRow)
+        .where(JobRow.kind.in_(SCENE_JOB_KINDS), JobRow.status.in_(_WAITING))
+    )
+    if waiting is not None and waiting >= max_waiting:
+        raise JobQueueFullError(waiting)
+
+
 def _job(row: JobRow) -> Job:
     return Job(
         id=row.id,
@@ -186,6 +264,7 @@ def _job(row: JobRow) -> Job:
         base_revision=row.base_revision,
         result_revision=row.result_revision,
         result_model_id=row.result_model_id,
+        started_by=row.started_by,
         created_at=as_utc(row.created_at),
         finished_at=as_utc(row.finished_at) if row.finished_at else None,
     )

@@ -5,7 +5,18 @@ from __future__ import annotations
 from datetime import datetime
 from typing import Any
 
-from sqlalchemy import JSON, DateTime, Float, ForeignKey, Integer, String, Text, UniqueConstraint
+from sqlalchemy import (
+    JSON,
+    DateTime,
+    Float,
+    ForeignKey,
+    Index,
+    Integer,
+    String,
+    Text,
+    UniqueConstraint,
+    text,
+)
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column
 
 
@@ -49,8 +60,22 @@ class RevisionRow(Base):
     scene: Mapped[dict[str, Any]] = mapped_column(JSON)
 
 
+# A scene's pipeline or placement job waiting or running (migration 0007): at most one each,
+# which the database itself enforces (two requests at once cannot both queue one).
+WAITING_SCENE_JOB = text("status IN ('queued', 'running') AND kind IN ('pipeline', 'placement')")
+
+
 class JobRow(Base):
     __tablename__ = "jobs"
+    __table_args__ = (
+        Index(
+            "uq_jobs_one_waiting_per_scene",
+            "scene_id",
+            unique=True,
+            sqlite_where=WAITING_SCENE_JOB,
+            postgresql_where=WAITING_SCENE_JOB,
+        ),
+    )
 
     id: Mapped[str] = mapped_column(String(32), primary_key=True)
     # Retrain jobs belong to no scene (migration 0002 made this nullable).
@@ -69,6 +94,9 @@ class JobRow(Base):
     result_model_id: Mapped[str | None] = mapped_column(String(32), nullable=True)
     created_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
     finished_at: Mapped[datetime | None] = mapped_column(DateTime(timezone=True), nullable=True)
+    # Who asked for it: an account (or the local user), or "import" (migration 0007; NULL
+    # for jobs from before).
+    started_by: Mapped[str | None] = mapped_column(String(64), nullable=True)
 
 
 class ModelRow(Base):

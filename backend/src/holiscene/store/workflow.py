@@ -87,9 +87,10 @@ class WorkflowStore:
                 )
             return workflow.edit_refusal(status_of(row), actor, _earlier_annotators(session, row))
 
-    def check_pipeline_allowed(self, scene_id: str) -> None:
+    def check_job_allowed(self, scene_id: str, actor: Actor) -> None:
+        """WorkflowError when the actor may not start a pipeline or placement job now."""
         with Session(self.engine) as session:
-            workflow.check_pipeline_allowed(status_of(_row(session, scene_id)))
+            workflow.check_job_allowed(status_of(_row(session, scene_id)), actor)
 
     # -- annotators ----------------------------------------------------------------------
 

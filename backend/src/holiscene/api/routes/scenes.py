@@ -109,25 +109,34 @@ def get_glb(scene_id: str, workbench: WorkbenchDep) -> FileResponse:
     return FileResponse(path, media_type="model/gltf-binary", filename=f"{name}.glb")
 
 
-@router.post("/{scene_id}/pipeline-jobs", status_code=202, response_model=Job, responses=_ERRORS)
-def run_pipeline_job(scene_id: str, workbench: WorkbenchDep, _: AnnotatorDep) -> Job:
-    workbench.workflow.check_pipeline_allowed(scene_id)  # 409 while submitted or accepted
-    return workbench.start_pipeline(scene_id)
+_JOB_ERRORS: dict[int | str, dict[str, object]] = {
+    409: {"model": ErrorMessage},
+    503: {"model": ErrorMessage},
+    **_ERRORS,
+}
 
 
 @router.post(
-    "/{scene_id}/placement-jobs",
-    status_code=202,
-    response_model=Job,
-    responses={409: {"model": ErrorMessage}, **_ERRORS},
+    "/{scene_id}/pipeline-jobs", status_code=202, response_model=Job, responses=_JOB_ERRORS
 )
-def run_placement_job(scene_id: str, workbench: WorkbenchDep) -> Job:
+def run_pipeline_job(scene_id: str, workbench: WorkbenchDep, user: AnnotatorDep) -> Job:
+    """Run the pipeline again on the latest revision. 409 while the scene is submitted or
+    accepted, while another annotator holds it (admins may), or while it has a job queued or
+    running; 503 when the server's job queue is full."""
+    workbench.workflow.check_job_allowed(scene_id, user)
+    return workbench.start_pipeline(scene_id, user.name)
+
+
+@router.post(
+    "/{scene_id}/placement-jobs", status_code=202, response_model=Job, responses=_JOB_ERRORS
+)
+def run_placement_job(scene_id: str, workbench: WorkbenchDep, user: AnnotatorDep) -> Job:
     """Place the objects again (heights, 3D boxes, shapes, scene.glb) on the current revision's
     camera and room layout, after a person changed them; the result is a new revision, stored
     only if nobody saved the scene meanwhile (else the job fails and nothing is overwritten).
-    409 while the scene is submitted or accepted."""
-    workbench.workflow.check_pipeline_allowed(scene_id)
-    return workbench.start_placement(scene_id)
+    Refused as a pipeline run is (409, 503)."""
+    workbench.workflow.check_job_allowed(scene_id, user)
+    return workbench.start_placement(scene_id, user.name)
 
 
 @router.post(
