@@ -49,3 +49,14 @@ def test_of_two_annotators_taking_at_once_exactly_one_wins(accounts: Accounts, s
         assert (flow.state, flow.assignee) == ("in_annotation", winner)
         claims = [e for e in flow.events if e.action == "claim"]
         assert [c.actor for c in claims] == [winner]
+
+
+def test_the_same_annotator_taking_twice_at_once_gets_it_once(accounts: Accounts) -> None:
+    """Two tabs of one annotator: both succeed (the scene is theirs), one claim."""
+    for _ in range(TRIES):
+        scene_id = store_predicted_scene(accounts.workbench.scenes)
+        answers = at_once(accounts, scene_id, (_take, "ann"), (_take, "ann"))
+        assert [a.status_code for a in answers] == [200, 200], [a.text for a in answers]
+        flow = accounts.workbench.workflow.scene_workflow(scene_id)
+        assert (flow.state, flow.assignee) == ("in_annotation", "ann")
+        assert [e.actor for e in flow.events if e.action == "claim"] == ["ann"]

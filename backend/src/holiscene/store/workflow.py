@@ -111,8 +111,10 @@ class WorkflowStore:
             transition = workflow.take_for_annotation(
                 status_of(row), actor, _earlier_annotators(session, row)
             )
-            if transition is not None:
-                _take_or_refuse(session, row, transition, actor, revision)
+            if transition is not None and not _apply_if_unchanged(
+                session, row, transition, actor, revision
+            ):
+                raise WorkflowError("the scene changed meanwhile; reload it and try again")
 
         return self.scenes.apply_edits(scene_id, request, hook=take)
 
@@ -124,8 +126,11 @@ class WorkflowStore:
                 status_of(row), actor, _earlier_annotators(session, row)
             )
             if transition is not None:
-                _take_or_refuse(session, row, transition, actor, row.current_revision)
-                session.commit()
+                if _apply_if_unchanged(session, row, transition, actor, row.current_revision):
+                    session.commit()
+                else:
+                    session.rollback()
+                    _refuse_unless_taken_by(session, scene_id, actor)
         return self.scenes.summary(scene_id)
 
     def next_scene(self, actor: Actor) -> SceneSummary:
@@ -420,21 +425,15 @@ def _apply_if_unchanged(
     return True
 
 
-def _take_or_refuse(
-    session: Session, row: SceneRow, transition: Transition, actor: Actor, revision: int
-) -> None:
-    """Take the scene only if nobody changed its state, holder or revision since `row` was
-    read (two annotators taking at once: one wins, the other gets WorkflowError, 409)."""
-    if _apply_if_unchanged(session, row, transition, actor, revision):
+def _refuse_unless_taken_by(session: Session, scene_id: str, actor: Actor) -> None:
+    """After a take lost its compare-and-set: fine if the actor holds the scene now (their
+    own take from another tab won), else WorkflowError saying who does."""
+    now = _row(session, scene_id)
+    if now.state == "in_annotation" and now.assignee == actor.name:
         return
-    session.rollback()
-    now = session.get(SceneRow, row.id, populate_existing=True)
-    holder = now.assignee if now is not None else None
-    raise WorkflowError(
-        f"{holder} took this scene first"
-        if holder and holder != actor.name
-        else "the scene changed meanwhile; reload it and try again"
-    )
+    if now.assignee and now.assignee != actor.name:
+        raise WorkflowError(f"{now.assignee} took this scene first")
+    raise WorkflowError("the scene changed meanwhile; reload it and try again")
 
 
 def _as_action(value: str) -> WorkflowAction:
