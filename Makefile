@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: surface-model coco-detector detector-model bench-detector bench-refine calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
+.PHONY: surface-model coco-detector detector-model bench-detector bench-refine bench-writers calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -109,6 +109,10 @@ detector-model: install-python
 bench-detector: install-python
 	$(PY) benchmarks/bench_detector.py --model backend/src/holiscene/learning/coco_detector \
 		--model backend/src/holiscene/learning/nyu_detector
+
+# Save latency with 20 annotators at once, on SQLite and on a scratch PostgreSQL (docs/database.md).
+bench-writers: install-python install-postgres
+	$(PY) benchmarks/bench_writers.py
 
 # The mask tools' refine call (GrabCut steered by strokes) on 400x400 boxes of the real photos.
 bench-refine: install-python
