@@ -46,7 +46,7 @@ from .store.models import KIND_FOLDERS, ModelNotFoundError, ModelStore, Registra
 from .store.scenes import SceneChangedError, SceneStore
 from .store.users import UserStore
 from .store.workflow import WorkflowStore
-from .workflow import WorkflowError
+from .workflow import LOCAL_USER, Actor, WorkflowError
 
 log = logging.getLogger(__name__)
 
@@ -272,6 +272,8 @@ class Workbench:
         try:
             if job.scene_id is None or job.base_revision is None:
                 raise ValueError(f"job {job_id} is not a pipeline job")
+            # Someone may have taken the scene while the job waited in the queue.
+            self.workflow.check_job_allowed(job.scene_id, self.job_starter(job))
             folder = self.scenes.files.folder(job.scene_id)
             placement = job.kind == "placement"
             # A placement job: the revision it was asked on (the layout the person saw when
@@ -314,6 +316,15 @@ class Workbench:
         except Exception as exc:
             log.exception("pipeline job %s failed", job_id)  # the traceback: for the admin
             self.jobs.fail(job_id, f"{user_facing_error(exc)} (details in the server log)")
+
+    def job_starter(self, job: Job) -> Actor:
+        """Who started a job, with their role now: the local user plays every part; a name
+        without an account ("import", or a job from before this was recorded) may do what an
+        annotator may."""
+        name = job.started_by or "import"
+        if name == LOCAL_USER:
+            return Actor(LOCAL_USER, "admin", local=True)
+        return Actor(name, self.users.roles().get(name, "annotator"))
 
     def import_folder(self, folder: Path, name: str | None = None) -> ImportResult:
         """Import an input folder and run the pipeline on it now (for demo data and scripts)."""

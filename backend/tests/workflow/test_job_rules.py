@@ -13,6 +13,7 @@ from collections.abc import Iterator
 
 import pytest
 from holiscene.store.tables import JobRow
+from holiscene_schema import Job
 from httpx import Response
 from sqlalchemy import select
 from sqlalchemy.orm import Session
@@ -21,9 +22,9 @@ from .at_once import at_once
 from .conftest import Accounts
 from .scenes import store_predicted_scene
 
-
 # Store and workflow behaviour: on both databases (databases.py).
 pytestmark = pytest.mark.both_databases
+
 
 @pytest.fixture()
 def busy_worker(accounts: Accounts) -> Iterator[threading.Event]:
@@ -77,6 +78,23 @@ def test_jobs_on_a_scene_another_annotator_holds_are_refused(
     assert read.json()["started_by"] == "ada"
 
 
+def test_a_job_that_waited_while_the_scene_was_taken_does_not_run(
+    accounts: Accounts, busy_worker: threading.Event
+) -> None:
+    scene_id = store_predicted_scene(accounts.workbench.scenes)
+    queued = _start(accounts, "bob", scene_id)  # nobody holds it yet: allowed
+    assert queued.status_code == 202, queued.text
+    taken = accounts.client.post(f"/api/scenes/{scene_id}/take", headers=accounts.headers("ann"))
+    assert taken.status_code == 200, taken.text
+    revision = accounts.workbench.scenes.summary(scene_id).revision
+
+    busy_worker.set()
+    job = _wait_finished(accounts, queued.json()["id"])
+    assert job.status == "failed"
+    assert job.error is not None and "ann is annotating this scene" in job.error
+    assert accounts.workbench.scenes.summary(scene_id).revision == revision
+
+
 def test_one_job_per_scene_at_a_time(accounts: Accounts, busy_worker: threading.Event) -> None:
     scene_id = store_predicted_scene(accounts.workbench.scenes)
     first = _start(accounts, "ann", scene_id)
@@ -117,8 +135,9 @@ def test_the_job_queue_is_bounded(accounts: Accounts, busy_worker: threading.Eve
     assert _start(accounts, "ann", scenes[3]).status_code == 202
 
 
-def _wait_finished(accounts: Accounts, job_id: str, timeout: float = 120.0) -> None:
+def _wait_finished(accounts: Accounts, job_id: str, timeout: float = 120.0) -> Job:
     deadline = time.monotonic() + timeout
-    while accounts.workbench.jobs.get(job_id).status in ("queued", "running"):
+    while (job := accounts.workbench.jobs.get(job_id)).status in ("queued", "running"):
         assert time.monotonic() < deadline, f"job {job_id} did not finish in {timeout} s"
         time.sleep(0.05)
+    return job
