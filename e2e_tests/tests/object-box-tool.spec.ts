@@ -25,6 +25,10 @@ test("boxes drawn on an empty photo become objects with masks and supporters", a
   // The box tool by its key; a drag where there is no object draws a box.
   await page.keyboard.press("b");
   await expect(page.getByTestId("photo-tool-box")).toHaveAttribute("aria-pressed", "true");
+  // Escape gives the tool back (the page's own Escape, clearing the selection, must not win).
+  await page.keyboard.press("Escape");
+  await expect(page.getByTestId("photo-tool-select")).toHaveAttribute("aria-pressed", "true");
+  await page.keyboard.press("b");
   const a = await screenPoint(page, 150, 190);
   const b = await screenPoint(page, 625, 525);
   await page.mouse.move(a.x, a.y);

@@ -192,12 +192,20 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
   svg.addEventListener("click", onClick, true);
 
   add(selectTool);
-  const removeEscape = registerShortcut({
+  const escapeSpec = {
     keys: "Escape",
     description: "Cancel the photo tool's drawing and go back to Select",
     scope: SCOPE,
     run: () => activate(selectTool.id),
     enabled: () => active !== selectTool,
+  };
+  let removeEscape = registerShortcut(escapeSpec);
+  // The newest enabled registration of a key wins: taking a tool registers Escape again, so
+  // it beats the page's "clear the selection" (mounted later) while a tool is in use.
+  listeners.add((tool) => {
+    if (tool === selectTool) return;
+    removeEscape();
+    removeEscape = registerShortcut(escapeSpec);
   });
   // A scene turning read only drops the editing tools.
   const unsubscribe = host.session.subscribe((change) => {
