@@ -31,12 +31,23 @@ describe("detection offers", () => {
   it("leave out boxes over an object of their class (IoU > 0.5) or a rejected one", () => {
     const objects = [
       object("o1", "chair", [0, 0, 100, 60]), // IoU 0.6 with s3
-      object("o2", "sofa", [300, 0, 400, 100]), // another class over s2
+      object("o2", "sofa", [300, 0, 400, 60]), // another class over s2 (IoU 0.6)
       object("o3", "table", [200, 200, 300, 250]), // IoU exactly 0.5 with s1: still offered
     ];
     expect(openOffers(offers, objects).map((o) => o.key)).toEqual(["s1", "s2"]);
     const rejected = offers.filter((o) => o.key === "s2");
     expect(openOffers(offers, objects, rejected).map((o) => o.key)).toEqual(["s1"]);
+  });
+
+  it("leave out anything at the same place (IoU > 0.7) whatever its class", () => {
+    const crowded = offersOf([
+      box("books", [0, 0, 100, 100], 0.5),
+      box("box", [0, 0, 100, 90], 0.3), // IoU 0.9 with the better "books"
+      box("lamp", [300, 0, 400, 100], 0.4),
+    ]);
+    expect(openOffers(crowded, []).map((o) => o.cls)).toEqual(["books", "lamp"]);
+    const objects = [object("o1", "table", [300, 0, 400, 95])]; // IoU 0.95 with the lamp
+    expect(openOffers(crowded, objects).map((o) => o.cls)).toEqual(["books"]);
   });
 
   it("take new ids that no object has", () => {

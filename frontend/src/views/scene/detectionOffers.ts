@@ -38,12 +38,20 @@ export function offersOf(boxes: readonly DetectedBox[]): Offer[] {
     }));
 }
 
-const overlaps = (offer: Offer, other: { cls: string; bbox: readonly number[] }) =>
-  other.cls === offer.cls && boxIou(offer.bbox, other.bbox) > OVERLAP_IOU;
+/** Above this IoU a box is the same place whatever the classes say (the detector's NMS is per
+ * class, so one thing can come as a "box" and as "books"; an object there is settled: its
+ * class is fixed with the picker, not by adding a twin). */
+export const SAME_PLACE_IOU = 0.7;
+
+const overlaps = (offer: Offer, other: { cls: string; bbox: readonly number[] }) => {
+  const iou = boxIou(offer.bbox, other.bbox);
+  return iou > SAME_PLACE_IOU || (other.cls === offer.cls && iou > OVERLAP_IOU);
+};
 
 /**
  * The offers still worth showing: none overlapping (IoU > 0.5) an object of the scene of the
- * same class, or a box of the same class the user rejected.
+ * same class, or a box of the same class the user rejected, or anything (object, rejected
+ * box, better offer) at the same place (IoU > 0.7) whatever its class.
  */
 export function openOffers(
   offers: readonly Offer[],
@@ -54,7 +62,13 @@ export function openOffers(
     ...objects.map((o) => ({ cls: o.class as string, bbox: o.bbox })),
     ...rejected.map((r) => ({ cls: r.cls, bbox: r.bbox })),
   ];
-  return offers.filter((offer) => !taken.some((t) => overlaps(offer, t)));
+  const open: Offer[] = [];
+  for (const offer of offers) {
+    // Best first: a lower-scored box of another class at the same place is the same thing.
+    const twin = open.some((o) => boxIou(offer.bbox, o.bbox) > SAME_PLACE_IOU);
+    if (!twin && !taken.some((t) => overlaps(offer, t))) open.push(offer);
+  }
+  return open;
 }
 
 /** `count` new object ids d1, d2, ... that no object of the scene has. */
