@@ -429,6 +429,7 @@ def _serve(args: argparse.Namespace) -> int:
     from .api.app import create_app
     from .cli_users import check_can_serve
     from .core.data_dir_owner import DataDirInUseError, own_data_dir
+    from .core.database_owner import DatabaseInUseError, own_database
 
     settings = _settings(args)
     # Owned before anything reads or writes the data: start-up recovery fails unfinished jobs,
@@ -436,7 +437,8 @@ def _serve(args: argparse.Namespace) -> int:
     with contextlib.ExitStack() as held:
         try:
             held.enter_context(own_data_dir(settings.data_dir))
-        except DataDirInUseError as exc:
+            held.enter_context(own_database(settings.resolved_database_url))
+        except (DataDirInUseError, DatabaseInUseError) as exc:
             raise CliError(str(exc)) from exc
         check_can_serve(settings, args.allow_remote)
         uvicorn.run(create_app(settings), host=settings.host, port=settings.port, log_level="info")
