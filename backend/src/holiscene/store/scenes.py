@@ -10,7 +10,6 @@ from __future__ import annotations
 import json
 import uuid
 from collections.abc import Callable, Sequence
-from datetime import datetime
 from pathlib import Path
 from typing import Any
 
@@ -198,7 +197,7 @@ class SceneStore:
         earlier = self._earlier_scenes(scene_id, restore_revisions(request.edits))
         photo = self._photo(scene_id) if needs_photo(request.edits) else None
         edited = apply_edits(base.scene, request.edits, request.author, now, earlier, photo)
-        return self._commit_revision(
+        self._commit_revision(
             scene_id,
             request.base_revision,
             edited,
@@ -208,6 +207,7 @@ class SceneStore:
             edits=request.edits,
             hook=hook,
         )
+        return self.document(scene_id)
 
     def commit_reset(
         self,
@@ -220,7 +220,7 @@ class SceneStore:
     ) -> SceneDocument:
         """A revision that puts the scene back to an earlier state of its supports (for a
         second annotation)."""
-        return self._commit_revision(
+        self._commit_revision(
             scene_id,
             base_revision,
             scene,
@@ -230,6 +230,7 @@ class SceneStore:
             edits=None,
             hook=hook,
         )
+        return self.document(scene_id)
 
     def latest_pipeline_document(self, scene_id: str) -> SceneDocument | None:
         """The newest revision the pipeline wrote, or None."""
@@ -364,10 +365,7 @@ class SceneStore:
         edits: Sequence[Edit] | None,
         glb_revision: int | None = None,
         hook: RevisionHook | None = None,
-    ) -> SceneDocument:
-        """Write revision base_revision + 1 and return it as stored (not read back: a save
-        that lands right after would be returned instead, and every read costs a round trip
-        to the database)."""
+    ) -> None:
         new_revision = base_revision + 1
         values: dict[str, Any] = {
             "current_revision": new_revision,
@@ -388,13 +386,8 @@ class SceneStore:
                 raise RevisionConflictError(self._row(session, scene_id).current_revision)
             if hook is not None:
                 hook(session, new_revision)
-            created_at = self._add_revision(
-                session, scene_id, new_revision, author, kind, summary, edits, scene
-            )
+            self._add_revision(session, scene_id, new_revision, author, kind, summary, edits, scene)
             session.commit()
-        return SceneDocument(
-            scene_id=scene_id, revision=new_revision, updated_at=created_at, scene=scene
-        )
 
     @staticmethod
     def _add_revision(
@@ -406,14 +399,12 @@ class SceneStore:
         summary: str,
         edits: Sequence[Edit] | None,
         scene: Scene,
-    ) -> datetime:
-        """Add the revision's row; returns its time."""
-        created_at = utcnow()
+    ) -> None:
         session.add(
             RevisionRow(
                 scene_id=scene_id,
                 number=number,
-                created_at=created_at,
+                created_at=utcnow(),
                 author=author,
                 kind=kind,
                 summary=summary,
@@ -421,7 +412,6 @@ class SceneStore:
                 scene=scene.model_dump(mode="json"),
             )
         )
-        return created_at
 
     @staticmethod
     def _row(session: Session, scene_id: str) -> SceneRow:

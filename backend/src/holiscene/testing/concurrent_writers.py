@@ -10,6 +10,7 @@ timed; its author name (writer and save number) makes each save findable in the 
 from __future__ import annotations
 
 import json
+import random
 import statistics
 import threading
 import time
@@ -28,6 +29,7 @@ class WriterRun:
     """What the writers did: every saved request's time, and each scene's saves by author."""
 
     writers: int
+    pause_s: float = 0.0
     save_ms: list[float] = field(default_factory=list)
     conflicts: int = 0
     saved: dict[str, set[str]] = field(default_factory=dict)
@@ -48,8 +50,9 @@ class WriterRun:
 
     def describe(self) -> str:
         saves = len(self.save_ms)
+        pace = f", {self.pause_s * 1000:.0f} ms pauses" if self.pause_s else ""
         return (
-            f"{self.writers} writer(s): {saves} saves in {self.seconds:.1f} s, "
+            f"{self.writers} writer(s){pace}: {saves} saves in {self.seconds:.1f} s, "
             f"{self.conflicts} conflicts retried, save p50 {self.p50:.0f} ms, "
             f"p95 {self.p95:.0f} ms"
         )
@@ -84,11 +87,18 @@ def import_scenes(client: TestClient, count: int) -> list[str]:
 
 
 def run_writers(
-    client: TestClient, scene_ids: list[str], writers: int, saves_per_writer: int
+    client: TestClient,
+    scene_ids: list[str],
+    writers: int,
+    saves_per_writer: int,
+    pause_s: float = 0.0,
 ) -> WriterRun:
     """`writers` threads, each saving `saves_per_writer` edits to its scene, all started at
-    once."""
-    run = WriterRun(writers=writers, saved={scene_id: set() for scene_id in scene_ids})
+    once. `pause_s`: a writer's mean pause between its saves (a person works between two;
+    uniform from 0 to twice that, so writers drift apart); 0: back to back."""
+    run = WriterRun(
+        writers=writers, pause_s=pause_s, saved={scene_id: set() for scene_id in scene_ids}
+    )
     lock = threading.Lock()  # guards `run`
     start = threading.Barrier(writers)
 
@@ -97,8 +107,11 @@ def run_writers(
         loaded = client.get(f"/api/scenes/{scene_id}").json()
         objects = [o["id"] for o in loaded["scene"]["objects"]]
         base = loaded["revision"]
+        pauses = random.Random(number)
         start.wait()
         for save in range(saves_per_writer):
+            if save and pause_s:
+                time.sleep(pauses.uniform(0, 2 * pause_s))
             author = f"w{number}-{save}"
             # Alternate the first object's supporter, so each save changes the scene.
             parent = "floor" if save % 2 == 0 else objects[1]
