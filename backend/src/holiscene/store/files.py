@@ -42,7 +42,9 @@ class SceneFiles:
         staging = Path(tempfile.mkdtemp(prefix=f"{STAGING_PREFIX}{scene_id}-", dir=self.root))
         held = os.open(staging, os.O_RDONLY | os.O_DIRECTORY)
         try:
-            try_lock(held)  # a folder made this instant: nobody else can hold it yet
+            # Made this instant: only a server start-up sweeping at this very moment could
+            # take it first, and then this import fails (on its missing folder), nothing worse.
+            try_lock(held)
             yield staging
             os.replace(staging, self.folder(scene_id))
         except BaseException:
