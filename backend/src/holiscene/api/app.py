@@ -8,13 +8,17 @@ from dataclasses import dataclass
 from typing import Any
 
 from fastapi import Depends, FastAPI
-from fastapi.responses import JSONResponse
+from fastapi.openapi.docs import get_swagger_ui_html
+from fastapi.responses import HTMLResponse, JSONResponse
 from fastapi.staticfiles import StaticFiles
 
 from ..core.settings import Settings
 from ..workbench import Workbench
+from .attempt_limits import AttemptLimiter
+from .body_limit import MB, BodySizeLimit
 from .deps import current_user, is_loopback
 from .errors import install_error_handlers
+from .request_origin import RequestOriginCheck
 from .routes import (
     auth,
     detector,
@@ -27,7 +31,17 @@ from .routes import (
     viewer,
     workflow,
 )
+from .security_headers import SecurityHeaders
 from .workflow_errors import install_workflow_error_handlers
+
+# Besides its files, a photo import carries cam_K.txt, detections.json and form fields.
+IMPORT_OVERHEAD_MB = 10
+# The Swagger page loads its scripts and styles from a CDN and starts with an inline script.
+DOCS_CSP = (
+    "default-src 'self'; script-src 'self' 'unsafe-inline' https://cdn.jsdelivr.net; "
+    "style-src 'self' 'unsafe-inline' https://cdn.jsdelivr.net; "
+    "img-src 'self' data: https://fastapi.tiangolo.com; frame-ancestors 'none'"
+)
 
 # The only API routes an anonymous request may use (the built frontend is public too: the
 # login page is part of it).
@@ -58,8 +72,17 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         finally:
             workbench.close()
 
-    app = FastAPI(title="HoliScene", version="0.1.0", lifespan=lifespan)
-    app.state.login_throttle = auth.LoginThrottle()
+    # The API's description is served below, to logged-in users only.
+    app = FastAPI(
+        title="HoliScene",
+        version="0.1.0",
+        lifespan=lifespan,
+        docs_url=None,
+        redoc_url=None,
+        openapi_url=None,
+    )
+    install_http_guards(app, settings)
+    app.state.attempt_limiter = AttemptLimiter()
     install_error_handlers(app)
     install_workflow_error_handlers(app)
     # Every API router but auth's needs a logged-in user (the local admin in local mode);
@@ -75,6 +98,8 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.include_router(detector.router, dependencies=logged_in)
     app.include_router(viewer.router, dependencies=logged_in)
     app.include_router(users.router, dependencies=logged_in)
+
+    install_api_docs(app)
 
     @app.get("/api/health", tags=["health"])
     def health() -> dict[str, str]:
@@ -93,6 +118,40 @@ def create_app(settings: Settings | None = None) -> FastAPI:
 
     check_routes_guarded(app)
     return app
+
+
+def install_http_guards(app: FastAPI, settings: Settings) -> None:
+    """Checks before any route runs (the last added runs first): headers on every answer,
+    then the Host and Origin checks, then the body size cap."""
+    upload_limit = (settings.max_upload_mb + IMPORT_OVERHEAD_MB) * MB
+    app.add_middleware(
+        BodySizeLimit,
+        default=int(settings.max_request_mb * MB),
+        per_route={("POST", "/api/scenes"): upload_limit},
+    )
+    app.add_middleware(
+        RequestOriginCheck,
+        listen_host=settings.host,
+        allowed_hosts=settings.allowed_hosts,
+        allowed_origins=settings.allowed_origins,
+    )
+    app.add_middleware(SecurityHeaders)
+
+
+def install_api_docs(app: FastAPI) -> None:
+    """/docs and /openapi.json, behind the login like the API they describe (open in local
+    mode, where everyone is the local admin)."""
+    logged_in = [Depends(current_user)]
+
+    @app.get("/openapi.json", include_in_schema=False, dependencies=logged_in)
+    def openapi() -> JSONResponse:
+        return JSONResponse(app.openapi())
+
+    @app.get("/docs", include_in_schema=False, dependencies=logged_in)
+    def docs() -> HTMLResponse:
+        page = get_swagger_ui_html(openapi_url="/openapi.json", title="HoliScene API")
+        page.headers["Content-Security-Policy"] = DOCS_CSP
+        return page
 
 
 @dataclass(frozen=True)

@@ -19,7 +19,16 @@ class Settings(BaseSettings):
     web_dir: Path = REPO_ROOT / "frontend" / "dist"
     host: str = "127.0.0.1"
     port: int = 8000
-    max_upload_mb: int = 50
+    max_upload_mb: int = 50  # a photo import (POST /api/scenes)
+    # Any other request body; larger ones are refused (413) before they are read.
+    max_request_mb: float = Field(default=16.0, gt=0)
+    # Host names the server answers to besides the loopback names and `host` (400 for others:
+    # a page on another name that resolves here must not reach the server; see
+    # docs/security.md). As JSON in the environment: HOLISCENE_ALLOWED_HOSTS='["lab.example"]'.
+    allowed_hosts: list[str] = Field(default_factory=list)
+    # Origins (scheme://host[:port]) besides the server's own whose pages may change things
+    # here (POST, PUT, PATCH, DELETE), e.g. behind a proxy that rewrites the Host header.
+    allowed_origins: list[str] = Field(default_factory=list)
     models_dir: Path | None = None  # the user's own models: <class>/*.obj|glb|ply
     # Pipeline and placement jobs queued or running at once, on all scenes (503 beyond): one
     # worker runs them, so a longer queue only means longer waits.

@@ -7,53 +7,29 @@ answer (`{"token": true}`) and send it as `Authorization: Bearer`.
 
 from __future__ import annotations
 
-import threading
-import time
-from collections import defaultdict, deque
-
 from fastapi import APIRouter, HTTPException, Request, Response
 from holiscene_schema import CurrentUser, ErrorMessage, LoginRequest, LoginResult, PasswordChange
 
 from ...store.users import SESSION_LIFETIME, AccountDisabledError
+from ..attempt_limits import (
+    AttemptLimiter,
+    TooManyAttemptsError,
+    login_limits,
+    password_change_limits,
+)
 from ..deps import SESSION_COOKIE, UserDep, WorkbenchDep, local_mode, session_token
 
 router = APIRouter(prefix="/api/auth", tags=["auth"])
 
-# Guessing passwords: at most this many failures per name in the window, then 429.
-MAX_FAILURES = 5
-FAILURE_WINDOW_S = 300.0
+
+def _limiter(request: Request) -> AttemptLimiter:
+    limiter: AttemptLimiter = request.app.state.attempt_limiter  # one per app (create_app)
+    return limiter
 
 
-class LoginThrottle:
-    """Failed logins per name, in memory (one server process)."""
-
-    def __init__(self) -> None:
-        self._failures: dict[str, deque[float]] = defaultdict(deque)
-        self._lock = threading.Lock()
-
-    def _recent(self, name: str, now: float) -> deque[float]:
-        failures = self._failures[name]
-        while failures and failures[0] < now - FAILURE_WINDOW_S:
-            failures.popleft()
-        return failures
-
-    def blocked(self, name: str) -> bool:
-        with self._lock:
-            return len(self._recent(name, time.monotonic())) >= MAX_FAILURES
-
-    def failed(self, name: str) -> None:
-        with self._lock:
-            now = time.monotonic()
-            self._recent(name, now).append(now)
-
-    def succeeded(self, name: str) -> None:
-        with self._lock:
-            self._failures.pop(name, None)
-
-
-def _throttle(request: Request) -> LoginThrottle:
-    throttle: LoginThrottle = request.app.state.login_throttle  # one per app (create_app)
-    return throttle
+def _client(request: Request) -> str:
+    # The peer's address (uvicorn puts a local proxy's X-Forwarded-For here).
+    return request.client.host if request.client else "unknown"
 
 
 def _me(name: str, role: str, local: bool) -> CurrentUser:
@@ -66,24 +42,27 @@ def _me(name: str, role: str, local: bool) -> CurrentUser:
     responses={
         401: {"model": ErrorMessage},
         403: {"model": ErrorMessage, "description": "The account is disabled"},
-        429: {"model": ErrorMessage},
+        429: {"model": ErrorMessage, "description": "Too many failed logins from here"},
     },
 )
 def login(
     body: LoginRequest, request: Request, response: Response, workbench: WorkbenchDep
 ) -> LoginResult:
     name = body.name.strip().lower()
-    throttle = _throttle(request)
-    if throttle.blocked(name):
-        raise HTTPException(429, "too many failed logins for this name; wait a few minutes")
+    limits = login_limits(_client(request), name)
+    try:
+        attempt = _limiter(request).begin(limits)
+    except TooManyAttemptsError as refused:
+        raise HTTPException(
+            429, "too many failed logins from here; wait a few minutes"
+        ) from refused
     try:
         user = workbench.users.log_in(name, body.password)
     except AccountDisabledError as disabled:
         raise HTTPException(403, str(disabled)) from disabled
     if user is None:
-        throttle.failed(name)
-        raise HTTPException(401, "wrong user name or password")
-    throttle.succeeded(name)
+        raise HTTPException(401, "wrong user name or password")  # the attempt stays counted
+    _limiter(request).succeeded(attempt, forget=[limits[0].key])
     opened = workbench.users.open_session(user)
     if not body.token:
         response.set_cookie(
@@ -121,13 +100,29 @@ def me(user: UserDep, workbench: WorkbenchDep) -> CurrentUser:
 @router.post(
     "/password",
     status_code=204,
-    responses={401: {"model": ErrorMessage}, 422: {"model": ErrorMessage}},
+    responses={
+        401: {"model": ErrorMessage},
+        403: {"model": ErrorMessage},
+        422: {"model": ErrorMessage},
+        429: {"model": ErrorMessage},
+    },
 )
-def change_password(body: PasswordChange, user: UserDep, workbench: WorkbenchDep) -> Response:
-    """Change one's own password (every session of the account ends, this one too)."""
+def change_password(
+    body: PasswordChange, request: Request, user: UserDep, workbench: WorkbenchDep
+) -> Response:
+    """Change one's own password (every session of the account ends, this one too). Wrong
+    current passwords are limited like logins: a stolen session must not be a way to guess."""
     if user.local:
         raise HTTPException(409, "the local single-user mode has no password to change")
+    limits = password_change_limits(user.name)
+    try:
+        attempt = _limiter(request).begin(limits)
+    except TooManyAttemptsError as refused:
+        raise HTTPException(
+            429, "too many wrong current passwords; wait a few minutes"
+        ) from refused
     if workbench.users.check_credentials(user.name, body.current_password) is None:
         raise HTTPException(403, "the current password is wrong")
+    _limiter(request).succeeded(attempt, forget=[limits[0].key])
     workbench.users.set_password(user.name, body.new_password)
     return Response(status_code=204)
