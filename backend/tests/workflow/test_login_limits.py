@@ -94,3 +94,14 @@ def test_password_change_is_limited(accounts: Accounts) -> None:
     assert refused.status_code == 429 and "wait a few minutes" in refused.json()["detail"]
     # Nothing changed: the old password still logs in.
     assert accounts.workbench.users.check_credentials("rex", PASSWORD) is not None
+
+
+def test_names_sprayed_by_a_refused_client_are_not_kept(accounts: Accounts) -> None:
+    limiter = accounts.client.app.state.attempt_limiter  # type: ignore[attr-defined]
+    attacker = _client_at(accounts, "203.0.113.9")
+    for i in range(LOGINS_PER_CLIENT + 200):
+        body = {"name": f"spray{i}", "password": "wrong-password-1"}
+        expected = 401 if i < LOGINS_PER_CLIENT else 429
+        assert attacker.post("/api/auth/login", json=body).status_code == expected
+    # One key per name that was checked, one for the address; none for the refused names.
+    assert len(limiter) == LOGINS_PER_CLIENT + 1

@@ -47,18 +47,29 @@ class AttemptLimiter:
         self._attempts: dict[Hashable, deque[float]] = defaultdict(deque)
         self._lock = threading.Lock()
 
-    def _recent(self, key: Hashable, now: float) -> deque[float]:
-        attempts = self._attempts[key]
+    def __len__(self) -> int:
+        """Keys with attempts held in memory."""
+        with self._lock:
+            return len(self._attempts)
+
+    def _count(self, key: Hashable, now: float) -> int:
+        """Attempts in the window; keys without any are dropped (names sprayed by a guesser
+        must not pile up in memory)."""
+        attempts = self._attempts.get(key)
+        if attempts is None:
+            return 0
         while attempts and attempts[0] < now - self.window_s:
             attempts.popleft()
-        return attempts
+        if not attempts:
+            del self._attempts[key]
+        return len(attempts)
 
     def begin(self, limits: Sequence[Limit]) -> Attempt:
         """Count an attempt against every limit, or raise TooManyAttemptsError when one is
         used up (then nothing is counted)."""
         with self._lock:
             now = time.monotonic()
-            if any(len(self._recent(limit.key, now)) >= limit.most for limit in limits):
+            if any(self._count(limit.key, now) >= limit.most for limit in limits):
                 raise TooManyAttemptsError
             for limit in limits:
                 self._attempts[limit.key].append(now)
@@ -72,6 +83,8 @@ class AttemptLimiter:
                 attempts = self._attempts.get(limit.key)
                 if attempts is not None and attempt.started in attempts:
                     attempts.remove(attempt.started)
+                    if not attempts:
+                        del self._attempts[limit.key]
             for key in forget:
                 self._attempts.pop(key, None)
 
