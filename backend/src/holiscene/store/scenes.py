@@ -29,6 +29,7 @@ from pydantic import TypeAdapter
 from sqlalchemy import Engine, select, update
 from sqlalchemy.orm import Session
 
+from ..core.db import without_transaction
 from ..editing import (
     apply_edits,
     describe_edits,
@@ -72,6 +73,7 @@ class SceneChangedError(RevisionConflictError):
 class SceneStore:
     def __init__(self, engine: Engine, files: SceneFiles) -> None:
         self.engine = engine
+        self.reads = without_transaction(engine)
         self.files = files
 
     # -- reading -------------------------------------------------------------------------
@@ -88,7 +90,7 @@ class SceneStore:
             return self._summary(self._row(session, scene_id), latest_job)
 
     def document(self, scene_id: str, revision: int | None = None) -> SceneDocument:
-        with Session(self.engine) as session:
+        with Session(self.reads) as session:
             row = self._row(session, scene_id)
             number = revision if revision is not None else row.current_revision
             rev = session.scalar(

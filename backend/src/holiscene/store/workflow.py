@@ -78,7 +78,7 @@ class WorkflowStore:
     def edit_refusal(self, scene_id: str, actor: Actor, revision: int | None = None) -> str | None:
         """Why the actor may not edit the scene now, or None when they may. `revision`: the
         revision they look at; edits apply to the latest only."""
-        with Session(self.engine) as session:
+        with Session(self.scenes.reads) as session:  # asked on every save and scene load
             row = _row(session, scene_id)
             if revision is not None and revision != row.current_revision:
                 return (
