@@ -133,3 +133,14 @@ export async function arrowOf(
     };
   });
 }
+
+/** Every arrow on the photo: child -> what it shows (a suggestion counts: it is what is seen). */
+export function shownGraph(page: Page): Promise<Record<string, { parent: string; type: string }>> {
+  return page.getByTestId("arrow-layer").evaluate((layer) => {
+    const graph: Record<string, { parent: string; type: string }> = {};
+    for (const a of layer.querySelectorAll<SVGGElement>(".arrow[data-child]")) {
+      graph[a.dataset.child ?? ""] = { parent: a.dataset.parent ?? "", type: a.dataset.type ?? "" };
+    }
+    return graph;
+  });
+}

@@ -21,7 +21,14 @@ import path from "node:path";
 import type { SupportRelation } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getScene } from "../helpers/api";
-import { clickArrow, clickObject, openScene, setAuthor, waitForModel } from "../helpers/photo";
+import {
+  clickArrow,
+  clickObject,
+  openScene,
+  setAuthor,
+  shownGraph,
+  waitForModel,
+} from "../helpers/photo";
 import { scratchDir } from "../helpers/scratch";
 import { importSynthetic, type SyntheticScene, synthesize, wrongEdges } from "../helpers/synthetic";
 
@@ -64,17 +71,6 @@ function relabelled(scene: SyntheticScene): SyntheticScene {
   if (detection) detection.class = "pillow";
   writeFileSync(file, JSON.stringify(detections));
   return { dir, truth: scene.truth };
-}
-
-/** Every arrow on the photo: child -> what it shows (a suggestion counts: it is what is seen). */
-function shownGraph(page: Page): Promise<Record<string, { parent: string; type: string }>> {
-  return page.getByTestId("arrow-layer").evaluate((layer) => {
-    const graph: Record<string, { parent: string; type: string }> = {};
-    for (const a of layer.querySelectorAll<SVGGElement>(".arrow[data-child]")) {
-      graph[a.dataset.child ?? ""] = { parent: a.dataset.parent ?? "", type: a.dataset.type ?? "" };
-    }
-    return graph;
-  });
 }
 
 /** Arm the timer: it stops when `child`'s arrow shows `parent` (and `type`, if given). */

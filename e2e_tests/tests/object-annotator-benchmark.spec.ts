@@ -30,7 +30,7 @@ import path from "node:path";
 import type { Mask, ModelInfo, Scene } from "@holiscene/schema";
 import { type APIRequestContext, expect, type Page, type TestInfo, test } from "@playwright/test";
 import { getScene } from "../helpers/api";
-import { clickObject, openScene, setAuthor, waitForModel } from "../helpers/photo";
+import { clickObject, openScene, setAuthor, shownGraph, waitForModel } from "../helpers/photo";
 import {
   maskIou,
   maskPixels,
@@ -457,17 +457,6 @@ function strokeThrough(mask: Mask | null | undefined, step: number): [number, nu
     points.push([ox + (xs[Math.floor(xs.length / 2)] as number) + 0.5, oy + y + 0.5]);
   }
   return points;
-}
-
-/** Every arrow on the photo: child -> what it shows (a suggestion counts: it is what is seen). */
-function shownGraph(page: Page): Promise<Record<string, { parent: string; type: string }>> {
-  return page.getByTestId("arrow-layer").evaluate((layer) => {
-    const graph: Record<string, { parent: string; type: string }> = {};
-    for (const a of layer.querySelectorAll<SVGGElement>(".arrow[data-child]")) {
-      graph[a.dataset.child ?? ""] = { parent: a.dataset.parent ?? "", type: a.dataset.type ?? "" };
-    }
-    return graph;
-  });
 }
 
 /** Objects in the order drawn: smallest first, so a larger box's corner is rarely on one. */

@@ -1,6 +1,6 @@
 // Live suggestions on a real session: a correction that makes another object's guess close a
 // loop turns that guess into the model's next answer; accepting or rejecting follows.
-import type { SceneDocument, SupportRelation } from "@holiscene/schema";
+import type { SupportRelation } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
 import {
   acceptAll,
@@ -9,8 +9,8 @@ import {
   removeSupport,
   setSupporter,
 } from "../editors/supportActions";
-import { DraftStore } from "../state/draftStore";
-import { SceneSession } from "../state/sceneSession";
+import type { SceneSession } from "../state/sceneSession";
+import { sceneDocument, sceneObject, sessionOn } from "../testing/sceneDocuments";
 import { makeSuggester } from "./suggester";
 
 // Columns: o0, o1, o2, ceiling, floor, wall; types below, behind.
@@ -39,20 +39,13 @@ const auto = (child: string, parent: string): SupportRelation => ({
 });
 
 function session(): SceneSession {
-  const doc = {
-    scene_id: "s",
-    revision: 2,
-    updated_at: "2026-01-01T00:00:00Z",
-    scene: {
-      schema_version: 1,
-      name: "t",
-      image: { file: "img.png", width: 10, height: 10 },
-      objects: ["o0", "o1", "o2"].map((id) => ({ id, class: "box", bbox: [0, 0, 1, 1] })),
-      // The pipeline's tree from the same table: o1 is surer, so o2 had to take the floor.
-      supports: [auto("o0", "floor"), auto("o1", "o2"), auto("o2", "floor")],
-    },
-  } as unknown as SceneDocument;
-  const s = new SceneSession(doc, { drafts: new DraftStore(null) });
+  const doc = sceneDocument(
+    ["o0", "o1", "o2"].map((id) => sceneObject(id, "box", [0, 0, 1, 1])),
+    // The pipeline's tree from the same table: o1 is surer, so o2 had to take the floor.
+    [auto("o0", "floor"), auto("o1", "o2"), auto("o2", "floor")],
+    { revision: 2, size: 10 },
+  );
+  const s = sessionOn(doc, null);
   s.setSuggester(makeSuggester({ ids: ["o0", "o1", "o2"], probabilities }));
   return s;
 }

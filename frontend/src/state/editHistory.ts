@@ -72,3 +72,31 @@ export class EditHistory<S> {
     return this.undone.at(-1)?.stamp ?? null;
   }
 }
+
+/**
+ * Something whose actions one history keeps (the session's unsaved edits, the object editor's
+ * saved actions): the page's Undo and Redo read its labels and stamps (state/undoOrder.ts).
+ */
+export abstract class HistoryKeeper<S> {
+  protected readonly history = new EditHistory<S>();
+
+  get undoLabel(): string | null {
+    return this.history.undoLabel;
+  }
+
+  get redoLabel(): string | null {
+    return this.history.redoLabel;
+  }
+
+  get undoStamp(): number | null {
+    return this.history.undoStamp;
+  }
+
+  get redoStamp(): number | null {
+    return this.history.redoStamp;
+  }
+
+  get recordStamp(): number | null {
+    return this.history.recordStamp;
+  }
+}

@@ -5,8 +5,7 @@
 import type { SceneDocument, SceneObject } from "@holiscene/schema";
 import { beforeEach, describe, expect, it } from "vitest";
 import { ApiError } from "../api/errors";
-import { MemoryStorage } from "../testing/memoryStorage";
-import { DraftStore } from "./draftStore";
+import { sceneDocument, sceneObject, sessionOn } from "../testing/sceneDocuments";
 import {
   type NewObject,
   type ObjectEdit,
@@ -15,24 +14,11 @@ import {
   restoreEdits,
   touchedIds,
 } from "./objectEditor";
-import { SceneSession } from "./sceneSession";
+import type { SceneSession } from "./sceneSession";
 
-const object = (id: string, cls = "chair"): SceneObject =>
-  ({ id, class: cls, bbox: [0, 0, 10, 10] }) as unknown as SceneObject;
-
-const documentOf = (revision: number, objects: SceneObject[]): SceneDocument =>
-  ({
-    scene_id: "s1",
-    revision,
-    updated_at: "2026-01-01T00:00:00Z",
-    scene: {
-      schema_version: 1,
-      name: "test",
-      image: { file: "img.png", width: 100, height: 100 },
-      objects,
-      supports: [],
-    },
-  }) as unknown as SceneDocument;
+const object = (id: string, cls = "chair") => sceneObject(id, cls);
+const documentOf = (revision: number, objects: SceneObject[]) =>
+  sceneDocument(objects, [], { revision });
 
 /** Keeps every revision; applies object edits as the API does (objects only). */
 class RevisionServer {
@@ -83,7 +69,7 @@ describe("ObjectEditor", () => {
   let editor: ObjectEditor;
   beforeEach(() => {
     server = new RevisionServer(documentOf(1, [object("o1", "chair")]));
-    session = new SceneSession(server.latest, { drafts: new DraftStore(new MemoryStorage()) });
+    session = sessionOn(server.latest);
     editor = new ObjectEditor(session, { author: () => "tester", post: server.post });
   });
 

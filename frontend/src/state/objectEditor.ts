@@ -21,7 +21,7 @@ import { api } from "../api/client";
 import { ConflictError } from "../api/errors";
 import { freshIds } from "../views/scene/detectionOffers";
 import { getAuthor } from "./author";
-import { EditHistory } from "./editHistory";
+import { HistoryKeeper } from "./editHistory";
 import { lockText } from "./editLock";
 import { predictDocument } from "./objectPrediction";
 import type { SceneSession } from "./sceneSession";
@@ -139,12 +139,11 @@ interface Sent {
   edits: ObjectEdit[];
 }
 
-export class ObjectEditor implements Undoable {
+/** Its history's steps: the objects one action touched, keyed by id, with the revisions around it. */
+export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   status: ObjectEditStatus = { kind: "idle", message: null, error: false };
   failure: FailedAction | null = null;
 
-  /** Each step: the objects one action touched, keyed by id, with the revisions around it. */
-  private readonly history = new EditHistory<number>();
   private readonly listeners = new Set<() => void>();
   private queue: Promise<unknown> = Promise.resolve();
   private waiting = 0;
@@ -157,7 +156,9 @@ export class ObjectEditor implements Undoable {
   constructor(
     readonly session: SceneSession,
     private readonly options: { author?: () => string; post?: PostEdits } = {},
-  ) {}
+  ) {
+    super();
+  }
 
   /** Told after every change of status, failure or history. */
   subscribe(listener: () => void): () => void {
@@ -201,26 +202,6 @@ export class ObjectEditor implements Undoable {
       this.changed();
       return true;
     });
-  }
-
-  get undoLabel(): string | null {
-    return this.history.undoLabel;
-  }
-
-  get redoLabel(): string | null {
-    return this.history.redoLabel;
-  }
-
-  get undoStamp(): number | null {
-    return this.history.undoStamp;
-  }
-
-  get redoStamp(): number | null {
-    return this.history.redoStamp;
-  }
-
-  get recordStamp(): number | null {
-    return this.history.recordStamp;
   }
 
   /** Take back the last action; resolves to its label (null: nothing to undo, or it failed). */

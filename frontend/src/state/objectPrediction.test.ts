@@ -1,25 +1,13 @@
 // The scene as an object action will leave it, before the server answers.
 import type { SceneDocument, SceneObject, SupportRelation } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
+import { sceneDocument, sceneObject } from "../testing/sceneDocuments";
 import { supportRelation } from "../testing/supports";
 import { predictDocument } from "./objectPrediction";
 
-const object = (id: string, cls = "chair"): SceneObject =>
-  ({ id, class: cls, bbox: [0, 0, 10, 10] }) as unknown as SceneObject;
-
+const object = (id: string, cls = "chair") => sceneObject(id, cls);
 const documentOf = (revision: number, objects: SceneObject[], supports: SupportRelation[]) =>
-  ({
-    scene_id: "s1",
-    revision,
-    updated_at: "2026-01-01T00:00:00Z",
-    scene: {
-      schema_version: 1,
-      name: "test",
-      image: { file: "img.png", width: 100, height: 100 },
-      objects,
-      supports,
-    },
-  }) as unknown as SceneDocument;
+  sceneDocument(objects, supports, { revision });
 
 const table = object("t", "table");
 const cup = object("c", "otherprop");

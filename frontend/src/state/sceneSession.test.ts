@@ -1,39 +1,30 @@
 // The session's editing without a server: undo and redo across edits (a predicted edge comes
 // back as predicted), discarding, rejected answers, and drafts that outlive the page.
-import type { SceneDocument, SupportRelation } from "@holiscene/schema";
+import type { SupportRelation } from "@holiscene/schema";
 import { beforeEach, describe, expect, it } from "vitest";
 import { MemoryStorage } from "../testing/memoryStorage";
+import { sceneDocument, sceneObject, sessionOn } from "../testing/sceneDocuments";
 import { supportRelation } from "../testing/supports";
 import { DraftStore } from "./draftStore";
-import { SceneSession } from "./sceneSession";
+import type { SceneSession } from "./sceneSession";
 
 const auto = (child: string, parent: string, confidence = 0.8): SupportRelation =>
   supportRelation(child, parent, { confidence });
 
-function doc(supports: SupportRelation[], revision = 2): SceneDocument {
-  const box = (i: number) => [i * 10, 0, i * 10 + 8, 8] as [number, number, number, number];
-  return {
-    scene_id: "s1",
-    revision,
-    updated_at: "2026-01-01T00:00:00Z",
-    scene: {
-      schema_version: 1,
-      name: "test",
-      image: { file: "img.png", width: 100, height: 100 },
-      objects: ["o0", "o1", "o2"].map((id, i) => ({ id, class: "box", bbox: box(i) })),
-      supports,
-    },
-  } as unknown as SceneDocument;
-}
+/** Objects o0, o1, o2 side by side. */
+const doc = (supports: SupportRelation[], revision = 2) =>
+  sceneDocument(
+    ["o0", "o1", "o2"].map((id, i) => sceneObject(id, "box", [i * 10, 0, i * 10 + 8, 8])),
+    supports,
+    { revision },
+  );
 
 describe("SceneSession editing", () => {
   let storage: MemoryStorage;
   let session: SceneSession;
   beforeEach(() => {
     storage = new MemoryStorage();
-    session = new SceneSession(doc([auto("o0", "floor"), auto("o1", "o0")]), {
-      drafts: new DraftStore(storage),
-    });
+    session = sessionOn(doc([auto("o0", "floor"), auto("o1", "o0")]), storage);
   });
 
   it("accepting a guess makes it a person's label; undo gives the guess back as a guess", () => {
@@ -111,16 +102,12 @@ describe("SceneSession editing", () => {
     expect(stored?.edits.map((e) => e.child)).toEqual(["o2", "o1"]);
 
     // The tab closes; a new visit finds them.
-    const next = new SceneSession(doc([auto("o0", "floor"), auto("o1", "o0")]), {
-      drafts: new DraftStore(storage),
-    });
+    const next = sessionOn(doc([auto("o0", "floor"), auto("o1", "o0")]), storage);
     expect(next.recovered?.edits).toHaveLength(2);
     expect(next.pending).toHaveLength(0);
     // Its own edits before deciding do not overwrite what is offered.
     next.edit("o0 on wall", [{ kind: "set_support", child: "o0", parent: "wall", type: "behind" }]);
-    const third = new SceneSession(doc([auto("o0", "floor"), auto("o1", "o0")]), {
-      drafts: new DraftStore(storage),
-    });
+    const third = sessionOn(doc([auto("o0", "floor"), auto("o1", "o0")]), storage);
     expect(third.recovered?.edits.map((e) => e.child).sort()).toEqual(["o0", "o1", "o2"]);
     third.restoreRecovered();
     expect(third.pending).toHaveLength(3);
@@ -143,9 +130,7 @@ describe("SceneSession editing", () => {
       time: "2026-01-01T00:00:01Z",
       confidence: null,
     };
-    const next = new SceneSession(doc([auto("o0", "floor"), auto("o1", "o0"), manual], 3), {
-      drafts: new DraftStore(storage),
-    });
+    const next = sessionOn(doc([auto("o0", "floor"), auto("o1", "o0"), manual], 3), storage);
     next.restoreRecovered();
     expect(next.pending).toHaveLength(0);
     expect(next.notice).toContain("already saved");

@@ -13,7 +13,7 @@ import type {
 import { api } from "../api/client";
 import { ApiError, ConflictError } from "../api/errors";
 import { type Draft, DraftStore } from "./draftStore";
-import { EditHistory, type HistoryChange } from "./editHistory";
+import { type HistoryChange, HistoryKeeper } from "./editHistory";
 import { type EditLock, type EditPermission, editLock, lockText } from "./editLock";
 import type { LayoutDraft, LayoutState } from "./layoutDraft";
 import {
@@ -105,7 +105,7 @@ const layoutChange = (before: LayoutState, after: LayoutState): HistoryChange<Hi
 
 export const rejectionKey = (parent: string, type: string) => `${parent}|${type}`;
 
-export class SceneSession {
+export class SceneSession extends HistoryKeeper<HistoryState> {
   doc: SceneDocument;
   saveState: SaveState = { kind: "clean" };
   hovered: string | null = null;
@@ -121,7 +121,6 @@ export class SceneSession {
 
   private readonly edits = new Map<string, Edit>();
   private readonly rejected = new Map<string, Set<string>>();
-  private readonly history = new EditHistory<HistoryState>();
   private layout: LayoutDraft | null = null;
   /** The scene's place in the workflow, once known (it may lock the scene). */
   private workflow: SceneWorkflow | null = null;
@@ -137,6 +136,7 @@ export class SceneSession {
   private suggestionCache: Map<string, SuggestedSupport> | null = null;
 
   constructor(doc: SceneDocument, options: { drafts?: DraftStore } = {}) {
+    super();
     this.doc = doc;
     this.drafts = options.drafts ?? new DraftStore();
     this.recovered = this.drafts.takeForRecovery(doc.scene_id);
@@ -316,26 +316,6 @@ export class SceneSession {
     this.holdAutosave = false;
     this.notice = null; // what a merge or a recovery reported is old news now
     this.editsChanged();
-  }
-
-  get undoLabel(): string | null {
-    return this.history.undoLabel;
-  }
-
-  get redoLabel(): string | null {
-    return this.history.redoLabel;
-  }
-
-  get undoStamp(): number | null {
-    return this.history.undoStamp;
-  }
-
-  get redoStamp(): number | null {
-    return this.history.redoStamp;
-  }
-
-  get recordStamp(): number | null {
-    return this.history.recordStamp;
   }
 
   /** Take back the last action; returns its label (null: nothing to undo, or read only). */

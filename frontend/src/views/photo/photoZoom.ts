@@ -79,7 +79,7 @@ export function mountPhotoZoom(svg: SVGSVGElement, frame: ViewBox): PhotoZoom {
     text: "Fit",
     testid: "photo-zoom-fit",
     attrs: { type: "button", title: "Show the whole photo (0); the wheel zooms, Space+drag pans" },
-    on: { click: () => apply({ ...frame }) },
+    on: { click: () => showWhole() },
   });
   const controls = el(
     "span",
@@ -98,6 +98,7 @@ export function mountPhotoZoom(svg: SVGSVGElement, frame: ViewBox): PhotoZoom {
     controls.hidden = zoom < 1.001;
     for (const listener of listeners) listener();
   };
+  const showWhole = () => apply({ ...frame });
   const zoomAt = (factor: number, at: [number, number]) =>
     apply(zoomedView(frame, view, (frame.width / view.width) * factor, at));
   const middle = (): [number, number] => [view.x + view.width / 2, view.y + view.height / 2];
@@ -154,14 +155,17 @@ export function mountPhotoZoom(svg: SVGSVGElement, frame: ViewBox): PhotoZoom {
   const onLeave = () => {
     over = false;
   };
-  svg.addEventListener("wheel", onWheel, { passive: false });
-  svg.addEventListener("pointerdown", onDown, true);
-  svg.addEventListener("pointermove", onMove, true);
-  svg.addEventListener("pointerup", onUp, true);
-  svg.addEventListener("auxclick", onAux);
-  svg.addEventListener("pointerenter", onEnter);
-  svg.addEventListener("pointerleave", onLeave);
-  window.addEventListener("keyup", onKeyUp);
+  // One signal takes every listener off again in dispose().
+  const listening = new AbortController();
+  const { signal } = listening;
+  svg.addEventListener("wheel", onWheel, { passive: false, signal });
+  svg.addEventListener("pointerdown", onDown, { capture: true, signal });
+  svg.addEventListener("pointermove", onMove, { capture: true, signal });
+  svg.addEventListener("pointerup", onUp, { capture: true, signal });
+  svg.addEventListener("auxclick", onAux, { signal });
+  svg.addEventListener("pointerenter", onEnter, { signal });
+  svg.addEventListener("pointerleave", onLeave, { signal });
+  window.addEventListener("keyup", onKeyUp, { signal });
 
   const scope = "Photo";
   const removers = [
@@ -181,7 +185,7 @@ export function mountPhotoZoom(svg: SVGSVGElement, frame: ViewBox): PhotoZoom {
       keys: "0",
       description: "Fit the whole photo",
       scope,
-      run: () => apply({ ...frame }),
+      run: showWhole,
     }),
     registerShortcut({
       keys: "Space",
@@ -201,21 +205,14 @@ export function mountPhotoZoom(svg: SVGSVGElement, frame: ViewBox): PhotoZoom {
       return frame.width / view.width;
     },
     controls,
-    fit: () => apply({ ...frame }),
+    fit: showWhole,
     onChange(listener) {
       listeners.add(listener);
       return () => listeners.delete(listener);
     },
     dispose() {
       for (const remove of removers) remove();
-      svg.removeEventListener("wheel", onWheel);
-      svg.removeEventListener("pointerdown", onDown, true);
-      svg.removeEventListener("pointermove", onMove, true);
-      svg.removeEventListener("pointerup", onUp, true);
-      svg.removeEventListener("auxclick", onAux);
-      svg.removeEventListener("pointerenter", onEnter);
-      svg.removeEventListener("pointerleave", onLeave);
-      window.removeEventListener("keyup", onKeyUp);
+      listening.abort();
       controls.remove();
     },
   };
