@@ -94,6 +94,20 @@ export const getScene = (request: APIRequestContext, sceneId: string) =>
 export const getRevisions = (request: APIRequestContext, sceneId: string) =>
   getJson<RevisionInfo[]>(request, `/api/scenes/${sceneId}/revisions`);
 
+/** Post `edits` on `doc`'s revision; the revision they made. */
+export async function postEdits(
+  request: APIRequestContext,
+  doc: SceneDocument,
+  author: string,
+  edits: object[],
+): Promise<SceneDocument> {
+  const response = await request.post(`/api/scenes/${doc.scene_id}/edits`, {
+    data: { base_revision: doc.revision, author, edits },
+  });
+  expect(response.status(), await response.text()).toBe(200);
+  return (await response.json()) as SceneDocument;
+}
+
 export function supportOf(doc: SceneDocument, child: string): SupportRelation | undefined {
   return doc.scene.supports?.find((s) => s.child === child);
 }

@@ -7,8 +7,8 @@
 import { mkdirSync } from "node:fs";
 import path from "node:path";
 import type { SceneDocument, SupportRelation } from "@holiscene/schema";
-import { type APIRequestContext, expect, type Page, test } from "@playwright/test";
-import { getRevisions, getScene, seedScene, supportOf, T3D_5 } from "../helpers/api";
+import { expect, type Page, test } from "@playwright/test";
+import { getRevisions, getScene, postEdits, seedScene, supportOf, T3D_5 } from "../helpers/api";
 import { arrowOf, clickArrow, clickObject, openScene, setAuthor } from "../helpers/photo";
 
 const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
@@ -27,19 +27,6 @@ async function autosaved(page: Page): Promise<void> {
   await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved", {
     timeout: 20_000,
   });
-}
-
-async function edit(
-  request: APIRequestContext,
-  doc: SceneDocument,
-  author: string,
-  edits: object[],
-): Promise<SceneDocument> {
-  const response = await request.post(`/api/scenes/${doc.scene_id}/edits`, {
-    data: { base_revision: doc.revision, author, edits },
-  });
-  expect(response.status(), await response.text()).toBe(200);
-  return (await response.json()) as SceneDocument;
 }
 
 test("undo and redo across edits, autosave after idle, and a reload keeps the edits", async ({
@@ -164,7 +151,7 @@ test("the history shows what each revision changed and reverts to any of them", 
 }) => {
   const seeded = await seedScene(request, T3D_5, "t3d-5 history");
   const predicted = seeded.revision;
-  const first = await edit(request, seeded, "alice", [
+  const first = await postEdits(request, seeded, "alice", [
     { kind: "set_support", child: "o1", parent: "o0", type: "below" },
     {
       kind: "set_support",
@@ -173,7 +160,7 @@ test("the history shows what each revision changed and reverts to any of them", 
       type: guessOf(seeded, "o2").type,
     },
   ]);
-  const second = await edit(request, first, "bob", [{ kind: "remove_support", child: "o3" }]);
+  const second = await postEdits(request, first, "bob", [{ kind: "remove_support", child: "o3" }]);
 
   await openScene(page, seeded.scene_id);
   await setAuthor(page, "e2e-history");

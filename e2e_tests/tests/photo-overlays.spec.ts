@@ -5,9 +5,8 @@
 // and the 3D panel offers to re-place the objects, which a placement job does.
 import { copyFileSync, mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import path from "node:path";
-import type { ImportResult } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
-import { getScene, seedScene, T3D_5, waitForJob } from "../helpers/api";
+import { getScene, importWithoutObjects, postEdits, seedScene } from "../helpers/api";
 import { openScene, waitForModel } from "../helpers/photo";
 import { scene3d } from "../helpers/scene3d";
 import { scratchDir } from "../helpers/scratch";
@@ -238,36 +237,63 @@ test("a real photo: labels apart, sources in the object list", async ({ page }) 
   });
 });
 
-/** The real photo t3d-5 without objects (empty detections.json). */
-async function importWithoutObjects(page: Page, name: string): Promise<string> {
-  const file = (file: string, mimeType: string) => ({
-    name: file,
-    mimeType,
-    buffer: readFileSync(path.join(T3D_5, file)),
+test("a real photo with detector objects, some edited: every class in the object list is whole", async ({
+  page,
+}) => {
+  const sceneId = await importWithoutObjects(page.request, "t3d-5 detector object list");
+  const detected = [
+    { id: "d1", class: "bed", bbox: [143, 186, 631, 529], score: 0.91 },
+    { id: "d2", class: "night_stand", bbox: [1, 286, 150, 447], score: 0.83 },
+    { id: "d3", class: "dresser", bbox: [419, 226, 564, 343], score: 0.77 },
+    { id: "d4", class: "picture", bbox: [250, 40, 420, 150], score: 0.64 },
+    { id: "d5", class: "lamp", bbox: [40, 200, 110, 290], score: 0.58 },
+    { id: "d6", class: "otherfurniture", bbox: [615, 189, 729, 486], score: 0.52 },
+  ].map((o) => ({ kind: "add_object", source: "detector", ...o }));
+  const added = await postEdits(
+    page.request,
+    await getScene(page.request, sceneId),
+    "ann",
+    detected,
+  );
+  // A person's change marks an object "· edited": the longest badge next to the class.
+  await postEdits(page.request, added, "ann", [
+    { kind: "set_bbox", id: "d4", bbox: [250, 42, 420, 150] },
+    { kind: "set_class", id: "d6", class: "television" },
+    { kind: "set_bbox", id: "d2", bbox: [2, 280, 150, 450] },
+  ]);
+  await page.addInitScript(() => localStorage.setItem("holiscene.liveSuggestions", "off"));
+  await openScene(page, sceneId);
+  await expect(page.getByTestId("object-source-d4")).toHaveText("detector 64% · edited");
+  const rows = await page.locator(".object-row[data-object]").evaluateAll((found) =>
+    found.map((row) => {
+      const name = row.querySelector<HTMLElement>(".object-class");
+      const badge = row.querySelector<HTMLElement>(".object-source");
+      const th = row.querySelector<HTMLElement>("th");
+      const inside = (node: HTMLElement | null | undefined) => {
+        const box = node?.getBoundingClientRect();
+        const cell = th?.getBoundingClientRect();
+        return !!box && !!cell && box.left >= cell.left - 0.5 && box.right <= cell.right + 0.5;
+      };
+      return {
+        id: (row as HTMLElement).dataset.object,
+        text: name?.textContent,
+        // Cut (an ellipsis) when its text is wider than the room it was given.
+        cut: !name || name.scrollWidth > name.clientWidth,
+        badgeInside: inside(badge),
+      };
+    }),
+  );
+  expect(rows.map((r) => r.id).sort()).toEqual(["d1", "d2", "d3", "d4", "d5", "d6"]);
+  expect(rows.filter((r) => r.cut || !r.badgeInside)).toEqual([]);
+  await page.getByTestId("object-table").screenshot({
+    path: path.join(SCREENSHOTS, "object-list-detector-edited.png"),
   });
-  const response = await page.request.post("/api/scenes", {
-    multipart: {
-      image: file("img.jpg", "image/jpeg"),
-      cam_k: file("cam_K.txt", "text/plain"),
-      detections: {
-        name: "detections.json",
-        mimeType: "application/json",
-        buffer: Buffer.from("[]"),
-      },
-      name,
-    },
-  });
-  expect(response.status(), await response.text()).toBe(201);
-  const imported = (await response.json()) as ImportResult;
-  if (imported.job)
-    expect((await waitForJob(page.request, imported.job.id)).status).toBe("succeeded");
-  return imported.scene.id;
-}
+});
 
 test("after an object edit the model scores again and the 3D panel offers Re-place objects", async ({
   page,
 }) => {
-  const sceneId = await importWithoutObjects(page, "t3d-5 object edit follow-up");
+  const sceneId = await importWithoutObjects(page.request, "t3d-5 object edit follow-up");
   await page.addInitScript(() => localStorage.setItem("holiscene.liveSuggestions", "on"));
   await page.goto(`/#/scenes/${sceneId}`);
   await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
