@@ -43,19 +43,21 @@ class PostgresUnavailableError(RuntimeError):
 
 
 def find_bindir() -> Path | None:
-    """The newest PostgreSQL's bin folder: HOLISCENE_POSTGRES_BIN, Debian's
-    /usr/lib/postgresql/<version>/bin, or the folder of `postgres` on the PATH."""
+    """PostgreSQL's bin folder: HOLISCENE_POSTGRES_BIN when set (only that one), else the
+    newest of Debian's /usr/lib/postgresql/<version>/bin, else the folder of `postgres` on
+    the PATH."""
     given = os.environ.get("HOLISCENE_POSTGRES_BIN")
-    candidates = [Path(given)] if given else []
 
     def version(path: Path) -> int:
         return int(path.parent.name) if path.parent.name.isdigit() else 0
 
-    debian = sorted(Path("/usr/lib/postgresql").glob("*/bin"), key=version, reverse=True)
-    candidates += debian
-    on_path = shutil.which("postgres")
-    if on_path:
-        candidates.append(Path(on_path).parent)
+    if given:
+        candidates = [Path(given)]
+    else:
+        candidates = sorted(Path("/usr/lib/postgresql").glob("*/bin"), key=version, reverse=True)
+        on_path = shutil.which("postgres")
+        if on_path:
+            candidates.append(Path(on_path).parent)
     for folder in candidates:
         if all((folder / tool).is_file() for tool in ("initdb", "postgres")):
             return folder
@@ -77,9 +79,10 @@ class ScratchPostgres:
         bindir = find_bindir()
         if bindir is None:
             raise PostgresUnavailableError(
-                "PostgreSQL is not installed (no initdb/postgres in /usr/lib/postgresql/*/bin "
-                "or on the PATH): install it with `apt-get install postgresql`, or set "
-                "HOLISCENE_POSTGRES_BIN to its bin folder"
+                "PostgreSQL is not installed (no initdb and postgres in "
+                f"{os.environ.get('HOLISCENE_POSTGRES_BIN') or '/usr/lib/postgresql/*/bin'} "
+                "or on the PATH): install it with `apt-get install postgresql` (make "
+                "install-postgres), or set HOLISCENE_POSTGRES_BIN to its bin folder"
             )
         self.bindir = bindir
         self.durable = durable
