@@ -1,8 +1,8 @@
 // User story: two annotators edit objects of one scene at the same time. Each object action is
 // saved at once on the revision its page has loaded; when the other saved first, the page
 // loads their revision and applies the action on top of it, and says so. An action on an
-// object the other removed cannot be applied: it stays on screen with Retry and Discard, so
-// nothing anyone did is lost without them knowing.
+// object the other removed cannot be applied: it stays on screen with Retry and Discard (after
+// a reload too), so nothing anyone did is lost without them knowing.
 import { mkdirSync } from "node:fs";
 import path from "node:path";
 import type { SceneDocument } from "@holiscene/schema";
@@ -86,8 +86,24 @@ test("two people editing objects at once: the second is told, and nothing is los
   expect(doc.scene.objects?.some((o) => o.id === o1)).toBe(false);
   expect(classOf(doc, o3)).toBe("cabinet");
 
-  // Discard is his choice; the message goes.
+  // Closing the tab (a reload here) loses nothing: the next visit offers it again.
+  const failureText = bob.getByTestId("object-edit-failure-text");
+  await bob.reload();
+  await expect(bob.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await expect(failure).toBeVisible();
+  await expect(failureText).toContainText(`${o1} is no longer in the scene`);
+  await expect(failureText).toContainText("Kept from your last visit.");
+  await expect(failureText).toContainText("dresser");
+  await expect(bob.getByTestId("object-edit-retry")).toBeVisible();
+  await bob.screenshot({ path: path.join(SCREENSHOTS, "object-edit-failure-kept.png") });
+
+  // Discard is his choice; the message goes, and stays gone after another reload.
   await bob.getByTestId("object-edit-discard").click();
   await expect(failure).toBeHidden();
   await expect(bobStatus).toContainText("Dropped:");
+  await bob.reload();
+  await expect(bob.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await expect(bob.getByTestId("object-edit-bar")).toBeAttached();
+  await expect(failure).toBeHidden();
+  expect((await getScene(request, sceneId)).revision).toBe(start + 3);
 });

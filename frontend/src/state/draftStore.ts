@@ -1,6 +1,9 @@
 // Unsaved edits kept in localStorage until the server confirms them, so a closed tab or a
-// crash loses nothing: the next visit to the scene offers them back.
+// crash loses nothing: the next visit to the scene offers them back. An object action the
+// server did not take (object edits are not drafts: each is saved at once) is kept beside them
+// until it is saved or the person drops it.
 import type { LayoutState } from "./layoutDraft";
+import type { ObjectEdit } from "./objectEditor";
 import type { Edit } from "./supportGraph";
 
 export interface Draft {
@@ -14,11 +17,23 @@ export interface Draft {
   savedAt: string;
 }
 
+/** An object action that failed (Retry and Discard shown), as the next visit offers it again. */
+export interface FailedObjectAction {
+  label: string;
+  /** Why it was not saved. */
+  message: string;
+  /** The edits as they were to be sent (an undo's are its restore_object edits). */
+  edits: ObjectEdit[];
+  /** ISO time it failed. */
+  failedAt: string;
+}
+
 /** Whether a draft holds anything unsaved. */
 const hasChanges = (draft: Draft) => draft.edits.length > 0 || !!draft.layout;
 
 const key = (sceneId: string) => `holiscene.draft.${sceneId}`;
 const recoveredKey = (sceneId: string) => `holiscene.draft.${sceneId}.recovered`;
+const failedKey = (sceneId: string) => `holiscene.draft.${sceneId}.failedObjectAction`;
 
 function browserStorage(): Storage | null {
   try {
@@ -36,6 +51,23 @@ function isDraft(value: unknown): value is Draft {
     typeof d.baseRevision === "number" &&
     Array.isArray(d.edits) &&
     (d.layout == null || isLayoutState(d.layout))
+  );
+}
+
+function isFailedObjectAction(value: unknown): value is FailedObjectAction {
+  if (!value || typeof value !== "object") return false;
+  const a = value as Partial<FailedObjectAction>;
+  const isEdit = (e: unknown) =>
+    !!e &&
+    typeof (e as Partial<ObjectEdit>).kind === "string" &&
+    typeof (e as Partial<ObjectEdit>).id === "string";
+  return (
+    typeof a.label === "string" &&
+    typeof a.message === "string" &&
+    typeof a.failedAt === "string" &&
+    Array.isArray(a.edits) &&
+    a.edits.length > 0 &&
+    a.edits.every(isEdit)
   );
 }
 
@@ -57,22 +89,33 @@ function isLayoutState(value: unknown): value is LayoutState {
 export class DraftStore {
   constructor(private readonly storage: Storage | null = browserStorage()) {}
 
-  private read(name: string): Draft | null {
+  /** The value stored under `name` if it is one (null: none, or not one). */
+  private readAs<T>(name: string, valid: (value: unknown) => value is T): T | null {
     try {
       const value: unknown = JSON.parse(this.storage?.getItem(name) ?? "null");
-      return isDraft(value) && hasChanges(value) ? value : null;
+      return valid(value) ? value : null;
     } catch {
       return null;
     }
   }
 
-  private write(name: string, draft: Draft | null): void {
+  /** Store `value` under `name` (null: remove it). */
+  private store(name: string, value: object | null): void {
     try {
-      if (draft && hasChanges(draft)) this.storage?.setItem(name, JSON.stringify(draft));
+      if (value) this.storage?.setItem(name, JSON.stringify(value));
       else this.storage?.removeItem(name);
     } catch {
-      // full or refused: the edits still live in the page
+      // full or refused: what it held still lives in the page
     }
+  }
+
+  private read(name: string): Draft | null {
+    const draft = this.readAs(name, isDraft);
+    return draft && hasChanges(draft) ? draft : null;
+  }
+
+  private write(name: string, draft: Draft | null): void {
+    this.store(name, draft && hasChanges(draft) ? draft : null);
   }
 
   /** Keep the scene's unsaved edits (none: forget them). */
@@ -100,6 +143,15 @@ export class DraftStore {
   /** The user restored or discarded the set-aside edits. */
   clearRecovered(sceneId: string): void {
     this.write(recoveredKey(sceneId), null);
+  }
+
+  /** Keep the scene's failed object action (null: it was saved or dropped). */
+  saveFailedAction(sceneId: string, action: FailedObjectAction | null): void {
+    this.store(failedKey(sceneId), action);
+  }
+
+  loadFailedAction(sceneId: string): FailedObjectAction | null {
+    return this.readAs(failedKey(sceneId), isFailedObjectAction);
   }
 }
 

@@ -5,7 +5,9 @@
 import type { SceneDocument, SceneObject } from "@holiscene/schema";
 import { beforeEach, describe, expect, it } from "vitest";
 import { ApiError } from "../api/errors";
+import { MemoryStorage } from "../testing/memoryStorage";
 import { sceneDocument, sceneObject, sessionOn } from "../testing/sceneDocuments";
+import { DraftStore } from "./draftStore";
 import {
   type NewObject,
   type ObjectEdit,
@@ -212,6 +214,61 @@ describe("ObjectEditor", () => {
     await editor.retry();
     expect(classes(session)).toEqual({ o1: "chair" });
     expect(editor.redoLabel).toBe("o1 → sofa");
+  });
+});
+
+describe("a failed object action outlives the page", () => {
+  let storage: MemoryStorage;
+  let server: RevisionServer;
+  /** A visit: a new page on the latest revision, with the same localStorage. */
+  const visit = () =>
+    new ObjectEditor(sessionOn(server.latest, storage), {
+      author: () => "tester",
+      post: server.post,
+    });
+  const kept = () => new DraftStore(storage).loadFailedAction("s1");
+  beforeEach(() => {
+    storage = new MemoryStorage();
+    server = new RevisionServer(documentOf(1, [object("o1", "chair")]));
+  });
+
+  it("is offered again on the next visit, kept while a retry fails, forgotten once saved", async () => {
+    server.refuseNext = "server down";
+    await visit().apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
+
+    const next = visit(); // the tab was closed
+    expect(next.failure).toEqual({
+      label: "o1 → sofa",
+      message: "server down (Kept from your last visit.)",
+    });
+    server.refuseNext = "still down";
+    expect(await next.retry()).toBe(false);
+    expect(kept()).toMatchObject({ label: "o1 → sofa", message: "still down" });
+    expect(await next.retry()).toBe(true);
+    expect(classes(next.session)).toEqual({ o1: "sofa" });
+    expect(next.failure).toBeNull();
+    expect(kept()).toBeNull();
+    expect(visit().failure).toBeNull();
+  });
+
+  it("a failed undo is kept as its restore edits; a dropped action is forgotten", async () => {
+    const editor = visit();
+    await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
+    server.refuseNext = "server down";
+    await editor.undo();
+    expect(kept()).toMatchObject({ label: "undo o1 → sofa", edits: restoreEdits(["o1"], 1) });
+
+    const next = visit();
+    expect(next.failure?.label).toBe("undo o1 → sofa");
+    next.discardFailed();
+    expect(kept()).toBeNull();
+    expect(visit().failure).toBeNull();
+    expect(server.latest.scene.objects?.[0]?.class).toBe("sofa");
+  });
+
+  it("a stored action that is not one is ignored", () => {
+    storage.setItem("holiscene.draft.s1.failedObjectAction", '{"label":"x","edits":[]}');
+    expect(visit().failure).toBeNull();
   });
 });
 

@@ -5,7 +5,8 @@
 // it made (revisions never change, so both stay exact). Actions run one after another. On a
 // conflict (someone saved first) the latest revision is loaded and the action sent again on top
 // of it when the objects it changes still exist; otherwise it stays, with Retry and Discard, so
-// nothing a person did is silently lost.
+// nothing a person did is silently lost: it is kept in localStorage too (the session's
+// DraftStore) until saved or dropped, and a later visit offers it again.
 import type {
   AddObject,
   EditRequest,
@@ -147,7 +148,8 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   private readonly listeners = new Set<() => void>();
   private queue: Promise<unknown> = Promise.resolve();
   private waiting = 0;
-  private retryFailed: (() => Promise<unknown>) | null = null;
+  /** Sends the failed action again; true once saved. */
+  private retryFailed: (() => Promise<boolean>) | null = null;
   /** Ids of new objects in actions not saved yet. */
   private readonly reserved = new Set<string>();
   /** Revisions this page had loaded, by number (an undo shows the one it restores at once). */
@@ -158,6 +160,11 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     private readonly options: { author?: () => string; post?: PostEdits } = {},
   ) {
     super();
+    const kept = session.drafts.loadFailedAction(session.sceneId);
+    if (kept) {
+      this.failure = { label: kept.label, message: `${kept.message} (Kept from your last visit.)` };
+      this.retryFailed = () => this.apply(kept.edits, kept.label);
+    }
   }
 
   /** Told after every change of status, failure or history. */
@@ -211,8 +218,10 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
       if (!entry) return null;
       const ids = entry.changes.map((c) => c.key);
       const before = entry.changes[0]?.before ?? 0;
-      const sent = await this.send(`undo ${entry.label}`, restoreEdits(ids, before), () =>
-        this.undo(),
+      const sent = await this.send(
+        `undo ${entry.label}`,
+        restoreEdits(ids, before),
+        async () => (await this.undo()) !== null,
       );
       if (!sent) this.history.redo(); // not undone: it stays the one to undo
       this.changed();
@@ -227,8 +236,10 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
       if (!entry) return null;
       const ids = entry.changes.map((c) => c.key);
       const after = entry.changes[0]?.after ?? 0;
-      const sent = await this.send(`redo ${entry.label}`, restoreEdits(ids, after), () =>
-        this.redo(),
+      const sent = await this.send(
+        `redo ${entry.label}`,
+        restoreEdits(ids, after),
+        async () => (await this.redo()) !== null,
       );
       if (!sent) this.history.undo();
       this.changed();
@@ -236,24 +247,38 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     });
   }
 
-  /** Send the failed action again (on the latest revision). */
-  retry(): Promise<unknown> {
+  /** Send the failed action again (on the latest revision); true once saved. */
+  async retry(): Promise<boolean> {
+    const failed = this.failure;
     const again = this.retryFailed;
-    this.clearFailure();
-    return again ? again() : Promise.resolve(false);
+    if (!failed || !again) return false;
+    this.setFailure(null, null);
+    // Stored until saved: a tab closed while it is being sent loses nothing.
+    const saved = await again();
+    if (saved && this.failure === null) this.keepFailed(null);
+    // Not sent at all (the scene is read only now): still offered.
+    if (!saved && this.failure === null) this.setFailure(failed, again);
+    return saved;
   }
 
   /** Drop the failed action (the person chose to). */
   discardFailed(): void {
     const label = this.failure?.label;
-    this.clearFailure();
+    this.setFailure(null, null);
+    this.keepFailed(null);
     if (label) this.setStatus({ kind: "idle", message: `Dropped: ${label}.`, error: false });
   }
 
-  private clearFailure(): void {
-    this.failure = null;
-    this.retryFailed = null;
+  private setFailure(failure: FailedAction | null, retry: (() => Promise<boolean>) | null): void {
+    this.failure = failure;
+    this.retryFailed = retry;
     this.changed();
+  }
+
+  /** Keep the failed action in the scene's drafts (null: forget it). */
+  private keepFailed(action: { label: string; message: string; edits: ObjectEdit[] } | null): void {
+    const kept = action && { ...action, failedAt: new Date().toISOString() };
+    this.session.drafts.saveFailedAction(this.session.sceneId, kept);
   }
 
   private enqueue<T>(task: () => Promise<T>): Promise<T> {
@@ -278,7 +303,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   private async send(
     label: string,
     edits: readonly ObjectEdit[],
-    retry: () => Promise<unknown>,
+    retry: () => Promise<boolean>,
   ): Promise<Sent | null> {
     const session = this.session;
     const lock = session.lock;
@@ -317,6 +342,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
           label,
           `${who} saved revision ${latest} meanwhile, and ${gone} ${rebased.missing.length === 1 ? "is" : "are"} ` +
             "no longer in the scene: your change was not applied.",
+          edits,
           retry,
         );
         return null;
@@ -326,7 +352,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
       return this.adopt(label, latest, rebased.edits, await this.post(latest, rebased.edits), note);
     } catch (error) {
       if (shown) session.adopt(shown); // not saved: back to what the server has
-      this.fail(label, errorText(error), retry);
+      this.fail(label, errorText(error), edits, retry);
       return null;
     }
   }
@@ -365,7 +391,13 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     return [...new Set(names)].join(", ") || "Someone";
   }
 
-  private fail(label: string, message: string, retry: () => Promise<unknown>): void {
+  private fail(
+    label: string,
+    message: string,
+    edits: readonly ObjectEdit[],
+    retry: () => Promise<boolean>,
+  ): void {
+    this.keepFailed({ label, message, edits: [...edits] });
     this.failure = { label, message };
     this.retryFailed = retry;
     this.setStatus({ kind: "idle", message: null, error: false });

@@ -130,7 +130,8 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
   private refusal: { message: string; workflow: string } | null = null;
   private shownLock = "";
   private readonly listeners = new Set<(change: Change) => void>();
-  private readonly drafts: DraftStore;
+  /** Where unsaved work outlives the page (localStorage): drafts, a failed object action. */
+  readonly drafts: DraftStore;
   private shownCache: Map<string, ShownSupport> | null = null;
   private suggester: Suggester | null = null;
   private suggestionCache: Map<string, SuggestedSupport> | null = null;
