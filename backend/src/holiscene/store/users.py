@@ -21,6 +21,7 @@ from sqlalchemy import ColumnElement, Engine, delete, func, select, update
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session, aliased
 
+from ..core.db import without_transaction
 from ..core.passwords import check_password, hash_password, needs_rehash, verify_password
 from ..workflow import RESERVED_NAMES, ROLES
 from .clock import as_utc, utcnow
@@ -92,6 +93,8 @@ class UserStore:
     def __init__(self, engine: Engine, idle_timeout: timedelta) -> None:
         """`idle_timeout`: how long a session lasts without a request (Settings)."""
         self.engine = engine
+        # For the one-statement reads of every request (no BEGIN/ROLLBACK on PostgreSQL).
+        self.reads = without_transaction(engine)
         self.idle_timeout = idle_timeout
         self._last_seen_step = min(LAST_SEEN_STEP, idle_timeout / 10)
 
@@ -99,7 +102,7 @@ class UserStore:
 
     def any_users(self) -> bool:
         """Whether accounts exist (then every request must log in)."""
-        with Session(self.engine) as session:
+        with Session(self.reads) as session:
             return session.scalar(select(UserRow.id).limit(1)) is not None
 
     def count_admins(self) -> int:
@@ -243,7 +246,8 @@ class UserStore:
         saying why, for one that expired, went unused too long, or whose account is
         disabled."""
         now = utcnow()
-        with Session(self.engine) as session:
+        # One read (and now and then one UPDATE, committed by itself): no transaction needed.
+        with Session(self.reads) as session:
             found = session.execute(
                 select(SessionRow, UserRow)
                 .join(UserRow, UserRow.id == SessionRow.user_id)
