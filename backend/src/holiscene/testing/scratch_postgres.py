@@ -25,9 +25,10 @@ import tempfile
 import time
 from pathlib import Path
 from types import TracebackType
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import psycopg
+if TYPE_CHECKING:
+    import psycopg
 
 SERVER_USER = "postgres"  # the account Debian's package makes, for runs as root
 _SUPERUSER = "holiscene"
@@ -76,6 +77,12 @@ class ScratchPostgres:
     def __init__(self, *, durable: bool = False) -> None:
         """`durable`: keep PostgreSQL's default fsync and commit settings (benchmarks); the
         tests turn them off."""
+        try:
+            import psycopg  # noqa: F401  (the driver: the postgres extra, in the dev install)
+        except ImportError:
+            raise PostgresUnavailableError(
+                'the PostgreSQL driver is missing: pip install -e ".[postgres]"'
+            ) from None
         bindir = find_bindir()
         if bindir is None:
             raise PostgresUnavailableError(
@@ -162,6 +169,8 @@ class ScratchPostgres:
         return self._root
 
     def _admin(self) -> psycopg.Connection[Any]:
+        import psycopg
+
         return psycopg.connect(
             host="127.0.0.1",
             port=self.port,
@@ -205,6 +214,8 @@ class ScratchPostgres:
 
     def _launch(self) -> bool:
         """Start the server on a free port; False if the port was taken meanwhile."""
+        import psycopg
+
         self.port = _free_port()
         settings = [
             f"port={self.port}",
