@@ -204,7 +204,7 @@ describe("ObjectEditor", () => {
     expect(editor.failure?.label).toBe("undo remove o1");
   });
 
-  it("an undo the server refuses stays the one to undo", async () => {
+  it("an undo (or redo) the server refuses stays the one to undo (or redo)", async () => {
     await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
     server.refuseNext = "down";
     expect(await editor.undo()).toBeNull();
@@ -214,6 +214,15 @@ describe("ObjectEditor", () => {
     await editor.retry();
     expect(classes(session)).toEqual({ o1: "chair" });
     expect(editor.redoLabel).toBe("o1 → sofa");
+
+    server.refuseNext = "down";
+    expect(await editor.redo()).toBeNull();
+    expect(editor.redoLabel).toBe("o1 → sofa");
+    expect(editor.undoLabel).toBeNull();
+    expect(editor.failure?.label).toBe("redo o1 → sofa");
+    expect(await editor.retry()).toBe(true);
+    expect(classes(session)).toEqual({ o1: "sofa" });
+    expect(editor.undoLabel).toBe("o1 → sofa");
   });
 });
 

@@ -213,35 +213,36 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
 
   /** Take back the last action; resolves to its label (null: nothing to undo, or it failed). */
   undo(): Promise<string | null> {
-    return this.enqueue(async () => {
-      const entry = this.history.undo();
-      if (!entry) return null;
-      const ids = entry.changes.map((c) => c.key);
-      const before = entry.changes[0]?.before ?? 0;
-      const sent = await this.send(
-        `undo ${entry.label}`,
-        restoreEdits(ids, before),
-        async () => (await this.undo()) !== null,
-      );
-      if (!sent) this.history.redo(); // not undone: it stays the one to undo
-      this.changed();
-      return sent ? entry.label : null;
-    });
+    return this.step("undo");
   }
 
   /** Do the last undone action again; resolves to its label (null: nothing, or it failed). */
   redo(): Promise<string | null> {
+    return this.step("redo");
+  }
+
+  /**
+   * Undo: put the objects of the last action back as in the revision before it; redo: as in
+   * the revision it made. One that fails stays the one to undo (or redo).
+   */
+  private step(way: "undo" | "redo"): Promise<string | null> {
+    const history = this.history;
+    const [take, giveBack] =
+      way === "undo"
+        ? [() => history.undo(), () => history.redo()]
+        : [() => history.redo(), () => history.undo()];
     return this.enqueue(async () => {
-      const entry = this.history.redo();
+      const entry = take();
       if (!entry) return null;
       const ids = entry.changes.map((c) => c.key);
-      const after = entry.changes[0]?.after ?? 0;
+      const first = entry.changes[0];
+      const revision = (way === "undo" ? first?.before : first?.after) ?? 0;
       const sent = await this.send(
-        `redo ${entry.label}`,
-        restoreEdits(ids, after),
-        async () => (await this.redo()) !== null,
+        `${way} ${entry.label}`,
+        restoreEdits(ids, revision),
+        async () => (await this.step(way)) !== null,
       );
-      if (!sent) this.history.undo();
+      if (!sent) giveBack();
       this.changed();
       return sent ? entry.label : null;
     });
