@@ -7,6 +7,7 @@ import path from "node:path";
 import type { Mask, SceneDocument, SceneObject } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getRevisions, getScene, seedScene, T3D_5 } from "../helpers/api";
+import { screenPoint } from "../helpers/objects";
 import { clickObject, openScene, setAuthor } from "../helpers/photo";
 
 const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
@@ -34,19 +35,6 @@ function maskHas(mask: Mask | null | undefined, [x, y]: Xy): boolean {
 const area = (mask: Mask | null | undefined) =>
   mask ? mask.rle.reduce((sum, run, i) => (i % 2 === 1 ? sum + run : sum), 0) : 0;
 
-/** The screen point of a photo pixel. */
-async function toScreen(page: Page, [x, y]: Xy): Promise<{ x: number; y: number }> {
-  return page.getByTestId("photo").evaluate(
-    (svg, [px, py]) => {
-      const matrix = (svg as SVGSVGElement).getScreenCTM();
-      if (!matrix) throw new Error("the photo is not laid out");
-      const p = new DOMPoint(px, py).matrixTransform(matrix);
-      return { x: p.x, y: p.y };
-    },
-    [x, y] as Xy,
-  );
-}
-
 /**
  * Press at the first point, move through the others in steps, release; returns the saved
  * document. A brush's mask is shown while the button is down (`live`); a refine waits for the
@@ -62,11 +50,11 @@ async function drag(
   const saved = waitForEdit(page, sceneId);
   const [first, ...rest] = points;
   if (!first) throw new Error("no points to drag through");
-  const start = await toScreen(page, first);
+  const start = await screenPoint(page, ...first);
   await page.mouse.move(start.x, start.y);
   await page.mouse.down();
   for (const point of rest) {
-    const at = await toScreen(page, point);
+    const at = await screenPoint(page, ...point);
     await page.mouse.move(at.x, at.y, { steps: 6 });
   }
   if (screenshot) await page.screenshot({ path: path.join(SCREENSHOTS, screenshot) });
@@ -231,8 +219,8 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
     [(x1 + x2) / 2 + 40, y1 - 25],
   ];
   for (const [x, y] of above) {
-    const from = await toScreen(page, [x - 5, y]);
-    const to = await toScreen(page, [x + 5, y]);
+    const from = await screenPoint(page, x - 5, y);
+    const to = await screenPoint(page, x + 5, y);
     await page.mouse.move(from.x, from.y);
     await page.mouse.down();
     await page.mouse.move(to.x, to.y, { steps: 3 });
@@ -266,7 +254,7 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   for (const fx of [0.3, 0.7, 0.5, 0.4, 0.6]) {
     for (const fy of [0.7, 0.6, 0.5]) {
       const at: Xy = [x1 + (x2 - x1) * fx, y1 + (y2 - y1) * fy];
-      const screen = await toScreen(page, at);
+      const screen = await screenPoint(page, ...at);
       if (!middle && solid(at) && screen.y < (page.viewportSize()?.height ?? 0) - 30) middle = at;
     }
   }
@@ -287,17 +275,19 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   // closes it; its inside joins the mask.
   await page.keyboard.press("G");
   await expect(page.getByTestId("photo-tool-polygon")).toHaveAttribute("aria-pressed", "true");
-  // Escape drops a polygon half drawn; the object stays selected.
+  // Escape drops a polygon half drawn; the object and the tool stay selected.
   for (const corner of [
     [x1 + 10, midY],
     [x1 + 40, midY],
   ] as Xy[]) {
-    const at = await toScreen(page, corner);
+    const at = await screenPoint(page, ...corner);
     await page.mouse.click(at.x, at.y);
   }
   await expect(page.getByTestId("polygon-draft")).toHaveAttribute("data-points", "2");
   await page.keyboard.press("Escape");
   await expect(page.getByTestId("polygon-draft")).toHaveCount(0);
+  // Only the polygon goes: the tool stays (a second Escape would go back to Select).
+  await expect(page.getByTestId("photo-tool-polygon")).toHaveAttribute("aria-pressed", "true");
   await expect(page.getByTestId("mask-tool-status")).toHaveText(/Mask of/);
   // Left of the box and above its middle: on screen without scrolling.
   const px = Math.max(12, x1 - 40);
@@ -309,7 +299,7 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
     [px, py + 30],
   ];
   for (const corner of [...corners, [px + 15, py + 15] as Xy]) {
-    const at = await toScreen(page, corner);
+    const at = await screenPoint(page, ...corner);
     await page.mouse.click(at.x, at.y);
   }
   await expect(page.getByTestId("polygon-draft")).toHaveAttribute("data-points", "5");
@@ -330,11 +320,11 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
     [px + 20, py + 20],
   ];
   for (const corner of cut) {
-    const at = await toScreen(page, corner);
+    const at = await screenPoint(page, ...corner);
     await page.mouse.click(at.x, at.y);
   }
   const cutSaved = waitForEdit(page, seeded.scene_id);
-  const close = await toScreen(page, cut[0] as Xy);
+  const close = await screenPoint(page, ...(cut[0] as Xy));
   await page.keyboard.down("Shift");
   await page.mouse.click(close.x, close.y);
   await page.keyboard.up("Shift");

@@ -296,6 +296,7 @@ export function mountMaskTools(tools: PhotoTools): () => void {
     cursor: "crosshair",
     edits: true,
     activate: describeTarget,
+    drafting: () => polygon !== null,
     down(at, event) {
       if (!polygon) {
         const object = pick(event);
@@ -476,14 +477,6 @@ export function mountMaskTools(tools: PhotoTools): () => void {
       scope: SCOPE,
       run: () => closePolygon(polygon?.subtract ?? false),
       enabled: () => drafting() && (polygon?.points.length ?? 0) >= 3,
-    }),
-    // The page's Escape (clear the selection) would leave the half-drawn polygon standing.
-    registerShortcut({
-      keys: "Escape",
-      description: "Drop the polygon being drawn",
-      scope: SCOPE,
-      run: () => polygonTool.cancel?.(),
-      enabled: drafting,
     }),
     registerShortcut({
       keys: "Backspace",

@@ -32,6 +32,8 @@ export interface PhotoTool {
   up?(at: ImagePoint, event: PointerEvent): void;
   /** Drop whatever is half drawn (Esc, or another tool chosen). */
   cancel?(): void;
+  /** Whether something is half drawn: Esc drops it first (cancel), the next Esc goes to Select. */
+  drafting?(): boolean;
   /** Told when it becomes the active tool. */
   activate?(): void;
   /** Controls shown beside the toolbar while it is active (a brush size, ...). */
@@ -194,9 +196,9 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
   add(selectTool);
   const escapeSpec = {
     keys: "Escape",
-    description: "Cancel the photo tool's drawing and go back to Select",
+    description: "Drop what the photo tool has half drawn, else go back to Select",
     scope: SCOPE,
-    run: () => activate(selectTool.id),
+    run: () => (active.drafting?.() ? active.cancel?.() : activate(selectTool.id)),
     enabled: () => active !== selectTool,
   };
   let removeEscape = registerShortcut(escapeSpec);
