@@ -89,7 +89,7 @@ export function mountBoxTool(tools: PhotoTools): () => void {
     const px = host.pixelSize();
     const nodes: SVGElement[] = [];
     for (const box of sending.values()) nodes.push(rect(box, "box-tool-pending"));
-    const selected = session.selected ? session.object(session.selected) : undefined;
+    const selected = session.selectedObject;
     const editing = press?.kind === "edit" ? press : null;
     const box = editing?.box ?? selected?.bbox;
     if (box && (editing || selected)) {
@@ -164,7 +164,7 @@ export function mountBoxTool(tools: PhotoTools): () => void {
     cursor: "crosshair",
     edits: true,
     down(at, event) {
-      const selected = session.selected ? session.object(session.selected) : undefined;
+      const selected = session.selectedObject;
       const grip = selected ? gripAt(selected.bbox, at, HANDLE_PX * host.pixelSize()) : null;
       // Shift: always a new box (one inside another object's, a pillow on a bed).
       const hit = event.shiftKey ? null : host.objectAt(event);
@@ -190,7 +190,7 @@ export function mountBoxTool(tools: PhotoTools): () => void {
     },
     move(at) {
       if (!press) {
-        const selected = session.selected ? session.object(session.selected) : undefined;
+        const selected = session.selectedObject;
         const grip = selected ? gripAt(selected.bbox, at, HANDLE_PX * host.pixelSize()) : null;
         host.svg.style.cursor = grip ? CURSORS[grip] : "crosshair";
         return;

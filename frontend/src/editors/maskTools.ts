@@ -104,13 +104,9 @@ export function mountMaskTools(tools: PhotoTools): () => void {
     status.classList.toggle("is-error", error);
   };
 
-  const selectedObject = (): SceneObject | null => {
-    const id = session.selected;
-    return id ? (session.object(id) ?? null) : null;
-  };
   /** The object to draw on; with none selected, a press on an object selects it instead. */
   const pick = (event: PointerEvent): SceneObject | null => {
-    const object = selectedObject();
+    const object = session.selectedObject;
     if (object) return object;
     const under = host.objectAt(event);
     if (under) {
@@ -120,7 +116,7 @@ export function mountMaskTools(tools: PhotoTools): () => void {
     return null;
   };
   const describeTarget = () => {
-    const object = selectedObject();
+    const object = session.selectedObject;
     say(object ? `Mask of ${object.class} ${object.id}` : NEED_OBJECT, !object);
   };
 

@@ -1,7 +1,9 @@
 // Keys for the selected object itself (in every photo tool): Delete removes it (its supports
 // go; undo brings everything back), Shift+C changes its class with the class picker.
+import type { SceneObject } from "@holiscene/schema";
 import { registerShortcut } from "../shortcuts";
 import type { ObjectEditor } from "../state/objectEditor";
+import type { SceneSession } from "../state/sceneSession";
 import { pickClass } from "../views/scene/classPicker";
 import { classKey } from "../views/scene/classRanking";
 import { objectName, screenRect } from "./boxTool";
@@ -10,14 +12,18 @@ export const REMOVE_OBJECT_KEYS = ["Delete"];
 export const SET_CLASS_KEY = "Shift+C";
 const SCOPE = "Objects";
 
+/** The selected object; without one the person is asked to select one. */
+function selectedOrAsk(session: SceneSession): SceneObject | undefined {
+  const object = session.selectedObject;
+  if (!object) session.say("Select an object first (click it).");
+  return object;
+}
+
 /** Remove the selected object (one undoable action). */
 export async function removeSelected(editor: ObjectEditor): Promise<void> {
   const { session } = editor;
-  const object = session.selected ? session.object(session.selected) : undefined;
-  if (!object) {
-    session.say("Select an object first (click it).");
-    return;
-  }
+  const object = selectedOrAsk(session);
+  if (!object) return;
   session.select(null);
   await editor.apply([{ kind: "remove_object", id: object.id }], `remove ${objectName(object)}`);
 }
@@ -25,11 +31,8 @@ export async function removeSelected(editor: ObjectEditor): Promise<void> {
 /** Pick a new class for the selected object (near its box on `svg`). */
 export async function changeSelectedClass(editor: ObjectEditor, svg: SVGSVGElement): Promise<void> {
   const { session } = editor;
-  const object = session.selected ? session.object(session.selected) : undefined;
-  if (!object) {
-    session.say("Select an object first (click it).");
-    return;
-  }
+  const object = selectedOrAsk(session);
+  if (!object) return;
   const cls = await pickClass({
     near: screenRect(svg, object.bbox),
     title: `Class of ${objectName(object)}`,

@@ -187,11 +187,14 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
     if (active !== selectTool) event.stopPropagation();
   };
   const svg = host.svg;
-  svg.addEventListener("pointerdown", onDown, true);
-  svg.addEventListener("pointermove", onMove);
-  svg.addEventListener("pointerup", onUp);
-  svg.addEventListener("pointercancel", onUp);
-  svg.addEventListener("click", onClick, true);
+  // One signal takes every listener off again in dispose().
+  const listening = new AbortController();
+  const { signal } = listening;
+  svg.addEventListener("pointerdown", onDown, { capture: true, signal });
+  svg.addEventListener("pointermove", onMove, { signal });
+  svg.addEventListener("pointerup", onUp, { signal });
+  svg.addEventListener("pointercancel", onUp, { signal });
+  svg.addEventListener("click", onClick, { capture: true, signal });
 
   add(selectTool);
   const escapeSpec = {
@@ -232,11 +235,7 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
       unsubscribe();
       removeEscape();
       for (const remove of [...removers.values()]) remove();
-      svg.removeEventListener("pointerdown", onDown, true);
-      svg.removeEventListener("pointermove", onMove);
-      svg.removeEventListener("pointerup", onUp);
-      svg.removeEventListener("pointercancel", onUp);
-      svg.removeEventListener("click", onClick, true);
+      listening.abort();
       buttonRow.remove();
       optionsBox.remove();
     },

@@ -95,6 +95,14 @@ describe("SceneSession editing", () => {
     expect(session.shown().get("o1")?.parent).toBe("o0");
   });
 
+  it("the selected object is the object of the selected id (none for a structure or nothing)", () => {
+    expect(session.selectedObject).toBeUndefined();
+    session.select("o1");
+    expect(session.selectedObject?.id).toBe("o1");
+    session.select("floor");
+    expect(session.selectedObject).toBeUndefined();
+  });
+
   it("keeps unsaved edits in storage and offers them to the next visit", () => {
     session.edit("o2 on o1", [{ kind: "set_support", child: "o2", parent: "o1", type: "below" }]);
     session.edit("reject o1", [{ kind: "remove_support", child: "o1" }]);

@@ -210,6 +210,11 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     return this.objects.find((o) => o.id === id);
   }
 
+  /** The selected object, if it is one (not a structure, nor gone). */
+  get selectedObject(): SceneObject | undefined {
+    return this.selected ? this.object(this.selected) : undefined;
+  }
+
   /** Unsaved edits, in the order they were made (one per object). */
   get pending(): Edit[] {
     return [...this.edits.values()];
