@@ -3,15 +3,22 @@
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from alembic import command
 from alembic.config import Config
 from sqlalchemy import Engine, create_engine, event
-from sqlalchemy.exc import DisconnectionError
+from sqlalchemy.exc import DBAPIError, DisconnectionError
 
 MIGRATIONS_DIR = Path(__file__).resolve().parent.parent / "store" / "migrations"
+
+T = TypeVar("T")
+
+# PostgreSQL's deadlock and serialization failures: the server rolled the transaction back and
+# running it again is the documented answer.
+_RETRYABLE_SQLSTATES = frozenset({"40P01", "40001"})
 
 
 # Connections kept open. The API answers in up to 40 threads (AnyIO's default for sync
@@ -89,3 +96,17 @@ def migrate(engine: Engine) -> None:
     with engine.begin() as connection:
         config.attributes["connection"] = connection
         command.upgrade(config, "head")
+
+
+def retrying_transaction(work: Callable[[], T], attempts: int = 5) -> T:
+    """`work` (one whole transaction, opening its own session) run again when PostgreSQL
+    aborted it as a deadlock or serialization failure; any other error, or the last attempt's,
+    goes to the caller."""
+    for attempt in range(attempts):
+        try:
+            return work()
+        except DBAPIError as error:
+            state = getattr(error.orig, "sqlstate", None)
+            if state not in _RETRYABLE_SQLSTATES or attempt == attempts - 1:
+                raise
+    raise AssertionError("unreachable")

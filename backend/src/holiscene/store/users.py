@@ -21,7 +21,7 @@ from sqlalchemy import ColumnElement, Engine, delete, func, select, update
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session, aliased
 
-from ..core.db import without_transaction
+from ..core.db import retrying_transaction, without_transaction
 from ..core.passwords import check_password, hash_password, needs_rehash, verify_password
 from ..workflow import RESERVED_NAMES, ROLES
 from .clock import as_utc, utcnow
@@ -146,40 +146,49 @@ class UserStore:
         """A new role. The last enabled admin cannot stop being admin (nobody could manage
         accounts): checked in the statement that writes the role (`_unless_last_admin`)."""
         checked_role = check_role(role)
-        with Session(self.engine) as session:
-            row = self._row(session, name)
-            if checked_role == "admin":
-                row.role = checked_role
-            else:
-                _update_unless_last_admin(
-                    session,
-                    row.id,
-                    f"{name} is the only admin; make someone else admin first",
-                    role=checked_role,
-                )
-            session.commit()
-            return _info(row)
+
+        def write() -> UserInfo:
+            with Session(self.engine) as session:
+                row = self._row(session, name)
+                if checked_role == "admin":
+                    row.role = checked_role
+                else:
+                    _update_unless_last_admin(
+                        session,
+                        row.id,
+                        f"{name} is the only admin; make someone else admin first",
+                        role=checked_role,
+                    )
+                session.commit()
+                return _info(row)
+
+        # Two admins demoting each other at once can deadlock on PostgreSQL: run again.
+        return retrying_transaction(write)
 
     def set_disabled(self, name: str, disabled: bool) -> UserInfo:
         """Disable an account (it cannot log in, and its sessions stop working at once) or
         enable it again (its sessions from before stay ended: log in anew). The last enabled
         admin cannot be disabled, not even by themselves: nobody could manage accounts."""
-        with Session(self.engine) as session:
-            row = self._row(session, name)
-            if disabled and row.disabled_at is None:
-                _update_unless_last_admin(
-                    session,
-                    row.id,
-                    f"{name} is the only enabled admin and cannot be disabled: make someone "
-                    "else admin first",
-                    UserRow.disabled_at.is_(None),
-                    disabled_at=utcnow(),
-                )
-            elif not disabled and row.disabled_at is not None:
-                row.disabled_at = None
-                session.execute(delete(SessionRow).where(SessionRow.user_id == row.id))
-            session.commit()
-            return _info(row)
+
+        def write() -> UserInfo:
+            with Session(self.engine) as session:
+                row = self._row(session, name)
+                if disabled and row.disabled_at is None:
+                    _update_unless_last_admin(
+                        session,
+                        row.id,
+                        f"{name} is the only enabled admin and cannot be disabled: make "
+                        "someone else admin first",
+                        UserRow.disabled_at.is_(None),
+                        disabled_at=utcnow(),
+                    )
+                elif not disabled and row.disabled_at is not None:
+                    row.disabled_at = None
+                    session.execute(delete(SessionRow).where(SessionRow.user_id == row.id))
+                session.commit()
+                return _info(row)
+
+        return retrying_transaction(write)
 
     def set_password(self, name: str, password: str) -> UserInfo:
         """A new password; every session of the user ends."""
