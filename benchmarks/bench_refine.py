@@ -82,7 +82,8 @@ def main() -> int:
     call_ms: list[float] = []
     with tempfile.TemporaryDirectory(prefix="bench-refine-") as scratch:
         settings = Settings(data_dir=Path(scratch) / "data", web_dir=Path(scratch) / "no-web")
-        with TestClient(create_app(settings)) as client:
+        # A loopback Host, as a browser on this machine sends (the server refuses others).
+        with TestClient(create_app(settings), base_url="http://127.0.0.1") as client:
             for folder in folders:
                 photo = (folder / "img.jpg").read_bytes()
                 files = {"image": ("img.jpg", photo, "image/jpeg")}
