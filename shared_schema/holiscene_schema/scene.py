@@ -80,6 +80,9 @@ class Layout(SchemaModel):
     note: str | None = None
 
 
+MaskSource = Literal["given", "box", "grabcut", "model", "ground_truth", "manual"]
+
+
 class Mask(SchemaModel):
     """A binary mask inside a window of the image, run-length encoded row by row.
 
@@ -93,7 +96,7 @@ class Mask(SchemaModel):
         description="[width, height] of the window"
     )
     rle: list[Annotated[int, Field(ge=0)]]
-    source: Literal["given", "box", "grabcut", "model", "ground_truth", "manual"]
+    source: MaskSource
 
     @model_validator(mode="after")
     def _runs_fill_window(self) -> Mask:

@@ -2,12 +2,8 @@
 
 from __future__ import annotations
 
-from typing import Literal
-
 import numpy as np
-from holiscene_schema import Mask
-
-MaskSource = Literal["given", "box", "grabcut", "model", "ground_truth", "manual"]
+from holiscene_schema import Mask, MaskSource
 
 
 def encode_mask(mask: np.ndarray, source: MaskSource) -> Mask | None:

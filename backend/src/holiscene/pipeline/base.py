@@ -17,6 +17,7 @@ from holiscene_schema import (
     Box3D,
     Camera,
     Layout,
+    MaskSource,
     MeshRef,
     RemovedObject,
     SceneObject,
@@ -24,7 +25,6 @@ from holiscene_schema import (
 )
 
 from ..geometry.camera import FloatArray
-from ..rle import MaskSource
 
 T = TypeVar("T")
 

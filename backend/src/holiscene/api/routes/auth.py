@@ -7,12 +7,16 @@ answer (`{"token": true}`) and send it as `Authorization: Bearer`.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from fastapi import APIRouter, HTTPException, Request, Response
 from holiscene_schema import CurrentUser, ErrorMessage, LoginRequest, LoginResult, PasswordChange
 
 from ...store.users import SESSION_LIFETIME, AccountDisabledError
 from ..attempt_limits import (
+    Attempt,
     AttemptLimiter,
+    Limit,
     TooManyAttemptsError,
     login_limits,
     password_change_limits,
@@ -25,6 +29,14 @@ router = APIRouter(prefix="/api/auth", tags=["auth"])
 def _limiter(request: Request) -> AttemptLimiter:
     limiter: AttemptLimiter = request.app.state.attempt_limiter  # one per app (create_app)
     return limiter
+
+
+def _begin_attempt(request: Request, limits: Sequence[Limit], refusal: str) -> Attempt:
+    """The attempt counted against `limits`, or 429 saying `refusal` when one is used up."""
+    try:
+        return _limiter(request).begin(limits)
+    except TooManyAttemptsError as refused:
+        raise HTTPException(429, f"{refusal}; wait a few minutes") from refused
 
 
 def _client(request: Request) -> str:
@@ -50,12 +62,7 @@ def login(
 ) -> LoginResult:
     name = body.name.strip().lower()
     limits = login_limits(_client(request), name)
-    try:
-        attempt = _limiter(request).begin(limits)
-    except TooManyAttemptsError as refused:
-        raise HTTPException(
-            429, "too many failed logins from here; wait a few minutes"
-        ) from refused
+    attempt = _begin_attempt(request, limits, "too many failed logins from here")
     try:
         user = workbench.users.log_in(name, body.password)
     except AccountDisabledError as disabled:
@@ -115,12 +122,7 @@ def change_password(
     if user.local:
         raise HTTPException(409, "the local single-user mode has no password to change")
     limits = password_change_limits(user.name)
-    try:
-        attempt = _limiter(request).begin(limits)
-    except TooManyAttemptsError as refused:
-        raise HTTPException(
-            429, "too many wrong current passwords; wait a few minutes"
-        ) from refused
+    attempt = _begin_attempt(request, limits, "too many wrong current passwords")
     if workbench.users.check_credentials(user.name, body.current_password) is None:
         raise HTTPException(403, "the current password is wrong")
     _limiter(request).succeeded(attempt, forget=[limits[0].key])
