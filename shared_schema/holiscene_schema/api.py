@@ -379,6 +379,20 @@ class ModelEvent(SchemaModel):
     note: str | None = None
 
 
+class DetectorInfo(SchemaModel):
+    """The active object detector (GET /api/detector/active): where its files are and what it
+    detects; the browser runs it with onnxruntime-web."""
+
+    id: str = Field(description="Changes with the model file; its files are under this id")
+    name: str
+    label_space: str = Field(description="coco80 (mapped to NYU-40) or nyu40")
+    classes: list[str] = Field(description="The model's own classes, by class index")
+    model_sha256: str
+    model_bytes: int
+    model_url: str
+    metadata_url: str
+
+
 class RetrainRequest(SchemaModel):
     author: str = Field(default="admin", min_length=1, max_length=64)
     max_epochs: int | None = Field(
@@ -549,3 +563,15 @@ class Dashboard(SchemaModel):
     mean_agreement: float | None = Field(
         default=None, description="Mean of the scenes' agreement; null without any"
     )
+
+
+# -- the reviewer's viser viewer ------------------------------------------------------------
+
+
+class ViewerInfo(SchemaModel):
+    """The answer of POST /api/scenes/{id}/viewer: the scene's viser viewer, started on demand."""
+
+    scene_id: str
+    revision: int = Field(description="The revision the viewer shows")
+    url: str = Field(description="The viewer's page, on 127.0.0.1")
+    command: str = Field(description="The same viewer from a shell")

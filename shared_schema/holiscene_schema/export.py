@@ -17,6 +17,7 @@ from .api import (
     Conflict,
     CurrentUser,
     Dashboard,
+    DetectorInfo,
     EditRequest,
     ErrorMessage,
     ImportResult,
@@ -43,6 +44,7 @@ from .api import (
     SecondAnnotationRequest,
     SubmitRequest,
     UserInfo,
+    ViewerInfo,
 )
 from .classes import CLASS_ALIASES, NYU40_CLASSES
 from .detector_model import detector_contract
@@ -84,6 +86,8 @@ TOP_LEVEL: dict[str, type[BaseModel]] = {
     "mask_refine_request": MaskRefineRequest,
     "mask_refine_result": MaskRefineResult,
     "scene_archive_request": SceneArchiveRequest,
+    "detector_info": DetectorInfo,
+    "viewer_info": ViewerInfo,
 }
 
 

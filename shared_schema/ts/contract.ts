@@ -10,6 +10,7 @@ ConflictDetail?: ConflictDetail
 CurrentUser?: CurrentUser
 Dashboard?: Dashboard
 DepthRef?: DepthRef
+DetectorInfo?: DetectorInfo
 EditRequest?: EditRequest
 ErrorMessage?: ErrorMessage
 ImageInfo?: ImageInfo
@@ -57,6 +58,7 @@ Stroke?: Stroke
 SubmitRequest?: SubmitRequest
 SupportRelation?: SupportRelation
 UserInfo?: UserInfo
+ViewerInfo?: ViewerInfo
 WorkflowEvent?: WorkflowEvent
 }
 /**
@@ -287,6 +289,32 @@ export interface DepthRef {
  */
 file: string
 metres_per_unit: number
+}
+/**
+ * The active object detector (GET /api/detector/active): where its files are and what it
+ * detects; the browser runs it with onnxruntime-web.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "DetectorInfo".
+ */
+export interface DetectorInfo {
+/**
+ * The model's own classes, by class index
+ */
+classes: string[]
+/**
+ * Changes with the model file; its files are under this id
+ */
+id: string
+/**
+ * coco80 (mapped to NYU-40) or nyu40
+ */
+label_space: string
+metadata_url: string
+model_bytes: number
+model_sha256: string
+model_url: string
+name: string
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -1052,4 +1080,25 @@ disabled: boolean
 disabled_at: (string | null)
 name: string
 role: ("annotator" | "reviewer" | "admin")
+}
+/**
+ * The answer of POST /api/scenes/{id}/viewer: the scene's viser viewer, started on demand.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "ViewerInfo".
+ */
+export interface ViewerInfo {
+/**
+ * The same viewer from a shell
+ */
+command: string
+/**
+ * The revision the viewer shows
+ */
+revision: number
+scene_id: string
+/**
+ * The viewer's page, on 127.0.0.1
+ */
+url: string
 }

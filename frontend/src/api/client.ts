@@ -6,6 +6,7 @@ import type {
   RevisionInfo,
   SceneDocument,
   SceneSummary,
+  ViewerInfo,
 } from "@holiscene/schema";
 import { ApiError, ConflictError } from "./errors";
 
@@ -120,4 +121,8 @@ export const api = {
 
   getRevision: (sceneId: string, revision: number, signal?: AbortSignal) =>
     request<SceneDocument>(`${sceneUrl(sceneId)}/revisions/${revision}`, { signal }),
+
+  /** Start (or reuse) the scene's viser viewer, on 127.0.0.1 (backend api/routes/viewer.py). */
+  openViewer: (sceneId: string) =>
+    request<ViewerInfo>(`${sceneUrl(sceneId)}/viewer`, { method: "POST" }),
 };

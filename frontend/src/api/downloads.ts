@@ -14,6 +14,7 @@ export const downloadUrls = {
 
 /** Whether the scene has a 3D scene yet; asks for its first bytes only. */
 export async function hasGlb(sceneId: string, signal?: AbortSignal): Promise<boolean> {
+  // A range probe of a binary file, where 404 is an answer, not an error: a plain fetch.
   const response = await fetch(downloadUrls.glb(sceneId), {
     headers: { Range: "bytes=0-3" },
     signal,

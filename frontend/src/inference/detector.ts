@@ -3,8 +3,9 @@
 // The app serves the active detector's files (GET /api/detector/active, then its model_url);
 // the model is about 8 MB and its session takes a moment to create, so each model URL gets one
 // session, kept and reused.
-import { DETECTOR_MODEL } from "@holiscene/schema";
+import { DETECTOR_MODEL, type DetectorInfo } from "@holiscene/schema";
 import type { InferenceSession } from "onnxruntime-web";
+import { request } from "../api/client";
 import {
   type DetectedBox,
   decodeDetections,
@@ -17,17 +18,8 @@ import {
 import { loadRuntime, type Ort } from "./ortRuntime";
 import type { PixelImage } from "./preprocess";
 
-/** GET /api/detector/active (backend api/routes/detector.py). */
-export interface DetectorInfo {
-  id: string;
-  name: string;
-  label_space: string;
-  classes: string[];
-  model_sha256: string;
-  model_bytes: number;
-  model_url: string;
-  metadata_url: string;
-}
+/** GET /api/detector/active (backend api/routes/detector.py), a contract type. */
+export type { DetectorInfo };
 
 /** What one detection gave, with its timings (milliseconds). */
 export interface Detection {
@@ -46,19 +38,8 @@ const ROWS = DETECTOR_MODEL.output.shape[1];
 const ROW = DETECTOR_MODEL.output.shape[2];
 
 /** The active detector's description (404: none is installed). */
-export async function activeDetector(signal?: AbortSignal): Promise<DetectorInfo> {
-  const response = await fetch("/api/detector/active", {
-    signal,
-    headers: { Accept: "application/json" },
-  });
-  if (!response.ok) {
-    const detail = await response
-      .json()
-      .then((body: { detail?: unknown }) => (typeof body.detail === "string" ? body.detail : ""))
-      .catch(() => "");
-    throw new Error(detail || `no object detector: ${response.status}`);
-  }
-  return (await response.json()) as DetectorInfo;
+export function activeDetector(signal?: AbortSignal): Promise<DetectorInfo> {
+  return request<DetectorInfo>("/detector/active", { signal });
 }
 
 /** The body of `response`, telling `onProgress` how much has come. */
@@ -96,6 +77,7 @@ export class DetectorModel {
   /** Fetch the ONNX file and create its session (do it once: see `detectorModel`). */
   static async load(info: DetectorInfo, onProgress?: LoadProgress): Promise<DetectorModel> {
     const mapping = labelMapping(info);
+    // The model is bytes, read with progress, not a JSON message: a plain fetch.
     const [ort, response] = await Promise.all([loadRuntime(), fetch(info.model_url)]);
     if (!response.ok) {
       throw new Error(`could not fetch the detector ${info.model_url}: ${response.status}`);

@@ -4,6 +4,7 @@
 import type { Scene, SceneObject } from "@holiscene/schema";
 import { RELATION_MODEL } from "@holiscene/schema";
 import type { InferenceSession } from "onnxruntime-web";
+import { modelsApi } from "../api/models";
 import { loadRuntime, type Ort } from "./ortRuntime";
 import { modelObjects, type PixelImage, type RelationInputs, sceneInputs } from "./preprocess";
 import { type PriorsFile, SupportPriors } from "./supportPriors";
@@ -103,7 +104,7 @@ export class SupportModel {
   static async load(url: string, signal?: AbortSignal): Promise<SupportModel> {
     const [ort, response, priors] = await Promise.all([
       loadRuntime(),
-      fetch(url, { signal }),
+      fetch(url, { signal }), // the ONNX bytes, not a JSON message
       loadPriors(url, signal),
     ]);
     if (!response.ok) throw new Error(`could not fetch the model ${url}: ${response.status}`);
@@ -173,6 +174,8 @@ export class SupportModel {
 /** The priors.json beside a model.onnx (the registry serves both); null when there is none. */
 async function loadPriors(modelUrl: string, signal?: AbortSignal): Promise<SupportPriors | null> {
   if (!modelUrl.endsWith("/model.onnx")) return null;
+  // A file of the model (written by its training run, like model.onnx), not an API message;
+  // a model without one is normal, so any failure means "no priors", never an error or a login.
   try {
     const response = await fetch(modelUrl.replace(/model\.onnx$/, "priors.json"), { signal });
     return response.ok ? SupportPriors.fromJson((await response.json()) as PriorsFile) : null;
@@ -196,13 +199,8 @@ export function supportModel(url: string): Promise<SupportModel> {
 
 /** The URL of the active model's ONNX file (the model registry's `GET /api/models/active`). */
 export async function activeModelUrl(signal?: AbortSignal): Promise<string> {
-  const response = await fetch("/api/models/active", {
-    signal,
-    headers: { Accept: "application/json" },
-  });
-  if (!response.ok) throw new Error(`no active support model: ${response.status}`);
-  const { id } = (await response.json()) as { id: string };
-  return `/api/models/${encodeURIComponent(id)}/model.onnx`;
+  const { id } = await modelsApi.activeModel(signal);
+  return modelsApi.onnxUrl(id);
 }
 
 /**

@@ -35,6 +35,7 @@ function rememberEnabled(on: boolean): void {
  * the backend decodes it (PIL).
  */
 export async function photoPixels(url: string, signal?: AbortSignal): Promise<PixelImage> {
+  // The photo's bytes, decoded here: a plain fetch (request() is for JSON messages).
   const response = await fetch(url, { signal });
   if (!response.ok) throw new Error(`could not fetch the photo: ${response.status}`);
   const bitmap = await createImageBitmap(await response.blob(), {

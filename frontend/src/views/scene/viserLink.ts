@@ -1,33 +1,7 @@
 // "Open in viser": asks the server for the scene's viser viewer (started on demand on
 // 127.0.0.1, one per scene, POST /api/scenes/{id}/viewer) and opens it in a new tab.
+import { api } from "../../api/client";
 import { el } from "../../dom";
-
-/** The answer of POST /api/scenes/{id}/viewer. */
-interface ViewerInfo {
-  scene_id: string;
-  revision: number;
-  url: string;
-  command: string;
-}
-
-async function openViewer(sceneId: string): Promise<ViewerInfo> {
-  const response = await fetch(`/api/scenes/${encodeURIComponent(sceneId)}/viewer`, {
-    method: "POST",
-    headers: { Accept: "application/json" },
-  });
-  if (!response.ok) {
-    const text = await response.text();
-    let detail = text || response.statusText;
-    try {
-      const body = JSON.parse(text) as { detail?: unknown };
-      if (typeof body.detail === "string") detail = body.detail;
-    } catch {
-      // not JSON: keep the text
-    }
-    throw new Error(`${response.status} ${detail}`);
-  }
-  return (await response.json()) as ViewerInfo;
-}
 
 /** A button that opens the viewer, and a link to it once it runs. */
 export function viserLink(sceneId: string): HTMLElement {
@@ -47,7 +21,7 @@ export function viserLink(sceneId: string): HTMLElement {
     if (tab) tab.opener = null;
     button.disabled = true;
     try {
-      const info = await openViewer(sceneId);
+      const info = await api.openViewer(sceneId);
       link.href = info.url;
       link.textContent = `viewer of revision ${info.revision}`;
       link.title = `${info.url} — from a shell: ${info.command}`;

@@ -15,8 +15,7 @@ from pathlib import Path
 
 from fastapi import APIRouter, HTTPException
 from fastapi.responses import FileResponse
-from holiscene_schema import ErrorMessage
-from pydantic import BaseModel, Field
+from holiscene_schema import DetectorInfo, ErrorMessage
 
 from ...learning.detector import runtime
 from ...learning.detector.runtime import DEFAULT_DETECTOR_DIR
@@ -30,19 +29,6 @@ DETECTOR_FILES = {
     runtime.MODEL_FILE: "application/octet-stream",
     runtime.METADATA_FILE: "application/json",
 }
-
-
-class DetectorInfo(BaseModel):
-    """The active detector: where its files are and what it detects."""
-
-    id: str = Field(description="Changes with the model file; its files are under this id")
-    name: str
-    label_space: str = Field(description="coco80 (mapped to NYU-40) or nyu40")
-    classes: list[str] = Field(description="The model's own classes, by class index")
-    model_sha256: str
-    model_bytes: int
-    model_url: str
-    metadata_url: str
 
 
 @lru_cache(maxsize=4)

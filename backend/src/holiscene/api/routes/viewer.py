@@ -12,8 +12,7 @@ from contextlib import asynccontextmanager
 
 from fastapi import APIRouter, FastAPI, Request
 from fastapi.concurrency import run_in_threadpool
-from holiscene_schema import ErrorMessage
-from pydantic import BaseModel, Field
+from holiscene_schema import ErrorMessage, ViewerInfo
 
 from ...store.scenes import SceneNotFoundError
 from ...viewer import ViewerInputError, ViewerPool, load_stored_scene
@@ -33,13 +32,6 @@ async def _viewers(app: FastAPI) -> AsyncIterator[None]:
 
 
 router = APIRouter(prefix="/api/scenes", tags=["viewer"], lifespan=_viewers)
-
-
-class ViewerInfo(BaseModel):
-    scene_id: str
-    revision: int = Field(description="The revision the viewer shows")
-    url: str = Field(description="The viewer's page, on 127.0.0.1")
-    command: str = Field(description="The same viewer from a shell")
 
 
 @router.post(
