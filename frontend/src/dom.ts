@@ -39,6 +39,32 @@ export function el<K extends keyof HTMLElementTagNameMap>(
   return node;
 }
 
+export interface ButtonProps {
+  className?: string;
+  /** Rendered as `data-testid`. */
+  testid?: string;
+  title?: string;
+  /** "button" unless said otherwise, so a button in a form does not submit it by accident. */
+  type?: "button" | "submit";
+  disabled?: boolean;
+  hidden?: boolean;
+  /** Any other attributes (aria-*, data-*). */
+  attrs?: ElementProps["attrs"];
+  onClick?: (event: MouseEvent) => void;
+}
+
+/** A button with its text, title and click handler. */
+export function button(text: string, props: ButtonProps = {}): HTMLButtonElement {
+  const { type = "button", title, disabled, hidden, attrs, onClick } = props;
+  return el("button", {
+    className: props.className,
+    testid: props.testid,
+    text,
+    attrs: { type, title, disabled, hidden, ...attrs },
+    on: onClick ? { click: onClick } : {},
+  });
+}
+
 /** A form field: its label text above the input (and any hint after it). */
 export function labelledField(
   label: string,

@@ -4,7 +4,7 @@ import type { CurrentUser } from "@holiscene/schema";
 import { sessionEvents } from "./api/client";
 import { ApiError } from "./api/errors";
 import { authApi } from "./api/workflow";
-import { el } from "./dom";
+import { button, el } from "./dom";
 import { confirmLeave, parseRoute } from "./router";
 import { bindAuthorInput } from "./state/author";
 import { getCurrentUser, onCurrentUserChange, setCurrentUser } from "./state/currentUser";
@@ -71,12 +71,7 @@ function renderUserArea(user: CurrentUser | null): void {
     userArea?.replaceChildren();
     return;
   }
-  const logout = el("button", {
-    text: "Log out",
-    testid: "logout",
-    attrs: { type: "button" },
-    on: { click: () => void logOut() },
-  });
+  const logout = button("Log out", { testid: "logout", onClick: () => void logOut() });
   userArea?.replaceChildren(
     el("a", { text: "Dashboard", testid: "dashboard-link", attrs: { href: "#/dashboard" } }),
     el(

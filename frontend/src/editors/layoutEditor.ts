@@ -5,7 +5,7 @@
 import "./layoutEditor.css";
 import type { Job } from "@holiscene/schema";
 import { isFinished } from "../api/jobs";
-import { el } from "../dom";
+import { button, el } from "../dom";
 import type { Point2 } from "../geometry/camera";
 import { registerShortcut } from "../shortcuts";
 import { getAuthor } from "../state/author";
@@ -81,16 +81,26 @@ function mountLayoutEditor(
   draft: LayoutDraft,
 ): () => void {
   const abort = new AbortController();
-  const button = (text: string, testid: string, onClick: () => void) =>
-    el("button", { text, testid, attrs: { type: "button" }, on: { click: onClick } });
-  const toggle = button("Edit layout", "layout-toggle", () => draft.setEditing(!draft.editing));
-  toggle.title = `Drag the room's corners on the photo (${LAYOUT_EDIT_KEY})`;
-  const save = button("Save layout", "layout-save", () => void session.save(getAuthor()));
-  save.title = "Save the moved corners now (they are also saved by themselves after a pause)";
-  const reset = button("Reset", "layout-reset", () => draft.reset());
-  reset.title = "Back to the saved layout (Ctrl+Z undoes this)";
-  const replace = button("Re-place objects", "replace-objects", () => void replace3d());
-  replace.title = "Place the objects again in the saved room (a placement job)";
+  const toggle = button("Edit layout", {
+    testid: "layout-toggle",
+    title: `Drag the room's corners on the photo (${LAYOUT_EDIT_KEY})`,
+    onClick: () => draft.setEditing(!draft.editing),
+  });
+  const save = button("Save layout", {
+    testid: "layout-save",
+    title: "Save the moved corners now (they are also saved by themselves after a pause)",
+    onClick: () => void session.save(getAuthor()),
+  });
+  const reset = button("Reset", {
+    testid: "layout-reset",
+    title: "Back to the saved layout (Ctrl+Z undoes this)",
+    onClick: () => draft.reset(),
+  });
+  const replace = button("Re-place objects", {
+    testid: "replace-objects",
+    title: "Place the objects again in the saved room (a placement job)",
+    onClick: () => void replace3d(),
+  });
   // The scale of the whole room: no photo tells it, an annotator may know it.
   const heightInput = el("input", {
     testid: "camera-height",

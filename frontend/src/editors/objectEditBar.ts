@@ -1,7 +1,7 @@
 // What the object editor is doing, above the photo: saving an action, what the last one did
 // (e.g. that it was applied on top of someone else's revision), and an action that could not
 // be saved, kept with Retry and Discard until the person chooses.
-import { el } from "../dom";
+import { button, el } from "../dom";
 import type { ObjectEditor } from "../state/objectEditor";
 
 export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor): () => void {
@@ -19,18 +19,15 @@ export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor)
       attrs: { role: "alert" },
     },
     failureText,
-    el("button", {
+    button("Retry", {
       className: "primary",
-      text: "Retry",
       testid: "object-edit-retry",
-      attrs: { type: "button" },
-      on: { click: () => void editor.retry() },
+      onClick: () => void editor.retry(),
     }),
-    el("button", {
-      text: "Discard",
+    button("Discard", {
       testid: "object-edit-discard",
-      attrs: { type: "button", title: "Drop this change" },
-      on: { click: () => editor.discardFailed() },
+      title: "Drop this change",
+      onClick: () => editor.discardFailed(),
     }),
   );
   const bar = el(

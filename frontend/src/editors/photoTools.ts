@@ -4,7 +4,7 @@
 // nothing here, so those listeners get the events. Any other tool gets the primary button's
 // presses and the clicks are kept from the photo's own listeners. Other modules add tools
 // with `tools.add(tool)` (the box tool, the mask tools), drawing in `host.overlay`.
-import { el, svgEl } from "../dom";
+import { button, el, svgEl } from "../dom";
 import { registerShortcut } from "../shortcuts";
 import type { ObjectEditor } from "../state/objectEditor";
 import type { SceneSession } from "../state/sceneSession";
@@ -125,18 +125,14 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
   const add = (tool: PhotoTool): (() => void) => {
     if (tools.some((t) => t.id === tool.id)) throw new Error(`a photo tool "${tool.id}" exists`);
     tools.push(tool);
-    const button = el("button", {
-      text: tool.label,
+    const toolButton = button(tool.label, {
       testid: `photo-tool-${tool.id}`,
-      attrs: {
-        type: "button",
-        title: `${tool.description} (${tool.key})`,
-        "aria-pressed": "false",
-      },
-      on: { click: () => activate(tool.id) },
+      title: `${tool.description} (${tool.key})`,
+      attrs: { "aria-pressed": "false" },
+      onClick: () => activate(tool.id),
     });
-    buttons.set(tool.id, button);
-    buttonRow.append(button);
+    buttons.set(tool.id, toolButton);
+    buttonRow.append(toolButton);
     const removeKey = registerShortcut({
       keys: tool.key,
       description: tool.description,
@@ -146,7 +142,7 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
     });
     const remove = () => {
       removeKey();
-      button.remove();
+      toolButton.remove();
       buttons.delete(tool.id);
       removers.delete(tool.id);
       const index = tools.indexOf(tool);

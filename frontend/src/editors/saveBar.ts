@@ -3,7 +3,7 @@
 // visit left unsaved (restore or discard), and the conflict message with its merge and reload
 // actions. Edits are autosaved (state/autosave.ts) and kept in localStorage until the server
 // has them, so leaving the page needs no warning: nothing is lost.
-import { el } from "../dom";
+import { button, el } from "../dom";
 import { registerShortcut } from "../shortcuts";
 import { getAuthor } from "../state/author";
 import type { ObjectEditor } from "../state/objectEditor";
@@ -60,46 +60,30 @@ export function mountSaveBar(
     testid: "save-status",
     attrs: { role: "status", "aria-live": "polite" },
   });
-  const undo = el("button", {
-    text: "Undo",
-    testid: "undo-button",
-    attrs: { type: "button" },
-    on: { click: undoLast },
-  });
-  const redo = el("button", {
-    text: "Redo",
-    testid: "redo-button",
-    attrs: { type: "button" },
-    on: { click: redoLast },
-  });
-  const save = el("button", {
+  const undo = button("Undo", { testid: "undo-button", onClick: undoLast });
+  const redo = button("Redo", { testid: "redo-button", onClick: redoLast });
+  const save = button("Save", {
     className: "primary",
-    text: "Save",
     testid: "save-button",
-    attrs: { type: "button", title: "Save now (Ctrl+S); edits are also saved by themselves" },
-    on: { click: () => void session.save(author()) },
+    title: "Save now (Ctrl+S); edits are also saved by themselves",
+    onClick: () => void session.save(author()),
   });
-  const discard = el("button", {
-    text: "Discard",
+  const discard = button("Discard", {
     testid: "discard-button",
-    attrs: { type: "button", title: "Drop the unsaved changes (undo brings them back)" },
-    on: { click: () => session.discard() },
+    title: "Drop the unsaved changes (undo brings them back)",
+    onClick: () => session.discard(),
   });
 
   const conflictMessage = el("p", { testid: "conflict-text" });
   const theirsList = el("ul", { className: "conflict-theirs", testid: "conflict-theirs" });
-  const merge = el("button", {
+  const merge = button("Merge: save mine on top (Shift+M)", {
     className: "primary",
-    text: "Merge: save mine on top (Shift+M)",
     testid: "conflict-merge",
-    attrs: { type: "button" },
-    on: { click: () => void session.merge(author()) },
+    onClick: () => void session.merge(author()),
   });
-  const reload = el("button", {
-    text: "Reload: review first (Shift+R)",
+  const reload = button("Reload: review first (Shift+R)", {
     testid: "conflict-reload",
-    attrs: { type: "button" },
-    on: { click: () => void session.reloadLatest({ hold: true }) },
+    onClick: () => void session.reloadLatest({ hold: true }),
   });
   const conflict = el(
     "div",
@@ -111,12 +95,10 @@ export function mountSaveBar(
   );
 
   const recoveryText = el("span", { testid: "recovery-text" });
-  const restore = el("button", {
+  const restore = button("Restore them (Shift+U)", {
     className: "primary",
-    text: "Restore them (Shift+U)",
     testid: "recovery-restore",
-    attrs: { type: "button" },
-    on: { click: () => session.restoreRecovered() },
+    onClick: () => session.restoreRecovered(),
   });
   const recovery = el(
     "div",
@@ -126,11 +108,9 @@ export function mountSaveBar(
       "div",
       { className: "save-row" },
       restore,
-      el("button", {
-        text: "Discard them",
+      button("Discard them", {
         testid: "recovery-discard",
-        attrs: { type: "button" },
-        on: { click: () => session.dismissRecovered() },
+        onClick: () => session.dismissRecovered(),
       }),
     ),
   );

@@ -3,7 +3,7 @@
 // through `window.holisceneDetector` to check the browser against the shared vectors
 // (shared_schema/vectors/detector_model.json) and to measure detection; a person can open it
 // to see whether the browser runs the detector and how fast.
-import { el } from "../dom";
+import { button, el } from "../dom";
 import { activeDetector, type DetectorInfo, type DetectorModel, detectorModel } from "./detector";
 import { type DetectedBox, decodeDetections, detectorInput } from "./detectorTensor";
 import type { PixelImage } from "./preprocess";
@@ -145,27 +145,23 @@ window.holisceneDetector = check;
 
 // For a person: load the active detector on request and say how long it took.
 const status = el("p", { testid: "detector-check-status", text: "No detector loaded yet." });
-const button = el("button", {
-  text: "Load the active detector",
+const loadButton = button("Load the active detector", {
   testid: "detector-check-load",
-  attrs: { type: "button" },
-  on: {
-    click: () => {
-      button.disabled = true;
-      status.textContent = "Loading…";
-      check
-        .load()
-        .then(({ info, loadMs }) => {
-          status.textContent = `${info.name} (${info.id}): session ready in ${Math.round(loadMs)} ms.`;
-        })
-        .catch((error: unknown) => {
-          const message = error instanceof Error ? error.message : String(error);
-          status.textContent = `Could not load the detector: ${message}`;
-        })
-        .finally(() => {
-          button.disabled = false;
-        });
-    },
+  onClick: () => {
+    loadButton.disabled = true;
+    status.textContent = "Loading…";
+    check
+      .load()
+      .then(({ info, loadMs }) => {
+        status.textContent = `${info.name} (${info.id}): session ready in ${Math.round(loadMs)} ms.`;
+      })
+      .catch((error: unknown) => {
+        const message = error instanceof Error ? error.message : String(error);
+        status.textContent = `Could not load the detector: ${message}`;
+      })
+      .finally(() => {
+        loadButton.disabled = false;
+      });
   },
 });
 document
@@ -173,6 +169,6 @@ document
   ?.replaceChildren(
     el("h1", { text: "Object detector in the browser" }),
     el("p", { text: "onnxruntime-web (WebAssembly, one thread) on the app's object detector." }),
-    button,
+    loadButton,
     status,
   );

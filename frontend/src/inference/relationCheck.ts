@@ -4,7 +4,7 @@
 // browser against the shared vectors and to measure support scoring; a person can open it to
 // see whether the browser runs the model and how fast.
 import type { SceneObject } from "@holiscene/schema";
-import { el } from "../dom";
+import { button, el } from "../dom";
 import { modelObjects, type PixelImage, sceneInputs } from "./preprocess";
 import {
   activeModelUrl,
@@ -123,27 +123,23 @@ window.holisceneRelation = check;
 
 // For a person: load the active model on request and say how long it took.
 const status = el("p", { testid: "relation-check-status", text: "No model loaded yet." });
-const button = el("button", {
-  text: "Load the active model",
+const loadButton = button("Load the active model", {
   testid: "relation-check-load",
-  attrs: { type: "button" },
-  on: {
-    click: () => {
-      button.disabled = true;
-      status.textContent = "Loading…";
-      check
-        .load()
-        .then(({ url, loadMs }) => {
-          status.textContent = `${url}: session ready in ${Math.round(loadMs)} ms.`;
-        })
-        .catch((error: unknown) => {
-          const message = error instanceof Error ? error.message : String(error);
-          status.textContent = `Could not load the model: ${message}`;
-        })
-        .finally(() => {
-          button.disabled = false;
-        });
-    },
+  onClick: () => {
+    loadButton.disabled = true;
+    status.textContent = "Loading…";
+    check
+      .load()
+      .then(({ url, loadMs }) => {
+        status.textContent = `${url}: session ready in ${Math.round(loadMs)} ms.`;
+      })
+      .catch((error: unknown) => {
+        const message = error instanceof Error ? error.message : String(error);
+        status.textContent = `Could not load the model: ${message}`;
+      })
+      .finally(() => {
+        loadButton.disabled = false;
+      });
   },
 });
 document
@@ -151,6 +147,6 @@ document
   ?.replaceChildren(
     el("h1", { text: "Relation Network in the browser" }),
     el("p", { text: "onnxruntime-web (WebAssembly, one thread) on the app's support model." }),
-    button,
+    loadButton,
     status,
   );

@@ -5,7 +5,7 @@
 // also shows the model's most probable supporter and type (the next answers in the tooltip).
 import type { SceneObject } from "@holiscene/schema";
 import { api } from "../api/client";
-import { el } from "../dom";
+import { button, el } from "../dom";
 import type { SceneSession } from "../state/sceneSession";
 import type { PixelImage } from "./preprocess";
 import { makeSuggester } from "./suggester";
@@ -71,10 +71,9 @@ export function mountSupportSuggestions(
 ): () => void {
   const abort = new AbortController();
   const status = el("span", { className: "suggestion-status", testid: "suggestion-status" });
-  const button = el("button", {
-    text: "Model suggestions",
+  const suggestButton = button("Model suggestions", {
     testid: "suggest-supports",
-    attrs: { type: "button", title: "Score every object's supporter with the support model" },
+    title: "Score every object's supporter with the support model",
   });
   const live = el("input", {
     testid: "live-suggestions",
@@ -84,7 +83,7 @@ export function mountSupportSuggestions(
     el(
       "div",
       { className: "suggestions" },
-      button,
+      suggestButton,
       el(
         "label",
         {
@@ -137,7 +136,7 @@ export function mountSupportSuggestions(
 
   const score = async () => {
     const mine = ++run;
-    button.disabled = true;
+    suggestButton.disabled = true;
     status.textContent = "Scoring with the support model…";
     try {
       photo ??= photoPixels(api.imageUrl(session.sceneId), abort.signal);
@@ -155,11 +154,11 @@ export function mountSupportSuggestions(
       photo = null;
       status.textContent = `No suggestions: ${error instanceof Error ? error.message : String(error)}`;
     } finally {
-      if (mine === run) button.disabled = false;
+      if (mine === run) suggestButton.disabled = false;
     }
   };
 
-  button.addEventListener("click", () => void score());
+  suggestButton.addEventListener("click", () => void score());
   live.addEventListener("change", () => {
     rememberEnabled(live.checked);
     if (!live.checked) session.setSuggester(null);

@@ -3,7 +3,7 @@
 import type { Dashboard, PersonStats, SceneAgreement, UserInfo } from "@holiscene/schema";
 import { ApiError } from "../../api/errors";
 import { type Role, SCENE_STATES, stateLabel, usersApi, workflowApi } from "../../api/workflow";
-import { el, formatTime, labelledField } from "../../dom";
+import { button, el, formatTime, labelledField } from "../../dom";
 import { hasRole } from "../../state/currentUser";
 import "../workflow/workflow.css";
 
@@ -118,11 +118,7 @@ function accountsSection(signal: AbortSignal, onChange: () => void): HTMLElement
         fail(err);
       }
     });
-    const reset = el("button", {
-      text: "Reset password…",
-      testid: `reset-password-${user.name}`,
-      attrs: { type: "button" },
-    });
+    const reset = button("Reset password…", { testid: `reset-password-${user.name}` });
     reset.addEventListener("click", async () => {
       const password = window.prompt(`New password for ${user.name} (at least 10 characters)`);
       if (!password) return;
@@ -162,11 +158,10 @@ function accountsSection(signal: AbortSignal, onChange: () => void): HTMLElement
     testid: "new-user-password",
     attrs: { type: "password", required: true, minlength: 10, autocomplete: "new-password" },
   });
-  const create = el("button", {
+  const create = button("Add account", {
     className: "primary",
-    text: "Add account",
     testid: "new-user-submit",
-    attrs: { type: "submit" },
+    type: "submit",
   });
   const form = el(
     "form",
@@ -234,11 +229,7 @@ export function mountDashboardPage(container: HTMLElement): () => void {
   const abort = new AbortController();
   const content = el("div", { className: "dashboard-content" });
   const status = el("p", { testid: "dashboard-status", attrs: { role: "status" } });
-  const refreshButton = el("button", {
-    text: "Refresh",
-    testid: "dashboard-refresh",
-    attrs: { type: "button" },
-  });
+  const refreshButton = button("Refresh", { testid: "dashboard-refresh" });
   const refresh = async () => {
     try {
       const dashboard = await workflowApi.dashboard(abort.signal);

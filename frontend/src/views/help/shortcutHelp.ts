@@ -1,7 +1,7 @@
 // The keyboard help overlay: "?" lists every shortcut registered at that moment, grouped by
 // scope, so the list is always what the keys actually do on this page; keys that do nothing
 // now (editing keys on a read-only scene, conflict keys without a conflict) are greyed.
-import { el } from "../../dom";
+import { button, el } from "../../dom";
 import { listShortcuts, registerShortcut, type Shortcut } from "../../shortcuts";
 import "./shortcutHelp.css";
 
@@ -37,11 +37,9 @@ function row(shortcut: Shortcut): HTMLElement {
 /** Mount the overlay (hidden) and its "?" key; returns the function that removes both. */
 export function mountShortcutHelp(host: HTMLElement): () => void {
   const body = el("div", { className: "shortcut-help-body" });
-  const close = el("button", {
+  const close = button("Close", {
     className: "shortcut-help-close",
-    text: "Close",
     testid: "shortcut-help-close",
-    attrs: { type: "button" },
   });
   const overlay = el(
     "div",

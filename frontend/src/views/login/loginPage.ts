@@ -2,7 +2,7 @@
 import type { CurrentUser } from "@holiscene/schema";
 import { ApiError } from "../../api/errors";
 import { authApi } from "../../api/workflow";
-import { el, hiddenErrorAlert, labelledField } from "../../dom";
+import { button, el, hiddenErrorAlert, labelledField } from "../../dom";
 import "../workflow/workflow.css";
 
 export function mountLoginPage(
@@ -31,12 +31,7 @@ export function mountLoginPage(
       maxlength: 256,
     },
   });
-  const submit = el("button", {
-    className: "primary",
-    text: "Log in",
-    testid: "login-submit",
-    attrs: { type: "submit" },
-  });
+  const submit = button("Log in", { className: "primary", testid: "login-submit", type: "submit" });
   const error = hiddenErrorAlert("login-error");
   const form = el(
     "form",

@@ -6,7 +6,7 @@
 import type { Job, ModelEvent, ModelInfo } from "@holiscene/schema";
 import { isFinished, pollJob } from "../../api/jobs";
 import { modelsApi } from "../../api/models";
-import { el, formatTime, hiddenErrorAlert, labelledField } from "../../dom";
+import { button, el, formatTime, hiddenErrorAlert, labelledField } from "../../dom";
 import type { ModelKind } from "../../router";
 import { getAuthor } from "../../state/author";
 import { jobProgress } from "../common/jobProgress";
@@ -119,11 +119,10 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
   const text = KIND_TEXT[kind];
   const epochs = numberField(text.epochs[0], "epochs", text.epochs[1], 500);
   const synthetic = numberField(text.synthetic[0], "synthetic", text.synthetic[1], 20000);
-  const retrain = el("button", {
+  const retrain = button("Retrain", {
     className: "primary",
-    text: "Retrain",
     testid: "retrain-button",
-    attrs: { type: "submit" },
+    type: "submit",
   });
   const retrainError = hiddenErrorAlert("retrain-error");
   const progress = jobProgress("retrain-progress");
@@ -213,16 +212,14 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
   const modelRow = (model: ModelInfo): HTMLTableRowElement => {
     const action = model.active
       ? el("span", { className: "badge badge--active", text: "Active" })
-      : el("button", {
-          text: "Make active",
+      : button("Make active", {
           testid: `promote-${model.version}`,
-          on: { click: (event) => void promote(model, event.currentTarget as HTMLButtonElement) },
+          onClick: (event) => void promote(model, event.currentTarget as HTMLButtonElement),
         });
-    const curve = el("button", {
-      text: "Curve",
+    const curve = button("Curve", {
       testid: `curve-${model.version}`,
-      attrs: { type: "button", disabled: !model.has_curve },
-      on: { click: () => showCurve(model) },
+      disabled: !model.has_curve,
+      onClick: () => showCurve(model),
     });
     return el(
       "tr",

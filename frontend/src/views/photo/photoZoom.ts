@@ -3,7 +3,7 @@
 // Space held pans, + and - zoom about the middle, 0 fits the whole photo again. The view never
 // leaves the photo's frame and is never smaller than it (arrows and labels, drawn in image
 // pixels, only get larger); tools size their handles by the screen (host.pixelSize).
-import { el } from "../../dom";
+import { button, el } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
 
 export interface ViewBox {
@@ -75,11 +75,10 @@ export function mountPhotoZoom(svg: SVGSVGElement, frame: ViewBox): PhotoZoom {
   };
 
   const percent = el("span", { className: "photo-zoom-level", testid: "photo-zoom-level" });
-  const fitButton = el("button", {
-    text: "Fit",
+  const fitButton = button("Fit", {
     testid: "photo-zoom-fit",
-    attrs: { type: "button", title: "Show the whole photo (0); the wheel zooms, Space+drag pans" },
-    on: { click: () => showWhole() },
+    title: "Show the whole photo (0); the wheel zooms, Space+drag pans",
+    onClick: () => showWhole(),
   });
   const controls = el(
     "span",

@@ -6,7 +6,7 @@
 // server makes its mask and answers with the new revision), Reject drops it for this visit.
 // The bar above the photo says what the detector is doing, or why it failed.
 import { api } from "../../api/client";
-import { el, svgEl } from "../../dom";
+import { button, el, svgEl } from "../../dom";
 import { activeDetector, detectorModel } from "../../inference/detector";
 import { photoPixels } from "../../inference/supportSuggestions";
 import { registerShortcut } from "../../shortcuts";
@@ -52,13 +52,9 @@ export function mountObjectSuggestions(
   let failed = false;
   let disposed = false;
 
-  const detectButton = el("button", {
-    text: "Detect objects",
+  const detectButton = button("Detect objects", {
     testid: "detect-objects",
-    attrs: {
-      type: "button",
-      title: `Find objects in the photo with the object detector, in this browser (${DETECT_KEY})`,
-    },
+    title: `Find objects in the photo with the object detector, in this browser (${DETECT_KEY})`,
   });
   const statusLine = el("span", {
     className: "detector-status",
@@ -66,12 +62,7 @@ export function mountObjectSuggestions(
     attrs: { role: "status" },
   });
   const action = (text: string, testid: string, title: string, primary = false) =>
-    el("button", {
-      text,
-      testid,
-      className: primary ? "primary" : "",
-      attrs: { type: "button", title },
-    });
+    button(text, { className: primary ? "primary" : "", testid, title });
   const acceptButton = action(
     "Accept",
     "accept-suggestion",

@@ -3,7 +3,7 @@
 // supports go back exactly as that revision stored them (a new revision; undo takes it back).
 import type { RevisionInfo, SceneDocument } from "@holiscene/schema";
 import { api } from "../../api/client";
-import { el, formatTime } from "../../dom";
+import { button, el, formatTime } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
 import { getAuthor } from "../../state/author";
 import { describeChange, diffScenes, revertEdits } from "../../state/revisionDiff";
@@ -96,18 +96,16 @@ export function mountRevisionHistory(container: HTMLElement, session: SceneSessi
       testid: `revision-diff-${info.number}`,
       attrs: { hidden: true },
     });
-    const showButton = el("button", {
+    const showButton = button("Diff", {
       className: "link-button",
-      text: "Diff",
       testid: `revision-diff-button-${info.number}`,
-      attrs: { type: "button", title: "What this revision changed" },
-      on: { click: () => void showDiff(info, diff) },
+      title: "What this revision changed",
+      onClick: () => void showDiff(info, diff),
     });
-    const revertButton = el("button", {
+    const revertButton = button("Revert to this", {
       className: "link-button",
-      text: "Revert to this",
       testid: `revision-revert-${info.number}`,
-      attrs: { type: "button", title: "Put the supports back as they were in this revision" },
+      title: "Put the supports back as they were in this revision",
     });
     revertButton.onclick = () => void revert(info, revertButton);
     revertButton.disabled = !session.editable;

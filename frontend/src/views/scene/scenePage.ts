@@ -4,7 +4,7 @@ import type { Camera, Job, SceneDocument } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { ApiError } from "../../api/errors";
 import { isFinished, pollJob } from "../../api/jobs";
-import { el } from "../../dom";
+import { button, el } from "../../dom";
 import { mountBoxTool } from "../../editors/boxTool";
 import { mountEdgeInfo } from "../../editors/edgeInfo";
 import { mountLayoutEditing } from "../../editors/layoutEditor";
@@ -106,11 +106,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
   const progress = jobProgress("job-progress");
   progress.element.hidden = true;
   const message = el("div", { className: "page-message", testid: "scene-message" });
-  const rerun = el("button", {
-    text: "Run pipeline again",
-    testid: "run-pipeline",
-    attrs: { type: "button", disabled: true },
-  });
+  const rerun = button("Run pipeline again", { testid: "run-pipeline", disabled: true });
   const content = el("div", { className: "scene-grid" });
   const downloads = downloadMenu(sceneId);
   container.replaceChildren(

@@ -1,7 +1,7 @@
 // "Open in viser": asks the server for the scene's viser viewer (started on demand on
 // 127.0.0.1, one per scene, POST /api/scenes/{id}/viewer) and opens it in a new tab.
 import { api } from "../../api/client";
-import { el } from "../../dom";
+import { button, el } from "../../dom";
 
 /** A button that opens the viewer, and a link to it once it runs. */
 export function viserLink(sceneId: string): HTMLElement {
@@ -9,17 +9,16 @@ export function viserLink(sceneId: string): HTMLElement {
     testid: "viser-link",
     attrs: { target: "_blank", rel: "noopener", hidden: true },
   });
-  const button = el("button", {
-    text: "Open in viser",
+  const openButton = button("Open in viser", {
     testid: "open-viser",
-    attrs: { type: "button", title: "The 3D review viewer (viser), in a new tab" },
+    title: "The 3D review viewer (viser), in a new tab",
   });
-  button.onclick = async () => {
+  openButton.onclick = async () => {
     // Open the tab now, while the click still counts as the user's: popup blockers refuse
     // a window opened after an await.
     const tab = window.open("about:blank", "_blank");
     if (tab) tab.opener = null;
-    button.disabled = true;
+    openButton.disabled = true;
     try {
       const info = await api.openViewer(sceneId);
       link.href = info.url;
@@ -33,8 +32,8 @@ export function viserLink(sceneId: string): HTMLElement {
       link.textContent = `No viewer: ${error instanceof Error ? error.message : String(error)}`;
       link.hidden = false;
     } finally {
-      button.disabled = false;
+      openButton.disabled = false;
     }
   };
-  return el("span", { className: "viser-link" }, button, " ", link);
+  return el("span", { className: "viser-link" }, openButton, " ", link);
 }

@@ -4,7 +4,7 @@
 // placement job, with its progress).
 import "./placementNotice.css";
 import type { SceneObject } from "@holiscene/schema";
-import { el } from "../../dom";
+import { button, el } from "../../dom";
 import { replaceObjects } from "../../editors/replaceObjects";
 import { plural, type SceneSession } from "../../state/sceneSession";
 import { isStructural } from "../../state/supportGraph";
@@ -74,11 +74,10 @@ export function mountPlacementNotice(
 ): () => void {
   const abort = new AbortController();
   const text = el("span", { className: "placement-notice-text", testid: "placement-notice-text" });
-  const button = el("button", {
-    text: "Re-place objects",
-    testid: "placement-notice-replace",
+  const replaceButton = button("Re-place objects", {
     className: "primary",
-    attrs: { type: "button", title: "Place the objects again in the room (a placement job)" },
+    testid: "placement-notice-replace",
+    title: "Place the objects again in the room (a placement job)",
   });
   const progress = jobProgress("placement-notice-progress");
   progress.element.hidden = true;
@@ -89,7 +88,7 @@ export function mountPlacementNotice(
       testid: "placement-notice",
       attrs: { role: "status", hidden: true },
     },
-    el("div", { className: "placement-notice-row" }, text, button),
+    el("div", { className: "placement-notice-row" }, text, replaceButton),
     progress.element,
   );
   panel.insertBefore(notice, body);
@@ -111,8 +110,8 @@ export function mountPlacementNotice(
       : running
         ? "Placing the objects in the room again…"
         : `Objects changed since the 3D scene was made (${summary}):`;
-    button.disabled = running || !session.editable;
-    button.hidden = running || summary === "";
+    replaceButton.disabled = running || !session.editable;
+    replaceButton.hidden = running || summary === "";
     notice.dataset.changed = [...changes.added, ...changes.changed, ...changes.removed].join(" ");
   };
 
@@ -138,7 +137,7 @@ export function mountPlacementNotice(
     running = false;
     draw();
   };
-  button.addEventListener("click", () => void run());
+  replaceButton.addEventListener("click", () => void run());
 
   const unsubscribe = session.subscribe((change) => {
     if (change === "document") {

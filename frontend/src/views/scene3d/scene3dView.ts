@@ -7,7 +7,7 @@ import type { Camera, SceneDocument } from "@holiscene/schema";
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 import { api } from "../../api/client";
-import { el } from "../../dom";
+import { button, el } from "../../dom";
 import { type LayoutDraft, storedRoom } from "../../state/layoutDraft";
 import type { SceneSession } from "../../state/sceneSession";
 import { maskColours } from "../objectColors";
@@ -90,8 +90,7 @@ export function mountScene3d(
     },
   });
   const status = el("p", { className: "scene3d-status", testid: "scene3d-status" });
-  const viewButton = (text: string, testid: string) =>
-    el("button", { text, testid, attrs: { type: "button", disabled: true } });
+  const viewButton = (text: string, testid: string) => button(text, { testid, disabled: true });
   const overviewButton = viewButton("Overview", "scene3d-overview");
   const photoViewButton = viewButton("Photo viewpoint", "scene3d-photo-view");
   const exportButton = viewButton("Export PNG", "scene3d-export");

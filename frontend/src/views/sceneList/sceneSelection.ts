@@ -2,7 +2,7 @@
 // list shows stay ticked (a filter or a refresh drops the others), so what is ticked on the
 // page is what is downloaded.
 import { downloadArchive } from "../../api/downloads";
-import { el } from "../../dom";
+import { button, el } from "../../dom";
 import { plural } from "../../state/sceneSession";
 import "./sceneSelection.css";
 
@@ -16,10 +16,7 @@ export class SceneSelection {
     testid: "select-all-scenes",
     attrs: { type: "checkbox", "aria-label": "Select every listed scene" },
   });
-  private readonly button = el("button", {
-    testid: "download-selected",
-    attrs: { type: "button", disabled: true },
-  });
+  private readonly button = button("", { testid: "download-selected", disabled: true });
   private readonly status = el("span", {
     className: "selection-status",
     testid: "download-selected-status",

@@ -2,7 +2,7 @@
 import type { SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { pollJob } from "../../api/jobs";
-import { el, labelledField } from "../../dom";
+import { button, el, labelledField } from "../../dom";
 import { jobProgress } from "../common/jobProgress";
 
 function fileField(label: string, name: string, accept: string, hint: string, required = false) {
@@ -28,11 +28,10 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
     testid: "upload-name",
     attrs: { type: "text", name: "name", placeholder: "defaults to the file name", maxlength: 200 },
   });
-  const submit = el("button", {
+  const submit = button("Import and run pipeline", {
     className: "primary",
-    text: "Import and run pipeline",
     testid: "upload-submit",
-    attrs: { type: "submit" },
+    type: "submit",
   });
   const result = el("div", { className: "upload-result", testid: "upload-result" });
   const form = el(

@@ -3,7 +3,7 @@
 // ">" on the scene page, where N already selects the next object.
 import { ApiError } from "../../api/errors";
 import { workflowApi } from "../../api/workflow";
-import { el } from "../../dom";
+import { button, el } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
 import { hasRole } from "../../state/currentUser";
 
@@ -14,14 +14,13 @@ export function nextSceneControl(key: string): { element: HTMLElement; dispose: 
     testid: "next-scene-message",
     attrs: { role: "status" },
   });
-  const button = el("button", {
+  const nextButton = button("Next scene", {
     className: "primary",
-    text: "Next scene",
     testid: "next-scene",
-    attrs: { type: "button", title: `Take the next scene to annotate (${key})` },
+    title: `Take the next scene to annotate (${key})`,
   });
   const go = async () => {
-    button.disabled = true;
+    nextButton.disabled = true;
     message.textContent = "";
     try {
       const scene = await workflowApi.next();
@@ -30,18 +29,18 @@ export function nextSceneControl(key: string): { element: HTMLElement; dispose: 
       message.textContent =
         error instanceof ApiError ? error.message : `Could not take a scene: ${String(error)}`;
     } finally {
-      button.disabled = false;
+      nextButton.disabled = false;
     }
   };
-  button.addEventListener("click", () => void go());
+  nextButton.addEventListener("click", () => void go());
   const removeKey = registerShortcut({
     keys: key,
     description: "Take the next scene to annotate (the most uncertain first)",
     scope: "Workflow",
     run: () => void go(),
-    enabled: () => hasRole("annotator") && !button.disabled,
+    enabled: () => hasRole("annotator") && !nextButton.disabled,
   });
-  const element = el("span", { className: "next-scene" }, button, message);
+  const element = el("span", { className: "next-scene" }, nextButton, message);
   element.hidden = !hasRole("annotator");
   return { element, dispose: removeKey };
 }

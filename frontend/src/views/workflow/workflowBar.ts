@@ -6,7 +6,7 @@
 import type { SceneWorkflow, WorkflowEvent } from "@holiscene/schema";
 import { ApiError } from "../../api/errors";
 import { stateLabel, workflowApi } from "../../api/workflow";
-import { el, formatTime, hiddenErrorAlert } from "../../dom";
+import { button, el, formatTime, hiddenErrorAlert } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
 import { getCurrentUser, hasRole } from "../../state/currentUser";
 import type { SceneSession } from "../../state/sceneSession";
@@ -48,18 +48,13 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
   });
   const note = el("p", { className: "workflow-note", testid: "workflow-note" });
   const error = hiddenErrorAlert("workflow-error");
-  const button = (text: string, testid: string, title: string, primary = false) =>
-    el("button", {
-      className: primary ? "primary" : "",
-      text,
-      testid,
-      attrs: { type: "button", title, hidden: true },
-    });
-  const take = button("Start annotating", "workflow-take", "Take this scene for annotation");
-  const submit = button("Submit for review", "workflow-submit", "Submit (Shift+Enter)", true);
-  const accept = button("Accept", "workflow-accept", "Accept (Shift+Enter)", true);
-  const reject = button("Reject…", "workflow-reject", "Reject with a comment (Shift+X)");
-  const again = button(
+  const actionButton = (text: string, testid: string, title: string, primary = false) =>
+    button(text, { className: primary ? "primary" : "", testid, title, hidden: true });
+  const take = actionButton("Start annotating", "workflow-take", "Take this scene for annotation");
+  const submit = actionButton("Submit for review", "workflow-submit", "Submit (Shift+Enter)", true);
+  const accept = actionButton("Accept", "workflow-accept", "Accept (Shift+Enter)", true);
+  const reject = actionButton("Reject…", "workflow-reject", "Reject with a comment (Shift+X)");
+  const again = actionButton(
     "Ask for a second annotation",
     "workflow-second",
     "Reset the supports to the pipeline's guesses and have another annotator label it",
@@ -73,17 +68,11 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
       "aria-label": "Rejection comment",
     },
   });
-  const rejectSend = el("button", {
+  const rejectSend = button("Send back to the annotator", {
     className: "primary",
-    text: "Send back to the annotator",
     testid: "reject-send",
-    attrs: { type: "button" },
   });
-  const rejectCancel = el("button", {
-    text: "Cancel",
-    testid: "reject-cancel",
-    attrs: { type: "button" },
-  });
+  const rejectCancel = button("Cancel", { testid: "reject-cancel" });
   const rejectBox = el(
     "div",
     { className: "reject-box", testid: "reject-box", attrs: { hidden: true } },
