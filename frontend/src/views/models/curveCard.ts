@@ -1,0 +1,43 @@
+// The models page's training curve card: the curve of one model (the active one, or the one
+// whose "Curve" button was pressed last).
+import type { ModelInfo } from "@holiscene/schema";
+import { modelsApi } from "../../api/models";
+import { el } from "../../dom";
+
+export interface CurveCard {
+  element: HTMLElement;
+  /** The model whose curve is shown, if any. */
+  readonly shownId: string | null;
+  /** Show the model's curve; nothing hides the card. */
+  show(model: ModelInfo | undefined): void;
+}
+
+export function curveCard(): CurveCard {
+  const title = el("h2", { text: "Training curve" });
+  const image = el("img", {
+    className: "curve-image",
+    testid: "model-curve",
+    attrs: { alt: "", width: 600, height: 350 },
+  });
+  const empty = el("p", { className: "field-hint", text: "This model has no curve." });
+  const element = el("section", { className: "card" }, title, image, empty);
+  let shownId: string | null = null;
+  return {
+    element,
+    get shownId() {
+      return shownId;
+    },
+    show(model) {
+      element.hidden = !model;
+      if (!model) return;
+      shownId = model.id;
+      title.textContent = `Training curve of v${model.version}`;
+      image.hidden = !model.has_curve;
+      empty.hidden = model.has_curve;
+      if (model.has_curve) {
+        image.src = modelsApi.curveUrl(model.id);
+        image.alt = `Training loss and validation accuracy of model v${model.version}`;
+      }
+    },
+  };
+}

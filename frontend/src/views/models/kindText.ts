@@ -1,0 +1,48 @@
+// What the models page says about each kind of model.
+import type { ModelKind } from "../../router";
+
+export interface KindText {
+  switchLabel: string;
+  title: string;
+  usedBy: string;
+  empty: string;
+  heldoutColumn: string;
+  validationColumn: string;
+  retrainHint: string;
+  epochs: [label: string, placeholder: string];
+  synthetic: [label: string, placeholder: string];
+}
+
+export const KIND_TEXT: Record<ModelKind, KindText> = {
+  relation: {
+    switchLabel: "Relation Network",
+    title: "Relation Network models",
+    usedBy:
+      "The pipeline and the browser use the active model. Any model can be made active again.",
+    empty: "No Relation Network model is registered yet: retrain to make one.",
+    heldoutColumn: "Held-out accuracy",
+    validationColumn: "Validation accuracy",
+    retrainHint:
+      "Trains a new Relation Network on the synthetic scenes and on every scene whose supports " +
+      "a person set. A fixed fifth of those scenes is held out: the new model becomes active " +
+      "only if it is at least as accurate on them as the active one. Every model is kept.",
+    epochs: ["Epochs at most", "default (40)"],
+    synthetic: ["Synthetic scenes", "default (1200)"],
+  },
+  detector: {
+    switchLabel: "Object detector",
+    title: "Object detector models",
+    usedBy:
+      "The pipeline finds objects with the active detector. Any detector can be made active again.",
+    empty: "No object detector is registered yet: retrain to make one.",
+    heldoutColumn: "Held-out mAP@0.5 · recall",
+    validationColumn: "Validation mAP@0.5",
+    retrainHint:
+      "Fine-tunes a new detector on synthetic rooms and on every scene whose boxes a person " +
+      "confirmed: drawn, given with the photo, accepted suggestions, or all of a scene a " +
+      "reviewer accepted. A fixed fifth of those scenes is held out: the new detector becomes " +
+      "active only if its mAP@0.5 on them is at least the active one's. Every detector is kept.",
+    epochs: ["Epochs", "default (12)"],
+    synthetic: ["Synthetic rooms", "default (300)"],
+  },
+};

@@ -1,0 +1,152 @@
+// The models page's list: every registered model of the kind, its figures, its curve button
+// and "Make active" (a promotion, or a roll-back to an older model).
+import type { ModelInfo } from "@holiscene/schema";
+import { modelsApi } from "../../api/models";
+import { button, el, formatTime } from "../../dom";
+import { getAuthor } from "../../state/author";
+import type { KindText } from "./kindText";
+
+const STATUS_TEXT: Record<ModelInfo["status"], string> = {
+  default: "committed default",
+  accepted: "accepted",
+  candidate: "candidate",
+  rejected: "rejected",
+};
+
+const percent = (value: number | null) =>
+  value === null || value < 0 ? "—" : `${(value * 100).toFixed(1)} %`;
+
+// A detector's held-out figures are its mAP@0.5 and recall; a Relation Network's its accuracy.
+const figures = (value: number, recall: number | null) =>
+  recall === null ? percent(value) : `${percent(value)} · ${percent(recall)}`;
+
+function heldoutText(model: ModelInfo): string {
+  if (model.heldout_accuracy === null) return "—";
+  const parent =
+    model.parent_version !== null && model.parent_heldout_accuracy !== null
+      ? ` (v${model.parent_version}: ${figures(model.parent_heldout_accuracy, model.parent_heldout_recall)})`
+      : "";
+  return `${figures(model.heldout_accuracy, model.heldout_recall)}${parent}`;
+}
+
+export interface ModelTableInputs {
+  text: KindText;
+  /** "Curve" was pressed on a model's row. */
+  onCurve(model: ModelInfo): void;
+  /** A model was made active: the page loads the list again. */
+  onPromoted(): Promise<void>;
+}
+
+export interface ModelTable {
+  /** The card with the title, status lines and the table. */
+  element: HTMLElement;
+  show(models: ModelInfo[]): void;
+  /** Say the list could not be loaded. */
+  showError(message: string): void;
+}
+
+export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): ModelTable {
+  const status = el("p", { className: "list-status", testid: "model-list-status" });
+  const notice = el("p", {
+    className: "list-status",
+    testid: "model-notice",
+    attrs: { role: "status", "aria-live": "polite" },
+  });
+  const body = el("tbody");
+  const columns = [
+    "Version",
+    "Created",
+    "Status",
+    text.heldoutColumn,
+    text.validationColumn,
+    "Labelled scenes",
+    "",
+    "",
+  ];
+  const table = el(
+    "table",
+    { className: "scene-table model-table", testid: "model-list" },
+    el(
+      "thead",
+      {},
+      el("tr", {}, ...columns.map((name) => el("th", { text: name, attrs: { scope: "col" } }))),
+    ),
+    body,
+  );
+
+  const promote = async (model: ModelInfo, promoteButton: HTMLButtonElement) => {
+    promoteButton.disabled = true;
+    notice.textContent = `Making v${model.version} active…`;
+    try {
+      await modelsApi.promote(model.id, { author: getAuthor(), note: null });
+      notice.textContent = `v${model.version} is now the active model.`;
+      await onPromoted();
+    } catch (error) {
+      promoteButton.disabled = false;
+      notice.textContent = `Could not make v${model.version} active: ${String(error)}`;
+    }
+  };
+
+  const modelRow = (model: ModelInfo): HTMLTableRowElement => {
+    const action = model.active
+      ? el("span", { className: "badge badge--active", text: "Active" })
+      : button("Make active", {
+          testid: `promote-${model.version}`,
+          onClick: (event) => void promote(model, event.currentTarget as HTMLButtonElement),
+        });
+    const curve = button("Curve", {
+      testid: `curve-${model.version}`,
+      disabled: !model.has_curve,
+      onClick: () => onCurve(model),
+    });
+    return el(
+      "tr",
+      {
+        testid: `model-row-${model.version}`,
+        className: model.active ? "is-active" : "",
+        attrs: { "data-status": model.status },
+      },
+      el("th", { text: `v${model.version}`, attrs: { scope: "row", title: model.id } }),
+      el("td", { text: formatTime(model.created_at) }),
+      el(
+        "td",
+        { attrs: { title: model.note ?? "" } },
+        el("span", {
+          className: `badge badge--${model.status}`,
+          text: STATUS_TEXT[model.status],
+        }),
+      ),
+      el("td", { text: heldoutText(model) }),
+      el("td", { text: percent(model.validation_accuracy) }),
+      el("td", {
+        text:
+          model.training_scenes + model.heldout_scenes > 0
+            ? `${model.training_scenes} trained, ${model.heldout_scenes} held out`
+            : "—",
+      }),
+      el("td", {}, curve),
+      el("td", {}, action),
+    );
+  };
+
+  const element = el(
+    "section",
+    { className: "card" },
+    el("h2", { text: text.title }),
+    el("p", { className: "field-hint", text: text.usedBy }),
+    status,
+    notice,
+    el("div", { className: "table-scroll" }, table),
+  );
+  return {
+    element,
+    show(models) {
+      body.replaceChildren(...models.map(modelRow));
+      table.hidden = models.length === 0;
+      status.textContent = models.length === 0 ? text.empty : "";
+    },
+    showError(message) {
+      status.textContent = message;
+    },
+  };
+}

@@ -1,0 +1,117 @@
+// The models page's retraining form: a new model of the kind trained on the server (a retrain
+// job), its progress and log followed live; the page reloads the list when it ends.
+import type { Job } from "@holiscene/schema";
+import { isFinished, pollJob } from "../../api/jobs";
+import { modelsApi } from "../../api/models";
+import { button, el, hiddenErrorAlert, labelledField } from "../../dom";
+import type { ModelKind } from "../../router";
+import { getAuthor } from "../../state/author";
+import { jobProgress } from "../common/jobProgress";
+import type { KindText } from "./kindText";
+
+const POLL_MS = 1000;
+
+function numberField(label: string, name: string, placeholder: string, max: number) {
+  const input = el("input", {
+    testid: `retrain-${name}`,
+    attrs: { type: "number", name, min: name === "epochs" ? 1 : 0, max, step: 1, placeholder },
+  });
+  const field = labelledField(label, input);
+  return { input, field };
+}
+
+const readNumber = (input: HTMLInputElement) =>
+  input.value.trim() === "" ? null : Math.round(Number(input.value));
+
+export interface RetrainFormInputs {
+  kind: ModelKind;
+  text: KindText;
+  /** Stops following the job when the page goes. */
+  signal: AbortSignal;
+  /** A job ended: the page loads the models again. */
+  onFinished(): Promise<void>;
+}
+
+export interface RetrainForm {
+  element: HTMLFormElement;
+  /** Show the kind's newest retrain job, and follow it while it runs. */
+  resume(job: Job): void;
+}
+
+export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInputs): RetrainForm {
+  const epochs = numberField(text.epochs[0], "epochs", text.epochs[1], 500);
+  const synthetic = numberField(text.synthetic[0], "synthetic", text.synthetic[1], 20000);
+  const retrain = button("Retrain", {
+    className: "primary",
+    testid: "retrain-button",
+    type: "submit",
+  });
+  const retrainError = hiddenErrorAlert("retrain-error");
+  const progress = jobProgress("retrain-progress");
+  progress.element.hidden = true;
+  const log = el("pre", { className: "job-log", testid: "retrain-log", attrs: { hidden: true } });
+  const form = el(
+    "form",
+    { className: "card", testid: "retrain-form" },
+    el("h2", { text: "Retrain" }),
+    el("p", { className: "field-hint", text: text.retrainHint }),
+    el("div", { className: "field-grid" }, epochs.field, synthetic.field),
+    el("div", { className: "form-actions" }, retrain),
+    retrainError,
+    progress.element,
+    log,
+  );
+
+  const showJob = (job: Job) => {
+    progress.element.hidden = false;
+    progress.update(job);
+    log.hidden = job.log === "";
+    const atBottom = log.scrollTop + log.clientHeight >= log.scrollHeight - 4;
+    log.textContent = job.log;
+    if (atBottom) log.scrollTop = log.scrollHeight;
+    retrain.disabled = !isFinished(job);
+  };
+
+  const follow = async (job: Job) => {
+    try {
+      const final = await pollJob(job, { onUpdate: showJob, signal, intervalMs: POLL_MS });
+      showJob(final);
+      await onFinished();
+    } catch (error) {
+      if (!signal.aborted) {
+        retrain.disabled = false;
+        retrainError.hidden = false;
+        retrainError.textContent = `Lost track of the retrain job: ${String(error)}`;
+      }
+    }
+  };
+
+  form.addEventListener("submit", async (event) => {
+    event.preventDefault();
+    retrain.disabled = true;
+    retrainError.hidden = true;
+    try {
+      const job = await modelsApi.startRetrain(
+        {
+          author: getAuthor(),
+          max_epochs: readNumber(epochs.input),
+          synthetic_scenes: readNumber(synthetic.input),
+        },
+        kind,
+      );
+      void follow(job);
+    } catch (error) {
+      retrain.disabled = false;
+      retrainError.hidden = false;
+      retrainError.textContent = `Retraining did not start: ${String(error instanceof Error ? error.message : error)}`;
+    }
+  });
+
+  return {
+    element: form,
+    resume(job) {
+      if (isFinished(job)) showJob(job);
+      else void follow(job);
+    },
+  };
+}

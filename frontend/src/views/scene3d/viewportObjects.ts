@@ -1,0 +1,110 @@
+// The scene's objects in 3D: scene.glb of the current revision, coloured as their masks on the
+// photo, brighter while hovered or selected. A new GLB is fetched only when the stages that made
+// the revision change (edits keep them).
+import type { SceneDocument } from "@holiscene/schema";
+import type * as THREE from "three";
+import { api } from "../../api/client";
+import type { SceneSession } from "../../state/sceneSession";
+import { maskColours } from "../objectColors";
+import { maskStyle } from "../photo/maskStyle";
+import { SceneModel } from "./sceneModel";
+import type { Scene3dStatus } from "./viewportDom";
+
+/** What the GLB depends on: the stages that made the revision (edits keep them). */
+const glbKey = (doc: SceneDocument) => JSON.stringify(doc.scene.stages ?? []);
+
+export interface ViewportObjectsInputs {
+  scene: THREE.Scene;
+  session: SceneSession;
+  canvas: HTMLCanvasElement;
+  setStatus(state: Scene3dStatus, text: string): void;
+  requestRender(): void;
+  /** The revision has no GLB (yet). */
+  onMissing(): void;
+  /** A GLB is in the scene; `first`: the first one the view shows. */
+  onShown(first: boolean): void;
+}
+
+export class ViewportObjects {
+  model: SceneModel | null = null;
+  /** glbKey of the revision whose GLB was asked for last. */
+  private loadedGlb = "";
+  private readonly abort = new AbortController();
+  private readonly stopColours: () => void;
+
+  constructor(private readonly inputs: ViewportObjectsInputs) {
+    this.stopColours = maskStyle.subscribe(() => {
+      this.model?.recolour(this.colours());
+      inputs.requestRender();
+    });
+  }
+
+  /** Objects in 3D have the colours of their masks on the photo. */
+  private colours() {
+    return maskColours(this.inputs.session.objects, maskStyle.get().colouring);
+  }
+
+  /** Whether the session's revision needs another GLB than the one shown. */
+  get stale(): boolean {
+    return glbKey(this.inputs.session.doc) !== this.loadedGlb;
+  }
+
+  /** Fetch and show the session's revision's GLB; failures end in the status line. */
+  load(): Promise<void> {
+    return this.fetchAndShow().catch((error: unknown) => {
+      if (this.abort.signal.aborted) return;
+      this.inputs.setStatus("error", `The 3D scene could not be shown: ${String(error)}`);
+    });
+  }
+
+  private async fetchAndShow(): Promise<void> {
+    const { scene, session, canvas, setStatus } = this.inputs;
+    const doc = session.doc;
+    this.loadedGlb = glbKey(doc);
+    if (!this.model) setStatus("loading", "Loading the 3D scene…");
+    // scene.glb is binary (and 404 means "no objects yet"): a plain fetch, not request().
+    const response = await fetch(api.glbUrl(session.sceneId, doc.revision), {
+      signal: this.abort.signal,
+    });
+    if (response.status === 404) {
+      setStatus("missing", "No 3D objects yet: they appear once the pipeline has run.");
+      this.inputs.onMissing();
+      return;
+    }
+    if (!response.ok) throw new Error(`scene.glb: ${response.status} ${response.statusText}`);
+    const loaded = await SceneModel.parse(
+      await response.arrayBuffer(),
+      session.objects,
+      this.colours(),
+    );
+    if (this.abort.signal.aborted) {
+      loaded.dispose();
+      return;
+    }
+    const first = this.model === null;
+    if (this.model) {
+      scene.remove(this.model.view);
+      this.model.dispose();
+    }
+    this.model = loaded;
+    scene.add(loaded.view);
+    canvas.dataset.revision = String(doc.revision);
+    this.highlight();
+    this.inputs.onShown(first);
+  }
+
+  /** Brighten the hovered and the selected object. */
+  highlight(): void {
+    const { session, canvas } = this.inputs;
+    canvas.dataset.selected = session.selected ?? "";
+    if (!this.model) return;
+    this.model.highlight(new Set([session.hovered, session.selected].filter((id) => id !== null)));
+    this.inputs.requestRender();
+  }
+
+  dispose(): void {
+    this.abort.abort();
+    this.stopColours();
+    this.model?.dispose();
+  }
+}

@@ -1,0 +1,44 @@
+// The end-to-end tests' window into the 3D view (Scene3dProbe): read from the view's parts.
+
+import type * as THREE from "three";
+import type { ViewportCamera } from "./viewportCamera";
+import type { Scene3dProbe } from "./viewportDom";
+import type { LiveLayers } from "./viewportLive";
+import type { ViewportObjects } from "./viewportObjects";
+import type { ViewportPicking } from "./viewportPicking";
+import type { FrameStats, ViewportRender } from "./viewportRender";
+
+export interface ProbeInputs {
+  stats: FrameStats;
+  renderer: THREE.WebGLRenderer;
+  frames: ViewportRender;
+  view: ViewportCamera;
+  live: LiveLayers;
+  objects: ViewportObjects;
+  picking: ViewportPicking;
+}
+
+export function scene3dProbe(inputs: ProbeInputs): Scene3dProbe {
+  const { stats, renderer, frames, view, live, objects, picking } = inputs;
+  return {
+    get frames() {
+      return stats.frames;
+    },
+    get renderMs() {
+      return stats.renderMs;
+    },
+    roomCorners: () => (live.room.room ? live.room.corners() : null),
+    cameraPose: () => (live.frustum ? live.frustum.pitchRoll : null),
+    frustumShown: () => live.frustumShown,
+    photoOnFrustum: () => live.frustum?.hasPhoto ?? false,
+    arrows: () => live.arrows.arrows.map(({ child, parent, type }) => ({ child, parent, type })),
+    screenPointOf: (id) => picking.screenPointOf(id),
+    objectColour: (id) => objects.model?.colourOf(id)?.toArray() ?? null,
+    orbit: (azimuth) => view.orbit(azimuth),
+    renderInfo: () => ({
+      calls: renderer.info.render.calls,
+      triangles: renderer.info.render.triangles,
+      ...frames.lastFrameSize,
+    }),
+  };
+}
