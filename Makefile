@@ -128,22 +128,22 @@ calibrate-scale: install-python
 
 # The room-fit test vectors shared by the Python and TypeScript tests.
 vectors:
-	$(PY) -m holiscene_schema.vectors
+	$(PY) -m holiscene.twin_vectors.room_fit
 
 # The Relation Network's vectors (preprocessing + the default model's logits) shared by the
 # backend and the browser; run after changing the default model or the preprocessing.
 relation-vectors:
-	$(PY) -m holiscene_schema.relation_vectors
+	$(PY) -m holiscene.twin_vectors.relation_model
 
 # The object detector's vectors (preprocessing, the default detector's raw rows, decoding)
 # shared by the backend and the browser; run after changing the default detector, its
 # preprocessing or its decoding.
 detector-vectors:
-	$(PY) -m holiscene_schema.detector_vectors
+	$(PY) -m holiscene.twin_vectors.detector_model
 
 # The support-tree decoder's vectors (Python decode.py <-> frontend/src/inference/treeDecode.ts).
 decode-vectors:
-	$(PY) -m holiscene_schema.decode_vectors
+	$(PY) -m holiscene.twin_vectors.support_decode
 
 test-frontend: install-node
 	npm run -s -w frontend test

@@ -1,4 +1,4 @@
-"""Time `infer_scene` on every real photo: `make bench` (or python benchmarks/bench_infer.py).
+"""Time `reconstruct_scene` on every real photo: `make bench` (or python benchmarks/bench_infer.py).
 `--without-boxes` leaves each photo's detections.json out, so the detector makes the objects.
 
 Prints one row per photo (objects, seconds, pitch/roll, 3D boxes placed) and a summary line.
@@ -14,8 +14,8 @@ import sys
 import time
 
 from holiscene.core.settings import REPO_ROOT
-from holiscene.inference import infer_scene
 from holiscene.inputs import read_input_folder
+from holiscene.services.reconstruction import reconstruct_scene
 
 PHOTOS = REPO_ROOT.parent / "shared" / "data" / "real"
 
@@ -36,7 +36,7 @@ def main(argv: list[str] | None = None) -> int:
         inputs = read_input_folder(folder)
         if args.without_boxes:
             inputs = dataclasses.replace(inputs, detections=None)
-        scene = infer_scene(inputs, name=folder.name, image_file="img.jpg").scene
+        scene = reconstruct_scene(inputs, name=folder.name, image_file="img.jpg").scene
         seconds = time.perf_counter() - start
         times.append(seconds)
         camera = scene.camera

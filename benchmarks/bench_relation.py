@@ -26,7 +26,7 @@ import numpy as np
 import onnxruntime as ort
 from holiscene.learning.preprocess import relation_inputs
 from holiscene.learning.runtime import DEFAULT_MODEL_DIR, SupportModel
-from holiscene.rle import decode_mask
+from holiscene.segmentation.rle import decode_mask
 from holiscene_schema import Mask
 
 WIDTH, HEIGHT, OBJECTS, SEED = 640, 480, 20, 20260505

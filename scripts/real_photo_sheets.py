@@ -17,9 +17,9 @@ from holiscene.core.settings import REPO_ROOT
 from holiscene.export.glb import class_colour
 from holiscene.geometry.camera import PinholeCamera
 from holiscene.geometry.surface_map import load_surface_model
-from holiscene.inference import infer_scene
 from holiscene.inputs import read_input_folder
-from holiscene.rle import decode_mask
+from holiscene.segmentation.rle import decode_mask
+from holiscene.services.reconstruction import reconstruct_scene
 from holiscene.synth.materials import Material
 from holiscene.synth.render import Lighting, RenderItem, render
 
@@ -87,7 +87,7 @@ def main() -> int:
     out.mkdir(parents=True, exist_ok=True)
     for folder in sorted(p for p in PHOTOS.iterdir() if p.is_dir()):
         inputs = read_input_folder(folder)
-        result = infer_scene(inputs, name=folder.name, image_file="img.jpg")
+        result = reconstruct_scene(inputs, name=folder.name, image_file="img.jpg")
         scene, cam = result.scene, result.scene.camera
         panels = [_overlay(inputs.photo.rgb, scene), _surface_panel(inputs.photo.rgb)]
         if result.glb is not None and cam is not None and cam.pitch_deg is not None:

@@ -9,7 +9,7 @@ from pathlib import Path
 import cv2
 import numpy as np
 from holiscene.export.glb import class_colour
-from holiscene.rle import decode_mask
+from holiscene.segmentation.rle import decode_mask
 from holiscene.synth.generate import SyntheticScene, synthesize
 
 OUT = Path(__file__).resolve().parent.parent / "docs" / "img" / "synth_examples.png"

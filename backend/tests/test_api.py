@@ -217,7 +217,7 @@ def test_edits_are_kept_across_a_restart(settings: Settings, t3d5: Path) -> None
 @pytest.mark.both_databases
 def test_unfinished_jobs_fail_clearly_after_restart(settings: Settings, t3d5: Path) -> None:
     from holiscene.api.app import create_app
-    from holiscene.workbench import Workbench
+    from holiscene.services.workbench import Workbench
 
     with TestClient(create_app(settings)) as client:
         scene_id, _ = _imported(client, t3d5)

@@ -190,8 +190,8 @@ def test_train_rn_registers_a_candidate_model(
 ) -> None:
     pytest.importorskip("torch", reason="the train extra (PyTorch) is not installed")
     from holiscene.core.settings import Settings
-    from holiscene.store.models import active_model_dir
-    from holiscene.workbench import Workbench
+    from holiscene.services.workbench import Workbench
+    from holiscene.store.model_registry import active_model_dir
 
     data = tmp_path / "data"
     out = tmp_path / "model"

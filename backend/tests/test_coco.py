@@ -7,7 +7,7 @@ from functools import cache
 
 import numpy as np
 from holiscene.export.coco import coco_instances, coco_rle, decode_coco_rle
-from holiscene.rle import decode_mask
+from holiscene.segmentation.rle import decode_mask
 from holiscene.synth.generate import SyntheticScene, synthesize
 from holiscene_schema import NYU40_CLASSES, Scene
 

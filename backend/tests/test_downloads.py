@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 from fastapi.testclient import TestClient
 from holiscene.export.coco import decode_coco_rle
-from holiscene.rle import decode_mask
+from holiscene.segmentation.rle import decode_mask
 from holiscene_schema import Mask
 
 from .conftest import upload, wait_for_job

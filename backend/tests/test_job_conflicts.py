@@ -15,10 +15,10 @@ from typing import Any
 import pytest
 from fastapi.testclient import TestClient
 from holiscene.core.settings import Settings
+from holiscene.editing.workflow_rules import Actor, WorkflowError
+from holiscene.services.workbench import Workbench
 from holiscene.store.jobs import JobStore
 from holiscene.store.scenes import SceneChangedError
-from holiscene.workbench import Workbench
-from holiscene.workflow import Actor, WorkflowError
 from holiscene_schema import EditRequest
 
 from .conftest import upload, wait_for_job

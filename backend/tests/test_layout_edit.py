@@ -8,18 +8,18 @@ from typing import Any
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
-from holiscene.editing import InvalidEditError, apply_edits
+from holiscene.editing.edits import InvalidEditError, apply_edits
+from holiscene.editing.layout import CAMERA_HEIGHT_PRIOR_M, camera_height
 from holiscene.geometry.boxes import box_corners
 from holiscene.geometry.room_fit import project_room_corners
-from holiscene.inference import infer_scene
 from holiscene.inputs import read_input_folder
-from holiscene.layout_edit import CAMERA_HEIGHT_PRIOR_M, camera_height
 from holiscene.pipeline import (
     KEPT_LAYOUT_STAGES,
     PLACEMENT_STAGES,
     PipelineBuildError,
     build_pipeline,
 )
+from holiscene.services.reconstruction import reconstruct_scene
 from holiscene.store.clock import utcnow
 from holiscene_schema import Camera, ImageInfo, Layout, Scene, SetLayout
 
@@ -328,8 +328,8 @@ def test_placement_job_needs_a_layout(client: TestClient, t3d5: Path) -> None:
 
 def test_placement_stages_on_an_unchanged_scene_place_as_the_full_pipeline(t3d5: Path) -> None:
     inputs = read_input_folder(t3d5)
-    full = infer_scene(inputs, name="x", image_file="img.jpg").scene
-    again = infer_scene(
+    full = reconstruct_scene(inputs, name="x", image_file="img.jpg").scene
+    again = reconstruct_scene(
         inputs,
         name="x",
         image_file="img.jpg",

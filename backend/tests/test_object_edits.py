@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
-from holiscene.rle import decode_mask
+from holiscene.segmentation.rle import decode_mask
 from holiscene_schema import Mask
 
 from .conftest import upload, wait_for_job

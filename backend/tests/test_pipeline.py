@@ -6,10 +6,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from holiscene.inference import infer_scene
 from holiscene.inputs import InputFiles, read_input_folder
 from holiscene.learning.runtime import DEFAULT_MODEL_DIR, SupportModel
 from holiscene.pipeline import DEFAULT_STAGES, PipelineBuildError, build_pipeline, registered_stages
+from holiscene.services.reconstruction import reconstruct_scene
 from holiscene_schema import SupportRelation
 
 
@@ -52,7 +52,7 @@ def test_a_missing_model_fails_at_build_time(tmp_path: Path) -> None:
 
 def test_pinned_supports_are_kept(t3d5: Path) -> None:
     pinned = SupportRelation(child="o1", parent="o0", type="behind", source="manual", author="ann")
-    scene = infer_scene(
+    scene = reconstruct_scene(
         read_input_folder(t3d5), name="x", image_file="img.jpg", pinned_supports=[pinned]
     ).scene
     assert next(s for s in scene.supports if s.child == "o1") == pinned
@@ -61,7 +61,9 @@ def test_pinned_supports_are_kept(t3d5: Path) -> None:
 def test_real_photos_get_one_supporter_each_and_floor_furniture(real_photos: Path) -> None:
     floor_classes = {"bed", "sofa", "dresser", "bookshelf", "refrigerator", "table", "desk"}
     for folder in sorted(real_photos.iterdir()):
-        scene = infer_scene(read_input_folder(folder), name=folder.name, image_file="img.jpg").scene
+        scene = reconstruct_scene(
+            read_input_folder(folder), name=folder.name, image_file="img.jpg"
+        ).scene
         children = [s.child for s in scene.supports]
         assert sorted(children) == sorted(o.id for o in scene.objects), folder.name
         by_child = {s.child: s for s in scene.supports}
@@ -72,14 +74,14 @@ def test_real_photos_get_one_supporter_each_and_floor_furniture(real_photos: Pat
 
 def test_stage_notes_are_warnings_only_when_a_stage_could_not_do_something(t3d5: Path) -> None:
     given = read_input_folder(t3d5)
-    full = infer_scene(given, name="x", image_file="img.jpg").scene
+    full = reconstruct_scene(given, name="x", image_file="img.jpg").scene
     layout = next(run for run in full.stages if run.name == "layout_from_lines")
     assert layout.note and "scale from" in layout.note and not layout.warning
     assert not any(run.warning for run in full.stages if run.note is None)
 
     bare = InputFiles(photo=given.photo, K=None, detections=None)
     stages = ("objects_from_detections", "intrinsics")
-    runs = infer_scene(bare, name="x", image_file="img.jpg", stages=stages).scene.stages
+    runs = reconstruct_scene(bare, name="x", image_file="img.jpg", stages=stages).scene.stages
     warnings = {run.name: run.note for run in runs if run.warning}
     assert "no detections.json" in (warnings["objects_from_detections"] or "")
     assert "no cam_K.txt" in (warnings["intrinsics"] or "")

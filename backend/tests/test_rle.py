@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
-from holiscene.rle import decode_mask, encode_mask
+from holiscene.segmentation.rle import decode_mask, encode_mask
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays

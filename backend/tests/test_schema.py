@@ -6,8 +6,8 @@ import json
 from pathlib import Path
 
 import pytest
-from holiscene.inference import infer_scene
 from holiscene.inputs import read_input_folder
+from holiscene.services.reconstruction import reconstruct_scene
 from holiscene_schema import NYU40_CLASSES, Scene, normalise_class_name, support_graph_problems
 from holiscene_schema.export import SCHEMA_DIR, main, render_schemas
 from jsonschema import Draft202012Validator
@@ -16,7 +16,7 @@ from pydantic import ValidationError
 
 @pytest.fixture()
 def scene(t3d5: Path) -> Scene:
-    return infer_scene(read_input_folder(t3d5), name="t3d-5", image_file="img.jpg").scene
+    return reconstruct_scene(read_input_folder(t3d5), name="t3d-5", image_file="img.jpg").scene
 
 
 def test_scene_round_trips_through_json(scene: Scene) -> None:

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from holiscene.evaluation.metrics import Evaluation
 from holiscene.geometry.boxes import box_corners
-from holiscene.rle import encode_mask
+from holiscene.segmentation.rle import encode_mask
 from holiscene_schema import Camera, ImageInfo, Layout, Scene, SceneObject, SupportRelation
 
 IMAGE = ImageInfo(file="img.png", width=20, height=10)

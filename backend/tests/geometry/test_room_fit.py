@@ -13,8 +13,8 @@ import pytest
 from holiscene.geometry import room_fit
 from holiscene.geometry.boxes import box_corners
 from holiscene.geometry.room_fit import corner_coverage_problem, fit_room, project_room_corners
+from holiscene.twin_vectors import room_fit as v
 from holiscene_schema import BOX_CORNER_SIGNS
-from holiscene_schema import vectors as v
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 

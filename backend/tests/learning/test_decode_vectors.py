@@ -1,7 +1,7 @@
 """The support-tree decoder's shared vectors (shared_schema/vectors/support_decode.json) on the
 Python side: the committed file is exactly what holiscene.learning.decode gives today, so the
 TypeScript twin (frontend/src/inference/treeDecode.test.ts) is held to the pipeline's decoder.
-After changing the decoder, run `python -m holiscene_schema.decode_vectors` and change the
+After changing the decoder, run `python -m holiscene.twin_vectors.support_decode` and change the
 TypeScript decoder to match."""
 
 from __future__ import annotations
@@ -10,15 +10,15 @@ import json
 
 import numpy as np
 from holiscene.learning.decode import decode_supports
+from holiscene.twin_vectors import support_decode as dv
 from holiscene_schema import SupportRelation
-from holiscene_schema import decode_vectors as dv
 from holiscene_schema.relation_model import STRUCTURAL_COLUMNS
 
 
 def test_committed_vectors_are_what_the_decoder_gives() -> None:
     committed = json.loads(dv.DECODE_VECTORS.read_text())
     assert committed == json.loads(json.dumps(dv.build())), (
-        "stale: run `python -m holiscene_schema.decode_vectors`"
+        "stale: run `python -m holiscene.twin_vectors.support_decode`"
     )
 
 

@@ -10,7 +10,7 @@ from pathlib import Path
 from fastapi.testclient import TestClient
 from holiscene.learning.detector import runtime
 from holiscene.learning.detector.runtime import DEFAULT_DETECTOR_DIR
-from holiscene.store.models import Registration
+from holiscene.store.model_registry import Registration
 
 
 def test_serves_the_committed_default_detector(client: TestClient) -> None:

@@ -24,7 +24,7 @@ from holiscene.learning.detector.runtime import (
     decode,
     preprocess,
 )
-from holiscene_schema import detector_vectors as dv
+from holiscene.twin_vectors import detector_model as dv
 from holiscene_schema.detector_model import (
     COCO_CLASSES,
     COCO_TO_NYU40,

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import onnxruntime as ort
 import pytest
-from holiscene_schema import relation_vectors as rv
+from holiscene.twin_vectors import relation_model as rv
 from holiscene_schema.relation_model import (
     IMAGE_SIZE,
     INPUT_NAMES,

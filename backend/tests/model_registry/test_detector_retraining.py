@@ -11,17 +11,17 @@ import pytest
 from fastapi.testclient import TestClient
 from holiscene.api.app import create_app
 from holiscene.core.settings import Settings
-from holiscene.detector_retraining import (
+from holiscene.evaluation.detection_2d import ScoredBox
+from holiscene.learning.detector.runtime import COCO_DETECTOR_DIR
+from holiscene.services.detector_retraining import (
     DetectorRetrainConfig,
     boxed_scenes,
     without_unconfirmed,
 )
-from holiscene.evaluation.detection_2d import ScoredBox
-from holiscene.learning.detector.runtime import COCO_DETECTOR_DIR
-from holiscene.store import models as registry_module
-from holiscene.store.models import active_model_dir
+from holiscene.services.workbench import Workbench
+from holiscene.store import model_registry as registry_module
+from holiscene.store.model_registry import active_model_dir
 from holiscene.store.tables import ModelRow, SceneRow
-from holiscene.workbench import Workbench
 from holiscene_schema import AddObject, EditRequest, Job, RetrainRequest
 from sqlalchemy import update
 from sqlalchemy.orm import Session

@@ -14,15 +14,15 @@ from fastapi.testclient import TestClient
 from holiscene.api.app import create_app
 from holiscene.core.db import MIGRATIONS_DIR, make_engine, migrate
 from holiscene.core.settings import Settings
-from holiscene.store import models as registry_module
-from holiscene.store.models import (
+from holiscene.services.workbench import Workbench
+from holiscene.store import model_registry as registry_module
+from holiscene.store.model_registry import (
     ModelNotFoundError,
     ModelStore,
     NoActiveModelError,
     Registration,
     active_model_dir,
 )
-from holiscene.workbench import Workbench
 from sqlalchemy import Engine, text
 from sqlalchemy.exc import IntegrityError
 

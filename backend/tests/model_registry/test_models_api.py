@@ -10,9 +10,9 @@ import pytest
 from fastapi.testclient import TestClient
 from holiscene.api.app import create_app
 from holiscene.core.settings import Settings
-from holiscene.store import models as registry_module
-from holiscene.store.models import Registration
-from holiscene.workbench import Workbench
+from holiscene.services.workbench import Workbench
+from holiscene.store import model_registry as registry_module
+from holiscene.store.model_registry import Registration
 
 from ..conftest import wait_for_job
 from .helpers import LABELLED_SEEDS, fake_model_dir, store_labelled_scene, store_unlabelled_scene

@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 from holiscene.core.db import make_engine, migrate
 from holiscene.core.settings import Settings
-from holiscene.store import models as registry_module
-from holiscene.store.models import (
+from holiscene.store import model_registry as registry_module
+from holiscene.store.model_registry import (
     NO_MODEL_MESSAGE,
     InvalidModelDirError,
     ModelNotFoundError,

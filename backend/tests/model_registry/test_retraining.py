@@ -14,11 +14,11 @@ from fastapi.testclient import TestClient
 from holiscene.api.app import create_app
 from holiscene.core.settings import Settings
 from holiscene.learning.training_api import TrainConfig
-from holiscene.retraining import heldout_split, labelled_scenes
-from holiscene.store import models as registry_module
-from holiscene.store.models import Registration, active_model_dir
+from holiscene.services.relation_retraining import heldout_split, labelled_scenes
+from holiscene.services.workbench import Workbench
+from holiscene.store import model_registry as registry_module
+from holiscene.store.model_registry import Registration, active_model_dir
 from holiscene.store.tables import ModelRow
-from holiscene.workbench import Workbench
 from holiscene_schema import Job, RetrainRequest
 from sqlalchemy.orm import Session
 

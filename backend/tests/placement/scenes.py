@@ -16,7 +16,7 @@ from holiscene.placement.oracle import MaskKind, context_from_truth
 from holiscene.placement.projection import MaskTarget
 from holiscene.placement.room import pinhole, projection_matrix
 from holiscene.placement.solver import Placement
-from holiscene.rle import decode_mask
+from holiscene.segmentation.rle import decode_mask
 from holiscene.shapes import generate_shape
 from holiscene.synth.generate import SyntheticScene, synthesize
 from holiscene_schema import SceneObject

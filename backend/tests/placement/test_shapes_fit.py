@@ -13,11 +13,11 @@ from holiscene.geometry.camera import rot_y
 from holiscene.pipeline.base import PipelineBuildError
 from holiscene.pipeline.stages.mesh import SceneMesh
 from holiscene.pipeline.stages.shapes_fit import ShapesFit
-from holiscene.placement.models import fit_model
 from holiscene.placement.oracle import context_from_truth
 from holiscene.placement.projection import MaskTarget
 from holiscene.placement.room import pinhole, projection_matrix, wrap_deg
-from holiscene.rle import decode_mask
+from holiscene.placement.shape_choice import fit_model
+from holiscene.segmentation.rle import decode_mask
 from holiscene_schema import Box3D
 
 from .scenes import SEEDS, placed, scene, visible_fraction

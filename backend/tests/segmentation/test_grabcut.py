@@ -15,8 +15,8 @@ from holiscene.pipeline.base import ObjectMask, SceneContext, Stage
 from holiscene.pipeline.stages.detections import objects_from_detections
 from holiscene.pipeline.stages.grabcut import MasksGrabCut
 from holiscene.pipeline.stages.masks import MasksFromBoxes, _front_to_back, occlusion_order
-from holiscene.rle import decode_mask
 from holiscene.segmentation import grabcut_in_box
+from holiscene.segmentation.rle import decode_mask
 from holiscene.synth.generate import SyntheticScene, synthesize
 from holiscene_schema import SceneObject
 

@@ -12,7 +12,7 @@ import pytest
 from holiscene.cli import main
 from holiscene.evaluation.run import evaluate_folders
 from holiscene.geometry.camera import PinholeCamera
-from holiscene.rle import decode_mask
+from holiscene.segmentation.rle import decode_mask
 from holiscene.synth.generate import SyntheticScene, synthesize
 from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene
 

@@ -10,7 +10,7 @@ import pytest
 import trimesh
 import viser
 from holiscene.export.glb import scene_glb
-from holiscene.placement.models import placed as placed_mesh
+from holiscene.placement.shape_choice import placed as placed_mesh
 from holiscene.shapes import generate_shape
 from holiscene.synth.generate import synthesize_to
 from holiscene.viewer import SceneViewer, ViewerInput, start_viewer

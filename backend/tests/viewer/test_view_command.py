@@ -13,8 +13,8 @@ import pytest
 from holiscene.cli import main
 from holiscene.core.settings import Settings
 from holiscene.inputs import read_input_folder
+from holiscene.services.workbench import Workbench
 from holiscene.viewer.sources import load_scene_argument
-from holiscene.workbench import Workbench
 
 
 def _fails(argv: list[str], capsys: pytest.CaptureFixture[str]) -> str:

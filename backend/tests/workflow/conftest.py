@@ -10,7 +10,7 @@ import pytest
 from fastapi.testclient import TestClient
 from holiscene.api.app import create_app
 from holiscene.core.settings import Settings
-from holiscene.workbench import Workbench
+from holiscene.services.workbench import Workbench
 
 PASSWORD = "tram-lilac-47-orbit"
 

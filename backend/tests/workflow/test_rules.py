@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from holiscene.workflow import (
+from holiscene.editing.workflow_rules import (
     Actor,
     SceneStatus,
     WorkflowError,

@@ -54,7 +54,7 @@ def test_users_add_list_role_and_reset(
     status, _, err = _run(capsys, "users", "reset-password", "nobody", "--data-dir", data)
     assert status == 2 and "no user 'nobody'" in err
 
-    from holiscene.cli_users import user_store
+    from holiscene.cli.users import user_store
     from holiscene.core.settings import Settings
 
     with user_store(Settings(data_dir=Path(data))) as users:
@@ -73,7 +73,7 @@ def test_serve_beyond_loopback_needs_allow_remote_and_an_admin(
     status, _, err = _run(capsys, *serve, "--allow-remote")
     assert status == 2 and "no admin account" in err and "holiscene users add" in err
 
-    from holiscene.cli_users import check_can_serve
+    from holiscene.cli.users import check_can_serve
     from holiscene.core.settings import Settings
 
     monkeypatch.setenv("HOLISCENE_PASSWORD", PASSWORD)
@@ -86,7 +86,7 @@ def test_serve_beyond_loopback_needs_allow_remote_and_an_admin(
 def test_users_disable_and_enable(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from holiscene.cli_users import user_store
+    from holiscene.cli.users import user_store
     from holiscene.core.settings import Settings
     from holiscene.store.users import AccountDisabledError, SessionEndedError
 

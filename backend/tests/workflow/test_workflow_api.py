@@ -7,7 +7,7 @@ from typing import Any
 
 import pytest
 from fastapi.testclient import TestClient
-from holiscene.workflow import WorkflowError
+from holiscene.editing.workflow_rules import WorkflowError
 
 from .conftest import Accounts
 from .scenes import store_predicted_scene

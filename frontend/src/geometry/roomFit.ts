@@ -2,7 +2,7 @@
 // TypeScript twin of backend/src/holiscene/geometry/room_fit.py, whose docstring describes the
 // algorithm. Both follow it step for step (same start, same damping, same stopping rule, same
 // error messages) and are checked against shared_schema/vectors/room_fit.json: change them
-// together and regenerate the vectors (`python -m holiscene_schema.vectors`).
+// together and regenerate the vectors (`python -m holiscene.twin_vectors.room_fit`).
 import { BOX_CORNER_SIGNS, boxCorners } from "./boxes";
 import {
   cross,

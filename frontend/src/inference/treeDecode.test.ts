@@ -1,5 +1,5 @@
 // The TypeScript support-tree decoder against the Python one (shared vectors written by
-// `python -m holiscene_schema.decode_vectors` from holiscene.learning.decode), and what the
+// `python -m holiscene.twin_vectors.support_decode` from holiscene.learning.decode), and what the
 // browser adds: rejected answers left out.
 import { describe, expect, it } from "vitest";
 import vectorsText from "../../../shared_schema/vectors/support_decode.json?raw";

@@ -1,7 +1,7 @@
 // The room layout while an annotator drags its corners: the corners as dragged, which of them
 // the fit uses, and the last valid room fit (pitch, roll, room box), re-fitted at most once
 // per animation frame. The photo overlay draws it, the 3D view shows it live, and saving sends
-// it as a SetLayout edit (the server fits the same corners again, layout_edit.py).
+// it as a SetLayout edit (the server fits the same corners again, editing/layout.py).
 import type { SceneDocument, SetLayout } from "@holiscene/schema";
 import type { Point2, Vec3 } from "../geometry/camera";
 import { roomBoxFromCorners, unseenWall, wallDistance } from "../geometry/roomBox";
@@ -14,18 +14,18 @@ import {
   RoomFitError,
 } from "../geometry/roomFit";
 
-/** The layout stage's camera-height prior (backend layout_edit.py: CAMERA_HEIGHT_PRIOR_M). */
+/** The layout stage's camera-height prior (backend editing/layout.py: CAMERA_HEIGHT_PRIOR_M). */
 export const CAMERA_HEIGHT_PRIOR_M = 1.4;
 /** The camera heights an annotator may set, metres (SetLayout.camera_height_m's range). */
 export const CAMERA_HEIGHT_RANGE_M: readonly [number, number] = [0.1, 20];
-/** The sides a room may have, metres (layout_edit.py refuses others the same way). */
+/** The sides a room may have, metres (editing/layout.py refuses others the same way). */
 export const MIN_ROOM_SIDE_M = 0.5;
 export const MAX_ROOM_SIDE_M = 100;
 
 /** The largest root-mean-square fit error, as a share of the photo's diagonal (ditto). */
 export const MAX_FIT_ERROR = 0.05;
 
-/** Why a fit is not a plausible room (layout_edit.py's messages), or null. */
+/** Why a fit is not a plausible room (editing/layout.py's messages), or null. */
 export function fitProblem(fit: RoomFit, imageWidth: number, imageHeight: number): string | null {
   const { size } = fit.room;
   if (!size.every((s) => s >= MIN_ROOM_SIDE_M && s <= MAX_ROOM_SIDE_M)) {
@@ -111,7 +111,7 @@ export function sameLayout(a: LayoutState, b: LayoutState): boolean {
 
 const cornerName = (index: number) => `${index < 4 ? "floor" : "ceiling"} corner ${index}`;
 
-/** Metres from the camera to the floor stored with the scene, in the order layout_edit.py's
+/** Metres from the camera to the floor stored with the scene, in the order editing/layout.py's
  * camera_height uses. */
 export function cameraHeight(doc: SceneDocument): number {
   const height = doc.scene.camera?.height_m;

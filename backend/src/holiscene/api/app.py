@@ -13,7 +13,7 @@ from fastapi.responses import HTMLResponse, JSONResponse
 from fastapi.staticfiles import StaticFiles
 
 from ..core.settings import Settings
-from ..workbench import Workbench
+from ..services.workbench import Workbench
 from .attempt_limits import AttemptLimiter
 from .body_limit import MB, BodySizeLimit
 from .deps import current_user, is_loopback

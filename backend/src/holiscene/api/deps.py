@@ -19,9 +19,9 @@ from typing import Annotated
 from fastapi import Depends, HTTPException, Request
 from holiscene_schema import Role
 
+from ..editing.workflow_rules import LOCAL_USER, Actor, has_role
+from ..services.workbench import Workbench
 from ..store.users import SessionEndedError
-from ..workbench import Workbench
-from ..workflow import LOCAL_USER, Actor, has_role
 
 SESSION_COOKIE = "holiscene_session"
 # Sent by the app on requests it makes by itself (polling a job, refreshing the scene list):

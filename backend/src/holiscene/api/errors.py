@@ -6,20 +6,20 @@ from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 
-from ..editing import InvalidEditError
+from ..editing.edits import InvalidEditError
 from ..inputs import InputError
 from ..pipeline import PipelineBuildError
-from ..retraining import NotEnoughLabelsError
 from ..segmentation.refine import RefineInputError
+from ..services.relation_retraining import NotEnoughLabelsError
+from ..services.workbench import PlacementNotPossibleError
 from ..store.jobs import (
     JobNotFoundError,
     JobQueueFullError,
     RetrainRunningError,
     SceneJobRunningError,
 )
-from ..store.models import ModelNotFoundError
+from ..store.model_registry import ModelNotFoundError
 from ..store.scenes import RevisionConflictError, SceneNotFoundError
-from ..workbench import PlacementNotPossibleError
 
 
 def install_error_handlers(app: FastAPI) -> None:

@@ -6,8 +6,8 @@ from typing import TypeVar
 
 from holiscene_schema import SceneDocument, SceneWorkflow
 
-from ..workbench import Workbench
-from ..workflow import Actor
+from ..editing.workflow_rules import Actor
+from ..services.workbench import Workbench
 
 AboutScene = TypeVar("AboutScene", SceneDocument, SceneWorkflow)
 

@@ -6,9 +6,9 @@ from fastapi import FastAPI, Request
 from fastapi.responses import JSONResponse
 
 from ..core.passwords import WeakPasswordError
+from ..editing.workflow_rules import WorkflowError
 from ..store.users import UserError, UserNotFoundError
 from ..store.workflow import NoSceneWaitingError, WorkflowCommentError
-from ..workflow import WorkflowError
 
 
 def install_workflow_error_handlers(app: FastAPI) -> None:

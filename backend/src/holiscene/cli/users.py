@@ -12,11 +12,11 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .core.settings import Settings
-from .workflow import ROLES
+from ..core.settings import Settings
+from ..editing.workflow_rules import ROLES
 
 if TYPE_CHECKING:
-    from .store.users import UserStore
+    from ..store.users import UserStore
 
 PASSWORD_ENV = "HOLISCENE_PASSWORD"
 
@@ -80,8 +80,8 @@ def add_user_commands(
 @contextmanager
 def user_store(settings: Settings) -> Iterator[UserStore]:
     """The accounts of a store, without starting the workbench (no models, no jobs)."""
-    from .core.db import make_engine, migrate
-    from .store.users import UserStore
+    from ..core.db import make_engine, migrate
+    from ..store.users import UserStore
 
     settings.data_dir.mkdir(parents=True, exist_ok=True)
     engine = make_engine(settings.resolved_database_url)
@@ -105,8 +105,8 @@ def _password(name: str) -> str:
 
 
 def _run(action: Callable[[], str]) -> int:
-    from .core.passwords import WeakPasswordError
-    from .store.users import UserError, UserNotFoundError
+    from ..core.passwords import WeakPasswordError
+    from ..store.users import UserError, UserNotFoundError
 
     try:
         print(action())
@@ -154,7 +154,7 @@ def _set_disabled(args: argparse.Namespace, settings: Settings, disabled: bool) 
 def check_can_serve(settings: Settings, allow_remote: bool) -> None:
     """Beyond loopback: only with --allow-remote and an admin account (no default
     credentials, ever). On loopback without accounts the server runs in local mode."""
-    from .api.deps import is_loopback
+    from ..api.deps import is_loopback
 
     if is_loopback(settings.host):
         return

@@ -1,5 +1,5 @@
 """Applying the app's edits to a scene, and keeping people's supports through pipeline re-runs
-(their objects are kept by object_edit.keep_people_objects, inside the run)."""
+(their objects are kept by pipeline.people.keep_people_objects, inside the run)."""
 
 from __future__ import annotations
 
@@ -30,8 +30,8 @@ from holiscene_schema import (
     support_graph_problems,
 )
 
-from .layout_edit import LayoutEditError, apply_set_layout, describe_set_layout
-from .object_edit import (
+from .layout import LayoutEditError, apply_set_layout, describe_set_layout
+from .objects import (
     ObjectEditError,
     new_object,
     remove_object,

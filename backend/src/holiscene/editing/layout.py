@@ -16,8 +16,8 @@ from typing import Literal
 import numpy as np
 from holiscene_schema import Camera, Layout, Scene, SetLayout
 
-from .geometry.metric_scale import CAMERA_HEIGHT_PRIOR
-from .geometry.room_fit import fit_room, project_room_corners
+from ..geometry.metric_scale import CAMERA_HEIGHT_PRIOR
+from ..geometry.room_fit import fit_room, project_room_corners
 
 CAMERA_HEIGHT_PRIOR_M = CAMERA_HEIGHT_PRIOR[0]  # the layout stage's prior
 # A known corner may lie outside the photo (a room corner beside or behind the frame), but not

@@ -25,9 +25,9 @@ from holiscene_schema import (
     normalise_class_name,
 )
 
-from .pipeline.stages.grabcut import MIN_SIDE
-from .rle import decode_mask, encode_mask
-from .segmentation import grabcut_in_box
+from ..pipeline.stages.grabcut import MIN_SIDE
+from ..segmentation import grabcut_in_box
+from ..segmentation.rle import decode_mask, encode_mask
 
 PersonSet = str  # one of SceneObject.set_by_person's values
 

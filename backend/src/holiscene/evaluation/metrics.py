@@ -22,7 +22,7 @@ import numpy as np
 from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene
 
 from ..geometry.camera import PinholeCamera
-from ..rle import decode_mask
+from ..segmentation.rle import decode_mask
 from .box_iou import iou_3d, iou_3d_in_view
 from .matching import match_objects
 

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 from holiscene_schema import NYU40_CLASSES, STRUCTURAL_CLASSES, Scene, SceneObject
 
-from ..rle import decode_mask
+from ..segmentation.rle import decode_mask
 
 CATEGORY_IDS: dict[str, int] = {name: index + 1 for index, name in enumerate(NYU40_CLASSES)}
 

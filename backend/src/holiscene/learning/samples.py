@@ -14,7 +14,7 @@ import numpy as np
 from holiscene_schema import STRUCTURAL_CLASSES, Scene
 from holiscene_schema.relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER
 
-from ..rle import decode_mask
+from ..segmentation.rle import decode_mask
 from .preprocess import relation_inputs
 
 NO_LABEL = -1

@@ -7,8 +7,10 @@
 - `optimise`: DIRECT global search then BOBYQA local refinement (nlopt).
 - `solver`: 3D boxes maximising IoU(projection, mask) under the support constraints
   (thesis Eq. 4.4-4.6), from the floor up.
-- `models`: the shape library's variants and user models fitted into boxes, chosen by
+- `shape_choice`: the shape library's variants and user models fitted into boxes, chosen by
   silhouette IoU.
+- `support_order`: objects ordered along the support graph, every supporter before what it
+  holds up (the order boxes are measured and placed in).
 - `oracle`: a scene context filled from a synthetic scene's ground truth, for tests and
   benchmarks of these stages in isolation.
 """

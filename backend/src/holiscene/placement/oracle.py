@@ -15,7 +15,7 @@ from holiscene_schema import Scene
 
 from ..geometry.camera import FloatArray, PinholeCamera
 from ..pipeline.base import ObjectMask, SceneContext
-from ..rle import decode_mask
+from ..segmentation.rle import decode_mask
 from ..synth.generate import SyntheticScene
 from .room import Room, projection_matrix
 

@@ -1,6 +1,6 @@
 """Retraining the object detector from the boxes people confirmed (an admin's background job).
 
-As the Relation Network's retraining (retraining.py) does: gather the stored scenes with
+As the Relation Network's retraining (relation_retraining.py) does: gather the stored scenes with
 confirmed boxes, hold the same fixed fifth of them out (heldout_split, decided by scene id),
 fine-tune a new detector head on synthetic rooms plus the other stored scenes
 (learning.detector.train, PyTorch, imported only inside the job), score the new detector and
@@ -40,11 +40,13 @@ from holiscene_schema import (
 )
 from holiscene_schema.detector_model import SCORE_THRESHOLD
 
-from .evaluation.detection_2d import MAP_SCORE_THRESHOLD, DetectionEvaluation, ScoredBox
-from .inputs import load_photo
-from .learning.detector.data import BoxedPhoto
-from .learning.detector.runtime import Detector, box_iou
-from .retraining import (
+from ..evaluation.detection_2d import MAP_SCORE_THRESHOLD, DetectionEvaluation, ScoredBox
+from ..inputs import load_photo
+from ..learning.detector.data import BoxedPhoto
+from ..learning.detector.runtime import Detector, box_iou
+from ..store.model_registry import Registration
+from ..store.scenes import SceneStore
+from .relation_retraining import (
     GATHER_END,
     MIN_LABELLED_SCENES,
     TRAIN_END,
@@ -53,8 +55,6 @@ from .retraining import (
     heldout_split,
     jsonable,
 )
-from .store.models import Registration
-from .store.scenes import SceneStore
 
 # Synthetic rooms for the detector: seeds no benchmark or other training uses (as
 # `holiscene train-detector`).
@@ -301,8 +301,8 @@ class DetectorRetrainJob(TrainingJob):
     def _train(self, stored: Sequence[BoxedPhoto], out_dir: Path) -> float:
         """Train on synthetic rooms plus the stored photos; the run's validation mAP@0.5."""
         # PyTorch only here, in the job: the server's request path never imports it.
-        from .learning.detector.data import synthetic_photos
-        from .learning.detector.train import DetectorTrainConfig, train_detector
+        from ..learning.detector.data import synthetic_photos
+        from ..learning.detector.train import DetectorTrainConfig, train_detector
 
         config = self.config
         cache = config.cache_dir or self.work_root.parent / ROOMS_FOLDER  # the data dir's

@@ -17,22 +17,22 @@ from holiscene_schema import (
     SupportRelation,
 )
 
-from .geometry.boxes import box_corners
-from .inputs import InputFiles
-from .pipeline import DEFAULT_STAGES, SceneContext, build_pipeline
-from .pipeline.runner import ProgressCallback
-from .rle import encode_mask
+from ..geometry.boxes import box_corners
+from ..inputs import InputFiles
+from ..pipeline import DEFAULT_STAGES, SceneContext, build_pipeline
+from ..pipeline.runner import ProgressCallback
+from ..segmentation.rle import encode_mask
 
 LAYOUT_NOT_ESTIMATED = "the room layout is not estimated by this pipeline yet"
 
 
 @dataclass(frozen=True)
-class InferenceResult:
+class Reconstruction:
     scene: Scene
     glb: bytes | None
 
 
-def infer_scene(
+def reconstruct_scene(
     inputs: InputFiles,
     *,
     name: str,
@@ -46,7 +46,7 @@ def infer_scene(
     detector_model_dir: Path | None = None,
     stage_options: Mapping[str, Mapping[str, Any]] | None = None,
     progress: ProgressCallback | None = None,
-) -> InferenceResult:
+) -> Reconstruction:
     """Run the stages on one photo. `models_dir` holds the user's own models
     (`<class>/*.obj|glb|ply`), offered to `shapes_fit` beside the built-in library;
     `support_model_dir` is the Relation Network to use (default: the committed model),
@@ -83,7 +83,7 @@ def infer_scene(
         removed_by_person=ctx.removed_objects,
         stages=runs,
     )
-    return InferenceResult(scene=scene, glb=ctx.scene_glb)
+    return Reconstruction(scene=scene, glb=ctx.scene_glb)
 
 
 def _finished_object(ctx: SceneContext, obj: SceneObject) -> SceneObject:

@@ -25,13 +25,13 @@ from typing import Any
 
 from holiscene_schema import ModelInfo, RetrainRequest, Scene
 
-from .inputs import load_photo
-from .learning.samples import SupportSample, sample_from_scene
-from .learning.training_api import TrainConfig
-from .public_errors import user_facing_error
-from .store.jobs import JobStore
-from .store.models import ModelStore, Registration
-from .store.scenes import SceneStore
+from ..inputs import load_photo
+from ..learning.samples import SupportSample, sample_from_scene
+from ..learning.training_api import TrainConfig
+from ..public_errors import user_facing_error
+from ..store.jobs import JobStore
+from ..store.model_registry import ModelStore, Registration
+from ..store.scenes import SceneStore
 
 log = logging.getLogger(__name__)
 
@@ -274,7 +274,7 @@ class RetrainJob(TrainingJob):
 
     def _train(self, samples: Sequence[SupportSample], out_dir: Path) -> Any:
         # PyTorch only here, in the job: the server's request path never imports it.
-        from .learning.train import train_relation_model
+        from ..learning.train import train_relation_model
 
         out_dir.mkdir(parents=True, exist_ok=True)
         started = time.monotonic()
@@ -319,7 +319,7 @@ class RetrainJob(TrainingJob):
 
 
 def _accuracy(model_dir: Path, samples: Sequence[SupportSample]) -> float:
-    from .learning.runtime import SupportModel
+    from ..learning.runtime import SupportModel
 
     return float(SupportModel.load(model_dir).accuracy(samples))
 

@@ -22,31 +22,31 @@ from holiscene_schema import (
     Scene,
 )
 
-from .core.db import make_engine, migrate
-from .core.settings import Settings
+from ..core.db import make_engine, migrate
+from ..core.settings import Settings
+from ..editing.workflow_rules import LOCAL_USER, Actor, WorkflowError
+from ..inputs import InputFiles, read_input_folder
+from ..learning.detector import runtime as detector_runtime
+from ..learning.training_api import METRICS_FILE
+from ..pipeline import DEFAULT_STAGES, KEPT_LAYOUT_STAGES, PLACEMENT_STAGES
+from ..pipeline.stages.detections import objects_from_detections
+from ..pipeline.stages.restore import has_hand_set_layout
+from ..public_errors import user_facing_error
+from ..store import model_registry
+from ..store.files import SceneFiles
+from ..store.jobs import JobStore
+from ..store.model_registry import KIND_FOLDERS, ModelNotFoundError, ModelStore, Registration
+from ..store.scenes import SceneChangedError, SceneStore
+from ..store.users import UserStore
+from ..store.workflow import WorkflowStore
 from .detector_retraining import (
     ROOMS_FOLDER,
     DetectorRetrainJob,
     check_can_retrain_detector,
     detector_train_config,
 )
-from .inference import infer_scene
-from .inputs import InputFiles, read_input_folder
-from .learning.detector import runtime as detector_runtime
-from .learning.training_api import METRICS_FILE
-from .pipeline import DEFAULT_STAGES, KEPT_LAYOUT_STAGES, PLACEMENT_STAGES
-from .pipeline.stages.detections import objects_from_detections
-from .pipeline.stages.restore import has_hand_set_layout
-from .public_errors import user_facing_error
-from .retraining import RetrainJob, TrainingJob, check_can_retrain, train_config
-from .store import models as model_registry
-from .store.files import SceneFiles
-from .store.jobs import JobStore
-from .store.models import KIND_FOLDERS, ModelNotFoundError, ModelStore, Registration
-from .store.scenes import SceneChangedError, SceneStore
-from .store.users import UserStore
-from .store.workflow import WorkflowStore
-from .workflow import LOCAL_USER, Actor, WorkflowError
+from .reconstruction import reconstruct_scene
+from .relation_retraining import RetrainJob, TrainingJob, check_can_retrain, train_config
 
 log = logging.getLogger(__name__)
 
@@ -280,7 +280,7 @@ class Workbench:
             # asking); a pipeline job: the latest.
             current = self.scenes.document(job.scene_id, job.base_revision if placement else None)
             stages, stage_options = job_stages(placement, current.scene)
-            result = infer_scene(
+            result = reconstruct_scene(
                 read_input_folder(folder),
                 name=current.scene.name,
                 image_file=current.scene.image.file,

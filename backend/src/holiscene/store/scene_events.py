@@ -7,7 +7,7 @@ from holiscene_schema import SceneState, WorkflowAction
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
-from ..workflow import STATES, SceneStatus, WorkflowError, check_pipeline_allowed
+from ..editing.workflow_rules import STATES, SceneStatus, WorkflowError, check_pipeline_allowed
 from .clock import utcnow
 from .tables import SceneEventRow, SceneRow
 

@@ -30,16 +30,16 @@ from sqlalchemy import Engine, select, update
 from sqlalchemy.orm import Session
 
 from ..core.db import without_transaction
-from ..editing import (
+from ..editing.edits import (
     apply_edits,
     describe_edits,
     keep_manual_supports,
     needs_photo,
     restore_revisions,
 )
+from ..editing.workflow_rules import scene_uncertainty
 from ..inputs import InputFiles, load_photo
 from ..pipeline.people import keep_people_objects, people_objects_changed_since
-from ..workflow import scene_uncertainty
 from .clock import as_utc, utcnow
 from .files import SceneFiles
 from .scene_events import as_state, pipeline_committed, record_event

@@ -23,7 +23,7 @@ from sqlalchemy.orm import Session, aliased
 
 from ..core.db import retrying_transaction, without_transaction
 from ..core.passwords import check_password, hash_password, needs_rehash, verify_password
-from ..workflow import RESERVED_NAMES, ROLES
+from ..editing.workflow_rules import RESERVED_NAMES, ROLES
 from .clock import as_utc, utcnow
 from .tables import SessionRow, UserRow
 

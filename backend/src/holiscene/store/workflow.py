@@ -29,8 +29,8 @@ from holiscene_schema import (
 from sqlalchemy import Engine, func, select, update
 from sqlalchemy.orm import Session
 
-from .. import workflow
-from ..workflow import STATES, Actor, Transition, WorkflowError
+from ..editing import workflow_rules
+from ..editing.workflow_rules import STATES, Actor, Transition, WorkflowError
 from .clock import as_utc
 from .scene_events import as_state, record_event, status_of
 from .scenes import RevisionConflictError, SceneNotFoundError, SceneStore
@@ -85,12 +85,14 @@ class WorkflowStore:
                     f"revision {revision} is an earlier one: edits apply to the latest "
                     f"(revision {row.current_revision})"
                 )
-            return workflow.edit_refusal(status_of(row), actor, _earlier_annotators(session, row))
+            return workflow_rules.edit_refusal(
+                status_of(row), actor, _earlier_annotators(session, row)
+            )
 
     def check_job_allowed(self, scene_id: str, actor: Actor) -> None:
         """WorkflowError when the actor may not start a pipeline or placement job now."""
         with Session(self.engine) as session:
-            workflow.check_job_allowed(status_of(_row(session, scene_id)), actor)
+            workflow_rules.check_job_allowed(status_of(_row(session, scene_id)), actor)
 
     # -- annotators ----------------------------------------------------------------------
 
@@ -108,7 +110,7 @@ class WorkflowStore:
             # The revision's UPDATE already holds the scene's row; the take is still a
             # compare-and-set, so it cannot overwrite a take that committed in between.
             row = _row(session, scene_id)
-            transition = workflow.take_for_annotation(
+            transition = workflow_rules.take_for_annotation(
                 status_of(row), actor, _earlier_annotators(session, row)
             )
             if transition is not None and not _apply_if_unchanged(
@@ -122,7 +124,7 @@ class WorkflowStore:
         """Take a scene for annotation without editing it yet."""
         with Session(self.engine) as session:
             row = _row(session, scene_id)
-            transition = workflow.take_for_annotation(
+            transition = workflow_rules.take_for_annotation(
                 status_of(row), actor, _earlier_annotators(session, row)
             )
             if transition is not None:
@@ -145,7 +147,7 @@ class WorkflowStore:
                     )
                 for row in candidates:
                     try:
-                        transition = workflow.take_for_annotation(
+                        transition = workflow_rules.take_for_annotation(
                             status_of(row), actor, _earlier_annotators(session, row)
                         )
                     except WorkflowError:
@@ -183,7 +185,7 @@ class WorkflowStore:
 
     def submit(self, scene_id: str, revision: int, actor: Actor) -> SceneWorkflow:
         return self._change(
-            scene_id, revision, lambda status: workflow.submit(status, actor), actor
+            scene_id, revision, lambda status: workflow_rules.submit(status, actor), actor
         )
 
     # -- reviewers -----------------------------------------------------------------------
@@ -192,7 +194,11 @@ class WorkflowStore:
         self, scene_id: str, revision: int, actor: Actor, comment: str | None
     ) -> SceneWorkflow:
         return self._change(
-            scene_id, revision, lambda s: workflow.review(s, actor, accept=True), actor, comment
+            scene_id,
+            revision,
+            lambda s: workflow_rules.review(s, actor, accept=True),
+            actor,
+            comment,
         )
 
     def reject(self, scene_id: str, revision: int, actor: Actor, comment: str) -> SceneWorkflow:
@@ -201,7 +207,7 @@ class WorkflowStore:
         return self._change(
             scene_id,
             revision,
-            lambda s: workflow.review(s, actor, accept=False),
+            lambda s: workflow_rules.review(s, actor, accept=False),
             actor,
             comment.strip(),
         )
@@ -217,11 +223,11 @@ class WorkflowStore:
         pipeline = self.scenes.latest_pipeline_document(scene_id)
         if pipeline is None:
             raise WorkflowError("the pipeline never ran on this scene: nothing to start from")
-        reset = workflow.pipeline_supports_only(current.scene, pipeline.scene)
+        reset = workflow_rules.pipeline_supports_only(current.scene, pipeline.scene)
 
         def reopen(session: Session, new_revision: int) -> None:
             row = _row(session, scene_id)
-            transition = workflow.second_annotation(status_of(row))
+            transition = workflow_rules.second_annotation(status_of(row))
             row.annotation_round += 1
             _apply(session, row, transition, actor, new_revision, comment)
 
@@ -240,7 +246,7 @@ class WorkflowStore:
         self,
         scene_id: str,
         revision: int,
-        rule: Callable[[workflow.SceneStatus], Transition],
+        rule: Callable[[workflow_rules.SceneStatus], Transition],
         actor: Actor,
         comment: str | None = None,
     ) -> SceneWorkflow:
@@ -325,7 +331,7 @@ class WorkflowStore:
                 continue
             a = self.scenes.document(scene_id, first.revision).scene
             b = self.scenes.document(scene_id, second.revision).scene
-            result = workflow.support_agreement(a, b)
+            result = workflow_rules.support_agreement(a, b)
             if result.objects == 0:
                 continue
             out.append(

@@ -34,7 +34,7 @@ from holiscene_schema import (
 
 from ..geometry.boxes import box_corners
 from ..geometry.camera import PinholeCamera, default_intrinsics, rot_y
-from ..rle import encode_mask
+from ..segmentation.rle import encode_mask
 from . import ranges
 from .materials import Pattern, object_material, random_material
 from .plan import PlannedObject, RoomPlan, plan_room

@@ -1,11 +1,11 @@
 """Test vectors for the object detector's preprocessing, model and decoding: `python -m
-holiscene_schema.detector_vectors` writes shared_schema/vectors/detector_model.json.
+holiscene.twin_vectors.detector_model` writes shared_schema/vectors/detector_model.json.
 
 The backend (holiscene.learning.detector.runtime + onnxruntime) and the browser
 (frontend/src/inference/detectorTensor.ts + onnxruntime-web) stretch a photo to the contract's
 input tensor, run the same ONNX file and decode its rows into NYU-40 boxes (the contract is
-detector_model.py); both are tested against these vectors. Like relation_vectors.py this is a
-development tool that imports the backend.
+holiscene_schema/detector_model.py); both are tested against these vectors. Like
+relation_model.py this is a development tool that imports the backend.
 
 Deterministic (one seeded generator). Photos: a few small synthetic pictures (gradients,
 rectangles, discs, a fine checkerboard, noise) of sizes below, around and above the
@@ -42,16 +42,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from holiscene.learning.detector.runtime import (
-    DEFAULT_DETECTOR_DIR,
-    MODEL_FILE,
-    DetectedBox,
-    Detector,
-    decode,
-    preprocess,
-)
-
-from .detector_model import (
+from holiscene_schema.detector_model import (
     COCO_CLASSES,
     COCO_TO_NYU40,
     INPUT_NAME,
@@ -62,7 +53,17 @@ from .detector_model import (
     OUTPUT_NAME,
     SCORE_THRESHOLD,
 )
-from .relation_vectors import REPO_ROOT, exact_float32, sha256, to_json
+
+from ..core.settings import REPO_ROOT
+from ..learning.detector.runtime import (
+    DEFAULT_DETECTOR_DIR,
+    MODEL_FILE,
+    DetectedBox,
+    Detector,
+    decode,
+    preprocess,
+)
+from .relation_model import exact_float32, sha256, to_json
 
 DETECTOR_VECTORS = REPO_ROOT / "shared_schema" / "vectors" / "detector_model.json"
 SEED = 20260518

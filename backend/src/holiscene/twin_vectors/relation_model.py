@@ -1,10 +1,10 @@
 """Test vectors for the Relation Network's preprocessing and model: `python -m
-holiscene_schema.relation_vectors` writes shared_schema/vectors/relation_model.json.
+holiscene.twin_vectors.relation_model` writes shared_schema/vectors/relation_model.json.
 
 The backend (holiscene.learning.preprocess + onnxruntime) and the browser
 (frontend/src/inference/preprocess.ts + onnxruntime-web) turn a photo and its objects into the
 contract's input tensors and run the same ONNX file; both are tested against these vectors.
-Like vectors.py this is a development tool that imports the backend.
+Like room_fit.py this is a development tool that imports the backend.
 
 Deterministic (one seeded generator). Each case is a small random RGB image with objects
 (random blob masks in the contract's RLE, their boxes, NYU-40 classes); some cases add a
@@ -28,15 +28,15 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from holiscene.learning.preprocess import relation_inputs
-from holiscene.learning.samples import object_masks
-from holiscene.rle import encode_mask
+from holiscene_schema.classes import NYU40_CLASSES, STRUCTURAL_CLASSES
+from holiscene_schema.relation_model import INPUT_NAMES, OUTPUT_NAME
+from holiscene_schema.scene import ImageInfo, Scene, SceneObject
 
-from .classes import NYU40_CLASSES, STRUCTURAL_CLASSES
-from .relation_model import INPUT_NAMES, OUTPUT_NAME
-from .scene import ImageInfo, Scene, SceneObject
+from ..core.settings import REPO_ROOT
+from ..learning.preprocess import relation_inputs
+from ..learning.samples import object_masks
+from ..segmentation.rle import encode_mask
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
 RELATION_VECTORS = REPO_ROOT / "shared_schema" / "vectors" / "relation_model.json"
 DEFAULT_MODEL = REPO_ROOT / "backend" / "src" / "holiscene" / "learning" / "default_model"
 DEFAULT_MODEL_FILE = DEFAULT_MODEL / "model.onnx"

@@ -1,11 +1,11 @@
-"""Test vectors for the room fit: `python -m holiscene_schema.vectors` writes
+"""Test vectors for the room fit: `python -m holiscene.twin_vectors.room_fit` writes
 shared_schema/vectors/room_fit.json.
 
 The room fit (layout corners + K + camera height -> camera pitch/roll and the room box) is
 written twice, in Python (holiscene.geometry.room_fit) and TypeScript
 (frontend/src/geometry/roomFit.ts); both are tested against these vectors. This module is a
-development tool: it needs the backend's fit (for the noisy cases' expected output) and is not
-imported by the contract's package.
+development tool: it needs the backend's fit (for the noisy cases' expected output), so it
+lives in the backend, not in the contract's package.
 
 Deterministic (one seeded generator). Each case is a random camera in a random room, near the
 wall behind it, with the room's 8 corners projected into a 640x480 or 730x530 image (None
@@ -25,22 +25,22 @@ import json
 import math
 import re
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
-from holiscene.geometry.boxes import box_corners
-from holiscene.geometry.camera import FloatArray, PinholeCamera, rot_y
-from holiscene.geometry.room_fit import (
+from holiscene_schema.scene import BOX_CORNER_SIGNS
+
+from ..core.settings import REPO_ROOT
+from ..geometry.boxes import box_corners
+from ..geometry.camera import FloatArray, PinholeCamera, rot_y
+from ..geometry.room_fit import (
     MIN_DEPTH,
     corner_coverage_problem,
     fit_room,
     project_room_corners,
 )
 
-from .scene import BOX_CORNER_SIGNS
-
-ROOM_FIT_VECTORS = Path(__file__).resolve().parent.parent / "vectors" / "room_fit.json"
+ROOM_FIT_VECTORS = REPO_ROOT / "shared_schema" / "vectors" / "room_fit.json"
 SEED = 20260504
 COUNTS = {"exact": 20, "noisy": 12, "unseen_wall": 5}
 

@@ -1,4 +1,4 @@
-"""Test vectors for the support-tree decoder: `python -m holiscene_schema.decode_vectors`
+"""Test vectors for the support-tree decoder: `python -m holiscene.twin_vectors.support_decode`
 writes shared_schema/vectors/support_decode.json.
 
 The decoder (Relation Network probabilities -> one supporter per object, no cycle, the most
@@ -21,17 +21,17 @@ so the smoothing and the fallbacks are exercised) and the objects' classes.
 from __future__ import annotations
 
 import json
-from pathlib import Path
 from typing import Any
 
 import numpy as np
-from holiscene.learning.decode import DecodeMode, decode_supports
-from holiscene.learning.priors import SupportPriors
+from holiscene_schema.relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER
+from holiscene_schema.scene import SupportRelation
 
-from .relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER
-from .scene import SupportRelation
+from ..core.settings import REPO_ROOT
+from ..learning.decode import DecodeMode, decode_supports
+from ..learning.priors import SupportPriors
 
-DECODE_VECTORS = Path(__file__).resolve().parent.parent / "vectors" / "support_decode.json"
+DECODE_VECTORS = REPO_ROOT / "shared_schema" / "vectors" / "support_decode.json"
 SEED = 20260611
 DIGITS = 9
 TYPES = len(SUPPORT_TYPE_ORDER)

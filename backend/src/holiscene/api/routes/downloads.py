@@ -13,8 +13,8 @@ from ...export.archive import (
     scene_json,
     scenes_zip,
 )
+from ...services.workbench import Workbench
 from ...store.scenes import SceneNotFoundError
-from ...workbench import Workbench
 from ..deps import WorkbenchDep
 
 router = APIRouter(prefix="/api/scenes", tags=["downloads"])

@@ -11,8 +11,8 @@ from fastapi import APIRouter
 from holiscene_schema import ErrorMessage, MaskRefineRequest, MaskRefineResult, Stroke
 
 from ...inputs import load_photo
-from ...rle import encode_mask
 from ...segmentation.refine import BrushStroke, RefineInputError, check_refine_input, refine_in_box
+from ...segmentation.rle import encode_mask
 from ..deps import AnnotatorDep, WorkbenchDep
 
 router = APIRouter(prefix="/api/scenes", tags=["scenes"])

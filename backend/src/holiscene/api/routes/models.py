@@ -25,8 +25,8 @@ from holiscene_schema import (
     RetrainRequest,
 )
 
-from ...store.models import DETECTOR_FILES, MODEL_FILES
-from ...workbench import RETRAIN_JOB_KINDS
+from ...services.workbench import RETRAIN_JOB_KINDS
+from ...store.model_registry import DETECTOR_FILES, MODEL_FILES
 from ..deps import AdminDep, WorkbenchDep
 
 router = APIRouter(prefix="/api/models", tags=["models"])

@@ -17,7 +17,7 @@ from holiscene_schema import Box3D, SceneObject, SupportRelation
 from ...geometry.camera import PinholeCamera
 from ...geometry.ground import height_above, hit_horizontal_plane
 from ...knowledge.object_sizes import middle_size
-from ...support_order import supporters_first
+from ...placement.support_order import supporters_first
 from ..base import SceneContext, Stage, required
 from ..registry import register_stage
 

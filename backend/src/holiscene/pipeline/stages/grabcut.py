@@ -8,8 +8,8 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 from holiscene_schema import SceneObject
 
-from ...rle import decode_mask
 from ...segmentation import grabcut_in_box
+from ...segmentation.rle import decode_mask
 from ..base import ObjectMask, SceneContext, Stage, required
 from ..registry import register_stage
 from .masks import box_pixels, occlusion_order

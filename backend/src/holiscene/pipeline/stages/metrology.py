@@ -14,7 +14,7 @@ from holiscene_schema import SupportRelation
 
 from ...placement.metrology import HeightEstimate, HeightMeter, height_prior, room_reference
 from ...placement.room import pinhole, projection_matrix, room_of
-from ...support_order import supporters_first
+from ...placement.support_order import supporters_first
 from ..base import SceneContext, Stage, required
 from ..registry import register_stage
 

@@ -16,7 +16,7 @@ from holiscene_schema import Box3D, SupportRelation
 
 from ...placement.room import pinhole, room_of
 from ...placement.solver import Placement, PlacementOptions, Placer
-from ...support_order import supporters_first
+from ...placement.support_order import supporters_first
 from ..base import PipelineBuildError, SceneContext, Stage, required
 from ..registry import register_stage
 

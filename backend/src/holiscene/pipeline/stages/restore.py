@@ -20,7 +20,7 @@ from holiscene_schema import Camera, Scene
 from ...geometry.camera import FloatArray, PinholeCamera
 from ...geometry.manhattan import room_directions
 from ...placement.room import Room
-from ...rle import decode_mask
+from ...segmentation.rle import decode_mask
 from ..base import (
     ObjectMask,
     PipelineBuildError,

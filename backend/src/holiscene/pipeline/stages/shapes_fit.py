@@ -1,7 +1,7 @@
 """Each placed box filled with a model: library variants and user models, chosen by silhouette.
 
-See `holiscene.placement.models`: four turns of the model about the box's vertical axis and a
-few variants of the class (seeds of the shape library, plus the user's models from the
+See `holiscene.placement.shape_choice`: four turns of the model about the box's vertical axis
+and a few variants of the class (seeds of the shape library, plus the user's models from the
 `models_dir` option: `<models_dir>/<class>/*.obj|glb|ply`) are compared by IoU of their
 projected silhouette with the mask; the best is fitted into the box. Its MeshRef says where it
 came from (builtin class + seed, or user file).
@@ -12,9 +12,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from ...placement.models import UserModel, fit_model, load_user_models
 from ...placement.projection import MaskTarget
 from ...placement.room import pinhole, projection_matrix
+from ...placement.shape_choice import UserModel, fit_model, load_user_models
 from ..base import ObjectMesh, PipelineBuildError, SceneContext, Stage, required
 from ..registry import register_stage
 

@@ -1,0 +1,148 @@
+"""`holiscene infer`, `synth` and `eval`: the pipeline on input folders, synthetic scenes with
+their ground truth, and the scores of one against the other; no store involved."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from pathlib import Path
+
+from .common import CliError, write_atomic
+
+
+def add_pipeline_commands(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    infer = sub.add_parser("infer", help="run the pipeline on an input folder")
+    infer.add_argument(
+        "input_dir", type=Path, help="folder with img.jpg|img.png [cam_K.txt] [detections.json]"
+    )
+    infer.add_argument(
+        "-o", "--out", type=Path, required=True, help="folder for scene.json and scene.glb"
+    )
+    infer.add_argument("--stages", help="comma-separated stage names (default: the full pipeline)")
+    infer.add_argument(
+        "--models", type=Path, help="folder of your own models: <class>/*.obj|glb|ply"
+    )
+    infer.set_defaults(handler=_infer)
+
+    synth = sub.add_parser("synth", help="generate synthetic scenes with exact ground truth")
+    synth.add_argument("--seed", type=int, default=0, help="first seed; scene i uses seed + i")
+    synth.add_argument("--count", type=int, default=1)
+    synth.add_argument("-o", "--out", type=Path, required=True)
+    synth.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    synth.set_defaults(handler=_synth)
+
+    evaluate = sub.add_parser("eval", help="score predictions against ground truth")
+    evaluate.add_argument("pred_dir", type=Path, help="folders with scene.json (from infer)")
+    evaluate.add_argument("gt_dir", type=Path, help="folders with gt.json (from synth)")
+    evaluate.add_argument("--out", type=Path, help="where to write eval.json and eval.md")
+    evaluate.set_defaults(handler=_eval)
+
+
+def _is_input_folder(folder: Path) -> bool:
+    return any((folder / n).is_file() for n in ("img.jpg", "img.jpeg", "img.png"))
+
+
+def _infer(args: argparse.Namespace) -> int:
+    """One input folder, or a folder of input folders (then OUT/<name>/ for each)."""
+    from tqdm import tqdm
+
+    from ..pipeline import DEFAULT_STAGES
+
+    stages = [s.strip() for s in args.stages.split(",")] if args.stages else list(DEFAULT_STAGES)
+    if _is_input_folder(args.input_dir) or not args.input_dir.is_dir():
+        _infer_one(args.input_dir, args.out, stages, args.models, verbose=True)
+        print(args.out / "scene.json")
+        return 0
+    folders = sorted(f for f in args.input_dir.iterdir() if f.is_dir() and _is_input_folder(f))
+    if not folders:
+        raise CliError(f"{args.input_dir} holds neither img.jpg/img.png nor input folders")
+    for folder in tqdm(folders, desc="infer", unit="scene", file=sys.stderr):
+        _infer_one(folder, args.out / folder.name, stages, args.models, verbose=False)
+    print(f"{len(folders)} scenes written to {args.out}")
+    return 0
+
+
+def _infer_one(
+    folder: Path, out: Path, stages: list[str], models: Path | None, verbose: bool
+) -> None:
+    from tqdm import tqdm
+
+    from ..inputs import InputError, read_input_folder
+    from ..pipeline import PipelineBuildError
+    from ..services.reconstruction import reconstruct_scene
+
+    try:
+        inputs = read_input_folder(folder)
+        with tqdm(
+            total=len(stages), desc="pipeline", unit="stage", file=sys.stderr, disable=not verbose
+        ) as bar:
+
+            def progress(stage: str, _fraction: float) -> None:
+                bar.set_postfix_str(stage)
+                if stage != stages[0]:
+                    bar.update(1)
+
+            result = reconstruct_scene(
+                inputs,
+                name=folder.resolve().name,
+                image_file=f"img{inputs.photo.suffix}",
+                stages=stages,
+                models_dir=models,
+                progress=progress,
+            )
+    except (InputError, PipelineBuildError, ValueError) as exc:
+        raise CliError(f"{folder}: {exc}" if not verbose else str(exc)) from exc
+    out.mkdir(parents=True, exist_ok=True)
+    scene_json = json.dumps(result.scene.model_dump(mode="json"), indent=1) + "\n"
+    write_atomic(out / "scene.json", scene_json.encode())
+    if result.glb is not None:
+        write_atomic(out / "scene.glb", result.glb)
+    if verbose:
+        for run in result.scene.stages:
+            note = f"  ({run.note})" if run.note else ""
+            print(f"{run.name:28s} {run.seconds:7.3f} s{note}", file=sys.stderr)
+
+
+def _synth(args: argparse.Namespace) -> int:
+    import time
+    from concurrent.futures import ProcessPoolExecutor
+
+    from tqdm import tqdm
+
+    from ..synth.generate import synthesize_to
+
+    if args.count < 1 or args.workers < 1:
+        raise CliError("--count and --workers must be at least 1")
+    seeds = range(args.seed, args.seed + args.count)
+    start = time.perf_counter()
+    with ProcessPoolExecutor(max_workers=args.workers) as pool:
+        jobs = pool.map(synthesize_to, seeds, [args.out] * len(seeds))
+        for _ in tqdm(jobs, total=len(seeds), desc="synth", unit="scene", file=sys.stderr):
+            pass
+    seconds = time.perf_counter() - start
+    rate = args.count / seconds
+    print(f"{args.count} scenes in {seconds:.1f} s ({rate:.2f} scenes/s) -> {args.out}")
+    return 0
+
+
+def _eval(args: argparse.Namespace) -> int:
+    from ..evaluation.report import markdown_report
+    from ..evaluation.run import EvaluationInputError, evaluate_folders
+
+    try:
+        run = evaluate_folders(args.pred_dir, args.gt_dir)
+    except EvaluationInputError as exc:
+        raise CliError(str(exc)) from exc
+    summary = run.evaluation.summary()
+    summary["missing_predictions"] = run.missing_predictions
+    report = markdown_report(summary, f"Evaluation of {args.pred_dir} against {args.gt_dir}")
+    out = args.out or args.pred_dir
+    out.mkdir(parents=True, exist_ok=True)
+    write_atomic(out / "eval.json", (json.dumps(summary, indent=1) + "\n").encode())
+    write_atomic(out / "eval.md", report.encode())
+    print(report)
+    if run.missing_predictions:
+        print(f"missing predictions (scored as empty): {', '.join(run.missing_predictions)}")
+    return 0

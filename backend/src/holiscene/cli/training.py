@@ -1,0 +1,219 @@
+"""`holiscene train-rn`, `train-surfaces` and `train-detector`: the learned models, trained on
+synthetic rooms (and, for the Relation Network, on the store's labelled scenes). They need
+PyTorch (`pip install -e '.[train]'`)."""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import sys
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from .common import CliError, settings_from
+
+if TYPE_CHECKING:
+    from ..learning.samples import SupportSample
+
+# Synthetic rooms for the detector: seeds no benchmark or other training uses.
+DETECTOR_TRAIN_SEED = 400_000
+DETECTOR_VALIDATION_SEED = 460_000
+
+
+def add_relation_training_command(
+    sub: argparse._SubParsersAction[argparse.ArgumentParser],
+) -> None:
+    train = sub.add_parser(
+        "train-rn", help="train the Relation Network on synthetic and stored labelled scenes"
+    )
+    train.add_argument("-o", "--out", type=Path, required=True, help="new model directory")
+    train.add_argument("--seed", type=int, default=0)
+    train.add_argument("--synthetic-scenes", type=int, default=800)
+    train.add_argument("--max-epochs", type=int, default=20)
+    train.add_argument("--patience", type=int, default=4)
+    train.add_argument("--time-budget", type=float, help="stop training after this many seconds")
+    train.add_argument(
+        "--with-store",
+        action="store_true",
+        help="also learn from the labelled scenes stored in the data directory",
+    )
+    train.add_argument(
+        "--register",
+        action="store_true",
+        help="add the new model to the data directory's registry (an admin makes it active)",
+    )
+    train.add_argument("--data-dir", type=Path)
+    train.add_argument("--database-url")
+    train.set_defaults(handler=_train_rn)
+
+
+def add_surface_training_command(
+    sub: argparse._SubParsersAction[argparse.ArgumentParser],
+) -> None:
+    surfaces = sub.add_parser(
+        "train-surfaces",
+        help="train the Surface Network (floor, ceiling and wall labels) on synthetic rooms",
+    )
+    surfaces.add_argument("-o", "--out", type=Path, required=True, help="new model directory")
+    surfaces.add_argument("--seed", type=int, default=0)
+    surfaces.add_argument("--scenes", type=int, default=600, help="synthetic training rooms")
+    surfaces.add_argument("--epochs", type=int, default=16)
+    surfaces.set_defaults(handler=_train_surfaces)
+
+
+def add_detector_training_command(
+    sub: argparse._SubParsersAction[argparse.ArgumentParser],
+) -> None:
+    detector = sub.add_parser(
+        "train-detector",
+        help="fine-tune the NYU-40 object detector's head on synthetic rooms (COCO backbone)",
+    )
+    detector.add_argument("-o", "--out", type=Path, required=True, help="new model directory")
+    detector.add_argument("--seed", type=int, default=0)
+    detector.add_argument("--scenes", type=int, default=1400, help="synthetic training rooms")
+    detector.add_argument("--validation-scenes", type=int, default=100)
+    detector.add_argument("--epochs", type=int, default=16)
+    detector.add_argument(
+        "--coco-weight",
+        type=float,
+        default=1.0,
+        help="weight of the COCO model's heatmap for the classes COCO knows (0: new head only)",
+    )
+    detector.add_argument(
+        "--cache", type=Path, help="where rendered rooms are kept (default: ~/.cache/holiscene)"
+    )
+    detector.set_defaults(handler=_train_detector)
+
+
+@contextlib.contextmanager
+def _training_progress(name: str) -> Iterator[Callable[[float, str], None]]:
+    """A progress bar fed by a training run's (fraction, line) reports; epoch lines stay."""
+    from tqdm import tqdm
+
+    with tqdm(total=100, desc=name, unit="%", file=sys.stderr) as bar:
+
+        def progress(fraction: float, line: str) -> None:
+            bar.update(round(100 * fraction) - bar.n)
+            bar.set_postfix_str(line[:60])
+            if line.startswith(("epoch", "done", "training")):
+                tqdm.write(line, file=sys.stderr)
+
+        yield progress
+
+
+def _train_surfaces(args: argparse.Namespace) -> int:
+    try:
+        from ..learning.surface_net import SurfaceTrainConfig, train_surface_model
+    except ImportError as error:
+        raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
+    if args.out.exists() and any(args.out.iterdir()):
+        raise CliError(f"{args.out} is not empty; give a new directory")
+    if args.scenes < 1 or args.epochs < 1:
+        raise CliError("--scenes and --epochs must be at least 1")
+    config = SurfaceTrainConfig(
+        seed=args.seed, train_seeds=(500_000, args.scenes), epochs=args.epochs
+    )
+    with _training_progress("train-surfaces") as progress:
+        metrics = train_surface_model(config, args.out, progress)
+    print(f"validation pixel accuracy {metrics['validation_pixel_accuracy']:.4f} -> {args.out}")
+    return 0
+
+
+def _train_detector(args: argparse.Namespace) -> int:
+    try:
+        from ..learning.detector.data import synthetic_photos
+        from ..learning.detector.train import DetectorTrainConfig, train_detector
+    except ImportError as error:
+        raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
+    if args.out.exists() and any(args.out.iterdir()):
+        raise CliError(f"{args.out} is not empty; give a new directory")
+    if min(args.scenes, args.validation_scenes, args.epochs) < 1:
+        raise CliError("--scenes, --validation-scenes and --epochs must be at least 1")
+    if not 0.0 <= args.coco_weight <= 1.0:
+        raise CliError("--coco-weight must be between 0 and 1")
+    cache = args.cache or Path.home() / ".cache" / "holiscene" / "detector-rooms"
+    with _training_progress("train-detector") as progress:
+
+        def rendered(done: int, total: int) -> None:
+            progress(0.0, f"rendering rooms {done}/{total}")
+
+        train = synthetic_photos(
+            range(DETECTOR_TRAIN_SEED, DETECTOR_TRAIN_SEED + args.scenes), cache, rendered
+        )
+        validation = synthetic_photos(
+            range(DETECTOR_VALIDATION_SEED, DETECTOR_VALIDATION_SEED + args.validation_scenes),
+            cache,
+            rendered,
+        )
+        config = DetectorTrainConfig(
+            seed=args.seed, epochs=args.epochs, coco_weight=args.coco_weight
+        )
+        metrics = train_detector(train, validation, config, args.out, progress)
+    print(f"validation mAP@0.5 {metrics['validation_map_at_0_5']:.3f} -> {args.out}")
+    return 0
+
+
+def _train_rn(args: argparse.Namespace) -> int:
+    from ..learning.training_api import TrainConfig
+
+    try:
+        from ..learning.train import train_relation_model
+    except ImportError as error:
+        raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
+    if args.out.exists() and any(args.out.iterdir()):
+        raise CliError(f"{args.out} is not empty; give a new directory")
+    if args.synthetic_scenes < 0 or args.max_epochs < 1 or args.patience < 1:
+        raise CliError("--synthetic-scenes must be >= 0, --max-epochs and --patience >= 1")
+    labelled = _stored_samples(args) if args.with_store else []
+    config = TrainConfig(
+        seed=args.seed,
+        synthetic_scenes=args.synthetic_scenes,
+        max_epochs=args.max_epochs,
+        patience=args.patience,
+        time_budget_s=args.time_budget,
+    )
+    with _training_progress("train-rn") as progress:
+        try:
+            result = train_relation_model(config, labelled, args.out, progress)
+        except ValueError as error:
+            raise CliError(str(error)) from error
+    print(f"validation accuracy {result.validation_accuracy:.4f} -> {result.model_dir}")
+    if args.register:
+        _register_model(args, result.model_dir, result.validation_accuracy)
+    return 0
+
+
+def _register_model(args: argparse.Namespace, model_dir: Path, accuracy: float) -> None:
+    from ..learning.training_api import DATA_FILE
+    from ..services.workbench import Workbench
+    from ..store.model_registry import Registration
+
+    workbench = Workbench(settings_from(args))
+    try:
+        info = workbench.models.register(
+            model_dir,
+            Registration(
+                status="candidate",
+                validation_accuracy=accuracy,
+                data=json.loads((model_dir / DATA_FILE).read_text()),
+                note="trained with holiscene train-rn",
+            ),
+            actor="train-rn",
+        )
+    finally:
+        workbench.close()
+    print(f"registered as model {info.id} (version {info.version}); make it active in #/models")
+
+
+def _stored_samples(args: argparse.Namespace) -> list[SupportSample]:
+    """The samples of the labelled scenes in the store (what a retrain job learns from)."""
+    from ..services.relation_retraining import stored_samples
+    from ..services.workbench import Workbench
+
+    workbench = Workbench(settings_from(args))
+    try:
+        return stored_samples(workbench.scenes)
+    finally:
+        workbench.close()
