@@ -333,7 +333,8 @@ def generate(model_dir: Path) -> Json:
     detector = Detector(model_dir)
     model_file = model_dir / MODEL_FILE
     return {
-        "about": "Test vectors of the object detector: see holiscene_schema/detector_vectors.py",
+        "about": "Test vectors of the object detector: see "
+        "holiscene/twin_vectors/detector_model.py",
         "seed": SEED,
         "model": {
             "path": relative(model_file),

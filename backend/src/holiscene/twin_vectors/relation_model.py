@@ -191,7 +191,8 @@ def generate(model: Path) -> Json:
             }
         )
     return {
-        "about": "Test vectors of the Relation Network: see holiscene_schema/relation_vectors.py",
+        "about": "Test vectors of the Relation Network: see "
+        "holiscene/twin_vectors/relation_model.py",
         "seed": SEED,
         "model": {
             "path": model.resolve().relative_to(REPO_ROOT).as_posix()

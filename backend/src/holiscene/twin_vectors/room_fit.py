@@ -273,7 +273,7 @@ def generate() -> Json:
         counts[kind] += 1
     assert errors, "no scene to make the error cases from"
     return {
-        "about": "Test vectors of the room fit: see holiscene_schema/vectors.py",
+        "about": "Test vectors of the room fit: see holiscene/twin_vectors/room_fit.py",
         "seed": SEED,
         "box_corner_signs": [list(signs) for signs in BOX_CORNER_SIGNS],
         "cases": cases + errors,
