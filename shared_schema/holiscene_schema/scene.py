@@ -1,6 +1,6 @@
 """The scene: what the pipeline computes from one photo and what annotators correct.
 
-Conventions (see DESIGN.md):
+Conventions (see docs/architecture.md, "Conventions"):
 - World frame: origin at the camera centre, y up, x horizontal forward, z right; metres.
 - A 3D box has a centre, a size along its own axes (x front, y up, z right before yaw) and a
   yaw in degrees about world +y (right-handed: yaw 90 turns the box's front from +x to -z).

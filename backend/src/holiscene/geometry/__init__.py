@@ -1,1 +1,4 @@
-"""Camera and box geometry shared by the pipeline stages (world frame: see DESIGN.md)."""
+"""Camera and box geometry shared by the pipeline stages.
+
+The world frame and the camera's pitch and roll: docs/architecture.md, "Conventions".
+"""

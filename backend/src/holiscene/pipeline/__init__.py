@@ -1,4 +1,4 @@
-"""The scene pipeline: typed stages composed by name (see DESIGN.md, "Data flow")."""
+"""The scene pipeline: typed stages composed by name (see docs/architecture.md, "Data flow")."""
 
 from .base import PipelineBuildError, SceneContext, Stage, StageFailedError
 from .registry import registered_stages

@@ -1,8 +1,8 @@
 """The room cuboid of a layout as a frame: floor, ceiling, wall rectangles, and the camera.
 
-Frames as in DESIGN.md: world origin at the camera centre, x forward, y up, z right. A box's
-own axes are (front, up, right); yaw turns them about +y, so a box's front in the world is
-(cos yaw, 0, -sin yaw).
+Frames as in docs/architecture.md, "Conventions": world origin at the camera centre, x
+forward, y up, z right. A box's own axes are (front, up, right); yaw turns them about +y, so
+a box's front in the world is (cos yaw, 0, -sin yaw).
 """
 
 from __future__ import annotations
