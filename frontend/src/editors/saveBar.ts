@@ -3,48 +3,20 @@
 // visit left unsaved (restore or discard), and the conflict message with its merge and reload
 // actions. Edits are autosaved (state/autosave.ts) and kept in localStorage until the server
 // has them, so leaving the page needs no warning: nothing is lost.
-import { button, el } from "../dom";
-import { registerShortcut } from "../shortcuts";
+import { el } from "../dom";
 import { getAuthor } from "../state/author";
 import type { ObjectEditor } from "../state/objectEditor";
-import { plural, type SaveState, type SceneSession } from "../state/sceneSession";
-import { describeEdit } from "../state/supportGraph";
+import type { SceneSession } from "../state/sceneSession";
 import { latestRedo, latestUndo } from "../state/undoOrder";
+import { conflictPanel } from "./saving/conflictPanel";
+import { pendingList } from "./saving/pendingList";
+import { recoveryBanner } from "./saving/recoveryBanner";
+import { saveKeys } from "./saving/saveKeys";
+import { saveRow } from "./saving/saveRow";
 
-/** The room layout's line in the lists of unsaved changes. */
-const LAYOUT_CHANGE = "room layout changed (corners or camera height)";
-
-function statusText(state: SaveState, pending: number, revision: number, savable: boolean): string {
-  switch (state.kind) {
-    case "clean":
-      return `Revision ${revision} · no unsaved changes`;
-    case "dirty":
-      return (
-        `${plural(pending, "unsaved change")} on revision ${revision} · ` +
-        (savable ? "autosaving" : "not saved while no room fits the moved corners")
-      );
-    case "saving":
-      return "Saving…";
-    case "saved":
-      return `Saved as revision ${state.revision}`;
-    case "conflict":
-      return "Not saved: conflict";
-    case "error":
-      return state.retry ? "Not saved: error (retrying)" : "Not saved: refused";
-  }
-}
-
-function conflictText(state: Extract<SaveState, { kind: "conflict" }>, pending: number): string {
-  const latest =
-    state.currentRevision === null ? "" : ` (the latest is revision ${state.currentRevision})`;
-  const who = [...new Set(state.theirs.map((r) => r.author))].join(", ") || "Someone else";
-  return (
-    `${who} saved this scene after you loaded revision ${state.baseRevision}${latest}. ` +
-    `Your ${plural(pending, "change")} ${pending === 1 ? "was" : "were"} not saved and ` +
-    `${pending === 1 ? "is" : "are"} kept (listed below, and in this browser). Merge to save ` +
-    `yours on top of theirs, or reload to look at theirs first with yours re-applied unsaved.`
-  );
-}
+// Its parts, in editors/saving/: the status and buttons (saveRow), the recovery banner, the
+// conflict panel, the list of unsaved changes and the keys. Each updates itself from the
+// session; this bar updates them all when the session or the object editor changes.
 
 export function mountSaveBar(
   container: HTMLElement,
@@ -55,198 +27,56 @@ export function mountSaveBar(
   const histories = objects ? [session, objects] : [session];
   const undoLast = () => void latestUndo(histories)?.undo();
   const redoLast = () => void latestRedo(histories)?.redo();
-  const status = el("span", {
-    className: "save-status",
-    testid: "save-status",
-    attrs: { role: "status", "aria-live": "polite" },
-  });
-  const undo = button("Undo", { testid: "undo-button", onClick: undoLast });
-  const redo = button("Redo", { testid: "redo-button", onClick: redoLast });
-  const save = button("Save", {
-    className: "primary",
-    testid: "save-button",
-    title: "Save now (Ctrl+S); edits are also saved by themselves",
-    onClick: () => void session.save(author()),
-  });
-  const discard = button("Discard", {
-    testid: "discard-button",
-    title: "Drop the unsaved changes (undo brings them back)",
-    onClick: () => session.discard(),
-  });
+  const merge = () => void session.merge(author());
+  const reload = () => void session.reloadLatest({ hold: true });
 
-  const conflictMessage = el("p", { testid: "conflict-text" });
-  const theirsList = el("ul", { className: "conflict-theirs", testid: "conflict-theirs" });
-  const merge = button("Merge: save mine on top (Shift+M)", {
-    className: "primary",
-    testid: "conflict-merge",
-    onClick: () => void session.merge(author()),
+  const row = saveRow({
+    session,
+    histories,
+    undoLast,
+    redoLast,
+    saveNow: () => void session.save(author()),
   });
-  const reload = button("Reload: review first (Shift+R)", {
-    testid: "conflict-reload",
-    onClick: () => void session.reloadLatest({ hold: true }),
-  });
-  const conflict = el(
-    "div",
-    { className: "alert alert--conflict", testid: "conflict-message", attrs: { role: "alert" } },
-    el("strong", { text: "Conflict: your changes were not saved." }),
-    conflictMessage,
-    theirsList,
-    el("div", { className: "save-row" }, merge, reload),
-  );
-
-  const recoveryText = el("span", { testid: "recovery-text" });
-  const restore = button("Restore them (Shift+U)", {
-    className: "primary",
-    testid: "recovery-restore",
-    onClick: () => session.restoreRecovered(),
-  });
-  const recovery = el(
-    "div",
-    { className: "alert alert--info", testid: "recovery-banner", attrs: { role: "alert" } },
-    recoveryText,
-    el(
-      "div",
-      { className: "save-row" },
-      restore,
-      button("Discard them", {
-        testid: "recovery-discard",
-        onClick: () => session.dismissRecovered(),
-      }),
-    ),
-  );
-
+  const recovery = recoveryBanner(session);
+  const conflict = conflictPanel({ merge, reload });
   const error = el("div", {
     className: "alert alert--error",
     testid: "save-error",
     attrs: { role: "alert" },
   });
   const notice = el("p", { className: "alert alert--info", testid: "reload-notice" });
-  const pendingItems = el("ul");
-  const pendingList = el(
-    "div",
-    { className: "pending-list", testid: "pending-edits" },
-    el("strong", { text: "Unsaved changes" }),
-    pendingItems,
-  );
+  const pending = pendingList(session);
   container.replaceChildren(
-    el(
-      "div",
-      { className: "save-row" },
-      status,
-      el("span", { className: "spacer" }),
-      undo,
-      redo,
-      discard,
-      save,
-    ),
-    recovery,
-    conflict,
+    row.element,
+    recovery.element,
+    conflict.element,
     error,
     notice,
-    pendingList,
+    pending.element,
   );
 
   const update = () => {
     const state = session.saveState;
-    const pending = session.pending;
-    const unsaved = session.unsavedCount;
-    const editable = session.editable;
-    status.textContent = statusText(state, unsaved, session.doc.revision, session.savable);
-    status.dataset.state = state.kind;
     container.dataset.state = state.kind;
-    const busy = state.kind === "saving";
-    save.disabled = !editable || busy || !session.savable || state.kind === "conflict";
-    discard.disabled = !editable || busy || unsaved === 0;
-    const undoLabel = latestUndo(histories)?.undoLabel ?? null;
-    const redoLabel = latestRedo(histories)?.redoLabel ?? null;
-    undo.disabled = !editable || undoLabel === null;
-    redo.disabled = !editable || redoLabel === null;
-    undo.title = undoLabel ? `Undo: ${undoLabel} (Ctrl+Z)` : "Nothing to undo";
-    redo.title = redoLabel ? `Redo: ${redoLabel} (Ctrl+Shift+Z)` : "Nothing to redo";
-    conflict.hidden = state.kind !== "conflict";
-    if (state.kind === "conflict") {
-      conflictMessage.textContent = conflictText(state, unsaved);
-      theirsList.replaceChildren(
-        ...state.theirs.map((r) => el("li", { text: `#${r.number} by ${r.author}: ${r.summary}` })),
-      );
-    }
+    row.update();
+    conflict.update(state, session.unsavedCount);
     error.hidden = state.kind !== "error";
     error.textContent = state.kind === "error" ? state.message : "";
     notice.hidden = !session.notice;
     notice.textContent = session.notice ?? "";
-    const recovered = session.recovered;
-    recovery.hidden = !recovered;
-    restore.disabled = !editable;
-    if (recovered) {
-      const changes = [
-        ...recovered.edits.map(describeEdit),
-        ...(recovered.layout ? [LAYOUT_CHANGE] : []),
-      ];
-      recoveryText.textContent =
-        `${plural(changes.length, "unsaved change")} from your last visit ` +
-        `(${new Date(recovered.savedAt).toLocaleString()}, on revision ${recovered.baseRevision}) ` +
-        `never reached the server: ${changes.join("; ")}.`;
-    }
-    pendingList.hidden = unsaved === 0;
-    pendingItems.replaceChildren(
-      ...pending.map((edit) =>
-        el("li", { text: describeEdit(edit), attrs: { "data-child": edit.child } }),
-      ),
-      ...(session.layoutPending
-        ? [el("li", { text: LAYOUT_CHANGE, attrs: { "data-layout": "" } })]
-        : []),
-    );
+    recovery.update();
+    pending.update();
   };
 
-  const scope = "Saving and history";
-  const editable = () => session.editable;
-  const inConflict = () => editable() && session.saveState.kind === "conflict";
-  const removers = [
-    registerShortcut({
-      keys: ["Ctrl+Z"],
-      description: "Undo the last edit (a support, a room corner or an object)",
-      scope,
-      enabled: editable,
-      run: undoLast,
-    }),
-    registerShortcut({
-      keys: ["Ctrl+Shift+Z", "Ctrl+Y"],
-      description: "Redo",
-      scope,
-      enabled: editable,
-      run: redoLast,
-    }),
-    registerShortcut({
-      keys: "Ctrl+S",
-      description: "Save now (edits are also saved after a short pause)",
-      scope,
-      enabled: editable,
-      run: () => {
-        if (!save.disabled) void session.save(author());
-      },
-    }),
-    registerShortcut({
-      keys: "Shift+M",
-      description: "After a conflict: merge, saving your changes on top of theirs",
-      scope,
-      enabled: inConflict,
-      run: () => void session.merge(author()),
-    }),
-    registerShortcut({
-      keys: "Shift+R",
-      description: "After a conflict: reload their version, yours re-applied unsaved",
-      scope,
-      enabled: inConflict,
-      run: () => void session.reloadLatest({ hold: true }),
-    }),
-    registerShortcut({
-      keys: "Shift+U",
-      description: "Restore the changes your last visit left unsaved",
-      scope,
-      enabled: () => editable() && session.recovered !== null,
-      run: () => session.restoreRecovered(),
-    }),
-  ];
+  const removeKeys = saveKeys(session, {
+    undoLast,
+    redoLast,
+    saveNow: () => {
+      if (!row.save.disabled) void session.save(author());
+    },
+    merge,
+    reload,
+  });
   update();
   const unsubscribe = session.subscribe((change) => {
     if (change !== "hover" && change !== "select" && change !== "suggestions") update();
@@ -255,6 +85,6 @@ export function mountSaveBar(
   return () => {
     unsubscribe();
     unsubscribeObjects?.();
-    for (const remove of removers) remove();
+    removeKeys();
   };
 }

@@ -1,0 +1,95 @@
+// The save bar's first line: the save status, Undo / Redo (of the last action, whichever
+// history it is in, see state/undoOrder.ts), Discard and Save.
+import { button, el } from "../../dom";
+import { plural, type SaveState, type SceneSession } from "../../state/sceneSession";
+import { latestRedo, latestUndo, type Undoable } from "../../state/undoOrder";
+
+function statusText(state: SaveState, pending: number, revision: number, savable: boolean): string {
+  switch (state.kind) {
+    case "clean":
+      return `Revision ${revision} · no unsaved changes`;
+    case "dirty":
+      return (
+        `${plural(pending, "unsaved change")} on revision ${revision} · ` +
+        (savable ? "autosaving" : "not saved while no room fits the moved corners")
+      );
+    case "saving":
+      return "Saving…";
+    case "saved":
+      return `Saved as revision ${state.revision}`;
+    case "conflict":
+      return "Not saved: conflict";
+    case "error":
+      return state.retry ? "Not saved: error (retrying)" : "Not saved: refused";
+  }
+}
+
+export interface SaveRowInputs {
+  session: SceneSession;
+  /** The histories Undo and Redo choose from (the last action's). */
+  histories: readonly Undoable[];
+  undoLast(): void;
+  redoLast(): void;
+  saveNow(): void;
+}
+
+export interface SaveRow {
+  element: HTMLElement;
+  save: HTMLButtonElement;
+  update(): void;
+}
+
+export function saveRow({
+  session,
+  histories,
+  undoLast,
+  redoLast,
+  saveNow,
+}: SaveRowInputs): SaveRow {
+  const status = el("span", {
+    className: "save-status",
+    testid: "save-status",
+    attrs: { role: "status", "aria-live": "polite" },
+  });
+  const undo = button("Undo", { testid: "undo-button", onClick: undoLast });
+  const redo = button("Redo", { testid: "redo-button", onClick: redoLast });
+  const save = button("Save", {
+    className: "primary",
+    testid: "save-button",
+    title: "Save now (Ctrl+S); edits are also saved by themselves",
+    onClick: saveNow,
+  });
+  const discard = button("Discard", {
+    testid: "discard-button",
+    title: "Drop the unsaved changes (undo brings them back)",
+    onClick: () => session.discard(),
+  });
+  const element = el(
+    "div",
+    { className: "save-row" },
+    status,
+    el("span", { className: "spacer" }),
+    undo,
+    redo,
+    discard,
+    save,
+  );
+
+  const update = () => {
+    const state = session.saveState;
+    const unsaved = session.unsavedCount;
+    const editable = session.editable;
+    status.textContent = statusText(state, unsaved, session.doc.revision, session.savable);
+    status.dataset.state = state.kind;
+    const busy = state.kind === "saving";
+    save.disabled = !editable || busy || !session.savable || state.kind === "conflict";
+    discard.disabled = !editable || busy || unsaved === 0;
+    const undoLabel = latestUndo(histories)?.undoLabel ?? null;
+    const redoLabel = latestRedo(histories)?.redoLabel ?? null;
+    undo.disabled = !editable || undoLabel === null;
+    redo.disabled = !editable || redoLabel === null;
+    undo.title = undoLabel ? `Undo: ${undoLabel} (Ctrl+Z)` : "Nothing to undo";
+    redo.title = redoLabel ? `Redo: ${redoLabel} (Ctrl+Shift+Z)` : "Nothing to redo";
+  };
+  return { element, save, update };
+}

@@ -1,0 +1,157 @@
+// The workflow bar's buttons: take, submit, accept, reject (with the comment box it opens) and
+// "ask for a second annotation", each shown only when the user's role and the scene's state
+// allow it. What they do is the bar's business (onTake, ...).
+import type { CurrentUser, SceneWorkflow } from "@holiscene/schema";
+import { button, el } from "../../dom";
+import { hasRole } from "../../state/currentUser";
+
+/** What the buttons may offer now. */
+export interface ActionState {
+  flow: SceneWorkflow;
+  /** Unsaved edits (submitting waits for them). */
+  pending: number;
+  /** An action is on its way. */
+  busy: boolean;
+  /** Takes: an annotator; reopens: the scene's own annotator. */
+  annotator: boolean;
+  mine: boolean;
+  canSubmit: boolean;
+  canReview: boolean;
+  reviewer: boolean;
+}
+
+/** What `me` may do with the scene now (busy: an action is on its way). */
+export function actionState(
+  flow: SceneWorkflow,
+  me: CurrentUser | null,
+  pending: number,
+  busy: boolean,
+): ActionState {
+  const mine = flow.assignee === me?.name;
+  const annotator = hasRole("annotator", me);
+  const reviewer = hasRole("reviewer", me);
+  return {
+    flow,
+    pending,
+    busy,
+    annotator,
+    reviewer,
+    mine,
+    canSubmit: flow.state === "in_annotation" && mine && annotator && !busy,
+    canReview:
+      flow.state === "submitted" && reviewer && (!mine || me?.local_mode === true) && !busy,
+  };
+}
+
+export interface ActionHandlers {
+  onTake(): void;
+  onSubmit(): void;
+  onAccept(): void;
+  /** The reviewer sends the comment (trimmed; never empty). */
+  onReject(comment: string): void;
+  /** "Send" with no comment. */
+  onEmptyReject(): void;
+  onSecondAnnotation(): void;
+}
+
+export interface WorkflowActions {
+  element: HTMLElement;
+  rejectBox: HTMLElement;
+  submit: HTMLButtonElement;
+  accept: HTMLButtonElement;
+  reject: HTMLButtonElement;
+  /** Open the reject box, its comment focused. */
+  openReject(): void;
+  /** Close the reject box and clear its comment (after a rejection went through). */
+  rejected(): void;
+  show(state: ActionState): void;
+}
+
+export function workflowActions(handlers: ActionHandlers): WorkflowActions {
+  const actionButton = (text: string, testid: string, title: string, primary = false) =>
+    button(text, { className: primary ? "primary" : "", testid, title, hidden: true });
+  const take = actionButton("Start annotating", "workflow-take", "Take this scene for annotation");
+  const submit = actionButton("Submit for review", "workflow-submit", "Submit (Shift+Enter)", true);
+  const accept = actionButton("Accept", "workflow-accept", "Accept (Shift+Enter)", true);
+  const reject = actionButton("Reject…", "workflow-reject", "Reject with a comment (Shift+X)");
+  const again = actionButton(
+    "Ask for a second annotation",
+    "workflow-second",
+    "Reset the supports to the pipeline's guesses and have another annotator label it",
+  );
+  const rejectText = el("textarea", {
+    testid: "reject-comment",
+    attrs: {
+      rows: 3,
+      maxlength: 2000,
+      placeholder: "What went wrong? The annotator sees this.",
+      "aria-label": "Rejection comment",
+    },
+  });
+  const rejectSend = button("Send back to the annotator", {
+    className: "primary",
+    testid: "reject-send",
+  });
+  const rejectCancel = button("Cancel", { testid: "reject-cancel" });
+  const rejectBox = el(
+    "div",
+    { className: "reject-box", testid: "reject-box", attrs: { hidden: true } },
+    rejectText,
+    el("div", { className: "form-actions" }, rejectSend, rejectCancel),
+  );
+
+  const openReject = () => {
+    rejectBox.hidden = false;
+    rejectText.focus();
+  };
+  take.addEventListener("click", handlers.onTake);
+  submit.addEventListener("click", handlers.onSubmit);
+  accept.addEventListener("click", handlers.onAccept);
+  reject.addEventListener("click", openReject);
+  rejectCancel.addEventListener("click", () => {
+    rejectBox.hidden = true;
+  });
+  rejectSend.addEventListener("click", () => {
+    const text = rejectText.value.trim();
+    if (!text) {
+      handlers.onEmptyReject();
+      rejectText.focus();
+      return;
+    }
+    handlers.onReject(text);
+  });
+  again.addEventListener("click", handlers.onSecondAnnotation);
+
+  const show = (now: ActionState) => {
+    const { flow, pending, busy, mine } = now;
+    const state = flow.state;
+    take.hidden = !(
+      now.annotator &&
+      (state === "new" || state === "predicted" || (state === "rejected" && mine))
+    );
+    take.textContent = state === "rejected" ? "Reopen for changes" : "Start annotating";
+    submit.hidden = !(state === "in_annotation" && mine);
+    submit.disabled = !now.canSubmit || pending > 0;
+    submit.title =
+      pending > 0 ? "Save your changes first" : "Submit this revision for review (Shift+Enter)";
+    accept.hidden = reject.hidden = !now.canReview;
+    accept.disabled = reject.disabled = busy;
+    if (!now.canReview) rejectBox.hidden = true;
+    again.hidden = !(now.reviewer && (state === "submitted" || state === "accepted"));
+    again.disabled = busy;
+  };
+
+  return {
+    element: el("div", { className: "workflow-actions" }, take, submit, accept, reject, again),
+    rejectBox,
+    submit,
+    accept,
+    reject,
+    openReject,
+    rejected() {
+      rejectText.value = "";
+      rejectBox.hidden = true;
+    },
+    show,
+  };
+}

@@ -1,0 +1,107 @@
+// The workflow bar's account of the scene: its state badge, who annotates it, the reviewer's
+// comment when it came back, a note on what to do next, and the workflow history.
+import type { CurrentUser, SceneWorkflow, WorkflowEvent } from "@holiscene/schema";
+import { stateLabel } from "../../api/workflow";
+import { el, formatTime } from "../../dom";
+
+const ACTION_TEXT: Record<WorkflowEvent["action"], string> = {
+  import: "imported",
+  predict: "predicted",
+  claim: "took it",
+  reopen: "reopened it",
+  submit: "submitted",
+  accept: "accepted",
+  reject: "rejected",
+  second_annotation: "asked for a second annotation",
+};
+
+function eventLine(event: WorkflowEvent): HTMLElement {
+  return el(
+    "li",
+    { attrs: { "data-action": event.action } },
+    `${formatTime(event.at)} · ${event.actor} ${ACTION_TEXT[event.action]} (revision ${event.revision})`,
+    event.comment ? el("q", { text: event.comment }) : null,
+  );
+}
+
+/** What the scene's state asks of the user now. */
+export interface NoteInputs {
+  flow: SceneWorkflow;
+  /** Unsaved edits. */
+  pending: number;
+  me: CurrentUser | null;
+  /** How many objects have a supporter a person set, as a sentence. */
+  labelled: string;
+}
+
+export function noteText({ flow, pending, me, labelled }: NoteInputs): string {
+  const name = me?.name;
+  switch (flow.state) {
+    case "new":
+      return "The pipeline has not finished on this scene yet.";
+    case "predicted":
+      return "The pipeline's guesses, not checked by anyone yet. Editing takes the scene.";
+    case "in_annotation":
+      if (flow.assignee !== name) return `${flow.assignee ?? "Someone"} is annotating this scene.`;
+      return pending > 0
+        ? "Save your changes, then submit the scene for review."
+        : `When every supporter is right, submit the scene for review. ${labelled}`;
+    case "submitted":
+      if (flow.assignee === name && !me?.local_mode)
+        return "Submitted: waiting for another reviewer.";
+      return `Submitted by ${flow.assignee ?? "an annotator"} at revision ${flow.revision}. ${labelled}`;
+    case "accepted":
+      return `Accepted. ${labelled}`;
+    case "rejected":
+      return flow.assignee === name
+        ? "Sent back to you: fix what the reviewer says, then submit again."
+        : `Sent back to ${flow.assignee ?? "the annotator"}.`;
+  }
+}
+
+export interface WorkflowStatus {
+  /** The state badge and the assignee, for the bar's first line. */
+  badge: HTMLElement;
+  who: HTMLElement;
+  comment: HTMLElement;
+  note: HTMLElement;
+  history: HTMLElement;
+  show(flow: SceneWorkflow, note: string): void;
+}
+
+export function workflowStatus(): WorkflowStatus {
+  const badge = el("span", { className: "state-badge", testid: "workflow-state" });
+  const who = el("span", { className: "workflow-who", testid: "workflow-assignee" });
+  const comment = el("div", {
+    className: "alert alert--conflict review-comment",
+    testid: "review-comment",
+    attrs: { role: "note", hidden: true },
+  });
+  const note = el("p", { className: "workflow-note", testid: "workflow-note" });
+  const events = el("ol", { className: "workflow-events", testid: "workflow-events" });
+  const history = el(
+    "details",
+    { className: "history" },
+    el("summary", { text: "Workflow history" }),
+    events,
+  );
+  const show = (flow: SceneWorkflow, noteLine: string) => {
+    const state = flow.state;
+    badge.textContent = stateLabel(state);
+    badge.dataset.state = state;
+    who.textContent = flow.assignee
+      ? `${state === "in_annotation" ? "annotated by" : "annotator:"} ${flow.assignee}`
+      : "";
+    if (flow.annotation_round > 1)
+      who.textContent += ` · annotation round ${flow.annotation_round}`;
+    comment.hidden = !flow.review_comment;
+    const rejection = [...flow.events].reverse().find((e) => e.action === "reject");
+    comment.replaceChildren(
+      el("strong", { text: `Rejected by ${rejection?.actor ?? "a reviewer"}: ` }),
+      el("span", { text: flow.review_comment ?? "", testid: "review-comment-text" }),
+    );
+    note.textContent = noteLine;
+    events.replaceChildren(...flow.events.map(eventLine));
+  };
+  return { badge, who, comment, note, history, show };
+}
