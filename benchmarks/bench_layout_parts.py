@@ -11,8 +11,8 @@ scale fused from measurements whose only error is each object's true size agains
 typical size (the limit of class-size priors), the IoU with it, and the IoU with it and the
 parts in view true: the best class sizes allow for the scale, however well the photo is read,
 while the parts out of view stay as estimated (in metres).
-Prints a row per scene and means; `--plot FILE` draws the means as a bar chart (the README's
-docs/img/layout_parts.png).
+Prints a row per scene and means; `--plot FILE` draws the means as a bar chart
+(docs/img/layout_parts.png, shown in docs/benchmarks.md).
 """
 
 from __future__ import annotations

@@ -258,7 +258,7 @@ test("3D view: frames per second while orbiting 50 objects", async ({ request, b
     }
   }
   // The figure is reported against the target, not gated: software WebGL's frame rate here
-  // follows the machine's load (README, performance table), so a gate would test the
+  // follows the machine's load (docs/benchmarks.md, the 3D view), so a gate would test the
   // machine, not the page. That frames were drawn at all is checked.
   const best = Math.max(...Object.values(results));
   console.log(
