@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import uuid
 from collections.abc import Callable, Sequence
+from datetime import datetime
 from pathlib import Path
 from typing import Any
 
@@ -199,7 +200,7 @@ class SceneStore:
         earlier = self._earlier_scenes(scene_id, restore_revisions(request.edits))
         photo = self._photo(scene_id) if needs_photo(request.edits) else None
         edited = apply_edits(base.scene, request.edits, request.author, now, earlier, photo)
-        self._commit_revision(
+        return self._commit_revision(
             scene_id,
             request.base_revision,
             edited,
@@ -209,7 +210,6 @@ class SceneStore:
             edits=request.edits,
             hook=hook,
         )
-        return self.document(scene_id)
 
     def commit_reset(
         self,
@@ -222,7 +222,7 @@ class SceneStore:
     ) -> SceneDocument:
         """A revision that puts the scene back to an earlier state of its supports (for a
         second annotation)."""
-        self._commit_revision(
+        return self._commit_revision(
             scene_id,
             base_revision,
             scene,
@@ -232,7 +232,6 @@ class SceneStore:
             edits=None,
             hook=hook,
         )
-        return self.document(scene_id)
 
     def latest_pipeline_document(self, scene_id: str) -> SceneDocument | None:
         """The newest revision the pipeline wrote, or None."""
@@ -367,11 +366,16 @@ class SceneStore:
         edits: Sequence[Edit] | None,
         glb_revision: int | None = None,
         hook: RevisionHook | None = None,
-    ) -> None:
+    ) -> SceneDocument:
+        """Store `scene` as revision base_revision + 1 if the scene is still at `base_revision`
+        (RevisionConflictError otherwise), and return it as stored, without reading it back: a
+        save's answer costs no second read of the whole scene (docs/benchmarks.md, concurrent
+        writers)."""
         new_revision = base_revision + 1
+        now = utcnow()
         values: dict[str, Any] = {
             "current_revision": new_revision,
-            "updated_at": utcnow(),
+            "updated_at": now,
             "object_count": len(scene.objects),
             "uncertainty": scene_uncertainty(scene),
         }
@@ -388,8 +392,11 @@ class SceneStore:
                 raise RevisionConflictError(self._row(session, scene_id).current_revision)
             if hook is not None:
                 hook(session, new_revision)
-            self._add_revision(session, scene_id, new_revision, author, kind, summary, edits, scene)
+            self._add_revision(
+                session, scene_id, new_revision, author, kind, summary, edits, scene, now
+            )
             session.commit()
+        return SceneDocument(scene_id=scene_id, revision=new_revision, updated_at=now, scene=scene)
 
     @staticmethod
     def _add_revision(
@@ -401,12 +408,13 @@ class SceneStore:
         summary: str,
         edits: Sequence[Edit] | None,
         scene: Scene,
+        created_at: datetime | None = None,
     ) -> None:
         session.add(
             RevisionRow(
                 scene_id=scene_id,
                 number=number,
-                created_at=utcnow(),
+                created_at=created_at or utcnow(),
                 author=author,
                 kind=kind,
                 summary=summary,

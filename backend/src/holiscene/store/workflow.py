@@ -368,6 +368,8 @@ def _row(session: Session, scene_id: str) -> SceneRow:
 
 def _earlier_annotators(session: Session, row: SceneRow) -> set[str]:
     """Who submitted the scene in an earlier annotation round."""
+    if row.annotation_round <= 1:
+        return set()  # rounds count from 1: asked on every save, so no query for the first
     return set(
         session.scalars(
             select(SceneEventRow.actor).where(

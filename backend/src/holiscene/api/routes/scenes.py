@@ -150,7 +150,10 @@ def edit_scene(
     """A new revision; the first edit takes the scene for annotation (409 when someone
     else is annotating it, or it is submitted or accepted)."""
     request = request.model_copy(update={"author": author_of(user, request.author)})
-    return with_edit_permission(workbench.workflow.edit(scene_id, request, user), workbench, user)
+    saved = workbench.workflow.edit(scene_id, request, user)
+    # The rules let this user make the revision just saved, inside its transaction, so it is
+    # theirs to edit on: the answer needs no second read of the scene's workflow state.
+    return saved.model_copy(update={"editable": True, "editable_reason": None})
 
 
 @router.get("/{scene_id}/revisions", response_model=list[RevisionInfo], responses=_ERRORS)
