@@ -10,6 +10,7 @@ import pytest
 from fastapi.testclient import TestClient
 from holiscene.api.app import create_app
 from holiscene.core.settings import REPO_ROOT, Settings
+from holiscene.synth.generate import synthesize_to
 
 # SQLite, and PostgreSQL for tests marked both_databases (see databases.py).
 from .databases import database_url, postgres_server, pytest_configure, pytest_generate_tests
@@ -17,6 +18,7 @@ from .databases import database_url, postgres_server, pytest_configure, pytest_g
 __all__ = ["database_url", "postgres_server", "pytest_configure", "pytest_generate_tests"]
 
 REAL_PHOTOS = REPO_ROOT.parent / "shared" / "data" / "real"
+SYNTHETIC_ROOM_SEED = 14
 
 
 @pytest.fixture(scope="session")
@@ -29,6 +31,14 @@ def real_photos() -> Path:
 @pytest.fixture()
 def t3d5(real_photos: Path) -> Path:
     return real_photos / "t3d-5"
+
+
+@pytest.fixture(scope="package")
+def synthetic_folder(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """img.png, cam_K.txt, detections.json and gt.json of one synthetic room (seed 14: a wall
+    picture, things on furniture), for the viewer's tests through the API, the command line
+    and the viewer itself; read only."""
+    return synthesize_to(SYNTHETIC_ROOM_SEED, tmp_path_factory.mktemp("synth"))
 
 
 @pytest.fixture()

@@ -1,4 +1,4 @@
-"""A synthetic room (seed 14: a wall picture, things on furniture) and its prediction."""
+"""The prediction of the synthetic room `synthetic_folder` (../conftest.py), and viewers."""
 
 from __future__ import annotations
 
@@ -12,17 +12,8 @@ import viser
 from holiscene.export.glb import scene_glb
 from holiscene.placement.shape_choice import placed as placed_mesh
 from holiscene.shapes import generate_shape
-from holiscene.synth.generate import synthesize_to
 from holiscene.viewer import SceneViewer, ViewerInput, start_viewer
 from holiscene_schema import Box3D, Scene
-
-SEED = 14
-
-
-@pytest.fixture(scope="package")
-def synthetic_folder(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """img.png, cam_K.txt, detections.json and gt.json of one synthetic room."""
-    return synthesize_to(SEED, tmp_path_factory.mktemp("synth"))
 
 
 @pytest.fixture(scope="package")

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 from holiscene.cli import main
 
-from .conftest import PASSWORD
+from ..api.conftest import PASSWORD
 
 
 def _run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:

@@ -16,7 +16,7 @@ from holiscene.core.settings import Settings
 from sqlalchemy import Engine, inspect, text
 from sqlalchemy.exc import IntegrityError
 
-from .scenes import make_scene
+from ..stored_scenes import make_scene
 
 # Written for SQLite first: each migration must also run on PostgreSQL (databases.py).
 pytestmark = pytest.mark.both_databases

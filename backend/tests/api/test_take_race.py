@@ -8,9 +8,9 @@ from typing import Any
 import pytest
 from httpx import Response
 
+from ..stored_scenes import store_predicted_scene
 from .at_once import at_once
 from .conftest import Accounts
-from .scenes import store_predicted_scene
 
 # Store and workflow behaviour: on both databases (databases.py).
 pytestmark = pytest.mark.both_databases

@@ -9,8 +9,8 @@ import pytest
 from fastapi.testclient import TestClient
 from holiscene.editing.workflow_rules import WorkflowError
 
-from .conftest import Accounts
-from .scenes import store_predicted_scene
+from ...stored_scenes import store_predicted_scene
+from ..conftest import Accounts
 
 # The store, as the server uses it, on SQLite and on PostgreSQL (databases.py).
 pytestmark = pytest.mark.both_databases

@@ -24,7 +24,7 @@ from holiscene.store.model_registry import (
 from sqlalchemy import Engine
 from sqlalchemy.exc import StatementError
 
-from .helpers import fake_model_dir
+from ..model_helpers import fake_model_dir
 
 # The store, as the server uses it, on SQLite and on PostgreSQL (databases.py).
 pytestmark = pytest.mark.both_databases

@@ -27,8 +27,8 @@ from sqlalchemy import Engine, text
 from sqlalchemy.exc import IntegrityError
 
 from ..conftest import wait_for_job
-from .detector_helpers import fake_detector_dir, store_boxed_scene
-from .helpers import fake_model_dir
+from ..detector_helpers import fake_detector_dir, store_boxed_scene
+from ..model_helpers import fake_model_dir
 
 # The store, as the server uses it, on SQLite and on PostgreSQL (databases.py).
 pytestmark = pytest.mark.both_databases

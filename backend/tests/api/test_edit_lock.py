@@ -7,9 +7,9 @@ from __future__ import annotations
 import pytest
 from fastapi.testclient import TestClient
 
+from ..stored_scenes import store_predicted_scene
 from .conftest import Accounts
-from .scenes import store_predicted_scene
-from .test_workflow_api import Api, _refused, _set
+from .routes.test_workflow import Api, _refused, _set
 
 # The store, as the server uses it, on SQLite and on PostgreSQL (databases.py).
 pytestmark = pytest.mark.both_databases

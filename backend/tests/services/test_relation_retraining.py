@@ -23,7 +23,7 @@ from holiscene_schema import Job, RetrainRequest
 from sqlalchemy.orm import Session
 
 from ..conftest import wait_for_job
-from .helpers import (
+from ..model_helpers import (
     LABELLED_SEEDS,
     always_wrong_model_dir,
     fake_model_dir,

@@ -14,8 +14,13 @@ from holiscene.services.workbench import Workbench
 from holiscene.store import model_registry as registry_module
 from holiscene.store.model_registry import Registration
 
-from ..conftest import wait_for_job
-from .helpers import LABELLED_SEEDS, fake_model_dir, store_labelled_scene, store_unlabelled_scene
+from ...conftest import wait_for_job
+from ...model_helpers import (
+    LABELLED_SEEDS,
+    fake_model_dir,
+    store_labelled_scene,
+    store_unlabelled_scene,
+)
 
 
 @pytest.fixture()

@@ -15,7 +15,7 @@ from holiscene.export.coco import decode_coco_rle
 from holiscene.segmentation.rle import decode_mask
 from holiscene_schema import Mask
 
-from .conftest import upload, wait_for_job
+from ...conftest import upload, wait_for_job
 
 
 def _import(client: TestClient, folder: Path, name: str, run_pipeline: bool = False) -> str:

@@ -15,7 +15,7 @@ import trimesh
 from holiscene.cli import main
 from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene
 
-from .bad_inputs import BAD_DETECTIONS, NOT_AN_IMAGE, png_header_only, truncated
+from ..bad_inputs import BAD_DETECTIONS, NOT_AN_IMAGE, png_header_only, truncated
 
 
 def test_infer_writes_scene_json_and_glb(t3d5: Path, tmp_path: Path) -> None:

@@ -18,9 +18,9 @@ from httpx import Response
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
+from ..stored_scenes import store_predicted_scene
 from .at_once import at_once
 from .conftest import Accounts
-from .scenes import store_predicted_scene
 
 # Store and workflow behaviour: on both databases (databases.py).
 pytestmark = pytest.mark.both_databases

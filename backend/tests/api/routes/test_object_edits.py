@@ -12,7 +12,7 @@ from fastapi.testclient import TestClient
 from holiscene.segmentation.rle import decode_mask
 from holiscene_schema import Mask
 
-from .conftest import upload, wait_for_job
+from ...conftest import upload, wait_for_job
 
 WIDTH, HEIGHT = 730, 530
 # A box around the left dresser's drawers (o2's box is [419, 226, 564, 343]).

@@ -15,7 +15,7 @@ from holiscene.editing.workflow_rules import (
     take_for_annotation,
 )
 
-from .scenes import PREDICTED, make_scene
+from ..stored_scenes import PREDICTED, make_scene
 
 ANN = Actor("ann", "annotator")
 BOB = Actor("bob", "annotator")

@@ -8,7 +8,7 @@ from typing import Any
 
 from fastapi.testclient import TestClient
 
-from .conftest import upload, wait_for_job
+from ...conftest import upload, wait_for_job
 
 
 def _imported(client: TestClient, folder: Path) -> dict[str, Any]:

@@ -13,8 +13,8 @@ from holiscene.core.settings import Settings
 from holiscene.public_errors import user_facing_error
 from PIL import Image
 
-from .bad_inputs import png_header_only
-from .conftest import wait_for_job
+from ..bad_inputs import png_header_only
+from ..conftest import wait_for_job
 
 
 def _png(width: int, height: int) -> bytes:

@@ -8,8 +8,8 @@ import pytest
 from fastapi.testclient import TestClient
 from holiscene.core.settings import Settings
 
-from .bad_inputs import BAD_DETECTIONS, NOT_AN_IMAGE, png_header_only, truncated
-from .conftest import upload, wait_for_job
+from ...bad_inputs import BAD_DETECTIONS, NOT_AN_IMAGE, png_header_only, truncated
+from ...conftest import upload, wait_for_job
 
 
 def _imported(client: TestClient, folder: Path) -> tuple[str, dict]:  # type: ignore[type-arg]

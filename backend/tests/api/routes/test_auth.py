@@ -14,7 +14,7 @@ from holiscene.store.tables import SessionRow, UserRow
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
-from .conftest import PASSWORD, Accounts
+from ..conftest import PASSWORD, Accounts
 
 # Routes that need more than the lowest role (annotator); every other API route is open to
 # any logged-in user. A route added for reviewers or admins must be listed here, or the walk

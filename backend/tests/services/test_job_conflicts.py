@@ -21,9 +21,9 @@ from holiscene.store.jobs import JobStore
 from holiscene.store.scenes import SceneChangedError
 from holiscene_schema import EditRequest
 
-from .conftest import upload, wait_for_job
-from .test_layout_edit import _moved_corners
-from .workflow.scenes import store_predicted_scene
+from ..conftest import upload, wait_for_job
+from ..editing.test_layout import _moved_corners
+from ..stored_scenes import store_predicted_scene
 
 # The store, as the server uses it, on SQLite and on PostgreSQL (databases.py).
 pytestmark = pytest.mark.both_databases

@@ -23,7 +23,7 @@ from holiscene.services.reconstruction import reconstruct_scene
 from holiscene.store.clock import utcnow
 from holiscene_schema import Camera, ImageInfo, Layout, Scene, SetLayout
 
-from .conftest import upload, wait_for_job
+from ..conftest import upload, wait_for_job
 
 K = [[500.0, 0.0, 320.0], [0.0, 500.0, 240.0], [0.0, 0.0, 1.0]]
 PITCH, ROLL, HEIGHT = 12.0, -3.0, 1.5

@@ -27,7 +27,7 @@ from sqlalchemy import update
 from sqlalchemy.orm import Session
 
 from ..conftest import wait_for_job
-from .detector_helpers import BOXED_SEEDS, never_detecting_dir, store_boxed_scene
+from ..detector_helpers import BOXED_SEEDS, never_detecting_dir, store_boxed_scene
 
 # One epoch on two synthetic rooms (validated on two more) and the stored scenes.
 TINY = DetectorRetrainConfig(synthetic_rooms=2, epochs=1, stored_repeats=1)

@@ -11,7 +11,7 @@ from fastapi.testclient import TestClient
 from holiscene.segmentation.rle import decode_mask
 from holiscene_schema import Mask
 
-from .conftest import upload
+from ...conftest import upload
 
 BOX = [400.0, 200.0, 580.0, 360.0]
 

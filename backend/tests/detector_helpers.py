@@ -11,7 +11,7 @@ from holiscene.inputs import InputFiles, load_photo
 from holiscene.learning.detector.runtime import COCO_DETECTOR_DIR, METADATA_FILE, MODEL_FILE
 from holiscene.store.scenes import SceneStore
 
-from .helpers import _synthetic
+from .model_helpers import _synthetic
 
 # Synthetic rooms stored as scenes with boxes (no other test stores them).
 BOXED_SEEDS = (4102, 4103, 4106, 4108)
