@@ -41,7 +41,8 @@ class SceneRow(Base):
     state: Mapped[str] = mapped_column(String(16), index=True, default="new")
     assignee: Mapped[str | None] = mapped_column(String(64), nullable=True, index=True)
     annotation_round: Mapped[int] = mapped_column(Integer, default=1)
-    # Of the current revision (holiscene.editing.workflow_rules.scene_uncertainty); "Next scene" sorts by it.
+    # Of the current revision (holiscene.editing.workflow_rules.scene_uncertainty); "Next scene"
+    # sorts by it.
     uncertainty: Mapped[float | None] = mapped_column(Float, nullable=True)
 
 
