@@ -97,13 +97,20 @@ class UserStore:
         self.reads = without_transaction(engine)
         self.idle_timeout = idle_timeout
         self._last_seen_step = min(LAST_SEEN_STEP, idle_timeout / 10)
+        self._users_exist = False
 
     # -- accounts ------------------------------------------------------------------------
 
     def any_users(self) -> bool:
-        """Whether accounts exist (then every request must log in)."""
+        """Whether accounts exist (then every request must log in). Asked on every request;
+        accounts are disabled, never deleted, so once there is one the answer stays yes and
+        the store stops asking the database (a "no" is asked again: `holiscene users add` may
+        make the first account while the server runs)."""
+        if self._users_exist:
+            return True
         with Session(self.reads) as session:
-            return session.scalar(select(UserRow.id).limit(1)) is not None
+            self._users_exist = session.scalar(select(UserRow.id).limit(1)) is not None
+        return self._users_exist
 
     def count_admins(self) -> int:
         with Session(self.engine) as session:
