@@ -13,6 +13,7 @@ import platform
 import random
 import time
 from collections.abc import Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -92,6 +93,16 @@ def split(
     return [samples[i] for i in order[held:]], [samples[i] for i in order[:held]]
 
 
+@dataclass
+class _Fit:
+    """What the epochs left: the learning curve, the best epoch and why they stopped."""
+
+    curve: list[dict[str, float]] = field(default_factory=list)
+    best_accuracy: float = -1.0
+    best_epoch: int = 0
+    stopped: str = "max_epochs"
+
+
 def train_relation_model(
     config: TrainConfig,
     labelled: Sequence[SupportSample],
@@ -120,66 +131,18 @@ def train_relation_model(
     say(0.25, f"training on {len(train)} scenes, validating on {len(validation)}")
 
     net = SupportNet()
-    optimiser = torch.optim.AdamW(net.parameters(), lr=config.learning_rate, weight_decay=1e-4)
-    steps_per_epoch = math.ceil(len(train) / BATCH_SCENES)
-    schedule = torch.optim.lr_scheduler.OneCycleLR(
-        optimiser, config.learning_rate, total_steps=max(1, steps_per_epoch * config.max_epochs)
-    )
-    rng = random.Random(config.seed)
-    curve: list[dict[str, float]] = []
-    best_accuracy, best_state, best_epoch = -1.0, net.state_dict(), 0
-    stopped = "max_epochs"
-    for epoch in range(1, config.max_epochs + 1):
-        net.train()
-        order = list(range(len(train)))
-        rng.shuffle(order)
-        total_loss, objects = 0.0, 0
-        for start in range(0, len(order), BATCH_SCENES):
-            optimiser.zero_grad()
-            for index in order[start : start + BATCH_SCENES]:
-                sample = train[index]
-                loss = scene_loss(net, sample, augment(_tensors(sample), rng))
-                (loss / BATCH_SCENES).backward()
-                total_loss += loss.item()
-                objects += sample.labelled
-            optimiser.step()
-            schedule.step()
-        validation_accuracy = accuracy(net, validation)
-        curve.append(
-            {
-                "epoch": epoch,
-                "train_loss": total_loss / max(objects, 1),
-                "validation_accuracy": validation_accuracy,
-                "seconds": time.perf_counter() - started,
-            }
-        )
-        if validation_accuracy > best_accuracy:
-            best_accuracy, best_epoch = validation_accuracy, epoch
-            best_state = {k: v.clone() for k, v in net.state_dict().items()}
-        say(
-            0.25 + 0.7 * epoch / config.max_epochs,
-            f"epoch {epoch}: loss {curve[-1]['train_loss']:.3f}, "
-            f"validation accuracy {validation_accuracy:.4f} (best {best_accuracy:.4f})",
-        )
-        if epoch - best_epoch >= config.patience:
-            stopped = "early_stopping"
-            break
-        if config.time_budget_s and time.perf_counter() - started > config.time_budget_s:
-            stopped = "time_budget"
-            break
-
-    net.load_state_dict(best_state)
+    fit = _fit(net, train, validation, config, say, started)
     out_dir.mkdir(parents=True, exist_ok=True)
     difference = export_onnx(net, validation[0] if validation else train[0], out_dir / MODEL_FILE)
     (out_dir / PRIORS_FILE).write_text(count_priors(train).to_json())
     metrics: dict[str, Any] = {
         "architecture": config.architecture,
-        "validation_accuracy": best_accuracy,
-        "best_epoch": best_epoch,
-        "epochs": len(curve),
-        "stopped": stopped,
+        "validation_accuracy": fit.best_accuracy,
+        "best_epoch": fit.best_epoch,
+        "epochs": len(fit.curve),
+        "stopped": fit.stopped,
         "onnx_max_difference": difference,
-        "curve": curve,
+        "curve": fit.curve,
         **run_record(started, config),
     }
     (out_dir / METRICS_FILE).write_text(json.dumps(metrics, indent=1) + "\n")
@@ -192,9 +155,81 @@ def train_relation_model(
         "objects": int(sum(s.labelled for s in samples)),
     }
     (out_dir / DATA_FILE).write_text(json.dumps(data, indent=1) + "\n")
-    plot_curve(curve, out_dir / CURVE_FILE)
-    say(1.0, f"done: validation accuracy {best_accuracy:.4f} at epoch {best_epoch}")
-    return TrainResult(out_dir, best_accuracy, metrics)
+    plot_curve(fit.curve, out_dir / CURVE_FILE)
+    say(1.0, f"done: validation accuracy {fit.best_accuracy:.4f} at epoch {fit.best_epoch}")
+    return TrainResult(out_dir, fit.best_accuracy, metrics)
+
+
+def _fit(
+    net: SupportNet,
+    train: Sequence[SupportSample],
+    validation: Sequence[SupportSample],
+    config: TrainConfig,
+    say: TrainProgress,
+    started: float,
+) -> _Fit:
+    """Run the epochs until patience, the epoch limit or the time budget ends them; leave
+    the best epoch's weights in `net`."""
+    optimiser = torch.optim.AdamW(net.parameters(), lr=config.learning_rate, weight_decay=1e-4)
+    steps_per_epoch = math.ceil(len(train) / BATCH_SCENES)
+    schedule = torch.optim.lr_scheduler.OneCycleLR(
+        optimiser, config.learning_rate, total_steps=max(1, steps_per_epoch * config.max_epochs)
+    )
+    rng = random.Random(config.seed)
+    fit = _Fit()
+    best_state = net.state_dict()
+    for epoch in range(1, config.max_epochs + 1):
+        train_loss = _train_epoch(net, train, optimiser, schedule, rng)
+        validation_accuracy = accuracy(net, validation)
+        fit.curve.append(
+            {
+                "epoch": epoch,
+                "train_loss": train_loss,
+                "validation_accuracy": validation_accuracy,
+                "seconds": time.perf_counter() - started,
+            }
+        )
+        if validation_accuracy > fit.best_accuracy:
+            fit.best_accuracy, fit.best_epoch = validation_accuracy, epoch
+            best_state = {k: v.clone() for k, v in net.state_dict().items()}
+        say(
+            0.25 + 0.7 * epoch / config.max_epochs,
+            f"epoch {epoch}: loss {train_loss:.3f}, "
+            f"validation accuracy {validation_accuracy:.4f} (best {fit.best_accuracy:.4f})",
+        )
+        if epoch - fit.best_epoch >= config.patience:
+            fit.stopped = "early_stopping"
+            break
+        if config.time_budget_s and time.perf_counter() - started > config.time_budget_s:
+            fit.stopped = "time_budget"
+            break
+    net.load_state_dict(best_state)
+    return fit
+
+
+def _train_epoch(
+    net: SupportNet,
+    train: Sequence[SupportSample],
+    optimiser: torch.optim.Optimizer,
+    schedule: torch.optim.lr_scheduler.LRScheduler,
+    rng: random.Random,
+) -> float:
+    """One pass over the shuffled training scenes; the mean loss per labelled object."""
+    net.train()
+    order = list(range(len(train)))
+    rng.shuffle(order)
+    total_loss, objects = 0.0, 0
+    for start in range(0, len(order), BATCH_SCENES):
+        optimiser.zero_grad()
+        for index in order[start : start + BATCH_SCENES]:
+            sample = train[index]
+            loss = scene_loss(net, sample, augment(_tensors(sample), rng))
+            (loss / BATCH_SCENES).backward()
+            total_loss += loss.item()
+            objects += sample.labelled
+        optimiser.step()
+        schedule.step()
+    return total_loss / max(objects, 1)
 
 
 def run_record(started: float, config: object) -> dict[str, Any]:

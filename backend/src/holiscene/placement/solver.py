@@ -113,6 +113,57 @@ def _mask_bbox(mask: np.ndarray) -> list[float]:
     return [float(cols[0]), float(rows[0]), float(cols[-1] + 1), float(rows[-1] + 1)]
 
 
+def _no_penalty(pose: Pose) -> float:
+    return 0.0
+
+
+@dataclass(frozen=True)
+class _RestFrame:
+    """Where a standing object may rest: its supporter's top (or inner levels) or the floor.
+
+    Positions are searched in the frame's horizontal axes (its front, then its side) around
+    its centre, within `half` of it; `rest_lo`..`rest_hi` is the range of resting heights.
+    """
+
+    label: str
+    yaw: float
+    centre: FloatArray
+    half: FloatArray
+    rest_lo: float
+    rest_hi: float
+    yaws: list[float]  # orientations to try, the frame's own first
+    on_floor: bool  # kept inside the room (the floor); a supporter's footprint bounds it instead
+
+    @property
+    def searches_rest(self) -> bool:
+        return self.rest_hi - self.rest_lo > 1e-3
+
+    @cached_property
+    def axes(self) -> tuple[FloatArray, FloatArray]:
+        front = front_of(self.yaw)
+        rot = np.array([front, [0.0, 0.0, 0.0], np.cross(front, UP)])
+        return rot[0], rot[2]
+
+    def local(self, point: FloatArray) -> FloatArray:
+        axis_a, axis_b = self.axes
+        return np.array([(point - self.centre) @ axis_a, (point - self.centre) @ axis_b])
+
+    def rest_of(self, x: FloatArray) -> float | None:
+        return float(x[5]) if self.searches_rest else self.rest_hi
+
+    def builder(self, yaw: float) -> Callable[[FloatArray], Pose]:
+        """x = (front, side, depth, width, height[, resting height]) -> the pose at `yaw`."""
+        axis_a, axis_b = self.axes
+
+        def build(x: FloatArray) -> Pose:
+            rest_y = float(x[5]) if self.searches_rest else self.rest_hi
+            centre = self.centre + axis_a * x[0] + axis_b * x[1]
+            centre = np.array([centre[0], rest_y + x[4] / 2.0, centre[2]])
+            return Pose(centre, np.array([x[2], x[4], x[3]]), yaw)
+
+        return build
+
+
 @dataclass
 class Placer:
     """Places objects one after the other; supporters must be placed before what they hold."""
@@ -237,6 +288,54 @@ class Placer:
         h_bounds = (max(h_lo, height * (1 - slack)), min(h_hi, height * (1 + slack)))
         if h_bounds[0] >= h_bounds[1]:
             h_bounds = (height * (1 - slack), height * (1 + slack))
+        frame = self._rest_frame(parent)
+        if isinstance(frame, str):
+            return frame
+        start = self._standing_start(obj, mask, frame, typical)
+        if isinstance(start, str):
+            return start
+        centre0, width0, rest0 = start
+        local0 = frame.local(centre0)
+        scale = float(np.clip(width0 / max(typical[2], 1e-3), 0.5, 2.0))
+        d0 = float(np.clip(typical[0] * scale, size_lo, size_hi))
+        w0 = float(np.clip(width0, size_lo, size_hi))
+        if frame.on_floor:
+            radius = max(0.5, 1.0 * max(d0, w0))
+            lo_ab = np.maximum(local0 - radius, -frame.half + 0.02)
+            hi_ab = np.minimum(local0 + radius, frame.half - 0.02)
+        else:
+            lo_ab, hi_ab = -frame.half, frame.half
+        local0 = np.clip(local0, lo_ab, hi_ab)
+
+        x0 = [local0[0], local0[1], d0, w0, float(np.clip(height, *h_bounds))]
+        lo = [lo_ab[0], lo_ab[1], size_lo, size_lo, h_bounds[0]]
+        hi = [hi_ab[0], hi_ab[1], size_hi, size_hi, h_bounds[1]]
+        if frame.searches_rest:
+            x0.append(rest0)
+            lo.append(frame.rest_lo)
+            hi.append(frame.rest_hi)
+        penalty = self._outside_room_penalty() if frame.on_floor else _no_penalty
+        out = []
+        for index, yaw in enumerate(frame.yaws):
+            aligned = index == 0 or (
+                self.room is not None and abs(wrap_deg(yaw - self.room.yaw_deg, 90.0)) < 5.0
+            )
+            out.append(
+                Candidate(
+                    label=frame.label,
+                    build=frame.builder(yaw),
+                    x0=np.array(x0),
+                    lo=np.array(lo),
+                    hi=np.array(hi),
+                    penalty=penalty,
+                    handicap=0.0 if aligned else OFF_AXIS_MARGIN,
+                    rest=frame.rest_of,
+                )
+            )
+        return out
+
+    def _rest_frame(self, parent: str) -> _RestFrame | str:
+        """The surface a standing object rests on: its placed supporter's, or the floor."""
         if parent in self.placed:
             support = self.placed[parent].box
             s_centre, s_size, s_yaw = (
@@ -246,106 +345,74 @@ class Placer:
             )
             top = float(s_centre[1] + s_size[1] / 2.0)
             bottom = float(s_centre[1] - s_size[1] / 2.0)
-            parent_cls = self.classes.get(parent, "")
-            inner = parent_cls in INNER_SURFACE_CLASSES
-            frame_yaw, frame_centre = s_yaw, s_centre
-            half = s_size[[0, 2]] / 2.0
-            rest_lo = bottom + 0.05 * s_size[1] if inner else top
-            rest_hi = top
+            inner = self.classes.get(parent, "") in INNER_SURFACE_CLASSES
             yaws = [s_yaw]
             if self.room is not None and abs(wrap_deg(s_yaw - self.room.yaw_deg, 90.0)) > 5.0:
                 yaws.append(self.room.yaw_deg)
-            label = f"on {parent}"
-            within: tuple[FloatArray, FloatArray] | None = None
-        elif parent not in self.classes:  # the floor (or a structural parent)
-            rest_lo = rest_hi = self.floor_y
-            if self.room is not None:
-                frame_yaw, frame_centre = self.room.yaw_deg, self.room.centre
-                half = self.room.size[[0, 2]] / 2.0
-            else:
-                frame_yaw, frame_centre, half = 0.0, np.zeros(3), np.array([30.0, 30.0])
-            yaws = [frame_yaw] + [frame_yaw + a for a in self.options.off_axis_yaws]
-            label = "floor"
-            within = (-half, half)
-        else:
+            return _RestFrame(
+                label=f"on {parent}",
+                yaw=s_yaw,
+                centre=s_centre,
+                half=s_size[[0, 2]] / 2.0,
+                rest_lo=bottom + 0.05 * s_size[1] if inner else top,
+                rest_hi=top,
+                yaws=yaws,
+                on_floor=False,
+            )
+        if parent in self.classes:
             return f"its supporter {parent} has no 3D box"
+        # The floor (or a structural parent).
+        if self.room is not None:
+            frame_yaw, frame_centre = self.room.yaw_deg, self.room.centre
+            half = self.room.size[[0, 2]] / 2.0
+        else:
+            frame_yaw, frame_centre, half = 0.0, np.zeros(3), np.array([30.0, 30.0])
+        return _RestFrame(
+            label="floor",
+            yaw=frame_yaw,
+            centre=frame_centre,
+            half=half,
+            rest_lo=self.floor_y,
+            rest_hi=self.floor_y,
+            yaws=[frame_yaw] + [frame_yaw + a for a in self.options.off_axis_yaws],
+            on_floor=True,
+        )
 
-        rest0 = rest_hi
+    def _standing_start(
+        self, obj: SceneObject, mask: np.ndarray, frame: _RestFrame, typical: FloatArray
+    ) -> tuple[FloatArray, float, float] | str:
+        """Initial centre, visible width and resting height, or why there is none.
+
+        The top of the supporter is tried first, then lower levels of an inner surface; an
+        object on a supporter whose bottom edge meets no level starts at the supporter's centre.
+        """
+        rest0 = frame.rest_hi
         init = self._initial_box(obj, mask, rest0)
-        if init is None and rest_lo < rest_hi:
-            for level in np.linspace(rest_hi, rest_lo, 8)[1:]:
+        if init is None and frame.rest_lo < frame.rest_hi:
+            for level in np.linspace(frame.rest_hi, frame.rest_lo, 8)[1:]:
                 init = self._initial_box(obj, mask, float(level))
                 if init is not None:
                     rest0 = float(level)
                     break
         if init is None:
-            if label == "floor":
+            if frame.on_floor:
                 return "no 3D box: its bottom edge does not meet the floor in view"
-            init = (frame_centre.copy(), float(typical[2]))
-        centre0, width0 = init
-        rot = np.array([front_of(frame_yaw), [0.0, 0.0, 0.0], np.cross(front_of(frame_yaw), UP)])
-        axis_a, axis_b = rot[0], rot[2]
-        local0 = np.array([(centre0 - frame_centre) @ axis_a, (centre0 - frame_centre) @ axis_b])
-        scale = float(np.clip(width0 / max(typical[2], 1e-3), 0.5, 2.0))
-        d0 = float(np.clip(typical[0] * scale, size_lo, size_hi))
-        w0 = float(np.clip(width0, size_lo, size_hi))
-        if label == "floor":
-            radius = max(0.5, 1.0 * max(d0, w0))
-            lo_ab = np.maximum(local0 - radius, -half + 0.02)
-            hi_ab = np.minimum(local0 + radius, half - 0.02)
-        else:
-            lo_ab, hi_ab = -half, half
-        local0 = np.clip(local0, lo_ab, hi_ab)
-        searches_rest = rest_hi - rest_lo > 1e-3
+            init = (frame.centre.copy(), float(typical[2]))
+        return init[0], init[1], rest0
 
-        def builder(yaw: float) -> Callable[[FloatArray], Pose]:
-            def build(x: FloatArray) -> Pose:
-                rest_y = float(x[5]) if searches_rest else rest_hi
-                centre = frame_centre + axis_a * x[0] + axis_b * x[1]
-                centre = np.array([centre[0], rest_y + x[4] / 2.0, centre[2]])
-                return Pose(centre, np.array([x[2], x[4], x[3]]), yaw)
-
-            return build
-
-        def rest_of(x: FloatArray) -> float | None:
-            return float(x[5]) if searches_rest else rest_hi
-
-        if self.room is not None:
-            room_centre, room_rotation = self.room.centre, self.room.rotation
-            room_half = self.room.size[[0, 2]] / 2.0
+    def _outside_room_penalty(self) -> Callable[[Pose], float]:
+        """Objective lost by a box whose footprint leaves the room."""
+        if self.room is None:
+            return _no_penalty
+        room_centre, room_rotation = self.room.centre, self.room.rotation
+        room_half = self.room.size[[0, 2]] / 2.0
 
         def outside_room(pose: Pose) -> float:
-            if within is None or self.room is None:
-                return 0.0
             local = (pose.corners[:4] - room_centre) @ room_rotation
             over = np.maximum(np.abs(local[:, [0, 2]]) - room_half, 0.0)
             return WALL_PENALTY * float(over.sum()) / 4.0
 
-        x0 = [local0[0], local0[1], d0, w0, float(np.clip(height, *h_bounds))]
-        lo = [lo_ab[0], lo_ab[1], size_lo, size_lo, h_bounds[0]]
-        hi = [hi_ab[0], hi_ab[1], size_hi, size_hi, h_bounds[1]]
-        if searches_rest:
-            x0.append(rest0)
-            lo.append(rest_lo)
-            hi.append(rest_hi)
-        out = []
-        for index, yaw in enumerate(yaws):
-            aligned = index == 0 or (
-                self.room is not None and abs(wrap_deg(yaw - self.room.yaw_deg, 90.0)) < 5.0
-            )
-            out.append(
-                Candidate(
-                    label=label,
-                    build=builder(yaw),
-                    x0=np.array(x0),
-                    lo=np.array(lo),
-                    hi=np.array(hi),
-                    penalty=outside_room,
-                    handicap=0.0 if aligned else OFF_AXIS_MARGIN,
-                    rest=rest_of,
-                )
-            )
-        return out
+        return outside_room
 
     def _hanging(self, obj: SceneObject, mask: np.ndarray, height: float) -> list[Candidate] | str:
         if self.room is None:
