@@ -1,0 +1,67 @@
+// The row above the photo: a checkbox (and key) per overlay layer, the mask style controls
+// and the arrows' colour legend.
+import { el } from "../../dom";
+import { registerShortcut } from "../../shortcuts";
+import { maskStyleControls } from "./maskStyle";
+import type { PhotoLayers } from "./photoSvg";
+
+function toggle(label: string, testid: string, onChange: (on: boolean) => void) {
+  const input = el("input", {
+    testid,
+    attrs: { type: "checkbox", checked: true },
+    on: { change: () => onChange(input.checked) },
+  });
+  return { input, label: el("label", { className: "toggle" }, input, label) };
+}
+
+function legend(): HTMLElement {
+  const item = (className: string, text: string) =>
+    el(
+      "span",
+      { className: "legend-item" },
+      el("span", { className: `swatch ${className}` }),
+      text,
+    );
+  return el(
+    "div",
+    { className: "legend", attrs: { "aria-label": "Arrow colours" } },
+    item("swatch--below", "supported from below"),
+    item("swatch--behind", "from behind"),
+    item("swatch--pending", "not saved"),
+    item("swatch--suggested", "suggested by the model"),
+  );
+}
+
+export function layerBar(layers: PhotoLayers): { element: HTMLElement; dispose(): void } {
+  const setLayer = (layer: SVGGElement) => (on: boolean) => {
+    layer.style.display = on ? "" : "none";
+  };
+  const layerToggles = [
+    { key: "M", name: "masks", ...toggle("Masks", "toggle-masks", setLayer(layers.masks)) },
+    { key: "H", name: "arrows", ...toggle("Arrows", "toggle-arrows", setLayer(layers.arrows)) },
+    { key: "L", name: "labels", ...toggle("Labels", "toggle-labels", setLayer(layers.labels)) },
+  ];
+  const removeKeys = layerToggles.map(({ key, name, input }) =>
+    registerShortcut({
+      keys: key,
+      description: `Hide or show the ${name}`,
+      scope: "Photo",
+      run: () => input.click(),
+    }),
+  );
+  const styleControls = maskStyleControls();
+  const element = el(
+    "div",
+    { className: "photo-toolbar" },
+    ...layerToggles.map((t) => t.label),
+    styleControls.element,
+    legend(),
+  );
+  return {
+    element,
+    dispose() {
+      styleControls.dispose();
+      for (const remove of removeKeys) remove();
+    },
+  };
+}

@@ -1,0 +1,115 @@
+// The bar above the photo for object suggestions: "Detect objects", what the detector is doing
+// (or why it failed), and while there are boxes: the selected one, Accept, Reject, Accept all,
+// Reject all.
+import { button, el } from "../../../dom";
+import { type Offer, offerLabel } from "../detectionOffers";
+
+export const DETECT_KEY = "D";
+export const ACCEPT_KEY = "Y";
+export const ACCEPT_ALL_KEY = "Shift+Y";
+export const REJECT_KEY = "X";
+
+export interface DetectorBarState {
+  /** The detector is loading or running, or objects are being added. */
+  busy: boolean;
+  status: string;
+  failed: boolean;
+  editable: boolean;
+  /** How many boxes are open. */
+  open: number;
+  chosen: Offer | null;
+}
+
+export interface DetectorBarActions {
+  detect(): void;
+  acceptSelected(): void;
+  rejectSelected(): void;
+  acceptAll(): void;
+  rejectAll(): void;
+}
+
+export interface DetectorBar {
+  element: HTMLElement;
+  show(state: DetectorBarState): void;
+}
+
+export function detectorBar(actions: DetectorBarActions): DetectorBar {
+  const detectButton = button("Detect objects", {
+    testid: "detect-objects",
+    title: `Find objects in the photo with the object detector, in this browser (${DETECT_KEY})`,
+    onClick: actions.detect,
+  });
+  const statusLine = el("span", {
+    className: "detector-status",
+    testid: "detector-status",
+    attrs: { role: "status" },
+  });
+  const action = (
+    text: string,
+    testid: string,
+    title: string,
+    onClick: () => void,
+    primary = false,
+  ) => button(text, { className: primary ? "primary" : "", testid, title, onClick });
+  const acceptButton = action(
+    "Accept",
+    "accept-suggestion",
+    `Add the selected box as an object (${ACCEPT_KEY})`,
+    actions.acceptSelected,
+    true,
+  );
+  const rejectButton = action(
+    "Reject",
+    "reject-suggestion",
+    `Drop the selected box (${REJECT_KEY})`,
+    actions.rejectSelected,
+  );
+  const acceptAllButton = action(
+    "Accept all",
+    "accept-all-suggestions",
+    `Add every box shown as an object (${ACCEPT_ALL_KEY})`,
+    actions.acceptAll,
+  );
+  const rejectAllButton = action(
+    "Reject all",
+    "reject-all-suggestions",
+    "Drop every box shown",
+    actions.rejectAll,
+  );
+  const selection = el("span", { className: "detector-selection", testid: "detector-selection" });
+  const actionRow = el(
+    "span",
+    { className: "detector-actions", testid: "detector-actions" },
+    selection,
+    acceptButton,
+    rejectButton,
+    acceptAllButton,
+    rejectAllButton,
+  );
+  const element = el(
+    "div",
+    { className: "detector-bar", testid: "detector-bar" },
+    detectButton,
+    statusLine,
+    actionRow,
+  );
+  return {
+    element,
+    show({ busy, status, failed, editable, open, chosen }) {
+      detectButton.disabled = busy;
+      statusLine.textContent = status;
+      statusLine.classList.toggle("alert", failed);
+      statusLine.classList.toggle("alert--error", failed);
+      statusLine.setAttribute("role", failed ? "alert" : "status");
+      actionRow.hidden = open === 0;
+      selection.textContent = chosen ? `Selected: ${offerLabel(chosen)}` : "No box selected";
+      const why = editable ? "" : " (the scene is read only)";
+      acceptButton.disabled = busy || !editable || chosen === null;
+      acceptAllButton.disabled = busy || !editable;
+      rejectButton.disabled = busy || chosen === null;
+      rejectAllButton.disabled = busy;
+      acceptButton.title = `Add the selected box as an object (${ACCEPT_KEY})${why}`;
+      acceptAllButton.title = `Add every box shown as an object (${ACCEPT_ALL_KEY})${why}`;
+    },
+  };
+}

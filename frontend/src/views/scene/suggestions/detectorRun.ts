@@ -1,0 +1,52 @@
+// One run of the object detector on the scene's photo, in this browser, and what to say about
+// what it found.
+import { api } from "../../../api/client";
+import { activeDetector, detectorModel } from "../../../inference/detector";
+import type { DetectedBox } from "../../../inference/detectorTensor";
+import { photoPixels } from "../../../inference/supportSuggestions";
+import { plural } from "../../../state/sceneSession";
+
+const MB = (bytes: number) => `${(bytes / 1e6).toFixed(1)} MB`;
+
+export interface DetectorRun {
+  boxes: DetectedBox[];
+  /** Loading the detector (about nothing once its session exists), milliseconds. */
+  loadMs: number;
+  /** Reading the photo and detecting, milliseconds. */
+  runMs: number;
+}
+
+/**
+ * Load the active detector (`say` hears how far its download is) and run it on the photo;
+ * `detecting` is told when loading is done.
+ */
+export async function runDetector(
+  sceneId: string,
+  say: (text: string) => void,
+  detecting: () => void,
+): Promise<DetectorRun> {
+  const start = performance.now();
+  let loading = true;
+  const info = await activeDetector();
+  const model = await detectorModel(info, (loaded, total) => {
+    if (loading)
+      say(`Loading the object detector… ${MB(loaded)} of ${MB(total ?? info.model_bytes)}`);
+  });
+  loading = false;
+  const loaded = performance.now();
+  detecting();
+  const pixels = await photoPixels(api.imageUrl(sceneId));
+  const result = await model.detect(pixels);
+  return { boxes: result.boxes, loadMs: loaded - start, runMs: performance.now() - loaded };
+}
+
+/** What the run found, for the status line: `found` boxes, `open` of them not labelled yet. */
+export function foundText(found: number, open: number, run: DetectorRun): string {
+  const seconds = (ms: number) => `${(ms / 1000).toFixed(1)} s`;
+  const time =
+    `in ${seconds(run.runMs)}` +
+    (run.loadMs > 100 ? ` (loading the detector took ${seconds(run.loadMs)})` : "");
+  if (found === 0) return `No objects found ${time}.`;
+  if (open === 0) return `${plural(found, "box")} found ${time}, all labelled already.`;
+  return `${plural(open, "object")} suggested ${time}: click a box, then Accept or Reject.`;
+}

@@ -1,0 +1,102 @@
+// The detector's suggested boxes over the photo: dashed boxes with class and score, larger
+// ones first so a smaller box inside one stays clickable; a click on a box selects it.
+import { svgEl } from "../../../dom";
+import { type Frame, strokeWidth } from "../../photo/arrowGeometry";
+import { type Offer, offerLabel } from "../detectionOffers";
+
+function offerBox(offer: Offer, selected: boolean, frame: Frame, photoWidth: number): SVGGElement {
+  const stroke = strokeWidth(frame);
+  const size = stroke * 5;
+  const [x1, y1, x2, y2] = offer.bbox;
+  const label = offerLabel(offer);
+  const labelWidth = label.length * size * 0.62 + size * 0.6;
+  const labelHeight = size * 1.35;
+  // Above the box, in the frame's margin if need be; inside it at the photo's top.
+  const top = y1 - labelHeight >= -frame.margin ? y1 - labelHeight : y1;
+  const left = Math.min(x1, photoWidth + frame.margin - labelWidth);
+  return svgEl(
+    "g",
+    {
+      class: `detector-suggestion${selected ? " is-selected" : ""}`,
+      "data-testid": "detector-suggestion",
+      "data-key": offer.key,
+      "data-class": offer.cls,
+    },
+    svgEl("title", {}, `Suggested ${label} (the detector's ${offer.sourceClass}): click to select`),
+    svgEl("rect", {
+      class: "detector-box-halo",
+      x: x1,
+      y: y1,
+      width: x2 - x1,
+      height: y2 - y1,
+      "stroke-width": stroke * (selected ? 2.2 : 1.6),
+    }),
+    svgEl("rect", {
+      class: "detector-box",
+      x: x1,
+      y: y1,
+      width: x2 - x1,
+      height: y2 - y1,
+      "stroke-width": stroke * (selected ? 1.4 : 0.9),
+      "stroke-dasharray": `${stroke * 4} ${stroke * 2.5}`,
+    }),
+    svgEl("rect", {
+      class: "detector-label-box",
+      x: left,
+      y: top,
+      width: labelWidth,
+      height: labelHeight,
+      rx: size * 0.25,
+    }),
+    svgEl(
+      "text",
+      {
+        class: "detector-label",
+        x: left + size * 0.3,
+        y: top + labelHeight / 2,
+        dy: "0.35em",
+        "font-size": size,
+      },
+      label,
+    ),
+  );
+}
+
+const area = (offer: Offer) => (offer.bbox[2] - offer.bbox[0]) * (offer.bbox[3] - offer.bbox[1]);
+
+export interface OfferBoxes {
+  layer: SVGGElement;
+  /** Draw the open offers, `selected` (a key) highlighted. */
+  draw(open: readonly Offer[], selected: string | null): void;
+}
+
+/**
+ * The boxes' layer, added to the photo's SVG; `onSelect` hears the key of a clicked box. A
+ * click on a box is not a click on the photo (arrow editing).
+ */
+export function offerBoxes(
+  svg: SVGSVGElement,
+  frame: Frame,
+  photoWidth: number,
+  onSelect: (key: string | null) => void,
+): OfferBoxes {
+  const layer = svgEl("g", { class: "detector-layer", "data-testid": "detector-layer" });
+  svg.append(layer);
+  const pick = (event: Event) => {
+    const group = (event.target as Element).closest<SVGGElement>(".detector-suggestion");
+    if (!group) return;
+    event.stopPropagation();
+    if (event.type === "click") onSelect(group.dataset.key ?? null);
+  };
+  layer.addEventListener("click", pick);
+  layer.addEventListener("pointerdown", pick);
+  return {
+    layer,
+    draw(open, selected) {
+      const byArea = [...open].sort((a, b) => area(b) - area(a));
+      layer.replaceChildren(
+        ...byArea.map((offer) => offerBox(offer, offer.key === selected, frame, photoWidth)),
+      );
+    },
+  };
+}
