@@ -25,13 +25,13 @@ from pathlib import Path
 
 import torch
 from holiscene.learning.priors import SupportPriors
-from holiscene.learning.thesis_rn import (
+from holiscene.learning.training_api import MODEL_FILE
+from holiscene.research.thesis_rn import (
     evaluate_thesis_rn,
     onnx_answer_fn,
     train_thesis_rn,
 )
-from holiscene.learning.thesis_rn_data import synthetic_rn_scenes
-from holiscene.learning.training_api import MODEL_FILE
+from holiscene.research.thesis_rn_data import synthetic_rn_scenes
 
 
 def seed_list(tokens: list[str]) -> list[int]:

@@ -1,6 +1,6 @@
 """The default Relation Network: every object's supporter and support type in one pass.
 
-The thesis's network (thesis_rn.py) answers one question per forward pass over 100 x 100
+The thesis's network (research/thesis_rn.py) answers one question per forward pass over 100 x 100
 feature-cell pairs, which costs about 0.8 s a question on 2 cores. This one reasons over object
 pairs instead: each object is a vector of image features pooled under its mask plus its class
 and box; each ordered pair adds contact cues measured on the masks (does the child's bottom

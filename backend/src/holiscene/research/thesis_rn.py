@@ -51,7 +51,14 @@ import torch
 from holiscene_schema.relation_model import OPSET, SUPPORT_TYPE_ORDER
 from torch import nn
 
-from .priors import SupportPriors, count_priors
+from ..learning.priors import SupportPriors, count_priors
+from ..learning.training_api import (
+    METRICS_FILE,
+    MODEL_FILE,
+    PRIORS_FILE,
+    TrainProgress,
+    TrainResult,
+)
 from .thesis_rn_data import (
     ANSWER_CATEGORY,
     ANSWER_TYPE,
@@ -76,7 +83,6 @@ from .thesis_rn_data import (
     synthetic_rn_scenes,
     yes_no,
 )
-from .training_api import METRICS_FILE, MODEL_FILE, PRIORS_FILE, TrainProgress, TrainResult
 
 FEATURES = 64
 GRID = 10  # 300 -> 150 -> 75 -> 38 -> 19 -> 10
@@ -385,6 +391,57 @@ def evaluate_thesis_rn(
 # ---- training ------------------------------------------------------------------------------
 
 
+@dataclass
+class _BudgetRun:
+    """What the optimiser steps left: losses and times per batch, and where they stopped."""
+
+    losses: list[float] = field(default_factory=list)
+    batch_seconds: list[float] = field(default_factory=list)
+    epoch: int = 0  # epochs completed
+    position: int = 0  # questions into the epoch that was under way
+    seconds: float = 0.0
+    final_learning_rate: float = LEARNING_RATE
+
+
+def _train_within_budget(
+    model: ThesisRelationNet,
+    train: Sequence[RNScene],
+    items: Sequence[Item],
+    mode: MaskMode,
+    batch_size: int,
+    budget_s: float,
+    rng: np.random.Generator,
+    report: TrainProgress,
+) -> _BudgetRun:
+    """Optimise until the next batch would end past `budget_s` or MAX_EPOCHS are done."""
+    optimizer = torch.optim.Adam(model.parameters(), lr=LEARNING_RATE)
+    schedule = torch.optim.lr_scheduler.StepLR(optimizer, LR_STEP_EPOCHS, gamma=LR_GAMMA)
+    run = _BudgetRun()
+    order = rng.permutation(len(items))
+    start = time.perf_counter()
+    while run.epoch < MAX_EPOCHS:
+        elapsed = time.perf_counter() - start
+        expected = float(np.mean(run.batch_seconds)) if run.batch_seconds else 0.0
+        if elapsed + expected > budget_s:
+            break
+        t0 = time.perf_counter()
+        chosen = [items[k] for k in order[run.position : run.position + batch_size]]
+        run.losses.append(train_step(model, optimizer, *batch_arrays(train, chosen, mode)))
+        run.batch_seconds.append(time.perf_counter() - t0)
+        run.position += batch_size
+        if run.position >= len(items):  # an epoch ends: reshuffle, and the schedule steps
+            run.epoch, run.position = run.epoch + 1, 0
+            order = rng.permutation(len(items))
+            schedule.step()
+        report(
+            (time.perf_counter() - start) / budget_s,
+            f"batch {len(run.losses)} loss {run.losses[-1]:.3f} ({run.batch_seconds[-1]:.1f} s)",
+        )
+    run.seconds = time.perf_counter() - start
+    run.final_learning_rate = optimizer.param_groups[0]["lr"]
+    return run
+
+
 def train_thesis_rn(
     budget_s: float,
     train_seeds: Sequence[int],
@@ -424,32 +481,7 @@ def train_thesis_rn(
     items = scene_items(train)
 
     model = ThesisRelationNet()
-    optimizer = torch.optim.Adam(model.parameters(), lr=LEARNING_RATE)
-    schedule = torch.optim.lr_scheduler.StepLR(optimizer, LR_STEP_EPOCHS, gamma=LR_GAMMA)
-    losses: list[float] = []
-    batch_seconds: list[float] = []
-    epoch, position = 0, 0
-    order = rng.permutation(len(items))
-    start = time.perf_counter()
-    while epoch < MAX_EPOCHS:
-        elapsed = time.perf_counter() - start
-        expected = float(np.mean(batch_seconds)) if batch_seconds else 0.0
-        if elapsed + expected > budget_s:
-            break
-        t0 = time.perf_counter()
-        chosen = [items[k] for k in order[position : position + batch_size]]
-        losses.append(train_step(model, optimizer, *batch_arrays(train, chosen, mode)))
-        batch_seconds.append(time.perf_counter() - t0)
-        position += batch_size
-        if position >= len(items):  # an epoch ends: reshuffle, and the schedule steps
-            epoch, position = epoch + 1, 0
-            order = rng.permutation(len(items))
-            schedule.step()
-        report(
-            (time.perf_counter() - start) / budget_s,
-            f"batch {len(losses)} loss {losses[-1]:.3f} ({batch_seconds[-1]:.1f} s)",
-        )
-    train_seconds = time.perf_counter() - start
+    run = _train_within_budget(model, train, items, mode, batch_size, budget_s, rng, report)
 
     model_path = out_dir / MODEL_FILE
     export_onnx(model, model_path)
@@ -464,19 +496,21 @@ def train_thesis_rn(
         "architecture": "thesis_rn",
         "mask_mode": mode,
         "budget_s": budget_s,
-        "train_seconds": round(train_seconds, 2),
-        "batches": len(losses),
+        "train_seconds": round(run.seconds, 2),
+        "batches": len(run.losses),
         "batch_questions": batch_size,
-        "seconds_per_batch": round(float(np.mean(batch_seconds)), 3) if batch_seconds else None,
-        "epochs_completed": epoch,
-        "epoch_fraction": round((epoch * len(items) + position) / len(items), 4),
-        "final_learning_rate": optimizer.param_groups[0]["lr"],
+        "seconds_per_batch": (
+            round(float(np.mean(run.batch_seconds)), 3) if run.batch_seconds else None
+        ),
+        "epochs_completed": run.epoch,
+        "epoch_fraction": round((run.epoch * len(items) + run.position) / len(items), 4),
+        "final_learning_rate": run.final_learning_rate,
         "train_questions": len(items),
         "train_scenes": len(train),
         "train_seeds_digest": seeds_digest(train_seeds),
         "validation_scenes": len(val),
         "validation_seeds_digest": seeds_digest(val_seeds),
-        "losses": [round(x, 4) for x in losses],
+        "losses": [round(x, 4) for x in run.losses],
         "onnx_max_abs_diff": onnx_abs,
         "onnx_max_rel_diff": onnx_rel,
         "onnx_matches": onnx_rel <= ONNX_TOLERANCE,

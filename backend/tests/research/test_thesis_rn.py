@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import torch
 from holiscene.learning.priors import count_priors
-from holiscene.learning.thesis_rn import (
+from holiscene.research.thesis_rn import (
     ONNX_TOLERANCE,
     Item,
     ThesisRelationNet,
@@ -23,7 +23,7 @@ from holiscene.learning.thesis_rn import (
     scene_items,
     train_step,
 )
-from holiscene.learning.thesis_rn_data import (
+from holiscene.research.thesis_rn_data import (
     ANSWER_CATEGORY,
     ANSWER_NO,
     ANSWER_TYPE,

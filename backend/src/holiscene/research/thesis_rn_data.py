@@ -62,8 +62,8 @@ import numpy as np
 from holiscene_schema import NYU40_CLASSES, STRUCTURAL_CLASSES, Scene
 from holiscene_schema.relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER
 
-from .preprocess import area_resize, class_index
-from .samples import NO_LABEL, SupportSample, answer_index, object_masks
+from ..learning.preprocess import area_resize, class_index
+from ..learning.samples import NO_LABEL, SupportSample, answer_index, object_masks
 
 INPUT_SIZE = 300
 MAX_INSTANCES = 60
