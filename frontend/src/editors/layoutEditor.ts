@@ -9,12 +9,14 @@ import { button, el } from "../dom";
 import type { Point2 } from "../geometry/camera";
 import { registerShortcut } from "../shortcuts";
 import { getAuthor } from "../state/author";
-import { CAMERA_HEIGHT_RANGE_M, LayoutDraft } from "../state/layoutDraft";
+import { LayoutDraft } from "../state/layoutDraft";
 import type { SceneSession } from "../state/sceneSession";
 import { jobProgress } from "../views/common/jobProgress";
 import { frameFor } from "../views/photo/arrowGeometry";
 import { drawingRect, insideRect } from "../views/photo/cornerHandles";
 import { mountLayoutLayer } from "../views/photo/layoutLayer";
+import { cameraHeightField } from "./layout/cameraHeightField";
+import { layoutStatus, type StatusLine } from "./layout/layoutStatus";
 import { replaceObjects } from "./replaceObjects";
 
 export const LAYOUT_EDIT_KEY = "E";
@@ -69,10 +71,6 @@ export function mountLayoutEditing(
   };
 }
 
-const HEIGHT_HELP =
-  "The camera's height above the floor: the scale of the whole room, which the photo cannot " +
-  "tell (the pipeline guesses it from the objects' typical sizes)";
-
 const errorText = (error: unknown) => (error instanceof Error ? error.message : String(error));
 
 function mountLayoutEditor(
@@ -101,30 +99,15 @@ function mountLayoutEditor(
     title: "Place the objects again in the saved room (a placement job)",
     onClick: () => void replace3d(),
   });
-  // The scale of the whole room: no photo tells it, an annotator may know it.
-  const heightInput = el("input", {
-    testid: "camera-height",
-    attrs: {
-      type: "number",
-      step: "0.01",
-      min: String(CAMERA_HEIGHT_RANGE_M[0]),
-      max: String(CAMERA_HEIGHT_RANGE_M[1]),
-      inputmode: "decimal",
-    },
-    on: { change: () => setHeight() },
+  const heightField = cameraHeightField(draft, (problem) => {
+    message = problem === null ? null : { text: problem, alert: true };
+    draw();
   });
-  const heightField = el(
-    "label",
-    { className: "camera-height", testid: "camera-height-field" },
-    "Camera height ",
-    heightInput,
-    " m",
-  );
   const status = el("span", { className: "layout-status", testid: "layout-status" });
   const progress = jobProgress("placement-progress");
   progress.element.hidden = true;
   let job: Job | null = null;
-  let message: { text: string; alert: boolean } | null = null;
+  let message: StatusLine | null = null;
 
   bar.classList.add("layout-bar");
   bar.dataset.testid = "layout-bar";
@@ -133,7 +116,7 @@ function mountLayoutEditor(
       "div",
       { className: "layout-row" },
       toggle,
-      heightField,
+      heightField.element,
       status,
       el("span", { className: "spacer" }),
       reset,
@@ -143,55 +126,19 @@ function mountLayoutEditor(
     progress.element,
   );
 
-  const describe = (): { text: string; alert: boolean } => {
-    if (message) return message;
-    if (!draft.available) return { text: "No room layout to edit yet.", alert: false };
-    if (draft.error !== null)
-      return { text: `No room from these corners: ${draft.error}`, alert: true };
-    const state = session.saveState;
-    if (draft.dirty && (state.kind === "error" || state.kind === "conflict")) {
-      return { text: `Not saved: ${state.message} Your corners are kept.`, alert: true };
-    }
-    const live = draft.live;
-    if (!draft.editing || !live) return { text: "", alert: false };
-    const [depth, height, width] = live.room.size.map((s) => s.toFixed(2));
-    const camera = `camera ${draft.cameraHeight.toFixed(2)} m high, pitch ${live.pitchDeg.toFixed(1)}°, roll ${live.rollDeg.toFixed(1)}°`;
-    const room = `room ${depth} × ${width} m, ${height} m high; ${camera}`;
-    return {
-      text: draft.dirty ? `Moved (not saved): ${room}` : `Drag the yellow corners. ${room}`,
-      alert: false,
-    };
-  };
-
-  const setHeight = () => {
-    if (draft.setCameraHeight(heightInput.valueAsNumber)) {
-      message = null;
-    } else {
-      const [low, high] = CAMERA_HEIGHT_RANGE_M;
-      message = { text: `The camera's height must be between ${low} and ${high} m.`, alert: true };
-      heightInput.value = draft.cameraHeight.toFixed(2);
-    }
-    draw();
-  };
-
   const draw = () => {
     const running = job !== null && !isFinished(job);
     const saving = session.saveState.kind === "saving";
     const editable = session.editable;
     toggle.disabled = !draft.available || !editable;
     toggle.setAttribute("aria-pressed", String(draft.editing));
-    heightField.hidden = !draft.editing;
-    // The stored layout's note says where its scale came from (which priors, how sure).
-    const note = session.doc.scene.layout?.note;
-    heightField.title = note ? `${HEIGHT_HELP}\nThe saved layout: ${note}` : HEIGHT_HELP;
-    heightInput.disabled = !editable || saving;
-    if (document.activeElement !== heightInput) heightInput.value = draft.cameraHeight.toFixed(2);
+    heightField.update(editable, saving, session.doc.scene.layout?.note);
     toggle.classList.toggle("is-active", draft.editing);
     save.disabled = !editable || saving || draft.edit() === null;
     reset.disabled = !editable || saving || !draft.dirty;
     // The placement job runs on the saved layout: save (or reset) the moved corners first.
     replace.disabled = !editable || running || saving || draft.dirty || !draft.available;
-    const { text, alert } = describe();
+    const { text, alert } = layoutStatus(draft, session.saveState, message);
     status.textContent = text;
     status.classList.toggle("is-alert", alert);
     if (alert) status.setAttribute("role", "alert");

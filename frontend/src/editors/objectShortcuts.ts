@@ -6,7 +6,7 @@ import type { ObjectEditor } from "../state/objectEditor";
 import type { SceneSession } from "../state/sceneSession";
 import { pickClass } from "../views/scene/classPicker";
 import { classKey } from "../views/scene/classRanking";
-import { objectName, screenRect } from "./boxTool";
+import { objectName, screenRect } from "./boxes/boxEdits";
 
 export const REMOVE_OBJECT_KEYS = ["Delete"];
 export const SET_CLASS_KEY = "Shift+C";

@@ -8,6 +8,7 @@ import { button, el, svgEl } from "../dom";
 import { registerShortcut } from "../shortcuts";
 import type { ObjectEditor } from "../state/objectEditor";
 import type { SceneSession } from "../state/sceneSession";
+import { routePointer, type ToolState } from "./tools/pointerRouting";
 import "./photoTools.css";
 
 /** A point in image pixels (x right, y down from the photo's top-left corner). */
@@ -92,34 +93,33 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
   });
   const optionsBox = el("span", { className: "photo-tool-options", testid: "photo-tool-options" });
   toolbar.append(buttonRow, optionsBox);
-  let active: PhotoTool = selectTool;
-  let pressed: number | null = null; // the pointer a tool is drawing with
+  const state: ToolState = { active: selectTool, pressed: null };
 
   const usable = (tool: PhotoTool) => !tool.edits || host.session.editable;
 
   const show = () => {
     for (const [id, button] of buttons) {
       const tool = tools.find((t) => t.id === id);
-      button.setAttribute("aria-pressed", String(id === active.id));
-      button.classList.toggle("is-active", id === active.id);
+      button.setAttribute("aria-pressed", String(id === state.active.id));
+      button.classList.toggle("is-active", id === state.active.id);
       button.disabled = tool ? !usable(tool) : true;
     }
-    host.svg.dataset.tool = active.id;
-    host.svg.style.cursor = active.cursor ?? "";
-    optionsBox.replaceChildren(...[active.options?.() ?? null].filter((n) => n !== null));
+    host.svg.dataset.tool = state.active.id;
+    host.svg.style.cursor = state.active.cursor ?? "";
+    optionsBox.replaceChildren(...[state.active.options?.() ?? null].filter((n) => n !== null));
   };
 
   const activate = (id: string) => {
     const next = tools.find((t) => t.id === id);
     if (!next || !usable(next)) return;
-    if (next !== active) {
-      active.cancel?.();
-      pressed = null;
-      active = next;
+    if (next !== state.active) {
+      state.active.cancel?.();
+      state.pressed = null;
+      state.active = next;
       next.activate?.();
     }
     show();
-    for (const listener of listeners) listener(active);
+    for (const listener of listeners) listener(state.active);
   };
 
   const add = (tool: PhotoTool): (() => void) => {
@@ -147,58 +147,24 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
       removers.delete(tool.id);
       const index = tools.indexOf(tool);
       if (index >= 0) tools.splice(index, 1);
-      if (active === tool) activate(selectTool.id);
+      if (state.active === tool) activate(selectTool.id);
     };
     removers.set(tool.id, remove);
     show();
     return remove;
   };
 
-  // Capture phase: a tool's press is not also a click or drag for the photo's own listeners.
-  const routed = (event: PointerEvent) => active !== selectTool && event.isPrimary;
-  const onDown = (event: PointerEvent) => {
-    if (!routed(event) || event.button !== 0 || !active.down) return;
-    const at = host.toImage(event);
-    if (!at) return;
-    event.preventDefault();
-    event.stopPropagation();
-    pressed = event.pointerId;
-    host.svg.setPointerCapture?.(event.pointerId);
-    active.down(at, event);
-  };
-  const onMove = (event: PointerEvent) => {
-    if (!routed(event) || !active.move) return;
-    const at = host.toImage(event);
-    if (at) active.move(at, event);
-  };
-  const onUp = (event: PointerEvent) => {
-    if (pressed !== event.pointerId) return;
-    pressed = null;
-    if (host.svg.hasPointerCapture?.(event.pointerId))
-      host.svg.releasePointerCapture(event.pointerId);
-    const at = host.toImage(event);
-    if (at && routed(event)) active.up?.(at, event);
-  };
-  const onClick = (event: MouseEvent) => {
-    if (active !== selectTool) event.stopPropagation();
-  };
-  const svg = host.svg;
   // One signal takes every listener off again in dispose().
   const listening = new AbortController();
-  const { signal } = listening;
-  svg.addEventListener("pointerdown", onDown, { capture: true, signal });
-  svg.addEventListener("pointermove", onMove, { signal });
-  svg.addEventListener("pointerup", onUp, { signal });
-  svg.addEventListener("pointercancel", onUp, { signal });
-  svg.addEventListener("click", onClick, { capture: true, signal });
+  routePointer(host, state, selectTool, listening.signal);
 
   add(selectTool);
   const escapeSpec = {
     keys: "Escape",
     description: "Drop what the photo tool has half drawn, else go back to Select",
     scope: SCOPE,
-    run: () => (active.drafting?.() ? active.cancel?.() : activate(selectTool.id)),
-    enabled: () => active !== selectTool,
+    run: () => (state.active.drafting?.() ? state.active.cancel?.() : activate(selectTool.id)),
+    enabled: () => state.active !== selectTool,
   };
   let removeEscape = registerShortcut(escapeSpec);
   // The newest enabled registration of a key wins: taking a tool registers Escape again, so
@@ -211,7 +177,7 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
   // A scene turning read only drops the editing tools.
   const unsubscribe = host.session.subscribe((change) => {
     if (change !== "lock") return;
-    if (!usable(active)) activate(selectTool.id);
+    if (!usable(state.active)) activate(selectTool.id);
     else show();
   });
 
@@ -220,14 +186,14 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
     add,
     activate,
     get active() {
-      return active;
+      return state.active;
     },
     onChange(listener) {
       listeners.add(listener);
       return () => listeners.delete(listener);
     },
     dispose() {
-      active.cancel?.();
+      state.active.cancel?.();
       unsubscribe();
       removeEscape();
       for (const remove of [...removers.values()]) remove();

@@ -17,12 +17,11 @@ import {
   drawingRect,
   followPointer,
   insetRect,
-  offPhotoText,
   type PlacedHandle,
   placeHandles,
 } from "./cornerHandles";
-
-const fmt = (p: Point2) => `${p[0].toFixed(1)} ${p[1].toFixed(1)}`;
+import { fmt, type HandleStyle, handleNode } from "./layoutHandle";
+import { toImage } from "./photoSvg";
 
 export function mountLayoutLayer(
   svg: SVGSVGElement,
@@ -45,12 +44,7 @@ export function mountLayoutLayer(
   );
   svg.append(layer);
 
-  const toImage = (event: PointerEvent): Point2 | null => {
-    const matrix = svg.getScreenCTM();
-    if (!matrix) return null;
-    const p = new DOMPoint(event.clientX, event.clientY).matrixTransform(matrix.inverse());
-    return [p.x, p.y];
-  };
+  const toPhoto = (event: PointerEvent): Point2 | null => toImage(svg, event);
 
   /** The corner being dragged: where it and its handle were, and where the pointer was. */
   let drag: { index: number; corner: Point2; grabbedAt: Point2; handleAt: Point2 } | null = null;
@@ -71,58 +65,13 @@ export function mountLayoutLayer(
     edges.setAttribute("d", segments.map(([a, b]) => `M ${fmt(a)} L ${fmt(b)}`).join(" "));
     layer.classList.toggle("is-invalid", draft.error !== null);
   };
-  const handleTitle = (h: PlacedHandle) => {
-    const name = `Room corner ${h.index} (${h.index < 4 ? "floor" : "ceiling"})`;
-    const where = h.clamped ? `, ${offPhotoText(h.corner, frame.width, frame.height)}` : "";
-    const how = h.pinned ? "" : "; placed by the fitted room until you drag it";
-    const action = h.clamped ? "drag to move it by as much as you drag" : "drag";
-    return `${name}${where}${how}: ${action}`;
-  };
-  const handleNode = (h: PlacedHandle) => {
-    const classes = [
-      "layout-handle",
-      h.pinned ? "" : "is-free",
-      h.clamped ? "is-clamped" : "",
-      drag?.index === h.index ? "is-dragging" : "",
-    ];
-    const r = h.clamped ? clampedRadius : radius;
-    const parts: SVGElement[] = [
-      svgEl("title", {}, handleTitle(h)),
-      svgEl("circle", { r: radius * 1.8, class: "layout-handle-hit" }),
-      svgEl("circle", { r, "stroke-width": width * 0.8 }),
-    ];
-    if (h.direction) {
-      // An arrowhead inside the handle, pointing at the corner off the photo.
-      const [dx, dy] = h.direction;
-      const tip: Point2 = [dx * r * 0.8, dy * r * 0.8];
-      const base: Point2 = [-dx * r * 0.45, -dy * r * 0.45];
-      const side: Point2 = [-dy * r * 0.6, dx * r * 0.6];
-      const d =
-        `M ${fmt(tip)} L ${fmt([base[0] + side[0], base[1] + side[1]])} ` +
-        `L ${fmt([base[0] - side[0], base[1] - side[1]])} Z`;
-      parts.push(svgEl("path", { class: "layout-handle-arrow", d }));
-    }
-    return svgEl(
-      "g",
-      {
-        class: classes.filter(Boolean).join(" "),
-        "data-testid": `layout-handle-${h.index}`,
-        "data-corner": h.index,
-        "data-pinned": String(h.pinned),
-        "data-clamped": String(h.clamped),
-        "data-x": h.corner[0].toFixed(2),
-        "data-y": h.corner[1].toFixed(2),
-        transform: `translate(${h.at[0].toFixed(1)} ${h.at[1].toFixed(1)})`,
-      },
-      ...parts,
-    );
-  };
+  const style: HandleStyle = { frame, strokeWidth: width, radius, clampedRadius };
   const drawHandles = () => {
     const placed = placeHandles(draft.handles(), area, border, clampedRadius * 2.2).map((h) =>
       drag?.index === h.index ? followPointer(h, drag.handleAt, drag.corner, border) : h,
     );
     drawn = new Map(placed.map((h) => [h.index, h]));
-    handles.replaceChildren(...placed.map(handleNode));
+    handles.replaceChildren(...placed.map((h) => handleNode(h, style, drag?.index === h.index)));
   };
   const draw = () => {
     layer.style.display = draft.editing ? "" : "none";
@@ -135,7 +84,7 @@ export function mountLayoutLayer(
   handles.addEventListener("pointerdown", (event) => {
     const target = (event.target as Element).closest<SVGGElement>("[data-corner]");
     if (!target || event.button !== 0 || drag !== null) return;
-    const grabbedAt = toImage(event);
+    const grabbedAt = toPhoto(event);
     if (!grabbedAt) return;
     event.preventDefault();
     event.stopPropagation();
@@ -148,7 +97,7 @@ export function mountLayoutLayer(
   });
   handles.addEventListener("pointermove", (event) => {
     if (drag === null) return;
-    const point = toImage(event);
+    const point = toPhoto(event);
     if (point) draft.moveCorner(drag.index, draggedCorner(drag.corner, drag.grabbedAt, point));
   });
   const endDrag = (event: PointerEvent) => {

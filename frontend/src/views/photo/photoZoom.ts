@@ -4,7 +4,9 @@
 // leaves the photo's frame and is never smaller than it (arrows and labels, drawn in image
 // pixels, only get larger); tools size their handles by the screen (host.pixelSize).
 import { button, el } from "../../dom";
-import { registerShortcut } from "../../shortcuts";
+import { photoPan } from "./photoPan";
+import { toImage } from "./photoSvg";
+import { photoZoomKeys } from "./photoZoomKeys";
 
 export interface ViewBox {
   x: number;
@@ -62,17 +64,7 @@ export interface PhotoZoom {
  */
 export function mountPhotoZoom(svg: SVGSVGElement, frame: ViewBox): PhotoZoom {
   let view = { ...frame };
-  let pan: { id: number; x: number; y: number } | null = null;
-  let spaceHeld = false;
-  let over = false;
   const listeners = new Set<() => void>();
-  /** The cursor before Space or a pan showed the hand (the active tool's). */
-  let toolCursor: string | null = null;
-  const showHand = (cursor: "grab" | "grabbing" | null) => {
-    if (cursor && toolCursor === null) toolCursor = svg.style.cursor;
-    svg.style.cursor = cursor ?? toolCursor ?? "";
-    if (!cursor) toolCursor = null;
-  };
 
   const percent = el("span", { className: "photo-zoom-level", testid: "photo-zoom-level" });
   const fitButton = button("Fit", {
@@ -101,103 +93,31 @@ export function mountPhotoZoom(svg: SVGSVGElement, frame: ViewBox): PhotoZoom {
   const zoomAt = (factor: number, at: [number, number]) =>
     apply(zoomedView(frame, view, (frame.width / view.width) * factor, at));
   const middle = (): [number, number] => [view.x + view.width / 2, view.y + view.height / 2];
-  const toImage = (event: MouseEvent): [number, number] | null => {
-    const matrix = svg.getScreenCTM();
-    if (!matrix) return null;
-    const p = new DOMPoint(event.clientX, event.clientY).matrixTransform(matrix.inverse());
-    return [p.x, p.y];
-  };
-
   const onWheel = (event: WheelEvent) => {
-    const at = toImage(event);
+    const at = toImage(svg, event);
     if (!at) return;
     event.preventDefault(); // the page does not scroll while the photo zooms
     const lines = event.deltaMode === 1 ? 16 : 1;
     zoomAt(Math.exp(-event.deltaY * lines * WHEEL_RATE), at);
   };
-  const onDown = (event: PointerEvent) => {
-    if (!(event.button === 1 || (event.button === 0 && spaceHeld))) return;
-    event.preventDefault();
-    event.stopImmediatePropagation(); // a pan is not a click, a drawing or an arrow drag
-    pan = { id: event.pointerId, x: event.clientX, y: event.clientY };
-    svg.setPointerCapture?.(event.pointerId);
-    showHand("grabbing");
-  };
-  const onMove = (event: PointerEvent) => {
-    if (!pan || event.pointerId !== pan.id) return;
-    const scale = svg.getScreenCTM()?.a || 1; // screen pixels per image pixel
-    const dx = (event.clientX - pan.x) / scale;
-    const dy = (event.clientY - pan.y) / scale;
-    pan = { ...pan, x: event.clientX, y: event.clientY };
-    event.stopImmediatePropagation();
-    apply(clampView(frame, { ...view, x: view.x - dx, y: view.y - dy }));
-  };
-  const onUp = (event: PointerEvent) => {
-    if (!pan || event.pointerId !== pan.id) return;
-    pan = null;
-    event.stopImmediatePropagation();
-    showHand(spaceHeld ? "grab" : null);
-  };
-  // The middle button's click would paste or open a link on some systems.
-  const onAux = (event: MouseEvent) => {
-    if (event.button === 1) event.preventDefault();
-  };
-  const onKeyUp = (event: KeyboardEvent) => {
-    if (event.key === " ") {
-      spaceHeld = false;
-      if (!pan) showHand(null);
-    }
-  };
-  const onEnter = () => {
-    over = true;
-  };
-  const onLeave = () => {
-    over = false;
-  };
   // One signal takes every listener off again in dispose().
   const listening = new AbortController();
   const { signal } = listening;
   svg.addEventListener("wheel", onWheel, { passive: false, signal });
-  svg.addEventListener("pointerdown", onDown, { capture: true, signal });
-  svg.addEventListener("pointermove", onMove, { capture: true, signal });
-  svg.addEventListener("pointerup", onUp, { capture: true, signal });
-  svg.addEventListener("auxclick", onAux, { signal });
-  svg.addEventListener("pointerenter", onEnter, { signal });
-  svg.addEventListener("pointerleave", onLeave, { signal });
-  window.addEventListener("keyup", onKeyUp, { signal });
+  // Panning moves the view by as much as the pointer moved, inside the frame.
+  const pan = photoPan(
+    svg,
+    (dx, dy) => apply(clampView(frame, { ...view, x: view.x - dx, y: view.y - dy })),
+    signal,
+  );
 
-  const scope = "Photo";
-  const removers = [
-    registerShortcut({
-      keys: ["+", "="],
-      description: "Zoom the photo in (the wheel zooms about the pointer)",
-      scope,
-      run: () => zoomAt(KEY_STEP, middle()),
-    }),
-    registerShortcut({
-      keys: "-",
-      description: "Zoom the photo out",
-      scope,
-      run: () => zoomAt(1 / KEY_STEP, middle()),
-    }),
-    registerShortcut({
-      keys: "0",
-      description: "Fit the whole photo",
-      scope,
-      run: showWhole,
-    }),
-    registerShortcut({
-      keys: "Space",
-      description: "Hold over the photo and drag to pan (or drag with the middle button)",
-      scope,
-      // Only over the photo: elsewhere Space keeps scrolling the page and pressing buttons.
-      enabled: () => over,
-      run: () => {
-        spaceHeld = true;
-        if (!pan) showHand("grab");
-      },
-    }),
-  ];
+  const removeKeys = photoZoomKeys({
+    zoomIn: () => zoomAt(KEY_STEP, middle()),
+    zoomOut: () => zoomAt(1 / KEY_STEP, middle()),
+    fit: showWhole,
+    over: () => pan.over,
+    holdSpace: () => pan.holdSpace(),
+  });
 
   return {
     get zoom() {
@@ -210,7 +130,7 @@ export function mountPhotoZoom(svg: SVGSVGElement, frame: ViewBox): PhotoZoom {
       return () => listeners.delete(listener);
     },
     dispose() {
-      for (const remove of removers) remove();
+      removeKeys();
       listening.abort();
       controls.remove();
     },

@@ -1,0 +1,75 @@
+// What a finished box becomes: a new object (its class picked beside the box, then one
+// add_object edit; the server cuts its mask) or a moved or resized box (one set_bbox edit).
+// While an edit is on its way its box stays drawn (`sending`).
+import { pickClass } from "../../views/scene/classPicker";
+import { type Box, type Grip, roundBox } from "../boxGeometry";
+import type { PhotoToolHost } from "../photoTools";
+
+/** "chair d3" */
+export const objectName = (object: { id: string; class: string }) =>
+  `${object.class.replaceAll("_", " ")} ${object.id}`;
+
+/** The rectangle of an image-pixel box on the screen (client pixels). */
+export function screenRect(svg: SVGSVGElement, box: readonly number[]) {
+  const matrix = svg.getScreenCTM();
+  const [x1 = 0, y1 = 0, x2 = 0, y2 = 0] = box;
+  const a = new DOMPoint(x1, y1).matrixTransform(matrix ?? undefined);
+  const b = new DOMPoint(x2, y2).matrixTransform(matrix ?? undefined);
+  return { left: a.x, top: a.y, right: b.x, bottom: b.y };
+}
+
+export class BoxEdits {
+  /** Boxes sent and not yet in a revision (drawn until the answer comes). */
+  readonly sending = new Map<string, Box>();
+
+  /** `redraw` is told whenever `sending` changes. */
+  constructor(
+    private readonly host: PhotoToolHost,
+    private readonly redraw: () => void,
+  ) {}
+
+  /** Ask for the new object's class, then add it (selected once saved). */
+  async addObject(box: Box): Promise<void> {
+    const { host, sending, redraw } = this;
+    const { session, objects: editor } = host;
+    const key = `new-${Date.now()}`;
+    sending.set(key, box);
+    redraw();
+    const near = screenRect(host.svg, box);
+    const cls = await pickClass({
+      near,
+      title: "Class of the new object",
+      objects: session.objects,
+    });
+    if (!cls) {
+      sending.delete(key);
+      redraw();
+      return;
+    }
+    const [id = "d1"] = editor.newObjectIds(1);
+    const saved = await editor.apply(
+      [{ kind: "add_object", id, class: cls, bbox: roundBox(box), source: "manual" }],
+      `add ${objectName({ id, class: cls })}`,
+    );
+    sending.delete(key);
+    // Selected when saved under its id (a conflict may have given it another).
+    if (saved) session.select(session.object(id) ? id : null);
+    redraw();
+  }
+
+  /** Give the object its moved (grip "move") or resized box. */
+  async setBox(id: string, box: Box, grip: Grip): Promise<void> {
+    const { host, sending, redraw } = this;
+    const object = host.session.object(id);
+    if (!object) return;
+    sending.set(id, box);
+    redraw();
+    const what = grip === "move" ? "move" : "resize";
+    await host.objects.apply(
+      [{ kind: "set_bbox", id, bbox: roundBox(box) }],
+      `${what} the box of ${objectName(object)}`,
+    );
+    sending.delete(id);
+    redraw();
+  }
+}

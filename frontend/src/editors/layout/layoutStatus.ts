@@ -1,0 +1,32 @@
+// What the layout bar's status line says: a message of the bar's own (a save, a failure), why
+// the layout cannot be edited, a save that failed, or the room being dragged.
+import type { LayoutDraft } from "../../state/layoutDraft";
+import type { SaveState } from "../../state/sceneSession";
+
+export interface StatusLine {
+  text: string;
+  alert: boolean;
+}
+
+export function layoutStatus(
+  draft: LayoutDraft,
+  saveState: SaveState,
+  message: StatusLine | null,
+): StatusLine {
+  if (message) return message;
+  if (!draft.available) return { text: "No room layout to edit yet.", alert: false };
+  if (draft.error !== null)
+    return { text: `No room from these corners: ${draft.error}`, alert: true };
+  if (draft.dirty && (saveState.kind === "error" || saveState.kind === "conflict")) {
+    return { text: `Not saved: ${saveState.message} Your corners are kept.`, alert: true };
+  }
+  const live = draft.live;
+  if (!draft.editing || !live) return { text: "", alert: false };
+  const [depth, height, width] = live.room.size.map((s) => s.toFixed(2));
+  const camera = `camera ${draft.cameraHeight.toFixed(2)} m high, pitch ${live.pitchDeg.toFixed(1)}°, roll ${live.rollDeg.toFixed(1)}°`;
+  const room = `room ${depth} × ${width} m, ${height} m high; ${camera}`;
+  return {
+    text: draft.dirty ? `Moved (not saved): ${room}` : `Drag the yellow corners. ${room}`,
+    alert: false,
+  };
+}
