@@ -9,7 +9,8 @@ import { button, el } from "../dom";
 import type { SceneSession } from "../state/sceneSession";
 import type { PixelImage } from "./preprocess";
 import { makeSuggester } from "./suggester";
-import { type SceneScores, type SupportSuggestion, scoreScene } from "./supportModel";
+import { showSuggestionBadges } from "./suggestionBadges";
+import { type SceneScores, scoreScene } from "./supportModel";
 
 const SETTING = "holiscene.liveSuggestions";
 
@@ -52,9 +53,6 @@ export async function photoPixels(url: string, signal?: AbortSignal): Promise<Pi
   bitmap.close();
   return context.getImageData(0, 0, canvas.width, canvas.height);
 }
-
-const percent = (p: number) => `${Math.round(p * 100)}%`;
-const answer = (s: SupportSuggestion) => `${s.supporter} · ${s.type} ${percent(s.probability)}`;
 
 /** What the model's inputs depend on: scoring again is needed only when this changes. */
 const inputsKey = (objects: readonly SceneObject[]) =>
@@ -103,25 +101,7 @@ export function mountSupportSuggestions(
   let photo: Promise<PixelImage> | null = null;
   let run = 0;
 
-  const render = () => {
-    const ranked = scores?.ranked ?? [];
-    const shown = table.querySelectorAll(".badge--suggestion");
-    if (shown.length === ranked.length && [...shown].every((b) => b.isConnected)) return;
-    for (const badge of shown) badge.remove();
-    for (const s of ranked) {
-      const best = s.ranked[0];
-      const cell = table.querySelector(`tr[data-object="${CSS.escape(s.id)}"] th`);
-      if (!best || !cell) continue;
-      cell.append(
-        el("span", {
-          className: "badge badge--suggestion",
-          testid: `support-suggestion-${s.id}`,
-          text: `model: ${answer(best)}`,
-          attrs: { title: s.ranked.slice(0, 3).map(answer).join("\n") },
-        }),
-      );
-    }
-  };
+  const render = () => showSuggestionBadges(table, scores);
 
   const describe = (ms: number) => {
     const count = scores?.ids.length ?? 0;

@@ -1,13 +1,12 @@
 // The dashboard (#/dashboard): scenes per state, what each person did, and how far two
 // annotators agree on the scenes labelled twice; for admins, the accounts.
-import type { Dashboard, PersonStats, SceneAgreement, UserInfo } from "@holiscene/schema";
-import { ApiError } from "../../api/errors";
-import { type Role, SCENE_STATES, stateLabel, usersApi, workflowApi } from "../../api/workflow";
-import { button, el, formatTime, labelledField } from "../../dom";
+import type { Dashboard, PersonStats, SceneAgreement } from "@holiscene/schema";
+import { SCENE_STATES, stateLabel, workflowApi } from "../../api/workflow";
+import { button, el } from "../../dom";
 import { hasRole } from "../../state/currentUser";
 import "../workflow/workflow.css";
+import { accountsSection } from "./accounts";
 
-const ROLES: readonly Role[] = ["annotator", "reviewer", "admin"];
 const percent = (share: number) => `${(100 * share).toFixed(1)} %`;
 
 function table(testid: string, headers: string[], numeric: number[], rows: HTMLElement[]) {
@@ -88,140 +87,6 @@ function statesSection(dashboard: Dashboard): HTMLElement {
         ),
       ),
     ),
-  );
-}
-
-function accountsSection(signal: AbortSignal, onChange: () => void): HTMLElement {
-  const body = el("tbody");
-  const message = el("p", { testid: "accounts-message", attrs: { role: "status" } });
-  const say = (text: string, error = false) => {
-    message.textContent = text;
-    message.className = error ? "alert alert--error" : "";
-  };
-  const fail = (err: unknown) => say(err instanceof ApiError ? err.message : String(err), true);
-
-  const userRow = (user: UserInfo) => {
-    const role = el(
-      "select",
-      { testid: `role-select-${user.name}`, attrs: { "aria-label": `Role of ${user.name}` } },
-      ...ROLES.map((r) =>
-        el("option", { text: r, attrs: { value: r, selected: r === user.role } }),
-      ),
-    );
-    role.addEventListener("change", async () => {
-      try {
-        await usersApi.setRole(user.name, role.value as Role);
-        say(`${user.name} is now ${role.value}.`);
-        onChange();
-      } catch (err) {
-        role.value = user.role;
-        fail(err);
-      }
-    });
-    const reset = button("Reset password…", { testid: `reset-password-${user.name}` });
-    reset.addEventListener("click", async () => {
-      const password = window.prompt(`New password for ${user.name} (at least 10 characters)`);
-      if (!password) return;
-      try {
-        await usersApi.resetPassword(user.name, password);
-        say(`New password set for ${user.name}; their sessions ended.`);
-      } catch (err) {
-        fail(err);
-      }
-    });
-    return el(
-      "tr",
-      { testid: `account-${user.name}` },
-      el("th", { text: user.name, attrs: { scope: "row" } }),
-      el("td", {}, role),
-      el("td", { text: formatTime(user.created_at) }),
-      el("td", {}, reset),
-    );
-  };
-
-  const name = el("input", {
-    testid: "new-user-name",
-    attrs: {
-      type: "text",
-      required: true,
-      maxlength: 64,
-      autocomplete: "off",
-      pattern: "[a-z0-9][a-z0-9_.\\-]*",
-    },
-  });
-  const role = el(
-    "select",
-    { testid: "new-user-role" },
-    ...ROLES.map((r) => el("option", { text: r, attrs: { value: r } })),
-  );
-  const password = el("input", {
-    testid: "new-user-password",
-    attrs: { type: "password", required: true, minlength: 10, autocomplete: "new-password" },
-  });
-  const create = button("Add account", {
-    className: "primary",
-    testid: "new-user-submit",
-    type: "submit",
-  });
-  const form = el(
-    "form",
-    { className: "user-form", testid: "new-user-form" },
-    labelledField("Name", name),
-    labelledField("Role", role),
-    labelledField("Password", password),
-    create,
-  );
-  const load = async () => {
-    try {
-      const users = await usersApi.list(signal);
-      body.replaceChildren(...users.map(userRow));
-    } catch (err) {
-      if (!signal.aborted) fail(err);
-    }
-  };
-  form.addEventListener("submit", async (event) => {
-    event.preventDefault();
-    create.disabled = true;
-    try {
-      const user = await usersApi.create({
-        name: name.value.trim(),
-        role: role.value as Role,
-        password: password.value,
-      });
-      form.reset();
-      say(`Added ${user.name} (${user.role}).`);
-      await load();
-      onChange();
-    } catch (err) {
-      fail(err);
-    } finally {
-      create.disabled = false;
-    }
-  });
-  void load();
-  return el(
-    "section",
-    { className: "card", testid: "accounts" },
-    el("h2", { text: "Accounts" }),
-    el(
-      "table",
-      { className: "data-table", testid: "accounts-table" },
-      el(
-        "thead",
-        {},
-        el(
-          "tr",
-          {},
-          ...["Name", "Role", "Since", ""].map((text) =>
-            el("th", { text, attrs: { scope: "col" } }),
-          ),
-        ),
-      ),
-      body,
-    ),
-    el("h3", { text: "New account" }),
-    form,
-    message,
   );
 }
 

@@ -4,6 +4,7 @@
 // Picks are counted in this browser (with the scene's own objects) to order the list.
 import type { SceneObject } from "@holiscene/schema";
 import { el } from "../../dom";
+import { keepInView, optionItem, placeBeside } from "./classPickerParts";
 import { CLASS_OPTIONS, type ClassOption, classKey, rankClasses } from "./classRanking";
 import "./classPicker.css";
 
@@ -99,47 +100,13 @@ export function pickClass(options: PickerOptions): Promise<string | null> {
       ];
     }
     active = Math.min(active, Math.max(0, shown.length - 1));
-    list.replaceChildren(
-      ...shown.map((option, i) =>
-        el(
-          "li",
-          {
-            className: i === active ? "is-active" : "",
-            testid: "class-option",
-            attrs: {
-              role: "option",
-              "aria-selected": i === active,
-              "data-name": option.name,
-              "data-class": option.cls,
-            },
-            on: {
-              mousedown: (event) => event.preventDefault(), // keep the field's focus
-              click: () => finish(option.name),
-            },
-          },
-          i < 9
-            ? el("kbd", { text: String(i + 1) })
-            : el("span", { className: "class-picker-pad" }),
-          el("span", { text: option.name.replaceAll("_", " ") }),
-          option.name !== option.cls
-            ? el("span", {
-                className: "class-picker-alias",
-                text: `→ ${option.cls.replaceAll("_", " ")}`,
-              })
-            : null,
-        ),
-      ),
-    );
+    list.replaceChildren(...shown.map((option, i) => optionItem(option, i, i === active, finish)));
     if (shown.length === 0) {
       list.append(
         el("li", { className: "class-picker-none", text: `No class matches "${input.value}"` }),
       );
     }
-    // Keep the active line in the list's view (not scrollIntoView: it would scroll the page).
-    const line = list.children[active] as HTMLElement | undefined;
-    if (line && line.offsetTop < list.scrollTop) list.scrollTop = line.offsetTop;
-    else if (line && line.offsetTop + line.offsetHeight > list.scrollTop + list.clientHeight)
-      list.scrollTop = line.offsetTop + line.offsetHeight - list.clientHeight;
+    keepInView(list, active);
   };
 
   let resolve: (value: string | null) => void = () => {};
@@ -184,14 +151,7 @@ export function pickClass(options: PickerOptions): Promise<string | null> {
 
   document.body.append(box);
   draw();
-  // Beside the rectangle, inside the window.
-  const { near } = options;
-  const width = box.offsetWidth;
-  const height = box.offsetHeight;
-  const left = near.right + 8 + width <= window.innerWidth ? near.right + 8 : near.left - 8 - width;
-  const top = Math.min(window.innerHeight - height - 8, Math.max(8, near.top));
-  box.style.left = `${Math.max(8, left) + window.scrollX}px`;
-  box.style.top = `${top + window.scrollY}px`;
+  placeBeside(box, options.near);
   input.focus({ preventScroll: true });
   window.addEventListener("pointerdown", onOutside, true);
   return done;

@@ -9,7 +9,8 @@ import type { ObjectEditor } from "../../state/objectEditor";
 import { plural, type SceneSession } from "../../state/sceneSession";
 import { isStructural } from "../../state/supportGraph";
 import { frameFor } from "../photo/arrowGeometry";
-import { addObjectEdit, type Offer, offerLabel, offersOf, openOffers } from "./detectionOffers";
+import { type Offer, offerLabel, offersOf, openOffers } from "./detectionOffers";
+import { addingText, addOffers } from "./suggestions/addOffers";
 import { detectorBar } from "./suggestions/detectorBar";
 import { foundText, runDetector } from "./suggestions/detectorRun";
 import { offerBoxes } from "./suggestions/offerBoxes";
@@ -120,16 +121,8 @@ export function mountObjectSuggestions(
       return;
     }
     busy = "adding";
-    say(
-      chosen.length === 1
-        ? `Adding ${offerLabel(chosen[0] as Offer)}…`
-        : `Adding ${plural(chosen.length, "object")}…`,
-    );
-    // One undoable action; after a conflict the editor re-sends it on the latest revision.
-    const ids = objectEditor.newObjectIds(chosen.length);
-    const edits = chosen.map((offer, i) => addObjectEdit(offer, ids[i] as string));
-    const names = edits.map((e) => `${e.id} (${e.class})`).join(", ");
-    const saved = await objectEditor.apply(edits, `add ${names}`);
+    say(addingText(chosen));
+    const { saved, names } = await addOffers(objectEditor, chosen);
     if (disposed) return;
     busy = null;
     if (!saved) {

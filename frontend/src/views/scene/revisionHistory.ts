@@ -5,9 +5,9 @@ import type { RevisionInfo, SceneDocument } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { button, el, formatTime } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
-import { getAuthor } from "../../state/author";
-import { describeChange, diffScenes, revertEdits } from "../../state/revisionDiff";
 import type { SceneSession } from "../../state/sceneSession";
+import { diffLines } from "./history/diffLines";
+import { revertTo } from "./history/revertRevision";
 
 export function mountRevisionHistory(container: HTMLElement, session: SceneSession): () => void {
   const list = el("ol", { className: "revision-list", testid: "revision-list" });
@@ -32,61 +32,20 @@ export function mountRevisionHistory(container: HTMLElement, session: SceneSessi
     try {
       const after = await revision(info.number);
       const before = info.number > 1 ? await revision(info.number - 1) : null;
-      const diff = before
-        ? diffScenes(before.scene, after.scene)
-        : { supports: [], objectsAdded: [], objectsRemoved: [], layoutChanged: false };
-      const lines = [
-        ...diff.supports.map((c) =>
-          el("li", {
-            text: describeChange(c),
-            attrs: { "data-child": c.child, "data-kind": c.kind },
-          }),
-        ),
-        ...(diff.objectsAdded.length > 0
-          ? [el("li", { text: `objects added: ${diff.objectsAdded.join(", ")}` })]
-          : []),
-        ...(diff.objectsRemoved.length > 0
-          ? [el("li", { text: `objects removed: ${diff.objectsRemoved.join(", ")}` })]
-          : []),
-        ...(diff.layoutChanged ? [el("li", { text: "room layout changed" })] : []),
-      ];
-      box.replaceChildren(
-        ...(lines.length > 0
-          ? lines
-          : [el("li", { text: before ? "no change to supports" : "the imported scene" })]),
-      );
+      box.replaceChildren(...diffLines(before, after));
     } catch (error) {
       box.replaceChildren(el("li", { text: `Could not load the diff: ${String(error)}` }));
     }
   };
 
-  const revert = async (info: RevisionInfo, button: HTMLButtonElement) => {
-    button.disabled = true;
+  const revert = async (info: RevisionInfo, revertButton: HTMLButtonElement) => {
+    revertButton.disabled = true;
     try {
-      const target = await revision(info.number);
-      const shown = [...session.shown().values()].map(
-        (s) =>
-          s.saved ?? {
-            child: s.child,
-            parent: s.parent,
-            type: s.type,
-            source: s.source,
-            author: s.author,
-            time: s.time,
-            confidence: s.confidence,
-          },
-      );
-      const edits = revertEdits(session.doc.scene, shown, info.number, target.scene);
-      if (edits.length === 0) {
-        session.say(`The supports are already as in revision ${info.number}.`);
-        return;
-      }
-      session.edit(`revert to revision ${info.number}`, edits);
-      await session.save(getAuthor());
+      await revertTo(session, info.number, await revision(info.number));
     } catch (error) {
       session.say(`Could not revert: ${String(error)}`);
     } finally {
-      button.disabled = false;
+      revertButton.disabled = false;
     }
   };
 
@@ -153,10 +112,10 @@ export function mountRevisionHistory(container: HTMLElement, session: SceneSessi
   const unsubscribe = session.subscribe((change) => {
     if (change === "document") void refresh();
     if (change === "lock") {
-      for (const button of list.querySelectorAll<HTMLButtonElement>(
+      for (const revertButton of list.querySelectorAll<HTMLButtonElement>(
         "[data-testid^='revision-revert-']",
       ))
-        button.disabled = !session.editable;
+        revertButton.disabled = !session.editable;
     }
   });
   return () => {

@@ -1,0 +1,158 @@
+// The dashboard's accounts card (admins): every account with its role (changed in place) and a
+// password reset, and the form that adds an account.
+import type { UserInfo } from "@holiscene/schema";
+import { ApiError } from "../../api/errors";
+import { type Role, usersApi } from "../../api/workflow";
+import { button, el, formatTime, labelledField } from "../../dom";
+
+const ROLES: readonly Role[] = ["annotator", "reviewer", "admin"];
+
+/** Where an account action reports: a line of news, or an error. */
+interface Report {
+  say(text: string): void;
+  fail(error: unknown): void;
+}
+
+/** An account's row: its role (a select that changes it) and "Reset password…". */
+function userRow(user: UserInfo, report: Report, onChange: () => void): HTMLTableRowElement {
+  const role = el(
+    "select",
+    { testid: `role-select-${user.name}`, attrs: { "aria-label": `Role of ${user.name}` } },
+    ...ROLES.map((r) => el("option", { text: r, attrs: { value: r, selected: r === user.role } })),
+  );
+  role.addEventListener("change", async () => {
+    try {
+      await usersApi.setRole(user.name, role.value as Role);
+      report.say(`${user.name} is now ${role.value}.`);
+      onChange();
+    } catch (err) {
+      role.value = user.role;
+      report.fail(err);
+    }
+  });
+  const reset = button("Reset password…", { testid: `reset-password-${user.name}` });
+  reset.addEventListener("click", async () => {
+    const password = window.prompt(`New password for ${user.name} (at least 10 characters)`);
+    if (!password) return;
+    try {
+      await usersApi.resetPassword(user.name, password);
+      report.say(`New password set for ${user.name}; their sessions ended.`);
+    } catch (err) {
+      report.fail(err);
+    }
+  });
+  return el(
+    "tr",
+    { testid: `account-${user.name}` },
+    el("th", { text: user.name, attrs: { scope: "row" } }),
+    el("td", {}, role),
+    el("td", { text: formatTime(user.created_at) }),
+    el("td", {}, reset),
+  );
+}
+
+/** The form that adds an account; `onAdded` is told after each one. */
+function newUserForm(report: Report, onAdded: () => Promise<void>): HTMLFormElement {
+  const name = el("input", {
+    testid: "new-user-name",
+    attrs: {
+      type: "text",
+      required: true,
+      maxlength: 64,
+      autocomplete: "off",
+      pattern: "[a-z0-9][a-z0-9_.\\-]*",
+    },
+  });
+  const role = el(
+    "select",
+    { testid: "new-user-role" },
+    ...ROLES.map((r) => el("option", { text: r, attrs: { value: r } })),
+  );
+  const password = el("input", {
+    testid: "new-user-password",
+    attrs: { type: "password", required: true, minlength: 10, autocomplete: "new-password" },
+  });
+  const create = button("Add account", {
+    className: "primary",
+    testid: "new-user-submit",
+    type: "submit",
+  });
+  const form = el(
+    "form",
+    { className: "user-form", testid: "new-user-form" },
+    labelledField("Name", name),
+    labelledField("Role", role),
+    labelledField("Password", password),
+    create,
+  );
+  form.addEventListener("submit", async (event) => {
+    event.preventDefault();
+    create.disabled = true;
+    try {
+      const user = await usersApi.create({
+        name: name.value.trim(),
+        role: role.value as Role,
+        password: password.value,
+      });
+      form.reset();
+      report.say(`Added ${user.name} (${user.role}).`);
+      await onAdded();
+    } catch (err) {
+      report.fail(err);
+    } finally {
+      create.disabled = false;
+    }
+  });
+  return form;
+}
+
+/** The accounts card; `onChange` is told when an account was added or its role changed. */
+export function accountsSection(signal: AbortSignal, onChange: () => void): HTMLElement {
+  const body = el("tbody");
+  const message = el("p", { testid: "accounts-message", attrs: { role: "status" } });
+  const say = (text: string, error = false) => {
+    message.textContent = text;
+    message.className = error ? "alert alert--error" : "";
+  };
+  const report: Report = {
+    say,
+    fail: (err) => say(err instanceof ApiError ? err.message : String(err), true),
+  };
+  const load = async () => {
+    try {
+      const users = await usersApi.list(signal);
+      body.replaceChildren(...users.map((user) => userRow(user, report, onChange)));
+    } catch (err) {
+      if (!signal.aborted) report.fail(err);
+    }
+  };
+  const form = newUserForm(report, async () => {
+    await load();
+    onChange();
+  });
+  void load();
+  return el(
+    "section",
+    { className: "card", testid: "accounts" },
+    el("h2", { text: "Accounts" }),
+    el(
+      "table",
+      { className: "data-table", testid: "accounts-table" },
+      el(
+        "thead",
+        {},
+        el(
+          "tr",
+          {},
+          ...["Name", "Role", "Since", ""].map((text) =>
+            el("th", { text, attrs: { scope: "col" } }),
+          ),
+        ),
+      ),
+      body,
+    ),
+    el("h3", { text: "New account" }),
+    form,
+    message,
+  );
+}

@@ -1,0 +1,93 @@
+// The scene's workbench on one SceneSession: the photo with its overlays and tools, the 3D
+// view, and the support editor with the workflow, save bar, suggestions and history; each
+// mounted in its panel, in the order their keys and layers need.
+import { el } from "../../dom";
+import { mountBoxTool } from "../../editors/boxTool";
+import { mountEdgeInfo } from "../../editors/edgeInfo";
+import { mountLayoutEditing } from "../../editors/layoutEditor";
+import { mountMaskTools } from "../../editors/maskTools";
+import { mountObjectShortcuts } from "../../editors/objectShortcuts";
+import { mountSaveBar } from "../../editors/saveBar";
+import { mountSupportEditor } from "../../editors/supportEditor";
+import { mountSupportShortcuts } from "../../editors/supportShortcuts";
+import { mountSupportSuggestions } from "../../inference/supportSuggestions";
+import { getAuthor } from "../../state/author";
+import { startAutosave } from "../../state/autosave";
+import { ObjectEditor } from "../../state/objectEditor";
+import type { SceneSession } from "../../state/sceneSession";
+import { mountPhotoView } from "../photo/photoView";
+import { mountPlacementNotice } from "../scene3d/placementNotice";
+import { mountScene3d } from "../scene3d/scene3dView";
+import { mountWorkflowBar } from "../workflow/workflowBar";
+import { mountObjectSuggestions } from "./objectSuggestions";
+import { pipelineWarningsPanel } from "./pipelineWarnings";
+import { readOnlyBanner } from "./readOnlyBanner";
+import { mountRevisionHistory } from "./revisionHistory";
+
+function panel(title: string, className: string, testid: string) {
+  const body = el("div", { className: "panel-body" });
+  const element = el(
+    "section",
+    { className: `panel ${className}`, testid, attrs: { "aria-label": title } },
+    el("h2", { text: title }),
+    body,
+  );
+  return { element, body };
+}
+
+/**
+ * Fill `content` with the session's panels; the functions that remove them go into `disposers`
+ * as each is mounted (so a failure half-way leaves nothing that cannot be removed).
+ */
+export function mountSceneWorkbench(
+  content: HTMLElement,
+  session: SceneSession,
+  disposers: (() => void)[],
+): void {
+  const photo = panel("Photo", "panel--photo", "photo-panel");
+  const scene3d = panel("3D scene", "panel--scene3d", "scene3d-panel");
+  const editor = panel("Support relations", "panel--editor", "editor-panel");
+  const saveBar = el("div", { className: "save-bar", testid: "save-bar" });
+  const table = el("div", { className: "editor-table" });
+  const suggestions = el("div");
+  const history = el("div");
+  const workflow = el("div");
+  editor.body.append(workflow, saveBar, suggestions, table, history);
+  const edgeInfo = el("div");
+  photo.element.append(edgeInfo);
+  const banner = readOnlyBanner(session);
+  const warnings = pipelineWarningsPanel(session);
+  content.append(
+    banner.element,
+    warnings.element,
+    el("div", { className: "scene-main" }, photo.element, scene3d.element),
+    editor.element,
+  );
+  const objectEditor = new ObjectEditor(session);
+  const photoView = mountPhotoView(photo.body, session, objectEditor);
+  disposers.push(
+    photoView.dispose,
+    // after the photo view: it draws in its SVG
+    mountObjectSuggestions(photo.body, session, objectEditor),
+  );
+  const layout = mountLayoutEditing(photo.element, photo.body, session);
+  disposers.push(
+    layout.dispose,
+    mountEdgeInfo(edgeInfo, session),
+    mountSupportShortcuts(session),
+    mountBoxTool(photoView.tools),
+    mountObjectShortcuts(objectEditor, photoView.tools.host.svg),
+    // after the support keys: the polygon's Backspace wins while a polygon is drawn
+    mountMaskTools(photoView.tools),
+    startAutosave(session, { author: getAuthor, otherSaving: () => objectEditor.busy }),
+    mountScene3d(scene3d.body, session, layout.draft),
+    mountPlacementNotice(scene3d.element, scene3d.body, session),
+    mountSaveBar(saveBar, session, objectEditor),
+    mountSupportEditor(table, session),
+    mountSupportSuggestions(suggestions, table, session),
+    mountRevisionHistory(history, session),
+    mountWorkflowBar(workflow, session),
+    banner.dispose,
+    warnings.dispose,
+  );
+}
