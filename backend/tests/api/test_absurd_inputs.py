@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
+from holiscene.core.errors import user_facing_error
 from holiscene.core.settings import Settings
-from holiscene.public_errors import user_facing_error
 from PIL import Image
 
 from ..bad_inputs import png_header_only

@@ -32,7 +32,6 @@ from .routes import (
     workflow,
 )
 from .security_headers import SecurityHeaders
-from .workflow_errors import install_workflow_error_handlers
 
 # Besides its files, a photo import carries cam_K.txt, detections.json and form fields.
 IMPORT_OVERHEAD_MB = 10
@@ -84,7 +83,6 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     install_http_guards(app, settings)
     app.state.attempt_limiter = AttemptLimiter()
     install_error_handlers(app)
-    install_workflow_error_handlers(app)
     # Every API router but auth's needs a logged-in user (the local admin in local mode);
     # routes for reviewers or admins declare their role on top.
     logged_in = [Depends(current_user)]

@@ -7,6 +7,8 @@ import functools
 from argon2 import PasswordHasher
 from argon2.exceptions import InvalidHashError, VerificationError
 
+from .errors import DomainError
+
 # argon2id with OWASP's recommended minimum (19 MiB, 2 passes, 1 lane): argon2-cffi's
 # defaults (64 MiB, 4 lanes) took about 1 s per login on this 2-core machine under load, which
 # would make logins slow and let a few parallel login attempts starve the server. Hashes
@@ -47,7 +49,7 @@ _COMMON = frozenset(
 )
 
 
-class WeakPasswordError(ValueError):
+class WeakPasswordError(DomainError, ValueError):
     pass
 
 

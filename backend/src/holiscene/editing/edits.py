@@ -30,6 +30,7 @@ from holiscene_schema import (
     support_graph_problems,
 )
 
+from ..core.errors import DomainError
 from .layout import LayoutEditError, apply_set_layout, describe_set_layout
 from .objects import (
     ObjectEditError,
@@ -45,8 +46,11 @@ SupportEdit = SetSupport | RemoveSupport | RestoreSupport
 OBJECT_EDITS = (AddObject, RemoveObject, SetClass, SetBbox, SetMask, RestoreObject)
 
 
-class InvalidEditError(ValueError):
+class InvalidEditError(DomainError, ValueError):
     """An edit that names something that does not exist or breaks the support graph."""
+
+    def detail(self) -> str:
+        return f"invalid edit: {self}"
 
 
 def restore_revisions(edits: Sequence[Edit]) -> set[int]:

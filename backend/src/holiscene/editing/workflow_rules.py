@@ -15,6 +15,8 @@ from dataclasses import dataclass
 
 from holiscene_schema import STRUCTURAL_CLASSES, Role, Scene, SceneState, WorkflowAction
 
+from ..core.errors import DomainError
+
 ROLE_RANK: dict[Role, int] = {"annotator": 1, "reviewer": 2, "admin": 3}
 ROLES: tuple[Role, ...] = ("annotator", "reviewer", "admin")
 STATES: tuple[SceneState, ...] = (
@@ -38,8 +40,10 @@ def has_role(role: Role, needed: Role) -> bool:
     return ROLE_RANK[role] >= ROLE_RANK[needed]
 
 
-class WorkflowError(Exception):
+class WorkflowError(DomainError):
     """A state change the workflow does not allow now (HTTP 409); the message says why."""
+
+    status = 409
 
 
 @dataclass(frozen=True)

@@ -14,6 +14,7 @@ import numpy as np
 from holiscene_schema import UnknownClassError, normalise_class_name
 from PIL import Image, UnidentifiedImageError
 
+from ..core.errors import DomainError
 from ..pipeline.base import Detection
 
 MAX_IMAGE_PIXELS = 40_000_000  # 40 MP: far above any indoor photo we expect, far below a bomb
@@ -24,7 +25,7 @@ BOX_TOLERANCE_PX = 2.0  # boxes may overhang the border by rounding, not more
 _FORMATS = {"JPEG": ".jpg", "PNG": ".png"}
 
 
-class InputError(ValueError):
+class InputError(DomainError, ValueError):
     """Bad user input; `status` is the HTTP status the server answers with."""
 
     def __init__(self, message: str, status: int = 422) -> None:

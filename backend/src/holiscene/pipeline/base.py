@@ -24,6 +24,7 @@ from holiscene_schema import (
     SupportRelation,
 )
 
+from ..core.errors import DomainError
 from ..geometry.camera import FloatArray
 
 T = TypeVar("T")
@@ -114,7 +115,7 @@ def required(value: T | None, slot: str) -> T:
     return value
 
 
-class PipelineBuildError(ValueError):
+class PipelineBuildError(DomainError, ValueError):
     """The requested stages cannot form a pipeline (unknown name, unmet input, bad option)."""
 
 

@@ -16,9 +16,14 @@ from itertools import pairwise
 import cv2
 import numpy as np
 
+from ..core.errors import DomainError
 
-class RefineInputError(ValueError):
+
+class RefineInputError(DomainError, ValueError):
     """A refine request that cannot be cut (box or strokes outside the photo, empty box)."""
+
+    def detail(self) -> str:
+        return f"cannot refine the mask: {self}"
 
 
 @dataclass(frozen=True)

@@ -25,10 +25,10 @@ from typing import Any
 
 from holiscene_schema import ModelInfo, RetrainRequest, Scene
 
+from ..core.errors import DomainError, user_facing_error
 from ..inputs import load_photo
 from ..learning.samples import SupportSample, sample_from_scene
 from ..learning.training_api import TrainConfig
-from ..public_errors import user_facing_error
 from ..store.jobs import JobStore
 from ..store.model_registry import ModelStore, Registration
 from ..store.scenes import SceneStore
@@ -43,7 +43,7 @@ _COUNTER = re.compile(r"^(.*?)\s*\d+\s*/\s*\d+\s*$")
 GATHER_END, TRAIN_END = 0.05, 0.9
 
 
-class NotEnoughLabelsError(ValueError):
+class NotEnoughLabelsError(DomainError, ValueError):
     """Retraining needs labelled scenes to learn from and to judge the new model by."""
 
 

@@ -23,6 +23,7 @@ from holiscene_schema import (
 )
 
 from ..core.db import make_engine, migrate
+from ..core.errors import DomainError, user_facing_error
 from ..core.settings import Settings
 from ..editing.workflow_rules import LOCAL_USER, Actor, WorkflowError
 from ..inputs import InputFiles, read_input_folder
@@ -31,7 +32,6 @@ from ..learning.training_api import METRICS_FILE
 from ..pipeline import DEFAULT_STAGES, KEPT_LAYOUT_STAGES, PLACEMENT_STAGES
 from ..pipeline.stages.detections import objects_from_detections
 from ..pipeline.stages.restore import has_hand_set_layout
-from ..public_errors import user_facing_error
 from ..store import model_registry
 from ..store.files import SceneFiles
 from ..store.jobs import JobStore
@@ -51,7 +51,7 @@ from .relation_retraining import RetrainJob, TrainingJob, check_can_retrain, tra
 log = logging.getLogger(__name__)
 
 
-class PlacementNotPossibleError(ValueError):
+class PlacementNotPossibleError(DomainError, ValueError):
     """The scene has no camera pitch/roll or room layout to place its objects in."""
 
 

@@ -4,17 +4,20 @@ request (or a restart) sees them."""
 from __future__ import annotations
 
 import uuid
+from collections.abc import Mapping
+from typing import ClassVar
 
 from holiscene_schema import Job, JobKind
 from sqlalchemy import Engine, func, select, update
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
+from ..core.errors import DomainError, NotFoundError
 from .clock import as_utc, utcnow
 from .tables import JobRow
 
 
-class JobNotFoundError(LookupError):
+class JobNotFoundError(NotFoundError):
     pass
 
 
@@ -22,8 +25,10 @@ class JobNotFoundError(LookupError):
 RETRAIN_KINDS: tuple[JobKind, ...] = ("retrain", "detector_retrain")
 
 
-class RetrainRunningError(Exception):
+class RetrainRunningError(DomainError):
     """Only one retrain job at a time (of any model kind): training uses the whole machine."""
+
+    status = 409
 
     def __init__(self, job_id: str) -> None:
         super().__init__(f"a retrain job is already running ({job_id}); wait for it to finish")
@@ -35,9 +40,11 @@ SCENE_JOB_KINDS: tuple[JobKind, ...] = ("pipeline", "placement")
 _WAITING = ("queued", "running")
 
 
-class SceneJobRunningError(Exception):
+class SceneJobRunningError(DomainError):
     """A scene's pipeline or placement job is already queued or running (HTTP 409): a second
     one would rewrite the scene under the first."""
+
+    status = 409
 
     def __init__(self, job_id: str) -> None:
         super().__init__(
@@ -47,8 +54,11 @@ class SceneJobRunningError(Exception):
         self.job_id = job_id
 
 
-class JobQueueFullError(Exception):
+class JobQueueFullError(DomainError):
     """Too many pipeline and placement jobs wait already (HTTP 503): one worker runs them."""
+
+    status = 503
+    headers: ClassVar[Mapping[str, str]] = {"Retry-After": "60"}
 
     def __init__(self, waiting: int) -> None:
         super().__init__(

@@ -32,6 +32,7 @@ from sqlalchemy.exc import OperationalError, ProgrammingError
 from sqlalchemy.orm import Session
 from sqlalchemy.pool import NullPool
 
+from ..core.errors import NotFoundError
 from ..core.settings import Settings
 from ..learning.detector import runtime as detector_runtime
 from ..learning.training_api import (
@@ -95,7 +96,7 @@ def default_detector_dir() -> Path | None:
     return None
 
 
-class ModelNotFoundError(LookupError):
+class ModelNotFoundError(NotFoundError):
     pass
 
 

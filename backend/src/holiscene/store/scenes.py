@@ -31,6 +31,7 @@ from sqlalchemy import Engine, select, update
 from sqlalchemy.orm import Session
 
 from ..core.db import without_transaction
+from ..core.errors import DomainError, NotFoundError
 from ..editing.edits import (
     apply_edits,
     describe_edits,
@@ -52,14 +53,26 @@ _EDITS = TypeAdapter(list[Edit])
 RevisionHook = Callable[[Session, int], None]
 
 
-class SceneNotFoundError(LookupError):
+class SceneNotFoundError(NotFoundError):
     pass
 
 
-class RevisionConflictError(Exception):
+class RevisionConflictError(DomainError):
+    """A save based on a revision that is no longer the newest (HTTP 409); the client reads
+    the current revision from the answer."""
+
+    status = 409
+
     def __init__(self, current_revision: int) -> None:
         super().__init__(f"the scene is at revision {current_revision}")
         self.current_revision = current_revision
+
+    def detail(self) -> dict[str, object]:
+        return {
+            "message": "this scene changed since you loaded it (someone else saved first); "
+            "reload to see their changes, then apply yours again",
+            "current_revision": self.current_revision,
+        }
 
 
 class SceneChangedError(RevisionConflictError):

@@ -22,6 +22,7 @@ from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session, aliased
 
 from ..core.db import retrying_transaction, without_transaction
+from ..core.errors import DomainError, NotFoundError
 from ..core.passwords import check_password, hash_password, needs_rehash, verify_password
 from ..editing.workflow_rules import RESERVED_NAMES, ROLES
 from .clock import as_utc, utcnow
@@ -33,7 +34,7 @@ LAST_SEEN_STEP = timedelta(seconds=30)
 NAME_PATTERN = re.compile(r"^[a-z0-9][a-z0-9_.-]{0,63}$")
 
 
-class UserError(ValueError):
+class UserError(DomainError, ValueError):
     """A request about users that cannot be done (HTTP 422 or 409, see `status`)."""
 
     def __init__(self, message: str, status: int = 422) -> None:
@@ -41,7 +42,7 @@ class UserError(ValueError):
         self.status = status
 
 
-class UserNotFoundError(LookupError):
+class UserNotFoundError(NotFoundError):
     pass
 
 

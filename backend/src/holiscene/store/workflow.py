@@ -29,6 +29,7 @@ from holiscene_schema import (
 from sqlalchemy import Engine, func, select, update
 from sqlalchemy.orm import Session
 
+from ..core.errors import DomainError, NotFoundError
 from ..editing import workflow_rules
 from ..editing.workflow_rules import STATES, Actor, Transition, WorkflowError
 from .clock import as_utc
@@ -39,11 +40,11 @@ from .tables import SceneEventRow, SceneRow
 _ACTIONS = get_args(WorkflowAction)
 
 
-class NoSceneWaitingError(LookupError):
+class NoSceneWaitingError(NotFoundError):
     """Next scene found nothing to annotate (HTTP 404 with the message)."""
 
 
-class WorkflowCommentError(ValueError):
+class WorkflowCommentError(DomainError, ValueError):
     """A rejection without a comment (HTTP 422)."""
 
 
