@@ -9,11 +9,12 @@ import type { ObjectEditor } from "../../state/objectEditor";
 import { plural, type SceneSession } from "../../state/sceneSession";
 import { isStructural } from "../../state/supportGraph";
 import { frameFor } from "../photo/arrowGeometry";
-import { type Offer, offerLabel, offersOf, openOffers } from "./detectionOffers";
+import { type Offer, offerLabel } from "./detectionOffers";
 import { addingText, addOffers } from "./suggestions/addOffers";
-import { detectorBar } from "./suggestions/detectorBar";
+import { type DetectorBarActions, detectorBar } from "./suggestions/detectorBar";
 import { foundText, runDetector } from "./suggestions/detectorRun";
 import { offerBoxes } from "./suggestions/offerBoxes";
+import { OfferState } from "./suggestions/offerState";
 import { suggestionKeys } from "./suggestions/suggestionKeys";
 import "./objectSuggestions.css";
 
@@ -38,50 +39,43 @@ export function mountObjectSuggestions(
   if (!svg) throw new Error("mount the photo view before the object suggestions");
   const { width, height } = session.doc.scene.image;
 
-  let offers: Offer[] = []; // this run's boxes, best first
-  let rejected: Offer[] = [];
-  let selected: string | null = null;
+  const state = new OfferState(() => session.objects);
   let busy: Busy = null;
   let status = "";
   let failed = false;
   let disposed = false;
 
-  /** The offers still open: not accepted (now objects), rejected, or over an object. */
-  const shown = () => openOffers(offers, session.objects, rejected);
-  const selectedOffer = () => shown().find((o) => o.key === selected) ?? null;
+  const shown = () => state.open();
   const onSelected = (act: (offer: Offer) => void) => () => {
-    const offer = selectedOffer();
+    const offer = state.selectedOffer();
     if (offer) act(offer);
     else say("Click a suggested box first.");
   };
-  const acceptSelected = onSelected((o) => void accept([o]));
-  const rejectSelected = onSelected((o) => reject([o]));
-  const acceptAll = () => void accept(shown());
+  const actions: DetectorBarActions = {
+    detect: () => void detect(),
+    acceptSelected: onSelected((o) => void accept([o])),
+    rejectSelected: onSelected((o) => reject([o])),
+    acceptAll: () => void accept(shown()),
+    rejectAll: () => reject(shown()),
+  };
 
   const boxes = offerBoxes(svg, frameFor(width, height), width, (key) => {
-    selected = key;
+    state.selected = key;
     draw();
   });
-  const bar = detectorBar({
-    detect: () => void detect(),
-    acceptSelected,
-    rejectSelected,
-    acceptAll,
-    rejectAll: () => reject(shown()),
-  });
+  const bar = detectorBar(actions);
   photoBody.insertBefore(bar.element, photoBody.querySelector(".photo-box"));
 
   const draw = () => {
-    const open = shown();
-    if (selected && !open.some((o) => o.key === selected)) selected = open[0]?.key ?? null;
-    boxes.draw(open, selected);
+    const open = state.keepSelection();
+    boxes.draw(open, state.selected);
     bar.show({
       busy: busy !== null,
       status,
       failed,
       editable: session.editable,
       open: open.length,
-      chosen: selectedOffer(),
+      chosen: state.selectedOffer(),
     });
   };
 
@@ -101,11 +95,9 @@ export function mountObjectSuggestions(
         say("Detecting objects…");
       });
       if (disposed) return;
-      offers = offersOf(run.boxes);
-      rejected = [];
-      selected = shown()[0]?.key ?? null;
+      state.reset(run.boxes);
       busy = null;
-      say(foundText(offers.length, shown().length, run));
+      say(foundText(state.found, shown().length, run));
     } catch (error) {
       if (disposed) return;
       busy = null;
@@ -136,7 +128,7 @@ export function mountObjectSuggestions(
 
   const reject = (chosen: Offer[]) => {
     if (busy !== null || chosen.length === 0) return;
-    rejected = [...rejected, ...chosen];
+    state.reject(chosen);
     const left = shown().length;
     const what =
       chosen.length === 1 ? offerLabel(chosen[0] as Offer) : plural(chosen.length, "suggestion");
@@ -144,10 +136,7 @@ export function mountObjectSuggestions(
   };
 
   const removeKeys = suggestionKeys({
-    detect: () => void detect(),
-    acceptSelected,
-    acceptAll,
-    rejectSelected,
+    ...actions,
     idle: () => busy === null,
     hasOffers: () => shown().length > 0,
     editable: () => session.editable,

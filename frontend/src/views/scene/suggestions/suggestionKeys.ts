@@ -1,14 +1,16 @@
 // The keys of object suggestions: detect, accept the selected box, accept all, reject.
 import { registerShortcut } from "../../../shortcuts";
-import { ACCEPT_ALL_KEY, ACCEPT_KEY, DETECT_KEY, REJECT_KEY } from "./detectorBar";
+import {
+  ACCEPT_ALL_KEY,
+  ACCEPT_KEY,
+  DETECT_KEY,
+  type DetectorBarActions,
+  REJECT_KEY,
+} from "./detectorBar";
 
 const SCOPE = "Object suggestions";
 
-export interface SuggestionKeyInputs {
-  detect(): void;
-  acceptSelected(): void;
-  acceptAll(): void;
-  rejectSelected(): void;
+export interface SuggestionKeyInputs extends DetectorBarActions {
   /** Nothing is loading, running or being added. */
   idle(): boolean;
   /** There are boxes to act on. */
