@@ -21,7 +21,9 @@ export function maskImageUrl(mask: Mask, bits: Uint8Array, [r, g, b]: Rgb): stri
   const canvas = document.createElement("canvas");
   canvas.width = Math.max(1, width);
   canvas.height = Math.max(1, height);
-  const context = canvas.getContext("2d");
+  // A canvas kept in main memory: encoding a GPU-backed one waits for a read-back, 10-190 ms
+  // per mask in headless Chromium, most of an object edit's redraw.
+  const context = canvas.getContext("2d", { willReadFrequently: true });
   if (!context || width === 0 || height === 0) return canvas.toDataURL();
   const image = context.createImageData(width, height);
   bits.forEach((bit, i) => {
