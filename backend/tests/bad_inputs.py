@@ -40,9 +40,9 @@ BAD_DETECTIONS: dict[str, tuple[bytes, str]] = {
         json.dumps([{"bbox": [800, 10, 900, 100], "class": "bed"}]).encode(),
         "outside",
     ),
-    "unknown_class": (
-        json.dumps([{"bbox": [10, 10, 100, 100], "class": "spaceship"}]).encode(),
-        "unknown class",
+    "empty_class": (
+        json.dumps([{"bbox": [10, 10, 100, 100], "class": " "}]).encode(),
+        "non-empty string",
     ),
     "not_json": (b"[{bbox: oops", "not valid JSON"),
 }

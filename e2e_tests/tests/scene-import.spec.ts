@@ -1,6 +1,6 @@
 // User story: an annotator imports a photo with its intrinsics and detections, follows the
 // pipeline's progress and opens the new scene.
-import { mkdirSync, readFileSync } from "node:fs";
+import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import path from "node:path";
 import type { ImportResult, Job, SceneSummary } from "@holiscene/schema";
 import { expect, test } from "@playwright/test";
@@ -106,4 +106,34 @@ test("a scene without objects says so and shows the pipeline's warnings", async 
   ).toContainText("no cam_K.txt");
   // A note that is no problem (the room's scale and where it came from) is not a warning.
   await expect(warnings).not.toContainText("scale from");
+});
+
+test("a dataset's own class names: a class map maps them, an unknown one is kept and flagged", async ({
+  page,
+}, testInfo) => {
+  const dir = testInfo.outputPath("class-names");
+  mkdirSync(dir, { recursive: true });
+  const boxes = [
+    { bbox: [40, 60, 300, 400], class: "doona" }, // the class map makes it a bed
+    { bbox: [320, 200, 420, 330], class: "gadget" }, // in no vocabulary
+  ];
+  writeFileSync(path.join(dir, "detections.json"), JSON.stringify(boxes));
+  writeFileSync(path.join(dir, "class_map.json"), JSON.stringify({ Doona: "bed" }));
+  await page.goto("/#/");
+  await page.getByTestId("upload-image").setInputFiles(path.join(T3D_5, "img.jpg"));
+  await page.getByTestId("upload-detections").setInputFiles(path.join(dir, "detections.json"));
+  await page.getByTestId("upload-class_map").setInputFiles(path.join(dir, "class_map.json"));
+  await page.getByTestId("upload-name").fill("t3d-5 own class names");
+  await page.getByTestId("upload-submit").click();
+  await expect(page.getByTestId("upload-job-progress")).toHaveAttribute(
+    "data-status",
+    "succeeded",
+    { timeout: 120_000 },
+  );
+  await page.getByTestId("upload-open").click();
+  await expect(page.getByTestId("object-row-o0")).toContainText("bed");
+  await expect(page.getByTestId("object-row-o1")).toContainText("otherprop");
+  const warning = page.getByTestId("pipeline-warning").filter({ hasText: "gadget" });
+  await expect(warning).toContainText("class_map.json");
+  await page.screenshot({ path: testInfo.outputPath("class-names.png"), fullPage: true });
 });

@@ -66,8 +66,12 @@ from .api import (
 from .classes import (
     NYU40_CLASSES,
     STRUCTURAL_CLASSES,
+    UNKNOWN_CLASS_FALLBACK,
+    ClassMapping,
     Nyu40Class,
     UnknownClassError,
+    class_key,
+    map_class_name,
     normalise_class_name,
 )
 from .scene import (
@@ -95,9 +99,11 @@ __all__ = [
     "NYU40_CLASSES",
     "STRUCTURAL_CLASSES",
     "STRUCTURAL_SUPPORTERS",
+    "UNKNOWN_CLASS_FALLBACK",
     "AddObject",
     "Box3D",
     "Camera",
+    "ClassMapping",
     "Conflict",
     "ConflictDetail",
     "CurrentUser",
@@ -171,6 +177,8 @@ __all__ = [
     "ViewerInfo",
     "WorkflowAction",
     "WorkflowEvent",
+    "class_key",
+    "map_class_name",
     "normalise_class_name",
     "support_graph_problems",
 ]

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import Literal, get_args
 
 # Canonical spellings: snake_case, "refrigerator" spelled correctly (NYU's own list has
@@ -20,58 +22,128 @@ NYU40_CLASSES: tuple[str, ...] = get_args(Nyu40Class)
 # Classes that are part of the room itself: they support objects and are never supported.
 STRUCTURAL_CLASSES: frozenset[str] = frozenset({"wall", "floor", "ceiling"})
 
-# Names used by SUN RGB-D, NYU v2 and Total3DUnderstanding's demo inputs, mapped to NYU-40.
-# "void" marks a region of no class in SUN RGB-D; it becomes a generic prop so no box is lost.
+# Names used by SUN RGB-D, NYU v2, COCO-style lists and Total3DUnderstanding's demo inputs,
+# mapped to NYU-40 (docs/importing.md). "void" marks a region of no class in SUN RGB-D; it
+# becomes a generic prop so no box is lost. A name found nowhere here becomes `otherprop` on
+# import, with the name kept (map_class_name); a user's class map overrides all of these.
+_ALIASES_BY_CLASS: dict[str, tuple[str, ...]] = {
+    "cabinet": (
+        "cabinets", "cupboard", "file_cabinet", "filing_cabinet", "kitchen_cabinet",
+        "kitchen_cabinets", "bathroom_cabinet", "wall_cabinet", "tv_cabinet", "locker",
+    ),
+    "bed": ("double_bed", "single_bed", "bunk_bed", "twin_bed", "queen_bed", "king_bed"),
+    "chair": (
+        "armchair", "arm_chair", "office_chair", "desk_chair", "dining_chair", "stool",
+        "bar_stool", "sofa_chair", "rocking_chair", "folding_chair", "high_chair", "seat",
+    ),
+    "sofa": ("couch", "loveseat", "love_seat", "sectional", "sectional_sofa", "futon", "settee"),
+    "table": (
+        "coffee_table", "endtable", "end_table", "side_table", "dining_table", "kitchen_table",
+        "round_table", "conference_table", "folding_table", "tea_table", "console_table",
+        "dinning_table",
+    ),
+    "door": ("doors", "closet_door", "sliding_door", "glass_door"),
+    "window": ("windows", "window_frame", "skylight"),
+    "bookshelf": ("bookcase", "book_shelf", "bookshelves", "book_case"),
+    "picture": (
+        "pictures", "painting", "poster", "photo", "photograph", "picture_frame", "frame",
+        "framed_picture", "artwork", "wall_art",
+    ),
+    "counter": ("kitchen_counter", "bathroom_counter", "countertop", "kitchen_island", "island"),
+    "blinds": ("blind", "window_blind", "window_blinds", "window_shade", "shade", "shades"),
+    "desk": ("computer_desk", "office_desk", "writing_desk", "study_desk"),
+    "shelves": ("shelf", "wall_shelf", "shelving", "rack_shelf"),
+    "curtain": ("curtains", "drape", "drapes", "drapery"),
+    "dresser": ("chest_of_drawers", "drawers", "chest", "bureau", "vanity"),
+    "pillow": ("pillows", "cushion", "cushions", "throw_pillow", "sofa_pillow"),
+    "mirror": ("dresser_mirror", "bathroom_mirror", "wall_mirror", "mirrors"),
+    "floor_mat": ("mat", "rug", "carpet", "bath_mat", "doormat", "door_mat", "floor_rug"),
+    "clothes": ("clothing", "cloth", "shirt", "jacket", "coat", "dress", "pants", "jeans"),
+    "books": ("book", "notebook", "magazine", "magazines", "binder", "folder"),
+    "refrigerator": ("refridgerator", "fridge", "mini_fridge", "freezer"),
+    "television": (
+        "tv", "monitor", "computer_monitor", "screen", "tv_screen", "television_set",
+        "flat_screen_tv",
+    ),
+    "paper": ("papers", "newspaper", "document", "documents", "envelope"),
+    "towel": ("towels", "hand_towel", "bath_towel", "paper_towel"),
+    "shower_curtain": ("shower_curtains",),
+    "box": ("boxes", "cardboard_box", "carton", "storage_box", "shoe_box", "package"),
+    "whiteboard": ("white_board", "blackboard", "chalkboard", "board", "bulletin_board"),
+    "person": ("people", "man", "woman", "child", "boy", "girl", "human"),
+    "night_stand": ("nightstand", "night_table", "bedside_table", "bed_side_table"),
+    "toilet": ("toilets", "urinal"),
+    "sink": ("sinks", "bathroom_sink", "kitchen_sink", "basin", "wash_basin"),
+    "lamp": ("lamps", "table_lamp", "floor_lamp", "desk_lamp", "bedside_lamp", "lampshade"),
+    "bathtub": ("bath_tub", "tub", "bath"),
+    "bag": ("bags", "backpack", "handbag", "purse", "suitcase", "luggage", "paper_bag"),
+    "otherstructure": (
+        "column", "pillar", "beam", "stairs", "staircase", "stair", "railing", "fireplace",
+        "radiator", "vent", "duct", "pipe", "ledge", "step",
+    ),
+    "otherfurniture": (
+        "ottoman", "bench", "piano", "stand", "tv_stand", "rack", "coat_rack", "cart",
+        "ironing_board", "footstool", "crib", "wardrobe", "closet", "armoire", "sideboard",
+        "hutch", "stove", "oven", "dishwasher", "washing_machine", "dryer",
+    ),
+    "otherprop": (
+        "void", "basket", "bin", "trash_can", "garbage_bin", "recycle_bin", "waste_bin",
+        "wastebasket", "clock", "fan", "plant", "potted_plant", "flower", "flowers", "vase",
+        "laptop", "computer", "keyboard", "mouse", "speaker", "printer", "phone", "telephone",
+        "remote", "remote_control", "cup", "mug", "glass", "bottle", "bowl", "plate", "jar",
+        "can", "pot", "pan", "kettle", "microwave", "toaster", "candle", "toy", "stuffed_animal",
+        "tissue_box", "soap", "cellphone", "cell_phone", "light", "ceiling_light", "chandelier",
+        "container", "tray", "decoration", "ornament", "statue", "sculpture", "globe",
+        "umbrella", "shoe", "shoes", "hat", "blanket", "scissors", "pen", "pencil", "glasses",
+    ),
+}  # fmt: skip
+
 CLASS_ALIASES: dict[str, str] = {
-    "refridgerator": "refrigerator",
-    "fridge": "refrigerator",
-    "night_stand": "night_stand",
-    "nightstand": "night_stand",
-    "dresser_mirror": "mirror",
-    "ottoman": "otherfurniture",
-    "bookcase": "bookshelf",
-    "book": "books",
-    "tv": "television",
-    "monitor": "television",
-    "sofa_chair": "chair",
-    "stool": "chair",
-    "coffee_table": "table",
-    "endtable": "table",
-    "end_table": "table",
-    "dining_table": "table",
-    "garbage_bin": "otherprop",
-    "recycle_bin": "otherprop",
-    "plant": "otherprop",
-    "laptop": "otherprop",
-    "computer": "otherprop",
-    "cup": "otherprop",
-    "bottle": "otherprop",
-    "bowl": "otherprop",
-    "vase": "otherprop",
-    "shelf": "shelves",
-    "kitchen_counter": "counter",
-    "bathroom_counter": "counter",
-    "file_cabinet": "cabinet",
-    "kitchen_cabinet": "cabinet",
-    "bench": "otherfurniture",
-    "rug": "floor_mat",
-    "carpet": "floor_mat",
-    "void": "otherprop",
+    alias: cls for cls, aliases in _ALIASES_BY_CLASS.items() for alias in aliases
 }
+
+# What a name found nowhere becomes on import (its own name is kept as `source_class`).
+UNKNOWN_CLASS_FALLBACK = "otherprop"
 
 
 class UnknownClassError(ValueError):
     """A class name that is neither NYU-40 nor a known alias of one."""
 
 
+def class_key(name: str) -> str:
+    """A name as the lookups compare it: trimmed, lower case, words joined by `_`."""
+    return "_".join(name.strip().lower().replace("-", " ").replace("_", " ").split())
+
+
 def normalise_class_name(name: str) -> str:
-    """Map a dataset's class name to its NYU-40 class; raise UnknownClassError otherwise."""
-    key = name.strip().lower().replace(" ", "_").replace("-", "_")
-    if key in NYU40_CLASSES:
-        return key
-    if key in CLASS_ALIASES:
-        return CLASS_ALIASES[key]
+    """Map a dataset's class name to its NYU-40 class; raise UnknownClassError otherwise.
+    A plural of a known name ("chairs") is known too."""
+    key = class_key(name)
+    for candidate in (key, key[:-1] if key.endswith("s") else None):
+        if candidate in NYU40_CLASSES:
+            return candidate
+        if candidate in CLASS_ALIASES:
+            return CLASS_ALIASES[candidate]
     raise UnknownClassError(
         f"unknown class name {name!r}: use an NYU-40 class (e.g. 'bed', 'night_stand') "
         "or a known SUN RGB-D alias"
     )
+
+
+@dataclass(frozen=True)
+class ClassMapping:
+    cls: str
+    known: bool  # False: the name was found nowhere and became UNKNOWN_CLASS_FALLBACK
+
+
+def map_class_name(name: str, class_map: Mapping[str, str] | None = None) -> ClassMapping:
+    """An imported name's NYU-40 class: the user's class map first (keys compared as
+    class_key does, values NYU-40 names), then NYU-40 and its aliases, else `otherprop`
+    (known=False), so one odd name never refuses a whole file."""
+    key = class_key(name)
+    if class_map and key in class_map:
+        return ClassMapping(class_map[key], True)
+    try:
+        return ClassMapping(normalise_class_name(name), True)
+    except UnknownClassError:
+        return ClassMapping(UNKNOWN_CLASS_FALLBACK, False)

@@ -8,7 +8,15 @@ from pathlib import Path
 import pytest
 from holiscene.inputs import read_input_folder
 from holiscene.services.reconstruction import reconstruct_scene
-from holiscene_schema import NYU40_CLASSES, Scene, normalise_class_name, support_graph_problems
+from holiscene_schema import (
+    NYU40_CLASSES,
+    ClassMapping,
+    Scene,
+    map_class_name,
+    normalise_class_name,
+    support_graph_problems,
+)
+from holiscene_schema.classes import CLASS_ALIASES
 from holiscene_schema.export import SCHEMA_DIR, main, render_schemas
 from jsonschema import Draft202012Validator
 from pydantic import ValidationError
@@ -74,3 +82,16 @@ def test_class_names_map_to_nyu40() -> None:
     assert len(NYU40_CLASSES) == 40
     with pytest.raises(ValueError, match="unknown class name"):
         normalise_class_name("spaceship")
+
+
+def test_imported_names_map_leniently_and_a_user_map_wins() -> None:
+    assert map_class_name("couch") == ClassMapping("sofa", known=True)
+    assert map_class_name("Night-Stand") == ClassMapping("night_stand", known=True)
+    assert map_class_name("lamps") == ClassMapping("lamp", known=True)  # a plural
+    assert map_class_name("books") == ClassMapping("books", known=True)  # NYU-40's own plural
+    assert map_class_name("spaceship") == ClassMapping("otherprop", known=False)
+    assert map_class_name("Space Ship", {"space_ship": "lamp"}) == ClassMapping("lamp", True)
+    assert map_class_name("couch", {"couch": "chair"}) == ClassMapping("chair", True)
+    # Every alias names a real NYU-40 class, and no alias hides an NYU-40 name.
+    assert set(CLASS_ALIASES.values()) <= set(NYU40_CLASSES)
+    assert not set(CLASS_ALIASES) & set(NYU40_CLASSES)

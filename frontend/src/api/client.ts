@@ -81,6 +81,8 @@ export interface SceneImport {
   image: File;
   camK?: File | null;
   detections?: File | null;
+  /** The user's names for the boxes' classes (read only with detections). */
+  classMap?: File | null;
   name?: string;
 }
 
@@ -94,6 +96,7 @@ export const api = {
     form.append("image", input.image);
     if (input.camK) form.append("cam_k", input.camK);
     if (input.detections) form.append("detections", input.detections);
+    if (input.classMap) form.append("class_map", input.classMap);
     if (input.name?.trim()) form.append("name", input.name.trim());
     return request<ImportResult>("/scenes", { method: "POST", body: form });
   },

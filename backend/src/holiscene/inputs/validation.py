@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from holiscene_schema import UnknownClassError, normalise_class_name
+from holiscene_schema import UnknownClassError, class_key, map_class_name, normalise_class_name
 from PIL import Image, UnidentifiedImageError
 
 from ..core.errors import DomainError
@@ -102,8 +102,32 @@ def parse_intrinsics(text: str) -> np.ndarray:
     return K
 
 
-def parse_detections(data: bytes, width: int, height: int) -> list[Detection]:
-    """detections.json: [{"bbox": [x1, y1, x2, y2], "class": NAME}, ...] in pixels."""
+def parse_class_map(data: bytes) -> dict[str, str]:
+    """class_map.json: {"dataset's name": "NYU-40 class", ...}, the user's own mapping, which
+    wins over the built-in aliases (keys compared as holiscene_schema.class_key does)."""
+    try:
+        items = json.loads(data)
+    except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as exc:
+        raise InputError(f"class_map.json is not valid JSON: {exc}") from exc
+    if not isinstance(items, dict):
+        raise InputError('class_map.json must be an object {"name": "NYU-40 class", ...}')
+    mapping: dict[str, str] = {}
+    for name, target in items.items():
+        if not isinstance(target, str):
+            raise InputError(f"class_map.json: {name!r} must map to a class name (a string)")
+        try:
+            mapping[class_key(name)] = normalise_class_name(target)
+        except UnknownClassError as exc:
+            raise InputError(f"class_map.json: {name!r} maps to {exc}") from exc
+    return mapping
+
+
+def parse_detections(
+    data: bytes, width: int, height: int, class_map: dict[str, str] | None = None
+) -> list[Detection]:
+    """detections.json: [{"bbox": [x1, y1, x2, y2], "class": NAME}, ...] in pixels. A NAME
+    in no vocabulary becomes otherprop with the name kept, never a refusal; an item may also
+    carry "source_class", the name it had before (the store writes it so)."""
     try:
         items = json.loads(data)
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
@@ -112,10 +136,14 @@ def parse_detections(data: bytes, width: int, height: int) -> list[Detection]:
         raise InputError("detections.json is nested too deeply to be a list of boxes") from exc
     if not isinstance(items, list):
         raise InputError('detections.json must be a list of {"bbox": [...], "class": ...}')
-    return [_parse_detection(i, item, width, height) for i, item in enumerate(items)]
+    return [
+        _parse_detection(i, item, width, height, class_map or {}) for i, item in enumerate(items)
+    ]
 
 
-def _parse_detection(index: int, item: Any, width: int, height: int) -> Detection:
+def _parse_detection(
+    index: int, item: Any, width: int, height: int, class_map: dict[str, str]
+) -> Detection:
     where = f"detections.json item {index}"
     if not isinstance(item, dict) or "bbox" not in item or "class" not in item:
         raise InputError(f"{where} must be an object with 'bbox' and 'class'")
@@ -133,14 +161,14 @@ def _parse_detection(index: int, item: Any, width: int, height: int) -> Detectio
     tol = BOX_TOLERANCE_PX
     if x1 < -tol or y1 < -tol or x2 > width + tol or y2 > height + tol:
         raise InputError(f"{where}: box {bbox} lies outside the {width}x{height} image")
-    if not isinstance(name, str):
-        raise InputError(f"{where}: 'class' must be a string")
-    try:
-        cls = normalise_class_name(name)
-    except UnknownClassError as exc:
-        raise InputError(f"{where}: {exc}") from exc
+    if not isinstance(name, str) or not name.strip():
+        raise InputError(f"{where}: 'class' must be a class name (a non-empty string)")
+    source = item.get("source_class", name)
+    if not isinstance(source, str) or not source.strip():
+        raise InputError(f"{where}: 'source_class' must be a non-empty string")
+    mapped = map_class_name(name, class_map)
     clipped = (max(0.0, x1), max(0.0, y1), min(float(width), x2), min(float(height), y2))
-    return Detection(cls=cls, bbox=clipped, source_class=name)
+    return Detection(cls=mapped.cls, bbox=clipped, source_class=source, class_known=mapped.known)
 
 
 @dataclass(frozen=True)
@@ -153,7 +181,8 @@ class InputFiles:
 
 
 def read_input_folder(folder: Path) -> InputFiles:
-    """Read img.jpg or img.png, and cam_K.txt and detections.json when present."""
+    """Read img.jpg or img.png, and cam_K.txt, detections.json and class_map.json (the
+    user's own class names, see parse_class_map) when present."""
     if not folder.is_dir():
         raise InputError(f"{folder} is not a folder")
     images = [folder / n for n in ("img.jpg", "img.jpeg", "img.png") if (folder / n).is_file()]
@@ -161,9 +190,11 @@ def read_input_folder(folder: Path) -> InputFiles:
         raise InputError(f"{folder} holds no img.jpg or img.png")
     photo = load_photo(images[0].read_bytes())
     k_file, det_file = folder / "cam_K.txt", folder / "detections.json"
+    map_file = folder / "class_map.json"
     K = parse_intrinsics(k_file.read_text()) if k_file.is_file() else None
+    class_map = parse_class_map(map_file.read_bytes()) if map_file.is_file() else None
     detections = (
-        parse_detections(det_file.read_bytes(), photo.width, photo.height)
+        parse_detections(det_file.read_bytes(), photo.width, photo.height, class_map)
         if det_file.is_file()
         else None
     )

@@ -37,6 +37,8 @@ class Detection:
     cls: str
     bbox: tuple[float, float, float, float]
     source_class: str | None = None
+    # False when the name was in no vocabulary and became otherprop (the stage warns).
+    class_known: bool = True
 
 
 @dataclass(frozen=True)

@@ -20,6 +20,7 @@ from holiscene_schema import (
     ModelKind,
     RetrainRequest,
     Scene,
+    StageRun,
 )
 
 from ..core.db import make_engine, migrate
@@ -30,7 +31,7 @@ from ..inputs import InputFiles, read_input_folder
 from ..learning.detector import runtime as detector_runtime
 from ..learning.training_api import METRICS_FILE
 from ..pipeline import DEFAULT_STAGES, KEPT_LAYOUT_STAGES, PLACEMENT_STAGES
-from ..pipeline.stages.detections import objects_from_detections
+from ..pipeline.stages.detections import objects_from_detections, unknown_class_note
 from ..pipeline.stages.restore import has_hand_set_layout
 from ..store import model_registry
 from ..store.files import SceneFiles
@@ -368,4 +369,7 @@ def imported_scene(inputs: InputFiles, name: str) -> Scene:
     image = ImageInfo(
         file=f"img{inputs.photo.suffix}", width=inputs.photo.width, height=inputs.photo.height
     )
-    return Scene(name=name, image=image, objects=objects)
+    unknown = unknown_class_note(inputs.detections or [])
+    # The import's own note, shown with the pipeline's warnings until a run replaces them.
+    stages = [StageRun(name="import", seconds=0.0, note=unknown, warning=True)] if unknown else []
+    return Scene(name=name, image=image, objects=objects, stages=stages)

@@ -165,8 +165,15 @@ class SceneStore:
                 rows = "\n".join(" ".join(f"{v:.6f}" for v in row) for row in inputs.K)
                 (folder / "cam_K.txt").write_text(rows + "\n")
             if inputs.detections is not None:
+                # The class as mapped on import (a user's class map may have chosen it; a name
+                # no vocabulary knew stays as it came, to be flagged again) and the name it
+                # came with: a pipeline re-run reads the same classes back.
                 boxes = [
-                    {"bbox": list(d.bbox), "class": d.source_class or d.cls}
+                    {
+                        "bbox": list(d.bbox),
+                        "class": d.cls if d.class_known else (d.source_class or d.cls),
+                        "source_class": d.source_class or d.cls,
+                    }
                     for d in inputs.detections
                 ]
                 (folder / "detections.json").write_text(json.dumps(boxes, indent=1))

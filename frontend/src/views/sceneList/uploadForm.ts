@@ -1,4 +1,5 @@
-// Import a photo (with optional cam_K.txt and detections.json) and follow its pipeline job.
+// Import a photo (with optional cam_K.txt, detections.json and class_map.json) and follow its
+// pipeline job.
 import type { SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { pollJob } from "../../api/jobs";
@@ -24,6 +25,12 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
     ".json,application/json",
     "optional detections.json: [{bbox, class}]",
   );
+  const classMap = fileField(
+    "Class names",
+    "class_map",
+    ".json,application/json",
+    'optional class_map.json: {"your name": "NYU-40 class"}',
+  );
   const name = el("input", {
     testid: "upload-name",
     attrs: { type: "text", name: "name", placeholder: "defaults to the file name", maxlength: 200 },
@@ -44,6 +51,7 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
       image.field,
       camK.field,
       detections.field,
+      classMap.field,
       labelledField("Name", name),
     ),
     el("div", { className: "form-actions" }, submit),
@@ -61,6 +69,7 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
         image: photo,
         camK: camK.input.files?.[0] ?? null,
         detections: detections.input.files?.[0] ?? null,
+        classMap: classMap.input.files?.[0] ?? null,
         name: name.value,
       });
       const scene = imported.scene;

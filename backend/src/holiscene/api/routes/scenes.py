@@ -20,7 +20,14 @@ from holiscene_schema import (
 )
 
 from ...export.archive import file_stem
-from ...inputs import InputError, InputFiles, load_photo, parse_detections, parse_intrinsics
+from ...inputs import (
+    InputError,
+    InputFiles,
+    load_photo,
+    parse_class_map,
+    parse_detections,
+    parse_intrinsics,
+)
 from ...store.scenes import SceneNotFoundError
 from ..deps import AnnotatorDep, UserDep, WorkbenchDep, author_of
 from ..permissions import with_edit_permission
@@ -65,6 +72,10 @@ async def import_scene(
     detections: Annotated[
         UploadFile | None, File(description="detections.json: 2D boxes and classes")
     ] = None,
+    class_map: Annotated[
+        UploadFile | None,
+        File(description='class_map.json: {"dataset name": "NYU-40 class"}, for the boxes'),
+    ] = None,
     name: Annotated[str | None, Form(max_length=MAX_SCENE_NAME)] = None,
     author: Annotated[str, Form(min_length=1, max_length=64)] = "import",
     run_pipeline: Annotated[bool, Form()] = True,
@@ -81,7 +92,10 @@ async def import_scene(
     boxes = None
     if detections is not None:
         raw = await _read_limited(detections, "detections.json", 8 * 1024 * 1024)
-        boxes = parse_detections(raw, photo.width, photo.height)
+        names = None
+        if class_map is not None:
+            names = parse_class_map(await _read_limited(class_map, "class_map.json", 1024 * 1024))
+        boxes = parse_detections(raw, photo.width, photo.height, names)
     inputs = InputFiles(photo=photo, K=K, detections=boxes)
     # A name from the file name is cut to fit (only a typed name is the user's to shorten).
     from_file = (image.filename or "photo").rsplit(".", 1)[0].strip()[:MAX_SCENE_NAME]

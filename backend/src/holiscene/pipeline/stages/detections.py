@@ -25,6 +25,22 @@ class ObjectsFromDetections(Stage):
         ctx.objects = keep_people_objects(
             objects_from_detections(ctx.detections), ctx.pinned_objects, ctx.removed_objects
         )
+        unknown = unknown_class_note(ctx.detections)
+        if unknown:
+            ctx.notes[self.name] = unknown
+
+
+def unknown_class_note(detections: list[Detection]) -> str | None:
+    """What to tell about class names no vocabulary knew (they became otherprop), or None."""
+    names = sorted({d.source_class or "" for d in detections if not d.class_known})
+    if not names:
+        return None
+    shown = ", ".join(repr(n) for n in names[:8]) + (", ..." if len(names) > 8 else "")
+    return (
+        f"{len(names)} class name(s) are neither NYU-40 nor a known alias and became "
+        f"otherprop (the name is kept on the object): {shown}; a class_map.json beside the "
+        "photo maps them"
+    )
 
 
 def objects_from_detections(detections: list[Detection]) -> list[SceneObject]:

@@ -20,7 +20,7 @@ from ...learning.detector.runtime import (
 from ..base import PipelineBuildError, SceneContext, Stage
 from ..people import keep_people_objects
 from ..registry import register_stage
-from .detections import objects_from_detections
+from .detections import objects_from_detections, unknown_class_note
 
 
 @register_stage
@@ -52,6 +52,9 @@ class ObjectsFromDetector(Stage):
 
     def run(self, ctx: SceneContext) -> None:
         given = objects_from_detections(ctx.detections or [])
+        unknown = unknown_class_note(ctx.detections or [])
+        if unknown:
+            ctx.notes[self.name] = unknown
         if ctx.detections is not None and not self.add_missing:
             ctx.objects = keep_people_objects(given, ctx.pinned_objects, ctx.removed_objects)
             return
