@@ -11,8 +11,15 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from holiscene_schema import UnknownClassError, class_key, map_class_name, normalise_class_name
+from holiscene_schema import (
+    Mask,
+    UnknownClassError,
+    class_key,
+    map_class_name,
+    normalise_class_name,
+)
 from PIL import Image, UnidentifiedImageError
+from pydantic import ValidationError
 
 from ..core.errors import DomainError
 from ..pipeline.base import Detection
@@ -127,7 +134,8 @@ def parse_detections(
 ) -> list[Detection]:
     """detections.json: [{"bbox": [x1, y1, x2, y2], "class": NAME}, ...] in pixels. A NAME
     in no vocabulary becomes otherprop with the name kept, never a refusal; an item may also
-    carry "source_class", the name it had before (the store writes it so)."""
+    carry "source_class", the name it had before (the store writes it so), and "mask", the
+    object's outline as the contract's Mask JSON (a labelled dataset's, kept by the store)."""
     try:
         items = json.loads(data)
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
@@ -168,7 +176,28 @@ def _parse_detection(
         raise InputError(f"{where}: 'source_class' must be a non-empty string")
     mapped = map_class_name(name, class_map)
     clipped = (max(0.0, x1), max(0.0, y1), min(float(width), x2), min(float(height), y2))
-    return Detection(cls=mapped.cls, bbox=clipped, source_class=source, class_known=mapped.known)
+    mask = _parse_mask(where, item["mask"], width, height) if "mask" in item else None
+    return Detection(
+        cls=mapped.cls, bbox=clipped, source_class=source, class_known=mapped.known, mask=mask
+    )
+
+
+def _parse_mask(where: str, data: Any, width: int, height: int) -> Mask:
+    """A box's given mask: the contract's Mask (runs filling the window) with its window
+    inside the image; its source becomes "given" whatever it said."""
+    try:
+        mask = Mask.model_validate({**data, "source": "given"} if isinstance(data, dict) else data)
+    except ValidationError as exc:
+        problem = exc.errors()[0]
+        at = ".".join(str(p) for p in problem["loc"])
+        raise InputError(f"{where}: 'mask' is not a mask ({at}: {problem['msg']})") from exc
+    (x0, y0), (w, h) = mask.origin, mask.size
+    if x0 < 0 or y0 < 0 or w < 1 or h < 1 or x0 + w > width or y0 + h > height:
+        raise InputError(
+            f"{where}: the mask's window (origin {mask.origin}, size {mask.size}) lies outside "
+            f"the {width}x{height} image"
+        )
+    return mask
 
 
 @dataclass(frozen=True)

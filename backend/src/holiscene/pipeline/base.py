@@ -17,6 +17,7 @@ from holiscene_schema import (
     Box3D,
     Camera,
     Layout,
+    Mask,
     MaskSource,
     MeshRef,
     RemovedObject,
@@ -39,6 +40,8 @@ class Detection:
     source_class: str | None = None
     # False when the name was in no vocabulary and became otherprop (the stage warns).
     class_known: bool = True
+    # The object's outline when the dataset gave one (source "given"): the masks stages keep it.
+    mask: Mask | None = None
 
 
 @dataclass(frozen=True)

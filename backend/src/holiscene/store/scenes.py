@@ -168,11 +168,14 @@ class SceneStore:
                 # The class as mapped on import (a user's class map may have chosen it; a name
                 # no vocabulary knew stays as it came, to be flagged again) and the name it
                 # came with: a pipeline re-run reads the same classes back.
+                # A mask given with a box (a labelled dataset's outline) is kept as the
+                # contract's Mask JSON, so a re-run starts from it again.
                 boxes = [
                     {
                         "bbox": list(d.bbox),
                         "class": d.cls if d.class_known else (d.source_class or d.cls),
                         "source_class": d.source_class or d.cls,
+                        **({"mask": d.mask.model_dump(mode="json")} if d.mask else {}),
                     }
                     for d in inputs.detections
                 ]

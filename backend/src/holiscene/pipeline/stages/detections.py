@@ -52,6 +52,7 @@ def objects_from_detections(detections: list[Detection]) -> list[SceneObject]:
             source_class=det.source_class,
             bbox=list(det.bbox),
             source="given",
+            mask=det.mask,
         )
         for index, det in enumerate(detections)
     ]

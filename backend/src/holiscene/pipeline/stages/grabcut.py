@@ -25,7 +25,7 @@ class MasksGrabCut(Stage):
     provides = frozenset({"masks"})
 
     def run(self, ctx: SceneContext) -> None:
-        drawn = people_masks(ctx)
+        drawn = kept_masks(ctx)
         objects = occlusion_order(
             [o for o in required(ctx.objects, "objects") if o.id not in drawn]
         )
@@ -34,7 +34,7 @@ class MasksGrabCut(Stage):
         # front masks' errors backwards and scored worse on the synthetic scenes.
         with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
             cuts = list(pool.map(lambda obj: _cut(ctx.image, obj), objects))
-        # Masks people drew are kept as they are and claim their pixels first.
+        # Masks people drew or a dataset gave are kept as they are and claim their pixels first.
         masks: dict[str, ObjectMask] = dict(drawn)
         taken = np.zeros((ctx.height, ctx.width), dtype=bool)
         for mask in drawn.values():
@@ -66,10 +66,12 @@ def _cut(image: np.ndarray, obj: SceneObject) -> np.ndarray | None:
     return grabcut_in_box(image, obj.bbox)
 
 
-def people_masks(ctx: SceneContext) -> dict[str, ObjectMask]:
-    """The masks people drew (a `set_by_person` mask) on the objects of this run, by id."""
+def kept_masks(ctx: SceneContext) -> dict[str, ObjectMask]:
+    """The masks this run keeps as they are, by object id: the ones people drew (a
+    `set_by_person` mask) and the ones given with the boxes (an imported dataset's outlines,
+    source "given")."""
     return {
         o.id: ObjectMask(decode_mask(o.mask, ctx.width, ctx.height), source=o.mask.source)
         for o in ctx.objects or []
-        if o.mask is not None and "mask" in o.set_by_person
+        if o.mask is not None and ("mask" in o.set_by_person or o.mask.source == "given")
     }
