@@ -145,14 +145,16 @@ def parse_detections(
     if not isinstance(items, list):
         raise InputError('detections.json must be a list of {"bbox": [...], "class": ...}')
     return [
-        _parse_detection(i, item, width, height, class_map or {}) for i, item in enumerate(items)
+        detection_from_item(f"detections.json item {i}", item, width, height, class_map or {})
+        for i, item in enumerate(items)
     ]
 
 
-def _parse_detection(
-    index: int, item: Any, width: int, height: int, class_map: dict[str, str]
+def detection_from_item(
+    where: str, item: Any, width: int, height: int, class_map: dict[str, str]
 ) -> Detection:
-    where = f"detections.json item {index}"
+    """One detections.json item checked (`where` names it in the messages); the dataset
+    readers build their boxes through it too."""
     if not isinstance(item, dict) or "bbox" not in item or "class" not in item:
         raise InputError(f"{where} must be an object with 'bbox' and 'class'")
     bbox, name = item["bbox"], item["class"]

@@ -1,0 +1,140 @@
+"""COCO instance files: polygons, both RLE forms, crowd regions, class names, and bad items
+refused one by one."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from holiscene.export.coco import coco_rle
+from holiscene.inputs.datasets import dataset_items
+from holiscene.inputs.datasets.coco import decode_rle_string, encode_rle_string, rle_pixels
+from holiscene.segmentation.rle import decode_mask
+
+from .files import HEIGHT, WIDTH, coco_file, write_json
+
+
+def _block(x0: int, y0: int, x1: int, y1: int) -> np.ndarray:
+    mask = np.zeros((HEIGHT, WIDTH), dtype=bool)
+    mask[y0:y1, x0:x1] = True
+    return mask
+
+
+def test_the_string_form_of_rle_counts_round_trips() -> None:
+    assert encode_rle_string([5, 3]) == "53"
+    assert decode_rle_string("53") == [5, 3]
+    # From the fourth count on, the difference to the count two before is written (here -1).
+    assert encode_rle_string([1, 2, 3, 1]) == "123O"
+    rng = np.random.default_rng(1)
+    counts = [int(c) for c in rng.integers(0, 5000, 200)]
+    assert decode_rle_string(encode_rle_string(counts)) == counts
+
+
+def test_polygons_and_both_rle_forms_become_given_masks(tmp_path: Path) -> None:
+    block = _block(10, 20, 40, 50)
+    rle = coco_rle(_block(50, 5, 90, 30))
+    compressed = {**rle, "counts": encode_rle_string(rle["counts"])}
+    path = coco_file(
+        tmp_path,
+        [
+            {
+                "id": 1,
+                "image_id": 1,
+                "category_id": 1,
+                "bbox": [10, 20, 30, 30],
+                "iscrowd": 0,
+                "segmentation": [[10, 20, 39, 20, 39, 49, 10, 49]],
+            },
+            {
+                "id": 2,
+                "image_id": 1,
+                "category_id": 2,
+                "bbox": [50, 5, 40, 25],
+                "segmentation": rle,
+            },
+            {
+                "id": 3,
+                "image_id": 1,
+                "category_id": 3,
+                "bbox": [50, 5, 40, 25],
+                "segmentation": compressed,
+            },
+            {
+                "id": 4,
+                "image_id": 1,
+                "category_id": 1,
+                "bbox": [0, 0, 5, 5],
+                "iscrowd": 1,
+                "segmentation": coco_rle(_block(0, 0, 5, 5)),
+            },
+        ],
+    )
+    (item,) = dataset_items(path)
+    assert item.error is None and item.inputs is not None
+    detections = item.inputs.detections or []
+    assert [d.cls for d in detections] == ["sofa", "otherprop", "otherprop"]  # crowd left out
+    assert [d.source_class for d in detections] == ["couch", "basket", "teapot"]
+    assert detections[0].bbox == (10.0, 20.0, 40.0, 50.0)
+    masks = [decode_mask(d.mask, WIDTH, HEIGHT) for d in detections if d.mask is not None]
+    assert len(masks) == 3 and all(d.mask and d.mask.source == "given" for d in detections)
+    assert np.array_equal(masks[0], block)
+    assert np.array_equal(masks[1], _block(50, 5, 90, 30))
+    assert np.array_equal(masks[2], masks[1])
+
+
+def test_a_class_map_beside_the_file_names_the_classes(tmp_path: Path) -> None:
+    path = coco_file(tmp_path, [{"id": 1, "image_id": 1, "category_id": 3, "bbox": [1, 1, 9, 9]}])
+    (tmp_path / "class_map.json").write_text(json.dumps({"teapot": "shelves"}))
+    (item,) = dataset_items(path)
+    assert item.inputs is not None and item.inputs.detections is not None
+    assert item.inputs.detections[0].cls == "shelves"
+    assert item.inputs.detections[0].mask is None
+
+
+@pytest.mark.parametrize(
+    ("annotation", "message"),
+    [
+        ({"segmentation": [[1, 1, 20, 20]]}, "at least 3 points, it has 2"),
+        ({"segmentation": {"counts": [3, 4], "size": [HEIGHT, WIDTH]}}, "add up to 7"),
+        ({"segmentation": {"counts": [3], "size": [10, 10]}}, "not the image's"),
+        ({"segmentation": {"counts": "5\x7f", "size": [HEIGHT, WIDTH]}}, "stray character"),
+        ({"category_id": 9}, "category 9 is not listed"),
+        ({"bbox": [80, 50, 40, 40]}, "outside the 96x64 image"),
+    ],
+)
+def test_a_bad_annotation_refuses_its_image_only(
+    tmp_path: Path, annotation: dict[str, object], message: str
+) -> None:
+    good = {"id": 1, "image_id": 2, "category_id": 1, "bbox": [1, 1, 20, 20]}
+    bad = {"id": 2, "image_id": 1, "category_id": 1, "bbox": [1, 1, 20, 20], **annotation}
+    path = coco_file(tmp_path, [good, bad], images=("a.png", "b.png"))
+    first, second = dataset_items(path)
+    assert first.name == "a.png" and first.inputs is None
+    assert first.error is not None and message in first.error, first.error
+    assert second.error is None and second.inputs is not None
+
+
+def test_a_missing_image_refuses_that_image_only(tmp_path: Path) -> None:
+    path = coco_file(tmp_path, [], images=("a.png", "gone.png"), written=("a.png",))
+    first, second = dataset_items(tmp_path)  # the folder holding annotations.json
+    assert first.inputs is not None and first.inputs.detections == []
+    assert second.name == "gone.png" and second.error is not None
+    assert "gone.png is missing" in second.error
+    assert path.is_file()
+
+
+def test_a_file_that_is_not_json_is_one_error(tmp_path: Path) -> None:
+    path = tmp_path / "instances_val.json"
+    path.write_text('{"images": [')
+    (item,) = dataset_items(path)
+    assert item.error is not None and "not valid JSON" in item.error
+    other = write_json(tmp_path / "other.json", {"hello": 1})
+    (item,) = dataset_items(other)
+    assert item.error is not None and "neither a COCO" in item.error
+
+
+def test_rle_counts_must_be_whole_numbers() -> None:
+    with pytest.raises(ValueError, match="whole numbers"):
+        rle_pixels([1.5, 2], 1, 3)
