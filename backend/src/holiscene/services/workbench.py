@@ -329,7 +329,12 @@ class Workbench:
 
     def import_folder(self, folder: Path, name: str | None = None) -> ImportResult:
         """Import an input folder and run the pipeline on it now (for demo data and scripts)."""
-        result = self.import_scene(read_input_folder(folder), name or folder.name, "import", False)
+        return self.import_and_run(read_input_folder(folder), name or folder.name)
+
+    def import_and_run(self, inputs: InputFiles, name: str) -> ImportResult:
+        """Import checked inputs (a folder's, a dataset's photo) and run the pipeline on them
+        now, in this thread."""
+        result = self.import_scene(inputs, name, "import", False)
         job = self.jobs.create(result.scene.id, result.scene.revision, started_by="import")
         self.run_job(job.id)
         finished = self.jobs.get(job.id)
