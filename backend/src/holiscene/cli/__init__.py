@@ -7,6 +7,7 @@ import sys
 from collections.abc import Sequence
 
 from .common import CliError, settings_from
+from .export import add_export_command
 from .pipeline import add_pipeline_commands
 from .scenes import add_demo_command, add_import_command
 from .serve import add_serve_command
@@ -41,6 +42,7 @@ def _parser() -> argparse.ArgumentParser:
     add_user_commands(sub, settings_from)
     add_demo_command(sub)
     add_import_command(sub)
+    add_export_command(sub)
     add_relation_training_command(sub)
     add_surface_training_command(sub)
     add_detector_training_command(sub)

@@ -9,11 +9,14 @@ import re
 import zipfile
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from holiscene_schema import Scene
 
 from .coco import coco_instances
+
+if TYPE_CHECKING:
+    from ..store.scenes import SceneStore
 
 
 def file_stem(name: str, fallback: str) -> str:
@@ -38,6 +41,19 @@ class ArchivedScene:
     scene: Scene
     photo: Path
     glb: Path | None
+
+
+def archived_scene(scenes: SceneStore, scene_id: str) -> ArchivedScene:
+    """A stored scene's current revision and its files (SceneNotFoundError for an unknown id)."""
+    document = scenes.document(scene_id)
+    glb = scenes.glb_path(scene_id)
+    return ArchivedScene(
+        scene_id=scene_id,
+        revision=document.revision,
+        scene=document.scene,
+        photo=scenes.image_path(scene_id),
+        glb=glb if glb is not None and glb.is_file() else None,
+    )
 
 
 def coco_description(scene_id: str, revision: int, scene: Scene) -> str:

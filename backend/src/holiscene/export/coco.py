@@ -6,10 +6,15 @@ tools that read COCO.
   (`counts` over the image in column-major order, starting with background) from the
   object's mask, or the box as a polygon when it has none; area in pixels of that shape;
   `holiscene_id` keeps the object's id.
+
+coco_dataset writes several scenes as one file (an image each), every annotation with its
+object's support as `holiscene_support` {parent, type} (the parent an object's
+`holiscene_id`, or floor/wall/ceiling).
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -53,7 +58,9 @@ def decode_coco_rle(rle: dict[str, Any]) -> np.ndarray:
     return flat.reshape((height, width), order="F")
 
 
-def _annotation(obj: SceneObject, number: int, width: int, height: int) -> dict[str, Any]:
+def _annotation(
+    obj: SceneObject, number: int, width: int, height: int, image_id: int = 1
+) -> dict[str, Any]:
     x1, y1, x2, y2 = obj.bbox
     segmentation: dict[str, Any] | list[list[float]]
     area: float
@@ -65,7 +72,7 @@ def _annotation(obj: SceneObject, number: int, width: int, height: int) -> dict[
         area = (x2 - x1) * (y2 - y1)
     return {
         "id": number,
-        "image_id": 1,
+        "image_id": image_id,
         "category_id": CATEGORY_IDS[obj.cls],
         "bbox": [x1, y1, x2 - x1, y2 - y1],
         "area": area,
@@ -86,4 +93,27 @@ def coco_instances(scene: Scene, description: str | None = None) -> dict[str, An
             _annotation(obj, number, width, height)
             for number, obj in enumerate(scene.objects, start=1)
         ],
+    }
+
+
+def coco_dataset(scenes: Sequence[tuple[Scene, str]], description: str) -> dict[str, Any]:
+    """One COCO instances file of several scenes, each (scene, its image's file name): image
+    ids from 1 in order, annotation ids from 1 across them, supports in `holiscene_support`."""
+    images: list[dict[str, Any]] = []
+    annotations: list[dict[str, Any]] = []
+    for image_id, (scene, file_name) in enumerate(scenes, start=1):
+        width, height = scene.image.width, scene.image.height
+        images.append({"id": image_id, "file_name": file_name, "width": width, "height": height})
+        supports = {s.child: s for s in scene.supports}
+        for obj in scene.objects:
+            annotation = _annotation(obj, len(annotations) + 1, width, height, image_id)
+            support = supports.get(obj.id)
+            if support is not None:
+                annotation["holiscene_support"] = {"parent": support.parent, "type": support.type}
+            annotations.append(annotation)
+    return {
+        "info": {"description": description, "version": "1"},
+        "images": images,
+        "categories": coco_categories(),
+        "annotations": annotations,
     }

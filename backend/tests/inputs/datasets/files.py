@@ -60,6 +60,7 @@ def coco_file(
 def labelme_file(path: Path, shapes: list[dict[str, Any]], embed: bool = False) -> Path:
     """A LabelMe file with its photo beside it (or embedded as imageData when `embed`)."""
     data = photo_bytes(7)
+    path.parent.mkdir(parents=True, exist_ok=True)
     image_name = path.with_suffix(".png").name
     document: dict[str, Any] = {
         "version": "5.2.1",

@@ -7,6 +7,7 @@ from holiscene_schema import ErrorMessage, SceneArchiveRequest
 
 from ...export.archive import (
     ArchivedScene,
+    archived_scene,
     coco_description,
     coco_json,
     file_stem,
@@ -30,15 +31,7 @@ def attachment(name: str) -> dict[str, str]:
 
 
 def _archived(workbench: Workbench, scene_id: str) -> ArchivedScene:
-    doc = workbench.scenes.document(scene_id)
-    glb = workbench.scenes.glb_path(scene_id)
-    return ArchivedScene(
-        scene_id=scene_id,
-        revision=doc.revision,
-        scene=doc.scene,
-        photo=workbench.scenes.image_path(scene_id),
-        glb=glb if glb is not None and glb.is_file() else None,
-    )
+    return archived_scene(workbench.scenes, scene_id)
 
 
 @router.get("/{scene_id}/scene.json", responses=_ERRORS)
