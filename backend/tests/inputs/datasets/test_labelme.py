@@ -69,3 +69,18 @@ def test_the_mask_follows_a_slanted_polygon(tmp_path: Path) -> None:
     assert pixels[12, 12] and not pixels[50, 50]
     assert abs(int(pixels.sum()) - 51 * 51 // 2) < 80
     assert np.isclose(lamp.bbox[0], 10.0)
+
+
+def test_paths_that_are_no_dataset(tmp_path: Path) -> None:
+    from holiscene.inputs.datasets import is_dataset
+
+    (item,) = dataset_items(tmp_path / "nowhere.json")
+    assert item.error is not None and "cannot be read" in item.error
+    assert is_dataset(tmp_path / "nowhere.json")
+    folder = tmp_path / "input"
+    folder.mkdir()
+    (folder / "detections.json").write_text("[]")
+    assert not is_dataset(folder)  # an input folder missing its photo: refused as one
+    (folder / "img.png").write_bytes(b"")
+    (folder / "extra.json").write_text("{}")
+    assert not is_dataset(folder)

@@ -16,6 +16,9 @@ __all__ = ["DatasetItem", "dataset_items", "is_dataset", "read_coco", "read_labe
 
 # A folder holding one of these is a COCO dataset.
 COCO_FILE_PATTERNS = ("annotations.json", "instances*.json")
+# JSON files of an input folder, never a LabelMe file.
+INPUT_FOLDER_FILES = ("detections.json", "class_map.json")
+PHOTO_NAMES = ("img.jpg", "img.jpeg", "img.png")
 
 
 def _coco_files(folder: Path) -> list[Path]:
@@ -24,21 +27,28 @@ def _coco_files(folder: Path) -> list[Path]:
     )
 
 
+def _labelme_candidates(folder: Path) -> list[Path]:
+    return sorted(
+        f for f in folder.glob("*.json") if f.is_file() and f.name not in INPUT_FOLDER_FILES
+    )
+
+
 def is_dataset(path: Path) -> bool:
-    """Whether `path` is a dataset file or folder rather than an input folder: a .json file, or a
-    folder with a COCO file or LabelMe files and no img.jpg/img.png of its own."""
-    if path.is_file():
-        return path.suffix.lower() == ".json"
-    if not path.is_dir() or any((path / n).is_file() for n in ("img.jpg", "img.jpeg", "img.png")):
+    """Whether `path` is a dataset file or folder rather than an input folder: a .json file, or
+    a folder with a COCO file or other JSON files (LabelMe's) and no img.jpg/img.png."""
+    if path.suffix.lower() == ".json" and not path.is_dir():
+        return True
+    if not path.is_dir() or any((path / n).is_file() for n in PHOTO_NAMES):
         return False
-    return bool(_coco_files(path)) or any(path.glob("*.json"))
+    return bool(_coco_files(path) or _labelme_candidates(path))
 
 
 def dataset_items(path: Path) -> Iterator[DatasetItem]:
     """The photos of a dataset file or folder, the format told by the content."""
     if path.is_dir():
-        coco = _coco_files(path)
-        files = coco or sorted(f for f in path.glob("*.json") if f.name != "class_map.json")
+        files = _coco_files(path) or _labelme_candidates(path)
+        if not files:
+            yield DatasetItem(name=str(path), error="holds no COCO or LabelMe files")
         for file in files:
             yield from dataset_items(file)
         return
