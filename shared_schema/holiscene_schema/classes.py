@@ -58,7 +58,7 @@ _ALIASES_BY_CLASS: dict[str, tuple[str, ...]] = {
     "pillow": ("pillows", "cushion", "cushions", "throw_pillow", "sofa_pillow"),
     "mirror": ("dresser_mirror", "bathroom_mirror", "wall_mirror", "mirrors"),
     "floor_mat": ("mat", "rug", "carpet", "bath_mat", "doormat", "door_mat", "floor_rug"),
-    "clothes": ("clothing", "cloth", "shirt", "jacket", "coat", "dress", "pants", "jeans"),
+    "clothes": ("clothing", "cloth", "shirt", "jacket", "coat", "pants", "jeans"),
     "books": ("book", "notebook", "magazine", "magazines", "binder", "folder"),
     "refrigerator": ("refridgerator", "fridge", "mini_fridge", "freezer"),
     "television": (

@@ -95,3 +95,12 @@ def test_imported_names_map_leniently_and_a_user_map_wins() -> None:
     # Every alias names a real NYU-40 class, and no alias hides an NYU-40 name.
     assert set(CLASS_ALIASES.values()) <= set(NYU40_CLASSES)
     assert not set(CLASS_ALIASES) & set(NYU40_CLASSES)
+    # The class picker lists a whole-name match first: an alias that is the start of another
+    # class's name would come before it when the class is typed ("dress" before "dresser").
+    shadowing = {
+        alias
+        for alias, target in CLASS_ALIASES.items()
+        for cls in NYU40_CLASSES
+        if cls.startswith(alias) and cls != target
+    }
+    assert shadowing == {"book"}  # "book" is books, still one key from bookshelf
