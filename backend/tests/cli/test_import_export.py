@@ -160,3 +160,29 @@ def test_export_refusals_write_nothing(tmp_path: Path, capsys: pytest.CaptureFix
     assert sorted(p.name for p in out.iterdir()) == ["keep.txt"]
     assert _export(tmp_path / "data", out, "coco", "--force") == 0
     assert (out / "annotations.json").is_file() and (out / "keep.txt").is_file()
+
+
+def test_importing_twice_adds_nothing(
+    tmp_path: Path, synthetic_folder: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The same files are recognised (an interrupted import resumes); changed labels are new
+    files; --again imports anyway."""
+    labelme = tmp_path / "labelme"
+    labelme_file(labelme / "fine.json", [shape("bed", [[5, 5], [40, 5], [40, 40]])])
+    data = ["--data-dir", str(tmp_path / "data")]
+    assert main(["import", str(synthetic_folder), *data]) == 0
+    capsys.readouterr()
+    assert main(["import", str(synthetic_folder), str(labelme), *data]) == 0
+    out = capsys.readouterr().out
+    assert f"{synthetic_folder}: imported before as scene" in out and "skipped" in out
+    assert "fine.json: scene" in out  # new files are imported beside the skipped ones
+    assert len(_stored(tmp_path / "data")) == 2
+    assert main(["import", str(synthetic_folder), str(labelme), *data]) == 0
+    assert capsys.readouterr().out.count("skipped") == 2
+    assert len(_stored(tmp_path / "data")) == 2
+    # Other labels for the same photo are other files.
+    labelme_file(labelme / "fine.json", [shape("lamp", [[5, 5], [40, 5], [40, 40]])])
+    assert main(["import", str(labelme), *data]) == 0
+    assert len(_stored(tmp_path / "data")) == 3
+    assert main(["import", str(synthetic_folder), "--again", *data]) == 0
+    assert len(_stored(tmp_path / "data")) == 4

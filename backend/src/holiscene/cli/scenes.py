@@ -13,7 +13,9 @@ from ..core.settings import REPO_ROOT
 from .common import settings_from
 
 if TYPE_CHECKING:
-    from holiscene_schema import ImportResult
+    from ..inputs import InputFiles
+    from ..inputs.datasets import DatasetItem
+    from ..services.workbench import Workbench
 
 DEMO_PHOTOS = REPO_ROOT.parent / "shared" / "data" / "real"
 DEMO_FOLDERS = ("t3d-5", "im3d-6", "mm3d-4", "im3d-3")
@@ -39,6 +41,12 @@ def add_import_command(sub: argparse._SubParsersAction[argparse.ArgumentParser])
     imp.add_argument("paths", type=Path, nargs="+", metavar="PATH")
     imp.add_argument("--data-dir", type=Path)
     imp.add_argument("--database-url")
+    imp.add_argument(
+        "--again",
+        action="store_true",
+        help="import photos even when the same files were imported before (by default they "
+        "are skipped, so a second run adds nothing and an interrupted one resumes)",
+    )
     imp.set_defaults(handler=_import)
 
 
@@ -64,6 +72,7 @@ def _demo(args: argparse.Namespace) -> int:
 
 
 def _import(args: argparse.Namespace) -> int:
+    from ..inputs import InputError, read_input_folder
     from ..inputs.datasets import dataset_items, is_dataset
     from ..services.workbench import Workbench
 
@@ -72,32 +81,46 @@ def _import(args: argparse.Namespace) -> int:
     number = 0
     try:
         for path in args.paths:
-            if not is_dataset(path):
+            items: list[tuple[str, str, Callable[[], InputFiles]]]
+            if is_dataset(path):
+                items = [
+                    (item.name, Path(item.name).stem, partial(_dataset_item, item))
+                    for item in dataset_items(path)
+                ]
+            else:
+                items = [(str(path), path.name, partial(read_input_folder, path))]
+            for label, name, read in items:
                 number += 1
-                failures += _import_one(number, str(path), partial(workbench.import_folder, path))
-                continue
-            for item in dataset_items(path):
-                number += 1
-                if item.inputs is None:
-                    print(f"error: {item.name}: {item.error}", file=sys.stderr)
+                try:
+                    inputs = read()
+                except InputError as exc:
+                    print(f"error: {label}: {exc}", file=sys.stderr)
                     failures += 1
                     continue
-                run = partial(workbench.import_and_run, item.inputs, Path(item.name).stem)
-                failures += _import_one(number, item.name, run)
+                failures += _import_one(workbench, number, label, inputs, name, args.again)
     finally:
         workbench.close()
     return 1 if failures else 0
 
 
-def _import_one(number: int, label: str, run: Callable[[], ImportResult]) -> int:
-    """Import one photo, printing a line of progress or its error; 1 when it failed."""
+def _dataset_item(item: DatasetItem) -> InputFiles:
     from ..inputs import InputError
 
-    try:
-        result = run()
-    except InputError as exc:
-        print(f"error: {label}: {exc}", file=sys.stderr)
-        return 1
+    if item.inputs is None:
+        raise InputError(item.error or "could not be read")
+    return item.inputs
+
+
+def _import_one(
+    workbench: Workbench, number: int, label: str, inputs: InputFiles, name: str, again: bool
+) -> int:
+    """Import one photo, printing a line of progress; 1 when its pipeline failed. The same
+    files imported before are skipped (an interrupted import resumes where it stopped)."""
+    earlier = None if again else workbench.scenes.imported_from(inputs)
+    if earlier is not None:
+        print(f"[{number}] {label}: imported before as scene {earlier.id}, skipped")
+        return 0
+    result = workbench.import_and_run(inputs, name)
     job = result.job
     print(f"[{number}] {label}: scene {result.scene.id}, pipeline {job.status if job else '-'}")
     return 1 if job and job.status == "failed" else 0

@@ -3,6 +3,7 @@ says which file is wrong and how, raised before anything is written."""
 
 from __future__ import annotations
 
+import hashlib
 import io
 import json
 import math
@@ -209,6 +210,26 @@ class InputFiles:
     photo: Photo
     K: np.ndarray | None
     detections: list[Detection] | None
+
+    def digest(self) -> str:
+        """A fingerprint of the photo and its labels (SHA-256, hex): the same files imported
+        twice give the same digest, any change to the photo, intrinsics or boxes another."""
+        boxes = [
+            {
+                "class": d.cls,
+                "bbox": list(d.bbox),
+                "source_class": d.source_class,
+                "mask": d.mask.model_dump(mode="json") if d.mask is not None else None,
+            }
+            for d in self.detections or []
+        ]
+        labels = {
+            "K": self.K.round(6).tolist() if self.K is not None else None,
+            "detections": boxes if self.detections is not None else None,
+        }
+        hasher = hashlib.sha256(self.photo.data)
+        hasher.update(json.dumps(labels, sort_keys=True).encode())
+        return hasher.hexdigest()
 
 
 def read_input_folder(folder: Path) -> InputFiles:

@@ -141,6 +141,17 @@ class SceneStore:
                 for r in rows
             ]
 
+    def imported_from(self, inputs: InputFiles) -> SceneSummary | None:
+        """The scene these very files were imported as before (the oldest), or None."""
+        with Session(self.engine) as session:
+            row = session.scalars(
+                select(SceneRow)
+                .where(SceneRow.source_digest == inputs.digest())
+                .order_by(SceneRow.created_at)
+                .limit(1)
+            ).first()
+            return self._summary(row) if row is not None else None
+
     def image_path(self, scene_id: str) -> Path:
         with Session(self.engine) as session:
             row = self._row(session, scene_id)
@@ -195,6 +206,7 @@ class SceneStore:
                 assignee=None,
                 annotation_round=1,
                 uncertainty=scene_uncertainty(scene),
+                source_digest=inputs.digest(),
             )
             session.add(row)
             session.flush()

@@ -44,6 +44,9 @@ class SceneRow(Base):
     # Of the current revision (holiscene.editing.workflow_rules.scene_uncertainty); "Next scene"
     # sorts by it.
     uncertainty: Mapped[float | None] = mapped_column(Float, nullable=True)
+    # What it was imported from (InputFiles.digest, migration 0008): a second import of the
+    # same photo and labels is skipped. None for scenes imported before.
+    source_digest: Mapped[str | None] = mapped_column(String(64), nullable=True, index=True)
 
 
 class RevisionRow(Base):
