@@ -8,6 +8,7 @@ import io
 import json
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
 from typing import Any
 
@@ -211,9 +212,11 @@ class InputFiles:
     K: np.ndarray | None
     detections: list[Detection] | None
 
+    @cached_property
     def digest(self) -> str:
         """A fingerprint of the photo and its labels (SHA-256, hex): the same files imported
-        twice give the same digest, any change to the photo, intrinsics or boxes another."""
+        twice give the same digest, any change to the photo, intrinsics or boxes another.
+        Computed once: an import asks for it to look for an earlier one and to store it."""
         boxes = [
             {
                 "class": d.cls,

@@ -146,7 +146,7 @@ class SceneStore:
         with Session(self.engine) as session:
             row = session.scalars(
                 select(SceneRow)
-                .where(SceneRow.source_digest == inputs.digest())
+                .where(SceneRow.source_digest == inputs.digest)
                 .order_by(SceneRow.created_at)
                 .limit(1)
             ).first()
@@ -206,7 +206,7 @@ class SceneStore:
                 assignee=None,
                 annotation_round=1,
                 uncertainty=scene_uncertainty(scene),
-                source_digest=inputs.digest(),
+                source_digest=inputs.digest,
             )
             session.add(row)
             session.flush()
