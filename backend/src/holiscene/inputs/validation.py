@@ -15,6 +15,8 @@ from typing import Any
 import numpy as np
 from holiscene_schema import (
     Mask,
+    Scene,
+    SupportRelation,
     UnknownClassError,
     class_key,
     map_class_name,
@@ -206,11 +208,19 @@ def _parse_mask(where: str, data: Any, width: int, height: int) -> Mask:
 
 @dataclass(frozen=True)
 class InputFiles:
-    """The contents of an input folder, checked."""
+    """The contents of an input folder or of one photo of a dataset, checked.
+
+    `supports` are support labels people made, given with the photo (a dataset's ground
+    truth), over the object ids the detections get on import (o0, o1, ... in order); they
+    enter revision 1 as people's labels. `ground_truth` is a scene with whatever the dataset
+    measured (3D boxes, layout, camera), kept beside the stored scene as gt.json for
+    `holiscene eval`; it is never shown as the scene's own estimate."""
 
     photo: Photo
     K: np.ndarray | None
     detections: list[Detection] | None
+    supports: tuple[SupportRelation, ...] = ()
+    ground_truth: Scene | None = None
 
     @cached_property
     def digest(self) -> str:
@@ -226,10 +236,15 @@ class InputFiles:
             }
             for d in self.detections or []
         ]
-        labels = {
+        labels: dict[str, Any] = {
             "K": self.K.round(6).tolist() if self.K is not None else None,
             "detections": boxes if self.detections is not None else None,
         }
+        # Only when present, so digests of imports made before these existed stay the same.
+        if self.supports:
+            labels["supports"] = [s.model_dump(mode="json") for s in self.supports]
+        if self.ground_truth is not None:
+            labels["ground_truth"] = self.ground_truth.model_dump(mode="json")
         hasher = hashlib.sha256(self.photo.data)
         hasher.update(json.dumps(labels, sort_keys=True).encode())
         return hasher.hexdigest()

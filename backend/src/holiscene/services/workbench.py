@@ -377,4 +377,7 @@ def imported_scene(inputs: InputFiles, name: str) -> Scene:
     unknown = unknown_class_note(inputs.detections or [])
     # The import's own note, shown with the pipeline's warnings until a run replaces them.
     stages = [StageRun(name="import", seconds=0.0, note=unknown, warning=True)] if unknown else []
-    return Scene(name=name, image=image, objects=objects, stages=stages)
+    # Supports given with the photo are people's labels: a pipeline run keeps them.
+    return Scene(
+        name=name, image=image, objects=objects, supports=list(inputs.supports), stages=stages
+    )

@@ -20,6 +20,9 @@ from ..core.data_dir_owner import try_lock
 
 # Scene ids are hex, so no scene folder starts with a dot.
 STAGING_PREFIX = "."
+# What a dataset measured for the photo (a Scene with 3D boxes, layout, camera), imported
+# with it; `holiscene eval --store` scores the scene's current revision against it.
+GROUND_TRUTH_FILE = "gt.json"
 
 
 class SceneFiles:
@@ -32,6 +35,10 @@ class SceneFiles:
 
     def glb_path(self, scene_id: str, revision: int) -> Path:
         return self.folder(scene_id) / f"scene-r{revision}.glb"
+
+    def ground_truth_path(self, scene_id: str) -> Path:
+        """gt.json of the scene: present only for scenes imported with ground truth."""
+        return self.folder(scene_id) / GROUND_TRUTH_FILE
 
     @contextmanager
     def new_folder(self, scene_id: str) -> Iterator[Path]:

@@ -43,7 +43,7 @@ from ..editing.workflow_rules import scene_uncertainty
 from ..inputs import InputFiles, load_photo
 from ..pipeline.people import keep_people_objects, people_objects_changed_since
 from .clock import as_utc, utcnow
-from .files import SceneFiles
+from .files import GROUND_TRUTH_FILE, SceneFiles
 from .scene_events import as_state, pipeline_committed, record_event
 from .tables import RevisionRow, SceneRow
 
@@ -191,6 +191,9 @@ class SceneStore:
                     for d in inputs.detections
                 ]
                 (folder / "detections.json").write_text(json.dumps(boxes, indent=1))
+            if inputs.ground_truth is not None:
+                truth = inputs.ground_truth.model_dump_json(indent=1)
+                (folder / GROUND_TRUTH_FILE).write_text(truth + "\n")
             row = SceneRow(
                 id=scene_id,
                 name=scene.name,
