@@ -1,14 +1,14 @@
 """What the command groups share: the user-facing error, settings from the common options, and
-writing a result file atomically."""
+writing a result file atomically (core.atomic_files)."""
 
 from __future__ import annotations
 
 import argparse
-import os
-import tempfile
-from pathlib import Path
 
+from ..core.atomic_files import write_atomic
 from ..core.settings import Settings
+
+__all__ = ["CliError", "settings_from", "write_atomic"]
 
 
 class CliError(Exception):
@@ -27,11 +27,3 @@ def settings_from(args: argparse.Namespace) -> Settings:
         if value is not None
     }
     return Settings(**overrides)
-
-
-def write_atomic(path: Path, data: bytes) -> None:
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
-    with os.fdopen(fd, "wb") as f:
-        f.write(data)
-    os.chmod(tmp, 0o644)
-    os.replace(tmp, path)

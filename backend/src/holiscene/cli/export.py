@@ -1,37 +1,30 @@
-"""`holiscene export`: stored scenes out of the store, as one COCO dataset (annotations.json
-and images/) or as a folder per scene (scene.json, scene.glb, the photo)."""
+"""`holiscene export`: stored scenes out of the store in one of the formats of
+export.folders.EXPORT_FORMATS (a COCO dataset, a folder per scene, ...)."""
 
 from __future__ import annotations
 
 import argparse
-import json
-import shutil
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .common import CliError, settings_from, write_atomic
+from ..export.folders import EXPORT_FORMATS
+from .common import CliError, settings_from
 
 if TYPE_CHECKING:
     from ..core.settings import Settings
     from ..export.archive import ArchivedScene
     from ..store.scenes import SceneStore
 
-FORMATS = ("coco", "scene")
-COCO_FILE = "annotations.json"
-COCO_IMAGES = "images"
-
 
 def add_export_command(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     export = sub.add_parser(
         "export",
         help="write stored scenes as a COCO dataset or as scene folders",
-        description="coco: DIR/annotations.json (an image per scene, NYU-40 categories, masks "
-        "as RLE, each object's support in holiscene_support) and DIR/images/; scene: "
-        "DIR/<scene>/scene.json, scene.glb when the scene has one, and the photo.",
+        description="; ".join(f"{name}: {f.description}" for name, f in EXPORT_FORMATS.items()),
     )
-    export.add_argument("--format", choices=FORMATS, required=True)
+    export.add_argument("--format", choices=list(EXPORT_FORMATS), required=True)
     export.add_argument("-o", "--out", type=Path, required=True, metavar="DIR")
     export.add_argument(
         "--scene", dest="scene_ids", action="append", metavar="ID", help="(repeat; default: all)"
@@ -50,10 +43,7 @@ def _export(args: argparse.Namespace) -> int:
     with scene_store(settings_from(args)) as scenes:
         chosen = _chosen_scenes(scenes, args.scene_ids)
     out.mkdir(parents=True, exist_ok=True)
-    if args.format == "coco":
-        write_coco(chosen, out)
-    else:
-        write_scene_folders(chosen, out)
+    EXPORT_FORMATS[args.format].write(chosen, out)
     print(f"exported {len(chosen)} scene(s) as {args.format} to {out}")
     return 0
 
@@ -89,48 +79,3 @@ def _chosen_scenes(scenes: SceneStore, scene_ids: list[str] | None) -> list[Arch
         except SceneNotFoundError as exc:
             raise CliError(f"no scene {scene_id!r} in the store") from exc
     return chosen
-
-
-def write_coco(chosen: list[ArchivedScene], out: Path) -> None:
-    """DIR/images/<scene name><suffix> (<name>-<id> when two scenes share a name) for each
-    scene and DIR/annotations.json over them."""
-    from ..export.archive import file_stem
-    from ..export.coco import coco_dataset
-
-    images = out / COCO_IMAGES
-    images.mkdir(exist_ok=True)
-    entries = []
-    taken: set[str] = set()
-    for item in chosen:
-        # The scene's name (an import names the scene after the file again), unless taken.
-        stem = file_stem(item.scene.name, item.scene_id)
-        file_name = stem + item.photo.suffix
-        if file_name in taken:
-            file_name = f"{stem}-{item.scene_id}{item.photo.suffix}"
-        taken.add(file_name)
-        shutil.copyfile(item.photo, images / file_name)
-        entries.append((item.scene, file_name))
-    description = "HoliScene scenes " + ", ".join(
-        f"{item.scene_id} (revision {item.revision})" for item in chosen
-    )
-    document = coco_dataset(entries, description)
-    write_atomic(out / COCO_FILE, (json.dumps(document) + "\n").encode())
-
-
-def write_scene_folders(chosen: list[ArchivedScene], out: Path) -> None:
-    """DIR/<scene name>/ (or <name>-<id> when two scenes share a name): scene.json, the
-    photo, and scene.glb when the scene has one."""
-    from ..export.archive import file_stem, scene_json
-
-    taken: set[str] = set()
-    for item in chosen:
-        folder_name = file_stem(item.scene.name, item.scene_id)
-        if folder_name in taken:
-            folder_name = f"{folder_name}-{item.scene_id}"
-        taken.add(folder_name)
-        folder = out / folder_name
-        folder.mkdir(exist_ok=True)
-        write_atomic(folder / "scene.json", scene_json(item.scene))
-        shutil.copyfile(item.photo, folder / item.scene.image.file)
-        if item.glb is not None:
-            shutil.copyfile(item.glb, folder / "scene.glb")

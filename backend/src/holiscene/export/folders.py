@@ -1,0 +1,77 @@
+"""Stored scenes written to a folder by `holiscene export`, one function per format, and the
+table of formats the command offers (EXPORT_FORMATS: a new format is one writer and one row)."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..core.atomic_files import write_atomic
+from .archive import ArchivedScene, file_stem, scene_json
+from .coco import coco_dataset
+
+COCO_FILE = "annotations.json"
+COCO_IMAGES = "images"
+
+
+def unique_stems(chosen: list[ArchivedScene]) -> list[str]:
+    """A file or folder name per scene: its name, or <name>-<id> when an earlier scene took it
+    (an import names the scene after its file, so the name is what people know it by)."""
+    taken: set[str] = set()
+    stems = []
+    for item in chosen:
+        stem = file_stem(item.scene.name, item.scene_id)
+        if stem in taken:
+            stem = f"{stem}-{item.scene_id}"
+        taken.add(stem)
+        stems.append(stem)
+    return stems
+
+
+def write_coco(chosen: list[ArchivedScene], out: Path) -> None:
+    """DIR/images/<scene name><suffix> for each scene and DIR/annotations.json over them."""
+    images = out / COCO_IMAGES
+    images.mkdir(exist_ok=True)
+    entries = []
+    for item, stem in zip(chosen, unique_stems(chosen), strict=True):
+        file_name = stem + item.photo.suffix
+        shutil.copyfile(item.photo, images / file_name)
+        entries.append((item.scene, file_name))
+    description = "HoliScene scenes " + ", ".join(
+        f"{item.scene_id} (revision {item.revision})" for item in chosen
+    )
+    document = coco_dataset(entries, description)
+    write_atomic(out / COCO_FILE, (json.dumps(document) + "\n").encode())
+
+
+def write_scene_folders(chosen: list[ArchivedScene], out: Path) -> None:
+    """DIR/<scene name>/: scene.json, the photo, and scene.glb when the scene has one."""
+    for item, stem in zip(chosen, unique_stems(chosen), strict=True):
+        folder = out / stem
+        folder.mkdir(exist_ok=True)
+        write_atomic(folder / "scene.json", scene_json(item.scene))
+        shutil.copyfile(item.photo, folder / item.scene.image.file)
+        if item.glb is not None:
+            shutil.copyfile(item.glb, folder / "scene.glb")
+
+
+@dataclass(frozen=True)
+class ExportFormat:
+    write: Callable[[list[ArchivedScene], Path], None]
+    description: str  # what DIR holds afterwards, for the command's help
+
+
+EXPORT_FORMATS: dict[str, ExportFormat] = {
+    "coco": ExportFormat(
+        write_coco,
+        "DIR/annotations.json (an image per scene, NYU-40 categories, masks as RLE, each "
+        "object's support in holiscene_support) and DIR/images/",
+    ),
+    "scene": ExportFormat(
+        write_scene_folders,
+        "DIR/<scene>/scene.json, scene.glb when the scene has one, and the photo",
+    ),
+}
