@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: surface-model coco-detector detector-model bench-detector bench-refine bench-writers calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
+.PHONY: surface-model coco-detector detector-model bench-detector bench-refine bench-writers calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -144,6 +144,10 @@ detector-vectors:
 # The support-tree decoder's vectors (Python decode.py <-> frontend/src/inference/treeDecode.ts).
 decode-vectors:
 	$(PY) -m holiscene.twin_vectors.support_decode
+
+# Class names keyed and stored alike (holiscene_schema/classes.py <-> frontend/src/state/classNames.ts).
+class-vectors:
+	$(PY) -m holiscene.twin_vectors.class_names
 
 test-frontend: install-node
 	npm run -s -w frontend test

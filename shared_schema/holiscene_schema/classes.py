@@ -117,9 +117,10 @@ def class_key(name: str) -> str:
 
 def normalise_class_name(name: str) -> str:
     """Map a dataset's class name to its NYU-40 class; raise UnknownClassError otherwise.
-    A plural of a known name ("chairs") is known too."""
+    A plural of a known name ("chairs", "couches") is known too."""
     key = class_key(name)
-    for candidate in (key, key[:-1] if key.endswith("s") else None):
+    plurals = (key[:-1] if key.endswith("s") else None, key[:-2] if key.endswith("es") else None)
+    for candidate in (key, *plurals):
         if candidate in NYU40_CLASSES:
             return candidate
         if candidate in CLASS_ALIASES:

@@ -2,10 +2,10 @@
 // go; undo brings everything back), Shift+C changes its class with the class picker.
 import type { SceneObject } from "@holiscene/schema";
 import { registerShortcut } from "../shortcuts";
+import { classKey } from "../state/classNames";
 import type { ObjectEditor } from "../state/objectEditor";
 import type { SceneSession } from "../state/sceneSession";
 import { pickClass } from "../views/scene/classPicker";
-import { classKey } from "../views/scene/classRanking";
 import { objectName, screenRect } from "./boxes/boxEdits";
 
 export const REMOVE_OBJECT_KEYS = ["Delete"];

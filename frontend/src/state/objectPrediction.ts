@@ -4,25 +4,9 @@
 // back the object and its supports of a revision seen before. The server's revision replaces
 // the prediction as soon as it comes (masks the server cuts are only known then); actions it
 // cannot foresee (a new object) are not predicted.
-import {
-  CLASS_ALIASES,
-  NYU40_CLASSES,
-  type SceneDocument,
-  type SupportRelation,
-} from "@holiscene/schema";
+import type { SceneDocument, SupportRelation } from "@holiscene/schema";
+import { storedClass } from "./classNames";
 import type { ObjectEdit } from "./objectEditor";
-
-const ALIASES: Record<string, string> = CLASS_ALIASES;
-const CLASSES = new Set<string>(NYU40_CLASSES);
-
-/** The NYU-40 class a name is stored as (null: the server will refuse it). */
-function storedClass(name: string): string | null {
-  const key = name
-    .trim()
-    .toLowerCase()
-    .replace(/[\s-]+/g, "_");
-  return CLASSES.has(key) ? key : (ALIASES[key] ?? null);
-}
 
 const involves = (support: SupportRelation, id: string) =>
   support.child === id || support.parent === id;

@@ -4,8 +4,9 @@
 // Picks are counted in this browser (with the scene's own objects) to order the list.
 import type { SceneObject } from "@holiscene/schema";
 import { el } from "../../dom";
+import { classKey } from "../../state/classNames";
 import { keepInView, optionItem, placeBeside } from "./classPickerParts";
-import { CLASS_OPTIONS, type ClassOption, classKey, rankClasses } from "./classRanking";
+import { CLASS_OPTIONS, type ClassOption, rankClasses } from "./classRanking";
 import "./classPicker.css";
 
 const USES_KEY = "holiscene.classUses";

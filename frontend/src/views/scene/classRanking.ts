@@ -2,6 +2,7 @@
 // the layout gives walls, floor and ceiling) and the names other datasets use for them, best
 // match first (the whole name, its start, a word's start, anywhere), then the most used.
 import { CLASS_ALIASES, NYU40_CLASSES, STRUCTURAL_SUPPORTERS } from "@holiscene/schema";
+import { classKey } from "../../state/classNames";
 
 export interface ClassOption {
   /** What is sent as the class: an NYU-40 class or a known alias of one. */
@@ -19,13 +20,6 @@ export const CLASS_OPTIONS: readonly ClassOption[] = [
     .filter(([alias, cls]) => alias !== cls && !structural.has(cls))
     .map(([alias, cls]) => ({ name: alias, cls })),
 ];
-
-/** A name as typed or stored, compared the server's way (lower case, "_" for spaces). */
-export const classKey = (text: string) =>
-  text
-    .trim()
-    .toLowerCase()
-    .replace(/[\s-]+/g, "_");
 
 /** How well `name` matches `query`: 0 the whole name, 1 its start, 2 a word's start, 3 inside. */
 function matchRank(name: string, query: string): number | null {
