@@ -1,5 +1,6 @@
 """`holiscene infer`, `synth` and `eval`: the pipeline on input folders, synthetic scenes with
-their ground truth, and the scores of one against the other; no store involved."""
+their ground truth, and the scores of one against the other; no store involved, but for
+`eval --store`, which scores the stored scenes imported with ground truth."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import os
 import sys
 from pathlib import Path
 
-from .common import CliError, write_atomic
+from .common import CliError, settings_from, write_atomic
 
 
 def add_pipeline_commands(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -33,10 +34,35 @@ def add_pipeline_commands(sub: argparse._SubParsersAction[argparse.ArgumentParse
     synth.add_argument("--workers", type=int, default=os.cpu_count() or 1)
     synth.set_defaults(handler=_synth)
 
-    evaluate = sub.add_parser("eval", help="score predictions against ground truth")
-    evaluate.add_argument("pred_dir", type=Path, help="folders with scene.json (from infer)")
-    evaluate.add_argument("gt_dir", type=Path, help="folders with gt.json (from synth)")
-    evaluate.add_argument("--out", type=Path, help="where to write eval.json and eval.md")
+    evaluate = sub.add_parser(
+        "eval",
+        help="score predictions against ground truth",
+        usage="holiscene eval PRED_DIR GT_DIR [--out DIR]\n"
+        "       holiscene eval --store [--scene ID ...] [--rerun] [--data-dir D] "
+        "[--database-url U] [--out DIR]",
+    )
+    evaluate.add_argument(
+        "pred_dir", type=Path, nargs="?", help="folders with scene.json (from infer)"
+    )
+    evaluate.add_argument("gt_dir", type=Path, nargs="?", help="folders with gt.json (from synth)")
+    evaluate.add_argument(
+        "--out",
+        type=Path,
+        help="where to write eval.json and eval.md (default: PRED_DIR; with --store: "
+        "<data dir>/eval)",
+    )
+    store = evaluate.add_argument_group("stored scenes imported with ground truth (gt.json)")
+    store.add_argument("--store", action="store_true", help="score the stored scenes")
+    store.add_argument(
+        "--scene", dest="scene_ids", action="append", metavar="ID", help="(repeat; default: all)"
+    )
+    store.add_argument(
+        "--rerun",
+        action="store_true",
+        help="run the pipeline afresh on each scene's photo and boxes, without people's labels",
+    )
+    store.add_argument("--data-dir", type=Path)
+    store.add_argument("--database-url")
     evaluate.set_defaults(handler=_eval)
 
 
@@ -131,6 +157,14 @@ def _eval(args: argparse.Namespace) -> int:
     from ..evaluation.report import markdown_report
     from ..evaluation.run import EvaluationInputError, evaluate_folders
 
+    if args.store:
+        if args.pred_dir is not None:
+            raise CliError("--store scores the stored scenes: give no PRED_DIR or GT_DIR")
+        return _eval_store(args)
+    if args.gt_dir is None:
+        raise CliError("give PRED_DIR and GT_DIR, or --store")
+    if args.scene_ids or args.rerun:
+        raise CliError("--scene and --rerun go with --store")
     try:
         run = evaluate_folders(args.pred_dir, args.gt_dir)
     except EvaluationInputError as exc:
@@ -146,3 +180,44 @@ def _eval(args: argparse.Namespace) -> int:
     if run.missing_predictions:
         print(f"missing predictions (scored as empty): {', '.join(run.missing_predictions)}")
     return 0
+
+
+def _eval_store(args: argparse.Namespace) -> int:
+    """The stored scenes that have gt.json, at their current revision or re-run."""
+    from tqdm import tqdm
+
+    from ..evaluation.report import markdown_report
+    from ..evaluation.stored import active_rerun, evaluate_stored, markdown_scene_list
+    from ..store.scenes import SceneNotFoundError
+    from .export import scene_store
+
+    settings = settings_from(args)
+    with scene_store(settings) as scenes:
+        ids = list(dict.fromkeys(args.scene_ids or [s.id for s in scenes.list_summaries()]))
+        if not ids:
+            raise CliError("the store holds no scenes")
+        rerun = active_rerun(settings) if args.rerun else None
+        with tqdm(total=len(ids), desc="eval", unit="scene", file=sys.stderr) as bar:
+            try:
+                run = evaluate_stored(scenes, ids, rerun, progress=lambda _: bar.update())
+            except SceneNotFoundError as exc:
+                raise CliError(str(exc)) from exc
+    if not run.scored:
+        errors = "".join(f"; {scene_id}: {why}" for scene_id, why in run.errors.items())
+        raise CliError(
+            f"none of the {len(ids)} scene(s) could be scored against ground truth{errors}"
+        )
+    summary = run.summary()
+    what = "the pipeline re-run on" if rerun else "the current revisions of"
+    report = markdown_report(
+        summary, f"Evaluation of {what} the stored scenes against their ground truth"
+    ) + markdown_scene_list(run)
+    out = args.out or settings.data_dir / "eval"
+    out.mkdir(parents=True, exist_ok=True)
+    write_atomic(out / "eval.json", (json.dumps(summary, indent=1) + "\n").encode())
+    write_atomic(out / "eval.md", report.encode())
+    print(report)
+    print(f"eval.json and eval.md written to {out}")
+    for scene_id, why in run.errors.items():
+        print(f"error: {scene_id}: {why}", file=sys.stderr)
+    return 1 if run.errors else 0

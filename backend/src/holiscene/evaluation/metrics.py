@@ -9,7 +9,9 @@
 - 3D detection average precision at 3D IoU 0.15 per class and its mean (VOC all-point AP).
 - 2D mask IoU per ground-truth object.
 A prediction that lacks a value scores as wrong (IoU 0, support missing) and is counted, never
-silently skipped.
+silently skipped. A ground truth that lacks a kind of label (a dataset without support labels,
+3D boxes, layout or camera) leaves that metric out for the scene; `scored` counts the scenes
+each metric was measured on.
 """
 
 from __future__ import annotations
@@ -28,6 +30,8 @@ from .matching import match_objects
 
 AP_IOU = 0.15
 SUPPORT_TYPES = ("below", "behind", "none")
+# The metrics in the order of the summary; `Evaluation.scored` counts scenes per metric.
+METRICS = ("support", "camera", "layout", "detection_3d", "mask")
 
 
 @dataclass
@@ -52,15 +56,21 @@ class Evaluation:
         default_factory=lambda: defaultdict(list)
     )
     gt_boxes: dict[str, int] = field(default_factory=lambda: defaultdict(int))
+    scored: dict[str, int] = field(default_factory=lambda: dict.fromkeys(METRICS, 0))
 
     def add(self, predicted: Scene, truth: Scene) -> None:
         self.scenes += 1
         matched = match_objects(predicted.objects, truth.objects)
+        present = truth_metrics(truth)
+        for metric in present:
+            self.scored[metric] += 1
         self._add_supports(predicted, truth, matched)
         self._add_camera(predicted, truth)
         self._add_layout(predicted, truth)
         self._add_masks(predicted, truth, matched)
-        self._add_detections(predicted, truth)
+        if "detection_3d" in present:
+            # Without true 3D boxes every predicted box would count as a false positive.
+            self._add_detections(predicted, truth)
 
     def _add_supports(self, predicted: Scene, truth: Scene, matched: dict[str, str]) -> None:
         pred_support = {s.child: s for s in predicted.supports}
@@ -199,7 +209,21 @@ class Evaluation:
                 "recall": self.box_recall(),
             },
             "mask": {"mean_iou": mean(self.mask_ious), "objects": len(self.mask_ious)},
+            "scenes_scored": dict(self.scored),
         }
+
+
+def truth_metrics(truth: Scene) -> list[str]:
+    """The metrics a ground-truth scene has the labels for."""
+    camera = truth.camera
+    has = {
+        "support": bool(truth.supports),
+        "camera": camera is not None and None not in (camera.pitch_deg, camera.roll_deg),
+        "layout": truth.layout.corners_3d is not None,
+        "detection_3d": any(o.corners_3d for o in truth.objects),
+        "mask": any(o.mask is not None for o in truth.objects),
+    }
+    return [metric for metric in METRICS if has[metric]]
 
 
 def all_point_average_precision(scored_hits: list[tuple[float, bool]], truth_count: int) -> float:

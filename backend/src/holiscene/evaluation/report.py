@@ -9,6 +9,23 @@ def _fmt(value: float | None, scale: float = 1.0, digits: int = 2) -> str:
     return "n/a" if value is None else f"{value * scale:.{digits}f}"
 
 
+_METRIC_NAMES = {
+    "support": "supports",
+    "camera": "camera",
+    "layout": "layout",
+    "detection_3d": "3D boxes",
+    "mask": "masks",
+}
+
+
+def _scored_line(scored: dict[str, int]) -> str:
+    counts = ", ".join(f"{_METRIC_NAMES[m]} {n}" for m, n in scored.items())
+    return (
+        f"Scenes measured per metric: {counts}. A metric whose labels a scene's ground truth "
+        "lacks is left out for that scene, not counted as 0."
+    )
+
+
 def markdown_report(summary: dict[str, Any], title: str) -> str:
     support, camera, layout = summary["support"], summary["camera"], summary["layout"]
     det, mask = summary["detection_3d"], summary["mask"]
@@ -32,6 +49,8 @@ def markdown_report(summary: dict[str, Any], title: str) -> str:
         f"| 3D boxes found at IoU {det['iou_threshold']}, all classes (%) | "
         f"{_fmt(det['recall'], 100)} |",
         f"| 2D mask IoU (%) | {_fmt(mask['mean_iou'], 100)} over {mask['objects']} objects |",
+        "",
+        _scored_line(summary["scenes_scored"]),
         "",
         f"## Support types ({support['objects']} supported objects)",
         "",
