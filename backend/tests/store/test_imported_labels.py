@@ -14,7 +14,8 @@ from holiscene_schema import Scene, SupportRelation
 
 
 def _labelled(folder: Path) -> tuple[InputFiles, InputFiles]:
-    plain = read_input_folder(folder)
+    # The folder's gt.json is read as its ground truth; `plain` is the folder without it.
+    plain = replace(read_input_folder(folder), ground_truth=None)
     truth = Scene.model_validate_json((folder / "gt.json").read_text())
     assert plain.detections is not None and len(plain.detections) >= 2
     supports = (

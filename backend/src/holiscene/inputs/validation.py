@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 from holiscene_schema import (
+    STRUCTURAL_SUPPORTERS,
     Mask,
     Scene,
     SupportRelation,
@@ -21,6 +22,7 @@ from holiscene_schema import (
     class_key,
     map_class_name,
     normalise_class_name,
+    support_graph_problems,
 )
 from PIL import Image, UnidentifiedImageError
 from pydantic import ValidationError
@@ -250,9 +252,77 @@ class InputFiles:
         return hasher.hexdigest()
 
 
+SUPPORTS_AUTHOR = "import"  # a supports.json item's author when it names none
+
+
+def parse_supports(data: bytes, box_count: int) -> tuple[SupportRelation, ...]:
+    """supports.json: [{"child": 3, "parent": 0 | "floor" | "wall" | "ceiling", "type":
+    "below" | "behind", "author": NAME (optional)}, ...], people's support labels over the
+    boxes of detections.json by position (box i becomes object o<i>)."""
+    try:
+        items = json.loads(data)
+    except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as exc:
+        raise InputError(f"supports.json is not valid JSON: {exc}") from exc
+    if not isinstance(items, list):
+        raise InputError('supports.json must be a list of {"child", "parent", "type"}')
+    relations = tuple(
+        _support_from_item(f"supports.json item {i}", item, box_count)
+        for i, item in enumerate(items)
+    )
+    ids = [f"o{i}" for i in range(box_count)]
+    problems = support_graph_problems(ids, [(s.child, s.parent) for s in relations])
+    if problems:
+        raise InputError(f"supports.json: {'; '.join(problems)} (o<i> is detections.json item i)")
+    return relations
+
+
+def _support_from_item(where: str, item: Any, box_count: int) -> SupportRelation:
+    if not isinstance(item, dict) or not {"child", "parent", "type"} <= item.keys():
+        raise InputError(f"{where} must be an object with 'child', 'parent' and 'type'")
+
+    def box(key: str, or_else: str = "") -> str:
+        index = item[key]
+        if not isinstance(index, int) or isinstance(index, bool) or not 0 <= index < box_count:
+            raise InputError(
+                f"{where}: {key} {index!r} is not the number of a box of detections.json "
+                f"(0 to {box_count - 1}){or_else}"
+            )
+        return f"o{index}"
+
+    parent = item["parent"]
+    if not (isinstance(parent, str) and parent in STRUCTURAL_SUPPORTERS):
+        parent = box("parent", ", nor floor, wall or ceiling")
+    if item["type"] not in ("below", "behind"):
+        raise InputError(f"{where}: type {item['type']!r} is neither 'below' nor 'behind'")
+    author = item.get("author", SUPPORTS_AUTHOR)
+    if not isinstance(author, str) or not author.strip():
+        raise InputError(f"{where}: 'author' must be a non-empty string")
+    return SupportRelation(
+        child=box("child"), parent=parent, type=item["type"], source="manual", author=author
+    )
+
+
+def parse_ground_truth(data: bytes, width: int, height: int) -> Scene:
+    """gt.json: a scene (the contract's Scene, as `holiscene synth` writes it) with what a
+    dataset measured for the photo."""
+    try:
+        scene = Scene.model_validate_json(data)
+    except ValidationError as exc:
+        problem = exc.errors()[0]
+        at = ".".join(str(p) for p in problem["loc"]) or "the file"
+        raise InputError(f"gt.json is not a scene ({at}: {problem['msg']})") from exc
+    if (scene.image.width, scene.image.height) != (width, height):
+        raise InputError(
+            f"gt.json describes a {scene.image.width}x{scene.image.height} photo, the photo "
+            f"is {width}x{height}"
+        )
+    return scene
+
+
 def read_input_folder(folder: Path) -> InputFiles:
-    """Read img.jpg or img.png, and cam_K.txt, detections.json and class_map.json (the
-    user's own class names, see parse_class_map) when present."""
+    """Read img.jpg or img.png, and cam_K.txt, detections.json, class_map.json (the
+    user's own class names, see parse_class_map), supports.json (parse_supports) and gt.json
+    (parse_ground_truth) when present."""
     if not folder.is_dir():
         raise InputError(f"{folder} is not a folder")
     images = [folder / n for n in ("img.jpg", "img.jpeg", "img.png") if (folder / n).is_file()]
@@ -268,4 +338,19 @@ def read_input_folder(folder: Path) -> InputFiles:
         if det_file.is_file()
         else None
     )
-    return InputFiles(photo=photo, K=K, detections=detections)
+    supports_file, truth_file = folder / "supports.json", folder / "gt.json"
+    supports: tuple[SupportRelation, ...] = ()
+    if supports_file.is_file():
+        if detections is None:
+            raise InputError(
+                "supports.json needs detections.json: its numbers are positions in that list"
+            )
+        supports = parse_supports(supports_file.read_bytes(), len(detections))
+    truth = (
+        parse_ground_truth(truth_file.read_bytes(), photo.width, photo.height)
+        if truth_file.is_file()
+        else None
+    )
+    return InputFiles(
+        photo=photo, K=K, detections=detections, supports=supports, ground_truth=truth
+    )
