@@ -206,3 +206,35 @@ def test_train_rn_registers_a_candidate_model(
         assert active_model_dir(Settings(data_dir=data)) == workbench.models.folder(models[1].id)
     finally:
         workbench.close()
+
+
+def test_infer_keeps_the_supports_given_in_supports_json(
+    t3d5: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    folder = _input_folder(tmp_path, t3d5)
+    given = [{"child": 0, "parent": "wall", "type": "behind", "author": "ana"}]
+    (folder / "supports.json").write_text(json.dumps(given))
+    out = tmp_path / "out"
+    assert (
+        main(
+            [
+                "infer",
+                str(folder),
+                "-o",
+                str(out),
+                "--stages",
+                "objects_from_detector,intrinsics,masks_grabcut,supports_from_network",
+            ]
+        )
+        == 0
+    )
+    scene = Scene.model_validate_json((out / "scene.json").read_text())
+    kept = [s for s in scene.supports if s.child == "o0"]
+    assert [(s.parent, s.type, s.source, s.author) for s in kept] == [
+        ("wall", "behind", "manual", "ana")
+    ]
+    assert len(scene.supports) > 1  # the pipeline still gives the other objects theirs
+
+    (folder / "supports.json").write_text(json.dumps([{"child": 0, "parent": 0, "type": "below"}]))
+    assert main(["infer", str(folder), "-o", str(tmp_path / "again")]) == 2
+    assert "supports.json: object 'o0' cannot support itself" in capsys.readouterr().err

@@ -114,6 +114,8 @@ def _infer_one(
                 inputs,
                 name=folder.resolve().name,
                 image_file=f"img{inputs.photo.suffix}",
+                # supports.json: people's labels, kept as they are (gt.json is not used here).
+                pinned_supports=inputs.supports,
                 stages=stages,
                 models_dir=models,
                 progress=progress,
