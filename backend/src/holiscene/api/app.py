@@ -32,6 +32,7 @@ from .routes import (
     workflow,
 )
 from .security_headers import SecurityHeaders
+from .upload_login import UploadLogin
 
 # Besides its files, a photo import carries cam_K.txt, detections.json and form fields.
 IMPORT_OVERHEAD_MB = 10
@@ -120,12 +121,13 @@ def create_app(settings: Settings | None = None) -> FastAPI:
 
 def install_http_guards(app: FastAPI, settings: Settings) -> None:
     """Checks before any route runs (the last added runs first): headers on every answer,
-    then the Host and Origin checks, then the body size cap."""
+    then the Host and Origin checks, then the body size cap, then a login before an upload
+    is read."""
     upload_limit = (settings.max_upload_mb + IMPORT_OVERHEAD_MB) * MB
+    upload_routes = {("POST", "/api/scenes"): upload_limit}
+    app.add_middleware(UploadLogin, routes=upload_routes.keys())
     app.add_middleware(
-        BodySizeLimit,
-        default=int(settings.max_request_mb * MB),
-        per_route={("POST", "/api/scenes"): upload_limit},
+        BodySizeLimit, default=int(settings.max_request_mb * MB), per_route=upload_routes
     )
     app.add_middleware(
         RequestOriginCheck,
