@@ -83,7 +83,7 @@ def test_bad_supports_are_refused_naming_the_file_and_item(
         (folder / "supports.json").write_text(content)
     else:
         _write_supports(folder, content)
-    with pytest.raises(InputError, match="supports.json") as refused:
+    with pytest.raises(InputError, match=r"supports\.json") as refused:
         read_input_folder(folder)
     assert message in str(refused.value)
 
@@ -91,7 +91,7 @@ def test_bad_supports_are_refused_naming_the_file_and_item(
 def test_supports_need_the_boxes_they_number(folder: Path) -> None:
     _write_supports(folder, [{"child": 1, "parent": 0, "type": "below"}])
     (folder / "detections.json").unlink()
-    with pytest.raises(InputError, match="supports.json needs detections.json"):
+    with pytest.raises(InputError, match=r"supports\.json needs detections\.json"):
         read_input_folder(folder)
 
 

@@ -7,6 +7,7 @@ import hashlib
 import io
 import json
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
@@ -265,14 +266,21 @@ def parse_supports(data: bytes, box_count: int) -> tuple[SupportRelation, ...]:
         raise InputError(f"supports.json is not valid JSON: {exc}") from exc
     if not isinstance(items, list):
         raise InputError('supports.json must be a list of {"child", "parent", "type"}')
-    relations = tuple(
-        _support_from_item(f"supports.json item {i}", item, box_count)
-        for i, item in enumerate(items)
-    )
+    labelled = [(f"supports.json item {i}", item) for i, item in enumerate(items)]
+    return support_relations(labelled, box_count, "supports.json", "detections.json item i")
+
+
+def support_relations(
+    items: Sequence[tuple[str, Any]], box_count: int, source: str, numbering: str
+) -> tuple[SupportRelation, ...]:
+    """Support labels in supports.json's item form, each with where it came from (for the
+    messages), checked against the boxes and as a graph; `numbering` tells the user what
+    o<i> is (the dataset readers give their labels this way too)."""
+    relations = tuple(_support_from_item(where, item, box_count) for where, item in items)
     ids = [f"o{i}" for i in range(box_count)]
     problems = support_graph_problems(ids, [(s.child, s.parent) for s in relations])
     if problems:
-        raise InputError(f"supports.json: {'; '.join(problems)} (o<i> is detections.json item i)")
+        raise InputError(f"{source}: {'; '.join(problems)} (o<i> is {numbering})")
     return relations
 
 
@@ -284,8 +292,8 @@ def _support_from_item(where: str, item: Any, box_count: int) -> SupportRelation
         index = item[key]
         if not isinstance(index, int) or isinstance(index, bool) or not 0 <= index < box_count:
             raise InputError(
-                f"{where}: {key} {index!r} is not the number of a box of detections.json "
-                f"(0 to {box_count - 1}){or_else}"
+                f"{where}: {key} {index!r} is not the number of a box (0 to "
+                f"{box_count - 1}){or_else}"
             )
         return f"o{index}"
 

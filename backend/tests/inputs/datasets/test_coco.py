@@ -138,3 +138,47 @@ def test_a_file_that_is_not_json_is_one_error(tmp_path: Path) -> None:
 def test_rle_counts_must_be_whole_numbers() -> None:
     with pytest.raises(ValueError, match="whole numbers"):
         rle_pixels([1.5, 2], 1, 3)
+
+
+def _box(number: int, **extra: object) -> dict[str, object]:
+    x = 2 + 20 * number
+    return {"id": number + 1, "image_id": 1, "category_id": 1, "bbox": [x, 2, 15, 15], **extra}
+
+
+def test_holiscene_support_becomes_people_labels_over_the_boxes(tmp_path: Path) -> None:
+    annotations = [
+        _box(0, holiscene_id="table", holiscene_support={"parent": "floor", "type": "below"}),
+        _box(1, iscrowd=1, holiscene_id="crowd"),  # left out: the boxes after it move up
+        _box(2, holiscene_id="cup", holiscene_support={"parent": "table", "type": "below"}),
+        _box(3, holiscene_id="frame", holiscene_support={"parent": "wall", "type": "behind"}),
+        _box(4, holiscene_id="loose"),
+    ]
+    (item,) = dataset_items(coco_file(tmp_path, annotations))
+    assert item.inputs is not None and item.inputs.detections is not None
+    assert len(item.inputs.detections) == 4
+    assert [(s.child, s.parent, s.type, s.source) for s in item.inputs.supports] == [
+        ("o0", "floor", "below", "manual"),
+        ("o1", "o0", "below", "manual"),
+        ("o2", "wall", "behind", "manual"),
+    ]
+
+
+@pytest.mark.parametrize(
+    ("support", "message"),
+    [
+        ({"parent": "nobody", "type": "below"}, "parent 'nobody' is neither floor"),
+        ({"parent": "a"}, "must be an object with 'parent' and 'type'"),
+        ({"parent": "a", "type": "on"}, "type 'on' is neither"),
+        ({"parent": "b", "type": "below"}, "support cycle"),
+    ],
+)
+def test_a_bad_holiscene_support_refuses_its_image(
+    tmp_path: Path, support: dict[str, object], message: str
+) -> None:
+    annotations = [
+        _box(0, holiscene_id="a", holiscene_support=support),
+        _box(1, holiscene_id="b", holiscene_support={"parent": "a", "type": "below"}),
+    ]
+    (item,) = dataset_items(coco_file(tmp_path, annotations))
+    assert item.inputs is None and item.error is not None
+    assert "holiscene_support" in item.error and message in item.error, item.error

@@ -13,8 +13,9 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from holiscene_schema import STRUCTURAL_SUPPORTERS, SupportRelation
 
-from ..validation import InputError, InputFiles, load_photo
+from ..validation import InputError, InputFiles, load_photo, support_relations
 from .items import DatasetItem, class_map_beside, labelled_detection, load_json, polygon_pixels
 
 IMAGE_FOLDER = "images"
@@ -102,6 +103,7 @@ def _read_image(
             f"{stated[0]}x{stated[1]}"
         )
     detections = []
+    kept: list[tuple[str, dict[str, Any]]] = []  # the annotations that became boxes, in order
     for index, annotation in enumerate(by_image.get(image.get("id"), [])):
         where = f"annotation {annotation.get('id', index)}"
         if annotation.get("iscrowd"):
@@ -116,7 +118,33 @@ def _read_image(
         detections.append(
             labelled_detection(where, name, bbox, pixels, photo.width, photo.height, class_map)
         )
-    return InputFiles(photo=photo, K=None, detections=detections)
+        kept.append((where, annotation))
+    return InputFiles(photo=photo, K=None, detections=detections, supports=_supports(kept))
+
+
+def _supports(kept: list[tuple[str, dict[str, Any]]]) -> tuple[SupportRelation, ...]:
+    """The `holiscene_support` {parent, type} of the image's annotations (as holiscene export
+    writes them: the parent another annotation's `holiscene_id`, or floor/wall/ceiling) as
+    people's support labels over the boxes."""
+    numbers = {a["holiscene_id"]: i for i, (_, a) in enumerate(kept) if "holiscene_id" in a}
+    labelled: list[tuple[str, Any]] = []
+    for number, (where, annotation) in enumerate(kept):
+        support = annotation.get("holiscene_support")
+        if support is None:
+            continue
+        at = f"{where}: holiscene_support"
+        if not isinstance(support, dict) or not {"parent", "type"} <= support.keys():
+            raise InputError(f"{at} must be an object with 'parent' and 'type'")
+        parent = support["parent"]
+        if not (isinstance(parent, str) and parent in STRUCTURAL_SUPPORTERS):
+            if not isinstance(parent, str) or parent not in numbers:
+                raise InputError(
+                    f"{at}: parent {parent!r} is neither floor, wall, ceiling nor the "
+                    "holiscene_id of an annotation of this image"
+                )
+            parent = numbers[parent]
+        labelled.append((at, {**support, "child": number, "parent": parent}))
+    return support_relations(labelled, len(kept), "holiscene_support", "the image's i-th object")
 
 
 def _bbox_xyxy(where: str, bbox: Any) -> list[float] | None:
