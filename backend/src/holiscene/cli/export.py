@@ -9,6 +9,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..export.errors import ExportRefusedError
 from ..export.folders import EXPORT_FORMATS
 from .common import CliError, settings_from
 
@@ -43,7 +44,10 @@ def _export(args: argparse.Namespace) -> int:
     with scene_store(settings_from(args)) as scenes:
         chosen = _chosen_scenes(scenes, args.scene_ids)
     out.mkdir(parents=True, exist_ok=True)
-    EXPORT_FORMATS[args.format].write(chosen, out)
+    try:
+        EXPORT_FORMATS[args.format].write(chosen, out)
+    except ExportRefusedError as exc:
+        raise CliError(str(exc)) from exc
     print(f"exported {len(chosen)} scene(s) as {args.format} to {out}")
     return 0
 

@@ -12,6 +12,7 @@ from pathlib import Path
 from ..core.atomic_files import write_atomic
 from .archive import ArchivedScene, file_stem, scene_json
 from .coco import coco_dataset
+from .relation_training import write_relation_training
 
 COCO_FILE = "annotations.json"
 COCO_IMAGES = "images"
@@ -73,5 +74,10 @@ EXPORT_FORMATS: dict[str, ExportFormat] = {
     "scene": ExportFormat(
         write_scene_folders,
         "DIR/<scene>/scene.json, scene.glb when the scene has one, and the photo",
+    ),
+    "relation-training": ExportFormat(
+        write_relation_training,
+        "DIR/pairs.npz (the Relation Network's inputs and the support pairs people "
+        "labelled), DIR/labels.jsonl (the pairs by object id) and DIR/README-format.json",
     ),
 }

@@ -62,19 +62,37 @@ class LabelledScene:
         return f"{self.scene_id}@r{self.revision}"
 
 
-def labelled_scenes(scenes: SceneStore) -> list[LabelledScene]:
-    """Scenes whose current revision has supports set by a person (`source == "manual"`).
+def people_labelled(scene_id: str, revision: int, scene: Scene) -> LabelledScene | None:
+    """The revision with only the supports a person set (`source == "manual"`), or None when
+    it has none.
 
     Supports the pipeline guessed are left out: training on them would teach the network its
     own priors, and judging by them would reward agreeing with the priors."""
+    manual = [s for s in scene.supports if s.source == "manual"]
+    if not manual:
+        return None
+    return LabelledScene(scene_id, revision, scene.model_copy(update={"supports": manual}))
+
+
+def labelled_scenes(scenes: SceneStore) -> list[LabelledScene]:
+    """Scenes whose current revision has supports set by a person."""
     found = []
     for summary in scenes.list_summaries():
         doc = scenes.document(summary.id)
-        manual = [s for s in doc.scene.supports if s.source == "manual"]
-        if manual:
-            scene = doc.scene.model_copy(update={"supports": manual})
-            found.append(LabelledScene(summary.id, doc.revision, scene))
+        item = people_labelled(summary.id, doc.revision, doc.scene)
+        if item is not None:
+            found.append(item)
     return found
+
+
+def labelled_sample(item: LabelledScene, photo: Path) -> SupportSample | None:
+    """The training sample of a labelled scene, named `<scene id>@r<revision>`; None when none
+    of its labels is one the network learns (e.g. only walls' supports)."""
+    sample = sample_from_scene(item.scene, load_photo(photo.read_bytes()).rgb)
+    if sample is None or sample.labelled == 0:
+        return None
+    # Named by scene and revision: data.json then says exactly what was seen.
+    return dataclasses.replace(sample, name=item.key)
 
 
 def stored_samples(
@@ -86,11 +104,9 @@ def stored_samples(
     samples = []
     for item in labelled_scenes(scenes) if labelled is None else labelled:
         before_each()
-        photo = load_photo(scenes.image_path(item.scene_id).read_bytes())
-        sample = sample_from_scene(item.scene, photo.rgb)
-        if sample is not None and sample.labelled > 0:
-            # Name samples by scene and revision: data.json then says exactly what was seen.
-            samples.append(dataclasses.replace(sample, name=item.key))
+        sample = labelled_sample(item, scenes.image_path(item.scene_id))
+        if sample is not None:
+            samples.append(sample)
     return samples
 
 
