@@ -11,6 +11,7 @@ from ..validation import InputError
 from .coco import is_coco, read_coco
 from .items import DatasetItem, load_json
 from .labelme import is_labelme, read_labelme
+from .sunrgbd import is_sunrgbd, read_sunrgbd
 
 __all__ = ["DatasetItem", "dataset_items", "is_dataset", "read_coco", "read_labelme"]
 
@@ -40,13 +41,16 @@ def is_dataset(path: Path) -> bool:
         return True
     if not path.is_dir() or any((path / n).is_file() for n in PHOTO_NAMES):
         return False
-    return bool(_coco_files(path) or _labelme_candidates(path))
+    return bool(_coco_files(path) or _labelme_candidates(path) or is_sunrgbd(path))
 
 
 def dataset_items(path: Path) -> Iterator[DatasetItem]:
     """The photos of a dataset file or folder, the format told by the content."""
     if path.is_dir():
         files = _coco_files(path) or _labelme_candidates(path)
+        if not files and is_sunrgbd(path):  # SUN RGB-D image folders at any depth
+            yield from read_sunrgbd(path)
+            return
         if not files:
             yield DatasetItem(name=str(path), error="holds no COCO or LabelMe files")
         for file in files:

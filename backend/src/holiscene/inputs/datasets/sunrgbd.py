@@ -1,0 +1,376 @@
+"""SUN RGB-D image folders: each photo with its 2D outlines as objects, and what the dataset
+measured (camera tilt, 3D boxes, room layout) as the scene's ground truth.
+
+One image folder holds `image/<name>.jpg`, `intrinsics.txt` (K, 9 numbers row by row),
+`extrinsics/<stamp>.txt` (the newest is used), `annotation2Dfinal/index.json` (polygons
+`frames[0].polygon[i] = {x, y, object: k}` naming `objects[k].name`), and, when annotated,
+`annotation3Dfinal/index.json` (a box per object) and `annotation3Dlayout/index.json` (the
+room). `depth/` is not read. Frames and their conversion: sunrgbd_frames.py.
+
+A 3D box belongs to the 2D object at the same index k of the two files' `objects` lists,
+when both give it the same name; other 3D boxes are left out of the ground truth.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import sys
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from holiscene_schema import (
+    STRUCTURAL_CLASSES,
+    Box3D,
+    Camera,
+    ImageInfo,
+    Layout,
+    Scene,
+    SceneObject,
+)
+
+from ...geometry.boxes import box_corners
+from ...geometry.camera import FloatArray, PinholeCamera
+from ...pipeline.base import Detection
+from ..validation import (
+    InputError,
+    InputFiles,
+    Photo,
+    load_photo,
+    parse_class_map,
+    parse_intrinsics,
+)
+from .items import CLASS_MAP_FILE, DatasetItem, labelled_detection, load_json, polygon_pixels
+from .sunrgbd_frames import camera_pitch_roll, object_box, room_corners, rotation_from_extrinsics
+from .sunrgbd_frames import world_from_sun as world_from_sun_frame
+
+INTRINSICS_FILE = "intrinsics.txt"
+IMAGE_FOLDER = "image"
+EXTRINSICS_FOLDER = "extrinsics"
+ANNOTATION_2D = Path("annotation2Dfinal") / "index.json"
+ANNOTATION_3D = Path("annotation3Dfinal") / "index.json"
+LAYOUT_3D = Path("annotation3Dlayout") / "index.json"
+DECIMALS = 6
+
+
+def is_image_folder(folder: Path) -> bool:
+    """A SUN RGB-D image folder: intrinsics.txt beside image/ or annotation2Dfinal/."""
+    return (folder / INTRINSICS_FILE).is_file() and (
+        (folder / IMAGE_FOLDER).is_dir() or (folder / ANNOTATION_2D).parent.is_dir()
+    )
+
+
+def image_folders(root: Path) -> Iterator[Path]:
+    """The image folders at or below `root`, in name order (not looking inside one)."""
+    if is_image_folder(root):
+        yield root
+        return
+    for top, dirs, _ in os.walk(root):
+        dirs.sort()
+        for name in list(dirs):
+            if is_image_folder(Path(top) / name):
+                dirs.remove(name)
+                yield Path(top) / name
+
+
+def is_sunrgbd(path: Path) -> bool:
+    return path.is_dir() and next(image_folders(path), None) is not None
+
+
+def read_sunrgbd(root: Path) -> Iterator[DatasetItem]:
+    """One item per image folder at or below `root`, with a progress bar on stderr; a
+    class_map.json in `root` maps the dataset's names for all of them."""
+    from tqdm import tqdm
+
+    try:
+        map_file = root / CLASS_MAP_FILE
+        class_map = parse_class_map_file(map_file) if map_file.is_file() else None
+    except InputError as exc:
+        yield DatasetItem(name=str(root), error=str(exc))
+        return
+    for folder in tqdm(image_folders(root), desc="SUN RGB-D", unit="photo", file=sys.stderr):
+        try:
+            inputs = read_image_folder(folder, class_map)
+        except InputError as exc:
+            yield DatasetItem(name=str(folder), error=str(exc))
+            continue
+        yield DatasetItem(name=str(folder), inputs=inputs)
+
+
+def parse_class_map_file(path: Path) -> dict[str, str]:
+    return parse_class_map(path.read_bytes())
+
+
+def read_image_folder(folder: Path, class_map: dict[str, str] | None = None) -> InputFiles:
+    """The photo, K, objects and ground truth of one image folder."""
+    photo = _photo(folder)
+    K = read_intrinsics(folder / INTRINSICS_FILE)
+    annotation = _annotation_2d(folder)
+    labelled = _objects(annotation, photo, class_map) if annotation is not None else None
+    detections = [d for _, d in labelled] if labelled is not None else None
+    sun_from_cv = read_extrinsics(folder)
+    truth = None
+    if sun_from_cv is not None:
+        truth = ground_truth(folder, photo, K, sun_from_cv, annotation, labelled or [])
+    elif (folder / ANNOTATION_3D).is_file() or (folder / LAYOUT_3D).is_file():
+        raise InputError(f"{EXTRINSICS_FOLDER}/ holds no .txt: the 3D annotations need the tilt")
+    return InputFiles(photo=photo, K=K, detections=detections, ground_truth=truth)
+
+
+def _photo(folder: Path) -> Photo:
+    images = sorted((folder / IMAGE_FOLDER).glob("*.jp*g")) + sorted(
+        (folder / IMAGE_FOLDER).glob("*.png")
+    )
+    if not images:
+        raise InputError(f"{IMAGE_FOLDER}/ holds no .jpg image")
+    try:
+        return load_photo(images[0].read_bytes())
+    except InputError as exc:
+        raise InputError(f"{IMAGE_FOLDER}/{images[0].name}: {exc}", exc.status) from exc
+
+
+def _numbers(path: Path) -> list[float]:
+    try:
+        return [float(v) for v in path.read_text().split()]
+    except ValueError as exc:
+        raise InputError(f"{path.name} must hold numbers only: {exc}") from exc
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"{path.name} cannot be read: {exc}") from exc
+
+
+def read_intrinsics(path: Path) -> FloatArray:
+    """K from intrinsics.txt: 9 numbers, row by row."""
+    values = _numbers(path)
+    if len(values) != 9:
+        raise InputError(
+            f"{path.name} must hold 9 numbers (the 3x3 intrinsics), it holds {len(values)}"
+        )
+    rows = "\n".join(" ".join(repr(v) for v in values[i : i + 3]) for i in (0, 3, 6))
+    try:
+        return parse_intrinsics(rows)
+    except InputError as exc:
+        raise InputError(str(exc).replace("cam_K.txt", path.name)) from exc
+
+
+def read_extrinsics(folder: Path) -> FloatArray | None:
+    """E from the newest extrinsics file (the last by name: they are named by time)."""
+    files = sorted((folder / EXTRINSICS_FOLDER).glob("*.txt"))
+    if not files:
+        return None
+    try:
+        return rotation_from_extrinsics(_numbers(files[-1]))
+    except InputError as exc:
+        raise InputError(f"{EXTRINSICS_FOLDER}/{files[-1].name}: {exc}") from exc
+
+
+@dataclass(frozen=True)
+class Annotation2D:
+    """annotation2Dfinal: the name of each `objects[k]` (None for an unnamed one), and for
+    each object with outlines, in order of first appearance, k and its polygons as flat
+    [x, y, ...] lists."""
+
+    objects: list[str | None]
+    outlines: dict[int, list[list[Any]]]
+
+
+def sun_name(raw: Any) -> str:
+    """A SUN RGB-D object name as a class name: the part before any ':' (the 3D tool's
+    'name:label'), lower case, without the digits some names carry (chair2)."""
+    if not isinstance(raw, str):
+        return ""
+    return " ".join(re.sub(r"[0-9]", "", raw.split(":")[0].lower()).replace("_", " ").split())
+
+
+def _as_list(value: Any) -> list[Any]:
+    """A coordinate list; MATLAB's JSON writer saves a one-element list as a bare number."""
+    return value if isinstance(value, list) else [value]
+
+
+def _annotation_2d(folder: Path) -> Annotation2D | None:
+    path = folder / ANNOTATION_2D
+    if not path.is_file():
+        return None
+    data = load_json(path)
+    where = str(ANNOTATION_2D)
+    objects = [
+        sun_name(o.get("name")) or None if isinstance(o, dict) else None
+        for o in _object_list(path, data)
+    ]
+    frames = data.get("frames")
+    if not isinstance(frames, list) or not frames or not isinstance(frames[0], dict):
+        raise InputError(f"{where}: 'frames' must be a list of frames")
+    polygons = frames[0].get("polygon", [])
+    if not isinstance(polygons, list):
+        raise InputError(f"{where}: frames[0].polygon must be a list")
+    outlines: dict[int, list[list[Any]]] = {}
+    for i, polygon in enumerate(polygons):
+        if not isinstance(polygon, dict) or not {"x", "y", "object"} <= polygon.keys():
+            raise InputError(f"{where}: polygon {i} must have 'x', 'y' and 'object'")
+        k = polygon["object"]
+        if not isinstance(k, int) or not 0 <= k < len(objects) or objects[k] is None:
+            continue  # an outline of no named object: nothing to label it with
+        xs, ys = _as_list(polygon["x"]), _as_list(polygon["y"])
+        if len(xs) != len(ys):
+            raise InputError(f"{where}: polygon {i} has {len(xs)} x and {len(ys)} y values")
+        flat = [v for point in zip(xs, ys, strict=True) for v in point]
+        outlines.setdefault(k, []).append(flat)
+    return Annotation2D(objects, outlines)
+
+
+def _objects(
+    annotation: Annotation2D, photo: Photo, class_map: dict[str, str] | None
+) -> list[tuple[int, Detection]]:
+    """Each object with outlines as (its index k, its detection), the mask the union of its
+    polygons. Walls, floors and ceilings are the room, not objects: they are left out."""
+    labelled = []
+    for k, polygons in annotation.outlines.items():
+        where = f"{ANNOTATION_2D} object {k}"
+        pixels = np.zeros((photo.height, photo.width), dtype=bool)
+        for polygon in polygons:
+            pixels |= polygon_pixels(where, polygon, photo.width, photo.height)
+        name = annotation.objects[k]
+        assert name is not None  # outlines only hold named objects
+        detection = labelled_detection(
+            where, name, None, pixels, photo.width, photo.height, class_map
+        )
+        if detection.cls not in STRUCTURAL_CLASSES:
+            labelled.append((k, detection))
+    return labelled
+
+
+def ground_truth(
+    folder: Path,
+    photo: Photo,
+    K: FloatArray,
+    sun_from_cv: FloatArray,
+    annotation: Annotation2D | None,
+    labelled: list[tuple[int, Detection]],
+) -> Scene:
+    """The scene as SUN RGB-D measured it, in the world frame: the camera (K, pitch, roll,
+    and its height when the room is annotated), the room cuboid, and the 2D objects (ids
+    o0, o1, ... as the import gives them) with their 3D boxes where annotated."""
+    to_world = world_from_sun_frame(sun_from_cv)
+    pitch, roll = camera_pitch_roll(sun_from_cv)
+    layout = _layout(folder, to_world, PinholeCamera(K, pitch, roll))
+    boxes = _boxes_3d(folder, annotation, to_world)
+    objects = [
+        _truth_object(f"o{i}", detection, boxes.get(k)) for i, (k, detection) in enumerate(labelled)
+    ]
+    height = -min(c[1] for c in layout.corners_3d) if layout.corners_3d else None
+    camera = Camera(
+        K=K.tolist(),
+        K_source="given",
+        pitch_deg=round(pitch, DECIMALS),
+        roll_deg=round(roll, DECIMALS),
+        height_m=round(height, DECIMALS) if height is not None and height > 0 else None,
+        height_source="ground_truth" if height is not None and height > 0 else None,
+    )
+    return Scene(
+        name=folder.name,
+        image=ImageInfo(file=f"img{photo.suffix}", width=photo.width, height=photo.height),
+        camera=camera,
+        layout=layout,
+        objects=objects,
+    )
+
+
+Box = tuple[FloatArray, FloatArray, float]  # world centre, size (front, up, right), yaw
+
+
+def _truth_object(object_id: str, detection: Detection, box: Box | None) -> SceneObject:
+    mask = detection.mask.model_copy(update={"source": "ground_truth"}) if detection.mask else None
+    box_3d = corners = None
+    if box is not None:
+        centre, size, yaw = box
+        box_3d = Box3D(
+            center=centre.round(DECIMALS).tolist(),
+            size=size.round(DECIMALS).tolist(),
+            yaw_deg=round(yaw, DECIMALS),
+        )
+        corners = box_corners(centre, size, yaw).round(DECIMALS).tolist()
+    return SceneObject(
+        id=object_id,
+        cls=detection.cls,
+        source_class=detection.source_class,
+        bbox=list(detection.bbox),
+        mask=mask,
+        box_3d=box_3d,
+        corners_3d=corners,
+        source="given",
+    )
+
+
+def _floor_polygon(where: str, polygons: Any) -> tuple[list[float], list[float], float, float]:
+    """X, Z, Ymin and Ymax of an annotation's first polygon (MATLAB's JSON writer saves a
+    list of one as the element itself)."""
+    polygon = polygons[0] if isinstance(polygons, list) and polygons else polygons
+    if not isinstance(polygon, dict) or not {"X", "Z", "Ymin", "Ymax"} <= polygon.keys():
+        raise InputError(f"{where}: a polygon must have 'X', 'Z', 'Ymin' and 'Ymax'")
+    xs, zs = _as_list(polygon["X"]), _as_list(polygon["Z"])
+    values = [*xs, *zs, polygon["Ymin"], polygon["Ymax"]]
+    if not all(isinstance(v, int | float) and not isinstance(v, bool) for v in values):
+        raise InputError(f"{where}: X, Z, Ymin and Ymax must be numbers")
+    if len(xs) != len(zs):
+        raise InputError(f"{where}: the polygon has {len(xs)} X and {len(zs)} Z values")
+    if not np.all(np.isfinite(values)):
+        raise InputError(f"{where}: the polygon holds a value that is not finite")
+    return xs, zs, float(polygon["Ymin"]), float(polygon["Ymax"])
+
+
+def _object_list(path: Path, data: Any) -> list[Any]:
+    """The `objects` list of an annotation file (entries may be null)."""
+    objects = data.get("objects") if isinstance(data, dict) else None
+    if not isinstance(objects, list):
+        raise InputError(f"{path.parent.name}/{path.name}: 'objects' must be a list")
+    return objects
+
+
+def _boxes_3d(
+    folder: Path, annotation: Annotation2D | None, to_world: FloatArray
+) -> dict[int, Box]:
+    """The world boxes of annotation3Dfinal by object index k, kept for the 2D objects of the
+    same index and name (the two files list the same objects)."""
+    path = folder / ANNOTATION_3D
+    if not path.is_file() or annotation is None:
+        return {}
+    boxes: dict[int, Box] = {}
+    for k, item in enumerate(_object_list(path, load_json(path))):
+        if not isinstance(item, dict) or not item.get("polygon"):
+            continue  # an object with no 3D box
+        two_d = annotation.objects[k] if k < len(annotation.objects) else None
+        if k not in annotation.outlines or two_d is None or two_d != sun_name(item.get("name")):
+            continue
+        where = f"{ANNOTATION_3D} object {k}"
+        xs, zs, y_min, y_max = _floor_polygon(where, item["polygon"])
+        try:
+            boxes[k] = object_box(xs, zs, y_min, y_max, to_world)
+        except InputError as exc:
+            raise InputError(f"{where}: {exc}") from exc
+    return boxes
+
+
+def _layout(folder: Path, to_world: FloatArray, camera: PinholeCamera) -> Layout:
+    """The room of annotation3Dlayout (its first object with a polygon) as a cuboid, its
+    corners in the image too; a room that is not a 4-cornered box is left out with a note."""
+    path = folder / LAYOUT_3D
+    if not path.is_file():
+        return Layout()
+    for item in _object_list(path, load_json(path)):
+        if not isinstance(item, dict) or not item.get("polygon"):
+            continue
+        xs, zs, y_min, y_max = _floor_polygon(str(LAYOUT_3D), item["polygon"])
+        try:
+            corners = room_corners(xs, zs, y_min, y_max, to_world)
+        except InputError as exc:
+            return Layout(note=f"{LAYOUT_3D}: {exc}; no layout kept")
+        image = [
+            None if np.isnan(p).any() else [round(float(p[0]), 2), round(float(p[1]), 2)]
+            for p in camera.project(corners)
+        ]
+        return Layout(
+            corners_2d=image, corners_3d=corners.round(DECIMALS).tolist(), source="ground_truth"
+        )
+    return Layout(note=f"{LAYOUT_3D} holds no room polygon")

@@ -1,0 +1,260 @@
+"""SUN RGB-D image folders: a synthetic room written in SUN's layout and frames comes back as
+the generator made it (camera, 3D boxes, room, outlines), the 3D boxes project onto their
+outlines, 3D boxes join 2D objects by index and name, and bad folders fail one by one."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from holiscene.geometry.camera import PinholeCamera
+from holiscene.inputs.datasets import dataset_items, is_dataset
+from holiscene.segmentation.rle import decode_mask
+from holiscene_schema import Scene
+
+from .files import photo_bytes, write_json
+from .sunrgbd_files import write_sun_folder
+
+SEED = 5  # a bedroom of 16 objects, some cut by the image border, one partly hidden
+HEADINGS = (0.0, 23.0, -140.0)  # the SUN gravity frame's turn from the camera's heading
+
+
+@pytest.fixture(scope="module")
+def synth_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    from holiscene.synth.generate import synthesize_to
+
+    return synthesize_to(SEED, tmp_path_factory.mktemp("synth"))
+
+
+def _import_one(folder: Path) -> Scene:
+    (item,) = dataset_items(folder)
+    assert item.error is None and item.inputs is not None
+    assert item.inputs.ground_truth is not None
+    return item.inputs.ground_truth
+
+
+def _yaw_gap(a: float, b: float) -> float:
+    return abs((a - b + 180.0) % 360.0 - 180.0)
+
+
+@pytest.mark.parametrize("heading", HEADINGS)
+def test_the_ground_truth_comes_back_as_generated(
+    synth_dir: Path, tmp_path: Path, heading: float
+) -> None:
+    truth = write_sun_folder(synth_dir, tmp_path / "NYU0005", heading)
+    found = _import_one(tmp_path / "NYU0005")
+    assert found.camera is not None and truth.camera is not None
+    assert np.allclose(found.camera.K, truth.camera.K)
+    assert abs((found.camera.pitch_deg or 0) - (truth.camera.pitch_deg or 0)) < 1e-3
+    assert abs((found.camera.roll_deg or 0) - (truth.camera.roll_deg or 0)) < 1e-3
+    assert abs((found.camera.height_m or 0) - (truth.camera.height_m or 0)) < 1e-3
+    assert found.layout.source == "ground_truth"
+    assert np.allclose(found.layout.corners_3d or [], truth.layout.corners_3d or [], atol=1e-3)
+    for a, b in zip(found.layout.corners_2d or [], truth.layout.corners_2d or [], strict=True):
+        assert (a is None) == (b is None)
+        assert a is None or b is None or np.allclose(a, b, atol=0.1)
+    assert [o.id for o in found.objects] == [o.id for o in truth.objects]
+    assert [o.cls for o in found.objects] == [o.cls for o in truth.objects]
+    for obj, expected in zip(found.objects, truth.objects, strict=True):
+        assert obj.box_3d is not None and expected.box_3d is not None
+        assert np.allclose(obj.box_3d.center, expected.box_3d.center, atol=1e-3), obj.id
+        assert np.allclose(obj.box_3d.size, expected.box_3d.size, atol=1e-3), obj.id
+        assert _yaw_gap(obj.box_3d.yaw_deg, expected.box_3d.yaw_deg) < 1e-2, obj.id
+        assert np.allclose(obj.corners_3d or [], expected.corners_3d or [], atol=1e-3)
+
+
+def test_the_outlines_become_the_objects(synth_dir: Path, tmp_path: Path) -> None:
+    truth = write_sun_folder(synth_dir, tmp_path / "NYU0005")
+    (item,) = dataset_items(tmp_path / "NYU0005")
+    assert item.inputs is not None and item.inputs.K is not None
+    assert np.allclose(item.inputs.K, truth.camera.K if truth.camera else [])
+    detections = item.inputs.detections or []
+    assert [d.cls for d in detections] == [o.cls for o in truth.objects]
+    width, height = truth.image.width, truth.image.height
+    for detection, expected in zip(detections, truth.objects, strict=True):
+        assert detection.bbox == tuple(expected.bbox)
+        assert detection.mask is not None and expected.mask is not None
+        assert detection.mask.source == "given"
+        mine = decode_mask(detection.mask, width, height)
+        theirs = decode_mask(expected.mask, width, height)
+        assert (mine & theirs).sum() / (mine | theirs).sum() > 0.97
+
+
+@pytest.mark.parametrize("heading", HEADINGS)
+def test_the_3d_boxes_project_onto_their_outlines(
+    synth_dir: Path, tmp_path: Path, heading: float
+) -> None:
+    """Independent of the generator's numbers: seen through the imported camera, each 3D box
+    covers its object's 2D outline, and mostly no more (a wrong frame lands elsewhere)."""
+    write_sun_folder(synth_dir, tmp_path / "NYU0005", heading)
+    found = _import_one(tmp_path / "NYU0005")
+    assert found.camera is not None
+    camera = PinholeCamera(
+        np.array(found.camera.K), found.camera.pitch_deg or 0.0, found.camera.roll_deg or 0.0
+    )
+    size = np.array([found.image.width, found.image.height])
+    overlaps = []
+    for obj in found.objects:
+        corners = camera.project(np.array(obj.corners_3d))
+        assert not np.isnan(corners).any()
+        x1, y1 = np.clip(corners.min(axis=0), 0, size)
+        x2, y2 = np.clip(corners.max(axis=0), 0, size)
+        bx1, by1, bx2, by2 = obj.bbox
+        assert bx1 >= x1 - 2 and by1 >= y1 - 2 and bx2 <= x2 + 2 and by2 <= y2 + 2, obj.id
+        inter = max(0.0, min(bx2, x2) - max(bx1, x1)) * max(0.0, min(by2, y2) - max(by1, y1))
+        overlaps.append(inter / ((bx2 - bx1) * (by2 - by1) + (x2 - x1) * (y2 - y1) - inter))
+    assert np.median(overlaps) > 0.8
+
+
+# A small hand-written folder: a 96x64 photo, two outlines, a level camera.
+def _small_folder(folder: Path) -> Path:
+    (folder / "image").mkdir(parents=True)
+    (folder / "image" / "0000001.jpg").write_bytes(photo_bytes(3, kind="JPEG"))
+    (folder / "depth").mkdir()
+    (folder / "intrinsics.txt").write_text("80 0 48\n0 80 32\n0 0 1\n")
+    (folder / "extrinsics").mkdir()
+    (folder / "extrinsics" / "1.txt").write_text("1 0 0 0\n0 1 0 0\n0 0 1 0\n")
+    write_json(
+        folder / "annotation2Dfinal" / "index.json",
+        {
+            "frames": [
+                {
+                    "polygon": [
+                        {"x": [10, 30, 30, 10], "y": [10, 10, 40, 40], "object": 0},
+                        {"x": [50, 80, 80], "y": [20, 20, 50], "object": 2},
+                    ]
+                }
+            ],
+            "objects": [{"name": "chair"}, None, {"name": "sofa"}],
+        },
+    )
+    return folder
+
+
+def test_3d_boxes_join_2d_objects_by_index_and_name(tmp_path: Path) -> None:
+    folder = _small_folder(tmp_path / "a")
+    box = {"X": [-0.3, 0.3, 0.3, -0.3], "Z": [2.0, 2.0, 2.6, 2.6], "Ymin": 0.2, "Ymax": 1.0}
+    annotation = json.loads((folder / "annotation2Dfinal" / "index.json").read_text())
+    annotation["frames"][0]["polygon"] += [
+        {"x": [5, 9, 9], "y": [50, 50, 60], "object": 0},  # a second part of the chair
+        {"x": [1, 2, 2], "y": [1, 1, 2], "object": 7},  # no such object: left out
+    ]
+    annotation["objects"] += [{"name": "Teapot3"}, {"name": "wall"}]  # a wall is the room
+    annotation["frames"][0]["polygon"] += [
+        {"x": [60, 70, 70], "y": [5, 5, 15], "object": 3},
+        {"x": [0, 95, 95, 0], "y": [0, 0, 9, 9], "object": 4},
+    ]
+    write_json(folder / "annotation2Dfinal" / "index.json", annotation)
+    write_json(
+        folder / "annotation3Dfinal" / "index.json",
+        {
+            "objects": [
+                {"name": "chair", "polygon": [box]},
+                None,
+                {"name": "table", "polygon": [box]},  # another name at sofa's index
+            ]
+        },
+    )
+    room = {"X": [-2, 2, 2.5, 0, -2], "Z": [0, 0, 4, 5, 4], "Ymin": -1.2, "Ymax": 1.4}
+    write_json(folder / "annotation3Dlayout" / "index.json", {"objects": [{"polygon": room}]})
+    (item,) = dataset_items(folder)
+    assert item.inputs is not None and item.inputs.ground_truth is not None
+    chair, sofa, teapot = item.inputs.detections or []
+    assert (chair.cls, sofa.cls, teapot.cls) == ("chair", "sofa", "otherprop")
+    assert teapot.source_class == "teapot" and not teapot.class_known
+    assert chair.bbox == (5.0, 10.0, 31.0, 61.0)  # both parts
+    truth = item.inputs.ground_truth
+    assert [o.id for o in truth.objects] == ["o0", "o1", "o2"]
+    box_3d = truth.objects[0].box_3d
+    assert box_3d is not None and truth.objects[1].box_3d is None
+    # Level camera, gravity frame along the camera: SUN's Z is forward, X right, Y down.
+    assert np.allclose(box_3d.center, [2.3, -0.6, 0.0]) and np.allclose(
+        box_3d.size, [0.6, 0.8, 0.6]
+    )
+    assert _yaw_gap(box_3d.yaw_deg, 180.0) < 1e-9  # its first two corners are the near side
+    assert truth.layout.corners_3d is None and "5 corners" in (truth.layout.note or "")
+    assert truth.camera is not None and truth.camera.pitch_deg == 0.0
+
+
+def test_image_folders_are_found_at_any_depth(tmp_path: Path) -> None:
+    root = tmp_path / "SUNRGBD"
+    _small_folder(root / "kv1" / "NYUdata" / "NYU0002")
+    _small_folder(root / "kv1" / "NYUdata" / "NYU0001")
+    plain = _small_folder(root / "realsense" / "lg" / "2014_10_24-14_37_53-1311000073")
+    shutil.rmtree(plain / "annotation2Dfinal")
+    assert is_dataset(root) and is_dataset(root / "kv1" / "NYUdata" / "NYU0001")
+    items = list(dataset_items(root))
+    assert [Path(i.name).name for i in items] == [
+        "NYU0001",
+        "NYU0002",
+        "2014_10_24-14_37_53-1311000073",
+    ]
+    assert all(i.inputs is not None for i in items)
+    assert items[2].inputs is not None and items[2].inputs.detections is None
+
+
+def test_a_bad_folder_is_its_own_error_and_the_rest_are_read(tmp_path: Path) -> None:
+    root = tmp_path / "SUNRGBD"
+    _small_folder(root / "a_good")
+    (_small_folder(root / "b_not_json") / "annotation2Dfinal" / "index.json").write_text("{x")
+    two = _small_folder(root / "c_two_points")
+    annotation = json.loads((two / "annotation2Dfinal" / "index.json").read_text())
+    annotation["frames"][0]["polygon"][1] = {"x": [50, 80], "y": [20, 20], "object": 2}
+    write_json(two / "annotation2Dfinal" / "index.json", annotation)
+    shutil.rmtree(_small_folder(root / "d_no_image") / "image")
+    (_small_folder(root / "e_eight_numbers") / "intrinsics.txt").write_text("80 0 48 0 80 32 0 0")
+    (_small_folder(root / "f_bad_tilt") / "extrinsics" / "2.txt").write_text("1 2 3\n")
+    flat = {"X": [0, 1], "Z": [1, 2], "Ymin": 0, "Ymax": 1}
+    write_json(
+        _small_folder(root / "g_bad_box") / "annotation3Dfinal" / "index.json",
+        {"objects": [{"name": "chair", "polygon": [flat]}]},
+    )
+    items = list(dataset_items(root))
+    assert [Path(i.name).name for i in items] == [
+        "a_good",
+        "b_not_json",
+        "c_two_points",
+        "d_no_image",
+        "e_eight_numbers",
+        "f_bad_tilt",
+        "g_bad_box",
+    ]
+    assert items[0].inputs is not None and items[0].error is None
+    assert all(i.inputs is None for i in items[1:])
+    errors = [i.error or "" for i in items[1:]]
+    assert "index.json is not valid JSON" in errors[0]
+    assert "object 2: a polygon needs at least 3 points, it has 2" in errors[1]
+    assert "image/ holds no .jpg image" in errors[2]
+    assert "intrinsics.txt must hold 9 numbers" in errors[3] and "it holds 8" in errors[3]
+    assert "extrinsics/2.txt: must hold 3 rows of 4 numbers" in errors[4]
+    assert "annotation3Dfinal/index.json object 0: a box's floor polygon has 4 corners" in errors[5]
+
+
+def test_holiscene_import_stores_the_ground_truth_beside_the_scene(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from holiscene.cli import main
+    from holiscene.cli.export import scene_store
+    from holiscene.core.settings import Settings
+
+    root = tmp_path / "SUNRGBD"
+    _small_folder(root / "kv1" / "NYU0001")
+    (_small_folder(root / "kv1" / "NYU0002") / "intrinsics.txt").write_text("80 0 48 0 80 32")
+    data_dir = tmp_path / "data"
+    assert main(["import", str(root), "--data-dir", str(data_dir)]) == 1
+    assert "NYU0002: intrinsics.txt must hold 9 numbers (the 3x3 intrinsics), it holds 6" in (
+        capsys.readouterr().err
+    )
+    with scene_store(Settings(data_dir=data_dir)) as scenes:
+        (summary,) = scenes.list_summaries()
+        stored = scenes.document(summary.id).scene
+        truth_file = scenes.files.ground_truth_path(summary.id)
+    assert stored.name == "NYU0001" and [o.cls for o in stored.objects][:2] == ["chair", "sofa"]
+    truth = Scene.model_validate_json(truth_file.read_text())
+    assert truth.camera is not None and truth.camera.pitch_deg == 0.0
+    assert [o.id for o in truth.objects] == ["o0", "o1"]
+    assert main(["import", str(root / "kv1" / "NYU0001"), "--data-dir", str(data_dir)]) == 0
+    assert "imported before" in capsys.readouterr().out
