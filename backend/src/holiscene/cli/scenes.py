@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -34,9 +34,10 @@ def add_import_command(sub: argparse._SubParsersAction[argparse.ArgumentParser])
         "import",
         help="import input folders, COCO or LabelMe files as scenes and run the pipeline",
         description="Each PATH is an input folder (img.jpg, cam_K.txt, detections.json), a "
-        "COCO instances file (or a folder holding annotations.json or instances*.json), or a "
-        "LabelMe file (or a folder of them); the format is told by the content. A photo that "
-        "does not read is reported and left out, the others are imported.",
+        "COCO instances file (or a folder holding annotations.json or instances*.json), a "
+        "LabelMe file (or a folder of them), or NYU Depth v2's labelled .mat (or a folder "
+        "holding it, support_labels.mat beside it); the format is told by the content. A "
+        "photo that does not read is reported and left out, the others are imported.",
     )
     imp.add_argument("paths", type=Path, nargs="+", metavar="PATH")
     imp.add_argument("--data-dir", type=Path)
@@ -81,12 +82,13 @@ def _import(args: argparse.Namespace) -> int:
     number = 0
     try:
         for path in args.paths:
-            items: list[tuple[str, str, Callable[[], InputFiles]]]
+            items: Iterable[tuple[str, str, Callable[[], InputFiles]]]
             if is_dataset(path):
-                items = [
+                # Read one photo at a time: a dataset of a thousand photos never in memory.
+                items = (
                     (item.name, Path(item.name).stem, partial(_dataset_item, item))
                     for item in dataset_items(path)
-                ]
+                )
             else:
                 items = [(str(path), path.name, partial(read_input_folder, path))]
             for label, name, read in items:

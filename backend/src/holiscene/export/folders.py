@@ -12,6 +12,7 @@ from pathlib import Path
 from ..core.atomic_files import write_atomic
 from .archive import ArchivedScene, file_stem, scene_json
 from .coco import coco_dataset
+from .nyu_supports import write_nyu_supports
 from .relation_training import write_relation_training
 
 COCO_FILE = "annotations.json"
@@ -79,5 +80,10 @@ EXPORT_FORMATS: dict[str, ExportFormat] = {
         write_relation_training,
         "DIR/pairs.npz (the Relation Network's inputs and the support pairs people "
         "labelled), DIR/labels.jsonl (the pairs by object id) and DIR/README-format.json",
+    ),
+    "nyu-supports": ExportFormat(
+        write_nyu_supports,
+        "DIR/nyu_depth_v2_labeled.mat (images, labels, instances, names; the scenes must "
+        "share one size) and DIR/support_labels.mat, as NYU Depth v2 has them",
     ),
 }

@@ -1,0 +1,147 @@
+"""NYU Depth v2's labelled .mat and support labels: objects per (label, instance) with their
+masks and classes, the room's regions as structure, supports over the toolbox's region
+numbers, the camera, and bad files or rows refused item by item."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+from holiscene.inputs.datasets import DatasetItem, dataset_items, is_dataset
+from holiscene.inputs.datasets.matlab import cell_of_matrices_v5, read_cell_of_matrices
+from holiscene.inputs.datasets.nyu import NYU_FX, nyu_regions
+from holiscene.segmentation.rle import decode_mask
+
+from .nyu_files import HEIGHT, WIDTH, bedroom, nyu_folder, write_labelled, write_support_labels
+
+
+def _read(path: Path) -> list[DatasetItem]:
+    return list(dataset_items(path))
+
+
+def test_objects_masks_classes_and_supports(tmp_path: Path) -> None:
+    image = bedroom()
+    labelled = nyu_folder(tmp_path, [image])
+    assert is_dataset(labelled) and is_dataset(tmp_path)
+    (item,) = _read(tmp_path)
+    assert item.error is None and item.inputs is not None
+    assert item.name.endswith("/0001_bedroom_0000")
+    inputs = item.inputs
+    detections = inputs.detections or []
+    # Wall and floor are the room, not objects; the teapot is no known name.
+    assert [d.cls for d in detections] == [
+        "bed",
+        "lamp",
+        "pillow",
+        "pillow",
+        "otherprop",
+        "picture",
+    ]
+    assert detections[4].source_class == "teapot" and not detections[4].class_known
+    assert detections[0].bbox == (5.0, 20.0, 41.0, 36.0)
+    pillow = decode_mask(detections[2].mask, WIDTH, HEIGHT) if detections[2].mask else None
+    assert pillow is not None and pillow.sum() == 6 * 9
+    assert np.array_equal(pillow, (image.labels == 5) & (image.instances == 1))
+    bed = decode_mask(detections[0].mask, WIDTH, HEIGHT) if detections[0].mask else None
+    assert bed is not None and not bed[22:28, 8:17].any()  # the pillows' pixels are theirs
+    relations = [(s.child, s.parent, s.type) for s in inputs.supports]
+    assert relations == [
+        ("o0", "floor", "below"),
+        ("o1", "wall", "behind"),
+        ("o2", "o0", "below"),
+        ("o3", "o0", "below"),
+        ("o4", "floor", "below"),
+    ]  # the wall's own row (region 1 on the floor) is no object's
+    assert {(s.source, s.author) for s in inputs.supports} == {("manual", "NYU Depth v2")}
+    assert inputs.K is not None and inputs.K[0, 0] == pytest.approx(NYU_FX * WIDTH / 640)
+    truth = inputs.ground_truth
+    assert truth is not None and truth.camera is not None
+    assert inputs.K.tolist() == truth.camera.K and truth.camera.K_source == "given"
+    assert list(truth.supports) == list(inputs.supports)
+    assert [o.id for o in truth.objects] == [f"o{i}" for i in range(6)]
+
+
+def test_regions_are_numbered_as_the_toolbox_numbers_them() -> None:
+    image = bedroom()
+    regions = nyu_regions(image.labels, image.instances)
+    assert [(r.label, r.instance, r.number) for r in regions] == [
+        (1, 1, 1), (2, 1, 2), (3, 1, 3), (4, 1, 4), (5, 1, 5), (5, 2, 6), (6, 1, 7),
+        (7, 1, None),  # 9 pixels: under the toolbox's 10, it gets no number
+    ]  # fmt: skip
+    # A small region before the others shifts nothing: numbers count only the kept ones.
+    labels = image.labels.copy()
+    labels[0, 0] = 8  # one pixel of label 8 (sorted last) and one of a new pillow
+    labels[47, 63], instances = 5, image.instances.copy()
+    instances[47, 63] = 3
+    numbers = [r.number for r in nyu_regions(labels, instances)]
+    assert numbers == [1, 2, 3, 4, 5, 6, None, 7, None, None]
+
+
+def test_without_a_support_file_the_photos_import_without_supports(tmp_path: Path) -> None:
+    labelled = write_labelled(tmp_path / "labelled.mat", [bedroom(0), bedroom(1)])
+    items = _read(labelled)
+    assert [i.name.rsplit("/", 1)[1] for i in items] == ["0001_bedroom_0000", "0002_bedroom_0001"]
+    for item in items:
+        assert item.inputs is not None and item.inputs.supports == ()
+        assert item.inputs.ground_truth is not None
+
+
+def test_a_support_row_naming_a_missing_object_refuses_that_image_only(tmp_path: Path) -> None:
+    good, bad, bad_type = bedroom(0), bedroom(1), bedroom(2)
+    bad.supports = [*bad.supports, (42, 0, 1)]
+    bad_type.supports = [(3, 0, 3)]
+    nyu_folder(tmp_path, [good, bad, bad_type])
+    items = _read(tmp_path)
+    assert items[0].inputs is not None and items[0].error is None
+    assert items[1].inputs is None
+    assert items[1].error == (
+        "support row 7 names object 42, which is not there (the image has 7 numbered regions)"
+    )
+    assert items[2].error == "support row 1: type 3 is neither 1 (below) nor 2 (behind)"
+
+
+def test_a_support_cycle_refuses_that_image(tmp_path: Path) -> None:
+    image = bedroom()
+    image.supports = [(3, 5, 1), (5, 3, 1)]  # the bed on a pillow on the bed
+    nyu_folder(tmp_path, [image])
+    (item,) = _read(tmp_path)
+    assert item.error is not None and "support cycle" in item.error
+
+
+def test_a_truncated_file_is_one_error(tmp_path: Path) -> None:
+    labelled = nyu_folder(tmp_path, [bedroom()])
+    data = labelled.read_bytes()
+    labelled.write_bytes(data[: len(data) // 2])
+    (item,) = _read(labelled)
+    assert item.inputs is None and item.error is not None
+    assert "nyu_depth_v2_labeled.mat is not a readable MATLAB v7.3 (HDF5) file" in item.error
+
+
+def test_a_names_reference_that_points_nowhere_is_the_files_error(tmp_path: Path) -> None:
+    labelled = nyu_folder(tmp_path, [bedroom()])
+    with h5py.File(labelled, "r+") as file:
+        file["names"][0, 3] = h5py.Reference()  # "lamp" missing: a null reference
+    (item,) = _read(labelled)
+    assert item.inputs is None
+    assert item.error == "names entry 4: a reference points nowhere (a null reference)"
+
+
+def test_a_support_file_for_other_images_is_refused(tmp_path: Path) -> None:
+    nyu_folder(tmp_path, [bedroom()])
+    write_support_labels(tmp_path / "support_labels.mat", [[], []])
+    (item,) = _read(tmp_path)
+    assert item.error == "support_labels.mat has support labels of 2 images, not 1"
+    (tmp_path / "support_labels.mat").write_bytes(b"MATLAB 5.0 MAT-file" + b"\0" * 20)
+    (item,) = _read(tmp_path)
+    assert item.error == "support_labels.mat is not a MATLAB .mat file (level 5 or v7.3)"
+
+
+def test_level_5_cells_round_trip(tmp_path: Path) -> None:
+    rows = [np.array([[3.0, 0, 1], [4, 1, 2]]), np.zeros((0, 3)), np.array([[1.0, -1, 1]])]
+    path = tmp_path / "support_labels.mat"
+    path.write_bytes(cell_of_matrices_v5("supportLabels", rows, "test"))
+    read = read_cell_of_matrices(path, "supportLabels")
+    assert [r.shape for r in read] == [(2, 3), (0, 3), (1, 3)]
+    assert all(np.array_equal(a, b) for a, b in zip(read, rows, strict=True))
