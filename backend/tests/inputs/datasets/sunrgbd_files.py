@@ -32,7 +32,8 @@ def rot_up(angle_deg: float) -> np.ndarray:
 def upright_from_world(heading_deg: float) -> np.ndarray:
     """The toolbox's upright frame, its horizontal axes turned `heading_deg` away from the
     camera's heading (SUN's gravity frame need not follow the camera)."""
-    return rot_up(heading_deg) @ TOOLBOX_FROM_WORLD
+    result: np.ndarray = rot_up(heading_deg) @ TOOLBOX_FROM_WORLD
+    return result
 
 
 def extrinsics_rows(truth: Scene, heading_deg: float) -> np.ndarray:
@@ -48,7 +49,9 @@ def extrinsics_rows(truth: Scene, heading_deg: float) -> np.ndarray:
     return np.hstack([rows, np.zeros((3, 1))])
 
 
-def sun_polygon(world_points: np.ndarray, y_top: float, y_bottom: float, heading: float) -> dict:
+def sun_polygon(
+    world_points: np.ndarray, y_top: float, y_bottom: float, heading: float
+) -> dict[str, Any]:
     """An annotation3D polygon: X and Z of the floor corners, and Ymin/Ymax, in the frame the
     toolbox reads as upright (X, Z, -Y)."""
     upright = world_points @ upright_from_world(heading).T

@@ -185,6 +185,7 @@ def test_image_folders_are_found_at_any_depth(tmp_path: Path) -> None:
     _small_folder(root / "kv1" / "NYUdata" / "NYU0001")
     plain = _small_folder(root / "realsense" / "lg" / "2014_10_24-14_37_53-1311000073")
     shutil.rmtree(plain / "annotation2Dfinal")
+    write_json(root / "class_map.json", {"sofa": "bed"})  # the user's names, for every folder
     assert is_dataset(root) and is_dataset(root / "kv1" / "NYUdata" / "NYU0001")
     items = list(dataset_items(root))
     assert [Path(i.name).name for i in items] == [
@@ -193,6 +194,8 @@ def test_image_folders_are_found_at_any_depth(tmp_path: Path) -> None:
         "2014_10_24-14_37_53-1311000073",
     ]
     assert all(i.inputs is not None for i in items)
+    assert items[0].inputs is not None
+    assert [d.cls for d in items[0].inputs.detections or []] == ["chair", "bed"]
     assert items[2].inputs is not None and items[2].inputs.detections is None
 
 

@@ -44,8 +44,13 @@ from ..validation import (
     parse_intrinsics,
 )
 from .items import CLASS_MAP_FILE, DatasetItem, labelled_detection, load_json, polygon_pixels
-from .sunrgbd_frames import camera_pitch_roll, object_box, room_corners, rotation_from_extrinsics
-from .sunrgbd_frames import world_from_sun as world_from_sun_frame
+from .sunrgbd_frames import (
+    camera_pitch_roll,
+    object_box,
+    room_corners,
+    rotation_from_extrinsics,
+    world_from_sun,
+)
 
 INTRINSICS_FILE = "intrinsics.txt"
 IMAGE_FOLDER = "image"
@@ -87,7 +92,7 @@ def read_sunrgbd(root: Path) -> Iterator[DatasetItem]:
 
     try:
         map_file = root / CLASS_MAP_FILE
-        class_map = parse_class_map_file(map_file) if map_file.is_file() else None
+        class_map = parse_class_map(map_file.read_bytes()) if map_file.is_file() else None
     except InputError as exc:
         yield DatasetItem(name=str(root), error=str(exc))
         return
@@ -98,10 +103,6 @@ def read_sunrgbd(root: Path) -> Iterator[DatasetItem]:
             yield DatasetItem(name=str(folder), error=str(exc))
             continue
         yield DatasetItem(name=str(folder), inputs=inputs)
-
-
-def parse_class_map_file(path: Path) -> dict[str, str]:
-    return parse_class_map(path.read_bytes())
 
 
 def read_image_folder(folder: Path, class_map: dict[str, str] | None = None) -> InputFiles:
@@ -252,7 +253,7 @@ def ground_truth(
     """The scene as SUN RGB-D measured it, in the world frame: the camera (K, pitch, roll,
     and its height when the room is annotated), the room cuboid, and the 2D objects (ids
     o0, o1, ... as the import gives them) with their 3D boxes where annotated."""
-    to_world = world_from_sun_frame(sun_from_cv)
+    to_world = world_from_sun(sun_from_cv)
     pitch, roll = camera_pitch_roll(sun_from_cv)
     layout = _layout(folder, to_world, PinholeCamera(K, pitch, roll))
     boxes = _boxes_3d(folder, annotation, to_world)
