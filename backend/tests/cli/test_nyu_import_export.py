@@ -14,6 +14,7 @@ from holiscene.core.settings import Settings
 from holiscene.segmentation.rle import decode_mask
 from holiscene_schema import Scene
 
+from ..inputs.datasets.files import labelme_file, shape
 from ..inputs.datasets.nyu_files import bedroom, nyu_folder
 
 
@@ -104,3 +105,17 @@ def test_a_bad_image_is_reported_and_the_others_imported(
     # Imported again, nothing is added: the rest of an interrupted import would be.
     assert _import(labelled, tmp_path / "data") == 1
     assert len(_stored(tmp_path / "data")) == 2
+
+
+def test_scenes_of_two_sizes_are_refused_before_anything_is_written(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    data = tmp_path / "data"
+    assert _import(nyu_folder(tmp_path / "nyu", [bedroom()]), data) == 0
+    room = labelme_file(tmp_path / "room.json", [shape("bed", [[5, 5], [40, 5], [40, 40]])])
+    assert _import(room, data) == 0
+    out = tmp_path / "export"
+    code = main(["export", "--format", "nyu-supports", "-o", str(out), "--data-dir", str(data)])
+    assert code == 2
+    assert "the scenes must share one size; they have 64x48, 96x64" in capsys.readouterr().err
+    assert not any(out.iterdir())

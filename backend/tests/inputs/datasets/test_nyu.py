@@ -145,3 +145,25 @@ def test_level_5_cells_round_trip(tmp_path: Path) -> None:
     read = read_cell_of_matrices(path, "supportLabels")
     assert [r.shape for r in read] == [(2, 3), (0, 3), (1, 3)]
     assert all(np.array_equal(a, b) for a, b in zip(read, rows, strict=True))
+
+
+def test_level_5_files_beside_the_labelled_file_are_not_images(tmp_path: Path) -> None:
+    nyu_folder(tmp_path, [bedroom()])
+    write_support_labels(tmp_path / "splits.mat", [[(1, 2, 3)]])  # NYU's splits.mat is level 5
+    (item,) = _read(tmp_path)
+    assert item.inputs is not None and len(item.inputs.supports) == 5
+
+
+def test_support_labels_saved_as_v7_3_read_too(tmp_path: Path) -> None:
+    image = bedroom()
+    labelled = write_labelled(tmp_path / "nyu_depth_v2_labeled.mat", [image])
+    with h5py.File(tmp_path / "support_labels.mat", "w") as file:
+        rows = file.create_dataset("#refs#/a", data=np.array(image.supports, dtype=float).T)
+        cell = file.create_dataset("supportLabels", (1, 1), dtype=h5py.ref_dtype)
+        cell[0, 0] = rows.ref
+    (item,) = _read(labelled)
+    assert item.inputs is not None
+    assert [(s.child, s.parent) for s in item.inputs.supports][:2] == [
+        ("o0", "floor"),
+        ("o1", "wall"),
+    ]

@@ -11,7 +11,7 @@ from ..validation import InputError
 from .coco import is_coco, read_coco
 from .items import DatasetItem, load_json
 from .labelme import is_labelme, read_labelme
-from .nyu import is_nyu_file, read_nyu
+from .nyu import is_nyu_file, nyu_files, read_nyu
 from .sunrgbd import is_sunrgbd, read_sunrgbd
 
 __all__ = ["DatasetItem", "dataset_items", "is_dataset", "read_coco", "read_labelme"]
@@ -35,10 +35,6 @@ def _labelme_candidates(folder: Path) -> list[Path]:
     )
 
 
-def _nyu_files(folder: Path) -> list[Path]:
-    return sorted(f for f in folder.glob("*.mat") if f.is_file() and is_nyu_file(f))
-
-
 def is_dataset(path: Path) -> bool:
     """Whether `path` is a dataset file or folder rather than an input folder: a .json or an
     NYU .mat file, or a folder with an NYU .mat, a COCO file or other JSON files (LabelMe's)
@@ -47,7 +43,7 @@ def is_dataset(path: Path) -> bool:
         return True
     if not path.is_dir() or any((path / n).is_file() for n in PHOTO_NAMES):
         return False
-    if _nyu_files(path):  # NYU Depth v2's labelled .mat (support_labels.mat beside it)
+    if nyu_files(path):  # NYU Depth v2's labelled .mat (support_labels.mat beside it)
         return True
     return bool(_coco_files(path) or _labelme_candidates(path) or is_sunrgbd(path))
 
@@ -55,7 +51,7 @@ def is_dataset(path: Path) -> bool:
 def dataset_items(path: Path) -> Iterator[DatasetItem]:
     """The photos of a dataset file or folder, the format told by the content."""
     if path.is_dir():
-        files = _nyu_files(path) or _coco_files(path) or _labelme_candidates(path)
+        files = nyu_files(path) or _coco_files(path) or _labelme_candidates(path)
         if not files and is_sunrgbd(path):  # SUN RGB-D image folders at any depth
             yield from read_sunrgbd(path)
             return

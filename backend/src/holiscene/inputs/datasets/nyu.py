@@ -96,6 +96,16 @@ def is_nyu_file(path: Path) -> bool:
     return path.suffix.lower() == ".mat" and path.name != SUPPORT_FILE
 
 
+def nyu_files(folder: Path) -> list[Path]:
+    """The labelled files in a folder: its v7.3 (HDF5) .mat files. The level-5 files NYU
+    puts beside them (support_labels.mat, splits.mat) are not images."""
+    import h5py
+
+    return sorted(
+        f for f in folder.glob("*.mat") if f.is_file() and is_nyu_file(f) and h5py.is_hdf5(f)
+    )
+
+
 def read_nyu(path: Path) -> Iterator[DatasetItem]:
     """One item per image of the labelled file at `path`, with the support labels of
     support_labels.mat beside it when there is one; a file that does not read is one item
