@@ -6,6 +6,7 @@ import argparse
 import sys
 from collections.abc import Sequence
 
+from .batch import add_batch_command
 from .common import CliError, settings_from
 from .export import add_export_command
 from .pipeline import add_pipeline_commands
@@ -42,6 +43,7 @@ def _parser() -> argparse.ArgumentParser:
     add_user_commands(sub, settings_from)
     add_demo_command(sub)
     add_import_command(sub)
+    add_batch_command(sub)
     add_export_command(sub)
     add_relation_training_command(sub)
     add_surface_training_command(sub)

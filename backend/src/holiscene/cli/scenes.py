@@ -10,7 +10,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..core.settings import REPO_ROOT
-from .common import settings_from
+from .batch import add_ray_options, batch_scenes
+from .common import CliError, settings_from
 
 if TYPE_CHECKING:
     from ..inputs import InputFiles
@@ -48,6 +49,15 @@ def add_import_command(sub: argparse._SubParsersAction[argparse.ArgumentParser])
         help="import photos even when the same files were imported before (by default they "
         "are skipped, so a second run adds nothing and an interrupted one resumes)",
     )
+    pipeline = imp.add_mutually_exclusive_group()
+    pipeline.add_argument(
+        "--run-pipeline",
+        action="store_true",
+        help="store every photo first, then run the pipeline on them on Ray, several at a "
+        "time, as `holiscene batch` does (by default each photo is run here after its import)",
+    )
+    pipeline.add_argument("--no-pipeline", action="store_true", help="store the photos only")
+    add_ray_options(imp)
     imp.set_defaults(handler=_import)
 
 
@@ -77,9 +87,12 @@ def _import(args: argparse.Namespace) -> int:
     from ..inputs.datasets import dataset_items, is_dataset
     from ..services.workbench import Workbench
 
+    if (args.workers or args.ray) and not args.run_pipeline:
+        raise CliError("--workers and --ray go with --run-pipeline")
     workbench = Workbench(settings_from(args))
     failures = 0
     number = 0
+    scene_ids: list[str] = []  # for --run-pipeline: every photo's scene, new or imported before
     try:
         for path in args.paths:
             items: Iterable[tuple[str, str, Callable[[], InputFiles]]]
@@ -99,7 +112,11 @@ def _import(args: argparse.Namespace) -> int:
                     print(f"error: {label}: {exc}", file=sys.stderr)
                     failures += 1
                     continue
-                failures += _import_one(workbench, number, label, inputs, name, args.again)
+                failed, scene_id = _import_one(workbench, number, label, inputs, name, args)
+                failures += failed
+                scene_ids.append(scene_id)
+        if args.run_pipeline and scene_ids:
+            failures += batch_scenes(workbench, scene_ids, args.workers, args.ray)
     finally:
         workbench.close()
     return 1 if failures else 0
@@ -114,15 +131,25 @@ def _dataset_item(item: DatasetItem) -> InputFiles:
 
 
 def _import_one(
-    workbench: Workbench, number: int, label: str, inputs: InputFiles, name: str, again: bool
-) -> int:
-    """Import one photo, printing a line of progress; 1 when its pipeline failed. The same
-    files imported before are skipped (an interrupted import resumes where it stopped)."""
-    earlier = None if again else workbench.scenes.imported_from(inputs)
+    workbench: Workbench,
+    number: int,
+    label: str,
+    inputs: InputFiles,
+    name: str,
+    args: argparse.Namespace,
+) -> tuple[int, str]:
+    """Import one photo, printing a line of progress: 1 when its pipeline failed, and its
+    scene. The same files imported before are skipped (an interrupted import resumes where it
+    stopped). With --run-pipeline or --no-pipeline the photo is only stored."""
+    earlier = None if args.again else workbench.scenes.imported_from(inputs)
     if earlier is not None:
         print(f"[{number}] {label}: imported before as scene {earlier.id}, skipped")
-        return 0
+        return 0, earlier.id
+    if args.run_pipeline or args.no_pipeline:
+        stored = workbench.import_scene(inputs, name, "import", run_pipeline=False).scene
+        print(f"[{number}] {label}: scene {stored.id}, stored")
+        return 0, stored.id
     result = workbench.import_and_run(inputs, name)
     job = result.job
     print(f"[{number}] {label}: scene {result.scene.id}, pipeline {job.status if job else '-'}")
-    return 1 if job and job.status == "failed" else 0
+    return (1 if job and job.status == "failed" else 0), result.scene.id

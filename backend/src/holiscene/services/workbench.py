@@ -8,7 +8,10 @@ import json
 import logging
 import shutil
 import threading
+from collections.abc import Iterator
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -46,7 +49,7 @@ from .detector_retraining import (
     check_can_retrain_detector,
     detector_train_config,
 )
-from .reconstruction import reconstruct_scene
+from .reconstruction import Reconstruction, reconstruct_scene
 from .relation_retraining import RetrainJob, TrainingJob, check_can_retrain, train_config
 
 log = logging.getLogger(__name__)
@@ -54,6 +57,16 @@ log = logging.getLogger(__name__)
 
 class PlacementNotPossibleError(DomainError, ValueError):
     """The scene has no camera pitch/roll or room layout to place its objects in."""
+
+
+@dataclass(frozen=True)
+class JobRun:
+    """A job's computation: the inputs and the keyword arguments of reconstruct_scene (but its
+    progress callback), and the revision they were read from."""
+
+    revision: int
+    inputs: InputFiles
+    arguments: dict[str, Any]
 
 
 # The retrain job kind of each model kind.
@@ -270,53 +283,75 @@ class Workbench:
     def run_job(self, job_id: str) -> None:
         """Run a queued pipeline job to its end; every failure is recorded on the job."""
         job = self.jobs.get(job_id)
-        try:
-            if job.scene_id is None or job.base_revision is None:
-                raise ValueError(f"job {job_id} is not a pipeline job")
-            # Someone may have taken the scene while the job waited in the queue.
-            self.workflow.check_job_allowed(job.scene_id, self.job_starter(job))
-            folder = self.scenes.files.folder(job.scene_id)
-            placement = job.kind == "placement"
-            # A placement job: the revision it was asked on (the layout the person saw when
-            # asking); a pipeline job: the latest.
-            current = self.scenes.document(job.scene_id, job.base_revision if placement else None)
-            stages, stage_options = job_stages(placement, current.scene)
+        with self.recording_outcome(job):
+            run = self.job_run(job)
             result = reconstruct_scene(
-                read_input_folder(folder),
-                name=current.scene.name,
-                image_file=current.scene.image.file,
-                pinned_supports=[s for s in current.scene.supports if s.source == "manual"],
-                pinned_objects=[o for o in current.scene.objects if o.set_by_person],
-                removed_objects=current.scene.removed_by_person,
-                stages=stages,
-                models_dir=self.settings.models_dir,
-                # The promoted Relation Network and detector (None: the committed defaults).
-                support_model_dir=self.models.active_dir(),
-                detector_model_dir=self.detectors.active_dir(),
-                stage_options=stage_options,
+                run.inputs,
+                **run.arguments,
                 progress=lambda stage, fraction: self.jobs.progress(job_id, stage, fraction),
             )
-            if placement:
-                revision = self.scenes.commit_placement_result(
-                    job.scene_id, job.base_revision, result.scene, result.glb
-                )
-            else:
-                # A layout set by hand up to the revision read above is in the result (kept);
-                # one set after it would be overwritten, so that refuses the result.
-                revision = self.scenes.commit_pipeline_result(
-                    job.scene_id, result.scene, result.glb, base_revision=current.revision
-                )
-            notes = [f"{s.name}: {s.note}" for s in result.scene.stages if s.note]
-            self.jobs.succeed(job_id, revision, " | ".join(notes) or "done")
+            self.store_job_result(job, run, result)
+
+    def job_run(self, job: Job) -> JobRun:
+        """What a pipeline or placement job computes from, read now. The computation itself
+        (reconstruct_scene) needs neither the store nor this machine's files but the models'
+        folders, so it can run elsewhere (services.batch) and come back to store_job_result."""
+        if job.scene_id is None or job.base_revision is None:
+            raise ValueError(f"job {job.id} is not a pipeline job")
+        # Someone may have taken the scene while the job waited in the queue.
+        self.workflow.check_job_allowed(job.scene_id, self.job_starter(job))
+        placement = job.kind == "placement"
+        # A placement job: the revision it was asked on (the layout the person saw when
+        # asking); a pipeline job: the latest.
+        current = self.scenes.document(job.scene_id, job.base_revision if placement else None)
+        stages, stage_options = job_stages(placement, current.scene)
+        arguments: dict[str, Any] = {
+            "name": current.scene.name,
+            "image_file": current.scene.image.file,
+            "pinned_supports": [s for s in current.scene.supports if s.source == "manual"],
+            "pinned_objects": [o for o in current.scene.objects if o.set_by_person],
+            "removed_objects": current.scene.removed_by_person,
+            "stages": stages,
+            "models_dir": self.settings.models_dir,
+            # The promoted Relation Network and detector (None: the committed defaults).
+            "support_model_dir": self.models.active_dir(),
+            "detector_model_dir": self.detectors.active_dir(),
+            "stage_options": stage_options,
+        }
+        inputs = read_input_folder(self.scenes.files.folder(job.scene_id))
+        return JobRun(revision=current.revision, inputs=inputs, arguments=arguments)
+
+    def store_job_result(self, job: Job, run: JobRun, result: Reconstruction) -> None:
+        """Store a job's computed result as the scene's next revision and finish the job."""
+        assert job.scene_id is not None and job.base_revision is not None  # job_run checked
+        if job.kind == "placement":
+            revision = self.scenes.commit_placement_result(
+                job.scene_id, job.base_revision, result.scene, result.glb
+            )
+        else:
+            # A layout set by hand up to the revision read above is in the result (kept);
+            # one set after it would be overwritten, so that refuses the result.
+            revision = self.scenes.commit_pipeline_result(
+                job.scene_id, result.scene, result.glb, base_revision=run.revision
+            )
+        notes = [f"{s.name}: {s.note}" for s in result.scene.stages if s.note]
+        self.jobs.succeed(job.id, revision, " | ".join(notes) or "done")
+
+    @contextmanager
+    def recording_outcome(self, job: Job) -> Iterator[None]:
+        """Record on the job whatever fails in the block: the job is failed with a message
+        for its starter, and nothing is raised."""
+        try:
+            yield
         except SceneChangedError as changed:
-            log.warning("job %s not stored: %s", job_id, changed)
-            self.jobs.fail(job_id, scene_changed_message(job, changed))
+            log.warning("job %s not stored: %s", job.id, changed)
+            self.jobs.fail(job.id, scene_changed_message(job, changed))
         except WorkflowError as refused:  # e.g. submitted for review while the job ran
-            log.warning("job %s not stored: %s", job_id, refused)
-            self.jobs.fail(job_id, str(refused))
+            log.warning("job %s not stored: %s", job.id, refused)
+            self.jobs.fail(job.id, str(refused))
         except Exception as exc:
-            log.exception("pipeline job %s failed", job_id)  # the traceback: for the admin
-            self.jobs.fail(job_id, f"{user_facing_error(exc)} (details in the server log)")
+            log.exception("pipeline job %s failed", job.id)  # the traceback: for the admin
+            self.jobs.fail(job.id, f"{user_facing_error(exc)} (details in the server log)")
 
     def job_starter(self, job: Job) -> Actor:
         """Who started a job, with their role now: the local user plays every part; a name

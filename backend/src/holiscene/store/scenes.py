@@ -282,6 +282,16 @@ class SceneStore:
             )
         return self.document(scene_id, number) if number is not None else None
 
+    def with_pipeline_result(self) -> set[str]:
+        """The ids of the scenes the pipeline has stored a result on (a revision of its own,
+        whatever people changed after it)."""
+        with Session(self.engine) as session:
+            return set(
+                session.scalars(
+                    select(RevisionRow.scene_id).where(RevisionRow.kind == "pipeline").distinct()
+                )
+            )
+
     def commit_pipeline_result(
         self,
         scene_id: str,
