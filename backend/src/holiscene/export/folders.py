@@ -12,8 +12,10 @@ from pathlib import Path
 from ..core.atomic_files import write_atomic
 from .archive import ArchivedScene, file_stem, scene_json
 from .coco import coco_dataset
+from .input_folder import write_labels
 from .nyu_supports import write_nyu_supports
 from .relation_training import write_relation_training
+from .total3d import write_total3d
 
 COCO_FILE = "annotations.json"
 COCO_IMAGES = "images"
@@ -50,11 +52,16 @@ def write_coco(chosen: list[ArchivedScene], out: Path) -> None:
 
 
 def write_scene_folders(chosen: list[ArchivedScene], out: Path) -> None:
-    """DIR/<scene name>/: scene.json, the photo, and scene.glb when the scene has one."""
+    """DIR/<scene name>/: scene.json, the photo, and scene.glb when the scene has one; and
+    detections.json, supports.json and (for intrinsics given with the photo) cam_K.txt, so
+    the folder is an input folder that imports back to the same objects and supports."""
     for item, stem in zip(chosen, unique_stems(chosen), strict=True):
         folder = out / stem
         folder.mkdir(exist_ok=True)
         write_atomic(folder / "scene.json", scene_json(item.scene))
+        camera = item.scene.camera
+        given_K = camera.K if camera is not None and camera.K_source == "given" else None
+        write_labels(item.scene, folder, K=given_K)
         shutil.copyfile(item.photo, folder / item.scene.image.file)
         if item.glb is not None:
             shutil.copyfile(item.glb, folder / "scene.glb")
@@ -74,7 +81,14 @@ EXPORT_FORMATS: dict[str, ExportFormat] = {
     ),
     "scene": ExportFormat(
         write_scene_folders,
-        "DIR/<scene>/scene.json, scene.glb when the scene has one, and the photo",
+        "DIR/<scene>/scene.json, scene.glb when the scene has one, and the photo, with "
+        "detections.json, supports.json and cam_K.txt: an input folder",
+    ),
+    "total3d": ExportFormat(
+        write_total3d,
+        "DIR/<scene>/ with Total3DUnderstanding's demo input (img.jpg, cam_K.txt, "
+        "detections.json with masks) and results (r_ex.mat, layout.mat, bdb_3d.mat), and "
+        "supports.json",
     ),
     "relation-training": ExportFormat(
         write_relation_training,

@@ -1,0 +1,64 @@
+"""A stored scene's labels as the files of an input folder (docs/importing.md), so that
+`holiscene import` reads an exported folder back into the same objects and supports:
+detections.json (each object's box, class, name as imported and mask, in the scene's order),
+supports.json (over those boxes by position) and cam_K.txt."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene
+
+from ..core.atomic_files import write_atomic
+
+
+def detections_items(scene: Scene, class_name: Callable[[str], str] = str) -> list[dict[str, Any]]:
+    """detections.json's items: `class_name` spells an NYU-40 class as the reader wants it."""
+    items = []
+    for obj in scene.objects:
+        item: dict[str, Any] = {"bbox": list(obj.bbox), "class": class_name(obj.cls)}
+        if obj.source_class is not None:
+            item["source_class"] = obj.source_class
+        if obj.mask is not None:
+            item["mask"] = obj.mask.model_dump(mode="json", exclude={"source"})
+        items.append(item)
+    return items
+
+
+def supports_items(scene: Scene) -> list[dict[str, Any]]:
+    """supports.json's items: child and parent as positions in detections.json (a parent may
+    be floor, wall or ceiling), with the author of a person's label."""
+    position = {obj.id: index for index, obj in enumerate(scene.objects)}
+    items = []
+    for support in scene.supports:
+        parent = support.parent
+        item: dict[str, Any] = {
+            "child": position[support.child],
+            "parent": parent if parent in STRUCTURAL_SUPPORTERS else position[parent],
+            "type": support.type,
+        }
+        if support.source == "manual" and support.author:
+            item["author"] = support.author
+        items.append(item)
+    return items
+
+
+def intrinsics_text(K: np.ndarray | list[list[float]]) -> str:
+    """cam_K.txt: the 3x3 matrix, one row per line."""
+    return "\n".join(" ".join(f"{v:.6f}" for v in row) for row in np.asarray(K)) + "\n"
+
+
+def write_labels(
+    scene: Scene, folder: Path, class_name: Callable[[str], str] = str, K: Any = None
+) -> None:
+    """detections.json and supports.json of the scene in `folder`, and cam_K.txt when `K`
+    is given."""
+    detections = json.dumps(detections_items(scene, class_name)) + "\n"
+    write_atomic(folder / "detections.json", detections.encode())
+    write_atomic(folder / "supports.json", (json.dumps(supports_items(scene)) + "\n").encode())
+    if K is not None:
+        write_atomic(folder / "cam_K.txt", intrinsics_text(K).encode())
