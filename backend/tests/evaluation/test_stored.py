@@ -158,3 +158,20 @@ def test_the_folder_form_scores_infer_output(rooms: list[Path], tmp_path: Path) 
     assert summary["scenes"] == len(SEEDS)  # the other room has no prediction: scored empty
     assert summary["missing_predictions"] == [rooms[1].name]
     assert summary["support"]["accuracy"] > 0.2
+
+
+def test_the_rerun_scores_as_the_folder_form_scores_infer(
+    rooms: list[Path], tmp_path: Path
+) -> None:
+    data = tmp_path / "data"
+    for room in rooms:
+        _store(data, room, _truth(room))
+    assert _eval(data, tmp_path / "store", "--rerun") == 0
+    from_store = json.loads((tmp_path / "store" / "eval.json").read_text())
+    predictions = tmp_path / "pred"
+    assert main(["infer", str(rooms[0].parent), "-o", str(predictions)]) == 0
+    assert main(["eval", str(predictions), str(rooms[0].parent)]) == 0
+    from_folders = json.loads((predictions / "eval.json").read_text())
+    assert from_folders.pop("missing_predictions") == []
+    assert from_store.pop("store")["scenes"][0]["name"] == rooms[0].name  # by name
+    assert from_store == from_folders

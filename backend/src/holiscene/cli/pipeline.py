@@ -195,7 +195,9 @@ def _eval_store(args: argparse.Namespace) -> int:
 
     settings = settings_from(args)
     with scene_store(settings) as scenes:
-        ids = list(dict.fromkeys(args.scene_ids or [s.id for s in scenes.list_summaries()]))
+        # By name (AP over boxes of equal score depends on the order), as the folder form.
+        stored = sorted(scenes.list_summaries(), key=lambda s: (s.name, s.id))
+        ids = list(dict.fromkeys(args.scene_ids or [s.id for s in stored]))
         if not ids:
             raise CliError("the store holds no scenes")
         rerun = active_rerun(settings) if args.rerun else None
