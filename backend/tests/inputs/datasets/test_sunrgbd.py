@@ -18,7 +18,7 @@ from holiscene_schema import Scene
 from .files import photo_bytes, write_json
 from .sunrgbd_files import write_sun_folder
 
-SEED = 5  # a bedroom of 16 objects, some cut by the image border, one partly hidden
+SEED = 5  # a bedroom of 16 labelled objects
 HEADINGS = (0.0, 23.0, -140.0)  # the SUN gravity frame's turn from the camera's heading
 
 
