@@ -13,8 +13,8 @@ same classes, boxes, masks and supports back.
   regions in NYU's files: a scene whose supports name them gets a `wall` region, and a
   `ceiling` region, of the pixels no object covers (the ceiling takes the upper half of them
   when both are named).
-- Objects the toolbox cannot number (under 10 pixels, or hidden entirely behind smaller
-  objects) keep their pixels, but their support rows are left out.
+- An object the toolbox cannot number (under 10 pixels, or hidden entirely behind smaller
+  objects) has no support row, nor have the objects it supports.
 """
 
 from __future__ import annotations
