@@ -34,9 +34,10 @@ class MatStruct:
 
 @dataclass(frozen=True)
 class MatCell:
-    """A 1xN cell array."""
+    """A 1xN cell array, or Nx1 when `column` (NYU's support labels are one)."""
 
     items: Sequence[MatValue]
+    column: bool = False
 
 
 MatValue = Union[np.ndarray, MatStruct, MatCell]  # noqa: UP007 (a runtime alias)
@@ -61,7 +62,8 @@ def _matrix(name: str, value: MatValue) -> bytes:
         mx_class, dims = MX_STRUCT, (1, 1)
     elif isinstance(value, MatCell):
         body = b"".join(_matrix("", item) for item in value.items)
-        mx_class, dims = MX_CELL, (1, len(value.items))
+        count = len(value.items)
+        mx_class, dims = MX_CELL, ((count, 1) if value.column else (1, count))
     else:
         array = np.asarray(value)
         if array.dtype not in _NUMERIC:

@@ -32,11 +32,11 @@ from holiscene_schema import Scene, SceneObject, map_class_name
 from PIL import Image
 
 from ..core.atomic_files import write_atomic
-from ..inputs.datasets.matlab import cell_of_matrices_v5
 from ..inputs.datasets.nyu import SUPPORT_FILE, SUPPORT_VARIABLE, nyu_regions
 from ..segmentation.rle import decode_mask
 from .archive import ArchivedScene
 from .errors import ExportRefusedError
+from .matfile import MatCell, mat_file
 
 LABELLED_FILE = "nyu_depth_v2_labeled.mat"
 TYPE_NUMBERS = {"below": 1, "behind": 2}
@@ -72,9 +72,9 @@ def write_nyu_supports(chosen: list[ArchivedScene], out: Path) -> None:
     images = [_labelled_image(item, names) for item in chosen]
     scenes = [re.sub(r"^\d{4,}_", "", item.scene.name) for item in chosen]
     _write_labelled(out / LABELLED_FILE, images, list(names), scenes)
-    description = f"written by holiscene export ({len(images)} images)"
-    rows = [image.supports for image in images]
-    write_atomic(out / SUPPORT_FILE, cell_of_matrices_v5(SUPPORT_VARIABLE, rows, description))
+    # An (N, 1) cell of (M, 3) double matrices, as NYU's file has it.
+    rows = MatCell([image.supports for image in images], column=True)
+    write_atomic(out / SUPPORT_FILE, mat_file({SUPPORT_VARIABLE: rows}, "holiscene export"))
 
 
 def _labelled_image(item: ArchivedScene, names: dict[str, int]) -> LabelledImage:

@@ -9,8 +9,9 @@ from pathlib import Path
 import h5py
 import numpy as np
 import pytest
+from holiscene.export.matfile import MatCell, mat_file
 from holiscene.inputs.datasets import DatasetItem, dataset_items, is_dataset
-from holiscene.inputs.datasets.matlab import cell_of_matrices_v5, read_cell_of_matrices
+from holiscene.inputs.datasets.matlab import read_cell_of_matrices
 from holiscene.inputs.datasets.nyu import NYU_FX, nyu_regions
 from holiscene.segmentation.rle import decode_mask
 
@@ -138,10 +139,10 @@ def test_a_support_file_for_other_images_is_refused(tmp_path: Path) -> None:
     assert item.error == "support_labels.mat is not a MATLAB .mat file (level 5 or v7.3)"
 
 
-def test_level_5_cells_round_trip(tmp_path: Path) -> None:
+def test_level_5_cells_the_export_writes_read_back(tmp_path: Path) -> None:
     rows = [np.array([[3.0, 0, 1], [4, 1, 2]]), np.zeros((0, 3)), np.array([[1.0, -1, 1]])]
     path = tmp_path / "support_labels.mat"
-    path.write_bytes(cell_of_matrices_v5("supportLabels", rows, "test"))
+    path.write_bytes(mat_file({"other": np.ones((2, 2)), "supportLabels": MatCell(rows, True)}))
     read = read_cell_of_matrices(path, "supportLabels")
     assert [r.shape for r in read] == [(2, 3), (0, 3), (1, 3)]
     assert all(np.array_equal(a, b) for a, b in zip(read, rows, strict=True))

@@ -1,6 +1,7 @@
-"""MATLAB .mat files, as far as the NYU Depth v2 files need them: a cell array of numeric
-matrices (the support labels) in the level-5 format MATLAB writes by default, read and written
-without SciPy, and char arrays and cell arrays of a v7.3 file (HDF5, read with h5py).
+"""Reading MATLAB .mat files, as far as the NYU Depth v2 files need them: a cell array of
+numeric matrices (the support labels) in the level-5 format MATLAB writes by default, without
+SciPy, and char arrays and cell arrays of a v7.3 file (HDF5, through h5py). Level-5 files are
+written by export.matfile.
 
 Level 5 (MATLAB's "MAT-File Format" document): a 128-byte header (text, subsystem offset,
 version 0x0100, the endian mark "IM" on a little-endian file), then data elements, each an
@@ -19,7 +20,7 @@ from __future__ import annotations
 
 import struct
 import zlib
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -27,8 +28,7 @@ import numpy as np
 
 HEADER_BYTES = 128
 MI_MATRIX, MI_COMPRESSED = 14, 15
-MI_INT8, MI_UINT32, MI_INT32, MI_DOUBLE = 1, 6, 5, 9
-MX_CELL, MX_DOUBLE = 1, 6
+MX_CELL = 1
 # Numeric miTYPE codes and the numpy type of their values.
 NUMERIC_TYPES = {1: "i1", 2: "u1", 3: "i2", 4: "u2", 5: "i4", 6: "u4", 7: "f4", 9: "f8"}
 NUMERIC_TYPES |= {12: "i8", 13: "u8"}
@@ -172,33 +172,3 @@ def hdf5_string(file: Any, reference: Any) -> str:
     """A v7.3 char array (uint16 codes) a reference points at, as text."""
     codes = hdf5_matrix(file, reference)
     return "".join(chr(int(c)) for c in codes.ravel(order="F"))
-
-
-# Writing level 5 (what the export writes for the support labels).
-
-
-def _element(element_type: int, payload: bytes) -> bytes:
-    return struct.pack("<II", element_type, len(payload)) + payload + b"\0" * (-len(payload) % 8)
-
-
-def _matrix_element(name: str, mx_class: int, dims: Sequence[int], body: bytes) -> bytes:
-    flags = _element(MI_UINT32, struct.pack("<II", mx_class, 0))
-    shape = _element(MI_INT32, struct.pack(f"<{len(dims)}i", *dims))
-    return _element(MI_MATRIX, flags + shape + _element(MI_INT8, name.encode("ascii")) + body)
-
-
-def cell_of_matrices_v5(variable: str, matrices: Sequence[np.ndarray], description: str) -> bytes:
-    """A level-5 .mat file holding `variable`, an (N, 1) cell array of double matrices, as
-    MATLAB and scipy.io.loadmat read it (uncompressed)."""
-    text = f"MATLAB 5.0 MAT-file, {description}".encode("ascii", "replace")[:116]
-    header = text.ljust(116, b" ") + b"\0" * 8 + struct.pack("<H", 0x0100) + b"IM"
-    cells = b"".join(
-        _matrix_element(
-            "",
-            MX_DOUBLE,
-            matrix.shape,
-            _element(MI_DOUBLE, np.asarray(matrix, dtype="<f8").tobytes(order="F")),
-        )
-        for matrix in matrices
-    )
-    return header + _matrix_element(variable, MX_CELL, (len(matrices), 1), cells)
