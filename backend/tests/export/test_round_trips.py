@@ -1,7 +1,7 @@
 """Each export format that can be imported again gives back what was stored: a synthetic room
-with masks and supports (some edited by a person) is exported with `holiscene export`, the
-export imported into a fresh store as `holiscene import` reads it, and the classes, boxes
-(1 px), masks (IoU > 0.99) and supports compared."""
+with masks, supports (some edited by a person) and ground truth is exported with `holiscene
+export`, the export imported into a fresh store as `holiscene import` reads it, and the
+classes, boxes (1 px), masks (IoU > 0.99), supports and ground truth compared."""
 
 from __future__ import annotations
 
@@ -90,6 +90,7 @@ def test_an_export_imports_back_to_the_same_labels(
     if fmt != "coco":  # supports.json keeps a person's name; COCO's field has none
         (edited,) = [s for s in back.supports if s.child == "o0"]
         assert edited.author == "ana"
-    if fmt != "coco":  # the intrinsics go out as cam_K.txt
+    if fmt != "coco":  # the intrinsics go out as cam_K.txt, the ground truth as gt.json
         assert again.K is not None
         assert np.allclose(again.K, stored.camera.K, atol=1e-5)  # type: ignore[union-attr]
+        assert again.ground_truth == inputs.ground_truth

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from holiscene.export.archive import ArchivedScene
 from holiscene.export.matfile import MatCell, MatStruct, mat_file
 from holiscene.export.total3d import (
     box_struct,
@@ -125,7 +126,8 @@ def test_a_scene_folder_holds_total3d_input_results_and_our_labels(
     truth = Scene.model_validate_json((synthetic_folder / "gt.json").read_text())
     truth.objects[2].box_3d = None  # an object not placed: its entry is NaN, the order kept
     folder = tmp_path / "room"
-    write_total3d_scene(truth, synthetic_folder / "img.png", folder)
+    item = ArchivedScene("0123456789ab", 1, truth, synthetic_folder / "img.png", glb=None)
+    write_total3d_scene(item, folder)
     camera = truth.camera
     assert camera is not None and truth.layout.corners_3d is not None
 

@@ -41,18 +41,21 @@ class ArchivedScene:
     scene: Scene
     photo: Path
     glb: Path | None
+    ground_truth: Path | None = None  # gt.json, for a scene imported with ground truth
 
 
 def archived_scene(scenes: SceneStore, scene_id: str) -> ArchivedScene:
     """A stored scene's current revision and its files (SceneNotFoundError for an unknown id)."""
     document = scenes.document(scene_id)
     glb = scenes.glb_path(scene_id)
+    truth = scenes.files.ground_truth_path(scene_id)
     return ArchivedScene(
         scene_id=scene_id,
         revision=document.revision,
         scene=document.scene,
         photo=scenes.image_path(scene_id),
         glb=glb if glb is not None and glb.is_file() else None,
+        ground_truth=truth if truth.is_file() else None,
     )
 
 

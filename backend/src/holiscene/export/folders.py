@@ -53,15 +53,16 @@ def write_coco(chosen: list[ArchivedScene], out: Path) -> None:
 
 def write_scene_folders(chosen: list[ArchivedScene], out: Path) -> None:
     """DIR/<scene name>/: scene.json, the photo, and scene.glb when the scene has one; and
-    detections.json, supports.json and (for intrinsics given with the photo) cam_K.txt, so
-    the folder is an input folder that imports back to the same objects and supports."""
+    detections.json, supports.json, cam_K.txt (for intrinsics given with the photo) and
+    gt.json (for a scene imported with ground truth), so the folder is an input folder that
+    imports back to the same objects, supports and ground truth."""
     for item, stem in zip(chosen, unique_stems(chosen), strict=True):
         folder = out / stem
         folder.mkdir(exist_ok=True)
         write_atomic(folder / "scene.json", scene_json(item.scene))
         camera = item.scene.camera
         given_K = camera.K if camera is not None and camera.K_source == "given" else None
-        write_labels(item.scene, folder, K=given_K)
+        write_labels(item, folder, K=given_K)
         shutil.copyfile(item.photo, folder / item.scene.image.file)
         if item.glb is not None:
             shutil.copyfile(item.glb, folder / "scene.glb")

@@ -1,7 +1,7 @@
 """A stored scene's labels as the files of an input folder (docs/importing.md), so that
-`holiscene import` reads an exported folder back into the same objects and supports:
-detections.json (each object's box, class, name as imported and mask, in the scene's order),
-supports.json (over those boxes by position) and cam_K.txt."""
+`holiscene import` reads an exported folder back into the same objects, supports and ground
+truth: detections.json (each object's box, class, name as imported and mask, in the scene's
+order), supports.json (over those boxes by position), cam_K.txt and gt.json."""
 
 from __future__ import annotations
 
@@ -14,6 +14,7 @@ import numpy as np
 from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene
 
 from ..core.atomic_files import write_atomic
+from .archive import ArchivedScene
 
 
 def detections_items(scene: Scene, class_name: Callable[[str], str] = str) -> list[dict[str, Any]]:
@@ -53,12 +54,15 @@ def intrinsics_text(K: np.ndarray | list[list[float]]) -> str:
 
 
 def write_labels(
-    scene: Scene, folder: Path, class_name: Callable[[str], str] = str, K: Any = None
+    item: ArchivedScene, folder: Path, class_name: Callable[[str], str] = str, K: Any = None
 ) -> None:
-    """detections.json and supports.json of the scene in `folder`, and cam_K.txt when `K`
-    is given."""
+    """detections.json and supports.json of the scene in `folder`, cam_K.txt when `K` is
+    given, and the scene's ground truth (gt.json) when it was imported with one."""
+    scene = item.scene
     detections = json.dumps(detections_items(scene, class_name)) + "\n"
     write_atomic(folder / "detections.json", detections.encode())
     write_atomic(folder / "supports.json", (json.dumps(supports_items(scene)) + "\n").encode())
     if K is not None:
         write_atomic(folder / "cam_K.txt", intrinsics_text(K).encode())
+    if item.ground_truth is not None:
+        write_atomic(folder / "gt.json", item.ground_truth.read_bytes())

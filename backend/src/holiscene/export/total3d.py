@@ -1,7 +1,8 @@
 """Stored scenes as Total3DUnderstanding's files: per scene its demo input (img.jpg,
 cam_K.txt, detections.json) and the camera, room layout and 3D boxes as its demo writes its
-results (r_ex.mat, layout.mat, bdb_3d.mat), plus our supports.json and each box's mask, so
-the folder is also an input folder that imports back to the same scene labels.
+results (r_ex.mat, layout.mat, bdb_3d.mat), plus our supports.json, each box's mask and the
+scene's gt.json when it has one, so the folder is also an input folder that imports back to
+the same scene labels.
 
 Total3D's world frame is ours (origin at the camera, x forward, y up, z right), so the
 conversion is only of how rotations and boxes are written (docs/architecture.md,
@@ -24,7 +25,7 @@ import math
 from pathlib import Path
 
 import numpy as np
-from holiscene_schema import NYU40_CLASSES, Box3D, Camera, Scene
+from holiscene_schema import NYU40_CLASSES, Box3D, Camera
 from PIL import Image
 
 from ..core.atomic_files import write_atomic
@@ -94,10 +95,11 @@ def jpeg_photo(photo: Path) -> bytes:
         return buffer.getvalue()
 
 
-def write_total3d_scene(scene: Scene, photo: Path, folder: Path) -> None:
+def write_total3d_scene(item: ArchivedScene, folder: Path) -> None:
     """One scene's folder (see the module's description)."""
+    scene = item.scene
     folder.mkdir(exist_ok=True)
-    write_atomic(folder / "img.jpg", jpeg_photo(photo))
+    write_atomic(folder / "img.jpg", jpeg_photo(item.photo))
     camera = scene.camera
     # Total3D's demo needs cam_K.txt: a scene not yet run gets the intrinsics the pipeline assumes.
     K = (
@@ -105,7 +107,7 @@ def write_total3d_scene(scene: Scene, photo: Path, folder: Path) -> None:
         if camera is not None
         else default_intrinsics(scene.image.width, scene.image.height, ASSUMED_HFOV_DEG)
     )
-    write_labels(scene, folder, total3d_class, K)
+    write_labels(item, folder, total3d_class, K)
     if camera is not None and camera.pitch_deg is not None and camera.roll_deg is not None:
         write_atomic(folder / "r_ex.mat", mat_file({"cam_R": camera_rotation(camera)}))
     if scene.layout.corners_3d is not None:
@@ -122,4 +124,4 @@ def write_total3d(chosen: list[ArchivedScene], out: Path) -> None:
     from .folders import unique_stems  # here: folders imports this module for its table
 
     for item, stem in zip(chosen, unique_stems(chosen), strict=True):
-        write_total3d_scene(item.scene, item.photo, out / stem)
+        write_total3d_scene(item, out / stem)
