@@ -23,6 +23,7 @@ import os
 import re
 import struct
 import tempfile
+from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -30,6 +31,7 @@ import h5py
 import numpy as np
 from holiscene_schema import Scene, SceneObject, map_class_name
 from PIL import Image
+from tqdm import tqdm
 
 from ..core.atomic_files import write_atomic
 from ..inputs.datasets.nyu import SUPPORT_FILE, SUPPORT_VARIABLE, nyu_regions
@@ -68,13 +70,10 @@ def write_nyu_supports(chosen: list[ArchivedScene], out: Path) -> None:
             f"nyu-supports puts every image in one array, so the scenes must share one size; "
             f"they have {shown} (export each size with --scene)"
         )
-    names: dict[str, int] = {}  # name -> label, in order of first use
-    images = [_labelled_image(item, names) for item in chosen]
-    scenes = [re.sub(r"^\d{4,}_", "", item.scene.name) for item in chosen]
-    _write_labelled(out / LABELLED_FILE, images, list(names), scenes)
+    rows = _write_labelled(out / LABELLED_FILE, chosen)
     # An (N, 1) cell of (M, 3) double matrices, as NYU's file has it.
-    rows = MatCell([image.supports for image in images], column=True)
-    write_atomic(out / SUPPORT_FILE, mat_file({SUPPORT_VARIABLE: rows}, "holiscene export"))
+    cell = MatCell(rows, column=True)
+    write_atomic(out / SUPPORT_FILE, mat_file({SUPPORT_VARIABLE: cell}, "holiscene export"))
 
 
 def _labelled_image(item: ArchivedScene, names: dict[str, int]) -> LabelledImage:
@@ -130,29 +129,38 @@ def _room_pixels(scene: Scene, free: np.ndarray) -> dict[str, np.ndarray]:
     return {"wall": free & ~upper, "ceiling": free & upper}
 
 
-def _write_labelled(
-    path: Path, images: list[LabelledImage], names: list[str], scenes: list[str]
-) -> None:
-    """The labelled file as MATLAB v7.3 writes it, written beside `path` and renamed."""
+def _write_labelled(path: Path, chosen: list[ArchivedScene]) -> list[np.ndarray]:
+    """The labelled file as MATLAB v7.3 writes it, one image at a time (NYU's 1449 would
+    take 3 GB at once), written beside `path` and renamed; each image's support rows."""
+    width, height = chosen[0].scene.image.width, chosen[0].scene.image.height
+    count = len(chosen)
+    # NYU's instances are uint8; a scene with more than 255 of one name needs more.
+    most = max(max(Counter(map(export_name, i.scene.objects)).values(), default=0) for i in chosen)
+    shapes = {
+        "images": ((count, 3, width, height), np.uint8),
+        "labels": ((count, width, height), np.uint16),
+        "instances": ((count, width, height), np.uint8 if most + 1 < 256 else np.uint16),
+    }
+    names: dict[str, int] = {}  # name -> label, in order of first use
+    rows = []
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.")
     os.close(fd)
     try:
         with h5py.File(tmp, "w", userblock_size=512) as file:
-            # NYU's instances are uint8; a scene with more than 255 of one name needs more.
-            most = max(int(i.instances.max()) for i in images)
-            arrays = {
-                "images": np.stack([i.rgb.transpose(2, 1, 0) for i in images]),
-                "labels": np.stack([i.labels.T for i in images]),
-                "instances": np.stack([i.instances.T for i in images]).astype(
-                    np.uint8 if most < 256 else np.uint16
-                ),
-            }
-            for key, array in arrays.items():
-                dataset = file.create_dataset(
-                    key, data=array, chunks=(1, *array.shape[1:]), compression="gzip"
+            arrays = {}
+            for key, (shape, dtype) in shapes.items():
+                arrays[key] = file.create_dataset(
+                    key, shape, dtype=dtype, chunks=(1, *shape[1:]), compression="gzip"
                 )
-                dataset.attrs["MATLAB_class"] = np.bytes_(str(array.dtype))
-            _write_strings(file, "names", names)
+                arrays[key].attrs["MATLAB_class"] = np.bytes_(np.dtype(dtype).name)
+            for index, item in enumerate(tqdm(chosen, "nyu-supports", unit="scene", disable=None)):
+                image = _labelled_image(item, names)
+                arrays["images"][index] = image.rgb.transpose(2, 1, 0)
+                arrays["labels"][index] = image.labels.T
+                arrays["instances"][index] = image.instances.T
+                rows.append(image.supports)
+            _write_strings(file, "names", list(names))
+            scenes = [re.sub(r"^\d{4,}_", "", item.scene.name) for item in chosen]
             _write_strings(file, "scenes", scenes)
         with open(tmp, "r+b") as raw:
             raw.write(_v73_header())
@@ -161,6 +169,7 @@ def _write_labelled(
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
+    return rows
 
 
 def _write_strings(file: h5py.File, key: str, texts: list[str]) -> None:

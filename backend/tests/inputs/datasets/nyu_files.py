@@ -66,8 +66,13 @@ def _strings(file: h5py.File, key: str, texts: list[str]) -> None:
     cell.attrs["MATLAB_class"] = np.bytes_("cell")
 
 
-def write_labelled(path: Path, images: list[NyuImage], names: tuple[str, ...] = NAMES) -> Path:
+def write_labelled(
+    path: Path, images: list[NyuImage], names: tuple[str, ...] = NAMES, chunked: bool = False
+) -> Path:
+    """The labelled file; `chunked`: each image's arrays gzip-compressed in chunks of their
+    own (MATLAB compresses a v7.3 file's arrays too), so one image's can be damaged alone."""
     path.parent.mkdir(parents=True, exist_ok=True)
+    storage = {"compression": "gzip"} if chunked else {}
     with h5py.File(path, "w", userblock_size=512) as file:
         arrays = {
             "images": np.stack([im.rgb.transpose(2, 1, 0) for im in images]),
@@ -76,7 +81,9 @@ def write_labelled(path: Path, images: list[NyuImage], names: tuple[str, ...] = 
             "depths": np.ones((len(images), WIDTH, HEIGHT), dtype=np.float32),
         }
         for key, array in arrays.items():
-            file.create_dataset(key, data=array).attrs["MATLAB_class"] = np.bytes_(
+            chunks = (1, *array.shape[1:]) if chunked else None
+            dataset = file.create_dataset(key, data=array, chunks=chunks, **storage)
+            dataset.attrs["MATLAB_class"] = np.bytes_(
                 {"float32": "single"}.get(str(array.dtype), str(array.dtype))
             )
         _strings(file, "names", list(names))

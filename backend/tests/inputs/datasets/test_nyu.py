@@ -120,6 +120,22 @@ def test_a_truncated_file_is_one_error(tmp_path: Path) -> None:
     assert "nyu_depth_v2_labeled.mat is not a readable MATLAB v7.3 (HDF5) file" in item.error
 
 
+def test_an_image_whose_data_is_damaged_is_refused_alone(tmp_path: Path) -> None:
+    labelled = write_labelled(
+        tmp_path / "nyu.mat", [bedroom(0), bedroom(1), bedroom(2)], chunked=True
+    )
+    with h5py.File(labelled, "r") as file:
+        chunk = file["labels"].id.get_chunk_info(1)  # image 2's labels, compressed
+    with labelled.open("r+b") as raw:
+        raw.seek(chunk.byte_offset)
+        raw.write(b"\0" * chunk.size)
+    items = _read(labelled)
+    assert [item.inputs is not None for item in items] == [True, False, True]
+    assert (items[1].error or "").startswith(
+        "image 2's arrays cannot be read (corrupt or truncated)"
+    )
+
+
 def test_a_names_reference_that_points_nowhere_is_the_files_error(tmp_path: Path) -> None:
     labelled = nyu_folder(tmp_path, [bedroom()])
     with h5py.File(labelled, "r+") as file:

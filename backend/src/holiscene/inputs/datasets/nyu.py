@@ -180,7 +180,9 @@ class _NyuFile:
             labels = np.asarray(self.labels[index]).T
             instances = np.asarray(self.instances[index]).T
         except (OSError, KeyError, ValueError) as exc:
-            raise InputError(f"image {index + 1} cannot be read (truncated?): {exc}") from exc
+            raise InputError(
+                f"image {index + 1}'s arrays cannot be read (corrupt or truncated): {exc}"
+            ) from exc
         photo = _png_photo(rgb)
         regions = nyu_regions(labels, instances)
         classes = {r.label: self._class(r.label) for r in regions if r.label > 0}
