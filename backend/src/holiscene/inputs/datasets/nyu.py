@@ -143,9 +143,9 @@ class _NyuFile:
             raise InputError(f"{path.name} is not NYU's labelled file: no {', '.join(missing)}")
         self.file = file
         self.images, self.labels, self.instances = (file[k] for k in LABELLED_ARRAYS[:3])
-        self.count = int(self.images.shape[0])
         if self.images.ndim != 4 or self.images.shape[1] != 3:
             raise InputError(f"images is {self.images.shape}, not (N, 3, W, H)")
+        self.count = int(self.images.shape[0])
         for key in ("labels", "instances"):
             if file[key].shape != (self.count, *self.images.shape[2:]):
                 raise InputError(
@@ -154,7 +154,7 @@ class _NyuFile:
         self.names = self._strings("names")
         self.scenes = self._strings("scenes") if "scenes" in file else None
         if self.scenes is not None and len(self.scenes) != self.count:
-            raise InputError(f"scenes names {len(self.scenes)} scenes for {self.count} images")
+            raise InputError(f"scenes has {len(self.scenes)} names for {self.count} images")
         self.class_map = class_map_beside(path)
         self.supports = _support_rows(path.parent / SUPPORT_FILE, self.count)
 
