@@ -16,12 +16,20 @@ from .common import CliError, settings_from, write_atomic
 def add_pipeline_commands(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     infer = sub.add_parser("infer", help="run the pipeline on an input folder")
     infer.add_argument(
-        "input_dir", type=Path, help="folder with img.jpg|img.png [cam_K.txt] [detections.json]"
+        "input_dir",
+        type=Path,
+        help="folder with img.jpg|img.png [cam_K.txt] [detections.json] [depth.png]",
     )
     infer.add_argument(
         "-o", "--out", type=Path, required=True, help="folder for scene.json and scene.glb"
     )
     infer.add_argument("--stages", help="comma-separated stage names (default: the full pipeline)")
+    infer.add_argument(
+        "--no-depth",
+        dest="use_depth",
+        action="store_false",
+        help="ignore depth.png: the single-photo path on a folder that has depth",
+    )
     infer.add_argument(
         "--models", type=Path, help="folder of your own models: <class>/*.obj|glb|ply"
     )
@@ -78,20 +86,20 @@ def _infer(args: argparse.Namespace) -> int:
 
     stages = [s.strip() for s in args.stages.split(",")] if args.stages else list(DEFAULT_STAGES)
     if _is_input_folder(args.input_dir) or not args.input_dir.is_dir():
-        _infer_one(args.input_dir, args.out, stages, args.models, verbose=True)
+        _infer_one(args.input_dir, args.out, stages, args, verbose=True)
         print(args.out / "scene.json")
         return 0
     folders = sorted(f for f in args.input_dir.iterdir() if f.is_dir() and _is_input_folder(f))
     if not folders:
         raise CliError(f"{args.input_dir} holds neither img.jpg/img.png nor input folders")
     for folder in tqdm(folders, desc="infer", unit="scene", file=sys.stderr):
-        _infer_one(folder, args.out / folder.name, stages, args.models, verbose=False)
+        _infer_one(folder, args.out / folder.name, stages, args, verbose=False)
     print(f"{len(folders)} scenes written to {args.out}")
     return 0
 
 
 def _infer_one(
-    folder: Path, out: Path, stages: list[str], models: Path | None, verbose: bool
+    folder: Path, out: Path, stages: list[str], args: argparse.Namespace, verbose: bool
 ) -> None:
     from tqdm import tqdm
 
@@ -100,7 +108,7 @@ def _infer_one(
     from ..services.reconstruction import reconstruct_scene
 
     try:
-        inputs = read_input_folder(folder)
+        inputs = read_input_folder(folder, use_depth=args.use_depth)
         with tqdm(
             total=len(stages), desc="pipeline", unit="stage", file=sys.stderr, disable=not verbose
         ) as bar:
@@ -117,7 +125,7 @@ def _infer_one(
                 # supports.json: people's labels, kept as they are (gt.json is not used here).
                 pinned_supports=inputs.supports,
                 stages=stages,
-                models_dir=models,
+                models_dir=args.models,
                 progress=progress,
             )
     except (InputError, PipelineBuildError, ValueError) as exc:
@@ -127,6 +135,9 @@ def _infer_one(
     write_atomic(out / "scene.json", scene_json.encode())
     if result.glb is not None:
         write_atomic(out / "scene.glb", result.glb)
+    if inputs.depth is not None and result.scene.depth is not None:
+        # scene.json's depth reference names the file beside it.
+        write_atomic(out / result.scene.depth.file, inputs.depth.png)
     if verbose:
         for run in result.scene.stages:
             note = f"  ({run.note})" if run.note else ""

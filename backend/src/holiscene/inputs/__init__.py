@@ -1,5 +1,6 @@
-"""Reading and checking what users give: photos, intrinsics, 2D boxes."""
+"""Reading and checking what users give: photos, intrinsics, 2D boxes, depth."""
 
+from .depth import DepthMap, depth_from_metres, depth_from_png
 from .validation import (
     InputError,
     InputFiles,
@@ -12,9 +13,12 @@ from .validation import (
 )
 
 __all__ = [
+    "DepthMap",
     "InputError",
     "InputFiles",
     "Photo",
+    "depth_from_metres",
+    "depth_from_png",
     "load_photo",
     "parse_class_map",
     "parse_detections",

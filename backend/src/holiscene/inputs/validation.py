@@ -28,8 +28,9 @@ from holiscene_schema import (
 from PIL import Image, UnidentifiedImageError
 from pydantic import ValidationError
 
-from ..core.errors import DomainError
 from ..pipeline.base import Detection
+from .depth import DEPTH_FILE, DepthMap, depth_from_png
+from .errors import InputError as InputError  # re-exported: the readers import it from here
 
 MAX_IMAGE_PIXELS = 40_000_000  # 40 MP: far above any indoor photo we expect, far below a bomb
 # A room photo, not a strip: the pipeline's line, mask and layout steps need both sides.
@@ -37,14 +38,6 @@ MIN_IMAGE_SIDE = 32
 MAX_ASPECT_RATIO = 8.0
 BOX_TOLERANCE_PX = 2.0  # boxes may overhang the border by rounding, not more
 _FORMATS = {"JPEG": ".jpg", "PNG": ".png"}
-
-
-class InputError(DomainError, ValueError):
-    """Bad user input; `status` is the HTTP status the server answers with."""
-
-    def __init__(self, message: str, status: int = 422) -> None:
-        super().__init__(message)
-        self.status = status
 
 
 @dataclass(frozen=True)
@@ -217,13 +210,15 @@ class InputFiles:
     truth), over the object ids the detections get on import (o0, o1, ... in order); they
     enter revision 1 as people's labels. `ground_truth` is a scene with whatever the dataset
     measured (3D boxes, layout, camera), kept beside the stored scene as gt.json for
-    `holiscene eval`; it is never shown as the scene's own estimate."""
+    `holiscene eval`; it is never shown as the scene's own estimate. `depth` is an RGB-D
+    camera's depth, kept beside the scene as depth.png."""
 
     photo: Photo
     K: np.ndarray | None
     detections: list[Detection] | None
     supports: tuple[SupportRelation, ...] = ()
     ground_truth: Scene | None = None
+    depth: DepthMap | None = None  # inputs/depth.py; registered to the photo
 
     @cached_property
     def digest(self) -> str:
@@ -248,6 +243,8 @@ class InputFiles:
             labels["supports"] = [s.model_dump(mode="json") for s in self.supports]
         if self.ground_truth is not None:
             labels["ground_truth"] = self.ground_truth.model_dump(mode="json")
+        if self.depth is not None:
+            labels["depth"] = self.depth.digest
         hasher = hashlib.sha256(self.photo.data)
         hasher.update(json.dumps(labels, sort_keys=True).encode())
         return hasher.hexdigest()
@@ -327,10 +324,11 @@ def parse_ground_truth(data: bytes, width: int, height: int) -> Scene:
     return scene
 
 
-def read_input_folder(folder: Path) -> InputFiles:
+def read_input_folder(folder: Path, *, use_depth: bool = True) -> InputFiles:
     """Read img.jpg or img.png, and cam_K.txt, detections.json, class_map.json (the
-    user's own class names, see parse_class_map), supports.json (parse_supports) and gt.json
-    (parse_ground_truth) when present."""
+    user's own class names, see parse_class_map), supports.json (parse_supports), gt.json
+    (parse_ground_truth) and depth.png (inputs/depth.py; unless not `use_depth`, for the
+    single-photo path on a folder that has depth) when present."""
     if not folder.is_dir():
         raise InputError(f"{folder} is not a folder")
     images = [folder / n for n in ("img.jpg", "img.jpeg", "img.png") if (folder / n).is_file()]
@@ -359,6 +357,12 @@ def read_input_folder(folder: Path) -> InputFiles:
         if truth_file.is_file()
         else None
     )
+    depth_file = folder / DEPTH_FILE
+    depth = (
+        depth_from_png(depth_file.read_bytes(), photo.width, photo.height)
+        if use_depth and depth_file.is_file()
+        else None
+    )
     return InputFiles(
-        photo=photo, K=K, detections=detections, supports=supports, ground_truth=truth
+        photo=photo, K=K, detections=detections, supports=supports, ground_truth=truth, depth=depth
     )

@@ -62,13 +62,15 @@ class ObjectMask:
 class SceneContext:
     """Everything a pipeline knows about one photo; stages fill the slots they provide.
 
-    Input slots (always present, possibly empty): image, given_K, detections, pinned_supports,
-    pinned_objects, removed_objects.
+    Input slots (always present, possibly empty): image, given_K, detections, depth,
+    pinned_supports, pinned_objects, removed_objects.
     """
 
     image: np.ndarray  # RGB uint8, (H, W, 3)
     given_K: FloatArray | None = None
     detections: list[Detection] | None = None
+    # An RGB-D camera's depth along the optical axis, metres, float32 (H, W); 0: no depth.
+    depth: np.ndarray | None = None
     # Supports set by people; stages that infer supports must keep them as they are.
     pinned_supports: list[SupportRelation] = field(default_factory=list)
     # Objects people added or changed (SceneObject.set_by_person); the stages that find
@@ -104,7 +106,15 @@ class SceneContext:
 
 
 INPUT_SLOTS: frozenset[str] = frozenset(
-    {"image", "given_K", "detections", "pinned_supports", "pinned_objects", "removed_objects"}
+    {
+        "image",
+        "given_K",
+        "detections",
+        "depth",
+        "pinned_supports",
+        "pinned_objects",
+        "removed_objects",
+    }
 )
 SLOTS: frozenset[str] = frozenset(f.name for f in fields(SceneContext)) - {
     "notes",

@@ -414,5 +414,10 @@ def imported_scene(inputs: InputFiles, name: str) -> Scene:
     stages = [StageRun(name="import", seconds=0.0, note=unknown, warning=True)] if unknown else []
     # Supports given with the photo are people's labels: a pipeline run keeps them.
     return Scene(
-        name=name, image=image, objects=objects, supports=list(inputs.supports), stages=stages
+        name=name,
+        image=image,
+        depth=inputs.depth.ref() if inputs.depth is not None else None,
+        objects=objects,
+        supports=list(inputs.supports),
+        stages=stages,
     )

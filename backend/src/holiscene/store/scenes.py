@@ -41,6 +41,7 @@ from ..editing.edits import (
 )
 from ..editing.workflow_rules import scene_uncertainty
 from ..inputs import InputFiles, load_photo
+from ..inputs.depth import DEPTH_FILE
 from ..pipeline.people import keep_people_objects, people_objects_changed_since
 from .clock import as_utc, utcnow
 from .files import GROUND_TRUTH_FILE, SceneFiles
@@ -191,6 +192,8 @@ class SceneStore:
                     for d in inputs.detections
                 ]
                 (folder / "detections.json").write_text(json.dumps(boxes, indent=1))
+            if inputs.depth is not None:
+                (folder / DEPTH_FILE).write_bytes(inputs.depth.png)
             if inputs.ground_truth is not None:
                 truth = inputs.ground_truth.model_dump_json(indent=1)
                 (folder / GROUND_TRUTH_FILE).write_text(truth + "\n")
