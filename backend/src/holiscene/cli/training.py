@@ -10,11 +10,12 @@ import json
 import sys
 from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .common import CliError, settings_from
 
 if TYPE_CHECKING:
+    from ..learning.detector.data import BoxedPhoto
     from ..learning.samples import SupportSample
 
 # Synthetic rooms for the detector: seeds no benchmark or other training uses.
@@ -68,7 +69,8 @@ def add_detector_training_command(
 ) -> None:
     detector = sub.add_parser(
         "train-detector",
-        help="fine-tune the NYU-40 object detector's head on synthetic rooms (COCO backbone)",
+        help="fine-tune the NYU-40 object detector's head on synthetic rooms (COCO backbone), "
+        "or train one from scratch",
     )
     detector.add_argument("-o", "--out", type=Path, required=True, help="new model directory")
     detector.add_argument("--seed", type=int, default=0)
@@ -83,6 +85,16 @@ def add_detector_training_command(
     )
     detector.add_argument(
         "--cache", type=Path, help="where rendered rooms are kept (default: ~/.cache/holiscene)"
+    )
+    detector.add_argument(
+        "--from-scratch",
+        action="store_true",
+        help="train a small detector with no pretrained weights instead (for comparison)",
+    )
+    detector.add_argument(
+        "--time-budget",
+        type=float,
+        help="--from-scratch: end training (annealed) after this many seconds",
     )
     detector.set_defaults(handler=_train_detector)
 
@@ -133,6 +145,8 @@ def _train_detector(args: argparse.Namespace) -> int:
         raise CliError("--scenes, --validation-scenes and --epochs must be at least 1")
     if not 0.0 <= args.coco_weight <= 1.0:
         raise CliError("--coco-weight must be between 0 and 1")
+    if args.time_budget is not None and not args.time_budget > 0:
+        raise CliError("--time-budget must be a positive number of seconds")
     cache = args.cache or Path.home() / ".cache" / "holiscene" / "detector-rooms"
     with _training_progress("train-detector") as progress:
 
@@ -147,12 +161,27 @@ def _train_detector(args: argparse.Namespace) -> int:
             cache,
             rendered,
         )
-        config = DetectorTrainConfig(
-            seed=args.seed, epochs=args.epochs, coco_weight=args.coco_weight
-        )
-        metrics = train_detector(train, validation, config, args.out, progress)
+        if args.from_scratch:
+            metrics = _train_scratch(args, train, validation, progress)
+        else:
+            config = DetectorTrainConfig(
+                seed=args.seed, epochs=args.epochs, coco_weight=args.coco_weight
+            )
+            metrics = train_detector(train, validation, config, args.out, progress)
     print(f"validation mAP@0.5 {metrics['validation_map_at_0_5']:.3f} -> {args.out}")
     return 0
+
+
+def _train_scratch(
+    args: argparse.Namespace,
+    train: list[BoxedPhoto],
+    validation: list[BoxedPhoto],
+    progress: Callable[[float, str], None],
+) -> dict[str, Any]:
+    from ..learning.detector.scratch_train import ScratchTrainConfig, train_scratch_detector
+
+    config = ScratchTrainConfig(seed=args.seed, epochs=args.epochs, time_budget_s=args.time_budget)
+    return train_scratch_detector(train, validation, config, args.out, progress)
 
 
 def _train_rn(args: argparse.Namespace) -> int:

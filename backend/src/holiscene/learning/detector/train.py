@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import json
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -46,9 +46,13 @@ class DetectorTrainConfig:
     coco_model: Path = COCO_DETECTOR_DIR / MODEL_FILE
 
 
+# Input tensor [1, S, S, 3] -> (what the trained net reads, the COCO heatmap), batch of one.
+Encoder = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
+
+
 @dataclass
 class FeatureSet:
-    features: np.ndarray  # (N, 128, CELLS, CELLS) float16
+    features: np.ndarray  # (N, ...) float16: the backbone's (128, CELLS, CELLS), or an image
     coco: np.ndarray | None  # (N, 80, CELLS, CELLS) float16, validation only
     boxes: list[np.ndarray] = field(default_factory=list)  # input pixels, per sample
     class_index: list[np.ndarray] = field(default_factory=list)
@@ -65,22 +69,24 @@ def final_classes(trained: Sequence[str]) -> list[str]:
 def extract(
     photos: Sequence[BoxedPhoto],
     classes: list[str],
-    extractor: FeatureExtractor,
+    extractor: Encoder,
     rng: np.random.Generator | None,
     keep_coco: bool,
     say: TrainProgress,
     label: str,
 ) -> FeatureSet:
-    """Backbone features of each photo (randomised first when `rng` is given)."""
+    """What `extractor` makes of each photo (randomised first when `rng` is given): the
+    backbone's features, or for a net trained from scratch its input."""
     index_of = {c: i for i, c in enumerate(classes)}
-    feature_set = FeatureSet(
-        features=np.zeros((len(photos), 128, CELLS, CELLS), np.float16),
-        coco=np.zeros((len(photos), 80, CELLS, CELLS), np.float16) if keep_coco else None,
-    )
+    feature_set = FeatureSet(features=np.zeros(0, np.float16), coco=None)
     for n, original in enumerate(photos):
         photo = randomise(original, rng) if rng is not None else original
         height, width = photo.rgb.shape[:2]
         features, coco = extractor(preprocess(photo.rgb))
+        if n == 0:  # sized by the first sample: the extractor decides the shapes
+            feature_set.features = np.zeros((len(photos), *features.shape[1:]), np.float16)
+            if keep_coco:
+                feature_set.coco = np.zeros((len(photos), *coco.shape[1:]), np.float16)
         feature_set.features[n] = features[0]
         if feature_set.coco is not None:
             feature_set.coco[n] = coco[0]
@@ -125,6 +131,36 @@ def box_loss(predicted: torch.Tensor, target: torch.Tensor) -> torch.Tensor:
     return (1 - giou).mean() + 0.01 * (predicted - target).abs().mean()
 
 
+def detection_loss(
+    logits: torch.Tensor,
+    sides: torch.Tensor,
+    heatmaps: torch.Tensor,
+    cells: list[tuple[int, int, int]],
+    target_sides: torch.Tensor,
+) -> torch.Tensor:
+    """Focal loss on the class heatmaps plus the box loss at the objects' centre cells
+    (sample, row, column)."""
+    loss = focal_loss(logits, heatmaps)
+    if cells:
+        b, r, c = (torch.tensor(v) for v in zip(*cells, strict=True))
+        loss = loss + box_loss(sides[b, :, r, c], target_sides)
+    return loss
+
+
+def score_raw(
+    raw_outputs: Iterable[np.ndarray], data: FeatureSet, classes: list[str], scored: set[str]
+) -> tuple[float, DetectionEvaluation]:
+    """mAP@0.5 over the `scored` classes of a model's raw outputs (one per photo of `data`,
+    the contract's decoding down to the mAP threshold), and the whole evaluation."""
+    evaluation = DetectionEvaluation(iou=0.5)
+    for n, raw in enumerate(raw_outputs):
+        width, height = data.photo_sizes[n]
+        found = decode(raw, width, height, classes, list(classes), MAP_SCORE_THRESHOLD)
+        evaluation.add([ScoredBox(d.bbox, d.cls, d.score) for d in found], data.photo_boxes[n])
+    summary = evaluation.summary(scored)
+    return float(summary["map"] or 0.0), evaluation
+
+
 def _batch(
     data: FeatureSet, index: np.ndarray, window: int, num_classes: int, rng: np.random.Generator
 ) -> tuple[torch.Tensor, torch.Tensor, list[tuple[int, int, int]], torch.Tensor]:
@@ -156,19 +192,17 @@ def validation_map(
 ) -> tuple[float, DetectionEvaluation]:
     """mAP@0.5 over the trained classes on validation photos (the contract's decoding)."""
     exported = ExportedHead(head, trained, classes, coco_weight).eval()
-    evaluation = DetectionEvaluation(iou=0.5)
-    assert data.coco is not None
+    coco = data.coco
+    assert coco is not None
     with torch.no_grad():
-        for n in range(len(data.features)):
-            raw = exported(
+        raw_outputs = (
+            exported(
                 torch.from_numpy(data.features[n : n + 1].astype(np.float32)),
-                torch.from_numpy(data.coco[n : n + 1].astype(np.float32)),
+                torch.from_numpy(coco[n : n + 1].astype(np.float32)),
             ).numpy()
-            width, height = data.photo_sizes[n]
-            found = decode(raw, width, height, classes, list(classes), MAP_SCORE_THRESHOLD)
-            evaluation.add([ScoredBox(d.bbox, d.cls, d.score) for d in found], data.photo_boxes[n])
-    summary = evaluation.summary(set(trained))
-    return float(summary["map"] or 0.0), evaluation
+            for n in range(len(data.features))
+        )
+        return score_raw(raw_outputs, data, classes, set(trained))
 
 
 def train_detector(
@@ -207,10 +241,7 @@ def train_detector(
                 train, index, config.window, len(trained), rng
             )
             logits, sides = head(features)
-            loss = focal_loss(logits, heat)
-            if cells:
-                b, r, c = (torch.tensor(v) for v in zip(*cells, strict=True))
-                loss = loss + box_loss(sides[b, :, r, c], target_sides)
+            loss = detection_loss(logits, sides, heat, cells, target_sides)
             optimiser.zero_grad()
             loss.backward()  # type: ignore[no-untyped-call]
             optimiser.step()
