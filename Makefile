@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: surface-model coco-detector detector-model bench-detector bench-refine bench-writers calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
+.PHONY: surface-model coco-detector detector-model scratch-detector-model bench-detector bench-refine bench-batch bench-writers calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -106,9 +106,19 @@ detector-model: install-python
 	$(PY) -m holiscene.cli train-detector -o /tmp/holiscene-detector-model --scenes 1000 --epochs 20
 	cp /tmp/holiscene-detector-model/* backend/src/holiscene/learning/nyu_detector/
 
+# For comparison only: a small CenterNet with no pretrained weights, trained on the same rooms
+# on two CPU threads; training stops, annealed, after 25 minutes (docs/detector.md).
+scratch-detector-model: install-python
+	rm -rf /tmp/holiscene-scratch-detector
+	mkdir -p backend/src/holiscene/learning/scratch_detector
+	$(PY) -m holiscene.cli train-detector --from-scratch -o /tmp/holiscene-scratch-detector \
+		--scenes 1000 --epochs 16 --time-budget 1500
+	cp /tmp/holiscene-scratch-detector/* backend/src/holiscene/learning/scratch_detector/
+
 bench-detector: install-python
 	$(PY) benchmarks/bench_detector.py --model backend/src/holiscene/learning/coco_detector \
-		--model backend/src/holiscene/learning/nyu_detector
+		--model backend/src/holiscene/learning/nyu_detector \
+		--model backend/src/holiscene/learning/scratch_detector
 
 # Save latency with 20 annotators at once, on SQLite and on a scratch PostgreSQL (docs/database.md).
 bench-writers: install-python install-postgres
@@ -117,6 +127,10 @@ bench-writers: install-python install-postgres
 # The mask tools' refine call (GrabCut steered by strokes) on 400x400 boxes of the real photos.
 bench-refine: install-python
 	$(PY) benchmarks/bench_refine.py
+
+# Photos per minute pre-annotated on a local Ray (1 and 2 workers) against the in-process import.
+bench-batch: install-python
+	$(PY) benchmarks/bench_batch.py
 
 surface-model: install-python
 	rm -rf /tmp/holiscene-surface-model

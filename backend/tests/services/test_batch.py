@@ -7,6 +7,7 @@ worker comes back as that scene's error."""
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -153,6 +154,40 @@ def test_a_failure_on_a_worker_is_reported_as_that_scenes_error(
         assert [r.kind for r in workbench.scenes.revisions(scene_id)] == ["import"]
     finally:
         workbench.close()
+
+
+def _descendants(pid: int) -> list[int]:
+    children = [
+        int(child)
+        for task in Path(f"/proc/{pid}/task").iterdir()
+        for child in (task / "children").read_text().split()
+    ]
+    return [c for child in children for c in (child, *_descendants(child))]
+
+
+def _listening_addresses(pids: list[int]) -> set[str]:
+    """The local addresses (hex, as /proc/net/tcp* writes them) the processes listen on."""
+    inodes = set()
+    for pid in pids:
+        for fd in Path(f"/proc/{pid}/fd").iterdir():
+            target = os.readlink(fd) if fd.is_symlink() else ""
+            if target.startswith("socket:["):
+                inodes.add(target[8:-1])
+    found = set()
+    for table in ("/proc/net/tcp", "/proc/net/tcp6"):
+        for row in Path(table).read_text().splitlines()[1:]:
+            fields = row.split()
+            if fields[3] == "0A" and fields[9] in inodes:  # 0A: LISTEN
+                found.add(fields[1].split(":")[0])
+    return found
+
+
+def test_the_local_ray_listens_on_127_0_0_1_only(local_ray: None) -> None:
+    ray_processes = _descendants(os.getpid())
+    addresses = _listening_addresses(ray_processes)
+    assert addresses  # the GCS, the raylet and the workers listen
+    # 127.0.0.1 as IPv4, and as IPv6's IPv4-mapped address.
+    assert addresses <= {"0100007F", "0000000000000000FFFF00000100007F"}, addresses
 
 
 def test_ray_is_not_loaded_by_the_server_or_the_other_commands() -> None:

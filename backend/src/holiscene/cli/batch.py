@@ -108,6 +108,10 @@ def batch_scenes(
             bar.set_postfix(done=bar.n + 1 - failed, failed=failed, refresh=False)
             bar.update()
 
-        report = run_batch(workbench, todo, at_once, finished)
+        try:
+            report = run_batch(workbench, todo, at_once, finished)
+        except KeyboardInterrupt:  # the photos out were marked failed: a new run takes them
+            bar.write("interrupted: run the batch again to go on", sys.stderr)
+            return 130
     print(f"{len(report.done)} scene(s) pre-annotated, {len(report.failed)} failed")
     return 1 if report.failed else 0

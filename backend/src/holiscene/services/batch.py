@@ -41,6 +41,9 @@ BATCH_STARTER = "import"
 # address is the loopback one, and every Ray process listens on 127.0.0.1 only. Read by Ray
 # when it is imported, and inherited by the processes it starts.
 LOCAL_ONLY_ENV = ("RAY_ENABLE_WINDOWS_OR_OSX_CLUSTER", "0")
+# Token authentication between the local Ray's processes, which Ray turns on by default for a
+# local Ray anyway; asked for explicitly, Ray does not print a warning about it.
+LOCAL_AUTH_ENV = ("RAY_AUTH_MODE", "token")
 LOOPBACK = "127.0.0.1"
 # reconstruct_scene's arguments that name folders on the driver's machine.
 FOLDER_ARGUMENTS = ("models_dir", "support_model_dir", "detector_model_dir")
@@ -87,6 +90,7 @@ def ray_runtime(address: str | None, workers: int | None) -> Iterator[int]:
     compute at once: `workers`, else the machine's or the cluster's CPU count."""
     if address is None:
         os.environ[LOCAL_ONLY_ENV[0]] = LOCAL_ONLY_ENV[1]
+        os.environ.setdefault(*LOCAL_AUTH_ENV)
     import ray
 
     started = not ray.is_initialized()
