@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Annotated
 
 from fastapi import APIRouter, File, Form, Path, UploadFile
-from fastapi.responses import FileResponse
+from fastapi.responses import FileResponse, Response
 from holiscene_schema import (
     MAX_REVISION,
     Conflict,
@@ -20,14 +20,17 @@ from holiscene_schema import (
 )
 
 from ...export.archive import file_stem
+from ...export.depth_preview import depth_preview_png
 from ...inputs import (
     InputError,
     InputFiles,
+    Photo,
     load_photo,
     parse_class_map,
     parse_detections,
     parse_intrinsics,
 )
+from ...inputs.depth import DEPTH_FILE, DepthMap, DepthUnits, read_depth_file
 from ...store.scenes import SceneNotFoundError
 from ..deps import AnnotatorDep, UserDep, WorkbenchDep, author_of
 from ..permissions import with_edit_permission
@@ -76,12 +79,21 @@ async def import_scene(
         UploadFile | None,
         File(description='class_map.json: {"dataset name": "NYU-40 class"}, for the boxes'),
     ] = None,
+    depth: Annotated[
+        UploadFile | None,
+        File(description="Depth registered to the photo: 16-bit PNG or .npy of float metres"),
+    ] = None,
+    depth_units: Annotated[
+        DepthUnits | None,
+        Form(description='"mm" (PNG, the default), "sunrgbd" (PNG, SUN RGB-D\'s bits), "m" (.npy)'),
+    ] = None,
     name: Annotated[str | None, Form(max_length=MAX_SCENE_NAME)] = None,
     author: Annotated[str, Form(min_length=1, max_length=64)] = "import",
     run_pipeline: Annotated[bool, Form()] = True,
 ) -> ImportResult:
     limit = workbench.settings.max_upload_mb * 1024 * 1024
     photo = load_photo(await _read_limited(image, "the photo", limit))
+    depth_map = await _uploaded_depth(depth, depth_units, photo, limit)
     K = None
     if cam_k is not None:
         raw_k = await _read_limited(cam_k, "cam_K.txt", 64 * 1024)
@@ -96,11 +108,22 @@ async def import_scene(
         if class_map is not None:
             names = parse_class_map(await _read_limited(class_map, "class_map.json", 1024 * 1024))
         boxes = parse_detections(raw, photo.width, photo.height, names)
-    inputs = InputFiles(photo=photo, K=K, detections=boxes)
+    inputs = InputFiles(photo=photo, K=K, detections=boxes, depth=depth_map)
     # A name from the file name is cut to fit (only a typed name is the user's to shorten).
     from_file = (image.filename or "photo").rsplit(".", 1)[0].strip()[:MAX_SCENE_NAME]
     scene_name = (name or "").strip() or from_file or "photo"
     return workbench.import_scene(inputs, scene_name, author_of(user, author), run_pipeline)
+
+
+async def _uploaded_depth(
+    upload: UploadFile | None, units: DepthUnits | None, photo: Photo, limit: int
+) -> DepthMap | None:
+    if upload is None:
+        if units is not None:
+            raise InputError("depth_units was given without a depth file")
+        return None
+    data = await _read_limited(upload, "the depth file", limit)
+    return read_depth_file(data, photo.width, photo.height, units, what="the depth file")
 
 
 @router.get("/{scene_id}", response_model=SceneDocument, responses=_ERRORS)
@@ -112,6 +135,27 @@ def get_scene(scene_id: str, workbench: WorkbenchDep, user: UserDep) -> SceneDoc
 @router.get("/{scene_id}/image", responses=_ERRORS)
 def get_image(scene_id: str, workbench: WorkbenchDep) -> FileResponse:
     return FileResponse(workbench.scenes.image_path(scene_id))
+
+
+def _depth_file(workbench: WorkbenchDep, scene_id: str) -> bytes:
+    scene = workbench.scenes.document(scene_id).scene
+    path = workbench.scenes.files.folder(scene_id) / DEPTH_FILE
+    if scene.depth is None or not path.is_file():
+        raise SceneNotFoundError(f"scene {scene_id} has no depth: it was imported without")
+    return path.read_bytes()
+
+
+@router.get("/{scene_id}/depth.png", responses=_ERRORS)
+def get_depth(scene_id: str, workbench: WorkbenchDep) -> Response:
+    """The depth given with the photo, as stored: a 16-bit PNG of millimetres (0: none)."""
+    return Response(_depth_file(workbench, scene_id), media_type="image/png")
+
+
+@router.get("/{scene_id}/depth-preview.png", responses=_ERRORS)
+def get_depth_preview(scene_id: str, workbench: WorkbenchDep) -> Response:
+    """The depth as a colour picture to lay over the photo: near warm, far cool, and
+    transparent where there is no depth."""
+    return Response(depth_preview_png(_depth_file(workbench, scene_id)), media_type="image/png")
 
 
 @router.get("/{scene_id}/scene.glb", responses=_ERRORS)
