@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import json
 import math
-import shutil
 from pathlib import Path
 from typing import Any
 
@@ -86,6 +85,18 @@ def mask_polygons(truth: Scene, index: int) -> list[dict[str, Any]]:
     ]
 
 
+def read_depth_mm(synth_dir: Path) -> np.ndarray:
+    depth: np.ndarray = cv2.imread(str(synth_dir / "depth.png"), cv2.IMREAD_UNCHANGED)
+    return depth
+
+
+def write_sun_depth(path: Path, millimetres: np.ndarray) -> None:
+    """A depth PNG as SUN RGB-D stores it: 16-bit millimetres with their bits rotated left by 3
+    (the toolbox undoes it with bitor(bitshift(d, -3), bitshift(d, 16 - 3)))."""
+    mm = millimetres.astype(np.uint16)
+    assert cv2.imwrite(str(path), np.bitwise_or(np.left_shift(mm, 3), np.right_shift(mm, 13)))
+
+
 def write_sun_folder(synth_dir: Path, folder: Path, heading_deg: float = 23.0) -> Scene:
     """The generator's scene in `synth_dir` as the SUN RGB-D image folder `folder`; returns
     the generator's truth."""
@@ -95,7 +106,7 @@ def write_sun_folder(synth_dir: Path, folder: Path, heading_deg: float = 23.0) -
         folder / "image" / "0000103.jpg", quality=95
     )
     (folder / "depth").mkdir()
-    shutil.copy(synth_dir / "depth.png", folder / "depth" / "0000103.png")
+    write_sun_depth(folder / "depth" / "0000103.png", read_depth_mm(synth_dir))
     K = np.array(truth.camera.K if truth.camera else [])
     (folder / "intrinsics.txt").write_text("\n".join(" ".join(f"{v:.9g}" for v in r) for r in K))
     (folder / "extrinsics").mkdir()

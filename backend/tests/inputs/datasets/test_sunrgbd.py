@@ -1,6 +1,7 @@
 """SUN RGB-D image folders: a synthetic room written in SUN's layout and frames comes back as
 the generator made it (camera, 3D boxes, room, outlines), the 3D boxes project onto their
-outlines, 3D boxes join 2D objects by index and name, and bad folders fail one by one."""
+outlines, 3D boxes join 2D objects by index and name, the depth is read with its bits turned
+back (depth/ before depth_bfx/), and bad folders fail one by one."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ import json
 import shutil
 from pathlib import Path
 
+import cv2
 import numpy as np
 import pytest
 from holiscene.geometry.camera import PinholeCamera
@@ -15,8 +17,8 @@ from holiscene.inputs.datasets import dataset_items, is_dataset
 from holiscene.segmentation.rle import decode_mask
 from holiscene_schema import Scene
 
-from .files import photo_bytes, write_json
-from .sunrgbd_files import write_sun_folder
+from .files import HEIGHT, WIDTH, photo_bytes, write_json
+from .sunrgbd_files import read_depth_mm, write_sun_depth, write_sun_folder
 
 SEED = 5  # a bedroom of 16 labelled objects
 HEADINGS = (0.0, 23.0, -140.0)  # the SUN gravity frame's turn from the camera's heading
@@ -261,3 +263,46 @@ def test_holiscene_import_stores_the_ground_truth_beside_the_scene(
     assert [o.id for o in truth.objects] == ["o0", "o1"]
     assert main(["import", str(root / "kv1" / "NYU0001"), "--data-dir", str(data_dir)]) == 0
     assert "imported before" in capsys.readouterr().out
+
+
+def test_the_depth_comes_back_in_metres(synth_dir: Path, tmp_path: Path) -> None:
+    write_sun_folder(synth_dir, tmp_path / "NYU0005")
+    (item,) = dataset_items(tmp_path / "NYU0005")
+    assert item.inputs is not None and item.inputs.depth is not None
+    true_mm = read_depth_mm(synth_dir)
+    assert np.allclose(item.inputs.depth.metres, true_mm * 0.001, atol=1e-6)
+
+
+def test_depth_bfx_is_read_only_without_depth(tmp_path: Path) -> None:
+    folder = _small_folder(tmp_path / "a")
+    (folder / "depth_bfx").mkdir()
+    write_sun_depth(folder / "depth_bfx" / "0000001.png", np.full((HEIGHT, WIDTH), 1500))
+    write_sun_depth(folder / "depth" / "0000000.png", np.full((HEIGHT, WIDTH), 900))
+    write_sun_depth(folder / "depth" / "0000001.png", np.full((HEIGHT, WIDTH), 2000))
+
+    def depth_m() -> float:
+        (item,) = dataset_items(folder)
+        assert item.inputs is not None and item.inputs.depth is not None, item.error
+        return float(item.inputs.depth.metres[0, 0])
+
+    assert depth_m() == pytest.approx(2.0)  # depth/, the file named as the photo
+    (folder / "depth" / "0000001.png").unlink()
+    assert depth_m() == pytest.approx(0.9)  # depth/'s first by name
+    shutil.rmtree(folder / "depth")
+    assert depth_m() == pytest.approx(1.5)
+
+
+def test_a_folder_with_bad_depth_is_its_own_error(tmp_path: Path) -> None:
+    root = tmp_path / "SUNRGBD"
+    _small_folder(root / "a_good")
+    eight = _small_folder(root / "b_eight_bit") / "depth" / "0000001.png"
+    assert cv2.imwrite(str(eight), np.full((HEIGHT, WIDTH), 200, np.uint8))
+    for name, millimetres in (("c_small", np.ones((8, 8))), ("d_zeros", np.zeros((HEIGHT, WIDTH)))):
+        write_sun_depth(_small_folder(root / name) / "depth" / "0000001.png", millimetres)
+    items = list(dataset_items(root))
+    assert items[0].inputs is not None and items[0].inputs.depth is None
+    assert all(i.inputs is None for i in items[1:])
+    errors = [i.error or "" for i in items[1:]]
+    assert "depth/0000001.png is an 8-bit image" in errors[0]
+    assert f"depth/0000001.png is 8x8 pixels, the photo is {WIDTH}x{HEIGHT}" in errors[1]
+    assert "depth/0000001.png holds no depth" in errors[2]

@@ -5,7 +5,9 @@ One image folder holds `image/<name>.jpg`, `intrinsics.txt` (K, 9 numbers row by
 `extrinsics/<stamp>.txt` (the newest is used), `annotation2Dfinal/index.json` (polygons
 `frames[0].polygon[i] = {x, y, object: k}` naming `objects[k].name`), and, when annotated,
 `annotation3Dfinal/index.json` (a box per object) and `annotation3Dlayout/index.json` (the
-room). `depth/` is not read. Frames and their conversion: sunrgbd_frames.py.
+room), and `depth/<name>.png` (the sensor's depth, millimetres with their bits rotated; the
+filled-in `depth_bfx/` only when there is no `depth/`). Frames and their conversion:
+sunrgbd_frames.py.
 
 A 3D box belongs to the 2D object at the same index k of the two files' `objects` lists,
 when both give it the same name; other 3D boxes are left out of the ground truth.
@@ -35,6 +37,7 @@ from holiscene_schema import (
 from ...geometry.boxes import box_corners
 from ...geometry.camera import FloatArray, PinholeCamera
 from ...pipeline.base import Detection
+from ..depth import DepthMap, depth_from_png
 from ..validation import (
     InputError,
     InputFiles,
@@ -58,6 +61,9 @@ EXTRINSICS_FOLDER = "extrinsics"
 ANNOTATION_2D = Path("annotation2Dfinal") / "index.json"
 ANNOTATION_3D = Path("annotation3Dfinal") / "index.json"
 LAYOUT_3D = Path("annotation3Dlayout") / "index.json"
+# The sensor's depth first: depth_bfx/ is the same with its holes filled in by a
+# cross-bilateral filter, guesses rather than measurements.
+DEPTH_FOLDERS = ("depth", "depth_bfx")
 DECIMALS = 6
 
 
@@ -118,13 +124,37 @@ def read_image_folder(folder: Path, class_map: dict[str, str] | None = None) -> 
         truth = ground_truth(folder, photo, K, sun_from_cv, annotation, labelled or [])
     elif (folder / ANNOTATION_3D).is_file() or (folder / LAYOUT_3D).is_file():
         raise InputError(f"{EXTRINSICS_FOLDER}/ holds no .txt: the 3D annotations need the tilt")
-    return InputFiles(photo=photo, K=K, detections=detections, ground_truth=truth)
+    depth = read_depth(folder, photo)
+    return InputFiles(photo=photo, K=K, detections=detections, ground_truth=truth, depth=depth)
+
+
+def read_depth(folder: Path, photo: Photo) -> DepthMap | None:
+    """The depth of `depth/` (else `depth_bfx/`): the PNG named as the photo, else the first
+    by name; None when the folder has neither."""
+    photo_stem = _image_files(folder)[0].stem
+    for name in DEPTH_FOLDERS:
+        files = sorted((folder / name).glob("*.png"))
+        if not files:
+            continue
+        chosen = next((f for f in files if f.stem == photo_stem), files[0])
+        return depth_from_png(
+            chosen.read_bytes(),
+            photo.width,
+            photo.height,
+            sunrgbd_bit_rotation=True,
+            what=f"{name}/{chosen.name}",
+        )
+    return None
+
+
+def _image_files(folder: Path) -> list[Path]:
+    return sorted((folder / IMAGE_FOLDER).glob("*.jp*g")) + sorted(
+        (folder / IMAGE_FOLDER).glob("*.png")
+    )
 
 
 def _photo(folder: Path) -> Photo:
-    images = sorted((folder / IMAGE_FOLDER).glob("*.jp*g")) + sorted(
-        (folder / IMAGE_FOLDER).glob("*.png")
-    )
+    images = _image_files(folder)
     if not images:
         raise InputError(f"{IMAGE_FOLDER}/ holds no .jpg image")
     try:
