@@ -83,6 +83,8 @@ export interface SceneImport {
   detections?: File | null;
   /** The user's names for the boxes' classes (read only with detections). */
   classMap?: File | null;
+  /** Depth registered to the photo: a 16-bit PNG of millimetres or a .npy of float metres. */
+  depth?: File | null;
   name?: string;
 }
 
@@ -97,6 +99,7 @@ export const api = {
     if (input.camK) form.append("cam_k", input.camK);
     if (input.detections) form.append("detections", input.detections);
     if (input.classMap) form.append("class_map", input.classMap);
+    if (input.depth) form.append("depth", input.depth);
     if (input.name?.trim()) form.append("name", input.name.trim());
     return request<ImportResult>("/scenes", { method: "POST", body: form });
   },
@@ -105,6 +108,9 @@ export const api = {
     request<SceneDocument>(sceneUrl(sceneId), { signal }),
 
   imageUrl: (sceneId: string) => `${BASE}${sceneUrl(sceneId)}/image`,
+
+  /** The depth given with the photo as a colour picture of its size (scenes with depth). */
+  depthPreviewUrl: (sceneId: string) => `${BASE}${sceneUrl(sceneId)}/depth-preview.png`,
 
   glbUrl: (sceneId: string, revision: number) =>
     `${BASE}${sceneUrl(sceneId)}/scene.glb?revision=${revision}`,

@@ -1,14 +1,14 @@
 // The row above the photo: a checkbox (and key) per overlay layer, the mask style controls
-// and the arrows' colour legend.
+// and the arrows' colour legend; for a photo with depth, a checkbox that shows the depth over it.
 import { el } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
 import { maskStyleControls } from "./maskStyle";
 import type { PhotoLayers } from "./photoSvg";
 
-function toggle(label: string, testid: string, onChange: (on: boolean) => void) {
+function toggle(label: string, testid: string, onChange: (on: boolean) => void, on = true) {
   const input = el("input", {
     testid,
-    attrs: { type: "checkbox", checked: true },
+    attrs: { type: "checkbox", checked: on },
     on: { change: () => onChange(input.checked) },
   });
   return { input, label: el("label", { className: "toggle" }, input, label) };
@@ -50,10 +50,13 @@ export function layerBar(layers: PhotoLayers): { element: HTMLElement; dispose()
     }),
   );
   const styleControls = maskStyleControls();
+  // Off at first: the depth hides the photo's colours.
+  const depth = layers.depth && toggle("Depth", "toggle-depth", setLayer(layers.depth), false);
   const element = el(
     "div",
     { className: "photo-toolbar" },
     ...layerToggles.map((t) => t.label),
+    depth?.label,
     styleControls.element,
     legend(),
   );

@@ -1,5 +1,6 @@
 // The photo's SVG: the photo in a frame (whose margin holds arrows to the walls and floor),
-// and the layers drawn over it, bottom to top: masks, outlines, arrows, labels, the tools'.
+// and the layers drawn over it, bottom to top: depth (when the photo came with it, hidden at
+// first), masks, outlines, arrows, labels, the tools'.
 
 import { api } from "../../api/client";
 import { el, svgEl } from "../../dom";
@@ -8,6 +9,8 @@ import type { SceneSession } from "../../state/sceneSession";
 import { type Frame, frameFor } from "./arrowGeometry";
 
 export interface PhotoLayers {
+  /** The depth as colours over the photo; null for a photo without depth. */
+  depth: SVGGElement | null;
   masks: SVGGElement;
   outlines: SVGGElement;
   arrows: SVGGElement;
@@ -29,6 +32,7 @@ export function photoSvg(session: SceneSession): PhotoSvg {
   const frame = frameFor(width, height);
   const m = frame.margin;
   const layers: PhotoLayers = {
+    depth: session.doc.scene.depth ? depthLayer(session.sceneId, width, height) : null,
     masks: svgEl("g", { class: "masks", "data-testid": "mask-layer" }),
     outlines: svgEl("g", { class: "outlines" }),
     arrows: svgEl("g", { class: "arrows", "data-testid": "arrow-layer" }),
@@ -61,6 +65,7 @@ export function photoSvg(session: SceneSession): PhotoSvg {
       height: height + 2 * m,
     }),
     photo,
+    ...(layers.depth ? [layers.depth] : []),
     layers.masks,
     layers.outlines,
     layers.arrows,
@@ -76,6 +81,22 @@ export function photoSvg(session: SceneSession): PhotoSvg {
     status.textContent = "The photo could not be loaded.";
   });
   return { svg, layers, frame, status };
+}
+
+function depthLayer(sceneId: string, width: number, height: number): SVGGElement {
+  const image = svgEl("image", {
+    href: api.depthPreviewUrl(sceneId),
+    x: 0,
+    y: 0,
+    width,
+    height,
+    preserveAspectRatio: "none",
+    "data-testid": "depth-image",
+  });
+  // Translucent: the photo shows through, so edges in the depth can be matched to the photo's.
+  const layer = svgEl("g", { class: "depth", opacity: 0.7, "data-testid": "depth-layer" }, image);
+  layer.style.display = "none";
+  return layer;
 }
 
 /** Where a mouse event is on the photo, in photo pixels (null while the SVG is not shown). */

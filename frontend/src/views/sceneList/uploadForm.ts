@@ -1,5 +1,5 @@
-// Import a photo (with optional cam_K.txt, detections.json and class_map.json) and follow its
-// pipeline job.
+// Import a photo (with optional cam_K.txt, detections.json, class_map.json and depth) and follow
+// its pipeline job.
 import type { SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { pollJob } from "../../api/jobs";
@@ -31,6 +31,12 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
     ".json,application/json",
     'optional class_map.json: {"your name": "NYU-40 class"}',
   );
+  const depth = fileField(
+    "Depth",
+    "depth",
+    ".png,.npy,image/png",
+    "optional depth of the same size: 16-bit PNG of millimetres, or .npy of metres",
+  );
   const name = el("input", {
     testid: "upload-name",
     attrs: { type: "text", name: "name", placeholder: "defaults to the file name", maxlength: 200 },
@@ -52,6 +58,7 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
       camK.field,
       detections.field,
       classMap.field,
+      depth.field,
       labelledField("Name", name),
     ),
     el("div", { className: "form-actions" }, submit),
@@ -70,6 +77,7 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
         camK: camK.input.files?.[0] ?? null,
         detections: detections.input.files?.[0] ?? null,
         classMap: classMap.input.files?.[0] ?? null,
+        depth: depth.input.files?.[0] ?? null,
         name: name.value,
       });
       const scene = imported.scene;
