@@ -298,6 +298,40 @@ class ImportResult(SchemaModel):
     job: Job | None
 
 
+class ImportedPhoto(SchemaModel):
+    name: str = Field(description="The photo's name in the upload (a file or folder)")
+    scene_id: str = Field(description="Its scene: made now, or imported before (skipped)")
+
+
+class PhotoError(SchemaModel):
+    name: str = Field(description="The photo's or file's name in the upload")
+    message: str = Field(description="Why it was left out; nothing of it was stored")
+
+
+class ImportJob(SchemaModel):
+    """A dataset uploaded as a .zip (POST /api/imports), imported in the background: each
+    photo becomes a scene, is skipped as imported before, or is left out with its error."""
+
+    id: str
+    status: JobStatus
+    archive: str = Field(description="The uploaded file's name")
+    format: str | None = Field(
+        default=None, description="What the zip holds: COCO, LabelMe, SUN RGB-D, input folders"
+    )
+    total: int = Field(ge=0, description="Photos (and unreadable files) found in the zip")
+    done: int = Field(ge=0, description="Of them, read so far")
+    run_pipeline: bool = Field(description="Whether each new scene's pipeline is queued")
+    imported: list[ImportedPhoto] = Field(default_factory=list, description="New scenes")
+    skipped: list[ImportedPhoto] = Field(
+        default_factory=list, description="Photos with the same files imported before"
+    )
+    errors: list[PhotoError] = Field(default_factory=list)
+    error: str | None = Field(default=None, description="Why the whole import stopped")
+    started_by: str | None = None
+    created_at: datetime
+    finished_at: datetime | None = None
+
+
 class ConflictDetail(SchemaModel):
     message: str
     current_revision: int

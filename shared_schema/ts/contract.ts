@@ -14,7 +14,9 @@ DetectorInfo?: DetectorInfo
 EditRequest?: EditRequest
 ErrorMessage?: ErrorMessage
 ImageInfo?: ImageInfo
+ImportJob?: ImportJob
 ImportResult?: ImportResult
+ImportedPhoto?: ImportedPhoto
 Job?: Job
 Layout?: Layout
 LoginRequest?: LoginRequest
@@ -29,6 +31,7 @@ NewUser?: NewUser
 PasswordChange?: PasswordChange
 PasswordReset?: PasswordReset
 PersonStats?: PersonStats
+PhotoError?: PhotoError
 PromoteRequest?: PromoteRequest
 RejectRequest?: RejectRequest
 RemoveObject?: RemoveObject
@@ -484,6 +487,81 @@ export interface ImageInfo {
 file: string
 height: number
 width: number
+}
+/**
+ * A dataset uploaded as a .zip (POST /api/imports), imported in the background: each
+ * photo becomes a scene, is skipped as imported before, or is left out with its error.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "ImportJob".
+ */
+export interface ImportJob {
+/**
+ * The uploaded file's name
+ */
+archive: string
+created_at: string
+/**
+ * Of them, read so far
+ */
+done: number
+/**
+ * Why the whole import stopped
+ */
+error: (string | null)
+errors: PhotoError[]
+finished_at: (string | null)
+/**
+ * What the zip holds: COCO, LabelMe, SUN RGB-D, input folders
+ */
+format: (string | null)
+id: string
+/**
+ * New scenes
+ */
+imported: ImportedPhoto[]
+/**
+ * Whether each new scene's pipeline is queued
+ */
+run_pipeline: boolean
+/**
+ * Photos with the same files imported before
+ */
+skipped: ImportedPhoto[]
+started_by: (string | null)
+status: ("queued" | "running" | "succeeded" | "failed")
+/**
+ * Photos (and unreadable files) found in the zip
+ */
+total: number
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "PhotoError".
+ */
+export interface PhotoError {
+/**
+ * Why it was left out; nothing of it was stored
+ */
+message: string
+/**
+ * The photo's or file's name in the upload
+ */
+name: string
+}
+/**
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "ImportedPhoto".
+ */
+export interface ImportedPhoto {
+/**
+ * The photo's name in the upload (a file or folder)
+ */
+name: string
+/**
+ * Its scene: made now, or imported before (skipped)
+ */
+scene_id: string
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema

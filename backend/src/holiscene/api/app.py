@@ -23,6 +23,7 @@ from .routes import (
     auth,
     detector,
     downloads,
+    imports,
     jobs,
     mask_refine,
     models,
@@ -90,6 +91,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.include_router(auth.router)
     app.include_router(workflow.router, dependencies=logged_in)
     app.include_router(scenes.router, dependencies=logged_in)
+    app.include_router(imports.router, dependencies=logged_in)
     app.include_router(mask_refine.router, dependencies=logged_in)
     app.include_router(downloads.router, dependencies=logged_in)
     app.include_router(jobs.router, dependencies=logged_in)
@@ -124,7 +126,10 @@ def install_http_guards(app: FastAPI, settings: Settings) -> None:
     then the Host and Origin checks, then the body size cap, then a login before an upload
     is read."""
     upload_limit = (settings.max_upload_mb + IMPORT_OVERHEAD_MB) * MB
-    upload_routes = {("POST", "/api/scenes"): upload_limit}
+    upload_routes = {
+        ("POST", "/api/scenes"): upload_limit,
+        ("POST", "/api/imports"): (settings.max_import_mb + 1) * MB,  # + the form's fields
+    }
     app.add_middleware(UploadLogin, routes=upload_routes.keys())
     app.add_middleware(
         BodySizeLimit, default=int(settings.max_request_mb * MB), per_route=upload_routes

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable, Iterable
-from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -15,7 +13,6 @@ from .common import CliError, settings_from
 
 if TYPE_CHECKING:
     from ..inputs import InputFiles
-    from ..inputs.datasets import DatasetItem
     from ..services.workbench import Workbench
 
 DEMO_PHOTOS = REPO_ROOT.parent / "shared" / "data" / "real"
@@ -83,8 +80,8 @@ def _demo(args: argparse.Namespace) -> int:
 
 
 def _import(args: argparse.Namespace) -> int:
-    from ..inputs import InputError, read_input_folder
-    from ..inputs.datasets import dataset_items, is_dataset
+    from ..inputs import InputError
+    from ..inputs.datasets.uploaded import photo_sources
     from ..services.workbench import Workbench
 
     if (args.workers or args.ray) and not args.run_pipeline:
@@ -95,24 +92,17 @@ def _import(args: argparse.Namespace) -> int:
     scene_ids: list[str] = []  # for --run-pipeline: every photo's scene, new or imported before
     try:
         for path in args.paths:
-            items: Iterable[tuple[str, str, Callable[[], InputFiles]]]
-            if is_dataset(path):
-                # Read one photo at a time: a dataset of a thousand photos never in memory.
-                items = (
-                    (item.name, Path(item.name).stem, partial(_dataset_item, item))
-                    for item in dataset_items(path)
-                )
-            else:
-                items = [(str(path), path.name, partial(read_input_folder, path))]
-            for label, name, read in items:
+            for source in photo_sources(path):
                 number += 1
                 try:
-                    inputs = read()
+                    inputs = source.read()
                 except InputError as exc:
-                    print(f"error: {label}: {exc}", file=sys.stderr)
+                    print(f"error: {source.label}: {exc}", file=sys.stderr)
                     failures += 1
                     continue
-                failed, scene_id = _import_one(workbench, number, label, inputs, name, args)
+                failed, scene_id = _import_one(
+                    workbench, number, source.label, inputs, source.name, args
+                )
                 failures += failed
                 scene_ids.append(scene_id)
         if args.run_pipeline and scene_ids:
@@ -120,14 +110,6 @@ def _import(args: argparse.Namespace) -> int:
     finally:
         workbench.close()
     return 1 if failures else 0
-
-
-def _dataset_item(item: DatasetItem) -> InputFiles:
-    from ..inputs import InputError
-
-    if item.inputs is None:
-        raise InputError(item.error or "could not be read")
-    return item.inputs
 
 
 def _import_one(

@@ -20,6 +20,11 @@ class Settings(BaseSettings):
     host: str = "127.0.0.1"
     port: int = 8000
     max_upload_mb: int = 50  # a photo import (POST /api/scenes)
+    # A dataset uploaded as a .zip (POST /api/imports): the upload, what it may unpack to,
+    # and how many files it may hold (a zip bomb is refused before it is unpacked).
+    max_import_mb: int = Field(default=1024, gt=0)
+    max_import_unpacked_mb: int = Field(default=4096, gt=0)
+    max_import_files: int = Field(default=20_000, gt=0)
     # Any other request body; larger ones are refused (413) before they are read.
     max_request_mb: float = Field(default=16.0, gt=0)
     # Host names the server answers to besides the loopback names and `host` (400 for others:

@@ -43,6 +43,7 @@ from ..store.model_registry import KIND_FOLDERS, ModelNotFoundError, ModelStore,
 from ..store.scenes import SceneChangedError, SceneStore
 from ..store.users import UserStore
 from ..store.workflow import WorkflowStore
+from .dataset_import import DatasetImports
 from .detector_retraining import (
     ROOMS_FOLDER,
     DetectorRetrainJob,
@@ -117,6 +118,8 @@ class Workbench:
         # The queue bound's count and the insert after it, one request at a time.
         self._queue_lock = threading.Lock()
         self._stop = threading.Event()
+        # Datasets uploaded as a .zip: their own worker, one import at a time.
+        self.imports = DatasetImports(self, self._stop)
 
     def _offer_shipped_detectors(self) -> None:
         """Register the detectors shipped beside the default one, not active
@@ -165,6 +168,7 @@ class Workbench:
         )
         if count:
             log.warning("marked %d unfinished job(s) failed after restart", count)
+        self.imports.recover_after_restart()
         # Half-trained models and half-copied registry folders of the jobs just failed.
         shutil.rmtree(self.training_dir, ignore_errors=True)
         for registry in (self.models, self.detectors):
@@ -190,6 +194,7 @@ class Workbench:
 
     def close(self) -> None:
         self._stop.set()  # a running retrain stops at its next progress report
+        self.imports.close()  # before the pipeline worker: an import queues pipeline jobs
         self._training.shutdown(wait=True, cancel_futures=True)
         self._executor.shutdown(wait=True, cancel_futures=True)
         self.engine.dispose()

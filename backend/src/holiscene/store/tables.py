@@ -7,6 +7,7 @@ from typing import Any
 
 from sqlalchemy import (
     JSON,
+    Boolean,
     DateTime,
     Float,
     ForeignKey,
@@ -101,6 +102,29 @@ class JobRow(Base):
     # Who asked for it: an account (or the local user), or "import" (migration 0007; NULL
     # for jobs from before).
     started_by: Mapped[str | None] = mapped_column(String(64), nullable=True)
+
+
+class ImportJobRow(Base):
+    """A dataset uploaded as a .zip and imported in the background (migration 0009): how far
+    it got and, per photo, the scene made, the scene imported before, or why not."""
+
+    __tablename__ = "import_jobs"
+
+    id: Mapped[str] = mapped_column(String(32), primary_key=True)
+    status: Mapped[str] = mapped_column(String(16), index=True)
+    archive: Mapped[str] = mapped_column(String(200))
+    format: Mapped[str | None] = mapped_column(String(64), nullable=True)
+    total: Mapped[int] = mapped_column(Integer)
+    done: Mapped[int] = mapped_column(Integer)
+    run_pipeline: Mapped[bool] = mapped_column(Boolean)
+    # [{"name", "scene_id"}] and [{"name", "message"}], in the order the photos were read.
+    imported: Mapped[list[dict[str, str]]] = mapped_column(JSON)
+    skipped: Mapped[list[dict[str, str]]] = mapped_column(JSON)
+    errors: Mapped[list[dict[str, str]]] = mapped_column(JSON)
+    error: Mapped[str | None] = mapped_column(Text, nullable=True)
+    started_by: Mapped[str | None] = mapped_column(String(64), nullable=True)
+    created_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
+    finished_at: Mapped[datetime | None] = mapped_column(DateTime(timezone=True), nullable=True)
 
 
 class ModelRow(Base):

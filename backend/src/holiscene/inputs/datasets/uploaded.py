@@ -1,0 +1,127 @@
+"""Photos to import one at a time: those of a path given to `holiscene import`
+(photo_sources), and what an unpacked upload holds (upload_contents): an input folder, a
+COCO, LabelMe or SUN RGB-D dataset, or a folder of input folders (as `holiscene export
+--format scene` writes them). The format is told by the content, with the readers
+`holiscene import` uses."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from functools import partial
+from pathlib import Path
+
+from ..validation import InputError, InputFiles, read_input_folder
+from . import PHOTO_NAMES, _coco_files, _labelme_candidates, dataset_items, is_dataset
+from .coco import is_coco
+from .items import DatasetItem, load_json
+from .nyu import nyu_files
+from .sunrgbd import image_folders, is_sunrgbd
+
+# Left to the command line: NYU's labelled file is 2.8 GB.
+NYU_REFUSAL = (
+    "NYU Depth v2's labelled .mat is imported on the server with `holiscene import "
+    "nyu_depth_v2_labeled.mat` (the file is 2.8 GB, too large for an upload)"
+)
+
+
+@dataclass(frozen=True)
+class PhotoSource:
+    """One photo to import: `label` names it for the user, `name` is the scene's name, and
+    `read` gives its checked inputs or raises InputError (that photo's error)."""
+
+    label: str
+    name: str
+    read: Callable[[], InputFiles]
+
+
+def photo_sources(path: Path) -> Iterator[PhotoSource]:
+    """The photos of an input folder or a dataset file or folder, read one at a time (a
+    dataset of a thousand photos is never in memory)."""
+    if is_dataset(path):
+        for item in dataset_items(path):
+            yield PhotoSource(item.name, Path(item.name).stem, partial(_item_inputs, item))
+    else:
+        yield PhotoSource(str(path), path.name, partial(read_input_folder, path))
+
+
+def _item_inputs(item: DatasetItem) -> InputFiles:
+    if item.inputs is None:
+        raise InputError(item.error or "could not be read")
+    return item.inputs
+
+
+@dataclass(frozen=True)
+class UploadContents:
+    """What an unpacked upload holds: its format for the user, how many photos, the paths
+    to read them from."""
+
+    format: str
+    total: int
+    paths: tuple[Path, ...]
+
+    def sources(self) -> Iterator[PhotoSource]:
+        for path in self.paths:
+            yield from photo_sources(path)
+
+
+def upload_contents(folder: Path) -> UploadContents:
+    """Tell what the unpacked upload at `folder` holds; InputError when it is nothing
+    importable. A zip of one folder is read as that folder."""
+    root = folder
+    while True:
+        children = [c for c in root.iterdir() if not c.name.startswith(".")]
+        if len(children) != 1 or not children[0].is_dir():
+            break
+        root = children[0]
+    if any(nyu_files(d) for d in (root, *_subfolders(root))):
+        raise InputError(NYU_REFUSAL)
+    if _is_input_folder(root) or is_dataset(root):
+        return UploadContents(_format(root), _count(root), (root,))
+    parts = [d for d in _subfolders(root) if _is_input_folder(d) or is_dataset(d)]
+    if not parts:
+        raise InputError(
+            "the zip holds no COCO or LabelMe dataset, SUN RGB-D image folder or input folder "
+            "(img.jpg or img.png with its files)"
+        )
+    formats = sorted({_format(p) for p in parts})
+    return UploadContents(", ".join(formats), sum(_count(p) for p in parts), tuple(parts))
+
+
+def _subfolders(root: Path) -> list[Path]:
+    return sorted(d for d in root.iterdir() if d.is_dir() and not d.name.startswith("."))
+
+
+def _is_input_folder(folder: Path) -> bool:
+    return any((folder / n).is_file() for n in PHOTO_NAMES)
+
+
+def _format(path: Path) -> str:
+    if _is_input_folder(path):
+        return "input folders"
+    if _coco_files(path):
+        return "COCO"
+    if _labelme_candidates(path):
+        return "LabelMe"
+    return "SUN RGB-D" if is_sunrgbd(path) else "input folders"
+
+
+def _count(path: Path) -> int:
+    """How many photos (or items that will report an error) reading `path` gives; cheap:
+    no photo is read."""
+    if _is_input_folder(path):
+        return 1
+    files = _coco_files(path) or _labelme_candidates(path)
+    if not files:
+        return sum(1 for _ in image_folders(path)) or 1
+    return sum(_photos_in_json(f) for f in files)
+
+
+def _photos_in_json(path: Path) -> int:
+    try:
+        data = load_json(path)
+    except InputError:
+        return 1  # one error
+    if is_coco(data) and isinstance(data["images"], list):
+        return max(len(data["images"]), 1)
+    return 1
