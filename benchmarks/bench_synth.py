@@ -79,7 +79,7 @@ def main() -> int:
         truth = evaluate_folders(root / "self", root / "test").evaluation.summary()
 
         start = time.perf_counter()
-        run("infer", str(root / "test"), "-o", str(root / "pred"))
+        run("infer", str(root / "test"), "-o", str(root / "pred"), "--no-depth")
         infer_seconds = time.perf_counter() - start
         pipeline = evaluate_folders(root / "pred", root / "test").evaluation.summary()
 

@@ -32,7 +32,7 @@ from tqdm import tqdm
 
 
 def scene_residuals(folder: Path) -> Iterator[Residual]:
-    inputs = read_input_folder(folder)
+    inputs = read_input_folder(folder, use_depth=False)  # the single-photo path
     truth = json.loads((folder / "gt.json").read_text())
     ctx = SceneContext(image=inputs.photo.rgb, given_K=inputs.K, detections=inputs.detections)
     build_pipeline(["objects_from_detections", "intrinsics"]).run(ctx)

@@ -69,6 +69,12 @@ def add_pipeline_commands(sub: argparse._SubParsersAction[argparse.ArgumentParse
         action="store_true",
         help="run the pipeline afresh on each scene's photo and boxes, without people's labels",
     )
+    store.add_argument(
+        "--no-depth",
+        dest="use_depth",
+        action="store_false",
+        help="with --rerun: the single-photo pipeline, even for scenes stored with depth",
+    )
     store.add_argument("--data-dir", type=Path)
     store.add_argument("--database-url")
     evaluate.set_defaults(handler=_eval)
@@ -115,7 +121,9 @@ def _infer_one(
 
             def progress(stage: str, _fraction: float) -> None:
                 bar.set_postfix_str(stage)
-                if stage != stages[0]:
+                if stage == "done":  # the depth stages are skipped for a photo without depth
+                    bar.update(bar.total - bar.n)
+                elif stage != stages[0]:
                     bar.update(1)
 
             result = reconstruct_scene(
@@ -176,8 +184,8 @@ def _eval(args: argparse.Namespace) -> int:
         return _eval_store(args)
     if args.gt_dir is None:
         raise CliError("give PRED_DIR and GT_DIR, or --store")
-    if args.scene_ids or args.rerun:
-        raise CliError("--scene and --rerun go with --store")
+    if args.scene_ids or args.rerun or not args.use_depth:
+        raise CliError("--scene, --rerun and --no-depth go with --store")
     try:
         run = evaluate_folders(args.pred_dir, args.gt_dir)
     except EvaluationInputError as exc:
@@ -211,7 +219,7 @@ def _eval_store(args: argparse.Namespace) -> int:
         ids = list(dict.fromkeys(args.scene_ids or [s.id for s in stored]))
         if not ids:
             raise CliError("the store holds no scenes")
-        rerun = active_rerun(settings) if args.rerun else None
+        rerun = active_rerun(settings, args.use_depth) if args.rerun else None
         with tqdm(total=len(ids), desc="eval", unit="scene", file=sys.stderr) as bar:
             try:
                 run = evaluate_stored(scenes, ids, rerun, progress=lambda _: bar.update())

@@ -30,6 +30,8 @@ class Rerun:
     support_model_dir: Path | None = None
     detector_model_dir: Path | None = None
     models_dir: Path | None = None
+    # False: the single-photo path even where the scene's folder holds depth.png.
+    use_depth: bool = True
 
     def describe(self) -> dict[str, str]:
         def name(folder: Path | None) -> str:
@@ -41,12 +43,13 @@ class Rerun:
         }
 
 
-def active_rerun(settings: Settings) -> Rerun:
+def active_rerun(settings: Settings, use_depth: bool = True) -> Rerun:
     """The models a pipeline job of this store would use now."""
     return Rerun(
         active_model_dir(settings, "relation"),
         active_model_dir(settings, "detector"),
         settings.models_dir,
+        use_depth,
     )
 
 
@@ -129,7 +132,7 @@ def _rerun(scenes: SceneStore, scene_id: str, current: Scene, rerun: Rerun) -> S
     from ..services.reconstruction import reconstruct_scene
 
     result = reconstruct_scene(
-        read_input_folder(scenes.files.folder(scene_id)),
+        read_input_folder(scenes.files.folder(scene_id), use_depth=rerun.use_depth),
         name=current.name,
         image_file=current.image.file,
         models_dir=rerun.models_dir,

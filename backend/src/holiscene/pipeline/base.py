@@ -144,6 +144,9 @@ class Stage(ABC):
     name: ClassVar[str]
     requires: ClassVar[frozenset[str]]
     provides: ClassVar[frozenset[str]]
+    # A stage that refines with depth: the pipeline skips it (no run is recorded) for a photo
+    # without depth, so the single-photo path is unchanged.
+    needs_depth: ClassVar[bool] = False
 
     def __init__(self, **options: Any) -> None:
         if options:

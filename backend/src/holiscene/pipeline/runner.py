@@ -17,9 +17,11 @@ DEFAULT_STAGES: tuple[str, ...] = (
     "intrinsics",
     "masks_grabcut",
     "layout_from_lines",
+    "layout_from_depth",
     "supports_from_network",
     "heights_by_metrology",
     "placement",
+    "boxes_from_depth",
     "shapes_fit",
     "scene_mesh",
 )
@@ -37,8 +39,11 @@ PLACEMENT_STAGES: tuple[str, ...] = (
 
 # A full re-run of a scene whose room layout a person set: that layout and the camera fitted
 # to it are kept (as people's supports are), every other stage runs again around them.
+# (The depth's room would replace it, so the depth refines only the boxes.)
 KEPT_LAYOUT_STAGES: tuple[str, ...] = tuple(
-    "layout_from_revision" if name == "layout_from_lines" else name for name in DEFAULT_STAGES
+    "layout_from_revision" if name == "layout_from_lines" else name
+    for name in DEFAULT_STAGES
+    if name != "layout_from_depth"
 )
 
 ProgressCallback = Callable[[str, float], None]
@@ -56,6 +61,8 @@ class Pipeline:
         """Run every stage; `progress(stage_name, fraction_done)` is called before each one."""
         runs: list[StageRun] = []
         for index, stage in enumerate(self.stages):
+            if stage.needs_depth and ctx.depth is None:
+                continue
             if progress:
                 progress(stage.name, index / len(self.stages))
             start = time.perf_counter()

@@ -1,6 +1,8 @@
 """Built-in stages; importing this package registers them."""
 
 from . import boxes, camera, detections, detector, layout, masks, mesh, supports
+from .depth_boxes import BoxesFromDepth  # noqa: F401
+from .depth_layout import LayoutFromDepth  # noqa: F401
 from .grabcut import MasksGrabCut  # noqa: F401
 from .metrology import HeightsByMetrology  # noqa: F401
 from .placement import PlacementStage  # noqa: F401

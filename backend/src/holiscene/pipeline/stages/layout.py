@@ -190,27 +190,41 @@ class LayoutFromLines(Stage):
             ctx.layout = Layout(note=ctx.notes[self.name])
             ctx.vanishing_points = np.zeros((0, 3))  # none found; later stages check the shape
             return
-        frame, camera, metres = estimate.frame, estimate.camera, estimate.metres
-        # Stored rounded; the 2D corners are those of the stored 3D ones (a corner near the
-        # camera's plane projects far away, where the rounding would show).
-        corners = estimate.corners_world().round(4)
-        projected = camera.project(corners)
         note = f"scale from {estimate.priors}; the back wall's distance is a prior"
-        ctx.vanishing_points = frame.vanishing_points(K)
-        ctx.camera = Camera(
-            K=K.tolist(),
-            K_source=source,
-            pitch_deg=round(frame.pitch_deg, 4),
-            roll_deg=round(frame.roll_deg, 4),
-            height_m=round(metres, 4),
-            height_source="estimated",
-        )
-        ctx.layout = Layout(
-            corners_2d=[
-                None if np.isnan(p).any() else [round(float(v), 2) for v in p] for p in projected
-            ],
-            corners_3d=corners.tolist(),
-            source="estimated",
-            note=note,
-        )
+        write_layout(ctx, source, estimate.frame, estimate.corners_world(), estimate.metres, note)
         ctx.reports[self.name] = note
+
+
+def write_layout(
+    ctx: SceneContext,
+    K_source: str,
+    frame: ManhattanFrame,
+    corners_world: FloatArray,
+    metres: float,
+    note: str,
+) -> None:
+    """Set the camera, the vanishing points and the room (corners in metres, world frame) on
+    the context, as a scene stores them."""
+    K = np.asarray(required(ctx.intrinsics, "intrinsics")[0], dtype=float)
+    camera = PinholeCamera(K, frame.pitch_deg, frame.roll_deg)
+    # Stored rounded; the 2D corners are those of the stored 3D ones (a corner near the
+    # camera's plane projects far away, where the rounding would show).
+    corners = corners_world.round(4)
+    projected = camera.project(corners)
+    ctx.vanishing_points = frame.vanishing_points(K)
+    ctx.camera = Camera(
+        K=K.tolist(),
+        K_source=K_source,
+        pitch_deg=round(frame.pitch_deg, 4),
+        roll_deg=round(frame.roll_deg, 4),
+        height_m=round(metres, 4),
+        height_source="estimated",
+    )
+    ctx.layout = Layout(
+        corners_2d=[
+            None if np.isnan(p).any() else [round(float(v), 2) for v in p] for p in projected
+        ],
+        corners_3d=corners.tolist(),
+        source="estimated",
+        note=note,
+    )
