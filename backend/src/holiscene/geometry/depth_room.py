@@ -30,7 +30,11 @@ MIN_LEVEL_POINTS = 25
 # noise) lies beyond it. A plane with points well beyond it is furniture before the wall.
 BEYOND_M = 0.10
 BEYOND_SHARE = 0.002
-YAW_SEARCH_DEG = 12.0  # the walls' normals refine the vanishing points' yaw within this
+# A wall runs from the floor to the ceiling: the points of a plane taken for a side wall must
+# span this much in height (the side of a cabinet before it does not). The front wall is
+# exempt: the photo often shows only its strip between furniture and the frame's top.
+MIN_WALL_SPAN_M = 1.2
+YAW_SEARCH_DEG = 12.0  # normals this close to the commonest direction refine it
 
 
 @dataclass(frozen=True)
@@ -65,8 +69,9 @@ def fit_floor(grid: PointGrid, up_guess_cv: FloatArray) -> FloorFit | None:
 
 
 def refine_yaw(grid: PointGrid, camera: PinholeCamera, yaw_deg: float) -> float:
-    """The room's yaw from the wall-like normals (horizontal, within YAW_SEARCH_DEG of a
-    room axis): their mean direction modulo 90 degrees."""
+    """The room's yaw from the wall-like normals (horizontal ones): the direction modulo 90
+    degrees most of them share, refined by the median of those within YAW_SEARCH_DEG of
+    it; `yaw_deg` (the vanishing points') when too few normals are horizontal."""
     normals = grid.normals @ camera.world_from_cv.T
     horizontal = np.nan_to_num(np.abs(normals[:, 1]), nan=1.0) < math.sin(
         math.radians(NORMAL_TOLERANCE_DEG)
@@ -75,11 +80,18 @@ def refine_yaw(grid: PointGrid, camera: PinholeCamera, yaw_deg: float) -> float:
     if len(flat) < _min_points(grid):
         return yaw_deg
     angles = np.degrees(np.arctan2(-flat[:, 2], flat[:, 0]))
-    offset = (angles - yaw_deg + 45.0) % 90.0 - 45.0  # each normal's turn from a room axis
-    close = np.abs(offset) < YAW_SEARCH_DEG
+    # The most common direction modulo 90 degrees: a histogram of 1-degree bins, smoothed
+    # over 5 (walls and furniture sides share the room's axes).
+    counts = np.bincount(np.floor(angles % 90.0).astype(int) % 90, minlength=90)
+    smoothed = sum(np.roll(counts, shift) for shift in range(-2, 3))
+    mode = float(np.argmax(smoothed)) + 0.5
+    offset = (angles - mode + 45.0) % 90.0 - 45.0
+    close = np.abs(offset) < YAW_SEARCH_DEG / 2
     if close.sum() < _min_points(grid):
         return yaw_deg
-    return yaw_deg + float(np.median(offset[close]))
+    yaw = mode + float(np.median(offset[close]))
+    # The room's yaw is defined up to quarter turns: the one nearest the vanishing points'.
+    return yaw_deg + ((yaw - yaw_deg + 45.0) % 90.0 - 45.0)
 
 
 # Each face: the room axis its distance is measured along, the sign of that axis towards it.
@@ -127,6 +139,8 @@ def seen_faces(grid: PointGrid, camera: PinholeCamera, yaw_deg: float) -> dict[s
         band = np.abs(distances - levels[-1]) < LEVEL_BIN_M
         level = float(np.median(distances[band]))
         beyond = points[:, axis] * sign > level + BEYOND_M
-        if beyond.sum() <= BEYOND_SHARE * len(points):
+        heights = points[facing][band, 1]
+        tall = face in ("front", "ceiling") or float(np.ptp(heights)) >= MIN_WALL_SPAN_M
+        if tall and beyond.sum() <= BEYOND_SHARE * len(points):
             found[face] = level
     return found
