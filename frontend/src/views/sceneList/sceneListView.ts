@@ -8,6 +8,7 @@ import { el, formatTime } from "../../dom";
 import { describeJob } from "../common/jobProgress";
 import { nextSceneControl } from "../workflow/nextScene";
 import "../workflow/workflow.css";
+import { datasetImportForm } from "./datasetImport";
 import { SceneSelection } from "./sceneSelection";
 import { uploadForm } from "./uploadForm";
 
@@ -123,6 +124,7 @@ export function mountSceneList(container: HTMLElement): () => void {
       "div",
       { className: "list-page" },
       uploadForm(abort.signal, () => void refresh()),
+      datasetImportForm(abort.signal, () => void refresh()),
       el(
         "section",
         { className: "card" },

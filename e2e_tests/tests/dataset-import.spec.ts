@@ -1,0 +1,108 @@
+// User story: someone with a labelled dataset (here a COCO export of three photos) imports it
+// from the scene list as one .zip, follows the import and reads what came of each photo: a
+// photo whose labels are broken is named with the reason and the others are imported; the
+// repaired zip then adds only that photo, the others being skipped as imported before.
+import { execFileSync } from "node:child_process";
+import { mkdirSync } from "node:fs";
+import path from "node:path";
+import { expect, type Page, test } from "@playwright/test";
+import { scratchDir } from "../helpers/scratch";
+
+const REAL = path.resolve(import.meta.dirname, "../../../shared/data/real");
+const VENV = path.resolve(import.meta.dirname, "../../.venv/bin");
+const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
+
+// Zip the export as it is (coco.zip) and with the first outline of im3d-2.jpg cut to two
+// points (broken.zip), as a user would zip the folder.
+const ZIP_EXPORT = `
+import json, sys, zipfile, pathlib
+export, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
+data = json.loads((export / "annotations.json").read_text())
+def write(name, annotations):
+    with zipfile.ZipFile(out / name, "w", zipfile.ZIP_DEFLATED) as archive:
+        archive.writestr("coco/annotations.json", json.dumps(annotations))
+        for image in sorted((export / "images").iterdir()):
+            archive.write(image, f"coco/images/{image.name}")
+write("coco.zip", data)
+broken = next(i["id"] for i in data["images"] if i["file_name"] == "im3d-2.jpg")
+next(a for a in data["annotations"] if a["image_id"] == broken)["segmentation"] = [[1, 1, 9, 9]]
+write("broken.zip", data)
+`;
+
+/** coco.zip and broken.zip of a COCO export (`holiscene export --format coco`). */
+function cocoZips(): { coco: string; broken: string } {
+  const dir = scratchDir("holiscene-coco-");
+  const data = path.join(dir, "data");
+  const photos = ["im3d-1", "im3d-2", "t3d-5"].map((name) => path.join(REAL, name));
+  execFileSync(path.join(VENV, "holiscene"), [
+    "import",
+    ...photos,
+    "--no-pipeline",
+    "--data-dir",
+    data,
+  ]);
+  const exported = path.join(dir, "export");
+  execFileSync(path.join(VENV, "holiscene"), [
+    "export",
+    "--format",
+    "coco",
+    "-o",
+    exported,
+    "--data-dir",
+    data,
+  ]);
+  execFileSync(path.join(VENV, "python"), ["-c", ZIP_EXPORT, exported, dir]);
+  return { coco: path.join(dir, "coco.zip"), broken: path.join(dir, "broken.zip") };
+}
+
+async function importZip(page: Page, zip: string): Promise<void> {
+  await page.getByTestId("dataset-import-file").setInputFiles(zip);
+  await page.getByTestId("dataset-import-pipeline").uncheck();
+  await page.getByTestId("dataset-import-submit").click();
+  await expect(page.getByTestId("dataset-import-summary")).toBeVisible({ timeout: 60_000 });
+}
+
+test("a COCO zip imports from the scene list, naming the photo that did not", async ({ page }) => {
+  const zips = cocoZips();
+  mkdirSync(SCREENSHOTS, { recursive: true });
+  await page.goto("/#/");
+  const form = page.getByTestId("dataset-import-form");
+  await expect(form).toContainText("Import a dataset");
+
+  await importZip(page, zips.broken);
+  const summary = page.getByTestId("dataset-import-summary");
+  await expect(summary).toContainText(
+    "broken.zip: 2 photos imported, 0 skipped as imported before, 1 not imported.",
+  );
+  const errors = page.getByTestId("dataset-import-errors").locator("li");
+  await expect(errors).toHaveCount(1);
+  await expect(errors).toContainText("im3d-2.jpg");
+  await expect(errors).toContainText("a polygon needs at least 3 points, it has 2");
+  const list = page.getByTestId("scene-list");
+  await expect(list).toContainText("im3d-1");
+  await expect(list).toContainText("t3d-5");
+  await expect(list).not.toContainText("im3d-2");
+  await form.screenshot({ path: path.join(SCREENSHOTS, "dataset-import-broken.png") });
+
+  await importZip(page, zips.coco);
+  await expect(summary).toContainText(
+    "coco.zip: 1 photo imported, 2 skipped as imported before, 0 not imported.",
+  );
+  await expect(page.getByTestId("dataset-import-errors")).toHaveCount(0);
+  await expect(list).toContainText("im3d-2");
+  await expect(list.locator("tbody tr")).toHaveCount(3);
+  await page.getByText("Imported before (2)").click();
+  await form.screenshot({ path: path.join(SCREENSHOTS, "dataset-import-again.png") });
+
+  await page.getByTestId("dataset-import-new").getByRole("link", { name: "im3d-2.jpg" }).click();
+  await expect(page.getByTestId("scene-title")).toHaveText("im3d-2");
+});
+
+test("a file that is not a zip is refused with the reason", async ({ page }) => {
+  await page.goto("/#/");
+  await page.getByTestId("dataset-import-file").setInputFiles(path.join(REAL, "t3d-5", "img.jpg"));
+  await page.getByTestId("dataset-import-submit").click();
+  await expect(page.getByTestId("dataset-import-result")).toContainText(
+    "Import failed: the upload is not a .zip file",
+  );
+});
