@@ -240,3 +240,19 @@ def test_an_import_needs_a_login_and_is_recorded_as_its_user(
     assert client.get(f"/api/imports/{job_id}").status_code == 401
     headers = accounts.headers("ann")
     assert _finished_as(client, job_id, headers)["imported"][0]["name"] == "a.png"
+
+
+def test_an_import_a_stopped_server_left_is_failed_and_its_upload_removed(
+    settings: Settings,
+) -> None:
+    with TestClient(create_app(settings)) as client:
+        workbench = client.app.state.workbench  # type: ignore[attr-defined]
+        job = workbench.imports.jobs.create("rooms.zip", "COCO", 3, False, "ann")
+        workbench.imports.jobs.start(job.id)
+    left = settings.data_dir / "imports" / job.id / "coco"
+    left.mkdir(parents=True)
+    with TestClient(create_app(settings)) as client:
+        failed = client.get(f"/api/imports/{job.id}").json()
+    assert failed["status"] == "failed"
+    assert "upload the zip again" in failed["error"]
+    assert not (settings.data_dir / "imports").exists()
