@@ -73,6 +73,23 @@ def test_the_floor_plane_gives_the_camera_height_pitch_and_roll(room: Path) -> N
     assert floor.roll_deg == pytest.approx(truth.roll_deg, abs=0.1)
 
 
+def test_the_floor_survives_sensor_noise_and_holes(room: Path) -> None:
+    """1% depth noise on every pixel and a tenth of the pixels without depth, as a
+    Kinect-style sensor gives: the camera's height still within 2%."""
+    truth = _truth(room).camera
+    assert truth is not None and truth.height_m is not None and truth.pitch_deg is not None
+    inputs = read_input_folder(room)
+    assert inputs.depth is not None and inputs.K is not None
+    rng = np.random.default_rng(5)
+    depth = inputs.depth.metres * (1.0 + rng.normal(0.0, 0.01, inputs.depth.metres.shape))
+    depth[rng.random(depth.shape) < 0.1] = 0.0
+    camera = PinholeCamera(inputs.K, truth.pitch_deg + 3.0, (truth.roll_deg or 0.0) - 2.0)
+    floor = fit_floor(point_grid(depth, inputs.K, 4), camera.world_from_cv.T @ [0.0, 1.0, 0.0])
+    assert floor is not None
+    assert floor.camera_height == pytest.approx(truth.height_m, rel=0.02)
+    assert floor.pitch_deg == pytest.approx(truth.pitch_deg, abs=0.5)
+
+
 def test_with_depth_scale_room_and_boxes_come_from_the_points(room: Path) -> None:
     truth = _truth(room)
     scene = _run(room, use_depth=True)

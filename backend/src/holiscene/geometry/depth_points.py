@@ -87,10 +87,14 @@ def fit_plane_lsq(points: FloatArray, towards: FloatArray) -> Plane:
 
 
 def fit_plane_ransac(
-    points: FloatArray, towards: FloatArray, threshold: float, iterations: int = 200, seed: int = 0
+    points: FloatArray,
+    towards: FloatArray,
+    threshold: float | FloatArray,
+    iterations: int = 200,
+    seed: int = 0,
 ) -> tuple[Plane, np.ndarray]:
     """The plane most points lie within `threshold` of (three-point RANSAC, refined by least
-    squares on its inliers), and the inlier mask."""
+    squares on its inliers), and the inlier mask; `threshold` may be one per point."""
     rng = np.random.default_rng(seed)
     best = np.zeros(len(points), dtype=bool)
     for _ in range(iterations):

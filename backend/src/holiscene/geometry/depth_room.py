@@ -15,14 +15,23 @@ from dataclasses import dataclass
 import numpy as np
 
 from .camera import FloatArray, PinholeCamera
-from .depth_points import PointGrid, fit_plane_ransac, level_clusters, pitch_roll_from_up
+from .depth_points import (
+    PointGrid,
+    fit_plane_lsq,
+    fit_plane_ransac,
+    level_clusters,
+    pitch_roll_from_up,
+)
 from .manhattan import room_directions
 
 NORMAL_TOLERANCE_DEG = 20.0  # a point's normal this close to a plane's counts for it
 FLOOR_TOLERANCE_DEG = 30.0  # the vanishing points' up may be off by this much
 LEVEL_BIN_M = 0.05
 FLOOR_BAND_M = 0.15  # the floor's points are within this of its lowest level
+# A point is on a plane within 2 cm plus 1% of its depth (a depth sensor's noise grows with
+# distance; synthetic depth is exact).
 PLANE_INLIER_M = 0.02
+PLANE_INLIER_PER_M = 0.01
 # A level needs this share of the grid's points (at least MIN_LEVEL_POINTS) to be a surface.
 MIN_LEVEL_SHARE = 0.004
 MIN_LEVEL_POINTS = 25
@@ -63,7 +72,12 @@ def fit_floor(grid: PointGrid, up_guess_cv: FloatArray) -> FloorFit | None:
     near = np.abs(candidates @ up - levels[0]) < FLOOR_BAND_M
     if near.sum() < 3:
         return None
-    plane, inliers = fit_plane_ransac(candidates[near], up, PLANE_INLIER_M)
+    threshold = PLANE_INLIER_M + PLANE_INLIER_PER_M * candidates[:, 2]
+    plane, _ = fit_plane_ransac(candidates[near], up, threshold[near])
+    # Refitted on every candidate near the plane: the band about the lowest level may have
+    # cut a noisy floor's points unevenly.
+    inliers = np.abs(plane.distances(candidates)) < threshold
+    plane = fit_plane_lsq(candidates[inliers], up)
     pitch, roll = pitch_roll_from_up(plane.normal)
     return FloorFit(pitch, roll, plane.offset, int(inliers.sum()))
 
