@@ -122,7 +122,7 @@ def _infer_one(
             def progress(stage: str, _fraction: float) -> None:
                 bar.set_postfix_str(stage)
                 if stage == "done":  # the depth stages are skipped for a photo without depth
-                    bar.update(bar.total - bar.n)
+                    bar.update(len(stages) - bar.n)
                 elif stage != stages[0]:
                     bar.update(1)
 
