@@ -17,6 +17,7 @@ import h5py
 import pytest
 from fastapi.testclient import TestClient
 from holiscene.api.app import create_app
+from holiscene.api.upload_login import UploadLogin
 from holiscene.core.settings import Settings
 
 from ...inputs.datasets.files import coco_file, labelme_file, photo_bytes, shape
@@ -256,3 +257,8 @@ def test_an_import_a_stopped_server_left_is_failed_and_its_upload_removed(
     assert failed["status"] == "failed"
     assert "upload the zip again" in failed["error"]
     assert not (settings.data_dir / "imports").exists()
+
+
+def test_the_login_is_checked_before_an_import_is_read(client: TestClient) -> None:
+    gates = [m for m in client.app.user_middleware if m.cls is UploadLogin]  # type: ignore[attr-defined]
+    assert ("POST", "/api/imports") in gates[0].kwargs["routes"]
