@@ -21,6 +21,7 @@ from holiscene.api.upload_login import UploadLogin
 from holiscene.core.settings import Settings
 
 from ...inputs.datasets.files import coco_file, labelme_file, photo_bytes, shape
+from ...inputs.datasets.sunrgbd_files import write_sun_folder
 from ..conftest import Accounts
 
 COUCH = [[10.0, 20.0], [40.0, 20.0], [40.0, 50.0], [10.0, 50.0]]
@@ -262,3 +263,19 @@ def test_an_import_a_stopped_server_left_is_failed_and_its_upload_removed(
 def test_the_login_is_checked_before_an_import_is_read(client: TestClient) -> None:
     gates = [m for m in client.app.user_middleware if m.cls is UploadLogin]  # type: ignore[attr-defined]
     assert ("POST", "/api/imports") in gates[0].kwargs["routes"]
+
+
+def test_a_zip_of_sun_rgbd_image_folders_names_each_folder_by_its_path_in_the_zip(
+    client: TestClient, tmp_path: Path, synthetic_folder: Path
+) -> None:
+    sun = tmp_path / "SUNRGBD" / "kv1" / "NYUdata"
+    write_sun_folder(synthetic_folder, sun / "NYU0001")
+    write_sun_folder(synthetic_folder, sun / "NYU0002")
+    (sun / "NYU0002" / "intrinsics.txt").write_text("1 0 0 0 1 0 0 0\n")
+    job = _imported(client, _zip_folder(tmp_path / "SUNRGBD", top="SUNRGBD"))
+    assert (job["format"], job["total"]) == ("SUN RGB-D", 2)
+    assert [p["name"] for p in job["imported"]] == ["SUNRGBD/kv1/NYUdata/NYU0001"]
+    assert [e["name"] for e in job["errors"]] == ["SUNRGBD/kv1/NYUdata/NYU0002"]
+    assert "9 numbers" in job["errors"][0]["message"]
+    scene = client.get(f"/api/scenes/{job['imported'][0]['scene_id']}").json()["scene"]
+    assert scene["name"] == "NYU0001"
