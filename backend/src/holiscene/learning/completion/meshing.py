@@ -1,0 +1,94 @@
+"""A closed mesh from completed points: voxel occupancy, closed morphologically, its outer faces.
+
+The points (normalised object frame, the unit cube) are dropped into a grid; a closing
+(dilate, fill the cells no path from outside reaches, then erode by the same 6-neighbour
+steps) fills the gaps between neighbouring points and makes a solid, not a shell, without
+losing a voxel that holds a point, so thin legs survive; every voxel face
+between an occupied and an empty cell becomes two triangles. Coarse (a few centimetres on a
+chair), but closed, outward-facing and without holes where the points are dense enough.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import trimesh
+from numpy.typing import NDArray
+
+RESOLUTION = 28
+CLOSING_STEPS = 2
+_PAD = CLOSING_STEPS + 1
+
+# Per axis direction: the four corners of the face on that side of a unit cell, counter-clockwise
+# seen from outside, as offsets from the cell's lower corner.
+_FACES: dict[tuple[int, int], NDArray[np.int64]] = {
+    (0, 1): np.array([[1, 0, 0], [1, 1, 0], [1, 1, 1], [1, 0, 1]]),
+    (0, -1): np.array([[0, 0, 0], [0, 0, 1], [0, 1, 1], [0, 1, 0]]),
+    (1, 1): np.array([[0, 1, 0], [0, 1, 1], [1, 1, 1], [1, 1, 0]]),
+    (1, -1): np.array([[0, 0, 0], [1, 0, 0], [1, 0, 1], [0, 0, 1]]),
+    (2, 1): np.array([[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]),
+    (2, -1): np.array([[0, 0, 0], [0, 1, 0], [1, 1, 0], [1, 0, 0]]),
+}
+
+
+def _shifted(grid: NDArray[np.bool_], axis: int, step: int) -> NDArray[np.bool_]:
+    """grid moved by one cell along axis (the wrapped-in layer cleared; the grid is padded)."""
+    out = np.roll(grid, step, axis=axis)
+    edge = [slice(None)] * 3
+    edge[axis] = slice(0, 1) if step > 0 else slice(-1, None)
+    out[tuple(edge)] = False
+    return out
+
+
+def _dilate(grid: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    out = grid.copy()
+    for axis in range(3):
+        out |= _shifted(grid, axis, 1) | _shifted(grid, axis, -1)
+    return out
+
+
+def occupancy(points: NDArray[np.floating], resolution: int = RESOLUTION) -> NDArray[np.bool_]:
+    """Closed occupancy grid (padded) of points in [-0.5, 0.5]^3 (points outside are clipped)."""
+    cells = np.clip(((np.asarray(points) + 0.5) * resolution).astype(int), 0, resolution - 1)
+    grid = np.zeros((resolution + 2 * _PAD,) * 3, dtype=bool)
+    grid[tuple((cells + _PAD).T)] = True
+    closed = grid
+    for _ in range(CLOSING_STEPS):
+        closed = _dilate(closed)
+    # Fill before eroding: eroding a hollow shell would reopen the holes in its walls.
+    closed = _filled(closed)
+    for _ in range(CLOSING_STEPS):
+        closed = ~_dilate(~closed)
+    result: NDArray[np.bool_] = closed | grid
+    return result
+
+
+def _filled(grid: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """The grid with its enclosed empty cells filled: a solid, so no inner shell gets meshed."""
+    outside = np.zeros_like(grid)
+    outside[0], outside[-1] = True, True  # the padding touches every side
+    outside[:, 0], outside[:, -1], outside[:, :, 0], outside[:, :, -1] = True, True, True, True
+    outside &= ~grid
+    while True:
+        grown = _dilate(outside) & ~grid
+        if (grown == outside).all():
+            result: NDArray[np.bool_] = ~outside
+            return result
+        outside = grown
+
+
+def mesh_from_points(points: NDArray[np.floating], resolution: int = RESOLUTION) -> trimesh.Trimesh:
+    """The outer surface of the closed occupancy of `points`, in the same normalised frame."""
+    grid = occupancy(points, resolution)
+    if not grid.any():
+        raise ValueError("no points to mesh")
+    quads = []
+    for (axis, step), corners in _FACES.items():
+        exposed = grid & ~_shifted(grid, axis, -step)  # occupied, its neighbour that side empty
+        cells = np.argwhere(exposed)
+        quads.append(cells[:, None, :] + corners[None, :, :])
+    corners_all = np.concatenate(quads)  # (F, 4, 3) integer lattice points
+    vertices, inverse = np.unique(corners_all.reshape(-1, 3), axis=0, return_inverse=True)
+    index = inverse.reshape(-1, 4)
+    faces = np.concatenate([index[:, [0, 1, 2]], index[:, [0, 2, 3]]])
+    scaled = (vertices - _PAD) / resolution - 0.5
+    return trimesh.Trimesh(vertices=scaled, faces=faces, process=False)

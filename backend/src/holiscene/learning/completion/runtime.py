@@ -1,0 +1,85 @@
+"""Shape completion at run time (onnxruntime, no PyTorch): an object's observed depth points in,
+its completed mesh in world coordinates out.
+
+The observed points are the object's mask pixels with depth, back-projected with the camera
+(`placement.depth_box.object_points`) and moved into the normalised frame of the object's 3D
+box (points well outside the box are another object's and dropped). The network completes
+them; the grown points and the observed ones are meshed (`meshing.py`) and the mesh is placed
+back with the box.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+import trimesh
+from holiscene_schema import Box3D
+from numpy.typing import NDArray
+
+from ...geometry.camera import rot_y
+from .meshing import mesh_from_points
+from .scans import KEEP_BOUND, PARTIAL_POINTS, resample
+
+MODEL_DIR = Path(__file__).resolve().parents[1] / "completion_model"
+MIN_OBSERVED_POINTS = 150
+
+
+def to_box_frame(points: NDArray[np.float64], box: Box3D) -> NDArray[np.float64]:
+    """World points in the box's normalised frame (the box is [-0.5, 0.5]^3)."""
+    local = (points - np.asarray(box.center)) @ rot_y(math.radians(box.yaw_deg))
+    result: NDArray[np.float64] = local / np.asarray(box.size)
+    return result
+
+
+def from_box_frame(mesh: trimesh.Trimesh, box: Box3D) -> trimesh.Trimesh:
+    transform = np.eye(4)
+    transform[:3, :3] = rot_y(math.radians(box.yaw_deg)) @ np.diag(box.size)
+    transform[:3, 3] = box.center
+    out = mesh.copy()
+    out.apply_transform(transform)
+    return out
+
+
+@dataclass(frozen=True)
+class Completion:
+    mesh: trimesh.Trimesh  # world frame
+    observed: int  # points the network read (before resampling)
+
+
+class ShapeCompleter:
+    def __init__(self, model_dir: Path = MODEL_DIR) -> None:
+        import onnxruntime as ort
+
+        metadata = json.loads((model_dir / "metadata.json").read_text())
+        options = ort.SessionOptions()
+        options.intra_op_num_threads = 1
+        self.session = ort.InferenceSession(
+            str(model_dir / metadata["model"]), options, providers=["CPUExecutionProvider"]
+        )
+        self.grown = int(metadata["skeleton_points"]) * int(metadata["grown_per_skeleton"])
+
+    def complete_normalised(self, partial: NDArray[np.floating]) -> NDArray[np.float32]:
+        """Completed points (grown, then the observed ones) of PARTIAL_POINTS normalised points."""
+        batch = np.asarray(partial, dtype=np.float32)[None]
+        completed: NDArray[np.float32] = self.session.run(["completed"], {"partial": batch})[0][0]
+        return completed
+
+    def complete(self, world_points: NDArray[np.float64], box: Box3D) -> Completion | None:
+        """The completed mesh of observed points, or None when too few lie in the box."""
+        local = to_box_frame(world_points, box)
+        local = local[np.abs(local).max(axis=1) <= KEEP_BOUND]
+        if len(local) < MIN_OBSERVED_POINTS:
+            return None
+        partial = resample(local, PARTIAL_POINTS, np.random.default_rng(0))
+        completed = self.complete_normalised(partial)
+        return Completion(from_box_frame(mesh_from_points(completed), box), len(local))
+
+
+@lru_cache(maxsize=2)
+def completer(model_dir: Path = MODEL_DIR) -> ShapeCompleter:
+    return ShapeCompleter(model_dir)
