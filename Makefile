@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: surface-model coco-detector detector-model scratch-detector-model bench-detector bench-refine bench-batch bench-writers calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
+.PHONY: surface-model coco-detector detector-model scratch-detector-model bench-detector bench-refine bench-batch completion-model bench-completion bench-writers calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -131,6 +131,16 @@ bench-refine: install-python
 # Photos per minute pre-annotated on a local Ray (1 and 2 workers) against the in-process import.
 bench-batch: install-python
 	$(PY) benchmarks/bench_batch.py
+
+# Shape completion: the network trained on partial scans of the furniture library for 18
+# minutes on one thread (docs/completion.md), and its comparison with the library fit.
+completion-model: install-python
+	rm -rf /tmp/holiscene-completion-model
+	OMP_NUM_THREADS=1 $(PY) -m holiscene.cli train-completion -o /tmp/holiscene-completion-model
+	cp /tmp/holiscene-completion-model/* backend/src/holiscene/learning/completion_model/
+
+bench-completion: install-python
+	OMP_NUM_THREADS=1 $(PY) benchmarks/bench_completion.py
 
 surface-model: install-python
 	rm -rf /tmp/holiscene-surface-model

@@ -112,9 +112,10 @@ class Box3D(SchemaModel):
 
 
 class MeshRef(SchemaModel):
-    """Where an object's mesh comes from: the built-in library (class + seed) or a file."""
+    """Where an object's mesh comes from: the built-in library (class + seed), a file, or
+    `completion`: completed from the object's depth points (the mesh is only in the GLB)."""
 
-    library: Literal["builtin", "user"]
+    library: Literal["builtin", "user", "completion"]
     cls: str = Field(alias="class")
     seed: int | None = None
     file: str | None = None

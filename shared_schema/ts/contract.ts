@@ -748,7 +748,8 @@ size: [number, number]
 source: ("given" | "box" | "grabcut" | "model" | "ground_truth" | "manual")
 }
 /**
- * Where an object's mesh comes from: the built-in library (class + seed) or a file.
+ * Where an object's mesh comes from: the built-in library (class + seed), a file, or
+ * `completion`: completed from the object's depth points (the mesh is only in the GLB).
  * 
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "MeshRef".
@@ -756,7 +757,7 @@ source: ("given" | "box" | "grabcut" | "model" | "ground_truth" | "manual")
 export interface MeshRef {
 class: string
 file: (string | null)
-library: ("builtin" | "user")
+library: ("builtin" | "user" | "completion")
 seed: (number | null)
 }
 /**

@@ -59,6 +59,11 @@ def add_pipeline_commands(sub: argparse._SubParsersAction[argparse.ArgumentParse
         help="where to write eval.json and eval.md (default: PRED_DIR; with --store: "
         "<data dir>/eval)",
     )
+    evaluate.add_argument(
+        "--shapes",
+        action="store_true",
+        help="also score each object's mesh, and the raw depth points, against the true mesh",
+    )
     store = evaluate.add_argument_group("stored scenes imported with ground truth (gt.json)")
     store.add_argument("--store", action="store_true", help="score the stored scenes")
     store.add_argument(
@@ -193,6 +198,11 @@ def _eval(args: argparse.Namespace) -> int:
     summary = run.evaluation.summary()
     summary["missing_predictions"] = run.missing_predictions
     report = markdown_report(summary, f"Evaluation of {args.pred_dir} against {args.gt_dir}")
+    if args.shapes:
+        from ..evaluation.shape_eval import evaluate_shapes, markdown_shapes
+
+        summary["shapes"] = evaluate_shapes(args.pred_dir, args.gt_dir)
+        report += markdown_shapes(summary["shapes"])
     out = args.out or args.pred_dir
     out.mkdir(parents=True, exist_ok=True)
     write_atomic(out / "eval.json", (json.dumps(summary, indent=1) + "\n").encode())

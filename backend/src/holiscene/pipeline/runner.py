@@ -23,6 +23,7 @@ DEFAULT_STAGES: tuple[str, ...] = (
     "placement",
     "boxes_from_depth",
     "shapes_fit",
+    "shape_completion",
     "scene_mesh",
 )
 

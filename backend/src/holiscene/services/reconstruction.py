@@ -89,8 +89,10 @@ def reconstruct_scene(
 
 
 def _finished_object(ctx: SceneContext, obj: SceneObject) -> SceneObject:
-    """The object with what the stages computed for it: mask, 3D box and its corners."""
+    """The object with what the stages computed for it: mask, 3D box, its corners and where its
+    mesh came from."""
     mask = (ctx.masks or {}).get(obj.id)
+    fitted = (ctx.object_meshes or {}).get(obj.id)
     box = (ctx.boxes_3d or {}).get(obj.id)
     corners = None
     if box is not None:
@@ -102,6 +104,7 @@ def _finished_object(ctx: SceneContext, obj: SceneObject) -> SceneObject:
             "mask": encode_mask(mask.pixels, mask.source) if mask is not None else None,
             "box_3d": box,
             "corners_3d": corners,
+            "mesh": fitted.ref if fitted is not None and box is not None else obj.mesh,
             "note": ctx.object_notes.get(obj.id, obj.note),
         }
     )

@@ -104,6 +104,8 @@ def _from_mesh_ref(obj: SceneObject, models_dir: Path | None) -> tuple[trimesh.T
         except UnknownClassError as exc:
             raise ValueError(str(exc)) from exc
         return _placed(shape.mesh, obj), "library"
+    if ref.library == "completion":
+        raise ValueError("a completed mesh is kept only in the scene's GLB")
     if ref.file is None or models_dir is None:
         raise ValueError(f"user model {ref.file!r}: no models folder given")
     path = models_dir / ref.file
