@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 import trimesh
 from holiscene.evaluation.shape_metrics import chamfer_distance
+from holiscene.geometry.camera import rot_y
 from holiscene.learning.completion.meshing import RESOLUTION, mesh_from_points
 from holiscene.learning.completion.runtime import (
     MIN_OBSERVED_POINTS,
@@ -78,7 +79,7 @@ def test_the_committed_model_completes_a_scan_in_the_world() -> None:
     while scan is None:
         scan = partial_scan(shape.mesh, rng)
     # The scan in the world, as depth back-projection gives it.
-    turn = trimesh.transformations.rotation_matrix(math.radians(30.0), [0, 1, 0])[:3, :3]
+    turn = rot_y(math.radians(30.0))
     world = scan @ turn.T + np.asarray(box.center)
     assert np.allclose(to_box_frame(world, box), scan / np.asarray(size), atol=1e-9)
     result = completer().complete(world, box)
