@@ -8,8 +8,8 @@ from collections.abc import Sequence
 
 from .batch import add_batch_command
 from .common import CliError, settings_from
-from .export import add_export_command
 from .completion import add_completion_training_command
+from .export import add_export_command
 from .pipeline import add_pipeline_commands
 from .scenes import add_demo_command, add_import_command
 from .serve import add_serve_command
