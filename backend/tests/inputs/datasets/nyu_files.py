@@ -26,6 +26,7 @@ class NyuImage:
     instances: np.ndarray  # (H, W) uint8
     scene: str
     supports: list[tuple[int, int, int]] = field(default_factory=list)
+    depth: np.ndarray | None = None  # (H, W) float32 metres; None: 1 m everywhere
 
 
 def bedroom(seed: int = 0) -> NyuImage:
@@ -49,7 +50,10 @@ def bedroom(seed: int = 0) -> NyuImage:
     paint(7, 1, slice(2, 5), slice(2, 5))
     rows = [(3, 0, 1), (4, 1, 2), (5, 3, 1), (6, 3, 1), (7, 2, 1), (1, 2, 1)]
     rgb = rng.integers(0, 255, (HEIGHT, WIDTH, 3), dtype=np.uint8)
-    return NyuImage(rgb, labels, instances, f"bedroom_{seed:04d}", rows)
+    # Farther up the photo and to the right, so a transposed read shows.
+    row, col = np.mgrid[0:HEIGHT, 0:WIDTH]
+    depth = (4.0 - 0.05 * row + 0.01 * col).astype(np.float32)
+    return NyuImage(rgb, labels, instances, f"bedroom_{seed:04d}", rows, depth)
 
 
 def _strings(file: h5py.File, key: str, texts: list[str]) -> None:
@@ -78,7 +82,7 @@ def write_labelled(
             "images": np.stack([im.rgb.transpose(2, 1, 0) for im in images]),
             "labels": np.stack([im.labels.T for im in images]),
             "instances": np.stack([im.instances.T for im in images]),
-            "depths": np.ones((len(images), WIDTH, HEIGHT), dtype=np.float32),
+            "depths": np.stack([_depth(im).T for im in images]),
         }
         for key, array in arrays.items():
             chunks = (1, *array.shape[1:]) if chunked else None
@@ -92,6 +96,12 @@ def write_labelled(
     with path.open("r+b") as raw:
         raw.write(header.ljust(116, b" ") + b"\0" * 8 + struct.pack("<H", 0x0200) + b"IM")
     return path
+
+
+def _depth(image: NyuImage) -> np.ndarray:
+    if image.depth is None:
+        return np.ones((HEIGHT, WIDTH), dtype=np.float32)
+    return image.depth.astype(np.float32)
 
 
 def _element(kind: int, payload: bytes) -> bytes:

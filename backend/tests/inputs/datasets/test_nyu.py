@@ -184,3 +184,44 @@ def test_support_labels_saved_as_v7_3_read_too(tmp_path: Path) -> None:
         ("o0", "floor"),
         ("o1", "wall"),
     ]
+
+
+def test_the_depths_come_in_metres_registered_to_the_photo(tmp_path: Path) -> None:
+    image = bedroom()
+    (item,) = _read(nyu_folder(tmp_path, [image]))
+    assert item.inputs is not None and item.inputs.depth is not None
+    assert image.depth is not None
+    assert np.array_equal(item.inputs.depth.metres, image.depth)
+
+
+def test_a_file_without_depths_imports_without_depth(tmp_path: Path) -> None:
+    labelled = nyu_folder(tmp_path, [bedroom()])
+    with h5py.File(labelled, "r+") as file:
+        del file["depths"]
+    (item,) = _read(labelled)
+    assert item.inputs is not None and item.inputs.depth is None
+
+
+def test_an_image_without_usable_depth_is_refused_alone(tmp_path: Path) -> None:
+    images = [bedroom(0), bedroom(1), bedroom(2)]
+    images[1].depth = np.full((HEIGHT, WIDTH), np.nan, np.float32)
+    holes = images[2].depth
+    assert holes is not None
+    holes[:10] = np.nan  # NaN pixels are pixels without depth
+    items = _read(write_labelled(tmp_path / "nyu.mat", images))
+    assert [item.inputs is not None for item in items] == [True, False, True]
+    assert items[1].error == (
+        "image 2's depth map holds no depth (every pixel is 0, NaN or out of range)"
+    )
+    depth = items[2].inputs.depth if items[2].inputs else None
+    assert depth is not None and (depth.metres[:10] == 0).all() and depth.metres[10:].all()
+
+
+def test_depths_of_another_size_are_the_files_error(tmp_path: Path) -> None:
+    labelled = nyu_folder(tmp_path, [bedroom()])
+    with h5py.File(labelled, "r+") as file:
+        del file["depths"]
+        file.create_dataset("depths", data=np.ones((1, WIDTH // 2, HEIGHT), np.float32))
+    (item,) = _read(labelled)
+    assert item.inputs is None and item.error is not None
+    assert item.error.startswith("depths is (1, 32, 48), images (1, 3, 64, 48): they differ")

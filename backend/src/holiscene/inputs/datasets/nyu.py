@@ -4,7 +4,8 @@ and its support labels (`support_labels.mat`, Silberman et al., ECCV 2012), one 
 The labelled file, as h5py sees it (MATLAB's arrays transposed): `images` (N, 3, W, H) uint8,
 `labels` (N, W, H) indices into `names` (1-based, 0 unlabelled), `instances` (N, W, H) the
 instance number within a label, `names` (1, C) references to char arrays, and optionally
-`scenes` (1, N) references to the scene names. `depths` is not read yet.
+`scenes` (1, N) references to the scene names and `depths` (N, W, H) float metres along the
+optical axis (registered to the photos, holes filled by NYU's toolbox).
 
 An object is one (label, instance) pair with label > 0: its mask those pixels, its box the
 mask's, its class the name through the lenient vocabulary (a class_map.json beside the file
@@ -43,6 +44,7 @@ from PIL import Image
 
 from ...pipeline.base import Detection
 from ...pipeline.stages.detections import objects_from_detections
+from ..depth import depth_from_metres
 from ..validation import InputError, InputFiles, Photo, load_photo
 from .items import DatasetItem, class_map_beside, labelled_detection
 from .matlab import MatFileError, hdf5_string, read_cell_of_matrices
@@ -146,8 +148,9 @@ class _NyuFile:
         if self.images.ndim != 4 or self.images.shape[1] != 3:
             raise InputError(f"images is {self.images.shape}, not (N, 3, W, H)")
         self.count = int(self.images.shape[0])
-        for key in ("labels", "instances"):
-            if file[key].shape != (self.count, *self.images.shape[2:]):
+        self.depths = file.get("depths")
+        for key in ("labels", "instances", "depths"):
+            if key in file and file[key].shape != (self.count, *self.images.shape[2:]):
                 raise InputError(
                     f"{key} is {file[key].shape}, images {self.images.shape}: they differ"
                 )
@@ -179,11 +182,17 @@ class _NyuFile:
             rgb = np.asarray(self.images[index]).transpose(2, 1, 0)
             labels = np.asarray(self.labels[index]).T
             instances = np.asarray(self.instances[index]).T
+            metres = np.asarray(self.depths[index]).T if self.depths is not None else None
         except (OSError, KeyError, ValueError) as exc:
             raise InputError(
                 f"image {index + 1}'s arrays cannot be read (corrupt or truncated): {exc}"
             ) from exc
         photo = _png_photo(rgb)
+        depth = (
+            depth_from_metres(metres, photo.width, photo.height, f"image {index + 1}'s depth map")
+            if metres is not None
+            else None
+        )
         regions = nyu_regions(labels, instances)
         classes = {r.label: self._class(r.label) for r in regions if r.label > 0}
         objects = [r for r in regions if r.label > 0 and classes[r.label] not in STRUCTURAL_CLASSES]
@@ -200,7 +209,12 @@ class _NyuFile:
             supports=list(supports),
         )
         return InputFiles(
-            photo=photo, K=K, detections=detections, supports=supports, ground_truth=truth
+            photo=photo,
+            K=K,
+            detections=detections,
+            supports=supports,
+            ground_truth=truth,
+            depth=depth,
         )
 
     def _class(self, label: int) -> str:
