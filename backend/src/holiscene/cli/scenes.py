@@ -31,9 +31,10 @@ def add_import_command(sub: argparse._SubParsersAction[argparse.ArgumentParser])
     imp = sub.add_parser(
         "import",
         help="import input folders, COCO or LabelMe files as scenes and run the pipeline",
-        description="Each PATH is an input folder (img.jpg, cam_K.txt, detections.json), a "
-        "COCO instances file (or a folder holding annotations.json or instances*.json), a "
-        "LabelMe file (or a folder of them), or NYU Depth v2's labelled .mat (or a folder "
+        description="Each PATH is an input folder (img.jpg, cam_K.txt, detections.json, "
+        "depth.png, ...), a COCO instances file (or a folder holding annotations.json or "
+        "instances*.json), a LabelMe file (or a folder of them), a SUN RGB-D image folder (or "
+        "a folder holding many at any depth), or NYU Depth v2's labelled .mat (or a folder "
         "holding it, support_labels.mat beside it); the format is told by the content. A "
         "photo that does not read is reported and left out, the others are imported.",
     )
