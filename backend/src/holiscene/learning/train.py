@@ -21,6 +21,7 @@ import numpy as np
 import torch
 import torch.nn.functional as F
 
+from ..core.settings import REPO_ROOT
 from .export import export_onnx
 from .nets import SupportNet
 from .priors import count_priors
@@ -236,10 +237,21 @@ def run_record(started: float, config: object) -> dict[str, Any]:
     """What every training run's metrics.json says of how it ran: time, settings, machine."""
     return {
         "train_seconds": round(time.perf_counter() - started, 1),
-        "config": {k: str(v) if isinstance(v, Path) else v for k, v in vars(config).items()},
+        "config": {k: recorded_setting(v) for k, v in vars(config).items()},
         "machine": platform.platform(),
         "torch": torch.__version__,
     }
+
+
+def recorded_setting(value: object) -> object:
+    """A setting as metrics.json keeps it: paths inside the repository relative to it, so a
+    committed model's record names no one's machine."""
+    if not isinstance(value, Path):
+        return value
+    try:
+        return str(value.resolve().relative_to(REPO_ROOT))
+    except ValueError:
+        return str(value)
 
 
 def plot_curve(
