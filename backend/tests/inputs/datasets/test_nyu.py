@@ -12,7 +12,7 @@ import pytest
 from holiscene.export.matfile import MatCell, mat_file
 from holiscene.inputs.datasets import DatasetItem, dataset_items, is_dataset
 from holiscene.inputs.datasets.matlab import read_cell_of_matrices
-from holiscene.inputs.datasets.nyu import NYU_FX, nyu_regions
+from holiscene.inputs.datasets.nyu import NYU_FX, nyu_files, nyu_regions
 from holiscene.segmentation.rle import decode_mask
 
 from .nyu_files import HEIGHT, WIDTH, bedroom, nyu_folder, write_labelled, write_support_labels
@@ -225,3 +225,45 @@ def test_depths_of_another_size_are_the_files_error(tmp_path: Path) -> None:
     (item,) = _read(labelled)
     assert item.inputs is None and item.error is not None
     assert item.error.startswith("depths is (1, 32, 48), images (1, 3, 64, 48): they differ")
+
+
+def _class_mapping(folder: Path, numbers: list[int]) -> None:
+    # NAMES: wall, floor, bed, lamp, pillow, teapot, picture
+    mapping = {"mapClass": np.array([numbers], dtype=np.float64)}
+    (folder / "classMapping40.mat").write_bytes(mat_file(mapping))
+
+
+def test_nyus_own_class_mapping_beside_the_file_decides_the_classes(tmp_path: Path) -> None:
+    labelled = nyu_folder(tmp_path, [bedroom()])
+    # The lamp mapped to otherfurniture (39) shows the file, not the vocabulary, decided.
+    _class_mapping(tmp_path, [1, 2, 4, 39, 18, 40, 11])
+    assert [p.name for p in nyu_files(tmp_path)] == [labelled.name]  # not an image file
+    (item,) = _read(labelled)
+    detections = item.inputs.detections or [] if item.inputs else []
+    assert [d.cls for d in detections] == [
+        "bed",
+        "otherfurniture",
+        "pillow",
+        "pillow",
+        "otherprop",
+        "picture",
+    ]
+    teapot = detections[4]
+    assert teapot.source_class == "teapot" and teapot.class_known  # mapped, no warning
+
+    (tmp_path / "class_map.json").write_text('{"lamp": "lamp"}')  # the user's map wins
+    (item,) = _read(labelled)
+    assert item.inputs is not None and (item.inputs.detections or [])[1].cls == "lamp"
+
+
+@pytest.mark.parametrize(
+    ("numbers", "message"),
+    [([1, 2, 4], "maps 3 names, the labelled file has 7"), ([1, 2, 4, 35, 18, 41, 11], "1-40")],
+)
+def test_a_class_mapping_that_does_not_fit_is_the_imports_error(
+    tmp_path: Path, numbers: list[int], message: str
+) -> None:
+    labelled = nyu_folder(tmp_path, [bedroom()])
+    _class_mapping(tmp_path, numbers)
+    (item,) = _read(labelled)
+    assert item.inputs is None and item.error is not None and message in item.error

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import struct
 import zlib
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -43,6 +43,24 @@ class MatFileError(ValueError):
 def read_cell_of_matrices(path: Path, variable: str) -> list[np.ndarray]:
     """The matrices of the cell array `variable` in column-major order (2-D float arrays),
     from a level-5 or a v7.3 file."""
+    value = _read_variable(path, variable, _hdf5_cell)
+    if not isinstance(value, list):
+        raise MatFileError(f"{path.name}: {variable} is not a cell array")
+    return value
+
+
+def read_numeric_matrix(path: Path, variable: str) -> np.ndarray:
+    """The numeric matrix `variable` (float, as MATLAB shows it), from a level-5 or a v7.3
+    file."""
+    value = _read_variable(path, variable, _hdf5_numeric)
+    if isinstance(value, list):
+        raise MatFileError(f"{path.name}: {variable} is a cell array, not a matrix")
+    return value
+
+
+def _read_variable(
+    path: Path, variable: str, read_hdf5: Callable[[Path, str], np.ndarray | list[np.ndarray]]
+) -> np.ndarray | list[np.ndarray]:
     import h5py
 
     try:
@@ -50,7 +68,7 @@ def read_cell_of_matrices(path: Path, variable: str) -> list[np.ndarray]:
     except OSError as exc:
         raise MatFileError(f"{path.name} cannot be read: {exc.strerror or exc}") from exc
     if h5py.is_hdf5(path):
-        return _hdf5_cell(path, variable)
+        return read_hdf5(path, variable)
     if len(data) < HEADER_BYTES or not data.startswith(b"MATLAB 5.0 MAT-file"):
         raise MatFileError(f"{path.name} is not a MATLAB .mat file (level 5 or v7.3)")
     endian = {b"IM": "<", b"MI": ">"}.get(data[126:128])
@@ -64,8 +82,6 @@ def read_cell_of_matrices(path: Path, variable: str) -> list[np.ndarray]:
         raise MatFileError(f"{path.name} is corrupt: {exc}") from exc
     if value is None:
         raise MatFileError(f"{path.name} holds no variable {variable!r}")
-    if not isinstance(value, list):
-        raise MatFileError(f"{path.name}: {variable} is not a cell array")
     return value
 
 
@@ -151,6 +167,18 @@ def _hdf5_cell(path: Path, variable: str) -> list[np.ndarray]:
             references = np.asarray(file[variable]).ravel(order="F")
             return [hdf5_matrix(file, ref).T.astype(float) for ref in references]
     except (OSError, KeyError, TypeError) as exc:
+        raise MatFileError(f"{path.name} cannot be read (truncated or corrupt?): {exc}") from exc
+
+
+def _hdf5_numeric(path: Path, variable: str) -> np.ndarray:
+    import h5py
+
+    try:
+        with h5py.File(path, "r") as file:
+            if variable not in file:
+                raise MatFileError(f"{path.name} holds no variable {variable!r}")
+            return np.asarray(file[variable]).T.astype(float)
+    except (OSError, KeyError, TypeError, ValueError) as exc:
         raise MatFileError(f"{path.name} cannot be read (truncated or corrupt?): {exc}") from exc
 
 

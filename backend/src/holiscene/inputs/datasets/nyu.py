@@ -8,9 +8,10 @@ instance number within a label, `names` (1, C) references to char arrays, and op
 optical axis (registered to the photos, holes filled by NYU's toolbox).
 
 An object is one (label, instance) pair with label > 0: its mask those pixels, its box the
-mask's, its class the name through the lenient vocabulary (a class_map.json beside the file
-first). Regions whose name maps to wall, floor or ceiling are the room, not objects: a
-support on one names the structural parent.
+mask's, its class the name through NYU's classMapping40.mat when it is beside the file,
+else the lenient vocabulary (a class_map.json beside the file first, over both). Regions
+whose name maps to wall, floor or ceiling are the room, not objects: a support on one names
+the structural parent.
 
 The support labels are a cell array `supportLabels`, one (M, 3) matrix per image: rows of
 (supported region, supporting region, type), type 1 support from below, 2 from behind, a
@@ -32,11 +33,13 @@ from typing import Any
 
 import numpy as np
 from holiscene_schema import (
+    NYU40_CLASSES,
     STRUCTURAL_CLASSES,
     Camera,
     ImageInfo,
     Scene,
     SupportRelation,
+    class_key,
     map_class_name,
     support_graph_problems,
 )
@@ -47,9 +50,12 @@ from ...pipeline.stages.detections import objects_from_detections
 from ..depth import depth_from_metres
 from ..validation import InputError, InputFiles, Photo, load_photo
 from .items import DatasetItem, class_map_beside, labelled_detection
-from .matlab import MatFileError, hdf5_string, read_cell_of_matrices
+from .matlab import MatFileError, hdf5_string, read_cell_of_matrices, read_numeric_matrix
 
 SUPPORT_FILE = "support_labels.mat"
+# NYU's published mapping of its 894 names to the 40 classes (Gupta et al., CVPR 2013):
+# `mapClass`, 1 x 894, the NYU-40 number (1-40, in NYU40_CLASSES's order) of each name.
+CLASS_MAPPING_FILE = "classMapping40.mat"
 SUPPORT_VARIABLE = "supportLabels"
 LABELLED_ARRAYS = ("images", "labels", "instances", "names")
 SUPPORT_AUTHOR = "NYU Depth v2"
@@ -95,7 +101,26 @@ def nyu_regions(labels: np.ndarray, instances: np.ndarray) -> list[Region]:
 
 
 def is_nyu_file(path: Path) -> bool:
-    return path.suffix.lower() == ".mat" and path.name != SUPPORT_FILE
+    return path.suffix.lower() == ".mat" and path.name not in (SUPPORT_FILE, CLASS_MAPPING_FILE)
+
+
+def nyu40_mapping(path: Path, names: list[str]) -> dict[str, str]:
+    """The labelled file's names mapped by NYU's own classMapping40.mat (keys as class_key
+    makes them); empty when the file is not there. A file that does not fit the names is
+    the whole import's error: its mapping would put every object in a wrong class."""
+    if not path.is_file():
+        return {}
+    try:
+        numbers = read_numeric_matrix(path, "mapClass").ravel(order="F")
+    except MatFileError as exc:
+        raise InputError(f"{CLASS_MAPPING_FILE}: {exc}") from exc
+    if len(numbers) != len(names):
+        raise InputError(
+            f"{CLASS_MAPPING_FILE} maps {len(numbers)} names, the labelled file has {len(names)}"
+        )
+    if not np.all((numbers >= 1) & (numbers <= len(NYU40_CLASSES)) & (numbers % 1 == 0)):
+        raise InputError(f"{CLASS_MAPPING_FILE}: mapClass holds numbers outside 1-40")
+    return {class_key(n): NYU40_CLASSES[int(k) - 1] for n, k in zip(names, numbers, strict=True)}
 
 
 def nyu_files(folder: Path) -> list[Path]:
@@ -158,7 +183,12 @@ class _NyuFile:
         self.scenes = self._strings("scenes") if "scenes" in file else None
         if self.scenes is not None and len(self.scenes) != self.count:
             raise InputError(f"scenes has {len(self.scenes)} names for {self.count} images")
-        self.class_map = class_map_beside(path)
+        # The dataset's own 894 -> 40 mapping when it is beside the file, a user's class map
+        # over it, and the lenient vocabulary for names neither knows.
+        self.class_map = {
+            **nyu40_mapping(path.parent / CLASS_MAPPING_FILE, self.names),
+            **(class_map_beside(path) or {}),
+        }
         self.supports = _support_rows(path.parent / SUPPORT_FILE, self.count)
 
     def _strings(self, key: str) -> list[str]:
