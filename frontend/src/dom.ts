@@ -89,6 +89,15 @@ export function hiddenErrorAlert(testid: string): HTMLParagraphElement {
   });
 }
 
+/** An error line saying why `what` failed, from a caught error. */
+export function failureAlert(what: string, error: unknown): HTMLParagraphElement {
+  return el("p", {
+    className: "alert alert--error",
+    text: `${what} failed: ${error instanceof Error ? error.message : String(error)}`,
+    attrs: { role: "alert" },
+  });
+}
+
 const SVG_NS = "http://www.w3.org/2000/svg";
 
 /** Create an SVG element with attributes. */

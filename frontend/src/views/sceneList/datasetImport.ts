@@ -3,7 +3,7 @@
 // what was imported, skipped as imported before, and each photo's error.
 import type { ImportedPhoto, ImportJob, PhotoError } from "@holiscene/schema";
 import { importsApi, pollImport } from "../../api/imports";
-import { button, el, labelledField } from "../../dom";
+import { button, el, failureAlert, labelledField } from "../../dom";
 import "./datasetImport.css";
 
 // Up to this many new scenes are listed open; more stay folded behind their count.
@@ -180,13 +180,7 @@ export function datasetImportForm(signal: AbortSignal, onScenes: () => void): HT
     } catch (error) {
       if (signal.aborted) return;
       progress.hidden = true;
-      result.replaceChildren(
-        el("p", {
-          className: "alert alert--error",
-          text: `Import failed: ${error instanceof Error ? error.message : String(error)}`,
-          attrs: { role: "alert" },
-        }),
-      );
+      result.replaceChildren(failureAlert("Import", error));
     } finally {
       submit.disabled = false;
     }

@@ -3,7 +3,7 @@
 import type { SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { pollJob } from "../../api/jobs";
-import { button, el, labelledField } from "../../dom";
+import { button, el, failureAlert, labelledField } from "../../dom";
 import { jobProgress } from "../common/jobProgress";
 
 function fileField(label: string, name: string, accept: string, hint: string, required = false) {
@@ -98,13 +98,7 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
       }
     } catch (error) {
       if (signal.aborted) return;
-      result.replaceChildren(
-        el("p", {
-          className: "alert alert--error",
-          text: `Import failed: ${error instanceof Error ? error.message : String(error)}`,
-          attrs: { role: "alert" },
-        }),
-      );
+      result.replaceChildren(failureAlert("Import", error));
     } finally {
       submit.disabled = false;
     }
