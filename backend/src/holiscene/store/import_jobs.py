@@ -8,11 +8,12 @@ import uuid
 from typing import Literal
 
 from holiscene_schema import ImportedPhoto, ImportJob, PhotoError
-from sqlalchemy import Engine, update
+from sqlalchemy import Engine
 from sqlalchemy.orm import Session
 
 from ..core.errors import NotFoundError
 from .clock import as_utc, utcnow
+from .job_rows import fail_job, fail_unfinished_jobs, set_job_columns
 from .tables import ImportJobRow
 
 Outcome = Literal["imported", "skipped"]
@@ -87,23 +88,14 @@ class ImportJobStore:
             session.commit()
 
     def fail(self, job_id: str, error: str) -> None:
-        self._set(job_id, status="failed", error=error, finished_at=utcnow())
+        fail_job(self.engine, ImportJobRow, job_id, error)
 
     def fail_unfinished(self, reason: str) -> int:
         """Mark every queued or running import failed (after a restart nothing runs them)."""
-        with Session(self.engine) as session:
-            result = session.execute(
-                update(ImportJobRow)
-                .where(ImportJobRow.status.in_(["queued", "running"]))
-                .values(status="failed", error=reason, finished_at=utcnow())
-            )
-            session.commit()
-            return int(result.rowcount)  # type: ignore[attr-defined]
+        return fail_unfinished_jobs(self.engine, ImportJobRow, reason)
 
     def _set(self, job_id: str, **values: object) -> None:
-        with Session(self.engine) as session:
-            session.execute(update(ImportJobRow).where(ImportJobRow.id == job_id).values(**values))
-            session.commit()
+        set_job_columns(self.engine, ImportJobRow, job_id, **values)
 
 
 def _import_job(row: ImportJobRow) -> ImportJob:

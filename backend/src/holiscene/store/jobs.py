@@ -8,12 +8,13 @@ from collections.abc import Mapping
 from typing import ClassVar
 
 from holiscene_schema import Job, JobKind
-from sqlalchemy import Engine, func, select, update
+from sqlalchemy import Engine, func, select
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
 from ..core.errors import DomainError, NotFoundError
 from .clock import as_utc, utcnow
+from .job_rows import fail_job, fail_unfinished_jobs, set_job_columns
 from .tables import JobRow
 
 
@@ -231,23 +232,14 @@ class JobStore:
         )
 
     def fail(self, job_id: str, error: str) -> None:
-        self._set(job_id, status="failed", error=error, finished_at=utcnow())
+        fail_job(self.engine, JobRow, job_id, error)
 
     def fail_unfinished(self, reason: str) -> int:
         """Mark every queued or running job failed (after a restart nothing runs them)."""
-        with Session(self.engine) as session:
-            result = session.execute(
-                update(JobRow)
-                .where(JobRow.status.in_(["queued", "running"]))
-                .values(status="failed", error=reason, finished_at=utcnow())
-            )
-            session.commit()
-            return int(result.rowcount)  # type: ignore[attr-defined]
+        return fail_unfinished_jobs(self.engine, JobRow, reason)
 
     def _set(self, job_id: str, **values: object) -> None:
-        with Session(self.engine) as session:
-            session.execute(update(JobRow).where(JobRow.id == job_id).values(**values))
-            session.commit()
+        set_job_columns(self.engine, JobRow, job_id, **values)
 
 
 def _check_queue_room(session: Session, max_waiting: int) -> None:
