@@ -144,3 +144,13 @@ export function shownGraph(page: Page): Promise<Record<string, { parent: string;
     return graph;
   });
 }
+
+/** Submit the scene list's upload form and wait until the photo's pipeline has finished. */
+export async function submitUploadAndWait(page: Page): Promise<void> {
+  await page.getByTestId("upload-submit").click();
+  await expect(page.getByTestId("upload-job-progress")).toHaveAttribute(
+    "data-status",
+    "succeeded",
+    { timeout: 120_000 },
+  );
+}

@@ -5,6 +5,7 @@ import { execFileSync } from "node:child_process";
 import { mkdirSync } from "node:fs";
 import path from "node:path";
 import { expect, test } from "@playwright/test";
+import { submitUploadAndWait } from "../helpers/photo";
 import { synthesizeFolder } from "../helpers/synthetic";
 
 const PYTHON = path.resolve(import.meta.dirname, "../../.venv/bin/python");
@@ -23,12 +24,7 @@ test("a photo imported with its depth shows the depth over the photo", async ({ 
   await page
     .getByTestId("upload-form")
     .screenshot({ path: path.join(screenshots, "upload-depth.png") });
-  await page.getByTestId("upload-submit").click();
-  await expect(page.getByTestId("upload-job-progress")).toHaveAttribute(
-    "data-status",
-    "succeeded",
-    { timeout: 120_000 },
-  );
+  await submitUploadAndWait(page);
 
   await page.getByTestId("upload-open").click();
   await expect(page.getByTestId("scene-title")).toHaveText("room with depth");

@@ -5,6 +5,7 @@ import path from "node:path";
 import type { ImportResult, Job, SceneSummary } from "@holiscene/schema";
 import { expect, test } from "@playwright/test";
 import { seedScene, T3D_5, waitForJob } from "../helpers/api";
+import { submitUploadAndWait } from "../helpers/photo";
 
 test("imports a photo through the form and opens the scene", async ({ page }) => {
   await page.goto("/#/");
@@ -13,13 +14,7 @@ test("imports a photo through the form and opens the scene", async ({ page }) =>
   await page.getByTestId("upload-cam_k").setInputFiles(path.join(T3D_5, "cam_K.txt"));
   await page.getByTestId("upload-detections").setInputFiles(path.join(T3D_5, "detections.json"));
   await page.getByTestId("upload-name").fill("t3d-5 upload");
-  await page.getByTestId("upload-submit").click();
-
-  await expect(page.getByTestId("upload-job-progress")).toHaveAttribute(
-    "data-status",
-    "succeeded",
-    { timeout: 120_000 },
-  );
+  await submitUploadAndWait(page);
   await expect(page.getByTestId("scene-list")).toContainText("t3d-5 upload");
   const screenshots = path.resolve(import.meta.dirname, "../screenshots");
   mkdirSync(screenshots, { recursive: true });
@@ -124,12 +119,7 @@ test("a dataset's own class names: a class map maps them, an unknown one is kept
   await page.getByTestId("upload-detections").setInputFiles(path.join(dir, "detections.json"));
   await page.getByTestId("upload-class_map").setInputFiles(path.join(dir, "class_map.json"));
   await page.getByTestId("upload-name").fill("t3d-5 own class names");
-  await page.getByTestId("upload-submit").click();
-  await expect(page.getByTestId("upload-job-progress")).toHaveAttribute(
-    "data-status",
-    "succeeded",
-    { timeout: 120_000 },
-  );
+  await submitUploadAndWait(page);
   await page.getByTestId("upload-open").click();
   await expect(page.getByTestId("object-row-o0")).toContainText("bed");
   await expect(page.getByTestId("object-row-o1")).toContainText("otherprop");
