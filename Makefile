@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: surface-model coco-detector detector-model scratch-detector-model bench-detector bench-refine bench-batch completion-model bench-completion bench-writers calibrate-scale bench bench-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
+.PHONY: surface-model coco-detector detector-model scratch-detector-model bench-detector bench-refine bench-batch completion-model bench-completion bench-writers calibrate-scale bench bench-layout bench-depth-layout bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -92,6 +92,9 @@ bench-geometry: install-python
 # Where the layout IoU goes: each part of the layout stage against the truth.
 bench-layout: install-python
 	$(PY) benchmarks/bench_layout_parts.py --seed 7000 --count 20 --plot docs/img/layout_parts.png
+
+bench-depth-layout: install-python
+	OMP_NUM_THREADS=1 $(PY) benchmarks/bench_layout_parts.py --depth --seed 310000 --count 150
 
 # The learned parts of the layout stage, both from synthetic rooms (commit what they write):
 # the Surface Network (floor/ceiling/wall labels) and the per-class metric-scale calibration.

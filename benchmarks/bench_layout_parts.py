@@ -13,6 +13,12 @@ parts in view true: the best class sizes allow for the scale, however well the p
 while the parts out of view stay as estimated (in metres).
 Prints a row per scene and means; `--plot FILE` draws the means as a bar chart
 (docs/img/layout_parts.png, shown in docs/benchmarks.md).
+
+`--depth` asks the same of the RGB-D path (`layout_from_depth`, the scale exact): each face
+made true, the faces of the true room in view that no plane was fitted to made true (what a
+better reading of the depth could gain), the side walls whose true plane lies within 0.2 m of
+the farthest point the depth shows made true (walls hidden right behind furniture), and the
+share of rooms whose ceiling, left and right walls were fitted, or were in view at all.
 """
 
 from __future__ import annotations
@@ -30,6 +36,9 @@ from typing import Any
 import numpy as np
 from holiscene.evaluation.box_iou import iou_3d, iou_3d_in_view
 from holiscene.geometry.camera import FloatArray, PinholeCamera
+from holiscene.geometry.depth_points import point_grid
+from holiscene.geometry.depth_room import points_reach
+from holiscene.geometry.manhattan import room_directions
 from holiscene.geometry.metric_scale import (
     Measurement,
     default_calibration,
@@ -44,7 +53,9 @@ from holiscene.inputs import read_input_folder
 from holiscene.knowledge.object_sizes import middle_size, mounting_height
 from holiscene.pipeline import SceneContext, build_pipeline
 from holiscene.pipeline.base import required
+from holiscene.pipeline.stages.depth_layout import GRID_STEP_PX
 from holiscene.pipeline.stages.layout import LayoutEstimate, estimate_layout
+from holiscene.placement.room import room_of
 from holiscene_schema import SceneObject
 
 PARTS = ("front", "left", "right", "back", "ceiling")
@@ -159,6 +170,66 @@ def scene_parts(folder: Path) -> dict[str, float]:
     return row
 
 
+DEPTH_STAGES = ["objects_from_detections", "intrinsics", "layout_from_lines", "layout_from_depth"]
+NEAR_REACH_M = 0.2
+
+
+def depth_scene_parts(folder: Path) -> dict[str, float]:
+    """The RGB-D path's layout against the truth, part by part (metres: the scale is exact)."""
+    inputs = read_input_folder(folder)
+    truth = json.loads((folder / "gt.json").read_text())
+    depth = required(inputs.depth, "depth").metres
+    ctx = SceneContext(
+        image=inputs.photo.rgb, given_K=inputs.K, detections=inputs.detections, depth=depth
+    )
+    build_pipeline(DEPTH_STAGES).run(ctx)
+    layout, camera = required(ctx.layout, "layout"), required(ctx.camera, "camera")
+    report = ctx.reports.get("layout_from_depth", "")
+    fitted = set(report.split("planes fitted: ")[-1].split(";")[0].split(", "))
+    room_yaw = required(room_of(layout), "room").yaw_deg
+    dirs = room_directions(room_yaw)
+    to_room = np.column_stack([dirs[1], dirs[0], dirs[2]])
+    estimate = RoomHypothesis.enclosing(np.array(layout.corners_3d) @ to_room)
+    true_corners = np.array(truth["layout"]["corners_3d"])
+    true_room = RoomHypothesis.enclosing(true_corners @ to_room)
+    true_faces = {part: getattr(true_room, part) for part in PARTS}
+
+    def iou(hypothesis: RoomHypothesis, floor: float) -> float:
+        corners = hypothesis.corners_room()
+        corners[:4, 1] = -floor  # enclosing() puts the floor at -1: metres here
+        return iou_3d(corners @ to_room.T, true_corners)
+
+    floor = -float((np.array(layout.corners_3d) @ to_room)[:, 1].min())
+    row = {"iou": iou(estimate, floor)}
+    for part in PARTS:
+        row[f"iou_true_{part}"] = iou(replace(estimate, **{part: true_faces[part]}), floor)
+    row["iou_all_walls_true"] = iou(replace(estimate, **true_faces), floor)
+    K, _ = required(ctx.intrinsics, "intrinsics")
+    view = PinholeCamera(
+        np.asarray(K, dtype=float), camera.pitch_deg or 0.0, camera.roll_deg or 0.0
+    )
+    rays = view.ray(map_pixels(ctx.width, ctx.height)) @ to_room
+    in_heights = RoomHypothesis.enclosing(true_corners @ to_room / truth["camera"]["height_m"])
+    in_view = in_heights.faces_in_view(rays)
+    unfitted_in_view = {
+        p: true_faces[p] for p in ("left", "right", "ceiling") if p in in_view - fitted
+    }
+    row["iou_unfitted_in_view_true"] = iou(replace(estimate, **unfitted_in_view), floor)
+    reach = points_reach(
+        point_grid(depth, np.asarray(K, dtype=float), GRID_STEP_PX), view, room_yaw
+    )
+    hidden = {
+        p: true_faces[p]
+        for p in ("left", "right")
+        if p not in fitted and abs(true_faces[p] - reach[p]) < NEAR_REACH_M
+    }
+    row["iou_hidden_behind_furniture_true"] = iou(replace(estimate, **hidden), floor)
+    for part in ("left", "right", "ceiling"):
+        row[f"{part}_fitted"] = float(part in fitted)
+        row[f"{part}_in_view"] = float(part in in_view)
+    return row
+
+
 # The bars of the picture: (key of the row's means, label).
 PLOT_BARS = (
     ("iou", "estimate"),
@@ -205,20 +276,25 @@ def main() -> int:
     parser.add_argument("--seed", type=int, default=7000)
     parser.add_argument("--count", type=int, default=20)
     parser.add_argument("--plot", type=Path, help="draw the means as a bar chart (PNG)")
+    parser.add_argument("--depth", action="store_true", help="the RGB-D path's layout")
     args = parser.parse_args()
+    parts = depth_scene_parts if args.depth else scene_parts
     with tempfile.TemporaryDirectory() as tmp:
         synth = ["synth", "--seed", str(args.seed), "--count", str(args.count), "-o", tmp]
         subprocess.run([sys.executable, "-m", "holiscene.cli", *synth], check=True)
         rows = {}
         for folder in sorted(p for p in Path(tmp).iterdir() if (p / "gt.json").is_file()):
-            rows[folder.name] = scene_parts(folder)
+            rows[folder.name] = parts(folder)
     keys = list(next(iter(rows.values())))
     print("scene        " + " ".join(f"{k:>18s}" for k in keys))
     for name, row in rows.items():
         print(f"{name:12s} " + " ".join(f"{row.get(k, float('nan')):18.3f}" for k in keys))
     means = {k: float(np.nanmean([r.get(k, np.nan) for r in rows.values()])) for k in keys}
     print("mean         " + " ".join(f"{means[k]:18.3f}" for k in keys))
-    if args.plot:
+    print(f"means over {len(rows)} rooms:")
+    for key in keys:
+        print(f"  {key:34s} {means[key]:.3f}")
+    if args.plot and not args.depth:
         plot_means(means, len(rows), args.seed, args.plot)
         print(f"wrote {args.plot}")
     return 0
