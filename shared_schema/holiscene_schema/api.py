@@ -7,7 +7,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import Field
 
-from .scene import Box2D, Mask, Point2, Scene, SchemaModel, SupportType
+from .scene import Box2D, Mask, Point2, Point3, Scene, SchemaModel, SupportType
 
 # Revisions are stored as 32-bit integers (PostgreSQL's INTEGER; SQLite's are 64-bit): a
 # number beyond that can name no revision, and the database would fail on it, not answer.
@@ -609,3 +609,30 @@ class ViewerInfo(SchemaModel):
     revision: int = Field(description="The revision the viewer shows")
     url: str = Field(description="The viewer's page, on 127.0.0.1")
     command: str = Field(description="The same viewer from a shell")
+
+
+# -- depth points -----------------------------------------------------------------------------
+
+
+class ObjectDepthPoints(SchemaModel):
+    """One object's points from the depth, world frame (metres, as its 3D box)."""
+
+    id: str
+    partial: list[Point3] = Field(
+        description="The object's mask pixels with depth, back-projected (depth outliers "
+        "dropped), subsampled"
+    )
+    completed: list[Point3] | None = Field(
+        description="The shape completion network's output points, before meshing; null when "
+        "the object has no 3D box or too few partial points lie in it"
+    )
+
+
+class DepthPoints(SchemaModel):
+    """The answer of GET /api/scenes/{id}/depth-points: what the depth saw of each object and
+    what shape completion made of it."""
+
+    scene_id: str
+    revision: int
+    objects: list[ObjectDepthPoints] = Field(description="Objects with a mask, in scene order")
+    max_points: int = Field(description="At most this many points per list (subsampled)")

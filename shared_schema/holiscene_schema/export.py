@@ -17,6 +17,7 @@ from .api import (
     Conflict,
     CurrentUser,
     Dashboard,
+    DepthPoints,
     DetectorInfo,
     EditRequest,
     ErrorMessage,
@@ -90,6 +91,7 @@ TOP_LEVEL: dict[str, type[BaseModel]] = {
     "scene_archive_request": SceneArchiveRequest,
     "detector_info": DetectorInfo,
     "viewer_info": ViewerInfo,
+    "depth_points": DepthPoints,
 }
 
 

@@ -54,6 +54,11 @@ class ImageInfo(SchemaModel):
     height: int = Field(gt=0)
 
 
+# Where a camera's height came from: a prior, estimated from the photo, set by hand, the
+# dataset's ground truth, or measured from the depth's floor plane.
+HeightSource = Literal["prior", "estimated", "manual", "ground_truth", "depth"]
+
+
 class Camera(SchemaModel):
     K: Matrix3 = Field(description="3x3 intrinsics, pixels")
     K_source: Literal["given", "assumed", "estimated"]
@@ -65,7 +70,11 @@ class Camera(SchemaModel):
         "seen from behind it, so the scene appears turned counter-clockwise)"
     )
     height_m: float | None = Field(default=None, description="Camera centre above the floor")
-    height_source: Literal["prior", "estimated", "manual", "ground_truth"] | None = None
+    height_source: HeightSource | None = Field(
+        default=None,
+        description="Where height_m came from: a prior, estimated from the photo, set by hand, "
+        "the dataset's ground truth, or measured from the depth's floor plane",
+    )
     note: str | None = None
 
 

@@ -9,6 +9,7 @@ Conflict?: Conflict
 ConflictDetail?: ConflictDetail
 CurrentUser?: CurrentUser
 Dashboard?: Dashboard
+DepthPoints?: DepthPoints
 DepthRef?: DepthRef
 DetectorInfo?: DetectorInfo
 EditRequest?: EditRequest
@@ -28,6 +29,7 @@ MeshRef?: MeshRef
 ModelEvent?: ModelEvent
 ModelInfo?: ModelInfo
 NewUser?: NewUser
+ObjectDepthPoints?: ObjectDepthPoints
 PasswordChange?: PasswordChange
 PasswordReset?: PasswordReset
 PersonStats?: PersonStats
@@ -165,7 +167,10 @@ K_source: ("given" | "assumed" | "estimated")
  * Camera centre above the floor
  */
 height_m: (number | null)
-height_source: (("prior" | "estimated" | "manual" | "ground_truth") | null)
+/**
+ * Where height_m came from: a prior, estimated from the photo, set by hand, the dataset's ground truth, or measured from the depth's floor plane
+ */
+height_source: (("prior" | "estimated" | "manual" | "ground_truth" | "depth") | null)
 note: (string | null)
 /**
  * Angle of the optical axis below the horizon (positive looking down)
@@ -281,6 +286,42 @@ role: (("annotator" | "reviewer" | "admin") | null)
  * Submissions (a resubmission counts again)
  */
 submitted: number
+}
+/**
+ * The answer of GET /api/scenes/{id}/depth-points: what the depth saw of each object and
+ * what shape completion made of it.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "DepthPoints".
+ */
+export interface DepthPoints {
+/**
+ * At most this many points per list (subsampled)
+ */
+max_points: number
+/**
+ * Objects with a mask, in scene order
+ */
+objects: ObjectDepthPoints[]
+revision: number
+scene_id: string
+}
+/**
+ * One object's points from the depth, world frame (metres, as its 3D box).
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "ObjectDepthPoints".
+ */
+export interface ObjectDepthPoints {
+/**
+ * The shape completion network's output points, before meshing; null when the object has no 3D box or too few partial points lie in it
+ */
+completed: ([number, number, number][] | null)
+id: string
+/**
+ * The object's mask pixels with depth, back-projected (depth outliers dropped), subsampled
+ */
+partial: [number, number, number][]
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema

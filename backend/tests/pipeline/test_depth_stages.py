@@ -96,6 +96,7 @@ def test_with_depth_scale_room_and_boxes_come_from_the_points(room: Path) -> Non
     assert {"layout_from_depth", "boxes_from_depth"} <= {s.name for s in scene.stages}
     assert scene.camera is not None and truth.camera is not None
     assert scene.camera.height_m == pytest.approx(truth.camera.height_m, rel=0.02)
+    assert scene.camera.height_source == "depth"
     assert scene.layout is not None and truth.layout is not None
     # The walls and ceiling the photo shows are planes of the depth: the front wall's distance
     # and the ceiling's height within a few centimetres.
@@ -119,5 +120,6 @@ def test_without_depth_the_single_photo_path_is_unchanged(room: Path) -> None:
     assert [s.name for s in without.stages] == [s.name for s in before.stages]
     assert not {"layout_from_depth", "boxes_from_depth"} & {s.name for s in without.stages}
     assert without.camera == before.camera
+    assert without.camera is not None and without.camera.height_source == "estimated"
     assert without.layout == before.layout
     assert [o.box_3d for o in without.objects] == [o.box_3d for o in before.objects]

@@ -11,10 +11,9 @@ prior.
 from __future__ import annotations
 
 import math
-from typing import Literal
 
 import numpy as np
-from holiscene_schema import Camera, Layout, Scene, SetLayout
+from holiscene_schema import Camera, HeightSource, Layout, Scene, SetLayout
 
 from ..geometry.metric_scale import CAMERA_HEIGHT_PRIOR
 from ..geometry.room_fit import fit_room, project_room_corners
@@ -36,9 +35,6 @@ MAX_FIT_ERROR = 0.05
 
 class LayoutEditError(ValueError):
     """The corners do not give a room (the message says why)."""
-
-
-HeightSource = Literal["prior", "estimated", "manual", "ground_truth"]
 
 
 def camera_height(scene: Scene) -> tuple[float, HeightSource]:

@@ -8,6 +8,7 @@ const HEIGHT_SOURCES: Record<NonNullable<Camera["height_source"]>, string> = {
   estimated: "estimated",
   manual: "set by hand",
   ground_truth: "ground truth",
+  depth: "measured from the depth",
 };
 
 /** The line's text, and its tooltip (the layout's note says more about the scale). */

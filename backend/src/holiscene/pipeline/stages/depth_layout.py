@@ -91,5 +91,5 @@ class LayoutFromDepth(Stage):
             f"pitch {floor.pitch_deg:.2f}, roll {floor.roll_deg:.2f}; planes fitted: {parts}; "
             "the rest are priors"
         )
-        write_layout(ctx, source, frame, corners, metres, note)
+        write_layout(ctx, source, frame, corners, metres, note, height_source="depth")
         ctx.reports[self.name] = note

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from holiscene_schema import Camera, Layout, SceneObject
+from holiscene_schema import Camera, HeightSource, Layout, SceneObject
 from numpy.typing import NDArray
 
 from ...geometry.camera import FloatArray, PinholeCamera
@@ -202,9 +202,11 @@ def write_layout(
     corners_world: FloatArray,
     metres: float,
     note: str,
+    height_source: HeightSource = "estimated",
 ) -> None:
     """Set the camera, the vanishing points and the room (corners in metres, world frame) on
-    the context, as a scene stores them."""
+    the context, as a scene stores them; `height_source` says how `metres` (the camera's
+    height) was found."""
     K = np.asarray(required(ctx.intrinsics, "intrinsics")[0], dtype=float)
     camera = PinholeCamera(K, frame.pitch_deg, frame.roll_deg)
     # Stored rounded; the 2D corners are those of the stored 3D ones (a corner near the
@@ -218,7 +220,7 @@ def write_layout(
         pitch_deg=round(frame.pitch_deg, 4),
         roll_deg=round(frame.roll_deg, 4),
         height_m=round(metres, 4),
-        height_source="estimated",
+        height_source=height_source,
     )
     ctx.layout = Layout(
         corners_2d=[
