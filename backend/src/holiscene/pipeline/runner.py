@@ -29,12 +29,15 @@ DEFAULT_STAGES: tuple[str, ...] = (
 
 # A placement job: the stages after the room layout, on a stored scene whose layout (or
 # supports) a person changed. Heights are measured again: they depend on the camera's pitch
-# and roll and on the room's height line.
+# and roll and on the room's height line. With depth, the boxes are measured from it again and
+# the shapes completed, as in the full pipeline (the depth stages are skipped without).
 PLACEMENT_STAGES: tuple[str, ...] = (
     "scene_from_revision",
     "heights_by_metrology",
     "placement",
+    "boxes_from_depth",
     "shapes_fit",
+    "shape_completion",
     "scene_mesh",
 )
 

@@ -323,7 +323,10 @@ class Workbench:
             "detector_model_dir": self.detectors.active_dir(),
             "stage_options": stage_options,
         }
-        inputs = read_input_folder(self.scenes.files.folder(job.scene_id))
+        # The depth stored with the scene, so a placement job measures the boxes from it too.
+        inputs = read_input_folder(
+            self.scenes.files.folder(job.scene_id), use_depth=current.scene.depth is not None
+        )
         return JobRun(revision=current.revision, inputs=inputs, arguments=arguments)
 
     def store_job_result(self, job: Job, run: JobRun, result: Reconstruction) -> None:

@@ -4,15 +4,18 @@ from __future__ import annotations
 
 from typing import Annotated
 
-from fastapi import APIRouter, File, Form, Path, UploadFile
+import numpy as np
+from fastapi import APIRouter, File, Form, Path, Query, UploadFile
 from fastapi.responses import FileResponse, Response
 from holiscene_schema import (
     MAX_REVISION,
     Conflict,
+    DepthPoints,
     EditRequest,
     ErrorMessage,
     ImportResult,
     Job,
+    ObjectDepthPoints,
     RevisionInfo,
     SceneDocument,
     SceneState,
@@ -31,6 +34,7 @@ from ...inputs import (
     parse_intrinsics,
 )
 from ...inputs.depth import DEPTH_FILE, DepthMap, DepthUnits, read_depth_file
+from ...learning.completion.scene_points import MAX_POINTS, scene_depth_points, stored_depth
 from ...store.scenes import SceneNotFoundError
 from ..deps import AnnotatorDep, UserDep, WorkbenchDep, author_of
 from ..permissions import with_edit_permission
@@ -156,6 +160,42 @@ def get_depth_preview(scene_id: str, workbench: WorkbenchDep) -> Response:
     """The depth as a colour picture to lay over the photo: near warm, far cool, and
     transparent where there is no depth."""
     return Response(depth_preview_png(_depth_file(workbench, scene_id)), media_type="image/png")
+
+
+def _to_tenth_mm(points: np.ndarray) -> list[list[float]]:
+    rounded: list[list[float]] = np.round(points, 4).tolist()
+    return rounded
+
+
+@router.get(
+    "/{scene_id}/depth-points",
+    response_model=DepthPoints,
+    responses={409: {"model": ErrorMessage}, **_ERRORS},
+)
+def get_depth_points(
+    scene_id: str,
+    workbench: WorkbenchDep,
+    revision: Annotated[int | None, Query(ge=1, le=MAX_REVISION)] = None,
+) -> DepthPoints:
+    """Each object's partial points (its mask with depth, back-projected) and the shape
+    completion network's points, world frame, at most MAX_POINTS each; of the latest revision
+    or `revision`. 404 for a scene without depth, 409 before the pipeline placed its camera."""
+    document = workbench.scenes.document(scene_id, revision)
+    depth = stored_depth(document.scene, _depth_file(workbench, scene_id))
+    objects = scene_depth_points(document.scene, depth)
+    return DepthPoints(
+        scene_id=scene_id,
+        revision=document.revision,
+        objects=[
+            ObjectDepthPoints(
+                id=o.id,
+                partial=_to_tenth_mm(o.partial),
+                completed=None if o.completed is None else _to_tenth_mm(o.completed),
+            )
+            for o in objects
+        ],
+        max_points=MAX_POINTS,
+    )
 
 
 @router.get("/{scene_id}/scene.glb", responses=_ERRORS)

@@ -36,13 +36,25 @@ def to_box_frame(points: NDArray[np.float64], box: Box3D) -> NDArray[np.float64]
     return result
 
 
-def from_box_frame(mesh: trimesh.Trimesh, box: Box3D) -> trimesh.Trimesh:
+def _world_from_box(box: Box3D) -> NDArray[np.float64]:
+    """The 4x4 transform from the box's normalised frame to the world."""
     transform = np.eye(4)
     transform[:3, :3] = rot_y(math.radians(box.yaw_deg)) @ np.diag(box.size)
     transform[:3, 3] = box.center
+    return transform
+
+
+def from_box_frame(mesh: trimesh.Trimesh, box: Box3D) -> trimesh.Trimesh:
     out = mesh.copy()
-    out.apply_transform(transform)
+    out.apply_transform(_world_from_box(box))
     return out
+
+
+def points_from_box_frame(points: NDArray[np.floating], box: Box3D) -> NDArray[np.float64]:
+    """Normalised box-frame points (N, 3) in the world: `to_box_frame` undone."""
+    transform = _world_from_box(box)
+    result: NDArray[np.float64] = np.asarray(points, dtype=float) @ transform[:3, :3].T
+    return result + transform[:3, 3]
 
 
 @dataclass(frozen=True)
@@ -69,15 +81,32 @@ class ShapeCompleter:
         completed: NDArray[np.float32] = self.session.run(["completed"], {"partial": batch})[0][0]
         return completed
 
-    def complete(self, world_points: NDArray[np.float64], box: Box3D) -> Completion | None:
-        """The completed mesh of observed points, or None when too few lie in the box."""
+    def complete_in_box(
+        self, world_points: NDArray[np.float64], box: Box3D
+    ) -> tuple[NDArray[np.float32], int] | None:
+        """The network's completed points in the box's normalised frame and how many observed
+        points it read, or None when too few lie in the box."""
         local = to_box_frame(world_points, box)
         local = local[np.abs(local).max(axis=1) <= KEEP_BOUND]
         if len(local) < MIN_OBSERVED_POINTS:
             return None
         partial = resample(local, PARTIAL_POINTS, np.random.default_rng(0))
-        completed = self.complete_normalised(partial)
-        return Completion(from_box_frame(mesh_from_points(completed), box), len(local))
+        return self.complete_normalised(partial), len(local)
+
+    def complete_points(
+        self, world_points: NDArray[np.float64], box: Box3D
+    ) -> NDArray[np.float64] | None:
+        """The completed points in the world frame (before meshing), or None as `complete`."""
+        done = self.complete_in_box(world_points, box)
+        return None if done is None else points_from_box_frame(done[0], box)
+
+    def complete(self, world_points: NDArray[np.float64], box: Box3D) -> Completion | None:
+        """The completed mesh of observed points, or None when too few lie in the box."""
+        done = self.complete_in_box(world_points, box)
+        if done is None:
+            return None
+        completed, observed = done
+        return Completion(from_box_frame(mesh_from_points(completed), box), observed)
 
 
 @lru_cache(maxsize=2)

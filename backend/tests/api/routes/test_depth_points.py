@@ -1,0 +1,141 @@
+"""A scene imported with its depth after the pipeline: each object's partial and completed
+points (GET /api/scenes/{id}/depth-points) in the world of its 3D box, refused with a reason
+for a scene without depth or before the pipeline placed the camera; and a placement job after
+a layout edit keeps measuring the boxes from the depth."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from fastapi.testclient import TestClient
+from holiscene.learning.completion.scene_points import MAX_POINTS
+
+from ...conftest import wait_for_job
+
+DEPTH_STAGES = {"layout_from_depth", "boxes_from_depth", "shape_completion"}
+
+
+def _post(client: TestClient, folder: Path, depth: bool, run: bool) -> Any:
+    files = {
+        "image": ("img.png", (folder / "img.png").read_bytes(), "image/png"),
+        "cam_k": ("cam_K.txt", (folder / "cam_K.txt").read_bytes(), "text/plain"),
+        "detections": (
+            "detections.json",
+            (folder / "detections.json").read_bytes(),
+            "application/json",
+        ),
+    }
+    if depth:
+        files["depth"] = ("depth.png", (folder / "depth.png").read_bytes(), "image/png")
+    response = client.post(
+        "/api/scenes", files=files, data={"run_pipeline": "true" if run else "false"}
+    )
+    assert response.status_code == 201, response.text
+    return response.json()
+
+
+def _pipeline_scene(client: TestClient, folder: Path, depth: bool = True) -> Any:
+    """The scene's document after its pipeline job."""
+    imported = _post(client, folder, depth, run=True)
+    job = wait_for_job(client, imported["job"]["id"], timeout=120)
+    assert job["status"] == "succeeded", job
+    return client.get(f"/api/scenes/{imported['scene']['id']}").json()
+
+
+def _inside(points: np.ndarray, corners: np.ndarray, margin: float) -> np.ndarray:
+    """Which points lie within `margin` metres of the box given by its 8 corners."""
+    origin = corners[0]
+    axes = np.stack([corners[1] - origin, corners[4] - origin, corners[3] - origin])
+    lengths = np.linalg.norm(axes, axis=1)
+    local = (points - origin) @ (axes / lengths[:, None]).T
+    return np.all((local >= -margin) & (local <= lengths + margin), axis=1)
+
+
+def test_each_objects_points_lie_in_its_box_and_the_room(
+    client: TestClient, synthetic_folder: Path
+) -> None:
+    doc = _pipeline_scene(client, synthetic_folder)
+    scene_id, scene = doc["scene_id"], doc["scene"]
+    assert {s["name"] for s in scene["stages"]} >= DEPTH_STAGES
+    assert scene["camera"]["height_source"] == "depth"
+    response = client.get(f"/api/scenes/{scene_id}/depth-points")
+    assert response.status_code == 200, response.text
+    body = response.json()
+    assert (body["scene_id"], body["revision"], body["max_points"]) == (
+        scene_id,
+        doc["revision"],
+        MAX_POINTS,
+    )
+    objects = {o["id"]: o for o in scene["objects"]}
+    assert [p["id"] for p in body["objects"]] == [o["id"] for o in scene["objects"] if o["mask"]]
+    room = np.array(scene["layout"]["corners_3d"])
+    completed = 0
+    for entry in body["objects"]:
+        partial = np.array(entry["partial"]).reshape(-1, 3)
+        assert len(partial) <= MAX_POINTS
+        assert _inside(partial, room, 0.05).mean() > 0.98, entry["id"]
+        obj = objects[entry["id"]]
+        if entry["completed"] is None:
+            assert obj["mesh"] is None or obj["mesh"]["library"] != "completion"
+            continue
+        completed += 1
+        # The network's points are what the stage meshed: the object's mesh is the completion.
+        assert obj["mesh"]["library"] == "completion", entry["id"]
+        points = np.array(entry["completed"])
+        assert 0 < len(points) <= MAX_POINTS
+        box = np.array(obj["corners_3d"])
+        # Grown points stay within 0.15 box lengths of the box; 5 cm covers it for furniture.
+        assert _inside(points, box, 0.05 + 0.15 * np.ptp(box, axis=0).max()).all(), entry["id"]
+        assert _inside(points, box, 0.02).mean() > 0.8, entry["id"]
+    assert completed >= len(body["objects"]) / 2
+    # Revision 1, the import, has no camera yet.
+    assert client.get(f"/api/scenes/{scene_id}/depth-points?revision=1").status_code == 409
+
+
+def test_a_scene_without_depth_or_camera_has_no_depth_points(
+    client: TestClient, synthetic_folder: Path
+) -> None:
+    without = _post(client, synthetic_folder, depth=False, run=False)["scene"]["id"]
+    response = client.get(f"/api/scenes/{without}/depth-points")
+    assert response.status_code == 404
+    assert response.json()["detail"] == f"scene {without} has no depth: it was imported without"
+    # With depth, but the pipeline has not placed the camera yet.
+    waiting = _post(client, synthetic_folder, depth=True, run=False)["scene"]["id"]
+    response = client.get(f"/api/scenes/{waiting}/depth-points")
+    assert response.status_code == 409
+    assert "no camera pitch and roll yet" in response.json()["detail"]
+    assert client.get("/api/scenes/nope/depth-points").status_code == 404
+
+
+def test_a_placement_job_after_a_layout_edit_keeps_the_depth_boxes(
+    client: TestClient, synthetic_folder: Path
+) -> None:
+    """The layout set by hand where the depth put it: re-placing the objects measures their
+    boxes from the depth again (the placement alone would guess them from typical sizes)."""
+    doc = _pipeline_scene(client, synthetic_folder)
+    scene_id = doc["scene_id"]
+    corners = doc["scene"]["layout"]["corners_2d"]
+    body = {
+        "base_revision": doc["revision"],
+        "author": "ann",
+        "edits": [{"kind": "set_layout", "corners_2d": corners}],
+    }
+    edited = client.post(f"/api/scenes/{scene_id}/edits", json=body)
+    assert edited.status_code == 200, edited.text
+    assert edited.json()["scene"]["camera"]["height_source"] == "depth"
+    started = client.post(f"/api/scenes/{scene_id}/placement-jobs")
+    assert started.status_code == 202, started.text
+    job = wait_for_job(client, started.json()["id"], timeout=120)
+    assert job["status"] == "succeeded", job
+    placed = client.get(f"/api/scenes/{scene_id}").json()["scene"]
+    ran = {s["name"] for s in placed["stages"]}
+    assert {"boxes_from_depth", "shape_completion"} <= ran
+    for before, after in zip(doc["scene"]["objects"], placed["objects"], strict=True):
+        assert (before["box_3d"] is None) == (after["box_3d"] is None)
+        if before["box_3d"] is None:
+            continue
+        np.testing.assert_allclose(after["box_3d"]["size"], before["box_3d"]["size"], atol=0.03)
+        np.testing.assert_allclose(after["box_3d"]["center"], before["box_3d"]["center"], atol=0.03)
+        assert after["mesh"] == before["mesh"]
