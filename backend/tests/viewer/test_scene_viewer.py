@@ -18,8 +18,10 @@ from holiscene.viewer.meshes import fills_box, glb_object_meshes
 from holiscene.viewer.scene_viewer import (
     BEHIND_RGB,
     BELOW_RGB,
+    COMPLETED_RGB,
     DIMMED_OPACITY,
     FRUSTUM_SCALE,
+    PARTIAL_RGB,
 )
 
 OpenViewer = Callable[[ViewerInput], SceneViewer]
@@ -203,3 +205,39 @@ def test_scene_without_camera_or_layout(synthetic_folder: Path, open_viewer: Ope
     assert {s.child for s in bare.supports if s.parent == "wall"} <= set(viewer.arrows)
     assert floor_children
     assert len(viewer.objects) == len(bare.objects)
+
+
+def test_depth_points_are_drawn_when_asked(synthetic_folder: Path, open_viewer: OpenViewer) -> None:
+    """The room came with depth.png: each object's partial points (orange) and completed
+    points (teal) are point clouds, hidden until the reviewer ticks Depth points."""
+    data = load_scene_path(synthetic_folder / "gt.json")
+    assert data.depth is not None and data.depth.shape == (480, 640)
+    viewer = open_viewer(data)
+    partial = {n.rsplit("/", 1)[1] for n in viewer.depth_points if n.startswith("/depth/partial/")}
+    completed = {
+        n.rsplit("/", 1)[1] for n in viewer.depth_points if n.startswith("/depth/completed/")
+    }
+    assert len(partial) >= len(data.scene.objects) // 2 and completed and completed <= partial
+    assert not viewer.depth_toggle.disabled and viewer.depth_toggle.value is False
+    assert not any(cloud.visible for cloud in viewer.depth_points.values())
+    viewer.depth_toggle.value = True
+    assert all(cloud.visible for cloud in viewer.depth_points.values())
+    corners = np.asarray(data.scene.layout.corners_3d)
+    low, high = corners.min(axis=0) - 0.05, corners.max(axis=0) + 0.05
+    for name, cloud in viewer.depth_points.items():
+        points = np.asarray(cloud.points, dtype=float)
+        assert len(points) > 0
+        colour = PARTIAL_RGB if "/partial/" in name else COMPLETED_RGB
+        assert tuple(np.asarray(cloud.colors).reshape(-1, 3)[0]) == colour
+        if "/partial/" in name:  # seen surfaces: within the room's bounds
+            assert ((points >= low) & (points <= high)).all(axis=1).mean() > 0.98, name
+
+
+def test_without_depth_there_are_no_depth_points(
+    synthetic_folder: Path, open_viewer: OpenViewer
+) -> None:
+    data = load_scene_path(synthetic_folder / "gt.json")
+    viewer = open_viewer(
+        ViewerInput(data.scene.model_copy(update={"depth": None}), None, None, "x")
+    )
+    assert viewer.depth_points == {} and viewer.depth_toggle.disabled

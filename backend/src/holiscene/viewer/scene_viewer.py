@@ -7,6 +7,9 @@ Scene tree (names are stable, tests and reviewers can rely on them):
   /labels/<id>                            "<id> <class>" above each placed object
   /supports/<child id>                    one arrow per support, supporter -> supported
   /camera/photo                           the camera frustum with the photo on it
+  /depth/partial/<id>, /depth/completed/<id>
+                                          with depth: what the depth saw of each object and
+                                          what shape completion made of it (hidden at first)
   /highlight                              the selected object's box edges
 The panel has the scene's summary, toggles, an object dropdown with the selected object's
 details (class, supporter, type, confidence, source), and a table of every object. Picking an
@@ -29,6 +32,7 @@ from numpy.typing import NDArray
 
 from ..export.glb import room_meshes
 from ..geometry.camera import FloatArray, PinholeCamera
+from ..learning.completion.scene_points import DepthPointsError, scene_depth_points
 from .colours import class_rgb
 from .geometry import (
     box_edge_segments,
@@ -48,6 +52,11 @@ WALL_RGB = (222, 218, 210)
 EDGE_RGB = (90, 90, 90)
 WALL_OPACITY = 0.25
 DIMMED_OPACITY = 0.25
+# The depth points, as the workbench's 3D view draws them: seen by the depth camera, and
+# completed by the shape completion network.
+PARTIAL_RGB = (249, 115, 22)
+COMPLETED_RGB = (13, 148, 136)
+POINT_SIZE_M = 0.012
 FRUSTUM_SCALE = 0.45  # metres: the photo stays small beside a room of a few metres
 PHOTO_MAX_SIDE = 640  # pixels sent to the browser for the frustum's image
 NO_SELECTION = "(none)"
@@ -88,6 +97,7 @@ class SceneViewer:
         self.objects: dict[str, _ObjectNode] = {}
         self.arrows: dict[str, viser.ArrowsHandle] = {}
         self.labels: dict[str, viser.LabelHandle] = {}
+        self.depth_points: dict[str, viser.PointCloudHandle] = {}  # by node name
         self.room: dict[str, viser.SceneNodeHandle] = {}
         self.frustum: viser.CameraFrustumHandle | None = None
         self.highlight: viser.LineSegmentsHandle | None = None
@@ -104,6 +114,7 @@ class SceneViewer:
             self.objects.clear()
             self.arrows.clear()
             self.labels.clear()
+            self.depth_points.clear()
             self.room.clear()
             self.frustum = self.highlight = None
             self.selected = None
@@ -118,6 +129,7 @@ class SceneViewer:
         self._add_objects()
         self._add_arrows()
         self._add_camera()
+        self._add_depth_points()
         self._place_view()
         self._add_panel()
 
@@ -236,6 +248,31 @@ class SceneViewer:
             position=(0.0, 0.0, 0.0),
         )
 
+    def _add_depth_points(self) -> None:
+        if self.data.depth is None:
+            return
+        try:
+            found = scene_depth_points(self.scene, self.data.depth)
+        except DepthPointsError as exc:
+            self.notes.append(f"no depth points: {exc}")
+            return
+        for entry in found:
+            for kind, points, colour in (
+                ("partial", entry.partial, PARTIAL_RGB),
+                ("completed", entry.completed, COMPLETED_RGB),
+            ):
+                if points is None or len(points) == 0:
+                    continue
+                name = f"/depth/{kind}/{entry.id}"
+                self.depth_points[name] = self.server.scene.add_point_cloud(
+                    name,
+                    np.asarray(points, dtype=np.float32),
+                    colour,
+                    point_size=POINT_SIZE_M,
+                    point_shape="circle",
+                    visible=False,
+                )
+
     def _place_view(self) -> None:
         """Start above and behind the photo's camera, to its left, looking a third of the way
         into the room: the frustum with the photo sits in the foreground with the room
@@ -267,6 +304,9 @@ class SceneViewer:
             self._add_toggle("Support arrows", list(self.arrows.values()))
             self._add_toggle("Labels", list(self.labels.values()))
             self._add_toggle("Photo frustum", [self.frustum] if self.frustum else [])
+            self.depth_toggle = self._add_toggle(
+                "Depth points", list(self.depth_points.values()), initial=False
+            )
 
         self._choices = {NO_SELECTION: None} | {
             f"{o.id} · {o.cls}": o.id for o in self.scene.objects
@@ -285,13 +325,17 @@ class SceneViewer:
         with gui.add_folder("Objects and supports"):
             self.table = gui.add_markdown(self._table_markdown())
 
-    def _add_toggle(self, label: str, handles: list[viser.SceneNodeHandle]) -> None:
-        box = self.server.gui.add_checkbox(label, True, disabled=not handles)
+    def _add_toggle(
+        self, label: str, handles: list[viser.SceneNodeHandle], initial: bool = True
+    ) -> viser.GuiCheckboxHandle:
+        box = self.server.gui.add_checkbox(label, initial, disabled=not handles)
 
         @box.on_update
         def _(_event: viser.GuiEvent[viser.GuiCheckboxHandle]) -> None:
             for handle in handles:
                 handle.visible = box.value
+
+        return box
 
     def _summary_markdown(self) -> str:
         scene = self.scene
@@ -312,6 +356,11 @@ class SceneViewer:
         if sources:
             facts.append(
                 "Meshes: " + ", ".join(f"{n} from {s}" for s, n in sorted(sources.items())) + "."
+            )
+        if self.depth_points:
+            facts.append(
+                "Depth points (Show, Depth points): orange = seen by the depth camera, "
+                "teal = completed by shape completion."
             )
         text = f"**{scene.name}** — {self.data.origin}\n\n" + "  \n".join(facts)
         if self.notes:

@@ -1,7 +1,8 @@
 """Where a viewed scene comes from: a scene.json on disk, or a scene stored by the workbench.
 
 Either way the viewer gets the same `ViewerInput`: the scene, its photo (RGB, or None with a
-note) and its GLB bytes (or None). Nothing here knows about viser.
+note), its GLB bytes (or None) and its depth in metres (or None). Nothing here knows about
+viser.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from pydantic import ValidationError
 
 from ..core.settings import Settings
 from ..inputs import InputError, load_photo
+from ..learning.completion.scene_points import stored_depth
 from ..store.scenes import SceneNotFoundError, SceneStore
 
 SCENE_FILE_NAMES = ("scene.json", "gt.json")  # what `infer` and `synth` write
@@ -34,6 +36,7 @@ class ViewerInput:
     origin: str  # what is shown, for the panel: a path, or "scene <id>, revision <n>"
     models_dir: Path | None = None  # for MeshRefs to user models
     notes: list[str] = field(default_factory=list)
+    depth: NDArray[np.float32] | None = None  # metres (H, W), the photo's; None without
 
 
 def _read_photo(path: Path) -> NDArray[np.uint8]:
@@ -50,6 +53,18 @@ def _photo_or_note(path: Path | None, notes: list[str]) -> NDArray[np.uint8] | N
         return _read_photo(path)
     except (InputError, OSError) as exc:
         notes.append(f"photo {path} unreadable ({exc}); the camera is drawn without it")
+        return None
+
+
+def _depth_or_note(scene: Scene, folder: Path, notes: list[str]) -> NDArray[np.float32] | None:
+    """The scene's depth (its DepthRef's file in `folder`), or None with a note why not."""
+    if scene.depth is None:
+        return None
+    path = folder / scene.depth.file
+    try:
+        return stored_depth(scene, path.read_bytes())
+    except (InputError, OSError) as exc:
+        notes.append(f"depth {path} unreadable ({exc}); no depth points")
         return None
 
 
@@ -89,7 +104,8 @@ def load_scene_path(
     rgb = _photo_or_note(photo if photo is not None else folder / scene.image.file, notes)
     glb_path = folder / "scene.glb"
     glb = glb_path.read_bytes() if glb_path.is_file() else None
-    return ViewerInput(scene, rgb, glb, str(scene_file), models_dir, notes)
+    depth = _depth_or_note(scene, folder, notes)
+    return ViewerInput(scene, rgb, glb, str(scene_file), models_dir, notes, depth)
 
 
 def load_stored_scene(
@@ -108,7 +124,8 @@ def load_stored_scene(
     if glb is None:
         notes.append("no 3D scene file yet (run the pipeline); boxes shown where known")
     origin = f"scene {scene_id}, revision {document.revision}"
-    return ViewerInput(document.scene, rgb, glb, origin, models_dir, notes)
+    depth = _depth_or_note(document.scene, store.files.folder(scene_id), notes)
+    return ViewerInput(document.scene, rgb, glb, origin, models_dir, notes, depth)
 
 
 def open_store(settings: Settings) -> SceneStore:

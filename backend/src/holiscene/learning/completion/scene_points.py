@@ -13,7 +13,7 @@ from holiscene_schema import Scene
 
 from ...core.errors import DomainError
 from ...geometry.camera import FloatArray
-from ...inputs.depth import depth_from_png
+from ...inputs.depth import METRES_PER_UNIT, depth_from_png
 from ...placement.depth_box import object_points
 from ...placement.room import pinhole
 from ...segmentation.rle import decode_mask
@@ -47,9 +47,10 @@ def subsample(points: FloatArray, limit: int) -> FloatArray:
 
 
 def stored_depth(scene: Scene, png: bytes) -> np.ndarray:
-    """The scene's stored depth.png (16-bit millimetres) in metres."""
+    """The scene's stored depth file (a 16-bit PNG in its DepthRef's units) in metres."""
+    unit = scene.depth.metres_per_unit if scene.depth is not None else METRES_PER_UNIT
     width, height = scene.image.width, scene.image.height
-    return depth_from_png(png, width, height).metres
+    return depth_from_png(png, width, height, metres_per_unit=unit).metres
 
 
 def scene_depth_points(
