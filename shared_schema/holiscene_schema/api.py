@@ -636,3 +636,13 @@ class DepthPoints(SchemaModel):
     revision: int
     objects: list[ObjectDepthPoints] = Field(description="Objects with a mask, in scene order")
     max_points: int = Field(description="At most this many points per list (subsampled)")
+
+
+class DepthKey(SchemaModel):
+    """The answer of GET /api/scenes/{id}/depth-key: the depths the depth overlay's colours
+    span (2nd to 98th percentile of the depth present; nearer is drawn as near, further as
+    far) and its colours from near to far."""
+
+    near_m: float
+    far_m: float
+    colours: list[str] = Field(description="CSS hex colours from near to far, evenly spaced")

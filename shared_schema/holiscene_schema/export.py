@@ -17,6 +17,7 @@ from .api import (
     Conflict,
     CurrentUser,
     Dashboard,
+    DepthKey,
     DepthPoints,
     DetectorInfo,
     EditRequest,
@@ -92,6 +93,7 @@ TOP_LEVEL: dict[str, type[BaseModel]] = {
     "detector_info": DetectorInfo,
     "viewer_info": ViewerInfo,
     "depth_points": DepthPoints,
+    "depth_key": DepthKey,
 }
 
 

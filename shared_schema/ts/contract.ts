@@ -9,6 +9,7 @@ Conflict?: Conflict
 ConflictDetail?: ConflictDetail
 CurrentUser?: CurrentUser
 Dashboard?: Dashboard
+DepthKey?: DepthKey
 DepthPoints?: DepthPoints
 DepthRef?: DepthRef
 DetectorInfo?: DetectorInfo
@@ -286,6 +287,22 @@ role: (("annotator" | "reviewer" | "admin") | null)
  * Submissions (a resubmission counts again)
  */
 submitted: number
+}
+/**
+ * The answer of GET /api/scenes/{id}/depth-key: the depths the depth overlay's colours
+ * span (2nd to 98th percentile of the depth present; nearer is drawn as near, further as
+ * far) and its colours from near to far.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "DepthKey".
+ */
+export interface DepthKey {
+/**
+ * CSS hex colours from near to far, evenly spaced
+ */
+colours: string[]
+far_m: number
+near_m: number
 }
 /**
  * The answer of GET /api/scenes/{id}/depth-points: what the depth saw of each object and

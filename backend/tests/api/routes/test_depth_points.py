@@ -8,7 +8,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import cv2
 import numpy as np
+import pytest
 from fastapi.testclient import TestClient
 from holiscene.learning.completion.scene_points import MAX_POINTS
 
@@ -139,3 +141,31 @@ def test_a_placement_job_after_a_layout_edit_keeps_the_depth_boxes(
         np.testing.assert_allclose(after["box_3d"]["size"], before["box_3d"]["size"], atol=0.03)
         np.testing.assert_allclose(after["box_3d"]["center"], before["box_3d"]["center"], atol=0.03)
         assert after["mesh"] == before["mesh"]
+
+
+def _hex(bgra: np.ndarray) -> str:
+    blue, green, red = (int(v) for v in bgra[:3])
+    return f"#{red:02x}{green:02x}{blue:02x}"
+
+
+def test_the_depth_overlay_has_a_key(client: TestClient, synthetic_folder: Path) -> None:
+    """The key names the depths the overlay's colours span (2nd to 98th percentile of the
+    depth present) and its colours from near to far: the preview's own near and far ones."""
+    scene_id = _post(client, synthetic_folder, depth=True, run=False)["scene"]["id"]
+    key = client.get(f"/api/scenes/{scene_id}/depth-key")
+    assert key.status_code == 200, key.text
+    body = key.json()
+    millimetres = cv2.imread(str(synthetic_folder / "depth.png"), cv2.IMREAD_UNCHANGED)
+    near, far = np.percentile(millimetres[millimetres > 0], [2, 98]) / 1000.0
+    assert body["near_m"] == pytest.approx(near, abs=0.002)
+    assert body["far_m"] == pytest.approx(far, abs=0.002)
+    assert len(body["colours"]) >= 5
+    preview = client.get(f"/api/scenes/{scene_id}/depth-preview.png").content
+    rgba = cv2.imdecode(np.frombuffer(preview, np.uint8), cv2.IMREAD_UNCHANGED)
+    present = np.where(millimetres > 0, millimetres, 65535)
+    nearest = np.unravel_index(np.argmin(present), rgba.shape[:2])
+    furthest = np.unravel_index(np.argmax(millimetres), rgba.shape[:2])
+    assert _hex(rgba[nearest]) == body["colours"][0]
+    assert _hex(rgba[furthest]) == body["colours"][-1]
+    without = _post(client, synthetic_folder, depth=False, run=False)["scene"]["id"]
+    assert client.get(f"/api/scenes/{without}/depth-key").status_code == 404

@@ -10,6 +10,7 @@ from fastapi.responses import FileResponse, Response
 from holiscene_schema import (
     MAX_REVISION,
     Conflict,
+    DepthKey,
     DepthPoints,
     EditRequest,
     ErrorMessage,
@@ -23,7 +24,7 @@ from holiscene_schema import (
 )
 
 from ...export.archive import file_stem
-from ...export.depth_preview import depth_preview_png
+from ...export.depth_preview import depth_preview_key, depth_preview_png
 from ...inputs import (
     InputError,
     InputFiles,
@@ -33,7 +34,13 @@ from ...inputs import (
     parse_detections,
     parse_intrinsics,
 )
-from ...inputs.depth import DEPTH_FILE, DepthMap, DepthUnits, read_depth_file
+from ...inputs.depth import (
+    DEPTH_FILE,
+    METRES_PER_UNIT,
+    DepthMap,
+    DepthUnits,
+    read_depth_file,
+)
 from ...learning.completion.scene_points import MAX_POINTS, scene_depth_points, stored_depth
 from ...store.scenes import SceneNotFoundError
 from ..deps import AnnotatorDep, UserDep, WorkbenchDep, author_of
@@ -160,6 +167,15 @@ def get_depth_preview(scene_id: str, workbench: WorkbenchDep) -> Response:
     """The depth as a colour picture to lay over the photo: near warm, far cool, and
     transparent where there is no depth."""
     return Response(depth_preview_png(_depth_file(workbench, scene_id)), media_type="image/png")
+
+
+@router.get("/{scene_id}/depth-key", response_model=DepthKey, responses=_ERRORS)
+def get_depth_key(scene_id: str, workbench: WorkbenchDep) -> DepthKey:
+    """The depth overlay's key: the near and far depths its colours span, and the colours."""
+    ref = workbench.scenes.document(scene_id).scene.depth
+    unit = ref.metres_per_unit if ref is not None else METRES_PER_UNIT
+    near, far, colours = depth_preview_key(_depth_file(workbench, scene_id), unit)
+    return DepthKey(near_m=round(near, 3), far_m=round(far, 3), colours=colours)
 
 
 def _to_tenth_mm(points: np.ndarray) -> list[list[float]]:
