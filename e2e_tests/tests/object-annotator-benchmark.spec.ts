@@ -12,8 +12,11 @@
 //   a corner of its box to the opposite one, and its class in the picker (a digit when the
 //   class is among the first nine lines, else a few letters typed, then Enter or a digit).
 // - Run 2 (suggestions): Shift+Y accepts every suggested box; a suggestion matching no true
-//   object is removed (click it, Delete), a wrong class changed (click, Shift+C, pick), and the
-//   objects the detector missed are drawn as in run 1.
+//   object is removed (click it, Delete), a wrong class changed (a click on the class in the
+//   object list, then the picker), and the objects the detector missed are drawn as in run 1.
+// - The picker lists first the classes the detector saw at the box (up to three, down to a
+//   score of 10%: classHints.ts), then the most used; so a digit picks most classes, even of
+//   a box drawn where the detector saw something too faintly to suggest it.
 // - Masks: the server cuts each new object's mask (GrabCut); when it overlaps the true mask by
 //   less than 0.5 the annotator refines it: K, one stroke over the object, then back.
 // - Supports: V (select), then as in the support benchmark: the first wrong arrow is clicked,
@@ -174,6 +177,8 @@ async function readTimer(page: Page, what: string): Promise<Timing> {
       )
       .map((e) => e.responseEnd);
     const answered = answers.length ? Math.max(...answers) : null;
+    // In a performance trace (HOLISCENE_TRACE_DIR), the redraw's span by the edit's name.
+    performance.measure(`redraw: ${what}`, { start: answered ?? start, end: dom });
     return {
       what,
       dom: dom - start,
@@ -493,6 +498,32 @@ async function finish(run: Annotator, name: string): Promise<Run> {
 // Tall enough for the whole photo under the detector's bar (a press below the window is lost).
 test.use({ viewport: { width: 1440, height: 1200 } });
 
+/**
+ * With HOLISCENE_TRACE_DIR set, record a Chromium performance trace of the run (JavaScript
+ * samples, layout and paint, each redraw's span as a user timing) into `<dir>/<name>.json`;
+ * returns the function that stops it.
+ */
+async function traceRun(page: Page, name: string): Promise<() => Promise<void>> {
+  const dir = process.env.HOLISCENE_TRACE_DIR;
+  const browser = page.context().browser();
+  if (!dir || !browser) return async () => {};
+  mkdirSync(dir, { recursive: true });
+  await browser.startTracing(page, {
+    path: path.join(dir, `${name}.json`),
+    categories: [
+      "devtools.timeline",
+      "disabled-by-default-devtools.timeline",
+      "disabled-by-default-v8.cpu_profiler",
+      "v8.execute",
+      "blink.user_timing",
+      "toplevel",
+    ],
+  });
+  return async () => {
+    await browser.stopTracing();
+  };
+}
+
 async function openPlainPhoto(page: Page, name: string) {
   const { scene, truth } = plainPhoto(SEED);
   const doc = await importSynthetic(page.request, scene, name);
@@ -511,6 +542,7 @@ async function openPlainPhoto(page: Page, name: string) {
 test("run 1: a plain photo annotated without suggestions", async ({ page }, testInfo) => {
   test.setTimeout(10 * 60_000);
   const { sceneId, truth } = await openPlainPhoto(page, `synth-${SEED} (annotated by hand)`);
+  const stopTrace = await traceRun(page, "by-hand");
   const run = new Annotator(page, sceneId, truth);
   if (await page.getByTestId("reject-all-suggestions").isVisible())
     await run.act("Reject all suggestions", () =>
@@ -523,6 +555,7 @@ test("run 1: a plain photo annotated without suggestions", async ({ page }, test
   }
   await waitForModel(page);
   await run.fixSupports();
+  await stopTrace();
   const row = await report(await finish(run, "by-hand"), testInfo);
   expectComplete(row, testInfo);
   expect(row.actions, "actions without suggestions").toBeLessThanOrEqual(ACTIONS_WITHOUT);
@@ -557,6 +590,7 @@ test("run 2: the same photo annotated from the detector's suggestions", async ({
   const previous = await useSyntheticDetector(page.request);
   test.info().annotations.push({ type: "detector", description: "the registry's NYU-40 head" });
   const { sceneId, truth } = await openPlainPhoto(page, `synth-${SEED} (from suggestions)`);
+  const stopTrace = await traceRun(page, "from-suggestions");
   const run = new Annotator(page, sceneId, truth);
   const suggested = await page.getByTestId("detector-suggestion").count();
   if (suggested > 0) {
@@ -580,12 +614,13 @@ test("run 2: the same photo annotated from the detector's suggestions", async ({
       () => page.keyboard.press("Delete"),
     );
   }
-  // Wrong classes: click, Shift+C, pick.
+  // Wrong classes: the class in the object list, then pick.
   for (const [truthId, id] of match) {
     const want = run.object(truthId).class;
     if (accepted.find((o) => o.id === id)?.class === want) continue;
-    await run.select(id);
-    await run.key("Shift+C", "Shift+C (class)");
+    await run.act(`click ${id}'s class in the list`, () =>
+      page.getByTestId(`object-class-${id}`).click(),
+    );
     await run.pickClass(want, {
       kind: "text",
       selector: `[data-testid="object-row-${id}"] .object-class`,
@@ -606,6 +641,7 @@ test("run 2: the same photo annotated from the detector's suggestions", async ({
   }
   await waitForModel(page);
   await run.fixSupports();
+  await stopTrace();
   const row = await report({ ...(await finish(run, "from-suggestions")), suggested }, testInfo);
   await promote(page.request, previous);
   expectComplete(row, testInfo);

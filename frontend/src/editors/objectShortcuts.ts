@@ -1,11 +1,13 @@
 // Keys for the selected object itself (in every photo tool): Delete removes it (its supports
-// go; undo brings everything back), Shift+C changes its class with the class picker.
+// go; undo brings everything back), Shift+C changes its class with the class picker (as the
+// class button of its line in the object list does).
 import type { SceneObject } from "@holiscene/schema";
 import { registerShortcut } from "../shortcuts";
 import { classKey } from "../state/classNames";
 import type { ObjectEditor } from "../state/objectEditor";
 import type { SceneSession } from "../state/sceneSession";
-import { pickClass } from "../views/scene/classPicker";
+import { classHints } from "../views/scene/classHints";
+import { type PickerOptions, pickClass } from "../views/scene/classPicker";
 import { objectName, screenRect } from "./boxes/boxEdits";
 
 export const REMOVE_OBJECT_KEYS = ["Delete"];
@@ -30,14 +32,23 @@ export async function removeSelected(editor: ObjectEditor): Promise<void> {
 
 /** Pick a new class for the selected object (near its box on `svg`). */
 export async function changeSelectedClass(editor: ObjectEditor, svg: SVGSVGElement): Promise<void> {
+  const object = selectedOrAsk(editor.session);
+  if (object) await changeClass(editor, object, screenRect(svg, object.bbox));
+}
+
+/** Pick a new class for `object` in the class picker shown beside `near` (client pixels). */
+export async function changeClass(
+  editor: ObjectEditor,
+  object: SceneObject,
+  near: PickerOptions["near"],
+): Promise<void> {
   const { session } = editor;
-  const object = selectedOrAsk(session);
-  if (!object) return;
   const cls = await pickClass({
-    near: screenRect(svg, object.bbox),
+    near,
     title: `Class of ${objectName(object)}`,
     objects: session.objects,
     current: object.class,
+    likely: classHints.at(session.sceneId, object.bbox),
   });
   if (!cls || classKey(cls) === object.class) return;
   await editor.apply(

@@ -1,9 +1,9 @@
-// The object list: each object's supporter and support type, editable (read only while the
-// scene is locked). Edits are staged in the session as undoable actions (shown at once on the
-// photo) and autosaved.
+// The object list: each object's class (a button that opens the class picker) and its
+// supporter and support type, editable (read only while the scene is locked). Support edits
+// are staged in the session as undoable actions (shown at once on the photo) and autosaved.
 import type { SceneObject } from "@holiscene/schema";
 import { STRUCTURAL_SUPPORTERS, SUPPORT_TYPES } from "@holiscene/schema";
-import { el } from "../dom";
+import { button, el } from "../dom";
 import type { SceneSession } from "../state/sceneSession";
 import {
   defaultType,
@@ -19,6 +19,9 @@ import { objectSource } from "./objectSource";
 import { supportSummary } from "./supportSummary";
 
 const NONE = "";
+
+/** Opens the class picker for an object, beside `anchor` (its class button). */
+export type ChangeClass = (object: SceneObject, anchor: HTMLElement) => void;
 
 interface Row {
   object: SceneObject;
@@ -54,8 +57,27 @@ function statusText(support: ShownSupport | undefined): string {
   return typeof confidence === "number" ? `auto · ${Math.round(confidence * 100)}%` : "auto";
 }
 
-function objectRow(object: SceneObject, session: SceneSession): Row {
+/** The object's class: a button opening the picker when classes can be changed here. */
+function classCell(object: SceneObject, changeClass: ChangeClass | undefined): HTMLElement {
+  const text = object.class.replaceAll("_", " ");
+  if (!changeClass) return el("span", { className: "object-class", text });
+  const cell: HTMLButtonElement = button(text, {
+    className: "object-class object-class-button",
+    testid: `object-class-${object.id}`,
+    title: "Change the class (Shift+C on the photo)",
+    attrs: { "aria-label": `Class of ${object.id}: ${text}; change it` },
+    onClick: () => changeClass(object, cell),
+  });
+  return cell;
+}
+
+function objectRow(
+  object: SceneObject,
+  session: SceneSession,
+  changeClass: ChangeClass | undefined,
+): Row {
   const id = object.id;
+  const cls = classCell(object, changeClass);
   const supporter = el("select", {
     testid: `supporter-select-${id}`,
     attrs: { "aria-label": `Supporter of ${id}` },
@@ -92,7 +114,7 @@ function objectRow(object: SceneObject, session: SceneSession): Row {
           attrs: { "data-swatch-of": id },
         }),
         el("span", { className: "object-id", text: id }),
-        el("span", { className: "object-class", text: object.class.replaceAll("_", " ") }),
+        cls,
         source.text &&
           el("span", {
             className: `object-source object-source--${source.kind}`,
@@ -139,6 +161,7 @@ function objectRow(object: SceneObject, session: SceneSession): Row {
     type.value = support?.type ?? defaultType(NONE);
     supporter.disabled = !session.editable;
     type.disabled = !support || !session.editable;
+    if (cls instanceof HTMLButtonElement) cls.disabled = !session.editable;
     for (const option of supporter.querySelectorAll("option")) {
       const candidate = option.value;
       const loops =
@@ -172,7 +195,11 @@ function structureRow(object: SceneObject): HTMLTableRowElement {
   );
 }
 
-export function mountSupportEditor(container: HTMLElement, session: SceneSession): () => void {
+export function mountSupportEditor(
+  container: HTMLElement,
+  session: SceneSession,
+  changeClass?: ChangeClass,
+): () => void {
   const summary = el("p", { className: "editor-summary", testid: "support-summary" });
   const body = el("tbody");
   container.replaceChildren(
@@ -203,7 +230,9 @@ export function mountSupportEditor(container: HTMLElement, session: SceneSession
     );
     if (key === builtFor) return;
     builtFor = key;
-    rows = session.objects.filter((o) => !isStructural(o.class)).map((o) => objectRow(o, session));
+    rows = session.objects
+      .filter((o) => !isStructural(o.class))
+      .map((o) => objectRow(o, session, changeClass));
     const structure = session.objects.filter((o) => isStructural(o.class)).map(structureRow);
     body.replaceChildren(...rows.map((r) => r.element), ...structure);
     paintSwatches();

@@ -1,6 +1,7 @@
 // What a finished box becomes: a new object (its class picked beside the box, then one
 // add_object edit; the server cuts its mask) or a moved or resized box (one set_bbox edit).
 // While an edit is on its way its box stays drawn (`sending`).
+import { classHints } from "../../views/scene/classHints";
 import { pickClass } from "../../views/scene/classPicker";
 import { type Box, type Grip, roundBox } from "../boxGeometry";
 import type { PhotoToolHost } from "../photoTools";
@@ -40,6 +41,7 @@ export class BoxEdits {
       near,
       title: "Class of the new object",
       objects: session.objects,
+      likely: classHints.at(session.sceneId, box),
     });
     if (!cls) {
       sending.delete(key);

@@ -1,10 +1,12 @@
 // The class picker: a small box near the pointer with a search field and the matching classes
-// (classRanking.ts), the most used first. Typing filters; ↑/↓ move; Enter or a click picks;
+// (classRanking.ts): the classes the detector saw at the box first (classHints.ts, with its
+// score), then the most used. Typing filters; ↑/↓ move; Enter or a click picks;
 // 1-9 pick the n-th line (class names have no digits); Esc or a click elsewhere cancels.
 // Picks are counted in this browser (with the scene's own objects) to order the list.
 import type { SceneObject } from "@holiscene/schema";
 import { el } from "../../dom";
 import { classKey } from "../../state/classNames";
+import type { LikelyClass } from "./classHints";
 import { keepInView, optionItem, placeBeside } from "./classPickerParts";
 import { CLASS_OPTIONS, type ClassOption, rankClasses } from "./classRanking";
 import "./classPicker.css";
@@ -45,6 +47,8 @@ export interface PickerOptions {
   objects: readonly SceneObject[];
   /** The class now (listed first when nothing is typed). */
   current?: string;
+  /** Classes the detector saw at the box, most likely first (listed next, with their score). */
+  likely?: readonly LikelyClass[];
 }
 
 let closeOpen: (() => void) | null = null;
@@ -90,9 +94,19 @@ export function pickClass(options: PickerOptions): Promise<string | null> {
   );
   let shown: ClassOption[] = [];
   let active = 0;
+  const likely = options.likely ?? [];
+  const detectorNote = (cls: string) => {
+    const hint = likely.find((l) => l.cls === cls);
+    return hint ? `detector ${Math.round(hint.score * 100)}%` : null;
+  };
 
   const draw = () => {
-    shown = rankClasses(input.value, uses);
+    shown = rankClasses(
+      input.value,
+      uses,
+      12,
+      likely.map((l) => l.cls),
+    );
     if (!input.value.trim() && options.current) {
       const current = options.current;
       shown = [
@@ -101,7 +115,11 @@ export function pickClass(options: PickerOptions): Promise<string | null> {
       ];
     }
     active = Math.min(active, Math.max(0, shown.length - 1));
-    list.replaceChildren(...shown.map((option, i) => optionItem(option, i, i === active, finish)));
+    list.replaceChildren(
+      ...shown.map((option, i) =>
+        optionItem(option, i, i === active, finish, detectorNote(option.cls)),
+      ),
+    );
     if (shown.length === 0) {
       list.append(
         el("li", { className: "class-picker-none", text: `No class matches "${input.value}"` }),

@@ -3,12 +3,16 @@
 import { el } from "../../dom";
 import type { ClassOption } from "./classRanking";
 
-/** The list's line of an option: its key (1-9), name, and the class an alias stands for. */
+/**
+ * The list's line of an option: its key (1-9), name, the class an alias stands for, and a note
+ * (the detector's score for the class at the box).
+ */
 export function optionItem(
   option: ClassOption,
   index: number,
   active: boolean,
   onPick: (name: string) => void,
+  note: string | null = null,
 ): HTMLLIElement {
   return el(
     "li",
@@ -36,6 +40,7 @@ export function optionItem(
           text: `→ ${option.cls.replaceAll("_", " ")}`,
         })
       : null,
+    note ? el("span", { className: "class-picker-note", text: note }) : null,
   );
 }
 

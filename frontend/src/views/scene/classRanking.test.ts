@@ -39,4 +39,18 @@ describe("rankClasses", () => {
     // Aliases of a used class rank with it.
     expect(names("s", new Map([["chair", 3]]), 3)).toEqual(["seat", "sofa_chair", "stool"]);
   });
+
+  it("puts the classes the detector saw at the box after the match, before the most used", () => {
+    const uses = new Map([["chair", 5]]);
+    expect(rankClasses("", uses, 3, ["lamp", "desk"]).map((o) => o.name)).toEqual([
+      "lamp",
+      "desk",
+      "chair",
+    ]);
+    // Typing still decides first: a hinted class that does not match is not listed, but an
+    // alias of it that matches is, with the hint's rank.
+    const typed = rankClasses("b", uses, 100, ["lamp", "books"]).map((o) => o.name);
+    expect(typed).not.toContain("lamp");
+    expect(typed.slice(0, 2)).toEqual(["bedside_lamp", "books"]);
+  });
 });

@@ -1,6 +1,7 @@
 // What the class picker lists for what was typed: the NYU-40 classes (room structure aside:
 // the layout gives walls, floor and ceiling) and the names other datasets use for them, best
-// match first (the whole name, its start, a word's start, anywhere), then the most used.
+// match first (the whole name, its start, a word's start, anywhere), then the classes the
+// detector saw at the box (classHints.ts), then the most used.
 import { CLASS_ALIASES, NYU40_CLASSES, STRUCTURAL_SUPPORTERS } from "@holiscene/schema";
 import { classKey } from "../../state/classNames";
 
@@ -31,18 +32,22 @@ function matchRank(name: string, query: string): number | null {
 }
 
 /**
- * The options matching `query`, best first: by match, then by use (`uses`: picks or objects per
- * NYU-40 class), then classes before aliases, then in the vocabulary's order.
+ * The options matching `query`, best first: by match, then in the order of `likely` (NYU-40
+ * classes the detector saw at the box, most likely first), then by use (`uses`: picks or
+ * objects per NYU-40 class), then classes before aliases, then in the vocabulary's order.
  */
 export function rankClasses(
   query: string,
   uses: ReadonlyMap<string, number>,
   limit = 12,
+  likely: readonly string[] = [],
 ): ClassOption[] {
   const key = classKey(query);
+  const hinted = new Map(likely.map((cls, i) => [cls, i]));
   const scored: {
     option: ClassOption;
     rank: number;
+    hint: number;
     used: number;
     alias: number;
     index: number;
@@ -53,10 +58,16 @@ export function rankClasses(
     const alias = option.name === option.cls ? 0 : 1;
     // With nothing typed, only the classes: the aliases would just repeat them.
     if (key === "" && alias) return;
-    scored.push({ option, rank, used: uses.get(option.cls) ?? 0, alias, index });
+    const hint = hinted.get(option.cls) ?? likely.length;
+    scored.push({ option, rank, hint, used: uses.get(option.cls) ?? 0, alias, index });
   });
   scored.sort(
-    (a, b) => a.rank - b.rank || b.used - a.used || a.alias - b.alias || a.index - b.index,
+    (a, b) =>
+      a.rank - b.rank ||
+      a.hint - b.hint ||
+      b.used - a.used ||
+      a.alias - b.alias ||
+      a.index - b.index,
   );
   return scored.slice(0, limit).map((s) => s.option);
 }

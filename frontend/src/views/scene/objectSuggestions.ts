@@ -9,6 +9,7 @@ import type { ObjectEditor } from "../../state/objectEditor";
 import { plural, type SceneSession } from "../../state/sceneSession";
 import { isStructural } from "../../state/supportGraph";
 import { frameFor } from "../photo/arrowGeometry";
+import { classHints } from "./classHints";
 import { type Offer, offerLabel } from "./detectionOffers";
 import { addingText, addOffers } from "./suggestions/addOffers";
 import { type DetectorBarActions, detectorBar } from "./suggestions/detectorBar";
@@ -96,6 +97,7 @@ export function mountObjectSuggestions(
       });
       if (disposed) return;
       state.reset(run.boxes);
+      classHints.set(session.sceneId, run.seen);
       busy = null;
       say(foundText(state.found, shown().length, run));
     } catch (error) {

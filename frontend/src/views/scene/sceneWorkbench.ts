@@ -6,7 +6,7 @@ import { mountBoxTool } from "../../editors/boxTool";
 import { mountEdgeInfo } from "../../editors/edgeInfo";
 import { mountLayoutEditing } from "../../editors/layoutEditor";
 import { mountMaskTools } from "../../editors/maskTools";
-import { mountObjectShortcuts } from "../../editors/objectShortcuts";
+import { changeClass, mountObjectShortcuts } from "../../editors/objectShortcuts";
 import { mountSaveBar } from "../../editors/saveBar";
 import { mountSupportEditor } from "../../editors/supportEditor";
 import { mountSupportShortcuts } from "../../editors/supportShortcuts";
@@ -83,7 +83,9 @@ export function mountSceneWorkbench(
     mountScene3d(scene3d.body, session, layout.draft),
     mountPlacementNotice(scene3d.element, scene3d.body, session),
     mountSaveBar(saveBar, session, objectEditor),
-    mountSupportEditor(table, session),
+    mountSupportEditor(table, session, (object, anchor) => {
+      void changeClass(objectEditor, object, anchor.getBoundingClientRect());
+    }),
     mountSupportSuggestions(suggestions, table, session),
     mountRevisionHistory(history, session),
     mountWorkflowBar(workflow, session),

@@ -2,14 +2,18 @@
 // what it found.
 import { api } from "../../../api/client";
 import { activeDetector, detectorModel } from "../../../inference/detector";
-import type { DetectedBox } from "../../../inference/detectorTensor";
+import { type DetectedBox, SCORE_THRESHOLD } from "../../../inference/detectorTensor";
 import { photoPixels } from "../../../inference/supportSuggestions";
 import { plural } from "../../../state/sceneSession";
+import { HINT_SCORE } from "../classHints";
 
 const MB = (bytes: number) => `${(bytes / 1e6).toFixed(1)} MB`;
 
 export interface DetectorRun {
+  /** The boxes to offer (the model's score threshold). */
   boxes: DetectedBox[];
+  /** Every box down to HINT_SCORE, for the class picker's hints (the offers among them). */
+  seen: DetectedBox[];
   /** Loading the detector (about nothing once its session exists), milliseconds. */
   loadMs: number;
   /** Reading the photo and detecting, milliseconds. */
@@ -36,8 +40,15 @@ export async function runDetector(
   const loaded = performance.now();
   detecting();
   const pixels = await photoPixels(api.imageUrl(sceneId));
-  const result = await model.detect(pixels);
-  return { boxes: result.boxes, loadMs: loaded - start, runMs: performance.now() - loaded };
+  // One decoding at the hints' score: its boxes above the threshold are exactly the offers
+  // (the per-class suppression only ever drops a box for a better one).
+  const result = await model.detect(pixels, HINT_SCORE);
+  return {
+    boxes: result.boxes.filter((b) => b.score >= SCORE_THRESHOLD),
+    seen: result.boxes,
+    loadMs: loaded - start,
+    runMs: performance.now() - loaded,
+  };
 }
 
 /** What the run found, for the status line: `found` boxes, `open` of them not labelled yet. */
