@@ -74,6 +74,7 @@ interface Probe {
   objectColour(id: string): number[] | null;
   renderInfo(): { calls: number; triangles: number; width: number; height: number };
   orbit(azimuth: number): void;
+  depthPoints(): { shown: boolean; partial: number[]; completed: number[] } | null;
 }
 
 /** Evaluate a function of the 3D view's probe in the page. */

@@ -1,5 +1,7 @@
 // Typed client of the HoliScene HTTP API (served by `holiscene serve` under /api).
 import type {
+  DepthKey,
+  DepthPoints,
   EditRequest,
   ImportResult,
   Job,
@@ -111,6 +113,14 @@ export const api = {
 
   /** The depth given with the photo as a colour picture of its size (scenes with depth). */
   depthPreviewUrl: (sceneId: string) => `${BASE}${sceneUrl(sceneId)}/depth-preview.png`,
+
+  /** The depth overlay's key: the depths its colours span, and the colours near to far. */
+  depthKey: (sceneId: string, signal?: AbortSignal) =>
+    request<DepthKey>(`${sceneUrl(sceneId)}/depth-key`, { signal }),
+
+  /** Each object's partial and completed points from the depth (scenes with depth). */
+  depthPoints: (sceneId: string, revision: number, signal?: AbortSignal) =>
+    request<DepthPoints>(`${sceneUrl(sceneId)}/depth-points?revision=${revision}`, { signal }),
 
   glbUrl: (sceneId: string, revision: number) =>
     `${BASE}${sceneUrl(sceneId)}/scene.glb?revision=${revision}`,

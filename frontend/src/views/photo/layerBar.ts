@@ -32,7 +32,11 @@ function legend(): HTMLElement {
   );
 }
 
-export function layerBar(layers: PhotoLayers): { element: HTMLElement; dispose(): void } {
+/** `onDepth` hears when the depth overlay is shown or hidden (its key follows it). */
+export function layerBar(
+  layers: PhotoLayers,
+  onDepth?: (on: boolean) => void,
+): { element: HTMLElement; dispose(): void } {
   const setLayer = (layer: SVGGElement) => (on: boolean) => {
     layer.style.display = on ? "" : "none";
   };
@@ -51,7 +55,18 @@ export function layerBar(layers: PhotoLayers): { element: HTMLElement; dispose()
   );
   const styleControls = maskStyleControls();
   // Off at first: the depth hides the photo's colours.
-  const depth = layers.depth && toggle("Depth", "toggle-depth", setLayer(layers.depth), false);
+  const showDepth = layers.depth && setLayer(layers.depth);
+  const depth =
+    showDepth &&
+    toggle(
+      "Depth",
+      "toggle-depth",
+      (on) => {
+        showDepth(on);
+        onDepth?.(on);
+      },
+      false,
+    );
   const element = el(
     "div",
     { className: "photo-toolbar" },

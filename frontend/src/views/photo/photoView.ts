@@ -1,6 +1,7 @@
 // The photo with its overlays: masks, support arrows, labels; hover and click pick objects.
 // Its parts: photoSvg (the photo and its layers), layerBar (layer toggles, mask style, legend),
-// photoOverlays (what the layers show), photoZoom, and the editors' tools on the photo.
+// photoOverlays (what the layers show), photoZoom, depthKey (the depth overlay's colours), and
+// the editors' tools on the photo.
 import { el } from "../../dom";
 import { mountArrowEditing } from "../../editors/arrowEditing";
 import { mountObjectEditBar } from "../../editors/objectEditBar";
@@ -8,6 +9,7 @@ import { mountPhotoTools, type PhotoTools } from "../../editors/photoTools";
 import type { ObjectEditor } from "../../state/objectEditor";
 import type { SceneSession } from "../../state/sceneSession";
 import { strokeWidth } from "./arrowGeometry";
+import { depthKey } from "./depthKey";
 import { layerBar } from "./layerBar";
 import { maskStyle } from "./maskStyle";
 import { PhotoOverlays } from "./photoOverlays";
@@ -28,12 +30,13 @@ export function mountPhotoView(
   const { width, height } = session.doc.scene.image;
   const { svg, layers, frame, status } = photoSvg(session);
   const m = frame.margin;
-  const layersBar = layerBar(layers);
+  const key = layers.depth ? depthKey(session.sceneId) : null;
+  const layersBar = layerBar(layers, key?.show);
   const toolbar = el("div", { className: "photo-toolbar", testid: "photo-tools" });
   container.replaceChildren(
     toolbar,
     layersBar.element,
-    el("div", { className: "photo-box" }, svg),
+    el("div", { className: "photo-box" }, svg, key?.element),
     status,
   );
   const overlays = new PhotoOverlays(svg, layers, frame, session);
@@ -101,6 +104,7 @@ export function mountPhotoView(
       stopStyle();
       stopEditing();
       layersBar.dispose();
+      key?.dispose();
     },
   };
 }

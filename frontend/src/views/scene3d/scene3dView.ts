@@ -7,6 +7,7 @@ import * as THREE from "three";
 import { api } from "../../api/client";
 import type { LayoutDraft } from "../../state/layoutDraft";
 import type { SceneSession } from "../../state/sceneSession";
+import { mountDepthPoints } from "./depthPoints";
 import { downloadCanvasPng, pngFileName } from "./pngExport";
 import { ViewportCamera } from "./viewportCamera";
 import { buildViewportDom } from "./viewportDom";
@@ -18,8 +19,9 @@ import { createRenderer, type FrameStats, ViewportRender } from "./viewportRende
 
 // Its parts, one file each: viewportDom (toolbar, canvas, status line), viewportRender (frames
 // on demand), viewportCamera (orbit, overview, photo viewpoint), viewportLive (room, frustum,
-// arrows), viewportObjects (the GLB's objects), viewportPicking (hover and click), and
-// viewportProbe (what end-to-end tests read).
+// arrows), viewportObjects (the GLB's objects), viewportPicking (hover and click), depthPoints
+// (each object's points from the depth, for scenes with depth), and viewportProbe (what
+// end-to-end tests read).
 export type { ProbedCanvas, Scene3dProbe } from "./viewportDom";
 
 export function mountScene3d(
@@ -86,7 +88,26 @@ export function mountScene3d(
     },
   });
   const picking = new ViewportPicking(canvas, view.camera, () => objects.model);
-  canvas.scene3dProbe = scene3dProbe({ stats, renderer, frames, view, live, objects, picking });
+  const depthPoints = session.doc.scene.depth
+    ? mountDepthPoints({
+        scene,
+        session,
+        toolbar: dom.extras,
+        viewport: dom.viewport,
+        objects,
+        requestRender,
+      })
+    : null;
+  canvas.scene3dProbe = scene3dProbe({
+    stats,
+    renderer,
+    frames,
+    view,
+    live,
+    objects,
+    picking,
+    depthPoints: depthPoints?.clouds ?? null,
+  });
 
   dom.overviewButton.addEventListener("click", view.overview);
   dom.photoViewButton.addEventListener("click", () =>
@@ -111,6 +132,7 @@ export function mountScene3d(
     else if (change === "document") {
       showLive();
       if (objects.stale) void objects.load();
+      depthPoints?.refresh();
     }
   });
   // The layout draft is updated before the session announces a change: SceneSession hands a
@@ -125,6 +147,7 @@ export function mountScene3d(
     unsubscribe();
     unsubscribeLayout();
     objects.dispose();
+    depthPoints?.dispose();
     frames.dispose();
     view.dispose();
     live.dispose();

@@ -10,6 +10,8 @@ import { classHex, type Rgb, rgbHex } from "../classColors";
 import { BakedGeometry, type BakedPart, solidWinding } from "./bakedMesh";
 
 const FLOOR_COLOUR = 0xb9b4aa;
+/** The objects' opacity while drawn see-through (the depth points shown). */
+const SEE_THROUGH_OPACITY = 0.3;
 /** What a selected or hovered object emits on top of its lit colour (it glows). */
 const HIGHLIGHT = new THREE.Color(0x555555);
 
@@ -132,6 +134,16 @@ export class SceneModel {
       if (classOf.has(at.name) || isRoomSurface(at.name)) return at.name;
     }
     return null;
+  }
+
+  /** Draw the objects see-through (so points on their surfaces show), or solid again. */
+  setSeeThrough(on: boolean): void {
+    for (const material of [this.materials.solids, this.materials.others]) {
+      material.transparent = on;
+      material.opacity = on ? SEE_THROUGH_OPACITY : 1;
+      material.depthWrite = !on;
+      material.needsUpdate = true;
+    }
   }
 
   /** Show or hide the GLB's own room (the view draws the layout's room itself when known). */

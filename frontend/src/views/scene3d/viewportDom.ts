@@ -25,6 +25,9 @@ export interface Scene3dProbe {
   renderInfo(): { calls: number; triangles: number; width: number; height: number };
   /** Turn the view about the orbit target, as a horizontal drag does (radians). */
   orbit(azimuth: number): void;
+  /** The depth points drawn (flat x, y, z, world frame), null for a scene without depth;
+   * `shown`: whether they are drawn now. */
+  depthPoints(): { shown: boolean; partial: number[]; completed: number[] } | null;
 }
 
 export type ProbedCanvas = HTMLCanvasElement & { scene3dProbe?: Scene3dProbe };
@@ -36,6 +39,8 @@ export interface ViewportDom {
   overviewButton: HTMLButtonElement;
   photoViewButton: HTMLButtonElement;
   exportButton: HTMLButtonElement;
+  /** Where the view's own controls go (the depth points' checkbox), after the hint. */
+  extras: HTMLElement;
   /** Says the view's state on the panel and the canvas (data-status) and in the status line. */
   setStatus(state: Scene3dStatus, text: string): void;
 }
@@ -56,11 +61,13 @@ export function buildViewportDom(container: HTMLElement): ViewportDom {
   const photoViewButton = viewButton("Photo viewpoint", "scene3d-photo-view");
   const exportButton = viewButton("Export PNG", "scene3d-export");
   const viewport = el("div", { className: "scene3d-viewport" }, canvas, status);
+  const extras = el("span", { className: "toolbar-extras" });
   container.replaceChildren(
     el(
       "div",
       { className: "panel-toolbar" },
       el("span", { className: "hint", text: "Drag to orbit, right-drag to pan, scroll to zoom" }),
+      extras,
       el("span", { className: "spacer" }),
       overviewButton,
       photoViewButton,
@@ -74,5 +81,5 @@ export function buildViewportDom(container: HTMLElement): ViewportDom {
     status.textContent = text;
     status.hidden = text === "";
   };
-  return { canvas, viewport, overviewButton, photoViewButton, exportButton, setStatus };
+  return { canvas, viewport, overviewButton, photoViewButton, exportButton, extras, setStatus };
 }

@@ -31,6 +31,8 @@ export class ViewportObjects {
   private loadedGlb = "";
   private readonly abort = new AbortController();
   private readonly stopColours: () => void;
+  /** Whether the objects are drawn see-through (kept for the next GLB). */
+  private seeThrough = false;
 
   constructor(private readonly inputs: ViewportObjectsInputs) {
     this.stopColours = maskStyle.subscribe(() => {
@@ -87,10 +89,18 @@ export class ViewportObjects {
       this.model.dispose();
     }
     this.model = loaded;
+    loaded.setSeeThrough(this.seeThrough);
     scene.add(loaded.view);
     canvas.dataset.revision = String(doc.revision);
     this.highlight();
     this.inputs.onShown(first);
+  }
+
+  /** Draw the objects see-through, or solid again. */
+  setSeeThrough(on: boolean): void {
+    this.seeThrough = on;
+    this.model?.setSeeThrough(on);
+    this.inputs.requestRender();
   }
 
   /** Brighten the hovered and the selected object. */

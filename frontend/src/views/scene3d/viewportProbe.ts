@@ -1,6 +1,7 @@
 // The end-to-end tests' window into the 3D view (Scene3dProbe): read from the view's parts.
 
 import type * as THREE from "three";
+import type { DepthPointClouds } from "./depthPoints";
 import type { ViewportCamera } from "./viewportCamera";
 import type { Scene3dProbe } from "./viewportDom";
 import type { LiveLayers } from "./viewportLive";
@@ -16,10 +17,11 @@ export interface ProbeInputs {
   live: LiveLayers;
   objects: ViewportObjects;
   picking: ViewportPicking;
+  depthPoints: DepthPointClouds | null;
 }
 
 export function scene3dProbe(inputs: ProbeInputs): Scene3dProbe {
-  const { stats, renderer, frames, view, live, objects, picking } = inputs;
+  const { stats, renderer, frames, view, live, objects, picking, depthPoints } = inputs;
   return {
     get frames() {
       return stats.frames;
@@ -35,6 +37,12 @@ export function scene3dProbe(inputs: ProbeInputs): Scene3dProbe {
     screenPointOf: (id) => picking.screenPointOf(id),
     objectColour: (id) => objects.model?.colourOf(id)?.toArray() ?? null,
     orbit: (azimuth) => view.orbit(azimuth),
+    depthPoints: () =>
+      depthPoints && {
+        shown: depthPoints.root.visible,
+        partial: depthPoints.positions("partial"),
+        completed: depthPoints.positions("completed"),
+      },
     renderInfo: () => ({
       calls: renderer.info.render.calls,
       triangles: renderer.info.render.triangles,
