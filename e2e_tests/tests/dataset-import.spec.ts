@@ -5,7 +5,8 @@
 import { execFileSync } from "node:child_process";
 import { mkdirSync } from "node:fs";
 import path from "node:path";
-import { expect, type Page, test } from "@playwright/test";
+import { expect, test } from "@playwright/test";
+import { importZip } from "../helpers/datasetImport";
 import { scratchDir } from "../helpers/scratch";
 
 const REAL = path.resolve(import.meta.dirname, "../../../shared/data/real");
@@ -53,13 +54,6 @@ function cocoZips(): { coco: string; broken: string } {
   ]);
   execFileSync(path.join(VENV, "python"), ["-c", ZIP_EXPORT, exported, dir]);
   return { coco: path.join(dir, "coco.zip"), broken: path.join(dir, "broken.zip") };
-}
-
-async function importZip(page: Page, zip: string): Promise<void> {
-  await page.getByTestId("dataset-import-file").setInputFiles(zip);
-  await page.getByTestId("dataset-import-pipeline").uncheck();
-  await page.getByTestId("dataset-import-submit").click();
-  await expect(page.getByTestId("dataset-import-summary")).toBeVisible({ timeout: 60_000 });
 }
 
 test("a COCO zip imports from the scene list, naming the photo that did not", async ({ page }) => {

@@ -1,12 +1,13 @@
 // User story: an annotator takes a scene out of the workbench: from the scene page its
 // scene.json, scene.glb and the photo's objects as COCO JSON; from the list, several scenes
-// at once as one zip.
+// at once as one zip, which "Import a dataset" (here or on another server) takes back.
 import { mkdirSync, readFileSync } from "node:fs";
 import path from "node:path";
-import type { ImportResult, Scene } from "@holiscene/schema";
+import type { ImportResult, Scene, SceneSummary } from "@holiscene/schema";
 import type { Download, Page } from "@playwright/test";
 import { expect, test } from "@playwright/test";
 import { getScene, seedScene, T3D_5 } from "../helpers/api";
+import { importZip } from "../helpers/datasetImport";
 import { openScene } from "../helpers/photo";
 import { readZip } from "../helpers/zip";
 
@@ -162,6 +163,34 @@ test("the list downloads the selected scenes as one zip", async ({ page }) => {
   expect(glb?.subarray(0, 4).toString()).toBe("glTF");
   expect(files.has(`${unplacedEntry?.folder}/scene.glb`)).toBe(false);
   expect([...files.keys()].some((name) => name.includes(other))).toBe(false);
+
+  // The zip as it came goes back in through "Import a dataset": a scene per folder, named
+  // after it, with the same objects, supports and room; a second time it adds nothing.
+  const zip = { name: "holiscene-2-scenes.zip", mimeType: "application/zip" };
+  await importZip(page, { ...zip, buffer: await contents(download) });
+  const summary = page.getByTestId("dataset-import-summary");
+  await expect(summary).toContainText(
+    "holiscene-2-scenes.zip: 2 photos imported, 0 skipped as imported before, 0 not imported.",
+  );
+  const listed = (await (await page.request.get("/api/scenes")).json()) as SceneSummary[];
+  for (const entry of index.scenes) {
+    const copy = listed.find((s) => s.name === entry.folder);
+    if (!copy) throw new Error(`no scene named ${entry.folder}`);
+    const [back, saved] = await Promise.all(
+      [copy.id, entry.scene_id].map(async (id) => (await getScene(page.request, id)).scene),
+    );
+    expect(back?.objects.map((o) => [o.class, o.bbox])).toEqual(
+      saved?.objects.map((o) => [o.class, o.bbox]),
+    );
+    expect(back?.supports.map((s) => [s.child, s.parent, s.type, s.source])).toEqual(
+      saved?.supports.map((s) => [s.child, s.parent, s.type, s.source]),
+    );
+    expect(back?.layout).toEqual(saved?.layout);
+  }
+  await importZip(page, { ...zip, buffer: await contents(download) });
+  await expect(summary).toContainText(
+    "holiscene-2-scenes.zip: 0 photos imported, 2 skipped as imported before, 0 not imported.",
+  );
 
   // "Select all" ticks every listed scene; unticking it clears them.
   await page.getByTestId("select-all-scenes").check();

@@ -94,3 +94,6 @@ def test_an_export_imports_back_to_the_same_labels(
         assert again.K is not None
         assert np.allclose(again.K, stored.camera.K, atol=1e-5)  # type: ignore[union-attr]
         assert again.ground_truth == inputs.ground_truth
+    if fmt == "scene":  # scene.json beside the photo gives the room and camera back as stored
+        assert stored.layout.corners_3d is not None
+        assert back.layout == stored.layout and back.camera == stored.camera

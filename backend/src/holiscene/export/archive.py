@@ -1,5 +1,7 @@
 """Several scenes as one zip: a folder per scene with what a tool outside the workbench
-needs (scene.json as `holiscene infer` writes it, coco.json, the photo, scene.glb)."""
+needs (scene.json as `holiscene infer` writes it, coco.json, the photo, scene.glb), which is
+also an input folder (detections.json, supports.json, ...: export/input_folder.py), so the
+zip imports back (`holiscene import`, POST /api/imports) to the same labels."""
 
 from __future__ import annotations
 
@@ -13,7 +15,10 @@ from typing import TYPE_CHECKING, Any
 
 from holiscene_schema import Scene
 
+from ..inputs.datasets import ARCHIVE_INDEX  # the zip's list of folders, not LabelMe's
+from ..inputs.depth import DEPTH_FILE
 from .coco import coco_instances
+from .input_folder import given_intrinsics, label_files
 
 if TYPE_CHECKING:
     from ..store.scenes import SceneStore
@@ -42,6 +47,7 @@ class ArchivedScene:
     photo: Path
     glb: Path | None
     ground_truth: Path | None = None  # gt.json, for a scene imported with ground truth
+    depth: Path | None = None  # depth.png, for a scene with depth
 
 
 def archived_scene(scenes: SceneStore, scene_id: str) -> ArchivedScene:
@@ -49,6 +55,7 @@ def archived_scene(scenes: SceneStore, scene_id: str) -> ArchivedScene:
     document = scenes.document(scene_id)
     glb = scenes.glb_path(scene_id)
     truth = scenes.files.ground_truth_path(scene_id)
+    depth = scenes.files.folder(scene_id) / DEPTH_FILE
     return ArchivedScene(
         scene_id=scene_id,
         revision=document.revision,
@@ -56,6 +63,7 @@ def archived_scene(scenes: SceneStore, scene_id: str) -> ArchivedScene:
         photo=scenes.image_path(scene_id),
         glb=glb if glb is not None and glb.is_file() else None,
         ground_truth=truth if truth.is_file() else None,
+        depth=depth if document.scene.depth is not None and depth.is_file() else None,
     )
 
 
@@ -64,8 +72,9 @@ def coco_description(scene_id: str, revision: int, scene: Scene) -> str:
 
 
 def scenes_zip(scenes: list[ArchivedScene]) -> bytes:
-    """The zip: `<name>-<id>/scene.json`, `coco.json`, the photo, and `scene.glb` when the
-    scene has one; `index.json` lists the folders with their scene id and revision."""
+    """The zip: `<name>-<id>/scene.json`, `coco.json`, the photo, `scene.glb` when the
+    scene has one, and the input folder's label files; `index.json` lists the folders with
+    their scene id and revision."""
     buffer = io.BytesIO()
     index: list[dict[str, Any]] = []
     with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_DEFLATED) as archive:
@@ -74,6 +83,8 @@ def scenes_zip(scenes: list[ArchivedScene]) -> bytes:
             description = coco_description(item.scene_id, item.revision, item.scene)
             archive.writestr(f"{folder}/scene.json", scene_json(item.scene))
             archive.writestr(f"{folder}/coco.json", coco_json(item.scene, description))
+            for name, data in label_files(item, K=given_intrinsics(item.scene)).items():
+                archive.writestr(f"{folder}/{name}", data)
             # Photos and GLBs are compressed already.
             archive.write(item.photo, f"{folder}/{item.scene.image.file}", zipfile.ZIP_STORED)
             if item.glb is not None:
@@ -86,5 +97,5 @@ def scenes_zip(scenes: list[ArchivedScene]) -> bytes:
                     "has_glb": item.glb is not None,
                 }
             )
-        archive.writestr("index.json", json.dumps({"scenes": index}, indent=1) + "\n")
+        archive.writestr(ARCHIVE_INDEX, json.dumps({"scenes": index}, indent=1) + "\n")
     return buffer.getvalue()

@@ -12,7 +12,7 @@ from pathlib import Path
 from ..core.atomic_files import write_atomic
 from .archive import ArchivedScene, file_stem, scene_json
 from .coco import coco_dataset
-from .input_folder import write_labels
+from .input_folder import given_intrinsics, write_labels
 from .nyu_supports import write_nyu_supports
 from .relation_training import write_relation_training
 from .total3d import write_total3d
@@ -53,16 +53,14 @@ def write_coco(chosen: list[ArchivedScene], out: Path) -> None:
 
 def write_scene_folders(chosen: list[ArchivedScene], out: Path) -> None:
     """DIR/<scene name>/: scene.json, the photo, and scene.glb when the scene has one; and
-    detections.json, supports.json, cam_K.txt (for intrinsics given with the photo) and
-    gt.json (for a scene imported with ground truth), so the folder is an input folder that
-    imports back to the same objects, supports and ground truth."""
+    detections.json, supports.json, cam_K.txt (for intrinsics given with the photo), gt.json
+    (for a scene imported with ground truth) and depth.png, so the folder is an input folder
+    that imports back to the same objects, supports, room layout and ground truth."""
     for item, stem in zip(chosen, unique_stems(chosen), strict=True):
         folder = out / stem
         folder.mkdir(exist_ok=True)
         write_atomic(folder / "scene.json", scene_json(item.scene))
-        camera = item.scene.camera
-        given_K = camera.K if camera is not None and camera.K_source == "given" else None
-        write_labels(item, folder, K=given_K)
+        write_labels(item, folder, K=given_intrinsics(item.scene))
         shutil.copyfile(item.photo, folder / item.scene.image.file)
         if item.glb is not None:
             shutil.copyfile(item.glb, folder / "scene.glb")

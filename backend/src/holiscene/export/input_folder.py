@@ -1,20 +1,24 @@
 """A stored scene's labels as the files of an input folder (docs/importing.md), so that
-`holiscene import` reads an exported folder back into the same objects, supports and ground
-truth: detections.json (each object's box, class, name as imported and mask, in the scene's
-order), supports.json (over those boxes by position), cam_K.txt and gt.json."""
+`holiscene import` reads an exported folder (or the app's "Download selected" zip) back into
+the same objects, supports and ground truth: detections.json (each object's box, class, name
+as imported and mask, in the scene's order), supports.json (over those boxes by position),
+cam_K.txt, gt.json and depth.png."""
 
 from __future__ import annotations
 
 import json
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene
 
 from ..core.atomic_files import write_atomic
-from .archive import ArchivedScene
+from ..inputs.depth import DEPTH_FILE
+
+if TYPE_CHECKING:  # archive.py builds its zip from label_files
+    from .archive import ArchivedScene
 
 
 def detections_items(scene: Scene, class_name: Callable[[str], str] = str) -> list[dict[str, Any]]:
@@ -32,7 +36,8 @@ def detections_items(scene: Scene, class_name: Callable[[str], str] = str) -> li
 
 def supports_items(scene: Scene) -> list[dict[str, Any]]:
     """supports.json's items: child and parent as positions in detections.json (a parent may
-    be floor, wall or ceiling), with the author of a person's label."""
+    be floor, wall or ceiling), with the author of a person's label, or source "auto" and the
+    confidence of the pipeline's guess."""
     position = {obj.id: index for index, obj in enumerate(scene.objects)}
     items = []
     for support in scene.supports:
@@ -44,6 +49,10 @@ def supports_items(scene: Scene) -> list[dict[str, Any]]:
         }
         if support.source == "manual" and support.author:
             item["author"] = support.author
+        if support.source == "auto":  # a guess imports as a guess, not as a person's label
+            item["source"] = "auto"
+            if support.confidence is not None:
+                item["confidence"] = support.confidence
         items.append(item)
     return items
 
@@ -53,16 +62,36 @@ def intrinsics_text(K: np.ndarray | list[list[float]]) -> str:
     return "\n".join(" ".join(f"{v:.6f}" for v in row) for row in np.asarray(K)) + "\n"
 
 
+def given_intrinsics(scene: Scene) -> list[list[float]] | None:
+    """The scene's K when it came with the photo (cam_K.txt); an assumed one is not written,
+    so an import assumes it again rather than taking it as measured."""
+    camera = scene.camera
+    return camera.K if camera is not None and camera.K_source == "given" else None
+
+
+def label_files(
+    item: ArchivedScene, class_name: Callable[[str], str] = str, K: Any = None
+) -> dict[str, bytes]:
+    """The input folder's files besides the photo, by name: detections.json and supports.json
+    of the scene, cam_K.txt when `K` is given, the ground truth (gt.json) when the scene was
+    imported with one, and its depth (depth.png) when it has one."""
+    scene = item.scene
+    files = {
+        "detections.json": (json.dumps(detections_items(scene, class_name)) + "\n").encode(),
+        "supports.json": (json.dumps(supports_items(scene)) + "\n").encode(),
+    }
+    if K is not None:
+        files["cam_K.txt"] = intrinsics_text(K).encode()
+    if item.ground_truth is not None:
+        files["gt.json"] = item.ground_truth.read_bytes()
+    if item.depth is not None:
+        files[DEPTH_FILE] = item.depth.read_bytes()
+    return files
+
+
 def write_labels(
     item: ArchivedScene, folder: Path, class_name: Callable[[str], str] = str, K: Any = None
 ) -> None:
-    """detections.json and supports.json of the scene in `folder`, cam_K.txt when `K` is
-    given, and the scene's ground truth (gt.json) when it was imported with one."""
-    scene = item.scene
-    detections = json.dumps(detections_items(scene, class_name)) + "\n"
-    write_atomic(folder / "detections.json", detections.encode())
-    write_atomic(folder / "supports.json", (json.dumps(supports_items(scene)) + "\n").encode())
-    if K is not None:
-        write_atomic(folder / "cam_K.txt", intrinsics_text(K).encode())
-    if item.ground_truth is not None:
-        write_atomic(folder / "gt.json", item.ground_truth.read_bytes())
+    """The files of label_files in `folder`."""
+    for name, data in label_files(item, class_name, K).items():
+        write_atomic(folder / name, data)

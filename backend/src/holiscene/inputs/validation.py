@@ -16,6 +16,8 @@ from typing import Any
 import numpy as np
 from holiscene_schema import (
     STRUCTURAL_SUPPORTERS,
+    Camera,
+    Layout,
     Mask,
     Scene,
     SupportRelation,
@@ -211,7 +213,10 @@ class InputFiles:
     enter revision 1 as people's labels. `ground_truth` is a scene with whatever the dataset
     measured (3D boxes, layout, camera), kept beside the stored scene as gt.json for
     `holiscene eval`; it is never shown as the scene's own estimate. `depth` is an RGB-D
-    camera's depth, kept beside the scene as depth.png."""
+    camera's depth, kept beside the scene as depth.png. `camera` and `layout` are a scene's
+    own (scene.json beside the photo, as the app's downloads and `holiscene export --format
+    scene` write it): revision 1 starts with them, and a layout set by hand is kept by the
+    pipeline as on the scene they came from."""
 
     photo: Photo
     K: np.ndarray | None
@@ -219,6 +224,8 @@ class InputFiles:
     supports: tuple[SupportRelation, ...] = ()
     ground_truth: Scene | None = None
     depth: DepthMap | None = None  # inputs/depth.py; registered to the photo
+    camera: Camera | None = None
+    layout: Layout | None = None
 
     @cached_property
     def digest(self) -> str:
@@ -245,6 +252,10 @@ class InputFiles:
             labels["ground_truth"] = self.ground_truth.model_dump(mode="json")
         if self.depth is not None:
             labels["depth"] = self.depth.digest
+        if self.camera is not None:
+            labels["camera"] = self.camera.model_dump(mode="json")
+        if self.layout is not None:
+            labels["layout"] = self.layout.model_dump(mode="json")
         hasher = hashlib.sha256(self.photo.data)
         hasher.update(json.dumps(labels, sort_keys=True).encode())
         return hasher.hexdigest()
@@ -256,7 +267,8 @@ SUPPORTS_AUTHOR = "import"  # a supports.json item's author when it names none
 def parse_supports(data: bytes, box_count: int) -> tuple[SupportRelation, ...]:
     """supports.json: [{"child": 3, "parent": 0 | "floor" | "wall" | "ceiling", "type":
     "below" | "behind", "author": NAME (optional)}, ...], people's support labels over the
-    boxes of detections.json by position (box i becomes object o<i>)."""
+    boxes of detections.json by position (box i becomes object o<i>); an item with "source":
+    "auto" (and an optional "confidence") is a pipeline's guess, as an export writes one."""
     try:
         items = json.loads(data)
     except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as exc:
@@ -299,6 +311,24 @@ def _support_from_item(where: str, item: Any, box_count: int) -> SupportRelation
         parent = box("parent", ", nor floor, wall or ceiling")
     if item["type"] not in ("below", "behind"):
         raise InputError(f"{where}: type {item['type']!r} is neither 'below' nor 'behind'")
+    source = item.get("source", "manual")
+    if source == "auto":  # a pipeline's guess (as an export writes one) stays a guess
+        confidence = item.get("confidence")
+        if confidence is not None and not (
+            isinstance(confidence, int | float)
+            and not isinstance(confidence, bool)
+            and 0 <= confidence <= 1
+        ):
+            raise InputError(f"{where}: 'confidence' must be a number from 0 to 1")
+        return SupportRelation(
+            child=box("child"),
+            parent=parent,
+            type=item["type"],
+            source="auto",
+            confidence=confidence,
+        )
+    if source != "manual":
+        raise InputError(f"{where}: source {source!r} is neither 'manual' nor 'auto'")
     author = item.get("author", SUPPORTS_AUTHOR)
     if not isinstance(author, str) or not author.strip():
         raise InputError(f"{where}: 'author' must be a non-empty string")
@@ -307,28 +337,45 @@ def _support_from_item(where: str, item: Any, box_count: int) -> SupportRelation
     )
 
 
-def parse_ground_truth(data: bytes, width: int, height: int) -> Scene:
+def parse_ground_truth(data: bytes, width: int, height: int, file: str = "gt.json") -> Scene:
     """gt.json: a scene (the contract's Scene, as `holiscene synth` writes it) with what a
-    dataset measured for the photo."""
+    dataset measured for the photo; `file` names it in the messages (scene.json is read so
+    too)."""
     try:
         scene = Scene.model_validate_json(data)
     except ValidationError as exc:
         problem = exc.errors()[0]
         at = ".".join(str(p) for p in problem["loc"]) or "the file"
-        raise InputError(f"gt.json is not a scene ({at}: {problem['msg']})") from exc
+        raise InputError(f"{file} is not a scene ({at}: {problem['msg']})") from exc
     if (scene.image.width, scene.image.height) != (width, height):
         raise InputError(
-            f"gt.json describes a {scene.image.width}x{scene.image.height} photo, the photo "
+            f"{file} describes a {scene.image.width}x{scene.image.height} photo, the photo "
             f"is {width}x{height}"
         )
     return scene
 
 
+SCENE_FILE = "scene.json"
+
+
+def scene_room(folder: Path, width: int, height: int) -> tuple[Camera | None, Layout | None]:
+    """The camera and room layout of the folder's scene.json (the scene the folder was
+    exported from), when it has them; scene.json's objects are not read: detections.json and
+    supports.json are the labels."""
+    file = folder / SCENE_FILE
+    if not file.is_file():
+        return None, None
+    scene = parse_ground_truth(file.read_bytes(), width, height, SCENE_FILE)
+    layout = scene.layout if scene.layout.corners_3d is not None else None
+    return scene.camera, layout
+
+
 def read_input_folder(folder: Path, *, use_depth: bool = True) -> InputFiles:
     """Read img.jpg or img.png, and cam_K.txt, detections.json, class_map.json (the
     user's own class names, see parse_class_map), supports.json (parse_supports), gt.json
-    (parse_ground_truth) and depth.png (inputs/depth.py; unless not `use_depth`, for the
-    single-photo path on a folder that has depth) when present."""
+    (parse_ground_truth), scene.json's camera and layout (scene_room) and depth.png
+    (inputs/depth.py; unless not `use_depth`, for the single-photo path on a folder that has
+    depth) when present."""
     if not folder.is_dir():
         raise InputError(f"{folder} is not a folder")
     images = [folder / n for n in ("img.jpg", "img.jpeg", "img.png") if (folder / n).is_file()]
@@ -363,6 +410,14 @@ def read_input_folder(folder: Path, *, use_depth: bool = True) -> InputFiles:
         if use_depth and depth_file.is_file()
         else None
     )
+    camera, layout = scene_room(folder, photo.width, photo.height)
     return InputFiles(
-        photo=photo, K=K, detections=detections, supports=supports, ground_truth=truth, depth=depth
+        photo=photo,
+        K=K,
+        detections=detections,
+        supports=supports,
+        ground_truth=truth,
+        depth=depth,
+        camera=camera,
+        layout=layout,
     )

@@ -20,6 +20,7 @@ from holiscene_schema import (
     ImportResult,
     Job,
     JobKind,
+    Layout,
     ModelKind,
     RetrainRequest,
     Scene,
@@ -420,10 +421,14 @@ def imported_scene(inputs: InputFiles, name: str) -> Scene:
     unknown = unknown_class_note(inputs.detections or [])
     # The import's own note, shown with the pipeline's warnings until a run replaces them.
     stages = [StageRun(name="import", seconds=0.0, note=unknown, warning=True)] if unknown else []
-    # Supports given with the photo are people's labels: a pipeline run keeps them.
+    # Supports given with the photo are people's labels (a pipeline run keeps them) or, from
+    # an export, the pipeline's guesses. An exported scene's camera and layout (scene.json)
+    # start revision 1 as they were; a layout set by hand is kept by the pipeline then.
     return Scene(
         name=name,
         image=image,
+        camera=inputs.camera,
+        layout=inputs.layout or Layout(),
         depth=inputs.depth.ref() if inputs.depth is not None else None,
         objects=objects,
         supports=list(inputs.supports),

@@ -73,7 +73,8 @@ export class SceneSelection {
         ? "Download selected"
         : `Download ${plural(count, "selected scene")} (zip)`;
     this.button.title =
-      "One zip with a folder per scene: scene.json, COCO JSON, the photo and scene.glb";
+      "One zip with a folder per scene: scene.json, COCO JSON, the photo, scene.glb and the " +
+      "labels as an input folder; Import a dataset takes it back";
   }
 
   private async download(): Promise<void> {

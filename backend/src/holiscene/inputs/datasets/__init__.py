@@ -21,6 +21,7 @@ COCO_FILE_PATTERNS = ("annotations.json", "instances*.json")
 # JSON files of an input folder, never a LabelMe file.
 INPUT_FOLDER_FILES = ("detections.json", "class_map.json")
 PHOTO_NAMES = ("img.jpg", "img.jpeg", "img.png")
+ARCHIVE_INDEX = "index.json"
 
 
 def _coco_files(folder: Path) -> list[Path]:
@@ -31,8 +32,24 @@ def _coco_files(folder: Path) -> list[Path]:
 
 def _labelme_candidates(folder: Path) -> list[Path]:
     return sorted(
-        f for f in folder.glob("*.json") if f.is_file() and f.name not in INPUT_FOLDER_FILES
+        f
+        for f in folder.glob("*.json")
+        if f.is_file() and f.name not in INPUT_FOLDER_FILES and not is_archive_index(f)
     )
+
+
+def is_archive_index(path: Path) -> bool:
+    """Whether `path` is the list of folders of the app's "Download selected" zip
+    (export/archive.py: index.json, {"scenes": [{"folder": ...}, ...]}), which sits beside
+    input folders and is no LabelMe file."""
+    if path.name != ARCHIVE_INDEX:
+        return False
+    try:
+        data = load_json(path)
+    except InputError:
+        return False
+    scenes = data.get("scenes") if isinstance(data, dict) else None
+    return isinstance(scenes, list) and all(isinstance(s, dict) and "folder" in s for s in scenes)
 
 
 def is_dataset(path: Path) -> bool:

@@ -1,8 +1,8 @@
 """Photos to import one at a time: those of a path given to `holiscene import`
 (photo_sources), and what an unpacked upload holds (upload_contents): an input folder, a
 COCO, LabelMe or SUN RGB-D dataset, or a folder of input folders (as `holiscene export
---format scene` writes them). The format is told by the content, with the readers
-`holiscene import` uses."""
+--format scene` and the app's "Download selected" zip hold them). The format is told by the
+content, with the readers `holiscene import` uses."""
 
 from __future__ import annotations
 
@@ -41,6 +41,9 @@ def photo_sources(path: Path) -> Iterator[PhotoSource]:
     if is_dataset(path):
         for item in dataset_items(path):
             yield PhotoSource(item.name, Path(item.name).stem, partial(_item_inputs, item))
+    elif path.is_dir() and not _is_input_folder(path) and (parts := _importable_parts(path)):
+        for part in parts:  # a folder of input folders (an export, the app's download zip)
+            yield from photo_sources(part)
     else:
         yield PhotoSource(str(path), path.name, partial(read_input_folder, path))
 
@@ -78,7 +81,7 @@ def upload_contents(folder: Path) -> UploadContents:
         raise InputError(NYU_REFUSAL)
     if _is_input_folder(root) or is_dataset(root):
         return UploadContents(_format(root), _count(root), (root,))
-    parts = [d for d in _subfolders(root) if _is_input_folder(d) or is_dataset(d)]
+    parts = _importable_parts(root)
     if not parts:
         raise InputError(
             "the zip holds no COCO or LabelMe dataset, SUN RGB-D image folder or input folder "
@@ -86,6 +89,11 @@ def upload_contents(folder: Path) -> UploadContents:
         )
     formats = sorted({_format(p) for p in parts})
     return UploadContents(", ".join(formats), sum(_count(p) for p in parts), tuple(parts))
+
+
+def _importable_parts(root: Path) -> list[Path]:
+    """The input folders and datasets directly inside `root`."""
+    return [d for d in _subfolders(root) if _is_input_folder(d) or is_dataset(d)]
 
 
 def _subfolders(root: Path) -> list[Path]:

@@ -1,0 +1,132 @@
+"""The scene list's "Download selected" zip imports back through "Import a dataset": the
+bytes POST /api/scenes/archive gives, posted to POST /api/imports, make scenes with the same
+classes, boxes (1 px), masks (IoU > 0.99), supports and room layout; the same zip again adds
+nothing; and a pipeline run on the imported scene keeps a layout a person set. Unzipped, the
+download is a folder `holiscene import` takes as it is."""
+
+from __future__ import annotations
+
+import io
+import zipfile
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+from fastapi.testclient import TestClient
+from holiscene.cli import main
+from holiscene.cli.export import scene_store
+from holiscene.core.settings import Settings
+from holiscene.segmentation.rle import decode_mask
+from holiscene_schema import Mask
+
+from ...conftest import upload, wait_for_job
+from .test_dataset_import import _imported
+
+
+def _document(client: TestClient, scene_id: str) -> dict[str, Any]:
+    doc: dict[str, Any] = client.get(f"/api/scenes/{scene_id}").json()
+    return doc
+
+
+def _edited(client: TestClient, scene_id: str) -> dict[str, Any]:
+    """A person's work on a placed scene: an object drawn (the server cuts its mask), its
+    support set, another object's class changed, and the room layout set by hand."""
+    doc = _document(client, scene_id)
+    first = doc["scene"]["objects"][0]["id"]
+    edits = [
+        {"kind": "add_object", "id": "mine", "class": "dresser", "bbox": [425, 230, 560, 340]},
+        {"kind": "set_support", "child": "mine", "parent": "floor", "type": "below"},
+        {"kind": "set_class", "id": first, "class": "otherfurniture"},
+        {"kind": "set_layout", "corners_2d": doc["scene"]["layout"]["corners_2d"]},
+    ]
+    body = {"base_revision": doc["revision"], "author": "ann", "edits": edits}
+    response = client.post(f"/api/scenes/{scene_id}/edits", json=body)
+    assert response.status_code == 200, response.text
+    edited: dict[str, Any] = response.json()
+    assert edited["scene"]["layout"]["source"] == "manual"
+    return edited
+
+
+def _pixels(obj: dict[str, Any], width: int, height: int) -> np.ndarray:
+    return decode_mask(Mask.model_validate(obj["mask"]), width, height)
+
+
+def _supports(scene: dict[str, Any]) -> set[tuple[Any, ...]]:
+    position = {obj["id"]: i for i, obj in enumerate(scene["objects"])}
+    return {
+        (position[s["child"]], position.get(s["parent"], s["parent"]), s["type"], s["source"])
+        for s in scene["supports"]
+    }
+
+
+def _assert_same_labels(back: dict[str, Any], before: dict[str, Any]) -> None:
+    assert [o["class"] for o in back["objects"]] == [o["class"] for o in before["objects"]]
+    width, height = before["image"]["width"], before["image"]["height"]
+    for obj, was in zip(back["objects"], before["objects"], strict=True):
+        assert np.allclose(obj["bbox"], was["bbox"], atol=1.0), (obj["bbox"], was["bbox"])
+        assert (obj["mask"] is None) == (was["mask"] is None)
+        if was["mask"] is not None:
+            a, b = _pixels(obj, width, height), _pixels(was, width, height)
+            assert (a & b).sum() / (a | b).sum() > 0.99
+    assert _supports(back) == _supports(before)
+    assert back["layout"] == before["layout"]
+    assert back["camera"] == before["camera"]
+
+
+def test_the_download_imports_back_to_the_same_scenes(
+    client: TestClient, t3d5: Path, real_photos: Path
+) -> None:
+    placed = upload(client, t3d5, name="bedroom", run_pipeline="true")
+    assert wait_for_job(client, placed["job"]["id"], 60)["status"] == "succeeded"
+    placed_id = placed["scene"]["id"]
+    edited = _edited(client, placed_id)["scene"]
+    plain_id = upload(client, real_photos / "im3d-8", name="plain")["scene"]["id"]
+    plain = _document(client, plain_id)["scene"]
+
+    response = client.post("/api/scenes/archive", json={"scene_ids": [placed_id, plain_id]})
+    assert response.status_code == 200, response.text
+    job = _imported(client, response.content)
+    assert job["status"] == "succeeded" and job["errors"] == [], job
+    assert job["format"] == "input folders"
+    assert len(job["imported"]) == 2
+    new_ids = [item["scene_id"] for item in job["imported"]]
+    assert not {placed_id, plain_id} & set(new_ids)
+    for new_id, before in zip(new_ids, [edited, plain], strict=True):
+        _assert_same_labels(_document(client, new_id)["scene"], before)
+
+    again = _imported(client, response.content)
+    assert again["imported"] == [] and len(again["skipped"]) == 2, again
+    assert [item["scene_id"] for item in again["skipped"]] == new_ids
+
+    # The layout a person set stays through a pipeline run on the imported scene.
+    rerun = client.post(f"/api/scenes/{new_ids[0]}/pipeline-jobs")
+    assert rerun.status_code == 202, rerun.text
+    assert wait_for_job(client, rerun.json()["id"], 60)["status"] == "succeeded"
+    assert _document(client, new_ids[0])["scene"]["layout"] == edited["layout"]
+
+
+def test_holiscene_import_takes_the_unzipped_download(
+    client: TestClient, real_photos: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    scene_id = upload(client, real_photos / "im3d-8", name="plain")["scene"]["id"]
+    doc = _document(client, scene_id)
+    edits = [
+        {"kind": "add_object", "id": "mine", "class": "couch", "bbox": [40, 60, 200, 180]},
+        {"kind": "set_support", "child": "mine", "parent": "floor", "type": "below"},
+    ]
+    body = {"base_revision": doc["revision"], "author": "ann", "edits": edits}
+    edited = client.post(f"/api/scenes/{scene_id}/edits", json=body).json()["scene"]
+    response = client.post("/api/scenes/archive", json={"scene_ids": [scene_id]})
+    zipfile.ZipFile(io.BytesIO(response.content)).extractall(tmp_path / "download")
+
+    data_dir = tmp_path / "other"
+    command = ["import", str(tmp_path / "download"), "--no-pipeline", "--data-dir", str(data_dir)]
+    assert main(command) == 0
+    assert main(command) == 0  # the second time, skipped
+    second = capsys.readouterr().out.strip().splitlines()[-1]
+    assert second.endswith("skipped"), second
+    with scene_store(Settings(data_dir=data_dir)) as scenes:
+        (summary,) = scenes.list_summaries()
+        back = scenes.document(summary.id).scene.model_dump(mode="json", by_alias=True)
+    _assert_same_labels(back, edited)
