@@ -10,7 +10,7 @@ from typing import Any
 
 import pytest
 from holiscene.inputs import InputError, read_input_folder
-from holiscene_schema import Scene
+from holiscene_schema import Layout, Scene
 
 
 @pytest.fixture()
@@ -38,6 +38,37 @@ def test_supports_become_people_labels_over_the_boxes_by_position(folder: Path) 
     ]
 
 
+def test_a_pipeline_guess_stays_a_guess(folder: Path) -> None:
+    """An export writes the pipeline's supports with source auto: they import as guesses."""
+    _write_supports(
+        folder,
+        [
+            {"child": 1, "parent": 0, "type": "below", "source": "auto", "confidence": 0.75},
+            {"child": 2, "parent": "floor", "type": "below", "source": "auto"},
+        ],
+    )
+    supports = read_input_folder(folder).supports
+    assert [(s.child, s.source, s.confidence, s.author) for s in supports] == [
+        ("o1", "auto", 0.75, None),
+        ("o2", "auto", None, None),
+    ]
+
+
+def test_scene_json_gives_the_camera_and_the_room(folder: Path) -> None:
+    truth = Scene.model_validate_json((folder / "gt.json").read_text())
+    assert truth.layout.corners_3d is not None and truth.camera is not None
+    (folder / "scene.json").write_text(truth.model_dump_json())
+    inputs = read_input_folder(folder)
+    assert inputs.layout == truth.layout and inputs.camera == truth.camera
+    (folder / "scene.json").write_text(
+        truth.model_copy(update={"layout": Layout()}).model_dump_json()
+    )
+    assert read_input_folder(folder).layout is None  # a scene without a room gives none
+    (folder / "scene.json").write_text("{}")
+    with pytest.raises(InputError, match=r"scene\.json is not a scene"):
+        read_input_folder(folder)
+
+
 def test_gt_json_is_the_ground_truth_scene(folder: Path) -> None:
     inputs = read_input_folder(folder)
     expected = Scene.model_validate_json((folder / "gt.json").read_text())
@@ -59,6 +90,11 @@ def test_gt_json_is_the_ground_truth_scene(folder: Path) -> None:
         ([{"child": 1, "parent": 0, "type": "on"}], "neither 'below' nor 'behind'"),
         ([{"child": True, "parent": 0, "type": "below"}], "child True"),
         ([{"child": 1, "parent": 0, "type": "below", "author": ""}], "'author'"),
+        ([{"child": 1, "parent": 0, "type": "below", "source": "x"}], "neither 'manual' nor"),
+        (
+            [{"child": 1, "parent": 0, "type": "below", "source": "auto", "confidence": 2}],
+            "'confidence' must be a number from 0 to 1",
+        ),
         (
             [
                 {"child": 1, "parent": 2, "type": "below"},
