@@ -15,6 +15,7 @@ from fastapi.testclient import TestClient
 from holiscene.learning.completion.scene_points import MAX_POINTS
 
 from ...conftest import wait_for_job
+from ..conftest import Accounts
 
 DEPTH_STAGES = {"layout_from_depth", "boxes_from_depth", "shape_completion"}
 
@@ -109,6 +110,17 @@ def test_a_scene_without_depth_or_camera_has_no_depth_points(
     assert response.status_code == 409
     assert "no camera pitch and roll yet" in response.json()["detail"]
     assert client.get("/api/scenes/nope/depth-points").status_code == 404
+
+
+def test_depth_points_and_key_need_a_login(accounts: Accounts) -> None:
+    for route in ("depth-points", "depth-key"):
+        refused = accounts.client.get(f"/api/scenes/0123456789ab/{route}")
+        assert refused.status_code == 401, route
+        # Logged in, any role may read them (here: no such scene).
+        found = accounts.client.get(
+            f"/api/scenes/0123456789ab/{route}", headers=accounts.headers("rita")
+        )
+        assert found.status_code == 404, route
 
 
 def test_a_placement_job_after_a_layout_edit_keeps_the_depth_boxes(
