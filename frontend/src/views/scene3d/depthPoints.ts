@@ -1,14 +1,14 @@
 // Each object's points from the depth, for scenes that came with depth: what the depth camera
 // saw of it (partial: the mask's pixels back-projected) and what shape completion made of them
 // (completed: the network's points before meshing), both from GET .../depth-points. Shown by
-// the toolbar's "Depth points" checkbox with a key over the view; the objects are drawn
-// see-through meanwhile, as the points lie on their surfaces.
+// the toolbar's "Depth points" checkbox with a key over the view; the objects (the points lie
+// on their surfaces) and the photo on its frustum (they lie behind it seen from the photo's
+// viewpoint) are drawn see-through meanwhile.
 import type { DepthPoints } from "@holiscene/schema";
 import * as THREE from "three";
 import { api } from "../../api/client";
 import { el } from "../../dom";
 import type { SceneSession } from "../../state/sceneSession";
-import type { ViewportObjects } from "./viewportObjects";
 import "./depthPoints.css";
 
 /** The viser viewer's colours (viewer/scene_viewer.py PARTIAL_RGB, COMPLETED_RGB). */
@@ -153,7 +153,8 @@ export interface DepthPointsInputs {
   toolbar: HTMLElement;
   /** Where the key goes (over the canvas). */
   viewport: HTMLElement;
-  objects: ViewportObjects;
+  /** Draw what could hide the points (the objects, the photo) see-through, or not. */
+  seeThrough(on: boolean): void;
   requestRender(): void;
 }
 
@@ -164,7 +165,7 @@ export function mountDepthPoints(inputs: DepthPointsInputs): {
   refresh(): void;
   dispose(): void;
 } {
-  const { scene, session, objects, requestRender } = inputs;
+  const { scene, session, requestRender } = inputs;
   const clouds = new DepthPointClouds(session.sceneId);
   const abort = new AbortController();
   let shown = false;
@@ -188,7 +189,7 @@ export function mountDepthPoints(inputs: DepthPointsInputs): {
     shown = on;
     clouds.root.visible = on;
     controls.key.hidden = !on;
-    objects.setSeeThrough(on);
+    inputs.seeThrough(on);
     requestRender();
     show();
   });

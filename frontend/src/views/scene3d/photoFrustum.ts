@@ -6,6 +6,9 @@ import * as THREE from "three";
 import { invert, type Matrix3Like, matVec, worldFromCv } from "../../geometry/camera";
 
 const LINE = 0x1d2430;
+const OPACITY = 0.92;
+/** While the depth points are shown: from the photo's viewpoint they lie behind the photo. */
+const SEE_THROUGH_OPACITY = 0.35;
 
 export class PhotoFrustum {
   readonly root = new THREE.Group();
@@ -40,7 +43,7 @@ export class PhotoFrustum {
       color: 0xbfc5cc,
       side: THREE.DoubleSide,
       transparent: true,
-      opacity: 0.92,
+      opacity: OPACITY,
       forceSinglePass: true, // one flat quad: one draw call, not one per side
     });
     this.plane = new THREE.Mesh(planeGeometry, this.planeMaterial);
@@ -61,6 +64,11 @@ export class PhotoFrustum {
       this.planeMaterial.needsUpdate = true;
       onLoad();
     });
+  }
+
+  /** Let what lies behind the photo show through it (the depth points), or not. */
+  setSeeThrough(on: boolean): void {
+    this.planeMaterial.opacity = on ? SEE_THROUGH_OPACITY : OPACITY;
   }
 
   get hasPhoto(): boolean {

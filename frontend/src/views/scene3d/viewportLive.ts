@@ -17,6 +17,8 @@ export class LiveLayers {
   frustum: PhotoFrustum | null = null;
   /** The camera matrix the frustum was built for (JSON): a new one builds it again. */
   private frustumK = "";
+  /** Whether the photo lets what is behind it show through (kept for a new frustum). */
+  private photoSeeThrough = false;
 
   constructor(
     private readonly scene: THREE.Scene,
@@ -47,6 +49,7 @@ export class LiveLayers {
         const { width, height } = doc.scene.image;
         this.frustum = new PhotoFrustum(K, width, height, FRUSTUM_DEPTH);
         this.frustum.loadPhoto(photoUrl, this.requestRender);
+        this.frustum.setSeeThrough(this.photoSeeThrough);
         this.scene.add(this.frustum.root);
       }
     }
@@ -61,6 +64,13 @@ export class LiveLayers {
     );
     this.requestRender();
     return live;
+  }
+
+  /** Let what lies behind the photo on the frustum show through it, or not. */
+  setPhotoSeeThrough(on: boolean): void {
+    this.photoSeeThrough = on;
+    this.frustum?.setSeeThrough(on);
+    this.requestRender();
   }
 
   /** Whether the frustum is in the scene now. */
