@@ -22,6 +22,7 @@ from holiscene.viewer.scene_viewer import (
     DIMMED_OPACITY,
     FRUSTUM_SCALE,
     PARTIAL_RGB,
+    SEE_THROUGH_OPACITY,
 )
 
 OpenViewer = Callable[[ViewerInput], SceneViewer]
@@ -222,6 +223,14 @@ def test_depth_points_are_drawn_when_asked(synthetic_folder: Path, open_viewer: 
     assert not any(cloud.visible for cloud in viewer.depth_points.values())
     viewer.depth_toggle.value = True
     assert all(cloud.visible for cloud in viewer.depth_points.values())
+    # The meshes would hide the points on their surfaces: see-through while they are shown,
+    # and a selection still dims the others more.
+    assert all(node.mesh.opacity == SEE_THROUGH_OPACITY for node in viewer.objects.values())
+    chosen = next(iter(viewer.objects))
+    viewer.select(chosen)
+    assert viewer.objects[chosen].mesh.opacity == SEE_THROUGH_OPACITY
+    assert {n.mesh.opacity for i, n in viewer.objects.items() if i != chosen} == {DIMMED_OPACITY}
+    viewer.select(None)
     corners = np.asarray(data.scene.layout.corners_3d)
     low, high = corners.min(axis=0) - 0.05, corners.max(axis=0) + 0.05
     for name, cloud in viewer.depth_points.items():
@@ -231,6 +240,9 @@ def test_depth_points_are_drawn_when_asked(synthetic_folder: Path, open_viewer: 
         assert tuple(np.asarray(cloud.colors).reshape(-1, 3)[0]) == colour
         if "/partial/" in name:  # seen surfaces: within the room's bounds
             assert ((points >= low) & (points <= high)).all(axis=1).mean() > 0.98, name
+    viewer.depth_toggle.value = False
+    assert not any(cloud.visible for cloud in viewer.depth_points.values())
+    assert all(node.mesh.opacity is None for node in viewer.objects.values())
 
 
 def test_without_depth_there_are_no_depth_points(

@@ -52,6 +52,7 @@ WALL_RGB = (222, 218, 210)
 EDGE_RGB = (90, 90, 90)
 WALL_OPACITY = 0.25
 DIMMED_OPACITY = 0.25
+SEE_THROUGH_OPACITY = 0.4  # every object while the depth points (on their surfaces) are shown
 # The depth points, as the workbench's 3D view draws them: seen by the depth camera, and
 # completed by the shape completion network.
 PARTIAL_RGB = (249, 115, 22)
@@ -308,6 +309,10 @@ class SceneViewer:
                 "Depth points", list(self.depth_points.values()), initial=False
             )
 
+        @self.depth_toggle.on_update
+        def _(_event: viser.GuiEvent[viser.GuiCheckboxHandle]) -> None:
+            self._set_opacities()
+
         self._choices = {NO_SELECTION: None} | {
             f"{o.id} · {o.cls}": o.id for o in self.scene.objects
         }
@@ -426,13 +431,22 @@ class SceneViewer:
             # viser's setter is real (it runs the callbacks); its typing hides it from mypy.
             self.dropdown.value = self._label_of[obj_id]  # type: ignore[misc]
 
+    def _set_opacities(self) -> None:
+        """Objects other than the selected one dimmed; all see-through while the depth points
+        are shown."""
+        see_through = self.depth_toggle.value
+        for obj_id, node in self.objects.items():
+            if self.selected not in (None, obj_id):
+                node.mesh.opacity = DIMMED_OPACITY
+            else:
+                node.mesh.opacity = SEE_THROUGH_OPACITY if see_through else None
+
     def _show(self, obj_id: str | None) -> None:
         with self._lock:
             if obj_id == self.selected:
                 return
             self.selected = obj_id
-            for other, node in self.objects.items():
-                node.mesh.opacity = None if obj_id in (None, other) else DIMMED_OPACITY
+            self._set_opacities()
             if self.highlight is not None:
                 self.highlight.remove()
                 self.highlight = None
