@@ -114,6 +114,24 @@ export function svgEl<K extends keyof SVGElementTagNameMap>(
   return node;
 }
 
+/**
+ * Make `parent`'s children exactly `nodes`, in order, moving only what is out of place: nodes
+ * kept from the last redraw stay where they are (an image is not decoded again, a row keeps
+ * its focus).
+ */
+export function placeChildren(parent: Element, nodes: readonly Element[]): void {
+  let cursor = parent.firstElementChild;
+  for (const node of nodes) {
+    if (node === cursor) cursor = cursor.nextElementSibling;
+    else parent.insertBefore(node, cursor);
+  }
+  while (cursor) {
+    const next = cursor.nextElementSibling;
+    cursor.remove();
+    cursor = next;
+  }
+}
+
 /** Format an ISO time as a short local date and time. */
 export function formatTime(iso: string): string {
   const date = new Date(iso);

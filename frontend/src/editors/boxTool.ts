@@ -104,10 +104,21 @@ export function mountBoxTool(tools: PhotoTools): () => void {
   const removeTool = tools.add(tool);
   const stopTools = tools.onChange(draw);
   const stopView = host.onView(draw);
+  // A new revision or selection is drawn in the next frame, not at once: the layer asks for
+  // the photo's scale on the screen, which right after the masks changed forces a layout in
+  // the middle of the redraw (the frame lays the page out anyway).
+  let frame = 0;
+  const drawSoon = () => {
+    frame ||= requestAnimationFrame(() => {
+      frame = 0;
+      draw();
+    });
+  };
   const unsubscribe = session.subscribe((change) => {
-    if (change === "document" || change === "select") draw();
+    if (change === "document" || change === "select") drawSoon();
   });
   return () => {
+    cancelAnimationFrame(frame);
     unsubscribe();
     stopTools();
     stopView();

@@ -3,7 +3,7 @@
 // are staged in the session as undoable actions (shown at once on the photo) and autosaved.
 import type { SceneObject } from "@holiscene/schema";
 import { STRUCTURAL_SUPPORTERS, SUPPORT_TYPES } from "@holiscene/schema";
-import { button, el } from "../dom";
+import { button, el, placeChildren } from "../dom";
 import type { SceneSession } from "../state/sceneSession";
 import {
   defaultType,
@@ -20,14 +20,21 @@ import { supportSummary } from "./supportSummary";
 
 const NONE = "";
 
-/** Opens the class picker for an object, beside `anchor` (its class button). */
-export type ChangeClass = (object: SceneObject, anchor: HTMLElement) => void;
+/** Opens the class picker for an object (by id), beside `anchor` (its class button). */
+export type ChangeClass = (id: string, anchor: HTMLElement) => void;
 
 interface Row {
   object: SceneObject;
+  /** What the row shows of its object (rowKey): the row is made again when it changes. */
+  key: string;
   element: HTMLTableRowElement;
   update(): void;
+  /** List the scene's objects as possible supporters (when they changed). */
+  listSupporters(objects: readonly SceneObject[]): void;
 }
+
+const rowKey = (o: SceneObject) =>
+  JSON.stringify([o.id, o.class, o.source, o.score, o.set_by_person]);
 
 function supporterOptions(object: SceneObject, objects: readonly SceneObject[]): HTMLElement[] {
   return [
@@ -66,7 +73,7 @@ function classCell(object: SceneObject, changeClass: ChangeClass | undefined): H
     testid: `object-class-${object.id}`,
     title: "Change the class (Shift+C on the photo)",
     attrs: { "aria-label": `Class of ${object.id}: ${text}; change it` },
-    onClick: () => changeClass(object, cell),
+    onClick: () => changeClass(object.id, cell),
   });
   return cell;
 }
@@ -82,7 +89,9 @@ function objectRow(
     testid: `supporter-select-${id}`,
     attrs: { "aria-label": `Supporter of ${id}` },
   });
-  supporter.append(...supporterOptions(object, session.objects));
+  const listSupporters = (objects: readonly SceneObject[]) =>
+    supporter.replaceChildren(...supporterOptions(object, objects));
+  listSupporters(session.objects);
   const type = el(
     "select",
     { testid: `type-select-${id}`, attrs: { "aria-label": `Support type of ${id}` } },
@@ -178,7 +187,7 @@ function objectRow(
     element.classList.toggle("is-hovered", session.hovered === id);
     element.classList.toggle("is-selected", session.selected === id);
   };
-  return { object, element, update };
+  return { object, key: rowKey(object), element, update, listSupporters };
 }
 
 function structureRow(object: SceneObject): HTMLTableRowElement {
@@ -224,17 +233,28 @@ export function mountSupportEditor(
 
   let rows: Row[] = [];
   let builtFor = "";
+  let listedFor = "";
+  // Rows of objects shown as before are kept (an object edit makes one row, not all); their
+  // supporter menus are listed again when the objects' ids or classes changed.
   const build = () => {
-    const key = JSON.stringify(
-      session.objects.map((o) => [o.id, o.class, o.source, o.score, o.set_by_person]),
-    );
+    const objects = session.objects;
+    const key = JSON.stringify(objects.map(rowKey));
     if (key === builtFor) return;
     builtFor = key;
-    rows = session.objects
+    const listed = JSON.stringify(objects.map((o) => [o.id, o.class]));
+    const relist = listed !== listedFor;
+    listedFor = listed;
+    const kept = new Map(rows.map((r) => [r.key, r]));
+    rows = objects
       .filter((o) => !isStructural(o.class))
-      .map((o) => objectRow(o, session, changeClass));
-    const structure = session.objects.filter((o) => isStructural(o.class)).map(structureRow);
-    body.replaceChildren(...rows.map((r) => r.element), ...structure);
+      .map((o) => {
+        const row = kept.get(rowKey(o));
+        if (!row) return objectRow(o, session, changeClass);
+        if (relist) row.listSupporters(objects);
+        return row;
+      });
+    const structure = objects.filter((o) => isStructural(o.class)).map(structureRow);
+    placeChildren(body, [...rows.map((r) => r.element), ...structure]);
     paintSwatches();
   };
   // The swatches match the masks on the photo (by object or by class).

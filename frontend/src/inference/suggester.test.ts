@@ -149,4 +149,23 @@ describe("a correction against a guess", () => {
     expect(removeSupport(s, "o2")).toBeNull();
     expect(s.suggestions().has("o2")).toBe(false);
   });
+
+  it("scores of an older revision (before the new one is scored) name no object that is gone", () => {
+    const s = session();
+    // o2 removed: the server dropped its support and o1's, which stood on it; o1 was added
+    // by a person, so the model's answer for it (o2 first) would be offered.
+    s.adopt({
+      ...s.doc,
+      revision: 3,
+      scene: {
+        ...s.doc.scene,
+        objects: s.objects
+          .filter((o) => o.id !== "o2")
+          .map((o) => (o.id === "o1" ? { ...o, set_by_person: ["object" as const] } : o)),
+        supports: s.doc.scene.supports.filter((x) => x.child === "o0"),
+      },
+    });
+    const named = [...s.suggestions().values()].flatMap((x) => [x.child, x.parent]);
+    expect(named).not.toContain("o2");
+  });
 });

@@ -5,6 +5,7 @@
 // once, without the server. An object whose decoded answer differs from its guess, or whose
 // guess was rejected, gets that answer as a suggestion.
 import type { SceneSession, SuggestedSupport, Suggester } from "../state/sceneSession";
+import { isStructural } from "../state/supportGraph";
 import type { SupportPriors } from "./supportPriors";
 import { answerKey, decodeSupports, type PinnedSupport } from "./treeDecode";
 
@@ -42,8 +43,11 @@ export function makeSuggester({
       }
     }
     const suggestions = new Map<string, SuggestedSupport>();
+    // Scores of an older revision (until the new one is scored) name objects that may be gone.
+    const present = (id: string) => isStructural(id) || session.object(id) !== undefined;
     for (const d of decodeSupports(probabilities, ids, pinned, excluded, withPriors)) {
       if (d.pinned || d.probability === null) continue;
+      if (!present(d.child) || !present(d.parent)) continue;
       const current = shown.get(d.child);
       if (current && current.parent === d.parent && current.type === d.type) continue;
       // An object a person left without a supporter stays so, unless they rejected answers

@@ -3,7 +3,9 @@
 // then on every edit decodes the tree again with the corrections pinned (suggester.ts), so
 // the remaining guesses follow each correction at once, without the server. Each object's row
 // also shows the model's most probable supporter and type (the next answers in the tooltip).
+
 import type { SceneObject } from "@holiscene/schema";
+import { deferred } from "../afterPaint";
 import { api } from "../api/client";
 import { button, el } from "../dom";
 import type { SceneSession } from "../state/sceneSession";
@@ -146,6 +148,15 @@ export function mountSupportSuggestions(
     else void score();
     if (scores) describe(scoredMs);
   });
+  // After the new revision is drawn: scoring (and dropping the old scores, which redraws the
+  // arrows) would hold the photo's redraw back.
+  const scoreLater = deferred(() => {
+    if (inputsKey(session.objects) === scoredFor) return;
+    scores = null;
+    session.setSuggester(null);
+    render();
+    void score();
+  });
   const unsubscribe = session.subscribe((change) => {
     // A revision that added, removed or changed objects (an object edit, a placement) needs
     // scoring again, also while a run for the old objects is under way (its answer is
@@ -153,10 +164,8 @@ export function mountSupportSuggestions(
     // may have been rebuilt: put badges back.
     const wanted = scores !== null || live.checked;
     if (change === "document" && wanted && inputsKey(session.objects) !== scoredFor) {
-      scores = null;
-      session.setSuggester(null);
       render();
-      void score();
+      scoreLater();
     } else {
       render();
       if (scores && (change === "edits" || change === "document")) describe(scoredMs);
@@ -168,6 +177,7 @@ export function mountSupportSuggestions(
     abort.signal.addEventListener("abort", () => clearTimeout(start));
   }
   return () => {
+    scoreLater.cancel();
     abort.abort();
     unsubscribe();
     session.setSuggester(null);

@@ -547,8 +547,11 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
   adopt(doc: SceneDocument): void {
     if (doc.scene_id !== this.sceneId) return;
     this.setDocument(doc);
-    for (const edit of this.pending) this.stage(edit);
-    this.editsChanged();
+    const pending = this.pending;
+    for (const edit of pending) this.stage(edit);
+    // Without unsaved edits the supports shown and suggested are the new document's, worked
+    // out already by the views that drew it: kept, not decoded again.
+    this.editsChanged(pending.length === 0);
   }
 
   /** After a conflict: the latest revision with the unsaved edits on top, saved at once. */
@@ -606,9 +609,12 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     this.lockChanged();
   }
 
-  private editsChanged(): void {
-    this.shownCache = null;
-    this.suggestionCache = null;
+  /** `keepCaches`: the supports shown and suggested did not change (nothing was restaged). */
+  private editsChanged(keepCaches = false): void {
+    if (!keepCaches) {
+      this.shownCache = null;
+      this.suggestionCache = null;
+    }
     this.drafts.save({
       sceneId: this.sceneId,
       baseRevision: this.doc.revision,

@@ -1,11 +1,12 @@
 // The mask overlay: one tinted image per object (its box when it has no mask), in the colour
-// `colours` gives it (by object or by class, see objectColors.ts).
+// `colours` gives it (by object or by class, see objectColors.ts). PhotoOverlays keeps each
+// object's node and makes a new one only for an object whose mask or colour changed.
 import type { Mask, SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
 import { type Rgb, rgbCss } from "../classColors";
 import { maskImageUrl, type Region } from "./maskRaster";
 
-const GREY: Rgb = [128, 128, 128];
+export const GREY: Rgb = [128, 128, 128];
 
 /**
  * Tinted mask images already encoded, by mask and colour: an object edit redraws the overlay
@@ -25,47 +26,38 @@ function tintedMask(mask: Mask, bits: Uint8Array, colour: Rgb): string {
   return url;
 }
 
-export function renderMasks(
-  group: SVGGElement,
-  objects: readonly SceneObject[],
-  regions: ReadonlyMap<string, Region>,
-  colours: ReadonlyMap<string, Rgb>,
-): void {
-  const nodes = objects.map((object) => {
-    const region = regions.get(object.id);
-    const colour = colours.get(object.id) ?? GREY;
-    const common = {
-      class: "mask",
-      "data-testid": `mask-${object.id}`,
-      "data-object": object.id,
-      "data-colour": rgbCss(colour),
-    };
-    if (object.mask && region?.bits) {
-      const [x, y] = object.mask.origin;
-      const [width, height] = object.mask.size;
-      return svgEl("image", {
-        ...common,
-        href: tintedMask(object.mask, region.bits, colour),
-        x,
-        y,
-        width,
-        height,
-        preserveAspectRatio: "none",
-        "data-source": object.mask.source,
-      });
-    }
-    const [x1, y1, x2, y2] = object.bbox;
-    return svgEl("rect", {
+/** An object's node in the mask overlay: its tinted mask image, or its box without a mask. */
+export function maskNode(object: SceneObject, region: Region | undefined, colour: Rgb): SVGElement {
+  const common = {
+    class: "mask",
+    "data-testid": `mask-${object.id}`,
+    "data-object": object.id,
+    "data-colour": rgbCss(colour),
+  };
+  if (object.mask && region?.bits) {
+    const [x, y] = object.mask.origin;
+    const [width, height] = object.mask.size;
+    return svgEl("image", {
       ...common,
-      x: x1,
-      y: y1,
-      width: x2 - x1,
-      height: y2 - y1,
-      fill: rgbCss(colour),
-      "data-source": "none",
+      href: tintedMask(object.mask, region.bits, colour),
+      x,
+      y,
+      width,
+      height,
+      preserveAspectRatio: "none",
+      "data-source": object.mask.source,
     });
+  }
+  const [x1, y1, x2, y2] = object.bbox;
+  return svgEl("rect", {
+    ...common,
+    x: x1,
+    y: y1,
+    width: x2 - x1,
+    height: y2 - y1,
+    fill: rgbCss(colour),
+    "data-source": "none",
   });
-  group.replaceChildren(...nodes);
 }
 
 /** Outlines of the boxes of the hovered and selected objects. */

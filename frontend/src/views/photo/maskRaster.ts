@@ -117,6 +117,10 @@ export class HitMap {
           mask.origin[1] + mask.size[1],
         ]
       : object.bbox;
+    if (mask && region.bits && this.scale === 1) {
+      this.paintBits(index, mask, region.bits);
+      return;
+    }
     const c0 = Math.max(0, Math.floor(left * this.scale));
     const c1 = Math.min(this.columns, Math.ceil(right * this.scale));
     const r0 = Math.max(0, Math.floor(top * this.scale));
@@ -131,6 +135,19 @@ export class HitMap {
         }
         this.cells[row * this.columns + column] = index;
       }
+    }
+  }
+
+  /** A mask at full resolution: its inside pixels, row by row. */
+  private paintBits(index: number, mask: Mask, bits: Uint8Array): void {
+    const [width, height] = mask.size;
+    const [ox, oy] = mask.origin;
+    const c0 = Math.max(0, -ox);
+    const c1 = Math.min(width, this.columns - ox);
+    for (let y = Math.max(0, -oy); y < Math.min(height, this.rows - oy); y++) {
+      const from = y * width;
+      const to = (oy + y) * this.columns + ox;
+      for (let x = c0; x < c1; x++) if (bits[from + x]) this.cells[to + x] = index;
     }
   }
 }

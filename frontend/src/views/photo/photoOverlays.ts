@@ -2,26 +2,44 @@
 // point), the support arrows and labels (kept their size on the screen when zoomed), and the
 // hovered and selected objects' highlight.
 import type { SceneObject } from "@holiscene/schema";
+import { placeChildren } from "../../dom";
 import type { SceneSession } from "../../state/sceneSession";
 import type { Rgb } from "../classColors";
 import { maskColours } from "../objectColors";
 import { type Frame, strokeWidth } from "./arrowGeometry";
 import { renderArrows } from "./arrowLayer";
 import { renderLabels } from "./labelLayer";
-import { renderMasks, renderOutlines } from "./maskLayer";
+import { GREY, maskNode, renderOutlines } from "./maskLayer";
 import { HitMap, objectRegion, type Region } from "./maskRaster";
 import { maskStyle } from "./maskStyle";
 import type { PhotoLayers } from "./photoSvg";
 
-/** A key for the parts of the objects that the masks and hit map depend on. */
-const geometryKey = (objects: readonly SceneObject[]) =>
-  JSON.stringify(objects.map((o) => [o.id, o.class, o.bbox, o.mask]));
+/** What an object's mask node depends on: its mask (or box, without one) and its colour. */
+function maskKey(object: SceneObject, colour: Rgb): string {
+  const { mask } = object;
+  const shape = mask
+    ? `${mask.source}|${mask.origin.join()}|${mask.size.join()}|${mask.rle.join()}`
+    : `box|${object.bbox.join()}`;
+  return `${colour.join()}|${shape}`;
+}
+
+/** One object as drawn in the mask layer. */
+interface DrawnMask {
+  key: string;
+  region: Region;
+  node: SVGElement;
+}
 
 export class PhotoOverlays {
+  private drawn = new Map<string, DrawnMask>();
   private regions = new Map<string, Region>();
+  /** Built when first asked after the masks changed (a pointer over the photo), not per edit. */
   private hitMap: HitMap | null = null;
   private colours = new Map<string, Rgb>();
-  private drawnGeometry = "";
+  /** What the arrows and labels were last drawn from. */
+  private drawnSupports = "";
+  /** Counts mask changes (part of what the arrows and labels depend on). */
+  private geometryVersion = 0;
   /** 1 / the zoom: arrows and labels keep their size on the screen. */
   private overlayScale = 1;
 
@@ -34,7 +52,15 @@ export class PhotoOverlays {
 
   /** The object whose mask covers a photo point, or null. */
   objectAt(x: number, y: number): string | null {
-    return this.hitMap ? this.hitMap.at(x, y) : null;
+    if (!this.hitMap) {
+      const { width, height } = this.session.doc.scene.image;
+      const placed = this.session.objects.flatMap((object) => {
+        const region = this.regions.get(object.id);
+        return region ? [{ object, region }] : [];
+      });
+      this.hitMap = new HitMap(width, height, placed);
+    }
+    return this.hitMap.at(x, y);
   }
 
   /** The centre of the object's mask (for arrows drawn to it). */
@@ -42,28 +68,56 @@ export class PhotoOverlays {
     return this.regions.get(id)?.centroid ?? null;
   }
 
-  /** Masks and the hit map, when the objects' geometry or the colouring changed. */
+  /**
+   * The masks, when an object's mask, box or colour changed: only those objects' masks are
+   * decoded and encoded again, and the other nodes stay as they are.
+   */
   drawGeometry(): void {
     const objects = this.session.objects;
     const { colouring, opacity } = maskStyle.get();
     this.svg.style.setProperty("--mask-opacity", String(opacity));
-    const key = `${colouring} ${geometryKey(objects)}`;
-    if (key === this.drawnGeometry) return;
-    this.drawnGeometry = key;
-    const { width, height } = this.session.doc.scene.image;
-    const placed = objects.map((object) => ({ object, region: objectRegion(object) }));
-    this.regions = new Map(placed.map((p) => [p.object.id, p.region]));
-    this.hitMap = new HitMap(width, height, placed);
-    this.colours = maskColours(objects, colouring);
-    renderMasks(this.layers.masks, objects, this.regions, this.colours);
+    const colours = maskColours(objects, colouring);
+    const drawn = new Map<string, DrawnMask>();
+    let changed = objects.length !== this.drawn.size;
+    for (const object of objects) {
+      const colour = colours.get(object.id) ?? GREY;
+      const key = maskKey(object, colour);
+      let entry = this.drawn.get(object.id);
+      if (entry?.key !== key) {
+        const region = objectRegion(object);
+        entry = { key, region, node: maskNode(object, region, colour) };
+        changed = true;
+      }
+      drawn.set(object.id, entry);
+    }
+    this.colours = colours;
+    if (!changed && [...drawn.keys()].every((id, i) => objects[i]?.id === id)) return;
+    this.drawn = drawn;
+    this.regions = new Map([...drawn].map(([id, d]) => [id, d.region]));
+    this.hitMap = null;
+    this.geometryVersion += 1;
+    placeChildren(
+      this.layers.masks,
+      [...drawn.values()].map((d) => d.node),
+    );
   }
 
-  /** The support arrows and the labels. */
+  /** The support arrows and the labels (again only when what they show changed). */
   drawSupports(): void {
     const { session, layers, frame, regions, overlayScale } = this;
     const { objects } = session;
     const shown = session.shown();
     const suggested = session.suggestions();
+    const key = JSON.stringify([
+      this.geometryVersion,
+      overlayScale,
+      objects.map((o) => [o.id, o.class, o.bbox]),
+      [...shown],
+      [...suggested],
+      [...this.colours],
+    ]);
+    if (key === this.drawnSupports) return;
+    this.drawnSupports = key;
     const anchors = renderArrows(
       layers.arrows,
       objects,

@@ -1,7 +1,9 @@
 // The scene's revisions, newest first, refreshed whenever a new revision is loaded. Each one
 // can show what it changed (diff against the revision before it) and be reverted to: the
 // supports go back exactly as that revision stored them (a new revision; undo takes it back).
+
 import type { RevisionInfo, SceneDocument } from "@holiscene/schema";
+import { deferred } from "../../afterPaint";
 import { api } from "../../api/client";
 import { button, el, formatTime } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
@@ -109,8 +111,10 @@ export function mountRevisionHistory(container: HTMLElement, session: SceneSessi
       }
     },
   });
+  // After the new revision is drawn: the list is below the photo, and its request can wait.
+  const refreshLater = deferred(() => void refresh());
   const unsubscribe = session.subscribe((change) => {
-    if (change === "document") void refresh();
+    if (change === "document") refreshLater();
     if (change === "lock") {
       for (const revertButton of list.querySelectorAll<HTMLButtonElement>(
         "[data-testid^='revision-revert-']",
@@ -119,6 +123,7 @@ export function mountRevisionHistory(container: HTMLElement, session: SceneSessi
     }
   });
   return () => {
+    refreshLater.cancel();
     unsubscribe();
     removeKey();
   };

@@ -83,8 +83,9 @@ export function mountSceneWorkbench(
     mountScene3d(scene3d.body, session, layout.draft),
     mountPlacementNotice(scene3d.element, scene3d.body, session),
     mountSaveBar(saveBar, session, objectEditor),
-    mountSupportEditor(table, session, (object, anchor) => {
-      void changeClass(objectEditor, object, anchor.getBoundingClientRect());
+    mountSupportEditor(table, session, (id, anchor) => {
+      const object = session.object(id);
+      if (object) void changeClass(objectEditor, object, anchor.getBoundingClientRect());
     }),
     mountSupportSuggestions(suggestions, table, session),
     mountRevisionHistory(history, session),

@@ -4,6 +4,7 @@
 // selects it here and on the photo (the session's selection). It renders on demand (orbit,
 // resize, hover, layout change), which keeps software WebGL cheap.
 import * as THREE from "three";
+import { deferred } from "../../afterPaint";
 import { api } from "../../api/client";
 import type { LayoutDraft } from "../../state/layoutDraft";
 import type { SceneSession } from "../../state/sceneSession";
@@ -129,13 +130,22 @@ export function mountScene3d(
   void objects.load();
   picking.listen(session);
 
+  // An edit is followed here after the photo has drawn it: a frame of this view (software
+  // WebGL on machines without a GPU) would otherwise hold the photo's redraw back.
+  let newDocument = false;
+  const follow = deferred(() => {
+    showLive();
+    if (!newDocument) return;
+    newDocument = false;
+    if (objects.stale) void objects.load();
+    depthPoints?.refresh();
+  });
   const unsubscribe = session.subscribe((change) => {
     if (change === "hover" || change === "select") objects.highlight();
-    else if (change === "edits") showLive();
+    else if (change === "edits") follow();
     else if (change === "document") {
-      showLive();
-      if (objects.stale) void objects.load();
-      depthPoints?.refresh();
+      newDocument = true;
+      follow();
     }
   });
   // The layout draft is updated before the session announces a change: SceneSession hands a
@@ -147,6 +157,7 @@ export function mountScene3d(
   const unsubscribeLayout = layout?.subscribe(showLive) ?? (() => {});
 
   return () => {
+    follow.cancel();
     unsubscribe();
     unsubscribeLayout();
     objects.dispose();

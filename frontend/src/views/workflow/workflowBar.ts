@@ -3,7 +3,9 @@
 // (take, submit, accept, reject with a comment, ask for a second annotation), with keys:
 // Shift+Enter does the main step (submit, or accept for a reviewer), Shift+X rejects, ">" takes
 // the next scene (the support editor has N, Shift+A and Shift+R already).
+
 import type { SceneWorkflow } from "@holiscene/schema";
+import { deferred } from "../../afterPaint";
 import { ApiError } from "../../api/errors";
 import { workflowApi } from "../../api/workflow";
 import { el, hiddenErrorAlert } from "../../dom";
@@ -111,10 +113,12 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
 
   const removeKeys = workflowKeys(actions);
   let shownRevision = session.doc.revision;
+  // After the new revision is drawn (its request would hold the redraw back).
+  const loadLater = deferred(() => void load());
   const unsubscribe = session.subscribe((change) => {
     if (change === "document" && session.doc.revision !== shownRevision) {
       shownRevision = session.doc.revision;
-      void load(); // a save may have taken the scene
+      loadLater(); // a save may have taken the scene
     } else if (change === "edits") {
       render();
     } else if (change === "lock" && session.saveState.kind === "error") {
@@ -123,6 +127,7 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
   });
   void load();
   return () => {
+    loadLater.cancel();
     abort.abort();
     unsubscribe();
     next.dispose();

@@ -1,0 +1,89 @@
+// The hit map: which object's mask is under a photo point, smaller objects on top.
+import type { Mask, SceneObject } from "@holiscene/schema";
+import { describe, expect, it } from "vitest";
+import { sceneObject } from "../../testing/sceneDocuments";
+import { HitMap, objectRegion } from "./maskRaster";
+
+/** A mask from rows of "." and "#" at `origin`. */
+function mask(origin: [number, number], rows: string[]): Mask {
+  const bits = rows.join("");
+  const rle: number[] = [];
+  let inside = false;
+  let run = 0;
+  for (const c of bits) {
+    if ((c === "#") !== inside) {
+      rle.push(run);
+      run = 0;
+      inside = !inside;
+    }
+    run += 1;
+  }
+  rle.push(run);
+  return { origin, size: [rows[0]?.length ?? 0, rows.length], rle, source: "manual" };
+}
+
+function withMask(id: string, m: Mask): SceneObject {
+  const [x, y] = m.origin;
+  return { ...sceneObject(id, "box", [x, y, x + m.size[0], y + m.size[1]]), mask: m };
+}
+
+const at = (map: HitMap, points: [number, number][]) => points.map(([x, y]) => map.at(x, y));
+
+describe("HitMap", () => {
+  const big = withMask("big", mask([1, 1], ["####", "####", "####"]));
+  const small = withMask("small", mask([2, 2], ["#.", "##"]));
+  const cut = withMask("cut", mask([-1, 4], ["###", ".##"])); // its window leaves the photo
+
+  const points: [number, number][] = [
+    [1.5, 1.5],
+    [2.5, 2.5],
+    [3.2, 2.9],
+    [3.5, 3.5],
+    [4.9, 3.1],
+    [0, 0],
+    [0.5, 4.5],
+    [0.5, 5.5],
+    [1.5, 4.5],
+    [5, 1],
+  ];
+
+  it("tells the smaller object where masks overlap, nothing outside the masks", () => {
+    const placed = [big, small, cut].map((object) => ({ object, region: objectRegion(object) }));
+    const map = new HitMap(6, 6, placed);
+    expect(at(map, points)).toEqual([
+      "big",
+      "small",
+      "big", // small's hole
+      "small",
+      "big",
+      null,
+      "cut",
+      "cut",
+      "cut",
+      null,
+    ]);
+  });
+
+  it("gives the same answers on a photo large enough to be sampled", () => {
+    const scaled = (o: SceneObject): SceneObject => {
+      const m = o.mask as Mask;
+      const rows = Array.from({ length: m.size[1] * 200 }, () => "");
+      const bits = objectRegion(o).bits as Uint8Array;
+      for (let y = 0; y < rows.length; y++) {
+        let row = "";
+        for (let x = 0; x < m.size[0] * 200; x++)
+          row += bits[Math.floor(y / 200) * m.size[0] + Math.floor(x / 200)] ? "#" : ".";
+        rows[y] = row;
+      }
+      return withMask(o.id, mask([m.origin[0] * 200, m.origin[1] * 200], rows));
+    };
+    const objects = [big, small].map(scaled);
+    const map = new HitMap(
+      1200,
+      1200,
+      objects.map((object) => ({ object, region: objectRegion(object) })),
+    );
+    const inside = points.slice(0, 6).map(([x, y]) => [x * 200, y * 200] as [number, number]);
+    expect(at(map, inside)).toEqual(["big", "small", "big", "small", "big", null]);
+  });
+});
