@@ -6,6 +6,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Literal, get_args
 
+from .class_words import class_words, resolve_words
+
 # Canonical spellings: snake_case, "refrigerator" spelled correctly (NYU's own list has
 # "refridgerator"). The order is the NYU-40 label order, so index + 1 is the NYU-40 label id.
 Nyu40Class = Literal[
@@ -23,20 +25,33 @@ NYU40_CLASSES: tuple[str, ...] = get_args(Nyu40Class)
 STRUCTURAL_CLASSES: frozenset[str] = frozenset({"wall", "floor", "ceiling"})
 
 # Names used by SUN RGB-D, NYU v2, COCO-style lists and Total3DUnderstanding's demo inputs,
-# mapped to NYU-40 (docs/importing.md). "void" marks a region of no class in SUN RGB-D; it
-# becomes a generic prop so no box is lost. A name found nowhere here becomes `otherprop` on
-# import, with the name kept (map_class_name); a user's class map overrides all of these.
+# mapped to NYU-40 (docs/importing.md), and synonyms of indoor object words. "void" marks a
+# region of no class in SUN RGB-D; it becomes a generic prop so no box is lost. A name found
+# nowhere here is resolved by its words (class_words.py: "office chair" is a chair), else
+# becomes `otherprop` on import, with the name kept (map_class_name); a user's class map
+# overrides all of these. ("dress" is no alias: typed in the class picker it would come
+# before "dresser".) NYU-40's meaning decides: a sofa chair (an armchair) is a chair, a
+# sofa bed a sofa (how it stands in a room), a mattress or headboard the bed it belongs to;
+# whole names are listed where the head word says the wrong thing ("toilet seat" is the
+# toilet, "cutting board" and "hair dryer" are props, "table cloth" is no clothes).
 _ALIASES_BY_CLASS: dict[str, tuple[str, ...]] = {
     "cabinet": (
         "cabinets", "cupboard", "file_cabinet", "filing_cabinet", "kitchen_cabinet",
         "kitchen_cabinets", "bathroom_cabinet", "wall_cabinet", "tv_cabinet", "locker",
     ),
-    "bed": ("double_bed", "single_bed", "bunk_bed", "twin_bed", "queen_bed", "king_bed"),
+    "bed": (
+        "double_bed", "single_bed", "bunk_bed", "twin_bed", "queen_bed", "king_bed", "mattress",
+        "headboard", "footboard", "bed_frame",
+    ),
     "chair": (
         "armchair", "arm_chair", "office_chair", "desk_chair", "dining_chair", "stool",
         "bar_stool", "sofa_chair", "rocking_chair", "folding_chair", "high_chair", "seat",
+        "recliner", "wheelchair", "beanbag", "bean_bag",
     ),
-    "sofa": ("couch", "loveseat", "love_seat", "sectional", "sectional_sofa", "futon", "settee"),
+    "sofa": (
+        "couch", "loveseat", "love_seat", "sectional", "sectional_sofa", "futon", "settee",
+        "sofa_bed", "divan", "chesterfield",
+    ),
     "table": (
         "coffee_table", "endtable", "end_table", "side_table", "dining_table", "kitchen_table",
         "round_table", "conference_table", "folding_table", "tea_table", "console_table",
@@ -54,25 +69,32 @@ _ALIASES_BY_CLASS: dict[str, tuple[str, ...]] = {
     "desk": ("computer_desk", "office_desk", "writing_desk", "study_desk"),
     "shelves": ("shelf", "wall_shelf", "shelving", "rack_shelf"),
     "curtain": ("curtains", "drape", "drapes", "drapery"),
-    "dresser": ("chest_of_drawers", "drawers", "chest", "bureau", "vanity"),
+    "dresser": ("chest_of_drawers", "drawers", "drawer", "chest", "bureau", "vanity"),
     "pillow": ("pillows", "cushion", "cushions", "throw_pillow", "sofa_pillow"),
     "mirror": ("dresser_mirror", "bathroom_mirror", "wall_mirror", "mirrors"),
     "floor_mat": ("mat", "rug", "carpet", "bath_mat", "doormat", "door_mat", "floor_rug"),
-    "clothes": ("clothing", "cloth", "shirt", "jacket", "coat", "pants", "jeans"),
+    "clothes": (
+        "clothing", "cloth", "shirt", "jacket", "coat", "pants", "jeans", "sweater",
+        "skirt", "trousers", "shorts", "hoodie", "blouse", "scarf", "sock", "socks", "garment",
+        "laundry",
+    ),
     "books": ("book", "notebook", "magazine", "magazines", "binder", "folder"),
     "refrigerator": ("refridgerator", "fridge", "mini_fridge", "freezer"),
     "television": (
         "tv", "monitor", "computer_monitor", "screen", "tv_screen", "television_set",
-        "flat_screen_tv",
+        "flat_screen_tv", "telly", "flatscreen",
     ),
     "paper": ("papers", "newspaper", "document", "documents", "envelope"),
     "towel": ("towels", "hand_towel", "bath_towel", "paper_towel"),
     "shower_curtain": ("shower_curtains",),
     "box": ("boxes", "cardboard_box", "carton", "storage_box", "shoe_box", "package"),
     "whiteboard": ("white_board", "blackboard", "chalkboard", "board", "bulletin_board"),
-    "person": ("people", "man", "woman", "child", "boy", "girl", "human"),
+    "person": (
+        "people", "man", "woman", "child", "boy", "girl", "human", "baby", "kid", "adult",
+        "student", "lady", "guy",
+    ),
     "night_stand": ("nightstand", "night_table", "bedside_table", "bed_side_table"),
-    "toilet": ("toilets", "urinal"),
+    "toilet": ("toilets", "urinal", "toilet_seat", "toilet_bowl", "toilet_tank", "commode"),
     "sink": ("sinks", "bathroom_sink", "kitchen_sink", "basin", "wash_basin"),
     "lamp": ("lamps", "table_lamp", "floor_lamp", "desk_lamp", "bedside_lamp", "lampshade"),
     "bathtub": ("bath_tub", "tub", "bath"),
@@ -95,6 +117,9 @@ _ALIASES_BY_CLASS: dict[str, tuple[str, ...]] = {
         "tissue_box", "soap", "cellphone", "cell_phone", "light", "ceiling_light", "chandelier",
         "container", "tray", "decoration", "ornament", "statue", "sculpture", "globe",
         "umbrella", "shoe", "shoes", "hat", "blanket", "scissors", "pen", "pencil", "glasses",
+        "toilet_paper", "cutting_board", "chopping_board", "hair_dryer", "table_cloth",
+        "tablecloth", "holder", "dispenser", "quilt", "comforter", "duvet", "bedspread",
+        "tv_remote", "projector", "heater", "air_conditioner",
     ),
 }  # fmt: skip
 
@@ -104,6 +129,25 @@ CLASS_ALIASES: dict[str, str] = {
 
 # What a name found nowhere becomes on import (its own name is kept as `source_class`).
 UNKNOWN_CLASS_FALLBACK = "otherprop"
+
+
+# Every key with its `_` left out too ("coffee_table" as "coffeetable", "book_shelf" as
+# "bookshelf"), for names typed joined; one class each (class_words.py, step 1).
+_JOINED_KEYS: dict[str, str] = {
+    key.replace("_", ""): cls
+    for key, cls in [*((c, c) for c in NYU40_CLASSES), *CLASS_ALIASES.items()]
+}
+# The one-word keys: the words a typo in a name may be fixed to (class_words.py, step 4).
+_KNOWN_WORDS: frozenset[str] = frozenset(
+    key for key in (*NYU40_CLASSES, *CLASS_ALIASES) if "_" not in key
+)
+
+
+def _known_key(key: str) -> str | None:
+    """The class of a vocabulary key (a class, an alias, or either without its `_`)."""
+    if key in NYU40_CLASSES:
+        return key
+    return CLASS_ALIASES.get(key) or _JOINED_KEYS.get(key)
 
 
 class UnknownClassError(ValueError):
@@ -117,7 +161,8 @@ def class_key(name: str) -> str:
 
 def normalise_class_name(name: str) -> str:
     """Map a dataset's class name to its NYU-40 class; raise UnknownClassError otherwise.
-    A plural of a known name ("chairs", "couches") is known too."""
+    A plural of a known name ("chairs", "couches") is known too, and a free name is resolved
+    by its words (class_words.py: "office chair", "book shelf", "chair 2", "chiar")."""
     key = class_key(name)
     plurals = (key[:-1] if key.endswith("s") else None, key[:-2] if key.endswith("es") else None)
     for candidate in (key, *plurals):
@@ -125,6 +170,9 @@ def normalise_class_name(name: str) -> str:
             return candidate
         if candidate in CLASS_ALIASES:
             return CLASS_ALIASES[candidate]
+    resolved = resolve_words(class_words(name), _known_key, _KNOWN_WORDS)
+    if resolved is not None:
+        return resolved
     raise UnknownClassError(
         f"unknown class name {name!r}: use an NYU-40 class (e.g. 'bed', 'night_stand') "
         "or a known SUN RGB-D alias"

@@ -49,6 +49,13 @@ from .api import (
     UserInfo,
     ViewerInfo,
 )
+from .class_words import (
+    GENERIC_HEADS,
+    IRREGULAR_PLURALS,
+    LONGEST_TYPO,
+    PREPOSITIONS,
+    SHORTEST_TYPO,
+)
 from .classes import CLASS_ALIASES, NYU40_CLASSES
 from .detector_model import detector_contract
 from .relation_model import relation_model_contract
@@ -114,6 +121,13 @@ def render_schemas() -> dict[str, str]:
         {
             "nyu40_classes": list(NYU40_CLASSES),
             "class_aliases": CLASS_ALIASES,
+            "class_words": {  # class_words.py's word lists, for its TypeScript twin
+                "generic_heads": list(GENERIC_HEADS),
+                "prepositions": list(PREPOSITIONS),
+                "irregular_plurals": IRREGULAR_PLURALS,
+                "shortest_typo": SHORTEST_TYPO,
+                "longest_typo": LONGEST_TYPO,
+            },
             "structural_supporters": sorted(STRUCTURAL_SUPPORTERS),
             "support_types": ["below", "behind"],
             "relation_model": relation_model_contract(),

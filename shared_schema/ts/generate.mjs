@@ -48,6 +48,7 @@ const vocabularyTs = [
   "// Generated from shared_schema/jsonschema/vocabulary.json by ts/generate.mjs. Do not edit.",
   `export const NYU40_CLASSES = ${JSON.stringify(vocabulary.nyu40_classes)} as const;`,
   `export const CLASS_ALIASES = ${JSON.stringify(vocabulary.class_aliases)} as const;`,
+  `export const CLASS_WORDS = ${JSON.stringify(vocabulary.class_words)} as const;`,
   `export const STRUCTURAL_SUPPORTERS = ${JSON.stringify(vocabulary.structural_supporters)} as const;`,
   `export const SUPPORT_TYPES = ${JSON.stringify(vocabulary.support_types)} as const;`,
   `export const RELATION_MODEL = ${JSON.stringify(vocabulary.relation_model)} as const;`,

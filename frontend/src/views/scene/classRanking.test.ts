@@ -20,13 +20,23 @@ describe("rankClasses", () => {
   it("ranks the whole name, then its start, then a word's start, then anywhere", () => {
     expect(names("box")[0]).toBe("box");
     const tab = names("tab", new Map(), 100);
-    expect(tab.slice(0, 2)).toEqual(["table", "table_lamp"]); // the class, then an alias
+    expect(tab[0]).toBe("table"); // the class, then the aliases that start so
+    expect(tab.slice(1, 4)).toEqual(["table_cloth", "table_lamp", "tablecloth"]);
     expect(tab.slice(2, -1).every((n) => n.split("_").some((w) => w.startsWith("tab")))).toBe(true);
     expect(tab.slice(2, -1)).toContain("coffee_table");
     expect(tab.at(-1)).toBe("endtable"); // "tab" inside a word comes last
     expect(names("stand")).toEqual(["stand", "night_stand", "tv_stand", "nightstand"]);
     expect(names("Night Stand")[0]).toBe("night_stand");
     expect(names("zzz")).toEqual([]);
+  });
+
+  it("offers the class a free name resolves to, as the import would store it", () => {
+    expect(names("chiar")[0]).toBe("chair"); // a typo
+    expect(names("wooden chair")[0]).toBe("chair"); // the head noun
+    expect(names("book shelves")[0]).toBe("bookshelf"); // the joined form
+    expect(names("lamp on table")[0]).toBe("lamp"); // what is on the table
+    expect(names("stand")[0]).toBe("stand"); // an alias is offered as itself
+    expect(names("cable")).toEqual([]); // no class: a letter typed for another is not fixed
   });
 
   it("puts the most used first, among equal matches and with nothing typed", () => {

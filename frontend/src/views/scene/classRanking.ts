@@ -1,9 +1,11 @@
 // What the class picker lists for what was typed: the NYU-40 classes (room structure aside:
 // the layout gives walls, floor and ceiling) and the names other datasets use for them, best
 // match first (the whole name, its start, a word's start, anywhere), then the classes the
-// detector saw at the box (classHints.ts), then the most used.
+// detector saw at the box (classHints.ts), then the most used. A free name the server would
+// resolve by its words ("office chair", "chiar": classWords.ts) offers its class as a whole
+// match, so what the picker offers is what an import of that name stores.
 import { CLASS_ALIASES, NYU40_CLASSES, STRUCTURAL_SUPPORTERS } from "@holiscene/schema";
-import { classKey } from "../../state/classNames";
+import { classKey, storedClass } from "../../state/classNames";
 
 export interface ClassOption {
   /** What is sent as the class: an NYU-40 class or a known alias of one. */
@@ -22,10 +24,12 @@ export const CLASS_OPTIONS: readonly ClassOption[] = [
     .map(([alias, cls]) => ({ name: alias, cls })),
 ];
 
+const OPTION_NAMES = new Set(CLASS_OPTIONS.map((o) => o.name));
+
 /** How well `name` matches `query`: 0 the whole name, 1 its start, 2 a word's start, 3 inside. */
-function matchRank(name: string, query: string): number | null {
+function matchRank(name: string, query: string, resolved: string | null): number | null {
   if (query === "") return 1;
-  if (name === query) return 0;
+  if (name === query || name === resolved) return 0;
   if (name.startsWith(query)) return 1;
   if (name.split("_").some((word) => word.startsWith(query))) return 2;
   return name.includes(query) ? 3 : null;
@@ -43,6 +47,8 @@ export function rankClasses(
   likely: readonly string[] = [],
 ): ClassOption[] {
   const key = classKey(query);
+  // A name the options hold is offered as itself; a free name, as the class it resolves to.
+  const resolved = OPTION_NAMES.has(key) ? null : storedClass(query);
   const hinted = new Map(likely.map((cls, i) => [cls, i]));
   const scored: {
     option: ClassOption;
@@ -53,7 +59,7 @@ export function rankClasses(
     index: number;
   }[] = [];
   CLASS_OPTIONS.forEach((option, index) => {
-    const rank = matchRank(option.name, key);
+    const rank = matchRank(option.name, key, resolved);
     if (rank === null) return;
     const alias = option.name === option.cls ? 0 : 1;
     // With nothing typed, only the classes: the aliases would just repeat them.
