@@ -13,7 +13,7 @@ ends it; beyond loopback it never applies (the server refuses to start without a
 from __future__ import annotations
 
 import ipaddress
-from collections.abc import Callable
+from collections.abc import Awaitable, Callable
 from typing import Annotated
 
 from fastapi import Depends, HTTPException, Request
@@ -29,7 +29,10 @@ SESSION_COOKIE = "holiscene_session"
 BACKGROUND_HEADER = "X-Holiscene-Background"
 
 
-def get_workbench(request: Request) -> Workbench:
+# Dependencies that do no I/O are `async def`: FastAPI runs a plain `def` in the thread pool,
+# a hand-over to another thread and back on every request (docs/benchmarks.md, concurrent
+# writers).
+async def get_workbench(request: Request) -> Workbench:
     workbench: Workbench = request.app.state.workbench
     return workbench
 
@@ -82,8 +85,8 @@ def current_user(request: Request, workbench: WorkbenchDep) -> Actor:
     )
 
 
-def require_role(role: Role) -> Callable[[Actor], Actor]:
-    def check(user: Annotated[Actor, Depends(current_user)]) -> Actor:
+def require_role(role: Role) -> Callable[[Actor], Awaitable[Actor]]:
+    async def check(user: Annotated[Actor, Depends(current_user)]) -> Actor:
         if not has_role(user.role, role):
             raise HTTPException(403, f"this needs the {role} role; you are {user.role}")
         return user

@@ -3,8 +3,9 @@ history row in `scene_events` are written together or not at all."""
 
 from __future__ import annotations
 
+from typing import Protocol
+
 from holiscene_schema import SceneState, WorkflowAction
-from sqlalchemy import select
 from sqlalchemy.orm import Session
 
 from ..editing.workflow_rules import STATES, SceneStatus, WorkflowError, check_pipeline_allowed
@@ -21,7 +22,23 @@ def as_state(value: str) -> SceneState:
     raise ValueError(f"unknown scene state {value!r} in the database")
 
 
-def status_of(row: SceneRow) -> SceneStatus:
+class SceneHead(Protocol):
+    """What the workflow reads of a scene's row: a SceneRow, or a row of a plain SELECT of
+    these columns (the hot reads of every save)."""
+
+    @property
+    def id(self) -> str: ...
+    @property
+    def state(self) -> str: ...
+    @property
+    def assignee(self) -> str | None: ...
+    @property
+    def annotation_round(self) -> int: ...
+    @property
+    def current_revision(self) -> int: ...
+
+
+def status_of(row: SceneHead) -> SceneStatus:
     return SceneStatus(
         state=as_state(row.state), assignee=row.assignee, annotation_round=row.annotation_round
     )
@@ -61,7 +78,7 @@ def record_event(
 def pipeline_committed(session: Session, scene_id: str, revision: int) -> None:
     """A pipeline run is being stored as `revision`: a new scene becomes predicted. A scene a
     reviewer is judging (or accepted) must not change under them: WorkflowError."""
-    row = session.scalar(select(SceneRow).where(SceneRow.id == scene_id))
+    row = session.get(SceneRow, scene_id)  # the revision's UPDATE loaded it: no SELECT
     if row is None:
         return
     status = status_of(row)

@@ -10,7 +10,6 @@ from __future__ import annotations
 import json
 import uuid
 from collections.abc import Callable, Sequence
-from datetime import datetime
 from pathlib import Path
 from typing import Any
 
@@ -27,7 +26,19 @@ from holiscene_schema import (
     SceneSummary,
 )
 from pydantic import TypeAdapter
-from sqlalchemy import Engine, select, update
+from sqlalchemy import (
+    ColumnElement,
+    Connection,
+    Engine,
+    Integer,
+    Select,
+    Text,
+    Update,
+    bindparam,
+    cast,
+    select,
+    update,
+)
 from sqlalchemy.orm import Session
 
 from ..core.db import without_transaction
@@ -39,19 +50,53 @@ from ..editing.edits import (
     needs_photo,
     restore_revisions,
 )
-from ..editing.workflow_rules import scene_uncertainty
+from ..editing.workflow_rules import SceneStatus, scene_uncertainty
 from ..inputs import InputFiles, load_photo
 from ..inputs.depth import DEPTH_FILE
 from ..pipeline.people import keep_people_objects, people_objects_changed_since
 from .clock import as_utc, utcnow
 from .files import GROUND_TRUTH_FILE, SceneFiles
-from .scene_events import as_state, pipeline_committed, record_event
+from .revision_writes import add_revision, revision_values, write_at_once
+from .scene_events import SceneHead, as_state, pipeline_committed, record_event
 from .tables import RevisionRow, SceneRow
 
 _EDITS = TypeAdapter(list[Edit])
 # Runs inside a revision's write transaction, after the scene row moved to the new revision
 # number (given); raising rolls the whole write back. The workflow checks and records state.
 RevisionHook = Callable[[Session, int], None]
+# Sees a scene's row before a save reads its revision (same connection); raising refuses it.
+RowCheck = Callable[[Connection, SceneHead], None]
+
+
+def _revision_query(joined: ColumnElement[bool]) -> Select[*tuple[Any, ...]]:
+    """A scene's workflow state with the revision `joined` picks (NULLs when none), built
+    once: the statement of every save and every page load."""
+    return (
+        select(
+            SceneRow.id,
+            SceneRow.state,
+            SceneRow.assignee,
+            SceneRow.annotation_round,
+            SceneRow.current_revision,
+            RevisionRow.number,
+            RevisionRow.created_at,
+            # As text: pydantic reads JSON text in half the time it takes to check the dict
+            # the driver would make of it.
+            cast(RevisionRow.scene, Text).label("scene"),
+        )
+        .outerjoin(RevisionRow, (RevisionRow.scene_id == SceneRow.id) & joined)
+        .where(SceneRow.id == bindparam("scene_id"))
+    )
+
+
+_NUMBER = bindparam("number", type_=Integer)
+_CURRENT = _revision_query(RevisionRow.number == SceneRow.current_revision)
+_NUMBERED = _revision_query(RevisionRow.number == _NUMBER)
+# The current revision only if it is `number` (the base of a save): a stale save's answer,
+# a 409, then costs no transfer of the whole scene.
+_CURRENT_IF = _revision_query(
+    (RevisionRow.number == SceneRow.current_revision) & (SceneRow.current_revision == _NUMBER)
+)
 
 
 class SceneNotFoundError(NotFoundError):
@@ -74,6 +119,11 @@ class RevisionConflictError(DomainError):
             "reload to see their changes, then apply yours again",
             "current_revision": self.current_revision,
         }
+
+
+class SceneRowChangedError(Exception):
+    """A write conditional on the scene's row (its workflow state) found the row changed,
+    though not its revision: nothing was written, and the caller checks its rules again."""
 
 
 class SceneChangedError(RevisionConflictError):
@@ -105,22 +155,38 @@ class SceneStore:
             return self._summary(self._row(session, scene_id), latest_job)
 
     def document(self, scene_id: str, revision: int | None = None) -> SceneDocument:
-        with Session(self.reads) as session:
-            row = self._row(session, scene_id)
-            number = revision if revision is not None else row.current_revision
-            rev = session.scalar(
-                select(RevisionRow).where(
-                    RevisionRow.scene_id == scene_id, RevisionRow.number == number
-                )
-            )
-            if rev is None:
-                raise SceneNotFoundError(f"scene {scene_id} has no revision {number}")
-            return SceneDocument(
-                scene_id=scene_id,
-                revision=number,
-                updated_at=as_utc(rev.created_at),
-                scene=Scene.model_validate(rev.scene),
-            )
+        """A revision (the current one when None)."""
+        if revision is None:
+            return self._read_document(scene_id, _CURRENT, {})
+        return self._read_document(scene_id, _NUMBERED, {"number": revision}, number=revision)
+
+    def _read_document(
+        self,
+        scene_id: str,
+        query: Select[*tuple[Any, ...]],
+        params: dict[str, int],
+        check: RowCheck | None = None,
+        number: int | None = None,
+    ) -> SceneDocument:
+        """The revision `query` picks, read with the scene's workflow state in one statement,
+        on a plain connection (an ORM session costs three times the CPU). `check` sees the
+        scene's row first, on the same connection, and may raise: every save asks its
+        workflow rules this way, so the rules and the revision cost one round trip."""
+        with self.reads.connect() as connection:
+            found = connection.execute(query, {"scene_id": scene_id, **params}).first()
+            if found is None:
+                raise SceneNotFoundError(f"no scene {scene_id!r}")
+            if check is not None:
+                check(connection, found)
+        if found.number is None:
+            missing = found.current_revision if number is None else number
+            raise SceneNotFoundError(f"scene {scene_id} has no revision {missing}")
+        return SceneDocument(
+            scene_id=scene_id,
+            revision=found.number,
+            updated_at=as_utc(found.created_at),
+            scene=Scene.model_validate_json(found.scene),
+        )
 
     def revisions(self, scene_id: str) -> list[RevisionInfo]:
         with Session(self.engine) as session:
@@ -231,16 +297,36 @@ class SceneStore:
         return self.summary(scene_id)
 
     def apply_edits(
-        self, scene_id: str, request: EditRequest, hook: RevisionHook | None = None
+        self,
+        scene_id: str,
+        request: EditRequest,
+        hook: RevisionHook | None = None,
+        check: RowCheck | None = None,
     ) -> SceneDocument:
         """A new revision with the edits; raises RevisionConflictError on a stale base,
-        InvalidEditError (from editing) on a bad edit, and whatever `hook` raises. Nothing is
-        written on error."""
-        base = self._document_for_write(scene_id, request.base_revision)
-        now = utcnow()
+        InvalidEditError (from editing) on a bad edit, and whatever `check` (given the scene's
+        row before anything else) or `hook` raise. Nothing is written on error."""
+        base = self.document_for_write(scene_id, request.base_revision, check)
+        edited = self.edited(scene_id, base.scene, request)
+        return self.commit_edits(scene_id, request, edited, hook)
+
+    def edited(self, scene_id: str, base: Scene, request: EditRequest) -> Scene:
+        """`base` with the request's edits (InvalidEditError on a bad edit); nothing written."""
         earlier = self._earlier_scenes(scene_id, restore_revisions(request.edits))
         photo = self._photo(scene_id) if needs_photo(request.edits) else None
-        edited = apply_edits(base.scene, request.edits, request.author, now, earlier, photo)
+        return apply_edits(base, request.edits, request.author, utcnow(), earlier, photo)
+
+    def commit_edits(
+        self,
+        scene_id: str,
+        request: EditRequest,
+        edited: Scene,
+        hook: RevisionHook | None = None,
+        unchanged: SceneStatus | None = None,
+    ) -> SceneDocument:
+        """Store `edited` (the request's edits on its base revision) as the next revision.
+        `unchanged`: the workflow status the scene must still have, for a write without a hook
+        (else SceneRowChangedError, nothing written)."""
         return self._commit_revision(
             scene_id,
             request.base_revision,
@@ -250,6 +336,7 @@ class SceneStore:
             summary=describe_edits(request.edits),
             edits=request.edits,
             hook=hook,
+            unchanged=unchanged,
         )
 
     def commit_reset(
@@ -399,11 +486,21 @@ class SceneStore:
         """The scene's photo, RGB."""
         return load_photo(self.image_path(scene_id).read_bytes()).rgb
 
-    def _document_for_write(self, scene_id: str, base_revision: int) -> SceneDocument:
-        current = self.document(scene_id)
-        if current.revision != base_revision:
-            raise RevisionConflictError(current.revision)
-        return current
+    def document_for_write(
+        self, scene_id: str, base_revision: int, check: RowCheck | None = None
+    ) -> SceneDocument:
+        """The current revision if it is `base_revision`, else RevisionConflictError (the
+        loser of a race is told without the scene being read). `check` sees the scene's row
+        first."""
+
+        def check_then_base(connection: Connection, row: SceneHead) -> None:
+            if check is not None:
+                check(connection, row)
+            if row.current_revision != base_revision:
+                raise RevisionConflictError(row.current_revision)
+
+        params = {"number": base_revision}
+        return self._read_document(scene_id, _CURRENT_IF, params, check_then_base)
 
     def _commit_revision(
         self,
@@ -417,37 +514,61 @@ class SceneStore:
         edits: Sequence[Edit] | None,
         glb_revision: int | None = None,
         hook: RevisionHook | None = None,
+        unchanged: SceneStatus | None = None,
     ) -> SceneDocument:
         """Store `scene` as revision base_revision + 1 if the scene is still at `base_revision`
-        (RevisionConflictError otherwise), and return it as stored, without reading it back: a
-        save's answer costs no second read of the whole scene (docs/benchmarks.md, concurrent
-        writers)."""
+        (RevisionConflictError otherwise) and, without a hook, in the workflow status
+        `unchanged` (SceneRowChangedError otherwise), and return it as stored, without reading
+        it back: a save's answer costs no second read of the whole scene (docs/benchmarks.md,
+        concurrent writers)."""
         new_revision = base_revision + 1
         now = utcnow()
-        values: dict[str, Any] = {
-            "current_revision": new_revision,
-            "updated_at": now,
-            "object_count": len(scene.objects),
-            "uncertainty": scene_uncertainty(scene),
-        }
-        if glb_revision is not None:
-            values["glb_revision"] = glb_revision
-        with Session(self.engine) as session:
-            moved = session.execute(
+        revision = revision_values(scene_id, new_revision, author, kind, summary, edits, scene, now)
+        objects, uncertainty = len(scene.objects), scene_uncertainty(scene)
+        if hook is None and glb_revision is None:
+            stored = write_at_once(
+                self.reads, base_revision, revision, objects, uncertainty, unchanged
+            )
+        else:
+            moved = (
                 update(SceneRow)
                 .where(SceneRow.id == scene_id, SceneRow.current_revision == base_revision)
-                .values(**values)
+                .values(
+                    current_revision=new_revision,
+                    updated_at=now,
+                    object_count=objects,
+                    uncertainty=uncertainty,
+                    **({} if glb_revision is None else {"glb_revision": glb_revision}),
+                )
             )
-            if moved.rowcount != 1:  # type: ignore[attr-defined]
-                session.rollback()
-                raise RevisionConflictError(self._row(session, scene_id).current_revision)
-            if hook is not None:
-                hook(session, new_revision)
-            self._add_revision(
-                session, scene_id, new_revision, author, kind, summary, edits, scene, now
-            )
-            session.commit()
+            stored = self._write_with_hook(moved, revision, hook)
+        if not stored:
+            current = self.current_revision(scene_id)
+            if current != base_revision or unchanged is None:
+                raise RevisionConflictError(current)
+            raise SceneRowChangedError(f"scene {scene_id} changed meanwhile")
         return SceneDocument(scene_id=scene_id, revision=new_revision, updated_at=now, scene=scene)
+
+    def current_revision(self, scene_id: str) -> int:
+        with Session(self.reads) as session:
+            return self._row(session, scene_id).current_revision
+
+    def _write_with_hook(
+        self, moved: Update, revision: dict[str, Any], hook: RevisionHook | None
+    ) -> bool:
+        """Move the scene's row, run `hook` and add the revision in one transaction; False
+        when the row did not match (nothing written)."""
+        with Session(self.engine) as session:
+            # RETURNING puts the moved row in the session, so a hook's session.get(SceneRow)
+            # costs no SELECT.
+            if session.scalar(moved.returning(SceneRow)) is None:
+                session.rollback()
+                return False
+            if hook is not None:
+                hook(session, revision["number"])
+            add_revision(session, revision)
+            session.commit()
+        return True
 
     @staticmethod
     def _add_revision(
@@ -459,20 +580,9 @@ class SceneStore:
         summary: str,
         edits: Sequence[Edit] | None,
         scene: Scene,
-        created_at: datetime | None = None,
     ) -> None:
-        session.add(
-            RevisionRow(
-                scene_id=scene_id,
-                number=number,
-                created_at=created_at or utcnow(),
-                author=author,
-                kind=kind,
-                summary=summary,
-                edits=_EDITS.dump_python(list(edits), mode="json") if edits is not None else None,
-                scene=scene.model_dump(mode="json"),
-            )
-        )
+        values = revision_values(scene_id, number, author, kind, summary, edits, scene, utcnow())
+        add_revision(session, values)
 
     @staticmethod
     def _row(session: Session, scene_id: str) -> SceneRow:

@@ -90,6 +90,9 @@ def check_role(role: str) -> Role:
     raise UserError(f"unknown role {role!r}: choose one of {', '.join(ROLES)}")
 
 
+_ANY_USER = select(UserRow.id).limit(1)
+
+
 class UserStore:
     def __init__(self, engine: Engine, idle_timeout: timedelta) -> None:
         """`idle_timeout`: how long a session lasts without a request (Settings)."""
@@ -109,8 +112,10 @@ class UserStore:
         make the first account while the server runs)."""
         if self._users_exist:
             return True
-        with Session(self.reads) as session:
-            self._users_exist = session.scalar(select(UserRow.id).limit(1)) is not None
+        # A plain connection, not an ORM session: half the CPU of one, on every request of a
+        # local server (docs/benchmarks.md, concurrent writers).
+        with self.reads.connect() as connection:
+            self._users_exist = connection.scalar(_ANY_USER) is not None
         return self._users_exist
 
     def count_admins(self) -> int:

@@ -26,15 +26,20 @@ from holiscene_schema import (
     WorkflowAction,
     WorkflowEvent,
 )
-from sqlalchemy import Engine, func, select, update
+from sqlalchemy import Connection, Engine, func, select, update
 from sqlalchemy.orm import Session
 
 from ..core.errors import DomainError, NotFoundError
 from ..editing import workflow_rules
-from ..editing.workflow_rules import STATES, Actor, Transition, WorkflowError
+from ..editing.workflow_rules import STATES, Actor, SceneStatus, Transition, WorkflowError
 from .clock import as_utc
-from .scene_events import as_state, record_event, status_of
-from .scenes import RevisionConflictError, SceneNotFoundError, SceneStore
+from .scene_events import SceneHead, as_state, record_event, status_of
+from .scenes import (
+    RevisionConflictError,
+    SceneNotFoundError,
+    SceneRowChangedError,
+    SceneStore,
+)
 from .tables import SceneEventRow, SceneRow
 
 _ACTIONS = get_args(WorkflowAction)
@@ -102,10 +107,17 @@ class WorkflowStore:
         annotation, or rejected -> in annotation again). In the same transaction.
 
         A scene the actor may not edit is refused (WorkflowError) before the edits are even
-        looked at; the check is made again inside the write transaction."""
-        refusal = self.edit_refusal(scene_id, actor)
-        if refusal is not None:
-            raise WorkflowError(refusal)
+        looked at, on the row read with the revision. The rules hold again when the revision
+        is written: a save by the annotator holding the scene is written only if its state,
+        assignee and round are still those the rules saw (one statement, no transaction on
+        PostgreSQL); any other save checks the rules again inside its write transaction."""
+        holding: list[SceneStatus] = []  # the status seen, when the actor already holds it
+
+        def refuse(connection: Connection, row: SceneHead) -> None:
+            status = status_of(row)
+            earlier = _earlier_annotators(connection, row)
+            if workflow_rules.take_for_annotation(status, actor, earlier) is None:
+                holding.append(status)
 
         def take(session: Session, revision: int) -> None:
             # The revision's UPDATE already holds the scene's row; the take is still a
@@ -119,7 +131,14 @@ class WorkflowStore:
             ):
                 raise WorkflowError("the scene changed meanwhile; reload it and try again")
 
-        return self.scenes.apply_edits(scene_id, request, hook=take)
+        base = self.scenes.document_for_write(scene_id, request.base_revision, refuse)
+        edited = self.scenes.edited(scene_id, base.scene, request)
+        if holding:
+            try:
+                return self.scenes.commit_edits(scene_id, request, edited, unchanged=holding[0])
+            except SceneRowChangedError:
+                pass  # submitted, rejected or taken over meanwhile: the rules once more
+        return self.scenes.commit_edits(scene_id, request, edited, hook=take)
 
     def take(self, scene_id: str, actor: Actor) -> SceneSummary:
         """Take a scene for annotation without editing it yet."""
@@ -367,12 +386,12 @@ def _row(session: Session, scene_id: str) -> SceneRow:
     return row
 
 
-def _earlier_annotators(session: Session, row: SceneRow) -> set[str]:
+def _earlier_annotators(db: Session | Connection, row: SceneHead) -> set[str]:
     """Who submitted the scene in an earlier annotation round."""
     if row.annotation_round <= 1:
         return set()  # rounds count from 1: asked on every save, so no query for the first
     return set(
-        session.scalars(
+        db.scalars(
             select(SceneEventRow.actor).where(
                 SceneEventRow.scene_id == row.id,
                 SceneEventRow.action == "submit",

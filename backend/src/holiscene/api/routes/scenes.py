@@ -260,14 +260,17 @@ def run_placement_job(scene_id: str, workbench: WorkbenchDep, user: AnnotatorDep
 )
 def edit_scene(
     scene_id: str, request: EditRequest, workbench: WorkbenchDep, user: AnnotatorDep
-) -> SceneDocument:
+) -> Response:
     """A new revision; the first edit takes the scene for annotation (409 when someone
     else is annotating it, or it is submitted or accepted)."""
     request = request.model_copy(update={"author": author_of(user, request.author)})
     saved = workbench.workflow.edit(scene_id, request, user)
-    # The rules let this user make the revision just saved, inside its transaction, so it is
-    # theirs to edit on: the answer needs no second read of the scene's workflow state.
-    return saved.model_copy(update={"editable": True, "editable_reason": None})
+    # The rules let this user make the revision just saved (checked again with the write), so
+    # it is theirs to edit on: the answer needs no second read of the scene's workflow state.
+    answer = saved.model_copy(update={"editable": True, "editable_reason": None})
+    # Written to JSON here, in the worker thread: a returned model would cost one more hand-over
+    # to a worker (FastAPI checks it there) and its JSON would be made on the event loop.
+    return Response(answer.model_dump_json(by_alias=True), media_type="application/json")
 
 
 @router.get("/{scene_id}/revisions", response_model=list[RevisionInfo], responses=_ERRORS)
