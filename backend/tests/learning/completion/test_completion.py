@@ -103,3 +103,15 @@ def test_too_few_points_in_the_box_give_no_completion() -> None:
     assert completer().complete(far, box) is None
     near = np.random.default_rng(0).uniform(1.9, 2.1, (MIN_OBSERVED_POINTS - 1, 3))
     assert completer().complete(near, box) is None
+
+
+def test_the_mesher_smooths_the_voxel_staircase() -> None:
+    # On a ball the surface normals should point away from the centre; a voxel surface's
+    # normals point along the grid's axes instead (about 0.6 on average).
+    ball = trimesh.creation.icosphere(subdivisions=3, radius=0.4)
+    points = trimesh.sample.sample_surface(ball, 4000, seed=0)[0]
+    mesh = mesh_from_points(points)
+    centres = mesh.triangles_center
+    radial = centres / np.linalg.norm(centres, axis=1, keepdims=True)
+    alignment = float(np.einsum("ij,ij->i", mesh.face_normals, radial).mean())
+    assert alignment > 0.9
