@@ -232,12 +232,17 @@ class Annotator {
   masksFixed = 0;
   /** True object id -> the id the app gave it. */
   readonly ids = new Map<string, string>();
+  /** Screenshot file of the class picker the first time it opens (then null). */
+  private pickerShot: string | null;
 
   constructor(
     readonly page: Page,
     readonly sceneId: string,
     readonly truth: Scene,
-  ) {}
+    name: string,
+  ) {
+    this.pickerShot = path.join(SCREENSHOTS, `object-annotator-${name}-picker.png`);
+  }
 
   async act(what: string, action: () => Promise<unknown>): Promise<void> {
     await action();
@@ -321,6 +326,8 @@ class Annotator {
   async pickClass(cls: string, shows: Shows): Promise<void> {
     const picker = this.page.getByTestId("class-picker");
     await expect(picker).toBeVisible();
+    if (this.pickerShot) await this.page.screenshot({ path: this.pickerShot });
+    this.pickerShot = null;
     const listed = () =>
       picker
         .getByTestId("class-option")
@@ -548,7 +555,7 @@ test("run 1: a plain photo annotated without suggestions", async ({ page }, test
   test.setTimeout(10 * 60_000);
   const { sceneId, truth } = await openPlainPhoto(page, `synth-${SEED} (annotated by hand)`);
   const stopTrace = await traceRun(page, "by-hand");
-  const run = new Annotator(page, sceneId, truth);
+  const run = new Annotator(page, sceneId, truth, "by-hand");
   if (await page.getByTestId("reject-all-suggestions").isVisible())
     await run.act("Reject all suggestions", () =>
       page.getByTestId("reject-all-suggestions").click(),
@@ -596,7 +603,7 @@ test("run 2: the same photo annotated from the detector's suggestions", async ({
   test.info().annotations.push({ type: "detector", description: "the registry's NYU-40 head" });
   const { sceneId, truth } = await openPlainPhoto(page, `synth-${SEED} (from suggestions)`);
   const stopTrace = await traceRun(page, "from-suggestions");
-  const run = new Annotator(page, sceneId, truth);
+  const run = new Annotator(page, sceneId, truth, "from-suggestions");
   const suggested = await page.getByTestId("detector-suggestion").count();
   if (suggested > 0) {
     await run.timed(
