@@ -1,8 +1,8 @@
 // Benchmark: a scripted annotator turns a plain photo of a synthetic room (about 10 objects,
 // truth from gt.json) into a full scene: boxes, classes, masks and supports. Targets (issue 19):
-// at most 40 recorded actions without the detector's suggestions (asserted), at most 20 with
-// them and every edit redrawn within 50 ms (reported: they hang on the detector's recall and
-// the machine's load; figures in docs/benchmarks.md).
+// at most 40 recorded actions without the detector's suggestions and at most 20 with them
+// (asserted), every edit redrawn within 50 ms (reported: it hangs on the machine's load;
+// figures in docs/benchmarks.md).
 //
 // The photo is imported with an empty detections.json: the pipeline still estimates the camera
 // and the room, but there are no objects. The annotator works as a person would, with the
@@ -657,10 +657,10 @@ test("run 2: the same photo annotated from the detector's suggestions", async ({
   const row = await report({ ...(await finish(run, "from-suggestions")), suggested }, testInfo);
   await promote(page.request, previous);
   expectComplete(row, testInfo);
-  // The detector's recall decides this count (issue 18's accuracy targets are not met yet): it
-  // is reported against the target, and the run must not get worse than the one without.
+  // The detector's recall decides much of this count (issue 18's accuracy targets are not met
+  // yet: it finds 5 of the 9 objects here); the workbench must still keep it within target.
   noteTarget(testInfo, `${row.run}: actions`, row.actions, ACTIONS_WITH);
-  expect(row.actions, "suggestions must save work").toBeLessThan(ACTIONS_WITHOUT);
+  expect(row.actions, "actions with suggestions").toBeLessThanOrEqual(ACTIONS_WITH);
 });
 
 /** Report a figure against its target (a benchmark's speed or a model's reach, not a pass
