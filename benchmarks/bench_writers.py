@@ -7,9 +7,10 @@ through the HTTP API (holiscene.testing.concurrent_writers: real threads, one ap
 share scenes, so some saves conflict and are retried with the revision the 409 names), first
 back to back, then with a pause of `--pause-ms` on average between a writer's saves (a person
 looks at the result before the next edit; 20 writers then still save 40 times a second).
-Figures: p50 and p95 of the requests that saved. SQLite is a file in a temporary folder;
-PostgreSQL a scratch server with its default, durable settings (fsync and synchronous commit
-on). Every save is checked in the history too.
+Figures: p50 and p95 of the requests that saved, and the CPU per request in the app's worker
+threads, in its event loop and in the rest of the process (the writers). SQLite is a file in
+a temporary folder; PostgreSQL a scratch server with its default, durable settings (fsync and
+synchronous commit on). Every save is checked in the history too.
 
 Target (issue 20): p95 <= 100 ms at 20 writers on PostgreSQL, checked on the paced run (exit
 status 1 when missed or when a history is wrong). Back to back, 20 writers keep the 2 cores
@@ -22,6 +23,7 @@ from __future__ import annotations
 import argparse
 import sys
 import tempfile
+import threading
 import time
 from pathlib import Path
 
@@ -39,6 +41,34 @@ from holiscene.testing.scratch_postgres import ScratchPostgres
 TARGET_P95_MS = 100.0
 
 
+def cpu_of_threads() -> dict[str, float]:
+    """Seconds of CPU so far of the whole process and of the app's threads: its worker threads
+    (the routes' own work) and its event loop (the test client's portal thread, where FastAPI
+    routes each request). Threads that ended (the writers) count in the process only."""
+    parts = {"process": time.process_time(), "app's worker threads": 0.0, "event loop": 0.0}
+    for thread in threading.enumerate():
+        if "portal" in thread.name:
+            part = "event loop"
+        elif "worker" in thread.name.lower() and "writer" not in thread.name:
+            part = "app's worker threads"
+        else:
+            continue
+        if thread.ident is not None and thread.is_alive():
+            parts[part] += time.clock_gettime(time.pthread_getcpuclockid(thread.ident))
+    return parts
+
+
+def cpu_per_request(before: dict[str, float], run: WriterRun) -> str:
+    """Milliseconds of CPU per request of the run (saves and the conflicts sent again), by
+    part: the app's worker threads, its event loop, and the rest (the writers, the test
+    client's work in them)."""
+    after = cpu_of_threads()
+    ms = {part: (after[part] - before[part]) * 1000 / run.requests for part in before}
+    rest = ms.pop("process") - sum(ms.values())
+    split = ", ".join(f"{part} {value:.1f}" for part, value in ms.items())
+    return f"{split}, writers and the rest {rest:.1f} ms CPU per request"
+
+
 def measure(database_url: str | None, args: argparse.Namespace) -> list[WriterRun]:
     """[one writer alone, all writers back to back, all writers with pauses], each on scenes
     of its own."""
@@ -52,20 +82,19 @@ def measure(database_url: str | None, args: argparse.Namespace) -> list[WriterRu
             alone, crowd, paced = (
                 import_scenes(client, count) for count in (1, args.scenes, args.scenes)
             )
-            began = time.process_time()
-            first = run_writers(client, alone, 1, args.saves)
-            cpu_ms = (time.process_time() - began) * 1000 / len(first.save_ms)
-            print(f"  alone: {cpu_ms:.1f} ms CPU per save (app and writer, one process)")
-            runs = [
-                first,
-                run_writers(client, crowd, args.writers, args.saves),
-                run_writers(client, paced, args.writers, args.saves, args.pause_ms / 1000),
-            ]
-            for run in runs:
-                print(f"  {run.describe()}")
+            runs = []
+            for scenes, writers, pause_s in (
+                (alone, 1, 0.0),
+                (crowd, args.writers, 0.0),
+                (paced, args.writers, args.pause_ms / 1000),
+            ):
+                before = cpu_of_threads()
+                run = run_writers(client, scenes, writers, args.saves, pause_s)
+                print(f"  {run.describe()}\n    {cpu_per_request(before, run)}")
                 problems = history_problems(client, run)
                 if problems:
                     sys.exit("wrong history: " + "; ".join(problems[:5]))
+                runs.append(run)
     return runs
 
 

@@ -41,6 +41,11 @@ class WriterRun:
         return ordered[min(len(ordered) - 1, round(fraction * (len(ordered) - 1)))]
 
     @property
+    def requests(self) -> int:
+        """Requests sent: the saves and the ones that lost a race and were sent again."""
+        return len(self.save_ms) + self.conflicts
+
+    @property
     def p50(self) -> float:
         return statistics.median(self.save_ms)
 
