@@ -78,6 +78,61 @@ function classCell(object: SceneObject, changeClass: ChangeClass | undefined): H
   return cell;
 }
 
+function setDisabled(control: HTMLButtonElement | HTMLSelectElement, disabled: boolean): void {
+  if (control.disabled !== disabled) control.disabled = disabled;
+}
+
+/** Disable the supporters that rest on `id` (a loop), but the one it has (`current`). */
+function markLoops(
+  supporter: HTMLSelectElement,
+  id: string,
+  current: string | undefined,
+  shown: ReadonlyMap<string, ShownSupport>,
+): void {
+  for (const option of supporter.querySelectorAll("option")) {
+    const candidate = option.value;
+    const loops =
+      candidate !== NONE && !isStructural(candidate) && wouldCycle(id, candidate, shown);
+    const disabled = loops && candidate !== current;
+    if (option.disabled !== disabled) option.disabled = disabled;
+    const title = disabled ? `${candidate} rests on ${id}` : "";
+    if (option.title !== title) option.title = title;
+  }
+}
+
+/** A choice in the row's menus becomes the session's support edit. */
+function editOnChange(
+  id: string,
+  supporter: HTMLSelectElement,
+  type: HTMLSelectElement,
+  session: SceneSession,
+): void {
+  supporter.addEventListener("change", () => {
+    const parent = supporter.value;
+    if (parent === NONE) {
+      session.edit(`remove ${id}'s supporter`, [{ kind: "remove_support", child: id }]);
+      return;
+    }
+    const current = session.shown().get(id);
+    const keepType = current && defaultType(current.parent) === defaultType(parent);
+    session.edit(`${id} on ${parent}`, [
+      {
+        kind: "set_support",
+        child: id,
+        parent,
+        type: keepType ? current.type : defaultType(parent),
+      },
+    ]);
+  });
+  type.addEventListener("change", () => {
+    const current = session.shown().get(id);
+    if (!current) return;
+    session.edit(`${id}: ${type.value}`, [
+      { kind: "set_support", child: id, parent: current.parent, type: type.value as SupportType },
+    ]);
+  });
+}
+
 function objectRow(
   object: SceneObject,
   session: SceneSession,
@@ -138,52 +193,28 @@ function objectRow(
     el("td", {}, type),
   );
 
-  supporter.addEventListener("change", () => {
-    const parent = supporter.value;
-    if (parent === NONE) {
-      session.edit(`remove ${id}'s supporter`, [{ kind: "remove_support", child: id }]);
-      return;
-    }
-    const current = session.shown().get(id);
-    const keepType = current && defaultType(current.parent) === defaultType(parent);
-    session.edit(`${id} on ${parent}`, [
-      {
-        kind: "set_support",
-        child: id,
-        parent,
-        type: keepType ? current.type : defaultType(parent),
-      },
-    ]);
-  });
-  type.addEventListener("change", () => {
-    const current = session.shown().get(id);
-    if (!current) return;
-    session.edit(`${id}: ${type.value}`, [
-      { kind: "set_support", child: id, parent: current.parent, type: type.value as SupportType },
-    ]);
-  });
+  editOnChange(id, supporter, type, session);
 
   const update = () => {
     const shown = session.shown();
     const support = shown.get(id);
+    // Written only when they change: the list is updated on every change of the session (a
+    // hover too), and each write would make the browser restyle the row.
     supporter.value = support?.parent ?? NONE;
     type.value = support?.type ?? defaultType(NONE);
-    supporter.disabled = !session.editable;
-    type.disabled = !support || !session.editable;
-    if (cls instanceof HTMLButtonElement) cls.disabled = !session.editable;
-    for (const option of supporter.querySelectorAll("option")) {
-      const candidate = option.value;
-      const loops =
-        candidate !== NONE && !isStructural(candidate) && wouldCycle(id, candidate, shown);
-      option.disabled = loops && candidate !== support?.parent;
-      option.title = option.disabled ? `${candidate} rests on ${id}` : "";
-    }
+    setDisabled(supporter, !session.editable);
+    setDisabled(type, !support || !session.editable);
+    if (cls instanceof HTMLButtonElement) setDisabled(cls, !session.editable);
+    markLoops(supporter, id, support?.parent, shown);
     const pending = session.isPending(id);
-    status.textContent = statusText(support);
-    status.className = `badge${support ? "" : " badge--warn"}${pending ? " badge--pending" : ""}`;
+    const text = statusText(support);
+    if (status.textContent !== text) status.textContent = text;
+    const badge = `badge${support ? "" : " badge--warn"}${pending ? " badge--pending" : ""}`;
+    if (status.className !== badge) status.className = badge;
     element.classList.toggle("is-unsupported", !support);
     element.classList.toggle("is-pending", pending);
-    element.dataset.unsupported = String(!support);
+    if (element.dataset.unsupported !== String(!support))
+      element.dataset.unsupported = String(!support);
     element.classList.toggle("is-hovered", session.hovered === id);
     element.classList.toggle("is-selected", session.selected === id);
   };
@@ -269,7 +300,7 @@ export function mountSupportEditor(
     for (const row of rows) row.update();
     const missing = rows.filter((r) => !session.shown().has(r.object.id)).length;
     const { text, warn } = supportSummary(session.objects, missing);
-    summary.textContent = text;
+    if (summary.textContent !== text) summary.textContent = text;
     summary.classList.toggle("is-warn", warn);
   };
   // Only scrolls: taking the focus would send the photo's shortcut keys into the select.

@@ -15,24 +15,32 @@ export function decodeMask(mask: Mask): Uint8Array {
   return bits;
 }
 
+/** The canvas every mask image is encoded on (a new canvas and context cost ms each). */
+let encoder: { canvas: HTMLCanvasElement; context: CanvasRenderingContext2D | null } | null = null;
+
 /** A PNG data URL of the mask's window: the colour inside, transparent outside. */
 export function maskImageUrl(mask: Mask, bits: Uint8Array, [r, g, b]: Rgb): string {
   const [width, height] = mask.size;
-  const canvas = document.createElement("canvas");
+  if (!encoder) {
+    const canvas = document.createElement("canvas");
+    // A canvas kept in main memory: encoding a GPU-backed one waits for a read-back, 10-190
+    // ms per mask in headless Chromium, most of an object edit's redraw.
+    encoder = { canvas, context: canvas.getContext("2d", { willReadFrequently: true }) };
+  }
+  const { canvas, context } = encoder;
+  // Setting the size clears the canvas.
   canvas.width = Math.max(1, width);
   canvas.height = Math.max(1, height);
-  // A canvas kept in main memory: encoding a GPU-backed one waits for a read-back, 10-190 ms
-  // per mask in headless Chromium, most of an object edit's redraw.
-  const context = canvas.getContext("2d", { willReadFrequently: true });
   if (!context || width === 0 || height === 0) return canvas.toDataURL();
   const image = context.createImageData(width, height);
-  bits.forEach((bit, i) => {
-    if (!bit) return;
-    image.data[4 * i] = r;
-    image.data[4 * i + 1] = g;
-    image.data[4 * i + 2] = b;
-    image.data[4 * i + 3] = 255;
-  });
+  const data = image.data;
+  for (let i = 0; i < bits.length; i++) {
+    if (!bits[i]) continue;
+    data[4 * i] = r;
+    data[4 * i + 1] = g;
+    data[4 * i + 2] = b;
+    data[4 * i + 3] = 255;
+  }
   context.putImageData(image, 0, 0);
   return canvas.toDataURL("image/png");
 }
