@@ -1,6 +1,7 @@
 // Driving the photo like an annotator: click an arrow, click an object, drag an arrowhead.
 // Points are found on the page (on the arrow's own shaft, inside the object's mask and not
 // under an arrow), so clicks land where a person would click.
+import path from "node:path";
 import { expect, type Page } from "@playwright/test";
 
 export async function openScene(page: Page, sceneId: string): Promise<void> {
@@ -143,6 +144,15 @@ export function shownGraph(page: Page): Promise<Record<string, { parent: string;
     }
     return graph;
   });
+}
+
+/** Fill the scene list's upload form with a synthetic folder's photo, K, boxes and depth. */
+export async function fillUploadWithDepth(page: Page, dir: string, name: string): Promise<void> {
+  await page.getByTestId("upload-image").setInputFiles(path.join(dir, "img.png"));
+  await page.getByTestId("upload-cam_k").setInputFiles(path.join(dir, "cam_K.txt"));
+  await page.getByTestId("upload-detections").setInputFiles(path.join(dir, "detections.json"));
+  await page.getByTestId("upload-depth").setInputFiles(path.join(dir, "depth.png"));
+  await page.getByTestId("upload-name").fill(name);
 }
 
 /** Submit the scene list's upload form and wait until the photo's pipeline has finished. */

@@ -5,7 +5,7 @@
 import { mkdirSync } from "node:fs";
 import path from "node:path";
 import { expect, type Page, test } from "@playwright/test";
-import { submitUploadAndWait } from "../helpers/photo";
+import { fillUploadWithDepth, submitUploadAndWait } from "../helpers/photo";
 import { scene3d } from "../helpers/scene3d";
 import { synthesizeFolder } from "../helpers/synthetic";
 
@@ -15,11 +15,7 @@ const screenshots = path.resolve(import.meta.dirname, "../screenshots");
 async function importWithDepth(page: Page, name: string): Promise<void> {
   const dir = synthesizeFolder(SEED);
   await page.goto("/#/");
-  await page.getByTestId("upload-image").setInputFiles(path.join(dir, "img.png"));
-  await page.getByTestId("upload-cam_k").setInputFiles(path.join(dir, "cam_K.txt"));
-  await page.getByTestId("upload-detections").setInputFiles(path.join(dir, "detections.json"));
-  await page.getByTestId("upload-depth").setInputFiles(path.join(dir, "depth.png"));
-  await page.getByTestId("upload-name").fill(name);
+  await fillUploadWithDepth(page, dir, name);
   await submitUploadAndWait(page);
   await page.getByTestId("upload-open").click();
   await expect(page.getByTestId("scene-title")).toHaveText(name);

@@ -5,7 +5,7 @@ import { execFileSync } from "node:child_process";
 import { mkdirSync } from "node:fs";
 import path from "node:path";
 import { expect, test } from "@playwright/test";
-import { submitUploadAndWait } from "../helpers/photo";
+import { fillUploadWithDepth, submitUploadAndWait } from "../helpers/photo";
 import { synthesizeFolder } from "../helpers/synthetic";
 
 const PYTHON = path.resolve(import.meta.dirname, "../../.venv/bin/python");
@@ -14,11 +14,7 @@ const SEED = 14; // a synthetic room with its rendered depth.png (16-bit millime
 test("a photo imported with its depth shows the depth over the photo", async ({ page }) => {
   const dir = synthesizeFolder(SEED);
   await page.goto("/#/");
-  await page.getByTestId("upload-image").setInputFiles(path.join(dir, "img.png"));
-  await page.getByTestId("upload-cam_k").setInputFiles(path.join(dir, "cam_K.txt"));
-  await page.getByTestId("upload-detections").setInputFiles(path.join(dir, "detections.json"));
-  await page.getByTestId("upload-depth").setInputFiles(path.join(dir, "depth.png"));
-  await page.getByTestId("upload-name").fill("room with depth");
+  await fillUploadWithDepth(page, dir, "room with depth");
   const screenshots = path.resolve(import.meta.dirname, "../screenshots");
   mkdirSync(screenshots, { recursive: true });
   await page

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
 
 import pytest
 from fastapi.testclient import TestClient
@@ -65,3 +67,20 @@ def accounts(settings: Settings) -> Iterator[Accounts]:
         ):
             made.add(name, role)
         yield made
+
+
+def folder_upload(folder: Path, depth: bool = False) -> dict[str, Any]:
+    """The upload form's files for an input folder made by `holiscene synth` (photo, K, boxes,
+    and its depth when asked)."""
+    files: dict[str, Any] = {
+        "image": ("img.png", (folder / "img.png").read_bytes(), "image/png"),
+        "cam_k": ("cam_K.txt", (folder / "cam_K.txt").read_bytes(), "text/plain"),
+        "detections": (
+            "detections.json",
+            (folder / "detections.json").read_bytes(),
+            "application/json",
+        ),
+    }
+    if depth:
+        files["depth"] = ("depth.png", (folder / "depth.png").read_bytes(), "image/png")
+    return files

@@ -282,7 +282,10 @@ class SceneStore:
             )
             session.add(row)
             session.flush()
-            self._add_revision(session, scene_id, 1, author, "import", "imported", None, scene)
+            first = revision_values(
+                scene_id, 1, author, "import", "imported", None, scene, utcnow()
+            )
+            add_revision(session, first)
             record_event(
                 session,
                 row,
@@ -569,20 +572,6 @@ class SceneStore:
             add_revision(session, revision)
             session.commit()
         return True
-
-    @staticmethod
-    def _add_revision(
-        session: Session,
-        scene_id: str,
-        number: int,
-        author: str,
-        kind: RevisionKind,
-        summary: str,
-        edits: Sequence[Edit] | None,
-        scene: Scene,
-    ) -> None:
-        values = revision_values(scene_id, number, author, kind, summary, edits, scene, utcnow())
-        add_revision(session, values)
 
     @staticmethod
     def _row(session: Session, scene_id: str) -> SceneRow:

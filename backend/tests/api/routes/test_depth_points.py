@@ -15,23 +15,13 @@ from fastapi.testclient import TestClient
 from holiscene.learning.completion.scene_points import MAX_POINTS
 
 from ...conftest import wait_for_job
-from ..conftest import Accounts
+from ..conftest import Accounts, folder_upload
 
 DEPTH_STAGES = {"layout_from_depth", "boxes_from_depth", "shape_completion"}
 
 
 def _post(client: TestClient, folder: Path, depth: bool, run: bool) -> Any:
-    files = {
-        "image": ("img.png", (folder / "img.png").read_bytes(), "image/png"),
-        "cam_k": ("cam_K.txt", (folder / "cam_K.txt").read_bytes(), "text/plain"),
-        "detections": (
-            "detections.json",
-            (folder / "detections.json").read_bytes(),
-            "application/json",
-        ),
-    }
-    if depth:
-        files["depth"] = ("depth.png", (folder / "depth.png").read_bytes(), "image/png")
+    files = folder_upload(folder, depth)
     response = client.post(
         "/api/scenes", files=files, data={"run_pipeline": "true" if run else "false"}
     )

@@ -12,17 +12,11 @@ from holiscene.api.app import create_app
 from holiscene.core.settings import Settings
 from holiscene.viewer import ViewerPool
 
+from ..conftest import folder_upload
+
 
 def _import(client: TestClient, folder: Path) -> str:
-    files = {
-        "image": ("img.png", (folder / "img.png").read_bytes(), "image/png"),
-        "cam_k": ("cam_K.txt", (folder / "cam_K.txt").read_bytes(), "text/plain"),
-        "detections": (
-            "detections.json",
-            (folder / "detections.json").read_bytes(),
-            "application/json",
-        ),
-    }
+    files = folder_upload(folder)
     response = client.post("/api/scenes", files=files, data={"run_pipeline": "false"})
     assert response.status_code == 201, response.text
     scene_id: str = response.json()["scene"]["id"]
