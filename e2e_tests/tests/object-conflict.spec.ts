@@ -69,9 +69,9 @@ test("two people editing objects at once: the second is told, and nothing is los
   );
 
   // Bob, who still sees the night stand, renames it: it is gone, so his change is kept on
-  // screen with the reason, Retry and Discard. (He takes the Box tool again should his page
-  // have fallen back to Select: see docs/object-editing.md, "Not done yet".)
-  await chooseTool(bob, "box");
+  // screen with the reason, Retry and Discard. His Box tool is still in hand (Alice's saves
+  // never lock his page, not even for a moment).
+  await expect(bob.getByTestId("photo-tool-box")).toHaveAttribute("aria-pressed", "true");
   await changeClass(bob, o1, "dress", "dresser");
   const failure = bob.getByTestId("object-edit-failure");
   await expect(failure).toBeVisible();

@@ -6,8 +6,9 @@
 import { mkdirSync } from "node:fs";
 import path from "node:path";
 import type { SceneDocument } from "@holiscene/schema";
-import { expect, test } from "@playwright/test";
-import { getScene } from "../helpers/api";
+import { expect, type Page, test } from "@playwright/test";
+import { getScene, seedScene, T3D_5 } from "../helpers/api";
+import { chooseTool } from "../helpers/objects";
 import { openScene, slowAutosave } from "../helpers/photo";
 import { seedFolder, synthesize } from "../helpers/scene3d";
 
@@ -83,4 +84,40 @@ test("a save refused by the workflow lock keeps the edit, shows why, and is save
     source: "manual",
   });
   await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+});
+
+/** Submit the scene from the workflow bar, then send it back with a comment (one person reviews). */
+async function submitAndSendBack(page: Page, comment: string, between?: () => Promise<void>) {
+  await page.getByTestId("workflow-submit").click();
+  await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
+  await between?.();
+  await page.getByTestId("workflow-reject").click();
+  await page.getByTestId("reject-comment").fill(comment);
+  await page.getByTestId("reject-send").click();
+  await expect(page.getByTestId("workflow-state")).toHaveText("rejected");
+}
+
+test("the editing tool a lock took away comes back when the scene is editable again", async ({
+  page,
+  request,
+}) => {
+  const seeded = await seedScene(request, T3D_5, "t3d-5 tool after lock");
+  const id = seeded.scene_id;
+  expect((await request.post(`/api/scenes/${id}/take`)).status()).toBe(200);
+  await openScene(page, id);
+  await chooseTool(page, "box");
+
+  // Submitted, it is read only: the Box tool gives way to Select and cannot be chosen. Sent
+  // back (here by the same person, who reviews too), the Box tool is in hand again.
+  await submitAndSendBack(page, "Check the lamp's box.", async () => {
+    await expect(page.getByTestId("photo-tool-select")).toHaveAttribute("aria-pressed", "true");
+    await expect(page.getByTestId("photo-tool-box")).toBeDisabled();
+  });
+  await expect(page.getByTestId("photo-tool-box")).toHaveAttribute("aria-pressed", "true");
+
+  // A tool chosen while locked is the person's choice: the next unlock leaves it.
+  await page.getByTestId("workflow-take").click(); // "Reopen for changes"
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+  await submitAndSendBack(page, "Once more.", () => chooseTool(page, "select"));
+  await expect(page.getByTestId("photo-tool-select")).toHaveAttribute("aria-pressed", "true");
 });

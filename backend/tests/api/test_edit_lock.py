@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import pytest
 from fastapi.testclient import TestClient
+from holiscene.api.permissions import with_edit_permission
+from holiscene.editing.workflow_rules import Actor
 
 from ..stored_scenes import store_predicted_scene
 from .conftest import Accounts
@@ -114,3 +116,23 @@ def test_the_local_user_sees_the_lock_too(client: TestClient) -> None:
     assert client.post(f"/api/scenes/{scene_id}/submit", json={"revision": revision}).is_success
     doc = client.get(f"/api/scenes/{scene_id}").json()
     assert doc["editable"] is False and "submitted for review" in doc["editable_reason"]
+
+
+def test_a_save_landing_after_the_latest_was_read_does_not_lock_it(
+    api: Api, accounts: Accounts
+) -> None:
+    """The page's answer about the latest revision, read just before a colleague saved, still
+    says editable (the page merges that revision when it saves); the same revision asked for
+    by number is an earlier one by then."""
+    workbench = accounts.workbench
+    scene_id = store_predicted_scene(workbench.scenes)
+    ada = Actor("ada", "admin")
+    read_before = workbench.scenes.document(scene_id)
+    flow_before = workbench.workflow.scene_workflow(scene_id)
+    assert api.edit("ada", scene_id, _set("o2", "floor")).status_code == 200
+    for answer in (read_before, flow_before):
+        judged = with_edit_permission(answer, workbench, ada)
+        assert (judged.editable, judged.editable_reason) == (True, None)
+    by_number = with_edit_permission(read_before, workbench, ada, by_number=True)
+    assert by_number.editable is False
+    assert "edits apply to the latest" in (by_number.editable_reason or "")

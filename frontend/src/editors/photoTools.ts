@@ -109,7 +109,12 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
     optionsBox.replaceChildren(...[state.active.options?.() ?? null].filter((n) => n !== null));
   };
 
+  // The editing tool a lock took away: given back when the scene is editable again, unless
+  // the person chose a tool meanwhile (a colleague's save can lock the page for a moment).
+  let takenByLock: PhotoTool | null = null;
+
   const activate = (id: string) => {
+    takenByLock = null;
     const next = tools.find((t) => t.id === id);
     if (!next || !usable(next)) return;
     if (next !== state.active) {
@@ -174,11 +179,18 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
     removeEscape();
     removeEscape = registerShortcut(escapeSpec);
   });
-  // A scene turning read only drops the editing tools.
+  // A scene turning read only drops the editing tools; turning editable gives the dropped one
+  // back.
   const unsubscribe = host.session.subscribe((change) => {
     if (change !== "lock") return;
-    if (!usable(state.active)) activate(selectTool.id);
-    else show();
+    const taken = takenByLock;
+    if (!usable(state.active)) {
+      const active = state.active;
+      activate(selectTool.id);
+      takenByLock = active;
+    } else if (taken && state.active === selectTool && tools.includes(taken) && usable(taken)) {
+      activate(taken.id);
+    } else show();
   });
 
   return {

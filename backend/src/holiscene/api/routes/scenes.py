@@ -286,4 +286,6 @@ def get_revision(
     user: UserDep,
 ) -> SceneDocument:
     """A revision as stored; only the latest can be `editable`."""
-    return with_edit_permission(workbench.scenes.document(scene_id, number), workbench, user)
+    return with_edit_permission(
+        workbench.scenes.document(scene_id, number), workbench, user, by_number=True
+    )
