@@ -43,10 +43,10 @@ def test_a_save_answers_with_the_revision_as_stored_in_few_statements(
 ) -> None:
     """The answer to a save is built from the scene just written, not read back: it must be
     exactly what a later read returns. A save after the first (which takes the scene) talks to
-    the database three times on PostgreSQL (who is asking; the scene's state with its
-    revision; the new revision, one statement) and four on SQLite (its UPDATE and INSERT
-    apart), a stale one twice; every statement more is a round trip each of 20 writers pays
-    on PostgreSQL (docs/benchmarks.md, concurrent writers)."""
+    the database at most three times on PostgreSQL (who is asking, unless asked in the last
+    second; the scene's state with its revision; the new revision, one statement) and four on
+    SQLite (its UPDATE and INSERT apart), a stale one at most twice; every statement more is a
+    round trip each of 20 writers pays on PostgreSQL (docs/benchmarks.md, concurrent writers)."""
     scene_id = import_scenes(client, 1)[0]
     loaded = client.get(f"/api/scenes/{scene_id}").json()
     child, parent = (o["id"] for o in loaded["scene"]["objects"])

@@ -13,6 +13,7 @@ from __future__ import annotations
 import hashlib
 import re
 import secrets
+import time
 from dataclasses import dataclass
 from datetime import datetime, timedelta
 
@@ -93,29 +94,47 @@ def check_role(role: str) -> Role:
 _ANY_USER = select(UserRow.id).limit(1)
 
 
+# How long "no accounts yet" is believed before the database is asked again (any_users).
+NO_USERS_RECHECK_S = 1.0
+
+
 class UserStore:
-    def __init__(self, engine: Engine, idle_timeout: timedelta) -> None:
-        """`idle_timeout`: how long a session lasts without a request (Settings)."""
+    def __init__(
+        self,
+        engine: Engine,
+        idle_timeout: timedelta,
+        no_users_recheck_s: float = NO_USERS_RECHECK_S,
+    ) -> None:
+        """`idle_timeout`: how long a session lasts without a request (Settings);
+        `no_users_recheck_s`: how long a "no accounts" answer is believed (any_users)."""
         self.engine = engine
         # For the one-statement reads of every request (no BEGIN/ROLLBACK on PostgreSQL).
         self.reads = without_transaction(engine)
         self.idle_timeout = idle_timeout
         self._last_seen_step = min(LAST_SEEN_STEP, idle_timeout / 10)
         self._users_exist = False
+        self._no_users_recheck_s = no_users_recheck_s
+        self._no_users_until = 0.0  # time.monotonic() until which "no accounts" holds
 
     # -- accounts ------------------------------------------------------------------------
 
     def any_users(self) -> bool:
         """Whether accounts exist (then every request must log in). Asked on every request;
         accounts are disabled, never deleted, so once there is one the answer stays yes and
-        the store stops asking the database (a "no" is asked again: `holiscene users add` may
-        make the first account while the server runs)."""
+        the store stops asking the database. A "no" is believed for `no_users_recheck_s`
+        (a second by default): `holiscene users add` in another process may make the first
+        account while the server runs, and logging in is then required a second later at
+        most; an account made through this store counts at once."""
         if self._users_exist:
             return True
+        if time.monotonic() < self._no_users_until:
+            return False
         # A plain connection, not an ORM session: half the CPU of one, on every request of a
         # local server (docs/benchmarks.md, concurrent writers).
         with self.reads.connect() as connection:
             self._users_exist = connection.scalar(_ANY_USER) is not None
+        if not self._users_exist:
+            self._no_users_until = time.monotonic() + self._no_users_recheck_s
         return self._users_exist
 
     def count_admins(self) -> int:
@@ -153,6 +172,7 @@ class UserStore:
                 session.commit()
             except IntegrityError as exc:
                 raise UserError(f"there is already a user {name!r}", 409) from exc
+            self._users_exist = True
             return _info(row)
 
     def set_role(self, name: str, role: str) -> UserInfo:

@@ -1,7 +1,8 @@
 """Many annotators saving at once, through the HTTP API: the workload of the concurrent-writers
 test (correctness on SQLite and PostgreSQL) and of benchmarks/bench_writers.py (latency).
 
-Writers are real threads sharing one app (as browsers share one server). Writer i edits scene
+Writers are real threads sharing one server (as browsers do): the test's app in this process
+(a TestClient) or a `holiscene serve` of its own (an HTTP client). Writer i edits scene
 i % scenes, so with fewer scenes than writers some of them race for the same revision: the
 loser gets a 409, reloads and tries again, as the workbench does. Every request that saved is
 timed; its author name (writer and save number) makes each save findable in the history.
@@ -19,7 +20,7 @@ from typing import Any
 
 import cv2
 import numpy as np
-from fastapi.testclient import TestClient
+from httpx2 import Client
 
 _MAX_TRIES = 200  # per save: a writer that keeps losing the race fails the run, never hangs
 
@@ -70,7 +71,7 @@ def small_photo() -> bytes:
     return bytes(data.tobytes())
 
 
-def import_scenes(client: TestClient, count: int) -> list[str]:
+def import_scenes(client: Client, count: int) -> list[str]:
     """`count` scenes with two detected objects each, imported without a pipeline run."""
     detections = json.dumps(
         [{"bbox": [4, 8, 30, 40], "class": "table"}, {"bbox": [34, 4, 60, 20], "class": "lamp"}]
@@ -92,15 +93,16 @@ def import_scenes(client: TestClient, count: int) -> list[str]:
 
 
 def run_writers(
-    client: TestClient,
+    client: Client,
     scene_ids: list[str],
     writers: int,
     saves_per_writer: int,
     pause_s: float = 0.0,
 ) -> WriterRun:
     """`writers` threads, each saving `saves_per_writer` edits to its scene, all started at
-    once. `pause_s`: a writer's mean pause between its saves (a person works between two;
-    uniform from 0 to twice that, so writers drift apart); 0: back to back."""
+    once. `pause_s`: a writer's mean pause before each of its saves (a person works between
+    two, and people do not all start in the same instant; uniform from 0 to twice that);
+    0: back to back."""
     run = WriterRun(
         writers=writers, pause_s=pause_s, saved={scene_id: set() for scene_id in scene_ids}
     )
@@ -115,7 +117,7 @@ def run_writers(
         pauses = random.Random(number)
         start.wait()
         for save in range(saves_per_writer):
-            if save and pause_s:
+            if pause_s:
                 time.sleep(pauses.uniform(0, 2 * pause_s))
             author = f"w{number}-{save}"
             # Alternate the first object's supporter, so each save changes the scene.
@@ -142,7 +144,7 @@ def run_writers(
 
 
 def _save_until_stored(
-    client: TestClient, scene_id: str, base: int, author: str, edit: dict[str, Any]
+    client: Client, scene_id: str, base: int, author: str, edit: dict[str, Any]
 ) -> tuple[float, int, int] | str:
     """(milliseconds of the request that saved, conflicts before it, the revision it made),
     or what went wrong. `base`: the revision the writer has, as the workbench keeps the one
@@ -160,7 +162,7 @@ def _save_until_stored(
     return f"still conflicting after {_MAX_TRIES} tries"
 
 
-def history_problems(client: TestClient, run: WriterRun) -> list[str]:
+def history_problems(client: Client, run: WriterRun) -> list[str]:
     """What the scenes' histories say against the run: every save exactly once, as an edit
     revision, and the revision numbers 1, 2, ... without a gap. Empty when all is well."""
     problems = list(run.errors)
