@@ -125,6 +125,17 @@ export function cameraHeight(doc: SceneDocument): number {
 }
 
 /** The stored room, or null when the scene has no camera pitch/roll or layout. */
+/** What the stored room is made from: the layout's corners and the camera's pitch and roll. */
+function storedLayoutKey(doc: SceneDocument): string {
+  const { layout, camera } = doc.scene;
+  return JSON.stringify([
+    layout?.corners_2d,
+    layout?.corners_3d,
+    camera?.pitch_deg,
+    camera?.roll_deg,
+  ]);
+}
+
 export function storedRoom(doc: SceneDocument): LiveRoom | null {
   const camera = doc.scene.camera;
   const corners = doc.scene.layout?.corners_3d;
@@ -265,6 +276,7 @@ export class LayoutDraft {
    * the corners this revision stored (they are then the stored layout, not unsaved changes).
    */
   setDocument(doc: SceneDocument, savedVersion: number | null = null): void {
+    const before = this.doc;
     this.doc = doc;
     if (savedVersion !== null && savedVersion === this.version && !this.dragging) {
       // The user's pinned corners stay pinned, at the stored (fitted) positions.
@@ -273,7 +285,9 @@ export class LayoutDraft {
       return;
     }
     if (this.moved) this.refit();
-    else this.toStored();
+    // A revision with the same stored room (an object edit, most of them) leaves the room
+    // shown as it is: no fit, nothing for the room's listeners to redraw.
+    else if (storedLayoutKey(before) !== storedLayoutKey(doc)) this.toStored();
     this.emit("document");
   }
 

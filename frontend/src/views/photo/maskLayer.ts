@@ -15,11 +15,11 @@ export const GREY: Rgb = [128, 128, 128];
 const encoded = new Map<string, string>();
 const ENCODED_KEPT = 400;
 
-function tintedMask(mask: Mask, bits: Uint8Array, colour: Rgb): string {
+function tintedMask(mask: Mask, colour: Rgb): string {
   const key = `${colour.join(",")}|${mask.origin.join(",")}|${mask.size.join(",")}|${mask.rle.join(",")}`;
   let url = encoded.get(key);
   if (url === undefined) {
-    url = maskImageUrl(mask, bits, colour);
+    url = maskImageUrl(mask, colour);
     if (encoded.size >= ENCODED_KEPT) encoded.delete(encoded.keys().next().value ?? "");
   } else encoded.delete(key); // most recently used last
   encoded.set(key, url);
@@ -39,7 +39,7 @@ export function maskNode(object: SceneObject, region: Region | undefined, colour
     const [width, height] = object.mask.size;
     return svgEl("image", {
       ...common,
-      href: tintedMask(object.mask, region.bits, colour),
+      href: tintedMask(object.mask, colour),
       x,
       y,
       width,

@@ -87,3 +87,49 @@ describe("HitMap", () => {
     expect(at(map, inside)).toEqual(["big", "small", "big", "small", "big", null]);
   });
 });
+
+describe("objectRegion", () => {
+  /** Area and centroid counted pixel by pixel from the rows, the slow way. */
+  function counted(origin: [number, number], rows: string[]) {
+    let area = 0;
+    let sumX = 0;
+    let sumY = 0;
+    rows.forEach((row, y) => {
+      [...row].forEach((c, x) => {
+        if (c !== "#") return;
+        area += 1;
+        sumX += x;
+        sumY += y;
+      });
+    });
+    return { area, centroid: [origin[0] + sumX / area + 0.5, origin[1] + sumY / area + 0.5] };
+  }
+
+  it("sums area and centroid over runs that wrap onto later rows", () => {
+    const cases: [[number, number], string[]][] = [
+      [
+        [3, 7],
+        ["..##", "####", "#..."],
+      ], // one run across three rows
+      [[0, 0], ["#"]],
+      [
+        [10, 2],
+        [".#.#.", "#####", ".....", "##..#"],
+      ],
+      [
+        [5, 5],
+        ["######", "######"],
+      ],
+    ];
+    for (const [origin, rows] of cases) {
+      const region = objectRegion(withMask("m", mask(origin, rows)));
+      const want = counted(origin, rows);
+      expect(region.area).toBe(want.area);
+      expect(region.centroid[0]).toBeCloseTo(want.centroid[0] ?? 0, 9);
+      expect(region.centroid[1]).toBeCloseTo(want.centroid[1] ?? 0, 9);
+      expect([...(region.bits ?? [])].join("")).toBe(
+        rows.join("").replaceAll("#", "1").replaceAll(".", "0"),
+      );
+    }
+  });
+});

@@ -2,16 +2,21 @@
 import type { Mask, SceneObject } from "@holiscene/schema";
 import type { Rgb } from "../classColors";
 
-/** The mask's window as one byte per pixel (1 inside), row by row. */
-export function decodeMask(mask: Mask): Uint8Array {
-  const [width, height] = mask.size;
-  const bits = new Uint8Array(width * height);
+/** Each run of inside pixels of a mask's window: [start, end) in row-major pixel indices. */
+function insideRuns(mask: Mask, each: (start: number, end: number) => void): void {
+  const total = mask.size[0] * mask.size[1];
   let at = 0;
   mask.rle.forEach((run, i) => {
-    const end = Math.min(at + run, bits.length);
-    if (i % 2 === 1) bits.fill(1, at, end);
+    const end = Math.min(at + run, total);
+    if (i % 2 === 1 && end > at) each(at, end);
     at = end;
   });
+}
+
+/** The mask's window as one byte per pixel (1 inside), row by row. */
+export function decodeMask(mask: Mask): Uint8Array {
+  const bits = new Uint8Array(mask.size[0] * mask.size[1]);
+  insideRuns(mask, (start, end) => bits.fill(1, start, end));
   return bits;
 }
 
@@ -19,7 +24,7 @@ export function decodeMask(mask: Mask): Uint8Array {
 let encoder: { canvas: HTMLCanvasElement; context: CanvasRenderingContext2D | null } | null = null;
 
 /** A PNG data URL of the mask's window: the colour inside, transparent outside. */
-export function maskImageUrl(mask: Mask, bits: Uint8Array, [r, g, b]: Rgb): string {
+export function maskImageUrl(mask: Mask, [r, g, b]: Rgb): string {
   const [width, height] = mask.size;
   if (!encoder) {
     const canvas = document.createElement("canvas");
@@ -33,14 +38,11 @@ export function maskImageUrl(mask: Mask, bits: Uint8Array, [r, g, b]: Rgb): stri
   canvas.height = Math.max(1, height);
   if (!context || width === 0 || height === 0) return canvas.toDataURL();
   const image = context.createImageData(width, height);
-  const data = image.data;
-  for (let i = 0; i < bits.length; i++) {
-    if (!bits[i]) continue;
-    data[4 * i] = r;
-    data[4 * i + 1] = g;
-    data[4 * i + 2] = b;
-    data[4 * i + 3] = 255;
-  }
+  // One 32-bit write per pixel, a run at a time (ImageData is RGBA in memory order; every
+  // browser this runs in is little-endian, so the word is ABGR).
+  const pixels = new Uint32Array(image.data.buffer);
+  const colour = ((255 << 24) | (b << 16) | (g << 8) | r) >>> 0;
+  insideRuns(mask, (start, end) => pixels.fill(colour, start, end));
   context.putImageData(image, 0, 0);
   return canvas.toDataURL("image/png");
 }
@@ -62,18 +64,25 @@ export function objectRegion(object: SceneObject): Region {
     centroid: [(x1 + x2) / 2, (y1 + y2) / 2],
     bits: null,
   };
-  if (!object.mask) return boxRegion;
-  const bits = decodeMask(object.mask);
-  const [width] = object.mask.size;
-  const [ox, oy] = object.mask.origin;
+  const mask = object.mask;
+  if (!mask) return boxRegion;
+  const bits = decodeMask(mask);
+  const [width] = mask.size;
+  const [ox, oy] = mask.origin;
   let area = 0;
   let sumX = 0;
   let sumY = 0;
-  bits.forEach((bit, i) => {
-    if (!bit) return;
-    area += 1;
-    sumX += i % width;
-    sumY += Math.floor(i / width);
+  // Summed a row's piece of a run at a time (a run may wrap onto the next rows).
+  insideRuns(mask, (start, end) => {
+    for (let at = start; at < end; ) {
+      const row = Math.floor(at / width);
+      const column = at - row * width;
+      const length = Math.min(end - at, width - column);
+      area += length;
+      sumX += length * column + (length * (length - 1)) / 2;
+      sumY += length * row;
+      at += length;
+    }
   });
   if (area === 0) return { ...boxRegion, bits };
   return { area, centroid: [ox + sumX / area + 0.5, oy + sumY / area + 0.5], bits };

@@ -153,8 +153,12 @@ export function mountScene3d(
   // stored room) before it emits "document", and undo/redo re-fit the draft before it emits
   // "edits". So layout.live is already current whichever event the view hears first; the
   // draft's own events (drags, fits) redraw the room as well, and a second showLive for the
-  // same change only draws the same room again.
-  const unsubscribeLayout = layout?.subscribe(showLive) ?? (() => {});
+  // same change only draws the same room again. The draft's "document" is left to the
+  // session's, which this view follows after the photo has drawn the revision.
+  const unsubscribeLayout =
+    layout?.subscribe((change) => {
+      if (change !== "document") showLive();
+    }) ?? (() => {});
 
   return () => {
     follow.cancel();
