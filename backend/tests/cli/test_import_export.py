@@ -5,6 +5,7 @@ items are refused one by one with nothing of them stored."""
 from __future__ import annotations
 
 import json
+import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -186,3 +187,34 @@ def test_importing_twice_adds_nothing(
     assert len(_stored(tmp_path / "data")) == 3
     assert main(["import", str(synthetic_folder), "--again", *data]) == 0
     assert len(_stored(tmp_path / "data")) == 4
+
+
+def test_a_zip_of_exported_scenes_imports(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`holiscene import` takes a .zip (the app's "Download selected" archive is a zip of
+    scene folders): named after the zip in what it prints, skipped the second time; a file
+    that is no zip is an error and imports nothing."""
+    path = labelme_file(tmp_path / "in" / "room.json", [shape("bed", [[5, 5], [40, 5], [40, 40]])])
+    assert main(["import", str(path), "--data-dir", str(tmp_path / "a")]) == 0
+    assert _export(tmp_path / "a", tmp_path / "out", "scene") == 0
+    archive = tmp_path / "scenes.zip"
+    with zipfile.ZipFile(archive, "w") as packed:
+        for file in (tmp_path / "out").rglob("*"):
+            packed.write(file, Path("scenes") / file.relative_to(tmp_path / "out"))
+    data = ["--data-dir", str(tmp_path / "b"), "--no-pipeline"]
+    capsys.readouterr()
+    assert main(["import", str(archive), *data]) == 0
+    out = capsys.readouterr().out
+    assert str(archive) in out and "holiscene-import-" not in out
+    [scene] = _stored(tmp_path / "b")
+    assert scene.name == "room" and [o.cls for o in scene.objects] == ["bed"]
+    assert main(["import", str(archive), *data]) == 0
+    assert "skipped" in capsys.readouterr().out
+    assert len(_stored(tmp_path / "b")) == 1
+
+    broken = tmp_path / "broken.zip"
+    broken.write_bytes(b"not a zip at all")
+    assert main(["import", str(broken), *data]) == 1
+    assert f"error: {broken}: the upload is not a .zip file" in capsys.readouterr().err
+    assert len(_stored(tmp_path / "b")) == 1

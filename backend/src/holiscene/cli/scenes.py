@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import sys
+import tempfile
+from collections.abc import Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -13,6 +16,7 @@ from .common import CliError, settings_from
 
 if TYPE_CHECKING:
     from ..inputs import InputFiles
+    from ..inputs.datasets.uploaded import PhotoSource
     from ..services.workbench import Workbench
 
 DEMO_PHOTOS = REPO_ROOT.parent / "shared" / "data" / "real"
@@ -35,7 +39,8 @@ def add_import_command(sub: argparse._SubParsersAction[argparse.ArgumentParser])
         "depth.png, ...), a COCO instances file (or a folder holding annotations.json or "
         "instances*.json), a LabelMe file (or a folder of them), a SUN RGB-D image folder (or "
         "a folder holding many at any depth), or NYU Depth v2's labelled .mat (or a folder "
-        "holding it, support_labels.mat beside it); the format is told by the content. A "
+        "holding it, support_labels.mat beside it), or a .zip of any of these (the app's "
+        '"Download selected" archive, for one); the format is told by the content. A '
         "photo that does not read is reported and left out, the others are imported.",
     )
     imp.add_argument("paths", type=Path, nargs="+", metavar="PATH")
@@ -82,7 +87,6 @@ def _demo(args: argparse.Namespace) -> int:
 
 def _import(args: argparse.Namespace) -> int:
     from ..inputs import InputError
-    from ..inputs.datasets.uploaded import photo_sources
     from ..services.workbench import Workbench
 
     if (args.workers or args.ray) and not args.run_pipeline:
@@ -93,24 +97,48 @@ def _import(args: argparse.Namespace) -> int:
     scene_ids: list[str] = []  # for --run-pipeline: every photo's scene, new or imported before
     try:
         for path in args.paths:
-            for source in photo_sources(path):
-                number += 1
-                try:
-                    inputs = source.read()
-                except InputError as exc:
-                    print(f"error: {source.label}: {exc}", file=sys.stderr)
-                    failures += 1
-                    continue
-                failed, scene_id = _import_one(
-                    workbench, number, source.label, inputs, source.name, args
-                )
-                failures += failed
-                scene_ids.append(scene_id)
+            try:
+                for source in _sources(path, workbench):
+                    number += 1
+                    try:
+                        inputs = source.read()
+                    except InputError as exc:
+                        print(f"error: {source.label}: {exc}", file=sys.stderr)
+                        failures += 1
+                        continue
+                    failed, scene_id = _import_one(
+                        workbench, number, source.label, inputs, source.name, args
+                    )
+                    failures += failed
+                    scene_ids.append(scene_id)
+            except InputError as exc:  # a .zip that does not unpack or holds nothing to import
+                print(f"error: {path}: {exc}", file=sys.stderr)
+                failures += 1
         if args.run_pipeline and scene_ids:
             failures += batch_scenes(workbench, scene_ids, args.workers, args.ray)
     finally:
         workbench.close()
     return 1 if failures else 0
+
+
+def _sources(path: Path, workbench: Workbench) -> Iterator[PhotoSource]:
+    """The photos of a path; a .zip is unpacked into a temporary folder first, with the
+    limits an upload has (Settings.max_import_unpacked_mb, max_import_files)."""
+    from ..inputs.archive import MB, ArchiveLimits, unpack_zip
+    from ..inputs.datasets.uploaded import photo_sources, upload_contents
+
+    if not (path.is_file() and path.suffix.lower() == ".zip"):
+        yield from photo_sources(path)
+        return
+    settings = workbench.settings
+    limits = ArchiveLimits(settings.max_import_unpacked_mb * MB, settings.max_import_files)
+    with tempfile.TemporaryDirectory(prefix="holiscene-import-") as folder:
+        unpacked = Path(folder) / path.stem
+        with path.open("rb") as archive:
+            unpack_zip(archive, unpacked, limits)
+        for source in upload_contents(unpacked).sources():
+            # Named by the zip, not by the temporary folder.
+            yield dataclasses.replace(source, label=source.label.replace(str(unpacked), str(path)))
 
 
 def _import_one(
