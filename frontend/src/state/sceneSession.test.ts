@@ -6,7 +6,7 @@ import { MemoryStorage } from "../testing/memoryStorage";
 import { sceneDocument, sceneObject, sessionOn } from "../testing/sceneDocuments";
 import { supportRelation } from "../testing/supports";
 import { DraftStore } from "./draftStore";
-import type { SceneSession } from "./sceneSession";
+import { plural, type SceneSession } from "./sceneSession";
 
 const auto = (child: string, parent: string, confidence = 0.8): SupportRelation =>
   supportRelation(child, parent, { confidence });
@@ -142,5 +142,15 @@ describe("SceneSession editing", () => {
     next.restoreRecovered();
     expect(next.pending).toHaveLength(0);
     expect(next.notice).toContain("already saved");
+  });
+});
+
+describe("plural", () => {
+  it("counts nouns, with -es where English wants it", () => {
+    expect(plural(1, "box")).toBe("1 box");
+    expect(plural(2, "box")).toBe("2 boxes");
+    expect(plural(0, "object")).toBe("0 objects");
+    expect(plural(3, "unsaved change")).toBe("3 unsaved changes");
+    expect(plural(2, "class")).toBe("2 classes");
   });
 });

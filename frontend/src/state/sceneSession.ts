@@ -672,7 +672,8 @@ const workflowKey = (workflow: SceneWorkflow | null) =>
   workflow ? `${workflow.state}|${workflow.assignee ?? ""}|${workflow.revision}` : "";
 
 export function plural(count: number, noun: string): string {
-  return `${count} ${noun}${count === 1 ? "" : "s"}`;
+  if (count === 1) return `${count} ${noun}`;
+  return `${count} ${noun}${/(s|x|ch|sh)$/.test(noun) ? "es" : "s"}`;
 }
 
 function errorText(error: unknown): string {

@@ -377,8 +377,11 @@ class HeightMeter:
             if within_three_sigma(height, prior):
                 return HeightEstimate(height, base, "lower_bound", "top hidden: at least this")
         if not within_three_sigma(height, prior) or height <= 0.01:
-            shown = f"{height:.2f} m" if np.isfinite(height) else "no value"
-            return self._prior(prior, base, f"measured {shown}, outside the class prior")
+            if not np.isfinite(height) or height <= 0.01:
+                # A negative or no value says the measurement failed, not that the object is
+                # tiny: shown as such, not as a number a reviewer would puzzle over.
+                return self._prior(prior, base, "no positive height measured")
+            return self._prior(prior, base, f"measured {height:.2f} m, outside the class prior")
         return HeightEstimate(height, base, "measured")
 
     def _standing(
