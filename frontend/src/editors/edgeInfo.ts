@@ -1,6 +1,7 @@
 // The line under the photo: the selected edge with its provenance (who set it, when, or the
 // model's confidence), what can be done next, and why the last action did nothing.
 import { el } from "../dom";
+import { classText } from "../state/classNames";
 import type { SceneSession } from "../state/sceneSession";
 import { provenanceText } from "../views/photo/arrowLayer";
 import { unresolved } from "./supportActions";
@@ -33,7 +34,7 @@ export function mountEdgeInfo(container: HTMLElement, session: SceneSession): ()
     } else {
       const object = session.object(child);
       const shown = session.displayed(child);
-      const name = `${child}${object ? ` (${object.class.replaceAll("_", " ")})` : ""}`;
+      const name = `${child}${object ? ` (${classText(object.class)})` : ""}`;
       edge.textContent = shown
         ? `${name} on ${shown.parent}, ${shown.type}`
         : `${name}: no supporter`;

@@ -3,7 +3,7 @@
 // class button of its line in the object list does).
 import type { SceneObject } from "@holiscene/schema";
 import { registerShortcut } from "../shortcuts";
-import { classKey } from "../state/classNames";
+import { classKey, classText } from "../state/classNames";
 import type { ObjectEditor } from "../state/objectEditor";
 import type { SceneSession } from "../state/sceneSession";
 import { classHints } from "../views/scene/classHints";
@@ -53,7 +53,7 @@ export async function changeClass(
   if (!cls || classKey(cls) === object.class) return;
   await editor.apply(
     [{ kind: "set_class", id: object.id, class: cls }],
-    `${objectName(object)} → ${cls.replaceAll("_", " ")}`,
+    `${objectName(object)} → ${classText(cls)}`,
   );
 }
 

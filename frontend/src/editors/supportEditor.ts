@@ -4,6 +4,7 @@
 import type { SceneObject } from "@holiscene/schema";
 import { STRUCTURAL_SUPPORTERS, SUPPORT_TYPES } from "@holiscene/schema";
 import { button, el, placeChildren } from "../dom";
+import { classText } from "../state/classNames";
 import type { SceneSession } from "../state/sceneSession";
 import {
   defaultType,
@@ -50,7 +51,10 @@ function supporterOptions(object: SceneObject, objects: readonly SceneObject[]):
       ...objects
         .filter((other) => other.id !== object.id && !isStructural(other.class))
         .map((other) =>
-          el("option", { text: `${other.id} · ${other.class}`, attrs: { value: other.id } }),
+          el("option", {
+            text: `${other.id} · ${classText(other.class)}`,
+            attrs: { value: other.id },
+          }),
         ),
     ),
   ];
@@ -66,7 +70,7 @@ function statusText(support: ShownSupport | undefined): string {
 
 /** The object's class: a button opening the picker when classes can be changed here. */
 function classCell(object: SceneObject, changeClass: ChangeClass | undefined): HTMLElement {
-  const text = object.class.replaceAll("_", " ");
+  const text = classText(object.class);
   if (!changeClass) return el("span", { className: "object-class", text });
   const cell: HTMLButtonElement = button(text, {
     className: "object-class object-class-button",

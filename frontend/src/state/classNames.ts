@@ -23,6 +23,9 @@ export const classKey = (text: string): string =>
     .filter((word) => word.length > 0)
     .join("_");
 
+/** The name shown for a class: "night stand" for `night_stand`. */
+export const classText = (cls: string): string => cls.replaceAll("_", " ");
+
 /** The NYU-40 class a name is stored as: a class, an alias, a plural of either ("chairs",
  * "couches"), or a free name resolved by its words ("office chair", "chiar"); null when the
  * server would refuse it. */

@@ -1,6 +1,8 @@
 // What a finished box becomes: a new object (its class picked beside the box, then one
 // add_object edit; the server cuts its mask) or a moved or resized box (one set_bbox edit).
 // While an edit is on its way its box stays drawn (`sending`).
+
+import { classText } from "../../state/classNames";
 import { classHints } from "../../views/scene/classHints";
 import { pickClass } from "../../views/scene/classPicker";
 import { type Box, type Grip, roundBox } from "../boxGeometry";
@@ -8,7 +10,7 @@ import type { PhotoToolHost } from "../photoTools";
 
 /** "chair d3" */
 export const objectName = (object: { id: string; class: string }) =>
-  `${object.class.replaceAll("_", " ")} ${object.id}`;
+  `${classText(object.class)} ${object.id}`;
 
 /** The rectangle of an image-pixel box on the screen (client pixels). */
 export function screenRect(svg: SVGSVGElement, box: readonly number[]) {

@@ -5,7 +5,6 @@
 // Picks are counted in this browser (with the scene's own objects) to order the list.
 import type { SceneObject } from "@holiscene/schema";
 import { el } from "../../dom";
-import { classKey } from "../../state/classNames";
 import type { LikelyClass } from "./classHints";
 import { keepInView, optionItem, placeBeside } from "./classPickerParts";
 import { CLASS_OPTIONS, type ClassOption, rankClasses } from "./classRanking";
@@ -175,6 +174,3 @@ export function pickClass(options: PickerOptions): Promise<string | null> {
   window.addEventListener("pointerdown", onOutside, true);
   return done;
 }
-
-/** The name shown for a class ("night stand"). */
-export const className = (cls: string) => classKey(cls).replaceAll("_", " ");

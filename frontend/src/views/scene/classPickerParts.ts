@@ -1,6 +1,7 @@
 // Parts of the class picker (classPicker.ts): one line of its list, keeping the active line
 // in view, and where the box goes.
 import { el } from "../../dom";
+import { classText } from "../../state/classNames";
 import type { ClassOption } from "./classRanking";
 
 /**
@@ -33,11 +34,11 @@ export function optionItem(
     index < 9
       ? el("kbd", { text: String(index + 1) })
       : el("span", { className: "class-picker-pad" }),
-    el("span", { text: option.name.replaceAll("_", " ") }),
+    el("span", { text: classText(option.name) }),
     option.name !== option.cls
       ? el("span", {
           className: "class-picker-alias",
-          text: `→ ${option.cls.replaceAll("_", " ")}`,
+          text: `→ ${classText(option.cls)}`,
         })
       : null,
     note ? el("span", { className: "class-picker-note", text: note }) : null,
