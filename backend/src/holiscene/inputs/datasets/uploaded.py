@@ -6,6 +6,7 @@ content, with the readers `holiscene import` uses."""
 
 from __future__ import annotations
 
+import json
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from functools import partial
@@ -45,7 +46,17 @@ def photo_sources(path: Path) -> Iterator[PhotoSource]:
         for part in parts:  # a folder of input folders (an export, the app's download zip)
             yield from photo_sources(part)
     else:
-        yield PhotoSource(str(path), path.name, partial(read_input_folder, path))
+        yield PhotoSource(str(path), _folder_scene_name(path), partial(read_input_folder, path))
+
+
+def _folder_scene_name(folder: Path) -> str:
+    """An input folder's scene name: the one its scene.json gives (a downloaded scene's folder
+    is `<name>-<id>`), else the folder's name."""
+    try:
+        name = json.loads((folder / "scene.json").read_text(encoding="utf-8")).get("name")
+    except (OSError, ValueError, AttributeError):
+        return folder.name
+    return name.strip() if isinstance(name, str) and name.strip() else folder.name
 
 
 def _item_inputs(item: DatasetItem) -> InputFiles:
