@@ -102,15 +102,18 @@ test("the depth overlay on the photo has a key from near to far", async ({ page 
     .getByTestId("depth-key-bar")
     .evaluate((node) => getComputedStyle(node).backgroundImage);
   expect(bar).toContain("linear-gradient");
-  // The key sits over the photo, inside its box.
+  // The key sits in the layer bar beside its toggle, above the photo: it covers no label.
   const photo = await page.getByTestId("photo").boundingBox();
   const box = await key.boundingBox();
-  expect(photo && box).toBeTruthy();
-  if (photo && box) {
-    expect(box.x).toBeGreaterThanOrEqual(photo.x);
-    expect(box.y + box.height).toBeLessThanOrEqual(photo.y + photo.height);
+  const toggle = await page.getByTestId("toggle-depth").boundingBox();
+  expect(photo && box && toggle).toBeTruthy();
+  if (photo && box && toggle) {
+    expect(box.y + box.height).toBeLessThanOrEqual(photo.y);
+    expect(box.x).toBeGreaterThan(toggle.x);
   }
-  await page.getByTestId("photo").screenshot({ path: path.join(screenshots, "depth-key.png") });
+  // The photo panel: bars and photo.
+  const panel = page.getByTestId("photo").locator("xpath=../..");
+  await panel.screenshot({ path: path.join(screenshots, "depth-key.png") });
   await page.getByTestId("toggle-depth").uncheck();
   await expect(key).toBeHidden();
 });

@@ -1,4 +1,4 @@
-// The depth overlay's key, over the photo's corner while the depth is shown: its colours as a
+// The depth overlay's key, beside the Depth toggle while the depth is shown: its colours as a
 // bar from near to far with the depths (metres) at both ends, as GET .../depth-key gives them
 // (the colours span the 2nd to 98th percentile of the depth present; nearer and further
 // depths take the end colours).

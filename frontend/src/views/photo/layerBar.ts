@@ -35,7 +35,7 @@ function legend(): HTMLElement {
 /** `onDepth` hears when the depth overlay is shown or hidden (its key follows it). */
 export function layerBar(
   layers: PhotoLayers,
-  onDepth?: (on: boolean) => void,
+  depthKey?: { show(on: boolean): void; element: HTMLElement },
 ): { element: HTMLElement; dispose(): void } {
   const setLayer = (layer: SVGGElement) => (on: boolean) => {
     layer.style.display = on ? "" : "none";
@@ -63,7 +63,7 @@ export function layerBar(
       "toggle-depth",
       (on) => {
         showDepth(on);
-        onDepth?.(on);
+        depthKey?.show(on);
       },
       false,
     );
@@ -72,6 +72,8 @@ export function layerBar(
     { className: "photo-toolbar" },
     ...layerToggles.map((t) => t.label),
     depth?.label,
+    // Beside its toggle, not over the photo, where it would hide labels and masks.
+    depth && depthKey?.element,
     styleControls.element,
     legend(),
   );

@@ -31,12 +31,12 @@ export function mountPhotoView(
   const { svg, layers, frame, status } = photoSvg(session);
   const m = frame.margin;
   const key = layers.depth ? depthKey(session.sceneId) : null;
-  const layersBar = layerBar(layers, key?.show);
+  const layersBar = layerBar(layers, key ?? undefined);
   const toolbar = el("div", { className: "photo-toolbar", testid: "photo-tools" });
   container.replaceChildren(
     toolbar,
     layersBar.element,
-    el("div", { className: "photo-box" }, svg, key?.element),
+    el("div", { className: "photo-box" }, svg),
     status,
   );
   const overlays = new PhotoOverlays(svg, layers, frame, session);
