@@ -165,6 +165,14 @@ test("the scene page shows the model's suggested supporter of each object", asyn
     `${objects.length} objects scored in`,
     { timeout: 60_000 },
   );
+  // The model runs in onnxruntime-web's own worker, never on the page's thread (where a
+  // scoring would hold an edit's redraw back).
+  expect(
+    page
+      .workers()
+      .map((w) => w.url())
+      .filter((url) => /\/assets\/ort[.-]/.test(url)),
+  ).toHaveLength(1);
   const candidates = [...objects.map((o) => o.id), ...STRUCTURAL_COLUMNS];
   for (const object of objects) {
     const badge = page.getByTestId(`support-suggestion-${object.id}`);
