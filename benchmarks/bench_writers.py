@@ -86,13 +86,16 @@ def served(settings: Settings) -> Iterator[tuple[Client, Callable[[], dict[str, 
     command += ["--data-dir", str(settings.data_dir)]
     if settings.database_url:
         command += ["--database-url", settings.database_url]
-    server = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    # Its log (a line per request) goes to a file: a pipe nobody reads would fill and stop it.
+    log_path = settings.data_dir.parent / "serve.log"
+    with log_path.open("wb") as log:
+        server = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT)
     limits = Limits(max_connections=64, max_keepalive_connections=64)
     try:
         with Client(base_url=f"http://127.0.0.1:{port}", limits=limits, timeout=60) as client:
             for _ in range(300):
                 if server.poll() is not None:
-                    error = server.stderr.read().decode() if server.stderr else ""
+                    error = log_path.read_text(errors="replace")
                     sys.exit(f"holiscene serve stopped: {error[-2000:]}")
                 try:
                     client.get("/api/health")
