@@ -8,7 +8,7 @@ import type { SceneObject } from "@holiscene/schema";
 import { deferred } from "../afterPaint";
 import { api } from "../api/client";
 import { button, el } from "../dom";
-import type { SceneSession } from "../state/sceneSession";
+import { plural, type SceneSession } from "../state/sceneSession";
 import type { PixelImage } from "./preprocess";
 import { makeSuggester } from "./suggester";
 import { showSuggestionBadges } from "./suggestionBadges";
@@ -109,7 +109,7 @@ export function mountSupportSuggestions(
     const count = scores?.ids.length ?? 0;
     const suggested = session.suggestions().size;
     status.textContent =
-      `${count} objects scored in ${Math.round(ms)} ms` +
+      `${plural(count, "object")} scored in ${Math.round(ms)} ms` +
       (live.checked
         ? ` · live: ${suggested === 0 ? "no changes suggested" : `${suggested} suggested`}`
         : "");

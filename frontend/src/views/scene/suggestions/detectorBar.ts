@@ -86,18 +86,23 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
     acceptAllButton,
     rejectAllButton,
   );
+  // The bar keeps its height whatever the detector says or finds (the photo below it must not
+  // move under the person's pointer when a detection ends): the actions keep their place when
+  // there is nothing to act on, and the status is one line below them (its whole text in its
+  // title), unless it reports a failure.
   const element = el(
     "div",
     { className: "detector-bar", testid: "detector-bar" },
     detectButton,
-    statusLine,
     actionRow,
+    statusLine,
   );
   return {
     element,
     show({ busy, status, failed, editable, open, chosen }) {
       detectButton.disabled = busy;
       statusLine.textContent = status;
+      statusLine.title = status;
       statusLine.classList.toggle("alert", failed);
       statusLine.classList.toggle("alert--error", failed);
       statusLine.setAttribute("role", failed ? "alert" : "status");
