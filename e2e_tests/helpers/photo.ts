@@ -26,7 +26,7 @@ export async function slowAutosave(page: Page, ms = 600_000): Promise<void> {
 
 /** The model has scored the scene (live suggestions are ready). */
 export async function waitForModel(page: Page): Promise<void> {
-  await expect(page.getByTestId("suggestion-status")).toContainText("objects scored in", {
+  await expect(page.getByTestId("suggestion-status")).toContainText(/objects? scored in/, {
     timeout: 90_000,
   });
 }

@@ -309,7 +309,7 @@ test("after an object edit the model scores again and the 3D panel offers Re-pla
   await page.getByTestId("accept-suggestion").click();
 
   // The new object is scored by the Relation Network without a reload...
-  await expect(page.getByTestId("suggestion-status")).toContainText("1 objects scored", {
+  await expect(page.getByTestId("suggestion-status")).toContainText("1 object scored", {
     timeout: 60_000,
   });
   const [added] = (await getScene(page.request, sceneId)).scene.objects ?? [];
