@@ -124,14 +124,14 @@ def _import(args: argparse.Namespace) -> int:
 def _sources(path: Path, workbench: Workbench) -> Iterator[PhotoSource]:
     """The photos of a path; a .zip is unpacked into a temporary folder first, with the
     limits an upload has (Settings.max_import_unpacked_mb, max_import_files)."""
-    from ..inputs.archive import MB, ArchiveLimits, unpack_zip
+    from ..inputs.archive import ArchiveLimits, unpack_zip
     from ..inputs.datasets.uploaded import photo_sources, upload_contents
 
     if not (path.is_file() and path.suffix.lower() == ".zip"):
         yield from photo_sources(path)
         return
     settings = workbench.settings
-    limits = ArchiveLimits(settings.max_import_unpacked_mb * MB, settings.max_import_files)
+    limits = ArchiveLimits.of_uploads(settings.max_import_unpacked_mb, settings.max_import_files)
     with tempfile.TemporaryDirectory(prefix="holiscene-import-") as folder:
         unpacked = Path(folder) / path.stem
         with path.open("rb") as archive:

@@ -30,6 +30,11 @@ class ArchiveLimits:
     max_bytes: int
     max_files: int
 
+    @classmethod
+    def of_uploads(cls, max_unpacked_mb: int, max_files: int) -> ArchiveLimits:
+        """The limits of an uploaded dataset (Settings.max_import_unpacked_mb, max_import_files)."""
+        return cls(max_unpacked_mb * MB, max_files)
+
 
 def unpack_zip(source: IO[bytes], target: Path, limits: ArchiveLimits) -> int:
     """Unpack the zip read from `source` into the new folder `target`; returns the number of

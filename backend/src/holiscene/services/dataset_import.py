@@ -21,7 +21,7 @@ from holiscene_schema import ImportJob
 
 from ..core.errors import user_facing_error
 from ..inputs import InputError
-from ..inputs.archive import MB, ArchiveLimits, unpack_zip
+from ..inputs.archive import ArchiveLimits, unpack_zip
 from ..inputs.datasets.uploaded import PhotoSource, UploadContents, upload_contents
 from ..store.import_jobs import ImportJobStore
 from ..store.jobs import JobQueueFullError
@@ -53,7 +53,7 @@ class DatasetImports:
     @property
     def limits(self) -> ArchiveLimits:
         settings = self.workbench.settings
-        return ArchiveLimits(settings.max_import_unpacked_mb * MB, settings.max_import_files)
+        return ArchiveLimits.of_uploads(settings.max_import_unpacked_mb, settings.max_import_files)
 
     def start(
         self, upload: IO[bytes], archive: str, run_pipeline: bool, started_by: str
