@@ -44,6 +44,40 @@ describe("predictDocument", () => {
     expect(after?.scene.objects?.find((o) => o.id === "l")?.bbox).toEqual([1, 2, 3, 4]);
   });
 
+  it("a new object is shown by its box (its mask comes with the answer), after the others", () => {
+    const after = predictDocument(
+      original,
+      [
+        {
+          kind: "add_object",
+          id: "d1",
+          class: "Coffee Table",
+          bbox: [0, 0, 5, 5],
+          source: "manual",
+        },
+        {
+          kind: "add_object",
+          id: "d2",
+          class: "bed",
+          bbox: [1, 1, 9, 9],
+          source: "detector",
+          score: 0.7,
+        },
+      ],
+      none,
+    );
+    expect(ids(after)).toEqual(["t", "c", "l", "d1", "d2"]);
+    const [d1, d2] = after?.scene.objects?.slice(3) ?? [];
+    expect(d1).toMatchObject({ class: "table", bbox: [0, 0, 5, 5], mask: null, source: "manual" });
+    expect(d2).toMatchObject({
+      class: "bed",
+      score: 0.7,
+      source: "detector",
+      set_by_person: ["object"],
+    });
+    expect(edges(after)).toEqual(edges(original));
+  });
+
   it("what cannot be foreseen is not predicted", () => {
     expect(
       predictDocument(original, [{ kind: "set_class", id: "c", class: "spaceship" }], none),
@@ -52,7 +86,7 @@ describe("predictDocument", () => {
     expect(
       predictDocument(
         original,
-        [{ kind: "add_object", id: "d1", class: "bed", bbox: [0, 0, 5, 5], source: "manual" }],
+        [{ kind: "add_object", id: "t", class: "bed", bbox: [0, 0, 5, 5], source: "manual" }],
         none,
       ),
     ).toBeNull();

@@ -2,18 +2,36 @@
 // redrawn at once, not after the round trip): a removal takes the object and every support it
 // took part in away, a class or box change shows the new class or box, and a restore puts
 // back the object and its supports of a revision seen before. The server's revision replaces
-// the prediction as soon as it comes (masks the server cuts are only known then); actions it
-// cannot foresee (a new object) are not predicted.
-import type { SceneDocument, SupportRelation } from "@holiscene/schema";
+// the prediction as soon as it comes (masks the server cuts are only known then, so a new object
+// without a mask is shown by its box until the answer brings the mask).
+import type { SceneDocument, SceneObject, SupportRelation } from "@holiscene/schema";
 import { storedClass } from "./classNames";
-import type { ObjectEdit } from "./objectEditor";
+import type { NewObject, ObjectEdit } from "./objectEditor";
 
 const involves = (support: SupportRelation, id: string) =>
   support.child === id || support.parent === id;
 
+/** A new object as the server will store it, less what only the server knows (its support). */
+function newObject(edit: NewObject, cls: SceneObject["class"]): SceneObject {
+  return {
+    id: edit.id,
+    class: cls,
+    bbox: edit.bbox,
+    mask: edit.mask ?? null,
+    score: edit.score ?? null,
+    source: edit.source,
+    source_class: null,
+    set_by_person: ["object"],
+    box_3d: null,
+    corners_3d: null,
+    mesh: null,
+    note: null,
+  };
+}
+
 /**
  * `doc` after `edits`, as far as can be told here; null when an edit cannot be foreseen (a
- * new object, a restore from a revision not at hand, a class the server would refuse).
+ * restore from a revision not at hand, a class the server would refuse, an id in use).
  * `revision(n)`: a document of revision n seen before, if any.
  */
 export function predictDocument(
@@ -26,7 +44,11 @@ export function predictDocument(
   for (const edit of edits) {
     const index = objects.findIndex((o) => o.id === edit.id);
     const object = objects[index];
-    if (edit.kind === "remove_object") {
+    if (edit.kind === "add_object") {
+      const cls = storedClass(edit.class);
+      if (object || !cls) return null;
+      objects.push(newObject(edit, cls as SceneObject["class"]));
+    } else if (edit.kind === "remove_object") {
       if (!object) return null;
       objects = objects.filter((o) => o.id !== edit.id);
       supports = supports.filter((s) => !involves(s, edit.id));
