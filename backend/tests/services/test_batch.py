@@ -8,8 +8,10 @@ worker comes back as that scene's error."""
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import sys
+import time
 from collections.abc import Iterator
 from dataclasses import replace
 from pathlib import Path
@@ -18,7 +20,7 @@ import pytest
 from holiscene.cli import main
 from holiscene.core.settings import Settings
 from holiscene.inputs import read_input_folder
-from holiscene.services.batch import ray_runtime, run_batch
+from holiscene.services.batch import STOPPED, ray_runtime, run_batch
 from holiscene.services.workbench import Workbench, imported_scene
 from holiscene.synth.generate import synthesize_to
 from holiscene_schema import SupportRelation
@@ -203,3 +205,37 @@ def test_ray_is_not_loaded_by_the_server_or_the_other_commands() -> None:
         text=True,
     )
     assert loaded.stdout.strip() == "False"
+
+
+def test_a_batch_stopped_by_sigterm_fails_the_jobs_it_had_out(
+    rooms: list[Path], tmp_path: Path
+) -> None:
+    """A process manager's SIGTERM stops a batch as Ctrl+C does: the photos out on workers
+    are marked failed (a new run takes them), none is left "running"."""
+    data = tmp_path / "data"
+    for room in rooms:
+        _store(data, room)
+    batch = subprocess.Popen(
+        [sys.executable, "-m", "holiscene.cli", "batch", "--data-dir", str(data), "--workers", "1"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    workbench = Workbench(Settings(data_dir=data))
+    try:
+        deadline = time.monotonic() + 120
+        while not workbench.jobs.unfinished("pipeline") and time.monotonic() < deadline:
+            assert batch.poll() is None, batch.communicate()
+            time.sleep(0.02)
+        assert workbench.jobs.unfinished("pipeline"), "the batch never started a job"
+        batch.send_signal(signal.SIGTERM)
+        _, err = batch.communicate(timeout=60)
+        assert batch.returncode == 130, err
+        assert "interrupted: run the batch again to go on" in err
+        assert workbench.jobs.unfinished("pipeline") == []
+        stopped = [j for j in workbench.jobs.latest_for_scenes().values() if j.status == "failed"]
+        assert stopped and all(j.error == STOPPED for j in stopped)
+    finally:
+        if batch.poll() is None:
+            batch.kill()
+        workbench.close()

@@ -82,6 +82,7 @@ def batch_scenes(
     runs (CliError)."""
     from tqdm import tqdm
 
+    from ..core.interrupts import stop_signals_interrupt
     from ..services.batch import UnknownScenesError, ray_runtime, run_batch, scenes_to_run
 
     try:
@@ -108,9 +109,11 @@ def batch_scenes(
             bar.set_postfix(done=bar.n + 1 - failed, failed=failed, refresh=False)
             bar.update()
 
+        # Ctrl+C or SIGTERM: the photos out are marked failed, so a new run takes them.
         try:
-            report = run_batch(workbench, todo, at_once, finished)
-        except KeyboardInterrupt:  # the photos out were marked failed: a new run takes them
+            with stop_signals_interrupt():
+                report = run_batch(workbench, todo, at_once, finished)
+        except KeyboardInterrupt:
             bar.write("interrupted: run the batch again to go on", sys.stderr)
             return 130
     print(f"{len(report.done)} scene(s) pre-annotated, {len(report.failed)} failed")

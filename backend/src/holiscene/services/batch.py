@@ -186,15 +186,19 @@ class _Batch:
         except SceneJobRunningError as busy:  # a server runs it: its result is not ours
             self._finished(scene_id, str(busy))
             return
-        run = None
-        with workbench.recording_outcome(job):
-            run = workbench.job_run(job)
-            workbench.jobs.progress(job.id, "batch", 0.0)  # running, on a Ray worker
-        if run is None:
-            self._finished(scene_id, workbench.jobs.get(job.id).error)
-            return
-        ref = self._compute.remote(run.inputs, self._shipped.arguments(run.arguments))
-        self.out[ref] = _Out(scene_id, job.id, run)
+        try:
+            run = None
+            with workbench.recording_outcome(job):
+                run = workbench.job_run(job)
+                workbench.jobs.progress(job.id, "batch", 0.0)  # running, on a Ray worker
+            if run is None:
+                self._finished(scene_id, workbench.jobs.get(job.id).error)
+                return
+            ref = self._compute.remote(run.inputs, self._shipped.arguments(run.arguments))
+            self.out[ref] = _Out(scene_id, job.id, run)
+        except KeyboardInterrupt:  # stopped before the job was out: not left queued
+            workbench.jobs.fail(job.id, STOPPED)
+            raise
 
     def collect(self, ref: Any) -> None:
         """Store a worker's result as its job's, or record the worker's failure on the job."""

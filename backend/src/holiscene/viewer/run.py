@@ -2,36 +2,28 @@
 
 from __future__ import annotations
 
-import signal
 import sys
 import time
 from pathlib import Path
-from types import FrameType
 
+from ..core.interrupts import stop_signals_interrupt
 from ..core.settings import Settings
 from .server import start_viewer, viewer_url
 from .sources import load_scene_argument
 
 
-def _interrupt(_signum: int, _frame: FrameType | None) -> None:
-    raise KeyboardInterrupt
-
-
 def serve_until_interrupted(scene: str, settings: Settings, port: int, photo: Path | None) -> int:
     data = load_scene_argument(scene, settings, photo)
     server, _viewer = start_viewer(data, port)
-    # Ctrl+C and a process manager's SIGTERM both end the viewer cleanly. SIGINT is set
-    # explicitly: a process started in the background inherits it ignored, and then Python
-    # never raises KeyboardInterrupt (CI found this).
-    signal.signal(signal.SIGTERM, _interrupt)
-    signal.signal(signal.SIGINT, _interrupt)
     url = viewer_url(server)
     busy = f" (port {port} was busy)" if port not in (0, server.get_port()) else ""
     print(f"viewer of {data.origin}: {url}{busy}", flush=True)
     print("press Ctrl+C to stop", file=sys.stderr, flush=True)
+    # Ctrl+C and a process manager's SIGTERM both end the viewer cleanly.
     try:
-        while True:
-            time.sleep(3600)
+        with stop_signals_interrupt():
+            while True:
+                time.sleep(3600)
     except KeyboardInterrupt:
         pass
     finally:
