@@ -10,7 +10,6 @@ from typing import Any
 from fastapi import Depends, FastAPI
 from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import HTMLResponse, JSONResponse
-from fastapi.staticfiles import StaticFiles
 
 from ..core.settings import Settings
 from ..services.workbench import Workbench
@@ -34,6 +33,7 @@ from .routes import (
 )
 from .security_headers import SecurityHeaders
 from .upload_login import UploadLogin
+from .web_files import WebFiles
 
 # Besides its files, a photo import carries cam_K.txt, detections.json and form fields.
 IMPORT_OVERHEAD_MB = 10
@@ -107,7 +107,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         return {"status": "ok"}
 
     if (settings.web_dir / "index.html").is_file():
-        app.mount("/", StaticFiles(directory=settings.web_dir, html=True), name="web")
+        app.mount("/", WebFiles(directory=settings.web_dir, html=True), name="web")
     else:
 
         @app.get("/", include_in_schema=False)
