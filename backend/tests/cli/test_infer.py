@@ -238,3 +238,42 @@ def test_infer_keeps_the_supports_given_in_supports_json(
     (folder / "supports.json").write_text(json.dumps([{"child": 0, "parent": 0, "type": "below"}]))
     assert main(["infer", str(folder), "-o", str(tmp_path / "again")]) == 2
     assert "supports.json: object 'o0' cannot support itself" in capsys.readouterr().err
+
+
+def test_infer_keeps_a_room_layout_set_by_hand_in_scene_json(t3d5: Path, tmp_path: Path) -> None:
+    """A folder exported from the app carries its scene.json: a room layout set by hand there
+    (and the camera fitted to it) is kept, as a re-run in the app keeps it; an estimated one
+    is estimated again."""
+    folder = _input_folder(tmp_path, t3d5)
+    assert main(["infer", str(folder), "-o", str(tmp_path / "first")]) == 0
+    estimated = Scene.model_validate_json((tmp_path / "first" / "scene.json").read_text())
+    assert estimated.layout.corners_3d is not None and estimated.camera is not None
+    # The room as a person moved it: half a metre deeper, marked as set by hand.
+    moved = [[x + 0.5, y, z] for x, y, z in estimated.layout.corners_3d]
+    by_hand = estimated.model_copy(
+        update={
+            "layout": estimated.layout.model_copy(update={"corners_3d": moved, "source": "manual"})
+        }
+    )
+    (folder / "scene.json").write_text(by_hand.model_dump_json(by_alias=True))
+    assert main(["infer", str(folder), "-o", str(tmp_path / "kept")]) == 0
+    kept = Scene.model_validate_json((tmp_path / "kept" / "scene.json").read_text())
+    assert kept.layout.source == "manual" and kept.layout.corners_3d == moved
+    assert kept.camera is not None
+    assert (kept.camera.pitch_deg, kept.camera.roll_deg) == (
+        estimated.camera.pitch_deg,
+        estimated.camera.roll_deg,
+    )
+    names = [s.name for s in kept.stages]
+    assert "layout_from_revision" in names and "layout_from_lines" not in names
+    assert all(o.box_3d is not None for o in kept.objects if o.cls not in STRUCTURAL_SUPPORTERS)
+
+    # The same room not marked as set by hand is the pipeline's to estimate again.
+    estimated_again = by_hand.model_copy(
+        update={"layout": by_hand.layout.model_copy(update={"source": "estimated"})}
+    )
+    (folder / "scene.json").write_text(estimated_again.model_dump_json(by_alias=True))
+    assert main(["infer", str(folder), "-o", str(tmp_path / "again")]) == 0
+    again = Scene.model_validate_json((tmp_path / "again" / "scene.json").read_text())
+    assert "layout_from_lines" in [s.name for s in again.stages]
+    assert again.layout.corners_3d != moved

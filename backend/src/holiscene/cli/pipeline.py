@@ -93,9 +93,8 @@ def _infer(args: argparse.Namespace) -> int:
     """One input folder, or a folder of input folders (then OUT/<name>/ for each)."""
     from tqdm import tqdm
 
-    from ..pipeline import DEFAULT_STAGES
-
-    stages = [s.strip() for s in args.stages.split(",")] if args.stages else list(DEFAULT_STAGES)
+    # Without --stages, each folder gets a full run (keeping a layout set by hand).
+    stages = [s.strip() for s in args.stages.split(",")] if args.stages else None
     if _is_input_folder(args.input_dir) or not args.input_dir.is_dir():
         _infer_one(args.input_dir, args.out, stages, args, verbose=True)
         print(args.out / "scene.json")
@@ -110,16 +109,22 @@ def _infer(args: argparse.Namespace) -> int:
 
 
 def _infer_one(
-    folder: Path, out: Path, stages: list[str], args: argparse.Namespace, verbose: bool
+    folder: Path, out: Path, chosen: list[str] | None, args: argparse.Namespace, verbose: bool
 ) -> None:
     from tqdm import tqdm
 
     from ..inputs import InputError, read_input_folder
     from ..pipeline import PipelineBuildError
-    from ..services.reconstruction import reconstruct_scene
+    from ..services.reconstruction import full_run_stages, imported_scene, reconstruct_scene
 
     try:
         inputs = read_input_folder(folder, use_depth=args.use_depth)
+        name = folder.resolve().name
+        # A folder exported from the app (scene.json beside the photo) keeps a room layout
+        # set by hand, as a re-run in the app does; --stages runs exactly what it names.
+        stages, options = (
+            (chosen, None) if chosen else full_run_stages(imported_scene(inputs, name))
+        )
         with tqdm(
             total=len(stages), desc="pipeline", unit="stage", file=sys.stderr, disable=not verbose
         ) as bar:
@@ -133,12 +138,13 @@ def _infer_one(
 
             result = reconstruct_scene(
                 inputs,
-                name=folder.resolve().name,
+                name=name,
                 image_file=f"img{inputs.photo.suffix}",
                 # supports.json: people's labels, kept as they are (gt.json is not used here).
                 pinned_supports=inputs.supports,
                 stages=stages,
                 models_dir=args.models,
+                stage_options=options,
                 progress=progress,
             )
     except (InputError, PipelineBuildError, ValueError) as exc:

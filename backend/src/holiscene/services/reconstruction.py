@@ -14,13 +14,16 @@ from holiscene_schema import (
     RemovedObject,
     Scene,
     SceneObject,
+    StageRun,
     SupportRelation,
 )
 
 from ..geometry.boxes import box_corners
 from ..inputs import InputFiles
-from ..pipeline import DEFAULT_STAGES, SceneContext, build_pipeline
+from ..pipeline import DEFAULT_STAGES, KEPT_LAYOUT_STAGES, SceneContext, build_pipeline
 from ..pipeline.runner import ProgressCallback
+from ..pipeline.stages.detections import objects_from_detections, unknown_class_note
+from ..pipeline.stages.restore import has_hand_set_layout
 from ..segmentation.rle import encode_mask
 
 LAYOUT_NOT_ESTIMATED = "the room layout is not estimated by this pipeline yet"
@@ -108,3 +111,35 @@ def _finished_object(ctx: SceneContext, obj: SceneObject) -> SceneObject:
             "note": ctx.object_notes.get(obj.id, obj.note),
         }
     )
+
+
+def imported_scene(inputs: InputFiles, name: str) -> Scene:
+    """Revision 1 of a scene: the photo and its boxes as given, nothing inferred yet."""
+    objects = objects_from_detections(inputs.detections or [])
+    image = ImageInfo(
+        file=f"img{inputs.photo.suffix}", width=inputs.photo.width, height=inputs.photo.height
+    )
+    unknown = unknown_class_note(inputs.detections or [])
+    # The import's own note, shown with the pipeline's warnings until a run replaces them.
+    stages = [StageRun(name="import", seconds=0.0, note=unknown, warning=True)] if unknown else []
+    # Supports given with the photo are people's labels (a pipeline run keeps them) or, from
+    # an export, the pipeline's guesses. An exported scene's camera and layout (scene.json)
+    # start revision 1 as they were; a layout set by hand is kept by the pipeline then.
+    return Scene(
+        name=name,
+        image=image,
+        camera=inputs.camera,
+        layout=inputs.layout or Layout(),
+        depth=inputs.depth.ref() if inputs.depth is not None else None,
+        objects=objects,
+        supports=list(inputs.supports),
+        stages=stages,
+    )
+
+
+def full_run_stages(scene: Scene) -> tuple[tuple[str, ...], dict[str, dict[str, Any]] | None]:
+    """The stages of a full pipeline run on `scene`, and their options: a room layout set by
+    hand (and the camera fitted to it) is kept, as people's supports are."""
+    if has_hand_set_layout(scene):
+        return KEPT_LAYOUT_STAGES, {"layout_from_revision": {"scene": scene}}
+    return DEFAULT_STAGES, None

@@ -16,15 +16,12 @@ from pathlib import Path
 from typing import Any
 
 from holiscene_schema import (
-    ImageInfo,
     ImportResult,
     Job,
     JobKind,
-    Layout,
     ModelKind,
     RetrainRequest,
     Scene,
-    StageRun,
 )
 
 from ..core.db import make_engine, migrate
@@ -34,9 +31,7 @@ from ..editing.workflow_rules import LOCAL_USER, Actor, WorkflowError
 from ..inputs import InputFiles, read_input_folder
 from ..learning.detector import runtime as detector_runtime
 from ..learning.training_api import METRICS_FILE
-from ..pipeline import DEFAULT_STAGES, KEPT_LAYOUT_STAGES, PLACEMENT_STAGES
-from ..pipeline.stages.detections import objects_from_detections, unknown_class_note
-from ..pipeline.stages.restore import has_hand_set_layout
+from ..pipeline import PLACEMENT_STAGES
 from ..store import model_registry
 from ..store.files import SceneFiles
 from ..store.jobs import JobStore
@@ -51,7 +46,7 @@ from .detector_retraining import (
     check_can_retrain_detector,
     detector_train_config,
 )
-from .reconstruction import Reconstruction, reconstruct_scene
+from .reconstruction import Reconstruction, full_run_stages, imported_scene, reconstruct_scene
 from .relation_retraining import RetrainJob, TrainingJob, check_can_retrain, train_config
 
 log = logging.getLogger(__name__)
@@ -393,9 +388,7 @@ def job_stages(
     set by hand (and its camera), as it keeps people's supports."""
     if placement:
         return PLACEMENT_STAGES, {"scene_from_revision": {"scene": scene}}
-    if has_hand_set_layout(scene):
-        return KEPT_LAYOUT_STAGES, {"layout_from_revision": {"scene": scene}}
-    return DEFAULT_STAGES, None
+    return full_run_stages(scene)
 
 
 def scene_changed_message(job: Job, changed: SceneChangedError) -> str:
@@ -409,28 +402,4 @@ def scene_changed_message(job: Job, changed: SceneChangedError) -> str:
     return (
         f"the room layout was set by hand while the pipeline ran ({moved}); the run's result "
         "was not stored, so that layout stays; a new run keeps it"
-    )
-
-
-def imported_scene(inputs: InputFiles, name: str) -> Scene:
-    """Revision 1 of a scene: the photo and its boxes as given, nothing inferred yet."""
-    objects = objects_from_detections(inputs.detections or [])
-    image = ImageInfo(
-        file=f"img{inputs.photo.suffix}", width=inputs.photo.width, height=inputs.photo.height
-    )
-    unknown = unknown_class_note(inputs.detections or [])
-    # The import's own note, shown with the pipeline's warnings until a run replaces them.
-    stages = [StageRun(name="import", seconds=0.0, note=unknown, warning=True)] if unknown else []
-    # Supports given with the photo are people's labels (a pipeline run keeps them) or, from
-    # an export, the pipeline's guesses. An exported scene's camera and layout (scene.json)
-    # start revision 1 as they were; a layout set by hand is kept by the pipeline then.
-    return Scene(
-        name=name,
-        image=image,
-        camera=inputs.camera,
-        layout=inputs.layout or Layout(),
-        depth=inputs.depth.ref() if inputs.depth is not None else None,
-        objects=objects,
-        supports=list(inputs.supports),
-        stages=stages,
     )
