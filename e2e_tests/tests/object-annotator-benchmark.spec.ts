@@ -169,17 +169,19 @@ async function armTimer(page: Page, shows: Shows, later: Shows | null): Promise<
         }
       };
       w.__hsTiming = new Promise((resolve, reject) => {
+        // Cleared only when settled: a frame that never comes fails the run here, not at the
+        // test's timeout.
         const late = setTimeout(() => {
           observer.disconnect();
-          reject(
-            new Error(`the page never showed ${JSON.stringify(dom === null ? shows : later)}`),
-          );
+          const missing = dom === null ? shows : frame === 0 ? "an animation frame" : later;
+          reject(new Error(`the page never showed ${JSON.stringify(missing)}`));
         }, 20_000);
         let dom: number | null = null;
         let frame = 0;
         let laterAt: number | null = null;
         const settle = () => {
           if (dom === null || frame === 0 || (later !== null && laterAt === null)) return;
+          clearTimeout(late);
           resolve({ start: w.__hsLastInput, dom, frame, later: laterAt });
         };
         const observer = new MutationObserver(() => {
@@ -196,7 +198,6 @@ async function armTimer(page: Page, shows: Shows, later: Shows | null): Promise<
             laterAt = performance.now();
           if (dom !== null && (later === null || laterAt !== null)) {
             observer.disconnect();
-            clearTimeout(late);
             settle();
           }
         });
@@ -493,11 +494,15 @@ class Annotator {
       .filter((s) => this.ids.has(s.child))
       .map((s) => ({ child: asApp(s.child), parent: asApp(s.parent), type: s.type }));
     let accepted = 0;
+    let inMenu = false;
     for (const { child, parent, type } of wanted) {
       const arrow = `.arrow[data-child="${child}"]`;
       if ((await shownGraph(page))[child]?.parent !== parent) {
         const menu = page.getByTestId(`supporter-select-${child}`);
-        await this.act(`open ${child}'s supporter menu`, () => menu.click());
+        // A click opens the menu (counted); Playwright picks the option without the native
+        // popup, which can hold the page's frames in headless Chromium.
+        await this.act(`open ${child}'s supporter menu`, () => menu.focus());
+        inMenu = true;
         await this.timed(
           `${child} on ${parent}`,
           { kind: "attr", selector: arrow, name: "data-parent", value: parent },
@@ -506,7 +511,8 @@ class Annotator {
       } else accepted += 1;
       if ((await shownGraph(page))[child]?.type !== type) {
         const menu = page.getByTestId(`type-select-${child}`);
-        await this.act(`open ${child}'s type menu`, () => menu.click());
+        await this.act(`open ${child}'s type menu`, () => menu.focus());
+        inMenu = true;
         await this.timed(
           `${child} ${type}`,
           { kind: "attr", selector: arrow, name: "data-type", value: type },
@@ -514,7 +520,14 @@ class Annotator {
         );
       }
     }
-    if (accepted > 0) await this.key("Shift+A", "Shift+A (accept the rest)");
+    if (accepted === 0) return;
+    // A menu keeps its keys (Shift+A would pick an option starting with A): a click beside it
+    // first gives the keys back to the page.
+    if (inMenu)
+      await this.act("click beside the menus", () =>
+        page.getByRole("heading", { name: "Support relations" }).click(),
+      );
+    await this.key("Shift+A", "Shift+A (accept the rest)");
   }
 }
 

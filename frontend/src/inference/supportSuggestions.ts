@@ -115,6 +115,8 @@ export function mountSupportSuggestions(
         : "");
   };
   let scoredMs = 0;
+  /** The objects changed since the scores shown: a new scoring is due (the status says so). */
+  let due = false;
 
   const score = async () => {
     const mine = ++run;
@@ -127,6 +129,7 @@ export function mountSupportSuggestions(
       const result = await scoreScene(session.doc.scene, await photo);
       if (mine !== run || abort.signal.aborted) return;
       scores = result;
+      due = false;
       scoredMs = performance.now() - start;
       session.setSuggester(live.checked ? makeSuggester(result) : null);
       render();
@@ -146,12 +149,16 @@ export function mountSupportSuggestions(
     if (!live.checked) session.setSuggester(null);
     else if (scores) session.setSuggester(makeSuggester(scores));
     else void score();
-    if (scores) describe(scoredMs);
+    if (scores && !due) describe(scoredMs);
   });
   // After the new revision is drawn: scoring (and dropping the old scores, which redraws the
   // arrows) would hold the photo's redraw back.
   const scoreLater = deferred(() => {
-    if (inputsKey(session.objects) === scoredFor) return;
+    if (inputsKey(session.objects) === scoredFor) {
+      due = false;
+      if (scores) describe(scoredMs); // back to the objects scored (a refused action)
+      return;
+    }
     scores = null;
     session.setSuggester(null);
     render();
@@ -165,10 +172,14 @@ export function mountSupportSuggestions(
     const wanted = scores !== null || live.checked;
     if (change === "document" && wanted && inputsKey(session.objects) !== scoredFor) {
       render();
+      // The scores shown are for the objects before: say so now, not after the next scoring
+      // begins (the status must never claim scores for objects they were not made for).
+      due = true;
+      status.textContent = "Scoring with the support model…";
       scoreLater();
     } else {
       render();
-      if (scores && (change === "edits" || change === "document")) describe(scoredMs);
+      if (scores && !due && (change === "edits" || change === "document")) describe(scoredMs);
     }
   });
   if (live.checked) {
