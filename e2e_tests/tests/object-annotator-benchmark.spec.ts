@@ -497,26 +497,38 @@ class Annotator {
     let inMenu = false;
     for (const { child, parent, type } of wanted) {
       const arrow = `.arrow[data-child="${child}"]`;
-      if ((await shownGraph(page))[child]?.parent !== parent) {
-        const menu = page.getByTestId(`supporter-select-${child}`);
+      const shown = (await shownGraph(page))[child];
+      if (shown?.parent === parent && shown.type === type) {
+        accepted += 1;
+        continue;
+      }
+      // The supporter from its menu (also when only its type is wrong: a suggestion's type
+      // menu is off until the supporter is set), then the type from its menu.
+      const menu = page.getByTestId(`supporter-select-${child}`);
+      if ((await menu.inputValue({ timeout: 15_000 })) !== parent) {
         // A click opens the menu (counted); Playwright picks the option without the native
         // popup, which can hold the page's frames in headless Chromium.
-        await this.act(`open ${child}'s supporter menu`, () => menu.focus());
+        await this.act(`open ${child}'s supporter menu`, () => menu.focus({ timeout: 15_000 }));
         inMenu = true;
         await this.timed(
           `${child} on ${parent}`,
-          { kind: "attr", selector: arrow, name: "data-parent", value: parent },
-          () => menu.selectOption(parent),
+          {
+            kind: "attr",
+            selector: `${arrow}[data-suggested="false"]`,
+            name: "data-parent",
+            value: parent,
+          },
+          () => menu.selectOption(parent, { timeout: 15_000 }),
         );
-      } else accepted += 1;
+      }
       if ((await shownGraph(page))[child]?.type !== type) {
-        const menu = page.getByTestId(`type-select-${child}`);
-        await this.act(`open ${child}'s type menu`, () => menu.focus());
+        const typeMenu = page.getByTestId(`type-select-${child}`);
+        await this.act(`open ${child}'s type menu`, () => typeMenu.focus({ timeout: 15_000 }));
         inMenu = true;
         await this.timed(
           `${child} ${type}`,
           { kind: "attr", selector: arrow, name: "data-type", value: type },
-          () => menu.selectOption(type),
+          () => typeMenu.selectOption(type, { timeout: 15_000 }),
         );
       }
     }
