@@ -31,7 +31,7 @@ export class BoxEdits {
     private readonly redraw: () => void,
   ) {}
 
-  /** Ask for the new object's class, then add it (selected once saved). */
+  /** Ask for the new object's class, then add it (selected once drawn, and once saved). */
   async addObject(box: Box): Promise<void> {
     const { host, sending, redraw } = this;
     const { session, objects: editor } = host;
@@ -51,13 +51,24 @@ export class BoxEdits {
       return;
     }
     const [id = "d1"] = editor.newObjectIds(1);
+    // Selected as soon as it is drawn (before the server answers), so a key pressed at once
+    // (F: on the floor) is for it; after the other listeners have seen the new revision.
+    const stopWatching = session.subscribe((change) => {
+      if (change !== "document" || !session.object(id)) return;
+      stopWatching();
+      queueMicrotask(() => {
+        if (session.object(id)) session.select(id);
+      });
+    });
     const saved = await editor.apply(
       [{ kind: "add_object", id, class: cls, bbox: roundBox(box), source: "manual" }],
       `add ${objectName({ id, class: cls })}`,
     );
+    stopWatching();
     sending.delete(key);
     // Selected when saved under its id (a conflict may have given it another).
     if (saved) session.select(session.object(id) ? id : null);
+    else if (session.selected === id && !session.object(id)) session.select(null);
     redraw();
   }
 
