@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from holiscene.pipeline.stages.metrology import HeightsByMetrology
 from holiscene.placement.metrology import (
+    height_lines,
     height_prior,
     room_reference,
     within_three_sigma,
@@ -86,3 +87,15 @@ def test_without_vanishing_points_every_height_is_the_prior() -> None:
     assert ctx.heights is not None and ctx.objects is not None
     assert all(ctx.heights[o.id] == height_prior(o.cls)[0] for o in ctx.objects)
     assert "prior" in ctx.notes["heights_by_metrology"]
+
+
+def test_a_silhouette_one_or_two_pixels_wide_has_its_height_line() -> None:
+    # A pole, a cable or a far lamp's stem: its boundary falls in fewer angle bins than the
+    # density kernel is wide (the pipeline failed on such a room).
+    for width in (1, 2, 3, 4):
+        mask = np.zeros((100, 100), dtype=bool)
+        mask[20:80, 50 : 50 + width] = True
+        lines = height_lines(mask, np.array([0.0, 1.0, 0.0]))  # vertical vanishing point far below
+        assert lines, f"width {width}: no height line"
+        assert (lines[0].top[1], lines[0].bottom[1]) == (20.5, 79.5)
+        assert 50 <= lines[0].top[0] <= 50 + width and 50 <= lines[0].bottom[0] <= 50 + width

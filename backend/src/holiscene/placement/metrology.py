@@ -207,7 +207,9 @@ def height_lines(
     index = np.floor((coord - lo) / bin_width).astype(int)
     counts = np.bincount(index).astype(float)
     kernel = np.array([1.0, 2.0, 3.0, 2.0, 1.0]) / 9.0
-    density = np.convolve(counts, kernel, mode="same")
+    # Centred on each bin; mode="same" would pad to the kernel's length (and shift the bins)
+    # for a silhouette only a few bins wide, leaving peaks with no boundary pixels.
+    density = np.convolve(counts, kernel, mode="full")[2 : 2 + len(counts)]
     padded = np.concatenate([[-1.0], density, [-1.0]])
     peaks = np.flatnonzero((density >= padded[:-2]) & (density > padded[2:]) & (density >= 3.0))
     peaks = peaks[np.argsort(-density[peaks])][: max_lines * 3]
