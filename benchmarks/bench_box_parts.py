@@ -17,7 +17,8 @@ time. The part whose replacement gains most is where work pays:
 
 Prints the figures per room and over all objects; `--per-class` adds each class's row.
 `--true-masks` gives the pipeline each object's true mask with its box (in detections.json,
-as a dataset's masks are given), so GrabCut's masks are out of the figures.
+as a dataset's masks are given), so GrabCut's masks are out of the figures. `--placement-only`
+leaves out the learned box refiner (`boxes_by_refiner`): the geometric pipeline's boxes alone.
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ from holiscene.evaluation.box_iou import iou_3d
 from holiscene.evaluation.matching import match_objects
 from holiscene.geometry.boxes import box_corners
 from holiscene.inputs import read_input_folder
+from holiscene.pipeline import DEFAULT_STAGES
 from holiscene.services.reconstruction import reconstruct_scene
 from holiscene_schema import Box3D, Scene
 
@@ -92,17 +94,17 @@ def give_true_masks(folder: Path) -> None:
     (folder / "detections.json").write_text(json.dumps(detections))
 
 
-def run_pipeline(folder: Path) -> Scene:
+def run_pipeline(folder: Path, stages: tuple[str, ...] = DEFAULT_STAGES) -> Scene:
     """The scene `holiscene infer --no-depth` makes of the folder."""
     inputs = read_input_folder(folder, use_depth=False)  # the single-photo path
-    return reconstruct_scene(inputs, name=folder.name, image_file="img.jpg").scene
+    return reconstruct_scene(inputs, name=folder.name, image_file="img.jpg", stages=stages).scene
 
 
-def room_ious(folder: Path) -> list[dict[str, object]]:
+def room_ious(folder: Path, stages: tuple[str, ...] = DEFAULT_STAGES) -> list[dict[str, object]]:
     """A row per true object with a 3D box: its class, where it stands and each variant's IoU
     (0 when the pipeline gave it no box)."""
     truth = Scene.model_validate_json((folder / "gt.json").read_text())
-    estimate = run_pipeline(folder)
+    estimate = run_pipeline(folder, stages)
     objects, height = estimate.objects, estimate.camera.height_m if estimate.camera else None
     true_height = truth.camera.height_m if truth.camera else None
     ratio = true_height / height if height and true_height else 1.0
@@ -151,7 +153,15 @@ def main() -> int:
     parser.add_argument(
         "--true-masks", action="store_true", help="give the pipeline the true masks"
     )
+    parser.add_argument(
+        "--placement-only", action="store_true", help="without the learned box refiner"
+    )
     args = parser.parse_args()
+    stages = (
+        tuple(s for s in DEFAULT_STAGES if s != "boxes_by_refiner")
+        if args.placement_only
+        else DEFAULT_STAGES
+    )
     all_rows: list[dict[str, object]] = []
     with tempfile.TemporaryDirectory() as tmp:
         synth = ["synth", "--seed", str(args.seed), "--count", str(args.count), "-o", tmp]
@@ -162,7 +172,7 @@ def main() -> int:
                 give_true_masks(folder)
         print("room         objects  scale ratio  " + "  ".join(f"{v:>19s}" for v in VARIANTS))
         for folder in folders:
-            rows = room_ious(folder)
+            rows = room_ious(folder, stages)
             all_rows += rows
             ratio = float(rows[0]["scale ratio"]) if rows else float("nan")  # type: ignore[arg-type]
             shares = "  ".join(f"{100 * found_share(rows, v):18.1f}%" for v in VARIANTS)

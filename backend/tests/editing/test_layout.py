@@ -266,6 +266,7 @@ def test_layout_edit_and_placement_job_through_the_api(client: TestClient, t3d5:
         "scene_from_revision",
         "heights_by_metrology",
         "placement",
+        "boxes_by_refiner",
         "shapes_fit",
         "scene_mesh",
     ]

@@ -94,6 +94,7 @@ def test_with_depth_scale_room_and_boxes_come_from_the_points(room: Path) -> Non
     truth = _truth(room)
     scene = _run(room, use_depth=True)
     assert {"layout_from_depth", "boxes_from_depth"} <= {s.name for s in scene.stages}
+    assert "boxes_by_refiner" not in {s.name for s in scene.stages}  # learned without depth
     assert scene.camera is not None and truth.camera is not None
     assert scene.camera.height_m == pytest.approx(truth.camera.height_m, rel=0.02)
     assert scene.camera.height_source == "depth"
@@ -119,6 +120,7 @@ def test_without_depth_the_single_photo_path_is_unchanged(room: Path) -> None:
     before = _run(room, use_depth=False, stages=single)
     assert [s.name for s in without.stages] == [s.name for s in before.stages]
     assert not {"layout_from_depth", "boxes_from_depth"} & {s.name for s in without.stages}
+    assert "boxes_by_refiner" in {s.name for s in without.stages}
     assert without.camera == before.camera
     assert without.camera is not None and without.camera.height_source == "estimated"
     assert without.layout == before.layout

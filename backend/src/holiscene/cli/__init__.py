@@ -7,6 +7,7 @@ import sys
 from collections.abc import Sequence
 
 from .batch import add_batch_command
+from .box_refiner import add_box_refiner_training_command
 from .common import CliError, settings_from
 from .completion import add_completion_training_command
 from .export import add_export_command
@@ -50,5 +51,6 @@ def _parser() -> argparse.ArgumentParser:
     add_surface_training_command(sub)
     add_detector_training_command(sub)
     add_completion_training_command(sub)
+    add_box_refiner_training_command(sub)
     add_view_command(sub)
     return parser

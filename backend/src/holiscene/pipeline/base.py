@@ -147,6 +147,9 @@ class Stage(ABC):
     # A stage that refines with depth: the pipeline skips it (no run is recorded) for a photo
     # without depth, so the single-photo path is unchanged.
     needs_depth: ClassVar[bool] = False
+    # A stage for the single-photo path only (learned on photos without depth): skipped, with
+    # no run recorded, for a photo with depth, whose depth stages measure better.
+    single_photo_only: ClassVar[bool] = False
 
     def __init__(self, **options: Any) -> None:
         if options:

@@ -21,6 +21,7 @@ DEFAULT_STAGES: tuple[str, ...] = (
     "supports_from_network",
     "heights_by_metrology",
     "placement",
+    "boxes_by_refiner",
     "boxes_from_depth",
     "shapes_fit",
     "shape_completion",
@@ -35,6 +36,7 @@ PLACEMENT_STAGES: tuple[str, ...] = (
     "scene_from_revision",
     "heights_by_metrology",
     "placement",
+    "boxes_by_refiner",
     "boxes_from_depth",
     "shapes_fit",
     "shape_completion",
@@ -66,6 +68,8 @@ class Pipeline:
         runs: list[StageRun] = []
         for index, stage in enumerate(self.stages):
             if stage.needs_depth and ctx.depth is None:
+                continue
+            if stage.single_photo_only and ctx.depth is not None:
                 continue
             if progress:
                 progress(stage.name, index / len(self.stages))

@@ -1,6 +1,7 @@
 """Built-in stages; importing this package registers them."""
 
 from . import boxes, camera, detections, detector, layout, masks, mesh, supports
+from .box_refiner import BoxesByRefiner  # noqa: F401
 from .completion import ShapeCompletion  # noqa: F401
 from .depth_boxes import BoxesFromDepth  # noqa: F401
 from .depth_layout import LayoutFromDepth  # noqa: F401
