@@ -150,7 +150,10 @@ def train_box_refiner(run: BoxRefinerTraining) -> dict[str, float]:
     if not rooms:
         raise ValueError("no training room has a placed object")
     everything = torch.from_numpy(np.concatenate([r.features for r in rooms]))
-    mean, std = everything.mean(0), everything.std(0) + 1e-3
+    # A feature constant over the training rooms (a class the generator never makes) keeps
+    # unit scale: dividing by its tiny spread would blow up any photo that has it.
+    mean, spread = everything.mean(0), everything.std(0)
+    std = torch.where(spread < 1e-3, torch.ones_like(spread), spread + 1e-3)
     data = [
         (
             (torch.from_numpy(r.features) - mean) / std,
