@@ -15,7 +15,7 @@ import numpy as np
 import trimesh
 from holiscene_schema import Box3D
 
-from ..geometry.boxes import box_corners
+from ..geometry.boxes import corners_of
 from ..geometry.camera import rot_y
 
 FLOOR_COLOUR = (200, 200, 200, 255)
@@ -52,9 +52,7 @@ def _painted(
 def _floor_mesh(boxes: list[Box3D], floor_y: float) -> trimesh.Trimesh:
     """A floor quad under the objects (or 6 m ahead of the camera when there are none)."""
     if boxes:
-        pts = np.vstack(
-            [box_corners(np.array(b.center), np.array(b.size), b.yaw_deg) for b in boxes]
-        )
+        pts = np.vstack([corners_of(b) for b in boxes])
         lo, hi = pts.min(axis=0) - 0.5, pts.max(axis=0) + 0.5
     else:
         lo, hi = np.array([0.5, 0.0, -3.0]), np.array([6.5, 0.0, 3.0])

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from holiscene_schema import BOX_CORNER_SIGNS
+from holiscene_schema import BOX_CORNER_SIGNS, Box3D
 
 from .camera import FloatArray, rot_y
 
@@ -17,3 +17,8 @@ def box_corners(center: FloatArray, size: FloatArray, yaw_deg: float) -> FloatAr
     local = _SIGNS * (np.asarray(size, dtype=float) / 2.0)
     corners: FloatArray = local @ rot_y(math.radians(yaw_deg)).T + np.asarray(center, dtype=float)
     return corners
+
+
+def corners_of(box: Box3D) -> FloatArray:
+    """The 8 world corners of a contract box."""
+    return box_corners(np.array(box.center), np.array(box.size), box.yaw_deg)

@@ -7,7 +7,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 from holiscene_schema import (
     ImageInfo,
     Layout,
@@ -18,7 +17,7 @@ from holiscene_schema import (
     SupportRelation,
 )
 
-from ..geometry.boxes import box_corners
+from ..geometry.boxes import corners_of
 from ..inputs import InputFiles
 from ..pipeline import DEFAULT_STAGES, KEPT_LAYOUT_STAGES, SceneContext, build_pipeline
 from ..pipeline.runner import ProgressCallback
@@ -99,9 +98,7 @@ def _finished_object(ctx: SceneContext, obj: SceneObject) -> SceneObject:
     box = (ctx.boxes_3d or {}).get(obj.id)
     corners = None
     if box is not None:
-        corners = (
-            box_corners(np.array(box.center), np.array(box.size), box.yaw_deg).round(4).tolist()
-        )
+        corners = corners_of(box).round(4).tolist()
     return obj.model_copy(
         update={
             "mask": encode_mask(mask.pixels, mask.source) if mask is not None else None,

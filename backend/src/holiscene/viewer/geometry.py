@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene, SceneObject, SupportType
 
-from ..geometry.boxes import box_corners
+from ..geometry.boxes import corners_of
 from ..geometry.camera import FloatArray
 
 # The 12 edges of a box, by corner index in the contract order (bottom face, top face).
@@ -40,8 +40,7 @@ def object_corners(obj: SceneObject) -> FloatArray | None:
     if obj.corners_3d is not None:
         return np.asarray(obj.corners_3d, dtype=float)
     if obj.box_3d is not None:
-        box = obj.box_3d
-        return box_corners(np.array(box.center), np.array(box.size), box.yaw_deg)
+        return corners_of(obj.box_3d)
     return None
 
 

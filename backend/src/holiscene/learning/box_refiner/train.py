@@ -13,17 +13,20 @@ from pathlib import Path
 
 import numpy as np
 import torch
+from holiscene_schema import Box3D
 from tqdm import tqdm
 
 from ...evaluation.box_iou import iou_3d
-from ...geometry.boxes import box_corners
+from ...geometry.boxes import corners_of
 from ...shapes import SIZE_RANGES
+from ..export import keep_if_faithful
 from .data import RoomSample, make_rooms
 from .features import PAIR_FEATURES, TARGETS, feature_names, refined
 from .net import BoxRefinerNet
 
 MODEL_FILE = "model.onnx"
 FOUND_IOU = 0.15  # the issue's measure: a true box is found by a box with 3D IoU >= 0.15
+EXPORT_TOLERANCE = 1e-4  # log ratios
 
 
 @dataclass
@@ -39,31 +42,36 @@ class BoxRefinerTraining:
     curve: list[dict[str, float]] = field(default_factory=list)
 
 
-def _box_iou(a: object, b: object) -> float:
-    def corners(box: object) -> np.ndarray:
-        return box_corners(np.array(box.center), np.array(box.size), box.yaw_deg)  # type: ignore[attr-defined]
-
-    return iou_3d(corners(a), corners(b))
+def _found(estimate: Box3D, truth: Box3D) -> bool:
+    return iou_3d(corners_of(estimate), corners_of(truth)) >= FOUND_IOU
 
 
-def found_shares(
+def _true_boxes(rooms: list[RoomSample]) -> int:
+    return max(sum(len(room.truths) + room.missed for room in rooms), 1)
+
+
+def pipeline_found_share(rooms: list[RoomSample]) -> float:
+    """Share of the true boxes found at IoU 0.15 by the placement's boxes (fixed in training)."""
+    found = sum(_found(e, t) for r in rooms for e, t in zip(r.estimates, r.truths, strict=True))
+    return found / _true_boxes(rooms)
+
+
+def refined_found_share(
     net: BoxRefinerNet, rooms: list[RoomSample], mean: torch.Tensor, std: torch.Tensor
-) -> tuple[float, float]:
-    """Share of the true boxes found at IoU 0.15 by the pipeline's boxes, and by the refined."""
+) -> float:
+    """Share of the true boxes found at IoU 0.15 by the boxes `net` refines."""
     net.eval()
-    before = after = total = 0
+    found = 0
     with torch.no_grad():
         for room in rooms:
-            total += len(room.truths) + room.missed
             if not room.truths:
                 continue
             x = (torch.from_numpy(room.features) - mean) / std
             predicted = net(x[None], torch.from_numpy(room.pairs)[None])[0].numpy()
             for estimate, truth, ratios in zip(room.estimates, room.truths, predicted, strict=True):
-                before += _box_iou(estimate, truth) >= FOUND_IOU
-                after += _box_iou(refined(estimate, ratios), truth) >= FOUND_IOU
+                found += _found(refined(estimate, ratios), truth)
     net.train()
-    return before / max(total, 1), after / max(total, 1)
+    return found / _true_boxes(rooms)
 
 
 def _gather(
@@ -81,15 +89,16 @@ def _gather(
 
 
 def export_onnx(net: BoxRefinerNet, path: Path, features: int) -> float:
-    """Write the ONNX model; the largest difference from PyTorch on random scenes."""
-    import onnxruntime as ort
-
+    """Write the ONNX model to `path` only if it agrees with PyTorch within EXPORT_TOLERANCE
+    on a random scene of another size than the traced one (so the object axis is dynamic);
+    returns the largest difference."""
     net.eval()
     example = (torch.randn(1, 7, features), torch.randn(1, 7, 7, PAIR_FEATURES))
+    tmp = path.with_suffix(".tmp.onnx")
     torch.onnx.export(
         net,
         example,
-        str(path),
+        str(tmp),
         input_names=["objects", "pairs"],
         output_names=["log_ratios"],
         dynamic_axes={
@@ -100,15 +109,11 @@ def export_onnx(net: BoxRefinerNet, path: Path, features: int) -> float:
         opset_version=17,
         dynamo=False,
     )
-    session = ort.InferenceSession(str(path), providers=["CPUExecutionProvider"])
-    largest = 0.0
-    for n in (1, 3, 12):
-        objects, pairs = torch.randn(1, n, features), torch.randn(1, n, n, PAIR_FEATURES)
-        with torch.no_grad():
-            expected = net(objects, pairs).numpy()
-        got = session.run(["log_ratios"], {"objects": objects.numpy(), "pairs": pairs.numpy()})
-        largest = max(largest, float(np.abs(got[0] - expected).max()))
-    return largest
+    objects, pairs = torch.randn(1, 12, features), torch.randn(1, 12, 12, PAIR_FEATURES)
+    with torch.no_grad():
+        expected = net(objects, pairs).numpy()
+    feeds = {"objects": objects.numpy(), "pairs": pairs.numpy()}
+    return keep_if_faithful(tmp, path, feeds, "log_ratios", expected, EXPORT_TOLERANCE)
 
 
 def _plot(curve: list[dict[str, float]], path: Path) -> None:
@@ -165,6 +170,7 @@ def train_box_refiner(run: BoxRefinerTraining) -> dict[str, float]:
     net = BoxRefinerNet(everything.shape[1])
     optimiser = torch.optim.AdamW(net.parameters(), lr=1e-3, weight_decay=0.01)
     schedule = torch.optim.lr_scheduler.CosineAnnealingLR(optimiser, run.epochs)
+    pipeline_share = pipeline_found_share(validation)
     best: tuple[float, dict[str, torch.Tensor]] = (-1.0, {})
     for epoch in range(1, run.epochs + 1):
         losses = []
@@ -178,7 +184,7 @@ def train_box_refiner(run: BoxRefinerTraining) -> dict[str, float]:
             optimiser.step()
             losses.append(loss.item())
         schedule.step()
-        pipeline_share, refined_share = found_shares(net, validation, mean, std)
+        refined_share = refined_found_share(net, validation, mean, std)
         run.curve.append(
             {
                 "epoch": epoch,
@@ -192,13 +198,11 @@ def train_box_refiner(run: BoxRefinerTraining) -> dict[str, float]:
             best = (refined_share, copy.deepcopy(net.state_dict()))
     net.load_state_dict(best[1])
     difference = export_onnx(net, run.out / MODEL_FILE, everything.shape[1])
-    if difference > 1e-4:
-        raise RuntimeError(f"the ONNX model differs from PyTorch by {difference}")
-    pipeline_share, refined_share = found_shares(net, validation, mean, std)
+    best_epoch = max(run.curve, key=lambda c: c["found_refined"])
     metrics = {
         "validation_found_pipeline": pipeline_share,
-        "validation_found_refined": refined_share,
-        "best_epoch": max(run.curve, key=lambda c: c["found_refined"])["epoch"],
+        "validation_found_refined": best_epoch["found_refined"],
+        "best_epoch": best_epoch["epoch"],
         "onnx_max_abs_difference": difference,
         "training_objects": int(everything.shape[0]),
         "rooms_the_pipeline_failed_on": len(failures),
