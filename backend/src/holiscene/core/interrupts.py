@@ -5,6 +5,7 @@ viewer stops its server). Python's own SIGTERM ends the process without running 
 from __future__ import annotations
 
 import signal
+import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 from types import FrameType
@@ -25,3 +26,28 @@ def stop_signals_interrupt() -> Iterator[None]:
     finally:
         for sig, handler in before.items():
             signal.signal(sig, handler)
+
+
+@contextmanager
+def stop_signals_deferred() -> Iterator[None]:
+    """Hold SIGTERM and SIGINT inside the block and hand them to their handlers as it ends,
+    so a short step is done whole or not begun (a batch's job made and sent out, or a result
+    stored): cut between the two, the job would stay queued or running for good. Outside
+    the main thread, where handlers cannot be set, the block runs as it is."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    held: list[int] = []
+    before = {sig: signal.getsignal(sig) for sig in (signal.SIGTERM, signal.SIGINT)}
+    for sig, handler in before.items():
+        if callable(handler):  # an ignored or default signal stays as it is
+            signal.signal(sig, lambda signum, _frame: held.append(signum))
+    try:
+        yield
+    finally:
+        for sig, handler in before.items():
+            signal.signal(sig, handler)
+        for signum in held[:1]:  # one stop is enough; its handler raises as it would have
+            handler = before[signal.Signals(signum)]
+            if callable(handler):
+                handler(signum, None)

@@ -26,6 +26,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..core.errors import NotFoundError
+from ..core.interrupts import stop_signals_deferred
 from ..inputs import InputFiles
 from ..store.jobs import SceneJobRunningError
 from .reconstruction import Reconstruction, reconstruct_scene
@@ -180,13 +181,15 @@ class _Batch:
         """Make the scene's job and send its computation to a worker; a job that could not
         be made or read finishes the scene at once."""
         workbench = self.workbench
-        try:
-            revision = workbench.scenes.summary(scene_id).revision
-            job = workbench.jobs.create(scene_id, revision, started_by=BATCH_STARTER)
-        except SceneJobRunningError as busy:  # a server runs it: its result is not ours
-            self._finished(scene_id, str(busy))
-            return
-        try:
+        # A stop that comes once the job is made waits until it is out (run_batch then
+        # fails it), so no job is left queued.
+        with stop_signals_deferred():
+            try:
+                revision = workbench.scenes.summary(scene_id).revision
+                job = workbench.jobs.create(scene_id, revision, started_by=BATCH_STARTER)
+            except SceneJobRunningError as busy:  # a server runs it: its result is not ours
+                self._finished(scene_id, str(busy))
+                return
             run = None
             with workbench.recording_outcome(job):
                 run = workbench.job_run(job)
@@ -196,22 +199,22 @@ class _Batch:
                 return
             ref = self._compute.remote(run.inputs, self._shipped.arguments(run.arguments))
             self.out[ref] = _Out(scene_id, job.id, run)
-        except KeyboardInterrupt:  # stopped before the job was out: not left queued
-            workbench.jobs.fail(job.id, STOPPED)
-            raise
 
     def collect(self, ref: Any) -> None:
         """Store a worker's result as its job's, or record the worker's failure on the job."""
         from ray.exceptions import RayTaskError
 
-        scene = self.out.pop(ref)
-        job = self.workbench.jobs.get(scene.job_id)
-        with self.workbench.recording_outcome(job):
-            try:
-                result = _ray_get(ref)
-            except RayTaskError as failed:  # the exception raised on the worker, as it was
-                raise failed.cause or failed from None
-            self.workbench.store_job_result(job, scene.run, result)
+        # Taken off the list and stored as one step: a stop between the two would leave
+        # the job running with no one to fail it.
+        with stop_signals_deferred():
+            scene = self.out.pop(ref)
+            job = self.workbench.jobs.get(scene.job_id)
+            with self.workbench.recording_outcome(job):
+                try:
+                    result = _ray_get(ref)
+                except RayTaskError as failed:  # the exception raised on the worker, as it was
+                    raise failed.cause or failed from None
+                self.workbench.store_job_result(job, scene.run, result)
         job = self.workbench.jobs.get(scene.job_id)
         self._finished(scene.scene_id, None if job.status == "succeeded" else job.error)
 
