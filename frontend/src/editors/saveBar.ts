@@ -36,6 +36,7 @@ export function mountSaveBar(
     undoLast,
     redoLast,
     saveNow: () => void session.save(author()),
+    objectAction: () => (objects?.status.kind === "busy" ? objects.status.label : null),
   });
   const recovery = recoveryBanner(session);
   const conflict = conflictPanel({ merge, reload });

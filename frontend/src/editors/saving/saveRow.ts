@@ -4,7 +4,18 @@ import { button, el } from "../../dom";
 import { plural, type SaveState, type SceneSession } from "../../state/sceneSession";
 import { latestRedo, latestUndo, type Undoable } from "../../state/undoOrder";
 
-function statusText(state: SaveState, pending: number, revision: number, savable: boolean): string {
+export function statusText(
+  state: SaveState,
+  pending: number,
+  revision: number,
+  savable: boolean,
+  objectAction: string | null,
+): string {
+  // An object action saves on its own path: while it is out, "no unsaved changes" or
+  // "Saved as revision N" would tell the annotator it is safe to leave when it is not yet.
+  if (objectAction !== null && (state.kind === "clean" || state.kind === "saved")) {
+    return `Saving: ${objectAction}…`;
+  }
   switch (state.kind) {
     case "clean":
       return `Revision ${revision} · no unsaved changes`;
@@ -31,6 +42,8 @@ export interface SaveRowInputs {
   undoLast(): void;
   redoLast(): void;
   saveNow(): void;
+  /** The object action being saved, if one is (state/objectEditor.ts). */
+  objectAction?: () => string | null;
 }
 
 export interface SaveRow {
@@ -45,6 +58,7 @@ export function saveRow({
   undoLast,
   redoLast,
   saveNow,
+  objectAction = () => null,
 }: SaveRowInputs): SaveRow {
   const status = el("span", {
     className: "save-status",
@@ -79,8 +93,10 @@ export function saveRow({
     const state = session.saveState;
     const unsaved = session.unsavedCount;
     const editable = session.editable;
-    status.textContent = statusText(state, unsaved, session.doc.revision, session.savable);
-    status.dataset.state = state.kind;
+    const action = objectAction();
+    status.textContent = statusText(state, unsaved, session.doc.revision, session.savable, action);
+    status.dataset.state =
+      action !== null && state.kind !== "saving" ? "saving-object" : state.kind;
     const busy = state.kind === "saving";
     save.disabled = !editable || busy || !session.savable || state.kind === "conflict";
     discard.disabled = !editable || busy || unsaved === 0;

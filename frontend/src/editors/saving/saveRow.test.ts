@@ -1,0 +1,33 @@
+import { describe, expect, it } from "vitest";
+import { statusText } from "./saveRow";
+
+describe("the save status", () => {
+  it("says an object action is being saved rather than that nothing is left to save", () => {
+    expect(statusText({ kind: "clean" }, 0, 4, true, "add chair o3")).toBe("Saving: add chair o3…");
+    expect(statusText({ kind: "saved", revision: 5 }, 0, 5, true, "delete table o1")).toBe(
+      "Saving: delete table o1…",
+    );
+  });
+
+  it("says what it said before once the object action is saved", () => {
+    expect(statusText({ kind: "clean" }, 0, 4, true, null)).toBe("Revision 4 · no unsaved changes");
+    expect(statusText({ kind: "saved", revision: 5 }, 0, 5, true, null)).toBe(
+      "Saved as revision 5",
+    );
+  });
+
+  it("keeps unsaved support edits and errors in front of an object action", () => {
+    expect(statusText({ kind: "dirty" }, 2, 4, true, "add chair o3")).toBe(
+      "2 unsaved changes on revision 4 · autosaving",
+    );
+    expect(
+      statusText(
+        { kind: "conflict", baseRevision: 4, currentRevision: 5, message: "", theirs: [] },
+        1,
+        4,
+        true,
+        "add chair o3",
+      ),
+    ).toBe("Not saved: conflict");
+  });
+});
