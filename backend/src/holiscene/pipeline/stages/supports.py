@@ -18,11 +18,13 @@ from holiscene_schema import (
 )
 from holiscene_schema.relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER
 
+from ...geometry.camera import PinholeCamera
 from ...learning.decode import DecodeMode, decode_supports
 from ...learning.preprocess import relation_inputs
 from ...learning.priors import SupportPriors
 from ...learning.runtime import DEFAULT_MODEL_DIR, SupportModel, model_priors
 from ...learning.training_api import MODEL_FILE
+from ...placement.room import pinhole
 from ..base import PipelineBuildError, SceneContext, Stage, required
 from ..registry import register_stage
 
@@ -52,6 +54,66 @@ def image_plausibility(child: list[float], parent: list[float], kind: str) -> fl
     if not (parent[1] - slack <= child[3] <= parent[3] + 0.05 * _height(parent)):
         return 0.0
     return overlap_x if overlap_x >= 0.3 else 0.0
+
+
+# The floor meets the image below its horizon: a bottom edge this far above it (a ray at
+# most this steep downwards, in radians) cannot rest on the floor.
+FLOOR_RAY_MIN_DROP = np.sin(np.radians(1.0))
+# A box below the bottom edge, this close (share of the photo's height) and overlapping at
+# least this share of its width, may hide where the object really stands.
+HIDING_GAP = 0.03
+HIDING_OVERLAP = 0.3
+# An object's supporter spans at least this share of its width in the photo.
+SUPPORTER_OVERLAP = 0.3
+
+
+def off_the_floor(
+    camera: PinholeCamera | None, boxes: list[list[float]], height: int
+) -> list[bool]:
+    """Per 2D box: whether its bottom edge is at or above the floor's horizon with nothing
+    just below it that could hide a lower bottom, so the floor cannot hold it up from below
+    (a picture high on a wall, a shelf's books); False without a camera."""
+    if camera is None:
+        return [False] * len(boxes)
+    bottoms = np.array([[(b[0] + b[2]) / 2.0, b[3]] for b in boxes], dtype=float).reshape(-1, 2)
+    drops = -camera.ray(bottoms)[:, 1] if len(boxes) else np.zeros(0)
+    result = []
+    for n, (box, drop) in enumerate(zip(boxes, drops, strict=True)):
+        hidden = any(
+            other[1] <= box[3] + HIDING_GAP * height
+            and other[3] > box[3]
+            and min(box[2], other[2]) - max(box[0], other[0]) >= HIDING_OVERLAP * _width(box)
+            for m, other in enumerate(boxes)
+            if m != n
+        )
+        result.append(bool(drop < FLOOR_RAY_MIN_DROP) and not hidden)
+    return result
+
+
+def rule_out_impossible(
+    scores: np.ndarray,
+    child: SceneObject,
+    objects: list[SceneObject],
+    floor_column: int,
+    below: int,
+) -> None:
+    """For an object the floor cannot hold (off_the_floor): zero the floor from below and
+    every object beside it in the photo (whatever holds it up, from below or from behind,
+    spans at least part of its width), in the network's scores [supporters, types], unless
+    nothing would be left. The vertical gap is not judged: a lamp's foot may be hidden."""
+    kept = scores.copy()
+    kept[floor_column, below] = 0.0
+    for column, other in enumerate(objects):
+        overlap = min(child.bbox[2], other.bbox[2]) - max(child.bbox[0], other.bbox[0])
+        if other.id == child.id or overlap < SUPPORTER_OVERLAP * _width(child.bbox):
+            kept[column] = 0.0
+    if kept.sum() > 0:
+        scores[...] = kept
+
+
+def scene_camera(ctx: SceneContext) -> PinholeCamera | None:
+    """The photo's camera with pitch and roll, when an earlier stage found them."""
+    return pinhole(ctx.camera) if ctx.camera is not None else None
 
 
 def prior_candidates(
@@ -106,6 +168,11 @@ class SupportsFromPriors(Stage):
         ids = [o.id for o in objects]
         pinned = kept_pins(ctx, ids)
         candidates = {o.id: prior_candidates(o, objects, self.priors) for o in objects}
+        unfloored = off_the_floor(scene_camera(ctx), [o.bbox for o in objects], ctx.height)
+        for obj, off in zip(objects, unfloored, strict=True):
+            if off:
+                kept = [c for c in candidates[obj.id] if c[1:] != ("floor", "below")]
+                candidates[obj.id] = kept or candidates[obj.id]
         ctx.supports = tree_from_candidates(ids, candidates, pinned)
 
 
@@ -171,8 +238,15 @@ class SupportsFromNetwork(Stage):
             [o.bbox for o in objects],
             [o.cls for o in objects],
         )
+        probabilities = self.model.probabilities(inputs).copy()
+        floor = len(objects) + STRUCTURAL_COLUMNS.index("floor")
+        below = SUPPORT_TYPE_ORDER.index("below")
+        unfloored = off_the_floor(scene_camera(ctx), [o.bbox for o in objects], ctx.height)
+        for row, off in enumerate(unfloored):
+            if off:
+                rule_out_impossible(probabilities[row], objects[row], objects, floor, below)
         ctx.supports = decode_supports(
-            self.model.probabilities(inputs),
+            probabilities,
             ids,
             [o.cls for o in objects],
             pinned,
