@@ -7,6 +7,7 @@ import type { InferenceSession } from "onnxruntime-web";
 import { modelsApi } from "../api/models";
 import { loadRuntime, type Ort } from "./ortRuntime";
 import { modelObjects, type PixelImage, type RelationInputs, sceneInputs } from "./preprocess";
+import { offTheFloor, ruleOutImpossible } from "./supportGeometry";
 import { type PriorsFile, SupportPriors } from "./supportPriors";
 
 export type SupportTypeName = (typeof RELATION_MODEL.support_types)[number];
@@ -217,7 +218,7 @@ export async function scoreSupports(
 
 /** Like scoreSupports, with the probability table (for decoding the tree again). */
 export async function scoreScene(
-  scene: Pick<Scene, "objects" | "image">,
+  scene: Pick<Scene, "objects" | "image"> & Partial<Pick<Scene, "camera">>,
   imageData: PixelImage,
   modelUrl?: string,
 ): Promise<SceneScores> {
@@ -228,5 +229,11 @@ export async function scoreScene(
     );
   }
   const model = await supportModel(modelUrl ?? (await activeModelUrl()));
-  return model.probabilities(scene.objects, imageData);
+  const scores = await model.probabilities(scene.objects, imageData);
+  // What the geometry rules out, as the pipeline's support stage does (supportGeometry.ts).
+  const boxes = modelObjects(scene.objects).map((o) => o.bbox);
+  const offFloor = offTheFloor(scene.camera, boxes, scene.image.height);
+  if (!offFloor.some(Boolean)) return scores;
+  ruleOutImpossible(scores.probabilities, boxes, offFloor);
+  return { ...scores, ranked: rankProbabilities(scores.probabilities, scores.ids) };
 }

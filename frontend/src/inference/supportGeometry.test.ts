@@ -1,0 +1,85 @@
+// The same cases as the backend's tests/pipeline/test_support_geometry.py.
+import type { Camera } from "@holiscene/schema";
+import { describe, expect, it } from "vitest";
+import { offTheFloor, ruleOutImpossible } from "./supportGeometry";
+import { STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER } from "./supportModel";
+
+const camera = (pitch: number | null): Camera =>
+  ({
+    K: [
+      [500, 0, 320],
+      [0, 500, 240],
+      [0, 0, 1],
+    ],
+    K_source: "given",
+    pitch_deg: pitch,
+    roll_deg: pitch === null ? null : 0,
+    height_m: null,
+  }) as unknown as Camera;
+
+describe("the floor's horizon", () => {
+  it("leaves a bottom edge above it off the floor", () => {
+    const high = [100, 40, 200, 120];
+    const low = [100, 300, 200, 420];
+    expect(offTheFloor(camera(0), [high, low], 480)).toEqual([true, false]);
+  });
+
+  it("moves with the pitch (positive: looking down)", () => {
+    const boxes = [
+      [100, 0, 200, 40],
+      [300, 0, 400, 80],
+    ];
+    expect(offTheFloor(camera(20), boxes, 480)).toEqual([true, false]);
+    expect(offTheFloor(camera(-20), [[100, 300, 200, 400]], 480)).toEqual([true]);
+  });
+
+  it("keeps the floor when a box just below may hide the real bottom edge", () => {
+    const wardrobe = [100, 20, 200, 200];
+    expect(offTheFloor(camera(0), [wardrobe, [80, 205, 260, 400]], 480)).toEqual([false, false]);
+    expect(offTheFloor(camera(0), [wardrobe, [400, 205, 500, 400]], 480)).toEqual([true, false]);
+  });
+
+  it("rules nothing out without pitch and roll", () => {
+    expect(offTheFloor(camera(null), [[100, 40, 200, 120]], 480)).toEqual([false]);
+    expect(offTheFloor(null, [[100, 40, 200, 120]], 480)).toEqual([false]);
+  });
+});
+
+describe("ruling out impossible supporters", () => {
+  const types = SUPPORT_TYPE_ORDER.length;
+  const columns = 2 + STRUCTURAL_COLUMNS.length;
+  const at = (row: number, column: number, type: string) =>
+    row * columns * types + column * types + SUPPORT_TYPE_ORDER.indexOf(type as never);
+  const floor = 2 + STRUCTURAL_COLUMNS.indexOf("floor");
+  const wall = 2 + STRUCTURAL_COLUMNS.indexOf("wall");
+
+  it("takes the floor and the objects beside it away, and the rest sums to 1", () => {
+    const picture = [0, 0, 100, 150];
+    const nightStand = [500, 300, 600, 420]; // far to the right: cannot hold the picture
+    const table = new Float64Array(2 * columns * types);
+    table[at(0, floor, "below")] = 0.5;
+    table[at(0, 1, "below")] = 0.3;
+    table[at(0, wall, "behind")] = 0.1;
+    table[at(0, wall, "below")] = 0.1;
+    table[at(1, floor, "below")] = 1;
+    ruleOutImpossible(table, [picture, nightStand], [true, false]);
+    expect(table[at(0, floor, "below")]).toBe(0);
+    expect(table[at(0, 1, "below")]).toBe(0);
+    expect(table[at(0, wall, "behind")]).toBeCloseTo(0.5);
+    expect(table[at(1, floor, "below")]).toBe(1); // the other row is left as it was
+  });
+
+  it("keeps the row when nothing else would be left", () => {
+    const table = new Float64Array(2 * columns * types);
+    table[at(0, floor, "below")] = 1;
+    ruleOutImpossible(
+      table,
+      [
+        [0, 0, 100, 150],
+        [500, 300, 600, 420],
+      ],
+      [true, false],
+    );
+    expect(table[at(0, floor, "below")]).toBe(1);
+  });
+});
