@@ -18,10 +18,12 @@ from pathlib import Path
 
 import pytest
 from holiscene.cli import main
+from holiscene.core.data_dir_owner import batch_presence
 from holiscene.core.settings import Settings
 from holiscene.inputs import read_input_folder
-from holiscene.services.batch import STOPPED, ray_runtime, run_batch
+from holiscene.services.batch import BATCH_STARTER, ORPHANED, STOPPED, ray_runtime, run_batch
 from holiscene.services.workbench import Workbench, imported_scene
+from holiscene.store.jobs import BATCH_STAGE
 from holiscene.synth.generate import synthesize_to
 from holiscene_schema import SupportRelation
 
@@ -154,6 +156,31 @@ def test_a_failure_on_a_worker_is_reported_as_that_scenes_error(
         job = workbench.jobs.latest_for_scenes()[scene_id]
         assert job.status == "failed" and job.error == error
         assert [r.kind for r in workbench.scenes.revisions(scene_id)] == ["import"]
+    finally:
+        workbench.close()
+
+
+def test_a_new_batch_takes_the_scenes_a_killed_batch_left_running(
+    local_ray: None, rooms: list[Path], tmp_path: Path
+) -> None:
+    """A batch killed with SIGKILL runs no `finally`: its jobs stay running and would keep
+    their scenes from every later batch. The next batch fails them, unless another batch
+    still runs (they may be its own)."""
+    data = tmp_path / "data"
+    scene_id = _store(data, rooms[0])
+    workbench = Workbench(Settings(data_dir=data))
+    try:
+        left = workbench.jobs.create(scene_id, 1, started_by=BATCH_STARTER)
+        workbench.jobs.progress(left.id, BATCH_STAGE, 0.0)  # what the killed batch left
+        with batch_presence(data):  # another batch runs: the job may be its own
+            report = run_batch(workbench, [scene_id], workers=1)
+        assert "already" in report.failed[scene_id], report.failed
+        assert workbench.jobs.get(left.id).status == "running"
+        report = run_batch(workbench, [scene_id], workers=1)
+        assert report.done == [scene_id], report.failed
+        orphan = workbench.jobs.get(left.id)
+        assert (orphan.status, orphan.error) == ("failed", ORPHANED)
+        assert [r.kind for r in workbench.scenes.revisions(scene_id)] == ["import", "pipeline"]
     finally:
         workbench.close()
 

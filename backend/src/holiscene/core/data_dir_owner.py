@@ -1,5 +1,8 @@
 """One server per data directory: `holiscene serve` holds an exclusive lock on
 <data_dir>/server.lock for its whole life, taken before anything else touches the data.
+Each running `holiscene batch` holds a lock file of its own under <data_dir>/batches/, so a
+server's recovery leaves the jobs of a live batch alone, and a new batch knows when the jobs
+an earlier one left out belong to nobody (it was killed).
 
 Start-up recovery (failing unfinished jobs, removing half-trained models and abandoned
 import folders) is only right when no other server is running those jobs; a second server
@@ -12,11 +15,13 @@ from __future__ import annotations
 
 import fcntl
 import os
+import uuid
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
 LOCK_FILE = "server.lock"
+BATCH_FOLDER = "batches"
 
 
 class DataDirInUseError(RuntimeError):
@@ -53,3 +58,45 @@ def own_data_dir(data_dir: Path) -> Iterator[None]:
         yield
     finally:
         os.close(fd)  # releases the lock
+
+
+@contextmanager
+def batch_presence(data_dir: Path) -> Iterator[int]:
+    """Mark this process as a running batch on the data directory for the block; yields how
+    many other batches run on it now."""
+    folder = data_dir / BATCH_FOLDER
+    folder.mkdir(parents=True, exist_ok=True)
+    name = f"{os.getpid()}-{uuid.uuid4().hex[:12]}"
+    # Locked under another name first, then renamed: a file that is already *.lock is never
+    # seen unlocked by running_batches, which would take it for a dead batch's.
+    draft = folder / f"{name}.new"
+    path = folder / f"{name}.lock"
+    fd = os.open(draft, os.O_RDWR | os.O_CREAT | os.O_EXCL, 0o644)
+    try:
+        try_lock(fd)  # a file of our own: nobody else can hold it
+        os.rename(draft, path)
+        yield running_batches(data_dir) - 1
+    finally:
+        path.unlink(missing_ok=True)
+        draft.unlink(missing_ok=True)
+        os.close(fd)
+
+
+def running_batches(data_dir: Path) -> int:
+    """How many batches hold their lock under <data_dir>/batches/ now. The files of batches
+    that ended without removing theirs (kill -9: the kernel dropped the lock) are removed."""
+    folder = data_dir / BATCH_FOLDER
+    running = 0
+    for path in sorted(folder.glob("*.lock")) if folder.is_dir() else []:
+        try:
+            fd = os.open(path, os.O_RDWR)
+        except FileNotFoundError:  # its batch just ended
+            continue
+        try:
+            if try_lock(fd):
+                path.unlink(missing_ok=True)
+            else:
+                running += 1
+        finally:
+            os.close(fd)
+    return running

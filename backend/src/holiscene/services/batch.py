@@ -25,10 +25,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ..core.data_dir_owner import batch_presence
 from ..core.errors import NotFoundError
 from ..core.interrupts import stop_signals_deferred
 from ..inputs import InputFiles
-from ..store.jobs import SceneJobRunningError
+from ..store.jobs import BATCH_STAGE, SceneJobRunningError
 from .reconstruction import Reconstruction, reconstruct_scene
 
 if TYPE_CHECKING:
@@ -49,6 +50,7 @@ LOOPBACK = "127.0.0.1"
 # reconstruct_scene's arguments that name folders on the driver's machine.
 FOLDER_ARGUMENTS = ("models_dir", "support_model_dir", "detector_model_dir")
 STOPPED = "the batch stopped before this scene was done; run holiscene batch again"
+ORPHANED = "the batch that ran this scene was killed before it was done; a new batch takes it"
 
 
 class UnknownScenesError(NotFoundError):
@@ -136,21 +138,25 @@ def run_batch(
     """Run the pipeline on the scenes on Ray (inside ray_runtime), `workers` photos at a time,
     storing each result as it comes back. A scene that fails is reported and the rest go on;
     if the batch itself stops (interrupted), the jobs of the photos still out are failed, so
-    the next batch takes those scenes again."""
+    the next batch takes those scenes again. Killed (no `finally` runs), it leaves them
+    running: the next batch fails them when no other batch runs (core.data_dir_owner)."""
     import ray
 
     batch = _Batch(workbench, on_finished)
     waiting = deque(scene_ids)
-    try:
-        while waiting or batch.out:
-            while waiting and len(batch.out) < workers:
-                batch.start(waiting.popleft())
-            if batch.out:
-                (ready,), _ = ray.wait(list(batch.out), num_returns=1)
-                batch.collect(ready)
-    finally:
-        for scene in batch.out.values():
-            workbench.jobs.fail(scene.job_id, STOPPED)
+    with batch_presence(workbench.settings.data_dir) as others:
+        if not others:  # what a killed batch left out is nobody's: its scenes can run again
+            workbench.jobs.fail_unfinished(ORPHANED, batch_jobs=True)
+        try:
+            while waiting or batch.out:
+                while waiting and len(batch.out) < workers:
+                    batch.start(waiting.popleft())
+                if batch.out:
+                    (ready,), _ = ray.wait(list(batch.out), num_returns=1)
+                    batch.collect(ready)
+        finally:
+            for scene in batch.out.values():
+                workbench.jobs.fail(scene.job_id, STOPPED)
     return batch.report
 
 
@@ -193,7 +199,7 @@ class _Batch:
             run = None
             with workbench.recording_outcome(job):
                 run = workbench.job_run(job)
-                workbench.jobs.progress(job.id, "batch", 0.0)  # running, on a Ray worker
+                workbench.jobs.progress(job.id, BATCH_STAGE, 0.0)  # out on a Ray worker
             if run is None:
                 self._finished(scene_id, workbench.jobs.get(job.id).error)
                 return

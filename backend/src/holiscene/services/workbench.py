@@ -24,6 +24,7 @@ from holiscene_schema import (
     Scene,
 )
 
+from ..core.data_dir_owner import running_batches
 from ..core.db import make_engine, migrate
 from ..core.errors import DomainError, user_facing_error
 from ..core.settings import Settings
@@ -159,8 +160,11 @@ class Workbench:
         lock, core.data_dir_owner): another server's jobs would be failed under it."""
         for kind, job_kind in RETRAIN_JOB_KINDS.items():
             self._recover_retrain_jobs(job_kind, self.registry(kind))
+        # A live batch's jobs are its own to finish (core.data_dir_owner).
+        live_batch = running_batches(self.settings.data_dir) > 0
         count = self.jobs.fail_unfinished(
-            "the server stopped before this job finished; run it again"
+            "the server stopped before this job finished; run it again",
+            batch_jobs=False if live_batch else None,
         )
         if count:
             log.warning("marked %d unfinished job(s) failed after restart", count)

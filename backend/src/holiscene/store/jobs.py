@@ -8,7 +8,7 @@ from collections.abc import Mapping
 from typing import ClassVar
 
 from holiscene_schema import Job, JobKind
-from sqlalchemy import Engine, func, select
+from sqlalchemy import Engine, func, or_, select
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
@@ -21,6 +21,10 @@ from .tables import JobRow
 class JobNotFoundError(NotFoundError):
     pass
 
+
+# The stage of a pipeline job whose photo is out on a batch's worker (`holiscene batch`):
+# the batch, not a server, finishes it.
+BATCH_STAGE = "batch"
 
 # Jobs that train a model; only one of them runs at a time, whatever its kind.
 RETRAIN_KINDS: tuple[JobKind, ...] = ("retrain", "detector_retrain")
@@ -234,9 +238,15 @@ class JobStore:
     def fail(self, job_id: str, error: str) -> None:
         fail_job(self.engine, JobRow, job_id, error)
 
-    def fail_unfinished(self, reason: str) -> int:
-        """Mark every queued or running job failed (after a restart nothing runs them)."""
-        return fail_unfinished_jobs(self.engine, JobRow, reason)
+    def fail_unfinished(self, reason: str, batch_jobs: bool | None = None) -> int:
+        """Mark queued or running jobs failed (after a restart nothing runs them): all of
+        them, or only those out on a batch (`batch_jobs` True: their stage is BATCH_STAGE),
+        or all but those (False)."""
+        if batch_jobs is None:
+            return fail_unfinished_jobs(self.engine, JobRow, reason)
+        on_batch = JobRow.stage == BATCH_STAGE
+        only = on_batch if batch_jobs else or_(JobRow.stage.is_(None), JobRow.stage != BATCH_STAGE)
+        return fail_unfinished_jobs(self.engine, JobRow, reason, only)
 
     def _set(self, job_id: str, **values: object) -> None:
         set_job_columns(self.engine, JobRow, job_id, **values)

@@ -230,6 +230,31 @@ def test_unfinished_jobs_fail_clearly_after_restart(settings: Settings, t3d5: Pa
         assert "server stopped" in job["error"]
 
 
+@pytest.mark.both_databases
+def test_a_restart_leaves_a_running_batch_its_jobs(settings: Settings, t3d5: Path) -> None:
+    """A server that starts while `holiscene batch` runs fails only its own leftovers: the
+    batch's jobs are the batch's to finish; once no batch holds its lock they are failed too."""
+    from holiscene.api.app import create_app
+    from holiscene.core.data_dir_owner import batch_presence
+    from holiscene.services.workbench import Workbench
+    from holiscene.store.jobs import BATCH_STAGE
+
+    with TestClient(create_app(settings)) as client:
+        on_batch_scene, _ = _imported(client, t3d5)
+        left_scene, _ = _imported(client, t3d5)
+    workbench = Workbench(settings)
+    on_batch = workbench.jobs.create(on_batch_scene, 2, started_by="import")
+    workbench.jobs.progress(on_batch.id, BATCH_STAGE, 0.0)  # out on a batch's worker
+    left = workbench.jobs.create(left_scene, 2)  # queued, never run: as if the server died
+    workbench.close()
+    with batch_presence(settings.data_dir), TestClient(create_app(settings)) as client:
+        assert client.get(f"/api/jobs/{on_batch.id}").json()["status"] == "running"
+        assert client.get(f"/api/jobs/{left.id}").json()["status"] == "failed"
+    with TestClient(create_app(settings)) as client:  # the batch is gone (its lock with it)
+        job = client.get(f"/api/jobs/{on_batch.id}").json()
+        assert job["status"] == "failed" and "server stopped" in job["error"]
+
+
 def test_scene_list_shows_the_newest_job(client: TestClient, t3d5: Path) -> None:
     scene_id, _ = _imported(client, t3d5)
     rerun = client.post(f"/api/scenes/{scene_id}/pipeline-jobs").json()
