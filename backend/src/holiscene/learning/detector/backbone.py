@@ -2,8 +2,11 @@
 weights, for fine-tuning an NYU-40 head on top (training only: needs the `onnx` package).
 
 The converted COCO model keeps the TF.js tensor names, so the neck's output
-(`tower_0/CenternetHead/mul`, 128 channels at a quarter of the input's size, NCHW) and the
-COCO class heatmap before its last transpose can be made graph outputs of a sub-model.
+(`tower_0/CenternetHead/mul`, 128 channels at a quarter of the input's size, NCHW), the
+backbone's last features before the neck (`tower_0/extern1/...`, 480 channels at a 32nd: the
+neck squeezes them to 128 channels for COCO's classes, so a head for other classes reads them
+too) and the COCO class heatmap before its last transpose can be made graph outputs of a
+sub-model.
 """
 
 from __future__ import annotations
@@ -18,6 +21,9 @@ from holiscene_schema.detector_model import COCO_CLASSES, INPUT_NAME, INPUT_SIZE
 from onnx import TensorProto, helper, numpy_helper
 
 FEATURES = "tower_0/CenternetHead/mul"
+DEEP_FEATURES = "tower_0/extern1/hard_swish/mul_1"
+DEEP_CHANNELS = 480
+DEEP_STRIDE = 32
 COCO_HEATMAP_NHWC = "tower_0/keypoints"
 BOX_HEAD_DEPTHWISE = "tower_0/CenternetHead/centernet_wh_output/separable_conv2d/depthwise"
 BOX_HEAD_POINTWISE = "tower_0/CenternetHead/centernet_wh_output/BiasAdd"
@@ -48,23 +54,29 @@ def coco_heatmap_nchw(model: onnx.ModelProto) -> str:
 
 
 def backbone_model(coco_model: Path) -> onnx.ModelProto:
-    """The COCO model cut after its neck: images -> (features, COCO heatmap), both NCHW
-    [1, C, S / 4, S / 4], with only the nodes they need."""
+    """The COCO model cut after its neck: images -> (features, COCO heatmap, deep features),
+    NCHW, the first two [1, C, S / 4, S / 4], the last [1, 480, S / 32, S / 32], with only
+    the nodes they need."""
     model = onnx.load(str(coco_model))
-    outputs = {FEATURES: FEATURE_CHANNELS, coco_heatmap_nchw(model): COCO_CLASS_COUNT}
+    outputs = {
+        FEATURES: (FEATURE_CHANNELS, 4),
+        coco_heatmap_nchw(model): (COCO_CLASS_COUNT, 4),
+        DEEP_FEATURES: (DEEP_CHANNELS, DEEP_STRIDE),
+    }
     needed: set[str] = set(outputs)
     kept: list[onnx.NodeProto] = []
     for node in reversed(model.graph.node):
         if needed.intersection(node.output):
             kept.append(node)
             needed.update(node.input)
-    cells = INPUT_SIZE // 4
     del model.graph.node[:]
     model.graph.node.extend(reversed(kept))
     del model.graph.output[:]
     model.graph.output.extend(
-        helper.make_tensor_value_info(name, TensorProto.FLOAT, [1, channels, cells, cells])
-        for name, channels in outputs.items()
+        helper.make_tensor_value_info(
+            name, TensorProto.FLOAT, [1, channels, INPUT_SIZE // stride, INPUT_SIZE // stride]
+        )
+        for name, (channels, stride) in outputs.items()
     )
     initializers = [t for t in model.graph.initializer if t.name in needed]
     del model.graph.initializer[:]
@@ -88,7 +100,8 @@ def box_head_weights(coco_model: Path) -> BoxHeadWeights:
 
 
 class FeatureExtractor:
-    """Runs the cut COCO model; `__call__` gives (features, COCO heatmap) for one input."""
+    """Runs the cut COCO model; `__call__` gives (features, COCO heatmap, deep features) for
+    one input."""
 
     def __init__(self, coco_model: Path, threads: int = 2) -> None:
         options = ort.SessionOptions()
@@ -100,6 +113,6 @@ class FeatureExtractor:
         )
         self.outputs = [o.name for o in self.session.get_outputs()]
 
-    def __call__(self, tensor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        features, heatmap = self.session.run(self.outputs, {INPUT_NAME: tensor})
-        return np.asarray(features), np.asarray(heatmap)
+    def __call__(self, tensor: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        features, heatmap, deep = self.session.run(self.outputs, {INPUT_NAME: tensor})
+        return np.asarray(features), np.asarray(heatmap), np.asarray(deep)

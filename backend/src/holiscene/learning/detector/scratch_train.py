@@ -45,9 +45,9 @@ class ScratchTrainConfig:
     threads: int = 2
 
 
-def _encode(tensor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _encode(tensor: np.ndarray) -> tuple[np.ndarray, np.ndarray, None]:
     halved = halve(tensor)
-    return halved, halved
+    return halved, halved, None
 
 
 def _batch(

@@ -2,7 +2,8 @@
 
 `holiscene train-detector` calls `train_detector`. Each training photo is randomised once
 (data.randomise) and passed through the frozen COCO backbone once (onnxruntime); the head then
-trains on random windows of those feature maps, so an epoch costs the head alone. The best
+trains on random windows of those feature maps (the neck's and the deep ones, aligned), so an
+epoch costs the head alone. The best
 epoch by validation mAP@0.5 is kept, exported with the backbone as one ONNX file of the
 detector contract, and written with metadata.json, metrics.json and curve.png.
 """
@@ -24,12 +25,13 @@ from holiscene_schema.detector_model import COCO_TO_NYU40, INPUT_SIZE
 from ...evaluation.detection_2d import MAP_SCORE_THRESHOLD, DetectionEvaluation, ScoredBox
 from ..train import plot_curve, run_record
 from ..training_api import TrainProgress
-from .backbone import FeatureExtractor, box_head_weights
+from .backbone import DEEP_STRIDE, FeatureExtractor, box_head_weights
 from .data import BoxedPhoto, center_targets, randomise
 from .net import STRIDE, DetectorHead, ExportedHead, export_detector
 from .runtime import COCO_DETECTOR_DIR, METADATA_FILE, MODEL_FILE, decode, preprocess
 
 CELLS = INPUT_SIZE // STRIDE
+DEEP_SCALE = DEEP_STRIDE // STRIDE  # neck cells per deep cell along each side
 HEAD_FILE = "head.pt"
 
 
@@ -46,14 +48,16 @@ class DetectorTrainConfig:
     coco_model: Path = COCO_DETECTOR_DIR / MODEL_FILE
 
 
-# Input tensor [1, S, S, 3] -> (what the trained net reads, the COCO heatmap), batch of one.
-Encoder = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
+# Input tensor [1, S, S, 3] -> (what the trained net reads, the COCO heatmap, the deep
+# features or None), batch of one.
+Encoder = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray | None]]
 
 
 @dataclass
 class FeatureSet:
     features: np.ndarray  # (N, ...) float16: the backbone's (128, CELLS, CELLS), or an image
     coco: np.ndarray | None  # (N, 80, CELLS, CELLS) float16, validation only
+    deep: np.ndarray | None = None  # (N, 480, CELLS / 8, CELLS / 8) float16, when encoded
     boxes: list[np.ndarray] = field(default_factory=list)  # input pixels, per sample
     class_index: list[np.ndarray] = field(default_factory=list)
     photo_boxes: list[list[ScoredBox]] = field(default_factory=list)  # photo pixels
@@ -82,12 +86,16 @@ def extract(
     for n, original in enumerate(photos):
         photo = randomise(original, rng) if rng is not None else original
         height, width = photo.rgb.shape[:2]
-        features, coco = extractor(preprocess(photo.rgb))
+        features, coco, deep = extractor(preprocess(photo.rgb))
         if n == 0:  # sized by the first sample: the extractor decides the shapes
             feature_set.features = np.zeros((len(photos), *features.shape[1:]), np.float16)
             if keep_coco:
                 feature_set.coco = np.zeros((len(photos), *coco.shape[1:]), np.float16)
+            if deep is not None:
+                feature_set.deep = np.zeros((len(photos), *deep.shape[1:]), np.float16)
         feature_set.features[n] = features[0]
+        if feature_set.deep is not None and deep is not None:
+            feature_set.deep[n] = deep[0]
         if feature_set.coco is not None:
             feature_set.coco[n] = coco[0]
         known = [i for i, c in enumerate(photo.classes) if c in index_of]
@@ -163,16 +171,22 @@ def score_raw(
 
 def _batch(
     data: FeatureSet, index: np.ndarray, window: int, num_classes: int, rng: np.random.Generator
-) -> tuple[torch.Tensor, torch.Tensor, list[tuple[int, int, int]], torch.Tensor]:
-    """Features and targets of random windows: (features, heatmaps, centre cells as
-    (sample, row, column), their target sides)."""
-    features, heatmaps, cells, sides = [], [], [], []
+) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, list[tuple[int, int, int]], torch.Tensor]:
+    """Features and targets of random windows (`window` a multiple of DEEP_SCALE; the
+    windows start on deep cells' edges so both feature maps cover the same pixels):
+    (features, deep features, heatmaps, centre cells as (sample, row, column), their target
+    sides)."""
+    assert data.deep is not None
+    features, deep, heatmaps, cells, sides = [], [], [], [], []
     for b, n in enumerate(index):
-        y0, x0 = (int(v) for v in rng.integers(0, CELLS - window + 1, size=2))
+        starts = rng.integers(0, (CELLS - window) // DEEP_SCALE + 1, size=2) * DEEP_SCALE
+        y0, x0 = (int(v) for v in starts)
         heat, centres, box_sides = center_targets(
             data.boxes[n], data.class_index[n], num_classes, CELLS, STRIDE
         )
         features.append(data.features[n, :, y0 : y0 + window, x0 : x0 + window])
+        dy, dx, span = y0 // DEEP_SCALE, x0 // DEEP_SCALE, window // DEEP_SCALE
+        deep.append(data.deep[n, :, dy : dy + span, dx : dx + span])
         heatmaps.append(heat[:, y0 : y0 + window, x0 : x0 + window])
         for (row, col), side in zip(centres, box_sides, strict=True):
             if y0 <= row < y0 + window and x0 <= col < x0 + window:
@@ -181,6 +195,7 @@ def _batch(
     target_sides = torch.from_numpy(np.array(sides, np.float32).reshape(-1, 4))
     return (
         torch.from_numpy(np.stack(features).astype(np.float32)),
+        torch.from_numpy(np.stack(deep).astype(np.float32)),
         torch.from_numpy(np.stack(heatmaps)),
         cells,
         target_sides,
@@ -192,13 +207,14 @@ def validation_map(
 ) -> tuple[float, DetectionEvaluation]:
     """mAP@0.5 over the trained classes on validation photos (the contract's decoding)."""
     exported = ExportedHead(head, trained, classes, coco_weight).eval()
-    coco = data.coco
-    assert coco is not None
+    coco, deep = data.coco, data.deep
+    assert coco is not None and deep is not None
     with torch.no_grad():
         raw_outputs = (
             exported(
                 torch.from_numpy(data.features[n : n + 1].astype(np.float32)),
                 torch.from_numpy(coco[n : n + 1].astype(np.float32)),
+                torch.from_numpy(deep[n : n + 1].astype(np.float32)),
             ).numpy()
             for n in range(len(data.features))
         )
@@ -237,10 +253,10 @@ def train_detector(
         order = rng.permutation(len(views))
         for start in range(0, len(views), config.batch):
             index = order[start : start + config.batch]
-            features, heat, cells, target_sides = _batch(
+            features, deep, heat, cells, target_sides = _batch(
                 train, index, config.window, len(trained), rng
             )
-            logits, sides = head(features)
+            logits, sides = head(features, deep)
             loss = detection_loss(logits, sides, heat, cells, target_sides)
             optimiser.zero_grad()
             loss.backward()  # type: ignore[no-untyped-call]
