@@ -13,6 +13,14 @@ import type { Scene3dStatus } from "./viewportDom";
 /** What the GLB depends on: the stages that made the revision (edits keep them). */
 const glbKey = (doc: SceneDocument) => JSON.stringify(doc.scene.stages ?? []);
 
+/**
+ * Whether a stage that writes scene.glb made the revision (the pipeline's scene_mesh, also run
+ * by "Re-place objects"): without one there is none to ask for, and the 404 would show in the
+ * console as an error.
+ */
+export const mayHaveGlb = (doc: SceneDocument): boolean =>
+  (doc.scene.stages ?? []).some((stage) => stage.name === "scene_mesh");
+
 export interface ViewportObjectsInputs {
   scene: THREE.Scene;
   session: SceneSession;
@@ -65,10 +73,10 @@ export class ViewportObjects {
     this.loadedGlb = glbKey(doc);
     if (!this.model) setStatus("loading", "Loading the 3D scene…");
     // scene.glb is binary (and 404 means "no objects yet"): a plain fetch, not request().
-    const response = await fetch(api.glbUrl(session.sceneId, doc.revision), {
-      signal: this.abort.signal,
-    });
-    if (response.status === 404) {
+    const response = mayHaveGlb(doc)
+      ? await fetch(api.glbUrl(session.sceneId, doc.revision), { signal: this.abort.signal })
+      : null;
+    if (response === null || response.status === 404) {
       setStatus("missing", "No 3D objects yet: they appear once the pipeline has run.");
       this.inputs.onMissing();
       return;
