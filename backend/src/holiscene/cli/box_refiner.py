@@ -7,6 +7,8 @@ import argparse
 import json
 from pathlib import Path
 
+from .common import CliError
+
 
 def add_box_refiner_training_command(
     sub: argparse._SubParsersAction[argparse.ArgumentParser],
@@ -27,11 +29,13 @@ def add_box_refiner_training_command(
 
 
 def _train_box_refiner(args: argparse.Namespace) -> int:
-    from ..learning.box_refiner.train import BoxRefinerTraining, train_box_refiner
-
     for name in ("rooms", "validation_rooms", "epochs", "workers"):
         if getattr(args, name) < 1:
-            raise SystemExit(f"holiscene train-3d: --{name.replace('_', '-')} must be at least 1")
+            raise CliError(f"--{name.replace('_', '-')} must be at least 1")
+    try:
+        from ..learning.box_refiner.train import BoxRefinerTraining, train_box_refiner
+    except ImportError as error:
+        raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
     metrics = train_box_refiner(
         BoxRefinerTraining(
             out=args.out,

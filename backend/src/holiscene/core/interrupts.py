@@ -47,7 +47,7 @@ def stop_signals_deferred() -> Iterator[None]:
     finally:
         for sig, handler in before.items():
             signal.signal(sig, handler)
-        for signum in held[:1]:  # one stop is enough; its handler raises as it would have
-            handler = before[signal.Signals(signum)]
-            if callable(handler):
-                handler(signum, None)
+        if held:  # one stop is enough; its own handler raises as it would have
+            first = before[signal.Signals(held[0])]
+            assert callable(first)  # only callable handlers were replaced
+            first(held[0], None)

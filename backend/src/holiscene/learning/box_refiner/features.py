@@ -17,6 +17,7 @@ import numpy as np
 from holiscene_schema import Box3D, Camera, SceneObject, SupportRelation
 from numpy.typing import NDArray
 
+from ...knowledge.object_sizes import middle_size
 from ...shapes import SIZE_RANGES
 
 SUPPORT_KINDS = ("floor", "below", "wall", "behind", "ceiling", "none")
@@ -26,11 +27,11 @@ _EDGE = 2.0  # pixels: a 2D box this close to the photo's edge is cut by it
 
 
 def typical_size(cls: str) -> NDArray[np.float64]:
-    """The middle of the class's size range: (depth, height, width) in metres."""
-    ranges = SIZE_RANGES.get(cls)
-    if ranges is None:
+    """The middle of the class's size range: (depth, height, width) in metres. A class the
+    library has no sizes for reads 0.5 m each way, as the committed model was trained."""
+    if cls not in SIZE_RANGES:
         return np.array([0.5, 0.5, 0.5])
-    return np.array([sum(ranges.depth), sum(ranges.height), sum(ranges.width)]) / 2.0
+    return np.array(middle_size(cls))
 
 
 def _support_kind(relation: SupportRelation | None) -> str:

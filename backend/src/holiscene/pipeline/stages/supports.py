@@ -33,6 +33,11 @@ def _width(b: list[float]) -> float:
     return max(1.0, b[2] - b[0])
 
 
+def _overlap_x(a: list[float], b: list[float]) -> float:
+    """Pixels of the two boxes' horizontal overlap (0 when apart)."""
+    return max(0.0, min(a[2], b[2]) - max(a[0], b[0]))
+
+
 def _height(b: list[float]) -> float:
     return max(1.0, b[3] - b[1])
 
@@ -46,7 +51,7 @@ def image_plausibility(child: list[float], parent: list[float], kind: str) -> fl
     """
     if _width(child) * _height(child) >= _width(parent) * _height(parent):
         return 0.0
-    overlap_x = max(0.0, min(child[2], parent[2]) - max(child[0], parent[0])) / _width(child)
+    overlap_x = _overlap_x(child, parent) / _width(child)
     if kind == "behind":
         overlap_y = max(0.0, min(child[3], parent[3]) - max(child[1], parent[1])) / _height(child)
         return overlap_x * overlap_y if overlap_x * overlap_y > 0.6 else 0.0
@@ -82,7 +87,7 @@ def off_the_floor(
         hidden = any(
             other[1] <= box[3] + HIDING_GAP * height
             and other[3] > box[3]
-            and min(box[2], other[2]) - max(box[0], other[0]) >= HIDING_OVERLAP * _width(box)
+            and _overlap_x(box, other) >= HIDING_OVERLAP * _width(box)
             for m, other in enumerate(boxes)
             if m != n
         )
@@ -90,22 +95,18 @@ def off_the_floor(
     return result
 
 
-def rule_out_impossible(
-    scores: np.ndarray,
-    child: SceneObject,
-    objects: list[SceneObject],
-    floor_column: int,
-    below: int,
-) -> None:
+def rule_out_impossible(scores: np.ndarray, child: SceneObject, objects: list[SceneObject]) -> None:
     """For an object the floor cannot hold (off_the_floor): zero the floor from below and
     every object beside it in the photo (whatever holds it up, from below or from behind,
-    spans at least part of its width), in the network's scores [supporters, types], unless
-    nothing would be left. The vertical gap is not judged: a lamp's foot may be hidden."""
+    spans at least part of its width), in its row of the network's scores [supporters of
+    `objects` then the structural ones, types], unless nothing would be left. The vertical
+    gap is not judged: a lamp's foot may be hidden."""
     kept = scores.copy()
-    kept[floor_column, below] = 0.0
+    floor = len(objects) + STRUCTURAL_COLUMNS.index("floor")
+    kept[floor, SUPPORT_TYPE_ORDER.index("below")] = 0.0
+    least = SUPPORTER_OVERLAP * _width(child.bbox)
     for column, other in enumerate(objects):
-        overlap = min(child.bbox[2], other.bbox[2]) - max(child.bbox[0], other.bbox[0])
-        if other.id == child.id or overlap < SUPPORTER_OVERLAP * _width(child.bbox):
+        if other.id == child.id or _overlap_x(child.bbox, other.bbox) < least:
             kept[column] = 0.0
     if kept.sum() > 0:
         scores[...] = kept
@@ -238,13 +239,11 @@ class SupportsFromNetwork(Stage):
             [o.bbox for o in objects],
             [o.cls for o in objects],
         )
-        probabilities = self.model.probabilities(inputs).copy()
-        floor = len(objects) + STRUCTURAL_COLUMNS.index("floor")
-        below = SUPPORT_TYPE_ORDER.index("below")
+        probabilities = self.model.probabilities(inputs)
         unfloored = off_the_floor(scene_camera(ctx), [o.bbox for o in objects], ctx.height)
         for row, off in enumerate(unfloored):
             if off:
-                rule_out_impossible(probabilities[row], objects[row], objects, floor, below)
+                rule_out_impossible(probabilities[row], objects[row], objects)
         ctx.supports = decode_supports(
             probabilities,
             ids,
