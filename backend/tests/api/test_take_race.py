@@ -51,6 +51,24 @@ def test_of_two_annotators_taking_at_once_exactly_one_wins(accounts: Accounts, s
         assert [c.actor for c in claims] == [winner]
 
 
+def test_of_two_annotators_saving_first_edits_at_once_exactly_one_takes_the_scene(
+    accounts: Accounts,
+) -> None:
+    """Each first edit would take the scene (written with its revision in one statement); the
+    loser is refused (409) and writes nothing."""
+    for _ in range(TRIES):
+        scene_id = store_predicted_scene(accounts.workbench.scenes)
+        ann, bob = at_once(accounts, scene_id, (_edit, "ann"), (_edit, "bob"))
+        assert sorted([ann.status_code, bob.status_code]) == [200, 409], (ann.text, bob.text)
+        winner = "ann" if ann.status_code == 200 else "bob"
+        flow = accounts.workbench.workflow.scene_workflow(scene_id)
+        assert (flow.state, flow.assignee) == ("in_annotation", winner)
+        claims = [e for e in flow.events if e.action == "claim"]
+        assert [(c.actor, c.revision) for c in claims] == [(winner, 3)]
+        history = accounts.workbench.scenes.revisions(scene_id)
+        assert [(r.number, r.author) for r in history if r.number > 2] == [(3, winner)]
+
+
 def test_the_same_annotator_taking_twice_at_once_gets_it_once(accounts: Accounts) -> None:
     """Two tabs of one annotator: both succeed (the scene is theirs), one claim."""
     for _ in range(TRIES):

@@ -56,7 +56,7 @@ from ..inputs.depth import DEPTH_FILE
 from ..pipeline.people import keep_people_objects, people_objects_changed_since
 from .clock import as_utc, utcnow
 from .files import GROUND_TRUTH_FILE, SceneFiles
-from .revision_writes import add_revision, revision_values, write_at_once
+from .revision_writes import WorkflowMove, add_revision, revision_values, write_at_once
 from .scene_events import SceneHead, as_state, pipeline_committed, record_event
 from .tables import RevisionRow, SceneRow
 
@@ -326,10 +326,12 @@ class SceneStore:
         edited: Scene,
         hook: RevisionHook | None = None,
         unchanged: SceneStatus | None = None,
+        move: WorkflowMove | None = None,
     ) -> SceneDocument:
         """Store `edited` (the request's edits on its base revision) as the next revision.
         `unchanged`: the workflow status the scene must still have, for a write without a hook
-        (else SceneRowChangedError, nothing written)."""
+        (else SceneRowChangedError, nothing written); `move`: the workflow move the rules
+        allow from it, written with the revision."""
         return self._commit_revision(
             scene_id,
             request.base_revision,
@@ -340,6 +342,7 @@ class SceneStore:
             edits=request.edits,
             hook=hook,
             unchanged=unchanged,
+            move=move,
         )
 
     def commit_reset(
@@ -518,19 +521,20 @@ class SceneStore:
         glb_revision: int | None = None,
         hook: RevisionHook | None = None,
         unchanged: SceneStatus | None = None,
+        move: WorkflowMove | None = None,
     ) -> SceneDocument:
         """Store `scene` as revision base_revision + 1 if the scene is still at `base_revision`
         (RevisionConflictError otherwise) and, without a hook, in the workflow status
-        `unchanged` (SceneRowChangedError otherwise), and return it as stored, without reading
-        it back: a save's answer costs no second read of the whole scene (docs/benchmarks.md,
-        concurrent writers)."""
+        `unchanged` (SceneRowChangedError otherwise), with the workflow `move` from it when
+        given, and return it as stored, without reading it back: a save's answer costs no
+        second read of the whole scene (docs/benchmarks.md, concurrent writers)."""
         new_revision = base_revision + 1
         now = utcnow()
         revision = revision_values(scene_id, new_revision, author, kind, summary, edits, scene, now)
         objects, uncertainty = len(scene.objects), scene_uncertainty(scene)
         if hook is None and glb_revision is None:
             stored = write_at_once(
-                self.reads, base_revision, revision, objects, uncertainty, unchanged
+                self.reads, base_revision, revision, objects, uncertainty, unchanged, move
             )
         else:
             moved = (

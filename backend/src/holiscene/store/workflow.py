@@ -33,6 +33,7 @@ from ..core.errors import DomainError, NotFoundError
 from ..editing import workflow_rules
 from ..editing.workflow_rules import STATES, Actor, SceneStatus, Transition, WorkflowError
 from .clock import as_utc
+from .revision_writes import WorkflowMove
 from .scene_events import SceneHead, as_state, record_event, status_of
 from .scenes import (
     RevisionConflictError,
@@ -108,16 +109,20 @@ class WorkflowStore:
 
         A scene the actor may not edit is refused (WorkflowError) before the edits are even
         looked at, on the row read with the revision. The rules hold again when the revision
-        is written: a save by the annotator holding the scene is written only if its state,
-        assignee and round are still those the rules saw (one statement, no transaction on
-        PostgreSQL); any other save checks the rules again inside its write transaction."""
-        holding: list[SceneStatus] = []  # the status seen, when the actor already holds it
+        is written: it is written, with the take when the save takes the scene, only if the
+        state, assignee and round are still those the rules saw (one statement, no
+        transaction on PostgreSQL); else the save checks the rules again inside a write
+        transaction."""
+        # The status seen, and the move the rules allow from it (None: the actor holds it).
+        seen: list[tuple[SceneStatus, WorkflowMove | None]] = []
 
         def refuse(connection: Connection, row: SceneHead) -> None:
             status = status_of(row)
             earlier = _earlier_annotators(connection, row)
-            if workflow_rules.take_for_annotation(status, actor, earlier) is None:
-                holding.append(status)
+            transition = workflow_rules.take_for_annotation(status, actor, earlier)
+            seen.append(
+                (status, None if transition is None else WorkflowMove(transition, actor.name))
+            )
 
         def take(session: Session, revision: int) -> None:
             # The revision's UPDATE already holds the scene's row; the take is still a
@@ -133,11 +138,15 @@ class WorkflowStore:
 
         base = self.scenes.document_for_write(scene_id, request.base_revision, refuse)
         edited = self.scenes.edited(scene_id, base.scene, request)
-        if holding:
+        if seen:
+            status, move = seen[0]
             try:
-                return self.scenes.commit_edits(scene_id, request, edited, unchanged=holding[0])
+                return self.scenes.commit_edits(
+                    scene_id, request, edited, unchanged=status, move=move
+                )
             except SceneRowChangedError:
-                pass  # submitted, rejected or taken over meanwhile: the rules once more
+                pass  # submitted, rejected or taken meanwhile: the rules once more, in a
+                # transaction that says who took it
         return self.scenes.commit_edits(scene_id, request, edited, hook=take)
 
     def take(self, scene_id: str, actor: Actor) -> SceneSummary:

@@ -32,6 +32,8 @@ class WriterRun:
     writers: int
     pause_s: float = 0.0
     save_ms: list[float] = field(default_factory=list)
+    # Each writer's first save, also in save_ms: the first on a scene takes it for annotation.
+    first_save_ms: list[float] = field(default_factory=list)
     conflicts: int = 0
     saved: dict[str, set[str]] = field(default_factory=dict)
     errors: list[str] = field(default_factory=list)
@@ -57,10 +59,16 @@ class WriterRun:
     def describe(self) -> str:
         saves = len(self.save_ms)
         pace = f", {self.pause_s * 1000:.0f} ms pauses" if self.pause_s else ""
+        first = self.first_save_ms
+        firsts = (
+            f"; first saves median {statistics.median(first):.0f} ms, max {max(first):.0f} ms"
+            if first
+            else ""
+        )
         return (
             f"{self.writers} writer(s){pace}: {saves} saves in {self.seconds:.1f} s, "
             f"{self.conflicts} conflicts retried, save p50 {self.p50:.0f} ms, "
-            f"p95 {self.p95:.0f} ms"
+            f"p95 {self.p95:.0f} ms{firsts}"
         )
 
 
@@ -130,6 +138,8 @@ def run_writers(
                     return
                 elapsed_ms, conflicts, base = outcome
                 run.save_ms.append(elapsed_ms)
+                if save == 0:
+                    run.first_save_ms.append(elapsed_ms)
                 run.conflicts += conflicts
                 run.saved[scene_id].add(author)
 
