@@ -111,8 +111,14 @@ test("the scene page downloads scene.json, scene.glb and COCO JSON", async ({ pa
   const unplaced = await importUnplaced(page, "t3d-5 not placed");
   await page.goto(`/#/scenes/${unplaced}`);
   await expect(page.getByTestId("scene-title")).toHaveText("t3d-5 not placed");
+  const glbAsked: string[] = [];
+  page.on("request", (r) => {
+    if (r.url().includes("/scene.glb")) glbAsked.push(r.url());
+  });
   await page.getByTestId("download-button").click();
   await expect(page.getByTestId("download-no-glb")).toBeVisible();
+  // Known from the revision's stages: no request, so no 404 in the console.
+  expect(glbAsked).toEqual([]);
   await expect(page.getByTestId("download-glb")).toBeHidden();
   await expect(page.getByTestId("download-coco")).toBeVisible();
   await page.screenshot({

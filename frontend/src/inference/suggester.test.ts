@@ -45,6 +45,7 @@ function session(): SceneSession {
     [auto("o0", "floor"), auto("o1", "o2"), auto("o2", "floor")],
     { revision: 2, size: 10 },
   );
+  doc.scene.stages = [{ name: "supports_from_network", seconds: 0.1, note: null, warning: false }];
   const s = sessionOn(doc, null);
   s.setSuggester(makeSuggester({ ids: ["o0", "o1", "o2"], probabilities }));
   return s;
@@ -101,6 +102,18 @@ describe("objects left without a supporter", () => {
     s.undo();
     rejectEdge(s, "o1");
     expect(s.suggestions().get("o1")?.parent).toBe("o0");
+  });
+});
+
+describe("a scene no support stage has run on (imported without the pipeline)", () => {
+  it("offers a supporter for every object without one, none for one a person set", () => {
+    const s = session();
+    s.adopt({ ...s.doc, revision: 3, scene: { ...s.doc.scene, stages: [], supports: [] } });
+    expect([...s.suggestions().keys()].sort()).toEqual(["o0", "o1", "o2"]);
+    expect(s.suggestions().get("o0")).toMatchObject({ parent: "floor", type: "below" });
+    expect(setSupporter(s, "o0", "wall")).toBeNull();
+    expect(s.suggestions().has("o0")).toBe(false);
+    expect([...s.suggestions().keys()].sort()).toEqual(["o1", "o2"]);
   });
 });
 

@@ -28,10 +28,15 @@ export function makeSuggester({
   const withPriors = priors && classes ? { classes, priors } : null;
   return (session: SceneSession) => {
     const shown = session.shown();
-    // An object a person added starts without a supporter: that is no decision to keep
-    // (a supporter removed by hand and not saved yet is).
+    // A missing supporter is nobody's decision in a scene no support stage has run on (a
+    // photo imported without the pipeline), nor for an object a person added; a supporter
+    // removed by hand and not saved yet is one.
+    const supportsPredicted = (session.doc.scene.stages ?? []).some((stage) =>
+      stage.name.startsWith("supports_"),
+    );
     const awaitsSupporter = (id: string) =>
-      !session.isPending(id) && (session.object(id)?.set_by_person ?? []).includes("object");
+      !session.isPending(id) &&
+      (!supportsPredicted || (session.object(id)?.set_by_person ?? []).includes("object"));
     const pinned: PinnedSupport[] = [];
     const excluded = new Set<string>();
     for (const id of ids) {
@@ -51,7 +56,7 @@ export function makeSuggester({
       const current = shown.get(d.child);
       if (current && current.parent === d.parent && current.type === d.type) continue;
       // An object a person left without a supporter stays so, unless they rejected answers
-      // (then the next one is wanted) or it is one they added that never had one.
+      // (then the next one is wanted) or it awaits its first supporter.
       if (!current && session.rejectedAnswers(d.child).size === 0 && !awaitsSupporter(d.child))
         continue;
       suggestions.set(d.child, {

@@ -13,7 +13,14 @@ function item(testid: string, href: string, label: string, hint: string): HTMLAn
   );
 }
 
-export function downloadMenu(sceneId: string): { element: HTMLElement; dispose: () => void } {
+/**
+ * `mayHaveGlb`: whether the revision shown can have a 3D scene; when it cannot, the menu says
+ * so without asking the server (whose 404 the console would show as an error).
+ */
+export function downloadMenu(
+  sceneId: string,
+  mayHaveGlb: () => boolean,
+): { element: HTMLElement; dispose: () => void } {
   const glb = item(
     "download-glb",
     downloadUrls.glb(sceneId),
@@ -55,6 +62,11 @@ export function downloadMenu(sceneId: string): { element: HTMLElement; dispose: 
   element.addEventListener("toggle", () => {
     probe?.abort();
     if (!element.open) return;
+    if (!mayHaveGlb()) {
+      glb.hidden = true;
+      noGlb.hidden = false;
+      return;
+    }
     probe = new AbortController();
     hasGlb(sceneId, probe.signal)
       .then((has) => {

@@ -7,6 +7,7 @@ import { isFinished, pollJob } from "../../api/jobs";
 import { button, el } from "../../dom";
 import { SceneSession } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
+import { mayHaveGlb } from "../scene3d/viewportObjects";
 import { downloadMenu } from "./downloadMenu";
 import { sceneMeta } from "./sceneMeta";
 import { mountSceneWorkbench } from "./sceneWorkbench";
@@ -28,7 +29,8 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
   const message = el("div", { className: "page-message", testid: "scene-message" });
   const rerun = button("Run pipeline again", { testid: "run-pipeline", disabled: true });
   const content = el("div", { className: "scene-grid" });
-  const downloads = downloadMenu(sceneId);
+  let shown: SceneDocument | null = null; // the revision on the page, once loaded
+  const downloads = downloadMenu(sceneId, () => shown === null || mayHaveGlb(shown));
   container.replaceChildren(
     el(
       "div",
@@ -58,8 +60,10 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
   const showScene = (doc: SceneDocument) => {
     disposeContent();
     const session = new SceneSession(doc);
+    shown = doc;
     title.textContent = doc.scene.name;
     const updateMeta = () => {
+      shown = session.doc;
       const { text, title: note } = sceneMeta(session.doc);
       meta.textContent = text;
       meta.title = note;
