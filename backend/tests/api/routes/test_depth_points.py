@@ -12,7 +12,8 @@ import cv2
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
-from holiscene.learning.completion.scene_points import MAX_POINTS
+from holiscene.api.routes import scenes as scene_routes
+from holiscene.learning.completion.scene_points import MAX_POINTS, scene_depth_points
 
 from ...conftest import wait_for_job
 from ..conftest import Accounts, folder_upload
@@ -47,7 +48,7 @@ def _inside(points: np.ndarray, corners: np.ndarray, margin: float) -> np.ndarra
 
 
 def test_each_objects_points_lie_in_its_box_and_the_room(
-    client: TestClient, synthetic_folder: Path
+    client: TestClient, synthetic_folder: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     doc = _pipeline_scene(client, synthetic_folder)
     scene_id, scene = doc["scene_id"], doc["scene"]
@@ -83,6 +84,17 @@ def test_each_objects_points_lie_in_its_box_and_the_room(
         assert _inside(points, box, 0.05 + 0.15 * np.ptp(box, axis=0).max()).all(), entry["id"]
         assert _inside(points, box, 0.02).mean() > 0.8, entry["id"]
     assert completed >= len(body["objects"]) / 2
+    # Asked again (the 3D view's toggle, a reload): the same answer, without completing the
+    # shapes again.
+    completions: list[str] = []
+
+    def counted(scene: Any, depth: np.ndarray) -> Any:
+        completions.append(scene.name)
+        return scene_depth_points(scene, depth)
+
+    monkeypatch.setattr(scene_routes, "scene_depth_points", counted)
+    again = client.get(f"/api/scenes/{scene_id}/depth-points")
+    assert again.json() == body and completions == []
     # Revision 1, the import, has no camera yet.
     assert client.get(f"/api/scenes/{scene_id}/depth-points?revision=1").status_code == 409
 

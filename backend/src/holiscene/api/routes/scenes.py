@@ -23,6 +23,7 @@ from holiscene_schema import (
     SceneSummary,
 )
 
+from ...core.recent_values import RecentValues
 from ...export.archive import file_stem
 from ...export.depth_preview import depth_preview_key, depth_preview_png
 from ...inputs import (
@@ -197,9 +198,17 @@ def get_depth_points(
     completion network's points, world frame, at most MAX_POINTS each; of the latest revision
     or `revision`. 404 for a scene without depth, 409 before the pipeline placed its camera."""
     document = workbench.scenes.document(scene_id, revision)
+    depth_path = workbench.scenes.files.folder(scene_id) / DEPTH_FILE
+    try:
+        key = (str(depth_path), depth_path.stat().st_mtime_ns, document.revision)
+    except FileNotFoundError:
+        key = None  # refused by _depth_file, with the reason
+    kept = _recent_depth_points.get(key) if key else None
+    if kept is not None:
+        return kept
     depth = stored_depth(document.scene, _depth_file(workbench, scene_id))
     objects = scene_depth_points(document.scene, depth)
-    return DepthPoints(
+    answer = DepthPoints(
         scene_id=scene_id,
         revision=document.revision,
         objects=[
@@ -212,6 +221,15 @@ def get_depth_points(
         ],
         max_points=MAX_POINTS,
     )
+    if key is not None:
+        _recent_depth_points.put(key, answer)
+    return answer
+
+
+# A revision's points never change (a revision is never rewritten and its depth file came
+# with the import), while each request would run the completion network on every object: the
+# last few answers are kept, by depth file (and its time, should it be replaced) and revision.
+_recent_depth_points: RecentValues[tuple[str, int, int], DepthPoints] = RecentValues(8)
 
 
 @router.get("/{scene_id}/scene.glb", responses=_ERRORS)
