@@ -30,6 +30,8 @@ interface Row {
   key: string;
   element: HTMLTableRowElement;
   update(): void;
+  /** Mark the row hovered or selected as the session says (all update() does for those). */
+  highlight(): void;
   /** List the scene's objects as possible supporters (when they changed). */
   listSupporters(objects: readonly SceneObject[]): void;
 }
@@ -219,10 +221,13 @@ function objectRow(
     element.classList.toggle("is-pending", pending);
     if (element.dataset.unsupported !== String(!support))
       element.dataset.unsupported = String(!support);
+    highlight();
+  };
+  const highlight = () => {
     element.classList.toggle("is-hovered", session.hovered === id);
     element.classList.toggle("is-selected", session.selected === id);
   };
-  return { object, key: rowKey(object), element, update, listSupporters };
+  return { object, key: rowKey(object), element, update, highlight, listSupporters };
 }
 
 function structureRow(object: SceneObject): HTMLTableRowElement {
@@ -321,7 +326,10 @@ export function mountSupportEditor(
   const unsubscribe = session.subscribe((change) => {
     if (change === "document") build();
     if (change === "select") scrollToSelected();
-    update();
+    // Pointing at an object or choosing one changes no menu or badge: its highlight only
+    // (a full update checks every row's menu for loops, for each move onto another object).
+    if (change === "hover" || change === "select") for (const row of rows) row.highlight();
+    else update();
   });
   return () => {
     stopStyle();
