@@ -395,8 +395,19 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   await page.reload();
   await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
   await expect(page.getByTestId(`mask-${id}`)).toHaveAttribute("data-source", "manual");
-  const shown = await page
-    .getByTestId(`mask-${id}`)
-    .evaluate((node) => ["x", "y", "width", "height"].map((a) => Number(node.getAttribute(a))));
-  expect(shown).toEqual([...(object.mask?.origin ?? []), ...(object.mask?.size ?? [])]);
+  // The overlay fills exactly the saved mask's pixels (each pixel's centre tested).
+  const saved = object.mask;
+  if (!saved) throw new Error(`${id} has no mask`);
+  const filled = await page.getByTestId(`mask-${id}`).evaluate((node, mask) => {
+    const shape = node as SVGGeometryElement;
+    const inside: Xy[] = [];
+    for (let row = 0; row < mask.size[1]; row++)
+      for (let col = 0; col < mask.size[0]; col++) {
+        const [x, y]: Xy = [mask.origin[0] + col + 0.5, mask.origin[1] + row + 0.5];
+        if (shape.isPointInFill(new DOMPoint(x, y))) inside.push([x, y]);
+      }
+    return inside;
+  }, saved);
+  expect(filled.length).toBe(area(saved));
+  expect(filled.filter((p) => !maskHas(saved, p))).toEqual([]);
 });

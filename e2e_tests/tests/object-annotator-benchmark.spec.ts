@@ -55,7 +55,7 @@ const TARGET_MS = 50;
 const POOR_MASK = 0.5;
 const STRUCTURAL_KEYS: Record<string, string> = { floor: "f", wall: "w", ceiling: "c" };
 /** The objects drawn by their mask (an object shown by its box is a rect). */
-const MASK_IMAGES = ".masks image[data-object]";
+const MASK_SHAPES = ".masks path[data-object]";
 const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
 const FIGURES = path.resolve(import.meta.dirname, "../test-results/object-annotator-benchmark");
 mkdirSync(SCREENSHOTS, { recursive: true });
@@ -412,13 +412,13 @@ class Annotator {
   async addObject(truthId: string): Promise<string> {
     const object = this.object(truthId);
     const before = await shownObjects(this.page);
-    const masksBefore = await this.page.locator(MASK_IMAGES).count();
+    const masksBefore = await this.page.locator(MASK_SHAPES).count();
     await this.drawBox(object.bbox as Box, `${truthId} (${object.class})`);
     // Shown at once by its box; the mask the server cuts follows its answer.
     await this.pickClass(
       object.class,
       { kind: "count", selector: ".masks [data-object]", atLeast: before.length + 1 },
-      { kind: "count", selector: MASK_IMAGES, atLeast: masksBefore + 1 },
+      { kind: "count", selector: MASK_SHAPES, atLeast: masksBefore + 1 },
     );
     const added = (await shownObjects(this.page)).filter((id) => !before.includes(id));
     expect(added, `one new object for ${truthId}`).toHaveLength(1);
@@ -457,7 +457,7 @@ class Annotator {
     const path = strokeThrough(this.object(truthId).mask, 8);
     if (path.length < 2) return;
     const mask = this.page.getByTestId(`mask-${id}`);
-    const href = await mask.getAttribute("href");
+    const outline = await mask.getAttribute("d"); // the mask's pixels as a path
     await this.key("k", "K (refine)");
     const points = [];
     for (const p of path) points.push(await toScreen(this.page, p));
@@ -465,7 +465,7 @@ class Annotator {
     if (!first) return;
     await this.timed(
       `stroke over ${truthId}`,
-      { kind: "changed", selector: `[data-testid="mask-${id}"]`, name: "href", from: href },
+      { kind: "changed", selector: `[data-testid="mask-${id}"]`, name: "d", from: outline },
       async () => {
         await this.page.mouse.move(first.x, first.y);
         await this.page.mouse.down();
@@ -697,7 +697,7 @@ test("run 2: the same photo annotated from the detector's suggestions", async ({
       "Shift+Y (accept all)",
       { kind: "count", selector: ".masks [data-object]", atLeast: suggested },
       () => page.keyboard.press("Shift+Y"),
-      { kind: "count", selector: MASK_IMAGES, atLeast: suggested },
+      { kind: "count", selector: MASK_SHAPES, atLeast: suggested },
     );
   }
   const doc = await getScene(page.request, sceneId);

@@ -2,7 +2,7 @@
 import type { Mask, SceneObject } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
 import { sceneObject } from "../../testing/sceneDocuments";
-import { HitMap, objectRegion } from "./maskRaster";
+import { decodeMask, HitMap, maskPathData, objectRegion } from "./maskRaster";
 
 /** A mask from rows of "." and "#" at `origin`. */
 function mask(origin: [number, number], rows: string[]): Mask {
@@ -130,6 +130,58 @@ describe("objectRegion", () => {
       expect([...(region.bits ?? [])].join("")).toBe(
         rows.join("").replaceAll("#", "1").replaceAll(".", "0"),
       );
+    }
+  });
+});
+
+/** The pixels the path data's rectangles cover, in the mask's window, as decodeMask gives. */
+function pathPixels(data: string, m: Mask): Uint8Array {
+  const [width, height] = m.size;
+  const bits = new Uint8Array(width * height);
+  const pattern = /M(-?\d+) (-?\d+)h(\d+)v(\d+)h-(\d+)z/g;
+  let consumed = 0;
+  for (const found of data.matchAll(pattern)) {
+    const [, x = 0, y = 0, w = 0, h = 0, back = -1] = found.map(Number);
+    expect(back).toBe(w);
+    consumed += String(found[0]).length;
+    for (let row = y - m.origin[1]; row < y - m.origin[1] + h; row++)
+      for (let column = x - m.origin[0]; column < x - m.origin[0] + w; column++) {
+        expect(bits[row * width + column]).toBe(0); // no pixel covered twice
+        bits[row * width + column] = 1;
+      }
+  }
+  expect(consumed).toBe(data.length); // nothing but rectangles
+  return bits;
+}
+
+describe("maskPathData", () => {
+  it("covers exactly the mask's pixels, growing rectangles over repeated rows", () => {
+    const shapes = [
+      mask([3, 7], ["####", "####", "####"]),
+      mask([0, 0], [".##.", "#..#", "#..#", "....", ".##."]),
+      mask([5, 1], ["#", ".", "#"]),
+      mask([2, 2], ["......"]),
+    ];
+    for (const m of shapes) expect(pathPixels(maskPathData(m), m)).toEqual(decodeMask(m));
+    // A solid window is one rectangle; two identical rows of two runs are two.
+    expect(maskPathData(shapes[0] as Mask)).toBe("M3 7h4v3h-4z");
+    expect(maskPathData(mask([0, 0], ["#.#", "#.#"]))).toBe("M0 0h1v2h-1zM2 0h1v2h-1z");
+  });
+
+  it("matches random masks, runs wrapping across rows included", () => {
+    let seed = 7;
+    const random = () => {
+      seed = (seed * 1103515245 + 12345) % 2147483648;
+      return seed / 2147483648;
+    };
+    for (let n = 0; n < 50; n++) {
+      const width = 1 + Math.floor(random() * 12);
+      const height = 1 + Math.floor(random() * 9);
+      const rows = Array.from({ length: height }, () =>
+        Array.from({ length: width }, () => (random() < 0.5 ? "#" : ".")).join(""),
+      );
+      const m = mask([Math.floor(random() * 5), Math.floor(random() * 5)], rows);
+      expect(pathPixels(maskPathData(m), m)).toEqual(decodeMask(m));
     }
   });
 });

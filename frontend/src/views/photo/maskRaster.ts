@@ -1,6 +1,5 @@
-// Masks: run-length decoding, tinted images for the overlay, centroids and a hit map.
+// Masks: run-length decoding, path data for the overlay, centroids and a hit map.
 import type { Mask, SceneObject } from "@holiscene/schema";
-import type { Rgb } from "../classColors";
 
 /** Each run of inside pixels of a mask's window: [start, end) in row-major pixel indices. */
 function insideRuns(mask: Mask, each: (start: number, end: number) => void): void {
@@ -20,31 +19,52 @@ export function decodeMask(mask: Mask): Uint8Array {
   return bits;
 }
 
-/** The canvas every mask image is encoded on (a new canvas and context cost ms each). */
-let encoder: { canvas: HTMLCanvasElement; context: CanvasRenderingContext2D | null } | null = null;
-
-/** A PNG data URL of the mask's window: the colour inside, transparent outside. */
-export function maskImageUrl(mask: Mask, [r, g, b]: Rgb): string {
-  const [width, height] = mask.size;
-  if (!encoder) {
-    const canvas = document.createElement("canvas");
-    // A canvas kept in main memory: encoding a GPU-backed one waits for a read-back, 10-190
-    // ms per mask in headless Chromium, most of an object edit's redraw.
-    encoder = { canvas, context: canvas.getContext("2d", { willReadFrequently: true }) };
-  }
-  const { canvas, context } = encoder;
-  // Setting the size clears the canvas.
-  canvas.width = Math.max(1, width);
-  canvas.height = Math.max(1, height);
-  if (!context || width === 0 || height === 0) return canvas.toDataURL();
-  const image = context.createImageData(width, height);
-  // One 32-bit write per pixel, a run at a time (ImageData is RGBA in memory order; every
-  // browser this runs in is little-endian, so the word is ABGR).
-  const pixels = new Uint32Array(image.data.buffer);
-  const colour = ((255 << 24) | (b << 16) | (g << 8) | r) >>> 0;
-  insideRuns(mask, (start, end) => pixels.fill(colour, start, end));
-  context.putImageData(image, 0, 0);
-  return canvas.toDataURL("image/png");
+/**
+ * The mask's inside pixels as SVG path data in image pixels: one rectangle per run of a row,
+ * rows that repeat the row above growing its rectangles instead. Drawn as a path, a mask needs
+ * no image to be encoded (a canvas's PNG, about 1 ms a mask) and decoded before it shows.
+ */
+export function maskPathData(mask: Mask): string {
+  const [width] = mask.size;
+  const [ox, oy] = mask.origin;
+  const parts: string[] = [];
+  let block: number[] = []; // [start, end) columns of each run of the rows being grown
+  let blockTop = 0;
+  let blockRows = 0;
+  const flush = () => {
+    for (let i = 0; i < block.length; i += 2) {
+      const start = block[i] ?? 0;
+      const length = (block[i + 1] ?? 0) - start;
+      parts.push(`M${ox + start} ${oy + blockTop}h${length}v${blockRows}h${-length}z`);
+    }
+  };
+  let row: number[] = [];
+  let rowIndex = 0;
+  const endRow = () => {
+    const same = row.length === block.length && row.every((v, i) => v === block[i]);
+    if (same && blockRows > 0) blockRows += 1;
+    else {
+      flush();
+      block = row;
+      blockTop = rowIndex;
+      blockRows = 1;
+    }
+    row = [];
+    rowIndex += 1;
+  };
+  insideRuns(mask, (start, end) => {
+    for (let at = start; at < end; ) {
+      const y = Math.floor(at / width);
+      while (rowIndex < y) endRow();
+      const column = at - y * width;
+      const length = Math.min(end - at, width - column);
+      row.push(column, column + length);
+      at += length;
+    }
+  });
+  endRow();
+  flush();
+  return parts.join("");
 }
 
 export interface Region {
