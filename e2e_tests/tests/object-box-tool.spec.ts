@@ -110,3 +110,40 @@ test("boxes drawn on an empty photo become objects with masks and supporters", a
   expect(again.scene.supports).toEqual(doc.scene.supports);
   await chooseTool(page, "select");
 });
+
+test("a box whose answer never arrived is saved once: Retry finds it saved", async ({ page }) => {
+  const sceneId = await importWithoutObjects(page.request, "t3d-5 lost answer");
+  await page.goto(`/#/scenes/${sceneId}`);
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  const before = (await getScene(page.request, sceneId)).revision;
+  // The first save reaches the server, which stores it; its answer is lost on the way back.
+  let sent = 0;
+  await page.route("**/api/scenes/*/edits", async (route) => {
+    sent += 1;
+    if (sent > 1) return route.continue();
+    await route.fetch();
+    return route.abort("failed");
+  });
+  await page.keyboard.press("b");
+  await dragOnPhoto(page, [150, 190], [625, 525]);
+  await pickClass(page, "bed", "bed");
+  await expect(page.getByTestId("object-edit-failure")).toBeVisible();
+  expect((await getScene(page.request, sceneId)).scene.objects?.map((o) => o.id)).toEqual(["d1"]);
+
+  // Sent again, it meets the revision it made itself: nothing is added twice.
+  await page.getByTestId("object-edit-retry").click();
+  await expect(page.getByTestId("object-edit-status")).toContainText(
+    `already saved as revision ${before + 1}`,
+  );
+  await objectEditsSaved(page);
+  expect(sent).toBe(2);
+  const saved = await getScene(page.request, sceneId);
+  expect(saved.revision).toBe(before + 1);
+  expect(saved.scene.objects?.map((o) => [o.id, o.class])).toEqual([["d1", "bed"]]);
+  await expect(page.locator(".masks [data-object]")).toHaveCount(1);
+  // Undo takes the object back out, as for any add.
+  await page.keyboard.press("Escape");
+  await page.keyboard.press("Control+z");
+  await expect.poll(async () => (await getScene(page.request, sceneId)).revision).toBe(before + 2);
+  expect((await getScene(page.request, sceneId)).scene.objects ?? []).toEqual([]);
+});

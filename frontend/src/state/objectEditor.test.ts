@@ -14,6 +14,7 @@ import {
   ObjectEditor,
   rebaseEdits,
   restoreEdits,
+  savedAlready,
   touchedIds,
 } from "./objectEditor";
 import type { SceneSession } from "./sceneSession";
@@ -321,5 +322,47 @@ describe("rebaseEdits", () => {
         { kind: "remove_object", id: "b" },
       ]),
     ).toEqual(["a", "b"]);
+  });
+});
+
+describe("an action whose answer was lost", () => {
+  const added: ObjectEdit[] = [
+    { kind: "add_object", id: "d1", class: "lamp", bbox: [1, 2, 30, 40], source: "manual" },
+    { kind: "set_class", id: "o1", class: "sofa" },
+  ];
+  // As the server lists them: every field written out, defaults included, keys in its order.
+  const stored = [
+    { number: 4, edits: [{ kind: "set_class", id: "o1", class: "sofa" }] },
+    {
+      number: 5,
+      edits: [
+        {
+          bbox: [1, 2, 30, 40],
+          class: "lamp",
+          id: "d1",
+          kind: "add_object",
+          mask: null,
+          score: null,
+          source: "manual",
+        },
+        { class: "sofa", id: "o1", kind: "set_class" },
+      ],
+    },
+  ] as const;
+
+  it("is found in the revisions saved since its base, whatever the server's field order", () => {
+    expect(savedAlready(stored as never, 3, added)).toBe(5);
+    expect(savedAlready(stored as never, 5, added)).toBeNull(); // not after its base
+  });
+
+  it("is not taken for another action with a different value or fewer edits", () => {
+    expect(
+      savedAlready(stored as never, 3, [
+        { ...added[0], bbox: [1, 2, 30, 41] } as ObjectEdit,
+        added[1] as ObjectEdit,
+      ]),
+    ).toBeNull();
+    expect(savedAlready(stored as never, 3, added.slice(0, 1))).toBeNull();
+    expect(savedAlready([{ number: 6, edits: null }] as never, 3, added)).toBeNull();
   });
 });

@@ -12,6 +12,7 @@ import type {
   EditRequest,
   RemoveObject,
   RestoreObject,
+  RevisionInfo,
   SceneDocument,
   SceneObject,
   SetBbox,
@@ -115,6 +116,44 @@ export function rebaseEdits(
     out.push({ ...edit, id });
   }
   return missing.length > 0 ? { edits: null, missing } : { edits: out, renamed: [...renamed] };
+}
+
+/** Who saved the revisions after `before` up to `latest` ("Someone" if that is unknown). */
+function authorsSince(
+  revisions: readonly Pick<RevisionInfo, "number" | "author">[],
+  before: number,
+  latest: number,
+): string {
+  const names = revisions
+    .filter((r) => r.number > before && r.number <= latest)
+    .map((r) => r.author);
+  return [...new Set(names)].join(", ") || "Someone";
+}
+
+/** JSON with keys in order and empty (null or absent) fields left out, to compare edits. */
+function canonical(value: unknown): string {
+  return JSON.stringify(value, (_key, v: unknown) => {
+    if (v === null || typeof v !== "object" || Array.isArray(v)) return v;
+    const entries = Object.entries(v as Record<string, unknown>).filter(([, x]) => x != null);
+    return Object.fromEntries(entries.sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0)));
+  });
+}
+
+/**
+ * The revision after `before` that holds exactly these edits: an earlier try of the action
+ * that the server saved though its answer never reached the page (a lost connection). Sending
+ * it again on top would add its new objects twice, under other ids.
+ */
+export function savedAlready(
+  revisions: readonly Pick<RevisionInfo, "number" | "edits">[],
+  before: number,
+  edits: readonly ObjectEdit[],
+): number | null {
+  const wanted = canonical(edits);
+  const found = revisions.find(
+    (r) => r.number > before && r.edits != null && canonical(r.edits) === wanted,
+  );
+  return found?.number ?? null;
 }
 
 /** Until the session is not saving (an object edit must not race a support save). */
@@ -335,7 +374,15 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
       shown = null; // the reload below replaces the prediction
       await session.reloadLatest();
       const latest = session.doc.revision;
-      const who = await this.authorsSince(before, latest);
+      const revisions = await api.listRevisions(session.sceneId).catch(() => []);
+      const saved = savedAlready(revisions, before, sending);
+      if (saved !== null) {
+        this.remember(session.doc);
+        const message = `${capital(label)}: already saved as revision ${saved} (its answer had not arrived).`;
+        this.setStatus({ kind: "idle", message, error: false });
+        return { before: saved - 1, after: saved, edits: sending };
+      }
+      const who = authorsSince(revisions, before, latest);
       const rebased = rebaseEdits(edits, session.objects);
       if (rebased.edits === null) {
         const gone = rebased.missing.join(", ");
@@ -381,15 +428,6 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   private post(baseRevision: number, edits: ObjectEdit[]): Promise<SceneDocument> {
     const post = this.options.post ?? postToApi;
     return post(this.session.sceneId, baseRevision, (this.options.author ?? getAuthor)(), edits);
-  }
-
-  /** Who saved the revisions after `before` up to `latest` ("Someone" if that is unknown). */
-  private async authorsSince(before: number, latest: number): Promise<string> {
-    const revisions = await api.listRevisions(this.session.sceneId).catch(() => []);
-    const names = revisions
-      .filter((r) => r.number > before && r.number <= latest)
-      .map((r) => r.author);
-    return [...new Set(names)].join(", ") || "Someone";
   }
 
   private fail(
