@@ -43,6 +43,7 @@ from sqlalchemy import cast as sql_cast
 from sqlalchemy.orm import Session
 
 from ..editing.workflow_rules import SceneStatus, Transition
+from .scene_events import event_row
 from .tables import RevisionRow, SceneEventRow, SceneRow
 
 _EDITS = TypeAdapter(list[Edit])
@@ -160,20 +161,18 @@ def _params(values: dict[str, Any]) -> dict[str, Any]:
 def _event_params(
     move: WorkflowMove, seen: SceneStatus, revision: dict[str, Any]
 ) -> dict[str, Any]:
-    """The history row of `move`, made on `revision` from the status `seen` (as
-    scene_events.record_event writes it in a transaction)."""
-    values = {
-        "scene_id": revision["scene_id"],
-        "at": revision["created_at"],
-        "actor": move.actor,
-        "action": move.transition.action,
-        "from_state": seen.state,
-        "to_state": move.transition.to_state,
-        "assignee": move.transition.assignee,
-        "revision": revision["number"],
-        "annotation_round": seen.annotation_round,
-        "comment": None,
-    }
+    """The history row of `move`, made on `revision` from the status `seen`."""
+    values = event_row(
+        revision["scene_id"],
+        at=revision["created_at"],
+        action=move.transition.action,
+        to_state=move.transition.to_state,
+        assignee=move.transition.assignee,
+        actor=move.actor,
+        revision=revision["number"],
+        from_state=seen.state,
+        annotation_round=seen.annotation_round,
+    )
     return {f"{_E}{name}": value for name, value in values.items()}
 
 

@@ -3,7 +3,8 @@ history row in `scene_events` are written together or not at all."""
 
 from __future__ import annotations
 
-from typing import Protocol
+from datetime import datetime
+from typing import Any, Protocol
 
 from holiscene_schema import SceneState, WorkflowAction
 from sqlalchemy.orm import Session
@@ -44,6 +45,35 @@ def status_of(row: SceneHead) -> SceneStatus:
     )
 
 
+def event_row(
+    scene_id: str,
+    *,
+    at: datetime,
+    action: WorkflowAction,
+    to_state: SceneState,
+    assignee: str | None,
+    actor: str,
+    revision: int,
+    from_state: SceneState | None,
+    annotation_round: int,
+    comment: str | None = None,
+) -> dict[str, Any]:
+    """A row of `scene_events` by column (the id aside): written here through the session,
+    and by revision_writes in the statement of a save that takes the scene."""
+    return {
+        "scene_id": scene_id,
+        "at": at,
+        "actor": actor,
+        "action": action,
+        "from_state": from_state,
+        "to_state": to_state,
+        "assignee": assignee,
+        "revision": revision,
+        "annotation_round": annotation_round,
+        "comment": comment,
+    }
+
+
 def record_event(
     session: Session,
     row: SceneRow,
@@ -59,20 +89,19 @@ def record_event(
     """Move the scene to `to_state` (and `assignee`) and write the history row."""
     row.state = to_state
     row.assignee = assignee
-    session.add(
-        SceneEventRow(
-            scene_id=row.id,
-            at=utcnow(),
-            actor=actor,
-            action=action,
-            from_state=from_state,
-            to_state=to_state,
-            assignee=assignee,
-            revision=revision,
-            annotation_round=row.annotation_round,
-            comment=comment,
-        )
+    values = event_row(
+        row.id,
+        at=utcnow(),
+        action=action,
+        to_state=to_state,
+        assignee=assignee,
+        actor=actor,
+        revision=revision,
+        from_state=from_state,
+        annotation_round=row.annotation_round,
+        comment=comment,
     )
+    session.add(SceneEventRow(**values))
 
 
 def pipeline_committed(session: Session, scene_id: str, revision: int) -> None:

@@ -29,8 +29,8 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
   const message = el("div", { className: "page-message", testid: "scene-message" });
   const rerun = button("Run pipeline again", { testid: "run-pipeline", disabled: true });
   const content = el("div", { className: "scene-grid" });
-  let shown: SceneDocument | null = null; // the revision on the page, once loaded
-  const downloads = downloadMenu(sceneId, () => shown === null || mayHaveGlb(shown));
+  let shown: SceneSession | null = null; // the scene on the page, once loaded
+  const downloads = downloadMenu(sceneId, () => shown === null || mayHaveGlb(shown.doc));
   container.replaceChildren(
     el(
       "div",
@@ -60,10 +60,9 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
   const showScene = (doc: SceneDocument) => {
     disposeContent();
     const session = new SceneSession(doc);
-    shown = doc;
+    shown = session;
     title.textContent = doc.scene.name;
     const updateMeta = () => {
-      shown = session.doc;
       const { text, title: note } = sceneMeta(session.doc);
       meta.textContent = text;
       meta.title = note;

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path as FilePath
 from typing import Annotated
 
 import numpy as np
@@ -18,6 +19,7 @@ from holiscene_schema import (
     Job,
     ObjectDepthPoints,
     RevisionInfo,
+    Scene,
     SceneDocument,
     SceneState,
     SceneSummary,
@@ -149,12 +151,18 @@ def get_image(scene_id: str, workbench: WorkbenchDep) -> FileResponse:
     return FileResponse(workbench.scenes.image_path(scene_id))
 
 
-def _depth_file(workbench: WorkbenchDep, scene_id: str) -> bytes:
-    scene = workbench.scenes.document(scene_id).scene
+def _depth_path(workbench: WorkbenchDep, scene_id: str, scene: Scene | None = None) -> FilePath:
+    """The scene's depth file (SceneNotFoundError without one); `scene`: a revision of it
+    already read, else the latest is."""
+    scene = scene or workbench.scenes.document(scene_id).scene
     path = workbench.scenes.files.folder(scene_id) / DEPTH_FILE
     if scene.depth is None or not path.is_file():
         raise SceneNotFoundError(f"scene {scene_id} has no depth: it was imported without")
-    return path.read_bytes()
+    return path
+
+
+def _depth_file(workbench: WorkbenchDep, scene_id: str) -> bytes:
+    return _depth_path(workbench, scene_id).read_bytes()
 
 
 @router.get("/{scene_id}/depth.png", responses=_ERRORS)
@@ -198,15 +206,12 @@ def get_depth_points(
     completion network's points, world frame, at most MAX_POINTS each; of the latest revision
     or `revision`. 404 for a scene without depth, 409 before the pipeline placed its camera."""
     document = workbench.scenes.document(scene_id, revision)
-    depth_path = workbench.scenes.files.folder(scene_id) / DEPTH_FILE
-    try:
-        key = (str(depth_path), depth_path.stat().st_mtime_ns, document.revision)
-    except FileNotFoundError:
-        key = None  # refused by _depth_file, with the reason
-    kept = _recent_depth_points.get(key) if key else None
+    depth_path = _depth_path(workbench, scene_id, document.scene)
+    key = (str(depth_path), depth_path.stat().st_mtime_ns, document.revision)
+    kept = _recent_depth_points.get(key)
     if kept is not None:
         return kept
-    depth = stored_depth(document.scene, _depth_file(workbench, scene_id))
+    depth = stored_depth(document.scene, depth_path.read_bytes())
     objects = scene_depth_points(document.scene, depth)
     answer = DepthPoints(
         scene_id=scene_id,
@@ -221,8 +226,7 @@ def get_depth_points(
         ],
         max_points=MAX_POINTS,
     )
-    if key is not None:
-        _recent_depth_points.put(key, answer)
+    _recent_depth_points.put(key, answer)
     return answer
 
 
