@@ -129,6 +129,8 @@ test("a box whose answer never arrived is saved once: Retry finds it saved", asy
   await pickClass(page, "bed", "bed");
   await expect(page.getByTestId("object-edit-failure")).toBeVisible();
   expect((await getScene(page.request, sceneId)).scene.objects?.map((o) => o.id)).toEqual(["d1"]);
+  // The list points at the retry, not at adding the objects again.
+  await expect(page.getByTestId("support-summary")).toContainText('"add bed d1" has no answer');
 
   // Sent again, it meets the revision it made itself: nothing is added twice.
   await page.getByTestId("object-edit-retry").click();

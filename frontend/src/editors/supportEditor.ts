@@ -244,10 +244,17 @@ function structureRow(object: SceneObject): HTMLTableRowElement {
   );
 }
 
+/** An action on objects the server has not confirmed (its label), and news of changes. */
+export interface UnconfirmedAction {
+  readonly failure: { label: string } | null;
+  subscribe(listener: () => void): () => void;
+}
+
 export function mountSupportEditor(
   container: HTMLElement,
   session: SceneSession,
   changeClass?: ChangeClass,
+  unconfirmed?: UnconfirmedAction,
 ): () => void {
   const summary = el("p", { className: "editor-summary", testid: "support-summary" });
   const body = el("tbody");
@@ -308,7 +315,8 @@ export function mountSupportEditor(
   const update = () => {
     for (const row of rows) row.update();
     const missing = rows.filter((r) => !session.shown().has(r.object.id)).length;
-    const { text, warn } = supportSummary(session.objects, missing);
+    const label = unconfirmed?.failure?.label ?? null;
+    const { text, warn } = supportSummary(session.objects, missing, label);
     if (summary.textContent !== text) summary.textContent = text;
     summary.classList.toggle("is-warn", warn);
   };
@@ -331,8 +339,10 @@ export function mountSupportEditor(
     if (change === "hover" || change === "select") for (const row of rows) row.highlight();
     else update();
   });
+  const stopFailure = unconfirmed?.subscribe(update);
   return () => {
     stopStyle();
     unsubscribe();
+    stopFailure?.();
   };
 }

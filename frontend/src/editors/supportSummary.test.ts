@@ -14,6 +14,18 @@ describe("support summary", () => {
     expect(summary.warn).toBe(true);
   });
 
+  it("points at the action waiting for a retry instead of asking for objects again", () => {
+    const summary = supportSummary([], 0, "add bed");
+    expect(summary.text).toMatch(/^No objects shown yet: "add bed" has no answer/);
+    expect(summary.text).toContain("Press Retry under the photo tools");
+    expect(summary.text).not.toContain("Detect objects");
+    expect(summary.warn).toBe(true);
+    // Once objects are shown, the count is what matters.
+    expect(supportSummary([object("o0", "bed")], 1, "add lamp").text).toBe(
+      "1 object · 1 without a supporter",
+    );
+  });
+
   it("tells a scene of walls only that it has nothing to support", () => {
     const summary = supportSummary([object("w", "wall"), object("f", "floor")], 0);
     expect(summary.text).toMatch(/^No objects to support, only the room's walls/);

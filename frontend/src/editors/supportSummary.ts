@@ -1,5 +1,7 @@
 // The line above the object list: how many objects need a supporter and how many lack one,
-// or, when there is nothing to support, that the objects are still to be added.
+// or, when there is nothing to support, that the objects are still to be added (or that an
+// action adding them waits to be retried: "add objects" would then send the person to do it
+// twice).
 import type { SceneObject } from "@holiscene/schema";
 import { plural } from "../state/sceneSession";
 import { isStructural } from "../state/supportGraph";
@@ -15,8 +17,15 @@ const ADD_OBJECTS =
 export function supportSummary(
   objects: readonly SceneObject[],
   unsupported: number,
+  unconfirmed: string | null = null,
 ): SupportSummary {
   const toSupport = objects.filter((o) => !isStructural(o.class)).length;
+  if (toSupport === 0 && unconfirmed) {
+    return {
+      text: `No objects shown yet: "${unconfirmed}" has no answer from the server. Press Retry under the photo tools (nothing is added twice) or Discard.`,
+      warn: true,
+    };
+  }
   if (objects.length === 0) {
     return { text: `No objects yet. ${ADD_OBJECTS} to add them.`, warn: true };
   }

@@ -83,10 +83,15 @@ export function mountSceneWorkbench(
     mountScene3d(scene3d.body, session, layout.draft),
     mountPlacementNotice(scene3d.element, scene3d.body, session),
     mountSaveBar(saveBar, session, objectEditor),
-    mountSupportEditor(table, session, (id, anchor) => {
-      const object = session.object(id);
-      if (object) void changeClass(objectEditor, object, anchor.getBoundingClientRect());
-    }),
+    mountSupportEditor(
+      table,
+      session,
+      (id, anchor) => {
+        const object = session.object(id);
+        if (object) void changeClass(objectEditor, object, anchor.getBoundingClientRect());
+      },
+      objectEditor,
+    ),
     mountSupportSuggestions(suggestions, table, session),
     mountRevisionHistory(history, session),
     mountWorkflowBar(workflow, session),
