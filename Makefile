@@ -110,7 +110,7 @@ coco-detector: install-python
 # The NYU-40 detector: a head fine-tuned on synthetic rooms over the COCO backbone.
 detector-model: install-python
 	rm -rf /tmp/holiscene-detector-model
-	$(PY) -m holiscene.cli train-detector -o /tmp/holiscene-detector-model --scenes 1000 --views 2 --epochs 20
+	$(PY) -m holiscene.cli train-detector -o /tmp/holiscene-detector-model --scenes 1000 --views 2 --epochs 20 --tune-deep-blocks
 	cp /tmp/holiscene-detector-model/* backend/src/holiscene/learning/nyu_detector/
 
 # For comparison only: a small CenterNet with no pretrained weights, trained on the same rooms

@@ -82,6 +82,8 @@ def main(argv: list[str] | None = None) -> int:
         for model_dir in models:
             detector = Detector.load(model_dir)
             name = str(detector.metadata.get("name", model_dir.name))
+            if name in results:  # two runs of one recipe: tell them apart by folder
+                name = f"{name} ({model_dir})"
             on_real, _, seconds = evaluate(detector, real, args.threshold, f"real {name}")
             on_complete, _, _ = evaluate(detector, complete, args.threshold, f"mm3d {name}")
             on_synth, synth_ranked, _ = evaluate(

@@ -85,6 +85,19 @@ def add_detector_training_command(
         "about 4.3 MB a view)",
     )
     detector.add_argument(
+        "--tune-deep-blocks",
+        action="store_true",
+        help="fine-tune the head's own copy of the backbone's stride-32 blocks too "
+        "(the COCO model's outputs stay as they are)",
+    )
+    detector.add_argument(
+        "--retexture",
+        type=float,
+        default=0.0,
+        help="chance that each synthetic object is repainted with a random pattern "
+        "(stripes, checks, prints, speckle) in its own shading; 0: as rendered",
+    )
+    detector.add_argument(
         "--coco-weight",
         type=float,
         default=1.0,
@@ -152,6 +165,8 @@ def _train_detector(args: argparse.Namespace) -> int:
         raise CliError("--scenes, --validation-scenes, --epochs and --views must be at least 1")
     if not 0.0 <= args.coco_weight <= 1.0:
         raise CliError("--coco-weight must be between 0 and 1")
+    if not 0.0 <= args.retexture <= 1.0:
+        raise CliError("--retexture must be between 0 and 1")
     if args.time_budget is not None and not args.time_budget > 0:
         raise CliError("--time-budget must be a positive number of seconds")
     cache = args.cache or Path.home() / ".cache" / "holiscene" / "detector-rooms"
@@ -172,7 +187,12 @@ def _train_detector(args: argparse.Namespace) -> int:
             metrics = _train_scratch(args, train, validation, progress)
         else:
             config = DetectorTrainConfig(
-                seed=args.seed, epochs=args.epochs, coco_weight=args.coco_weight, views=args.views
+                seed=args.seed,
+                epochs=args.epochs,
+                coco_weight=args.coco_weight,
+                views=args.views,
+                tune_deep_blocks=args.tune_deep_blocks,
+                retexture=args.retexture,
             )
             metrics = train_detector(train, validation, config, args.out, progress)
     print(f"validation mAP@0.5 {metrics['validation_map_at_0_5']:.3f} -> {args.out}")

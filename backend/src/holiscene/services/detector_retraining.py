@@ -62,6 +62,7 @@ DETECTOR_TRAIN_SEED = 400_000
 DETECTOR_VALIDATION_SEED = 460_000
 EVALUATION_IOU = 0.5
 ROOMS_FOLDER = "detector-rooms"  # under the data directory: rendered rooms, kept between jobs
+RETEXTURE = 0.0  # chance that a synthetic object is repainted (learning/detector/retexture.py)
 
 Box = tuple[float, float, float, float]
 
@@ -72,6 +73,10 @@ class DetectorRetrainConfig:
     epochs: int = 12
     stored_repeats: int = 4  # random views of each stored training scene per epoch
     coco_weight: float = 1.0  # the COCO model's share for the classes it knows (0: head alone)
+    # The committed model's recipe (docs/detector.md): the head's own copy of the backbone's
+    # stride-32 blocks is tuned too, and synthetic objects may be repainted.
+    tune_deep_blocks: bool = True
+    retexture: float = RETEXTURE
     seed: int = 0
     cache_dir: Path | None = None  # where rendered rooms are kept
 
@@ -322,7 +327,11 @@ class DetectorRetrainJob(TrainingJob):
             f"(x{config.stored_repeats}), {len(validation)} synthetic rooms to validate"
         )
         train_config = DetectorTrainConfig(
-            seed=config.seed, epochs=config.epochs, coco_weight=config.coco_weight
+            seed=config.seed,
+            epochs=config.epochs,
+            coco_weight=config.coco_weight,
+            tune_deep_blocks=config.tune_deep_blocks,
+            retexture=config.retexture,
         )
         started = time.monotonic()
         metrics = train_detector(photos, validation, train_config, out_dir, self._training_progress)

@@ -24,6 +24,11 @@ FEATURES = "tower_0/CenternetHead/mul"
 DEEP_FEATURES = "tower_0/extern1/hard_swish/mul_1"
 DEEP_CHANNELS = 480
 DEEP_STRIDE = 32
+# The backbone's last features at a 16th of the input (88 channels), where its stride-32
+# blocks begin: the input of the copy of those blocks that an NYU-40 head may fine-tune.
+MID_FEATURES = "tower_0/MobilenetV3/expanded_conv_11/add"
+MID_CHANNELS = 88
+MID_STRIDE = 16
 COCO_HEATMAP_NHWC = "tower_0/keypoints"
 BOX_HEAD_DEPTHWISE = "tower_0/CenternetHead/centernet_wh_output/separable_conv2d/depthwise"
 BOX_HEAD_POINTWISE = "tower_0/CenternetHead/centernet_wh_output/BiasAdd"
@@ -53,15 +58,20 @@ def coco_heatmap_nchw(model: onnx.ModelProto) -> str:
     return str(_producer(model, COCO_HEATMAP_NHWC).input[0])
 
 
-def backbone_model(coco_model: Path) -> onnx.ModelProto:
-    """The COCO model cut after its neck: images -> (features, COCO heatmap, deep features),
-    NCHW, the first two [1, C, S / 4, S / 4], the last [1, 480, S / 32, S / 32], with only
-    the nodes they need."""
+def backbone_model(coco_model: Path, deep_input: str = DEEP_FEATURES) -> onnx.ModelProto:
+    """The COCO model cut after its neck: images -> (features, COCO heatmap, the deep
+    branch's input), NCHW, the first two [1, C, S / 4, S / 4], the last the deep features
+    [1, 480, S / 32, S / 32] or, for a head that tunes its own copy of the last blocks
+    (`deep_input=MID_FEATURES`), [1, 88, S / 16, S / 16]; with only the nodes they need."""
     model = onnx.load(str(coco_model))
+    deep_shape = {
+        DEEP_FEATURES: (DEEP_CHANNELS, DEEP_STRIDE),
+        MID_FEATURES: (MID_CHANNELS, MID_STRIDE),
+    }
     outputs = {
         FEATURES: (FEATURE_CHANNELS, 4),
         coco_heatmap_nchw(model): (COCO_CLASS_COUNT, 4),
-        DEEP_FEATURES: (DEEP_CHANNELS, DEEP_STRIDE),
+        deep_input: deep_shape[deep_input],
     }
     needed: set[str] = set(outputs)
     kept: list[onnx.NodeProto] = []
@@ -100,14 +110,14 @@ def box_head_weights(coco_model: Path) -> BoxHeadWeights:
 
 
 class FeatureExtractor:
-    """Runs the cut COCO model; `__call__` gives (features, COCO heatmap, deep features) for
-    one input."""
+    """Runs the cut COCO model; `__call__` gives (features, COCO heatmap, the deep branch's
+    input) for one input."""
 
-    def __init__(self, coco_model: Path, threads: int = 2) -> None:
+    def __init__(self, coco_model: Path, threads: int = 2, deep_input: str = DEEP_FEATURES) -> None:
         options = ort.SessionOptions()
         options.intra_op_num_threads = threads
         self.session = ort.InferenceSession(
-            backbone_model(coco_model).SerializeToString(),
+            backbone_model(coco_model, deep_input).SerializeToString(),
             options,
             providers=["CPUExecutionProvider"],
         )

@@ -1,9 +1,10 @@
 """Detector training data: photos with boxes, domain randomisation, and CenterNet targets.
 
 Synthetic rooms have exact boxes for every object but look like renders, so every training
-photo is changed at random before the frozen backbone sees it: a crop, a flip, colour, white
-balance, contrast, gamma, a smooth light field (uneven lighting and texture), noise, blur and
-JPEG compression. Numpy and OpenCV only.
+photo is changed at random before the frozen backbone sees it: patterns on objects' surfaces
+(`retexture.py`, when asked), a crop, a flip, colour, white balance, contrast, gamma, a smooth
+light field (uneven lighting and texture), noise, blur and JPEG compression. Numpy and OpenCV
+only.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ import cv2
 import numpy as np
 
 from ...inputs import read_input_folder
+from .retexture import object_masks, retexture
 
 MIN_VISIBLE = 0.4  # share of a box that must stay in a crop for the box to be kept
 MIN_SIDE_PX = 6.0
@@ -28,6 +30,8 @@ class BoxedPhoto:
     rgb: np.ndarray  # (H, W, 3) uint8
     boxes: np.ndarray  # (N, 4) float x1, y1, x2, y2 in pixels
     classes: list[str]  # NYU-40, one per box
+    # A synthetic room's gt.json, whose visible object masks let training repaint surfaces.
+    truth_file: Path | None = None
 
 
 def _crop(photo: BoxedPhoto, rng: np.random.Generator) -> BoxedPhoto:
@@ -100,8 +104,16 @@ def _degrade(image: np.ndarray, rng: np.random.Generator) -> np.ndarray:
     return np.ascontiguousarray(out)
 
 
-def randomise(photo: BoxedPhoto, rng: np.random.Generator) -> BoxedPhoto:
-    """One random training view of a photo (the domain randomisation above)."""
+def randomise(
+    photo: BoxedPhoto, rng: np.random.Generator, retexture_chance: float = 0.0
+) -> BoxedPhoto:
+    """One random training view of a photo (the domain randomisation above); with
+    `retexture_chance` > 0 each object of a synthetic room is repainted with that chance."""
+    if retexture_chance > 0 and photo.truth_file is not None:
+        height, width = photo.rgb.shape[:2]
+        masks = object_masks(photo.truth_file, width, height)
+        rgb = retexture(photo.rgb, masks, rng, retexture_chance)
+        photo = BoxedPhoto(rgb, photo.boxes, photo.classes)
     if rng.random() < 0.7:
         photo = _crop(photo, rng)
     if rng.random() < 0.5:
@@ -160,4 +172,7 @@ def synthetic_photos(
             for done, _ in enumerate(jobs, start=1):
                 if progress:
                     progress(done, len(missing))
-    return [boxed_photo(cache_dir / f"synth-{s}") for s in seeds]
+    photos = [boxed_photo(cache_dir / f"synth-{s}") for s in seeds]
+    for seed, photo in zip(seeds, photos, strict=True):
+        photo.truth_file = cache_dir / f"synth-{seed}" / "gt.json"
+    return photos

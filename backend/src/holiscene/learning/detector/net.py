@@ -6,7 +6,10 @@ Head: the neck's features through a 1x1 and a 3x3 convolution, the backbone's de
 scaled up to the neck's grid, both joined by a 1x1 convolution to one heatmap per class
 (CenterNet; ReLUs between), and the COCO model's own box head (left, top, right, bottom
 distances from each cell), its last layer fine-tuned. Reading the deep features raised the
-validation mAP@0.5 from 27.3 to 34.7 at the same training (docs/detector.md).
+validation mAP@0.5 from 27.3 to 34.7 at the same training (docs/detector.md). With
+`deep_blocks` the head reads instead its own copy of the backbone's stride-32 blocks, fed
+by the backbone's features at a 16th of the input and fine-tuned with it; the backbone, its
+neck and COCO's heads stay as they were.
 For the classes COCO knows, the COCO heatmap can join by a rule (`coco_weight`): each
 class's score is the larger of the new head's and `coco_weight` times COCO's (0: the new
 head alone).
@@ -35,17 +38,32 @@ from .backbone import (
     DEEP_FEATURES,
     FEATURE_CHANNELS,
     FEATURES,
+    MID_FEATURES,
     BoxHeadWeights,
     backbone_model,
 )
+from .onnx_subgraph import OnnxSubgraph
 
 STRIDE = 4
 EXPORT_TOLERANCE = 1e-3  # pixels of the 512-pixel input and score units
 
 
+def deep_blocks(coco_model: Path) -> OnnxSubgraph:
+    """A trainable copy of the COCO backbone's stride-32 blocks: features at a 16th of the
+    input -> the deep features."""
+    return OnnxSubgraph(onnx.load(str(coco_model)), MID_FEATURES, DEEP_FEATURES)
+
+
 class DetectorHead(nn.Module):
-    def __init__(self, num_classes: int, box: BoxHeadWeights, hidden: int = 64) -> None:
+    def __init__(
+        self,
+        num_classes: int,
+        box: BoxHeadWeights,
+        hidden: int = 64,
+        deep_blocks: nn.Module | None = None,
+    ) -> None:
         super().__init__()
+        self.deep_blocks = deep_blocks
         # Full 3x3 convolutions on few channels: PyTorch's depthwise backward is several
         # times slower on CPU than this.
         self.local = nn.Sequential(
@@ -81,6 +99,16 @@ class DetectorHead(nn.Module):
         self.box_depthwise.requires_grad_(False)
         self.box_scale = box.scale
 
+    @property
+    def deep_input(self) -> str:
+        """The backbone tensor the deep branch reads."""
+        return DEEP_FEATURES if self.deep_blocks is None else MID_FEATURES
+
+    def deep_features(self, deep_input: torch.Tensor) -> torch.Tensor:
+        """The deep features [B, 480, S / 32, S / 32] from the backbone tensor `deep_input`
+        names (whole photos: the blocks' squeeze-and-excite pools over all of it)."""
+        return deep_input if self.deep_blocks is None else self.deep_blocks(deep_input)
+
     def forward(
         self, features: torch.Tensor, deep: torch.Tensor
     ) -> tuple[torch.Tensor, torch.Tensor]:
@@ -105,7 +133,7 @@ def coco_sources(classes: list[str]) -> tuple[np.ndarray, np.ndarray]:
 
 
 class ExportedHead(nn.Module):
-    """Features, the COCO heatmap and the deep features (NCHW) -> the contract's raw
+    """Features, the COCO heatmap and the deep branch's input (NCHW) -> the contract's raw
     detections."""
 
     def __init__(
@@ -124,9 +152,9 @@ class ExportedHead(nn.Module):
         self.register_buffer("coco_weight", torch.from_numpy(mask) * coco_weight)
 
     def forward(
-        self, features: torch.Tensor, coco_heatmap: torch.Tensor, deep: torch.Tensor
+        self, features: torch.Tensor, coco_heatmap: torch.Tensor, deep_input: torch.Tensor
     ) -> torch.Tensor:
-        logits, sides = self.head(features, deep)
+        logits, sides = self.head(features, self.head.deep_features(deep_input))
         zero = torch.zeros_like(logits[:, :1])
         ours = torch.cat([torch.sigmoid(logits), zero], dim=1)[:, self.own_channel]
         coco = coco_heatmap[:, self.coco_index[:, 0]]
@@ -171,7 +199,8 @@ def export_detector(
     from .backbone import FeatureExtractor
 
     exported_head = exported_head.eval()
-    features, coco, deep = FeatureExtractor(coco_model)(example)
+    deep_input = exported_head.head.deep_input
+    features, coco, deep = FeatureExtractor(coco_model, deep_input=deep_input)(example)
     args = (torch.from_numpy(features), torch.from_numpy(coco), torch.from_numpy(deep))
     head_file = path.with_suffix(".head.onnx")
     torch.onnx.export(
@@ -185,14 +214,14 @@ def export_detector(
     )
     head = onnx.load(str(head_file))
     head_file.unlink()
-    backbone = backbone_model(coco_model)
+    backbone = backbone_model(coco_model, deep_input)
     merged = onnx.compose.merge_models(
         backbone,
         head,
         io_map=[
             (FEATURES, "features"),
             (backbone.graph.output[1].name, "coco_heatmap"),
-            (DEEP_FEATURES, "deep_features"),
+            (deep_input, "deep_features"),
         ],
     )
     merged.doc_string = "NYU-40 detector: COCO CenterNet backbone, head fine-tuned by HoliScene"

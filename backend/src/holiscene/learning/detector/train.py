@@ -3,7 +3,8 @@
 `holiscene train-detector` calls `train_detector`. Each training photo is randomised once
 (data.randomise) and passed through the frozen COCO backbone once (onnxruntime); the head then
 trains on random windows of those feature maps (the neck's and the deep ones, aligned), so an
-epoch costs the head alone. The best
+epoch costs the head alone (and, with `tune_deep_blocks`, the head's own copy of the
+backbone's stride-32 blocks, run from the cached features at a 16th of the input). The best
 epoch by validation mAP@0.5 is kept, exported with the backbone as one ONNX file of the
 detector contract, and written with metadata.json, metrics.json and curve.png.
 """
@@ -27,7 +28,7 @@ from ..train import plot_curve, run_record
 from ..training_api import TrainProgress
 from .backbone import DEEP_STRIDE, FeatureExtractor, box_head_weights
 from .data import BoxedPhoto, center_targets, randomise
-from .net import STRIDE, DetectorHead, ExportedHead, export_detector
+from .net import STRIDE, DetectorHead, ExportedHead, deep_blocks, export_detector
 from .runtime import COCO_DETECTOR_DIR, METADATA_FILE, MODEL_FILE, decode, preprocess
 
 CELLS = INPUT_SIZE // STRIDE
@@ -45,6 +46,11 @@ class DetectorTrainConfig:
     hidden: int = 96
     coco_weight: float = 1.0  # 0: the new head alone for every class
     views: int = 1  # randomised views of each training photo
+    # Fine-tune a copy of the backbone's stride-32 blocks for the head (docs/detector.md),
+    # at this fraction of the head's learning rate: they start trained, the head does not.
+    tune_deep_blocks: bool = False
+    retexture: float = 0.0  # chance that a synthetic object is repainted (retexture.py)
+    deep_blocks_learning_rate: float = 0.1
     coco_model: Path = COCO_DETECTOR_DIR / MODEL_FILE
 
 
@@ -57,11 +63,20 @@ Encoder = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray | None
 class FeatureSet:
     features: np.ndarray  # (N, ...) float16: the backbone's (128, CELLS, CELLS), or an image
     coco: np.ndarray | None  # (N, 80, CELLS, CELLS) float16, validation only
-    deep: np.ndarray | None = None  # (N, 480, CELLS / 8, CELLS / 8) float16, when encoded
+    # The deep branch's input, when encoded, float16: the deep features (N, 480, CELLS / 8,
+    # CELLS / 8) or the features at a 16th of the input (N, 88, CELLS / 4, CELLS / 4).
+    deep: np.ndarray | None = None
     boxes: list[np.ndarray] = field(default_factory=list)  # input pixels, per sample
     class_index: list[np.ndarray] = field(default_factory=list)
     photo_boxes: list[list[ScoredBox]] = field(default_factory=list)  # photo pixels
     photo_sizes: list[tuple[int, int]] = field(default_factory=list)  # (width, height)
+
+
+def model_name(config: DetectorTrainConfig) -> str:
+    """What the model is, for people choosing one (the models page, the benchmark)."""
+    tuned = "head and a copy of its stride-32 blocks" if config.tune_deep_blocks else "head"
+    repainted = " with repainted surfaces" if config.retexture > 0 else ""
+    return f"NYU-40 detector (COCO backbone, {tuned} fine-tuned on synthetic rooms{repainted})"
 
 
 def final_classes(trained: Sequence[str]) -> list[str]:
@@ -78,13 +93,14 @@ def extract(
     keep_coco: bool,
     say: TrainProgress,
     label: str,
+    retexture: float = 0.0,
 ) -> FeatureSet:
     """What `extractor` makes of each photo (randomised first when `rng` is given): the
     backbone's features, or for a net trained from scratch its input."""
     index_of = {c: i for i, c in enumerate(classes)}
     feature_set = FeatureSet(features=np.zeros(0, np.float16), coco=None)
     for n, original in enumerate(photos):
-        photo = randomise(original, rng) if rng is not None else original
+        photo = randomise(original, rng, retexture) if rng is not None else original
         height, width = photo.rgb.shape[:2]
         features, coco, deep = extractor(preprocess(photo.rgb))
         if n == 0:  # sized by the first sample: the extractor decides the shapes
@@ -169,15 +185,32 @@ def score_raw(
     return float(summary["map"] or 0.0), evaluation
 
 
+@dataclass
+class Batch:
+    features: torch.Tensor  # windows of the neck's features
+    deep_input: torch.Tensor  # the deep branch's input, whole photos
+    deep_windows: list[tuple[int, int]]  # each window's first deep cell (row, column)
+    heatmaps: torch.Tensor
+    cells: list[tuple[int, int, int]]  # objects' centre cells as (sample, row, column)
+    target_sides: torch.Tensor
+
+    def deep_features(self, head: DetectorHead, window: int) -> torch.Tensor:
+        """The head's deep features over the windows (computed on whole photos first)."""
+        deep = head.deep_features(self.deep_input)
+        span = window // DEEP_SCALE
+        return torch.stack([
+            deep[b, :, dy : dy + span, dx : dx + span]
+            for b, (dy, dx) in enumerate(self.deep_windows)
+        ])  # fmt: skip
+
+
 def _batch(
     data: FeatureSet, index: np.ndarray, window: int, num_classes: int, rng: np.random.Generator
-) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor, list[tuple[int, int, int]], torch.Tensor]:
+) -> Batch:
     """Features and targets of random windows (`window` a multiple of DEEP_SCALE; the
-    windows start on deep cells' edges so both feature maps cover the same pixels):
-    (features, deep features, heatmaps, centre cells as (sample, row, column), their target
-    sides)."""
+    windows start on deep cells' edges so both feature maps cover the same pixels)."""
     assert data.deep is not None
-    features, deep, heatmaps, cells, sides = [], [], [], [], []
+    features, deep_windows, heatmaps, cells, sides = [], [], [], [], []
     for b, n in enumerate(index):
         starts = rng.integers(0, (CELLS - window) // DEEP_SCALE + 1, size=2) * DEEP_SCALE
         y0, x0 = (int(v) for v in starts)
@@ -185,20 +218,20 @@ def _batch(
             data.boxes[n], data.class_index[n], num_classes, CELLS, STRIDE
         )
         features.append(data.features[n, :, y0 : y0 + window, x0 : x0 + window])
-        dy, dx, span = y0 // DEEP_SCALE, x0 // DEEP_SCALE, window // DEEP_SCALE
-        deep.append(data.deep[n, :, dy : dy + span, dx : dx + span])
+        deep_windows.append((y0 // DEEP_SCALE, x0 // DEEP_SCALE))
         heatmaps.append(heat[:, y0 : y0 + window, x0 : x0 + window])
         for (row, col), side in zip(centres, box_sides, strict=True):
             if y0 <= row < y0 + window and x0 <= col < x0 + window:
                 cells.append((b, int(row - y0), int(col - x0)))
                 sides.append(side)
     target_sides = torch.from_numpy(np.array(sides, np.float32).reshape(-1, 4))
-    return (
-        torch.from_numpy(np.stack(features).astype(np.float32)),
-        torch.from_numpy(np.stack(deep).astype(np.float32)),
-        torch.from_numpy(np.stack(heatmaps)),
-        cells,
-        target_sides,
+    return Batch(
+        features=torch.from_numpy(np.stack(features).astype(np.float32)),
+        deep_input=torch.from_numpy(data.deep[index].astype(np.float32)),
+        deep_windows=deep_windows,
+        heatmaps=torch.from_numpy(np.stack(heatmaps)),
+        cells=cells,
+        target_sides=target_sides,
     )
 
 
@@ -235,15 +268,23 @@ def train_detector(
     trained = [c for c in NYU40_CLASSES if any(c in p.classes for p in train_photos)]
     classes = final_classes(trained)
     learned = [classes.index(c) for c in trained]
-    extractor = FeatureExtractor(config.coco_model)
+    blocks = deep_blocks(config.coco_model) if config.tune_deep_blocks else None
+    head = DetectorHead(len(trained), box_head_weights(config.coco_model), config.hidden, blocks)
+    extractor = FeatureExtractor(config.coco_model, deep_input=head.deep_input)
     views = [p for p in train_photos for _ in range(config.views)]
-    train = extract(views, trained, extractor, rng, False, say, "training photos")
+    train = extract(views, trained, extractor, rng, False, say, "training photos", config.retexture)
     validation = extract(validation_photos, trained, extractor, None, True, say, "validation")
-    head = DetectorHead(len(trained), box_head_weights(config.coco_model), config.hidden)
-    optimiser = torch.optim.AdamW(head.parameters(), lr=config.learning_rate, weight_decay=1e-4)
+    block_parameters = list(blocks.parameters()) if blocks is not None else []
+    own = {id(p) for p in block_parameters}
+    groups = [{"params": [p for p in head.parameters() if id(p) not in own]}]
+    rates = [config.learning_rate]
+    if block_parameters:
+        groups.append({"params": block_parameters})
+        rates.append(config.learning_rate * config.deep_blocks_learning_rate)
+    optimiser = torch.optim.AdamW(groups, lr=config.learning_rate, weight_decay=1e-4)
     steps = -(-len(views) // config.batch)
     schedule = torch.optim.lr_scheduler.OneCycleLR(
-        optimiser, config.learning_rate, total_steps=steps * config.epochs
+        optimiser, rates, total_steps=steps * config.epochs
     )
     curve: list[dict[str, float]] = []
     best, best_state, best_epoch = -1.0, head.state_dict(), 0
@@ -253,11 +294,9 @@ def train_detector(
         order = rng.permutation(len(views))
         for start in range(0, len(views), config.batch):
             index = order[start : start + config.batch]
-            features, deep, heat, cells, target_sides = _batch(
-                train, index, config.window, len(trained), rng
-            )
-            logits, sides = head(features, deep)
-            loss = detection_loss(logits, sides, heat, cells, target_sides)
+            batch = _batch(train, index, config.window, len(trained), rng)
+            logits, sides = head(batch.features, batch.deep_features(head, config.window))
+            loss = detection_loss(logits, sides, batch.heatmaps, batch.cells, batch.target_sides)
             optimiser.zero_grad()
             loss.backward()  # type: ignore[no-untyped-call]
             optimiser.step()
@@ -304,7 +343,7 @@ def train_detector(
     }
     (out_dir / "metrics.json").write_text(json.dumps(metrics, indent=1, default=str) + "\n")
     metadata = {
-        "name": "NYU-40 detector (COCO backbone, head fine-tuned on synthetic rooms)",
+        "name": model_name(config),
         "label_space": "nyu40",
         "classes": classes,
         "coco_weight": config.coco_weight,

@@ -1,0 +1,29 @@
+"""`holiscene train-detector` refuses settings it cannot train with before rendering or
+writing anything."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from holiscene.cli import main
+
+
+@pytest.mark.parametrize(
+    ("extra", "message"),
+    [
+        (["--retexture", "1.5"], "--retexture must be between 0 and 1"),
+        (["--retexture", "-0.1"], "--retexture must be between 0 and 1"),
+        (["--coco-weight", "2"], "--coco-weight must be between 0 and 1"),
+        (["--views", "0"], "must be at least 1"),
+    ],
+)
+def test_bad_settings_are_refused_and_nothing_is_written(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], extra: list[str], message: str
+) -> None:
+    out, cache = tmp_path / "model", tmp_path / "rooms"
+    argv = ["train-detector", "-o", str(out), "--cache", str(cache), "--tune-deep-blocks", *extra]
+    status = main(argv)
+    assert status != 0
+    assert message in capsys.readouterr().err
+    assert not out.exists() and not cache.exists()
