@@ -254,6 +254,23 @@ def validation_map(
         return score_raw(raw_outputs, data, classes, set(trained))
 
 
+def _optimiser(
+    head: DetectorHead, config: DetectorTrainConfig, total_steps: int
+) -> tuple[torch.optim.AdamW, torch.optim.lr_scheduler.OneCycleLR]:
+    """AdamW over the head, its copy of the deep blocks (if any) at their own smaller rate,
+    and one-cycle schedules for both."""
+    blocks = list(head.deep_blocks.parameters()) if head.deep_blocks is not None else []
+    own = {id(p) for p in blocks}
+    groups = [{"params": [p for p in head.parameters() if id(p) not in own]}]
+    rates = [config.learning_rate]
+    if blocks:
+        groups.append({"params": blocks})
+        rates.append(config.learning_rate * config.deep_blocks_learning_rate)
+    optimiser = torch.optim.AdamW(groups, lr=config.learning_rate, weight_decay=1e-4)
+    schedule = torch.optim.lr_scheduler.OneCycleLR(optimiser, rates, total_steps=total_steps)
+    return optimiser, schedule
+
+
 def train_detector(
     train_photos: Sequence[BoxedPhoto],
     validation_photos: Sequence[BoxedPhoto],
@@ -274,18 +291,8 @@ def train_detector(
     views = [p for p in train_photos for _ in range(config.views)]
     train = extract(views, trained, extractor, rng, False, say, "training photos", config.retexture)
     validation = extract(validation_photos, trained, extractor, None, True, say, "validation")
-    block_parameters = list(blocks.parameters()) if blocks is not None else []
-    own = {id(p) for p in block_parameters}
-    groups = [{"params": [p for p in head.parameters() if id(p) not in own]}]
-    rates = [config.learning_rate]
-    if block_parameters:
-        groups.append({"params": block_parameters})
-        rates.append(config.learning_rate * config.deep_blocks_learning_rate)
-    optimiser = torch.optim.AdamW(groups, lr=config.learning_rate, weight_decay=1e-4)
     steps = -(-len(views) // config.batch)
-    schedule = torch.optim.lr_scheduler.OneCycleLR(
-        optimiser, rates, total_steps=steps * config.epochs
-    )
+    optimiser, schedule = _optimiser(head, config, steps * config.epochs)
     curve: list[dict[str, float]] = []
     best, best_state, best_epoch = -1.0, head.state_dict(), 0
     for epoch in range(1, config.epochs + 1):
