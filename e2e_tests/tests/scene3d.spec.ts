@@ -42,8 +42,11 @@ test("shows the frustum and arrows, shares the selection with the photo, exports
   expect(arrows.map(key).sort()).toEqual(supports.map(key).sort());
 
   await nextFrames(page);
-  const colours = await canvasColours(canvas);
-  expect(colours.distinct).toBeGreaterThan(8);
+  // On a loaded machine the first frames after a resize can still be blank: wait for a drawn
+  // one (a view that never draws still fails).
+  await expect
+    .poll(async () => (await canvasColours(canvas)).distinct, { timeout: 15_000 })
+    .toBeGreaterThan(8);
   await canvas.screenshot({ path: path.join(SCREENSHOTS, "scene3d-frustum-arrows.png") });
 
   // Orbit with the mouse: the view changes.
