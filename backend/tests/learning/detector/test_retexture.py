@@ -7,10 +7,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from holiscene.learning.detector.data import BoxedPhoto, randomise, synthetic_photos
-from holiscene.learning.detector.retexture import object_masks, pattern, retexture
+from holiscene.learning.detector.retexture import pattern, retexture
+from holiscene.segmentation.rle import decode_mask, encode_mask
+from holiscene_schema import Mask
 
 
 def _scene() -> tuple[np.ndarray, list[np.ndarray]]:
+    """A photo and its one object's mask (bool)."""
     rgb = np.full((60, 80, 3), 120, np.uint8)
     mask = np.zeros((60, 80), bool)
     mask[10:40, 20:60] = True
@@ -19,9 +22,13 @@ def _scene() -> tuple[np.ndarray, list[np.ndarray]]:
     return rgb, [mask]
 
 
+def _encoded(masks: list[np.ndarray]) -> list[Mask]:
+    return [m for m in (encode_mask(mask, "ground_truth") for mask in masks) if m is not None]
+
+
 def test_only_the_objects_pixels_change() -> None:
     rgb, masks = _scene()
-    out = retexture(rgb, masks, np.random.default_rng(0), chance=1.0)
+    out = retexture(rgb, _encoded(masks), np.random.default_rng(0), chance=1.0)
     assert out.dtype == np.uint8 and out.shape == rgb.shape
     assert np.array_equal(out[~masks[0]], rgb[~masks[0]])
     assert not np.array_equal(out[masks[0]], rgb[masks[0]])
@@ -29,14 +36,16 @@ def test_only_the_objects_pixels_change() -> None:
 
 def test_a_chance_of_zero_changes_nothing() -> None:
     rgb, masks = _scene()
-    assert np.array_equal(retexture(rgb, masks, np.random.default_rng(0), chance=0.0), rgb)
+    assert np.array_equal(
+        retexture(rgb, _encoded(masks), np.random.default_rng(0), chance=0.0), rgb
+    )
 
 
 def test_the_shading_stays_under_the_new_pattern() -> None:
     rgb, masks = _scene()
     ratios = []
     for seed in range(30):
-        out = retexture(rgb, masks, np.random.default_rng(seed), chance=1.0).astype(float)
+        out = retexture(rgb, _encoded(masks), np.random.default_rng(seed), chance=1.0).astype(float)
         ratios.append(out[10:40, 20:40].mean() / max(out[10:40, 40:60].mean(), 1.0))
     assert float(np.median(ratios)) < 0.6  # the shaded half stays darker
 
@@ -55,9 +64,8 @@ def room(tmp_path_factory: pytest.TempPathFactory) -> BoxedPhoto:
 
 
 def test_a_rendered_rooms_masks_lie_in_its_boxes(room: BoxedPhoto) -> None:
-    assert room.truth_file is not None
     height, width = room.rgb.shape[:2]
-    masks = object_masks(room.truth_file, width, height)
+    masks = [decode_mask(m, width, height) for m in room.masks]
     assert len(masks) == len(room.boxes) > 0
     for mask in masks:
         rows, cols = np.flatnonzero(mask.any(axis=1)), np.flatnonzero(mask.any(axis=0))

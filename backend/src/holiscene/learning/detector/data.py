@@ -17,9 +17,10 @@ from pathlib import Path
 
 import cv2
 import numpy as np
+from holiscene_schema import Mask
 
 from ...inputs import read_input_folder
-from .retexture import object_masks, retexture
+from .retexture import retexture
 
 MIN_VISIBLE = 0.4  # share of a box that must stay in a crop for the box to be kept
 MIN_SIDE_PX = 6.0
@@ -30,8 +31,8 @@ class BoxedPhoto:
     rgb: np.ndarray  # (H, W, 3) uint8
     boxes: np.ndarray  # (N, 4) float x1, y1, x2, y2 in pixels
     classes: list[str]  # NYU-40, one per box
-    # A synthetic room's gt.json, whose visible object masks let training repaint surfaces.
-    truth_file: Path | None = None
+    # The visible masks of a synthetic room's objects (its gt.json), for repainting surfaces.
+    masks: tuple[Mask, ...] = ()
 
 
 def _crop(photo: BoxedPhoto, rng: np.random.Generator) -> BoxedPhoto:
@@ -109,10 +110,8 @@ def randomise(
 ) -> BoxedPhoto:
     """One random training view of a photo (the domain randomisation above); with
     `retexture_chance` > 0 each object of a synthetic room is repainted with that chance."""
-    if retexture_chance > 0 and photo.truth_file is not None:
-        height, width = photo.rgb.shape[:2]
-        masks = object_masks(photo.truth_file, width, height)
-        rgb = retexture(photo.rgb, masks, rng, retexture_chance)
+    if retexture_chance > 0 and photo.masks:
+        rgb = retexture(photo.rgb, photo.masks, rng, retexture_chance)
         photo = BoxedPhoto(rgb, photo.boxes, photo.classes)
     if rng.random() < 0.7:
         photo = _crop(photo, rng)
@@ -147,11 +146,14 @@ def center_targets(
 
 
 def boxed_photo(folder: Path) -> BoxedPhoto:
-    """A photo and its given boxes from an input folder (img + detections.json)."""
+    """A photo and its given boxes from an input folder (img + detections.json), with its
+    objects' masks when it holds a gt.json (a synthetic room)."""
     inputs = read_input_folder(folder)
     detections = inputs.detections or []
     boxes = np.array([d.bbox for d in detections], dtype=np.float64).reshape(-1, 4)
-    return BoxedPhoto(inputs.photo.rgb, boxes, [d.cls for d in detections])
+    truth = inputs.ground_truth.objects if inputs.ground_truth else []
+    masks = tuple(o.mask for o in truth if o.mask is not None)
+    return BoxedPhoto(inputs.photo.rgb, boxes, [d.cls for d in detections], masks)
 
 
 def synthetic_photos(
@@ -172,7 +174,4 @@ def synthetic_photos(
             for done, _ in enumerate(jobs, start=1):
                 if progress:
                     progress(done, len(missing))
-    photos = [boxed_photo(cache_dir / f"synth-{s}") for s in seeds]
-    for seed, photo in zip(seeds, photos, strict=True):
-        photo.truth_file = cache_dir / f"synth-{seed}" / "gt.json"
-    return photos
+    return [boxed_photo(cache_dir / f"synth-{s}") for s in seeds]

@@ -11,8 +11,7 @@ shadows stay as rendered, only the surface changes.
 
 from __future__ import annotations
 
-import json
-from pathlib import Path
+from collections.abc import Sequence
 
 import cv2
 import numpy as np
@@ -21,15 +20,6 @@ from holiscene_schema import Mask
 from ...segmentation.rle import decode_mask
 
 PATTERNS = ("stripes", "checks", "print", "speckle")
-
-
-def object_masks(truth_file: Path, width: int, height: int) -> list[np.ndarray]:
-    """The visible masks (bool, height x width) of the objects in a synthetic room's
-    gt.json."""
-    objects = json.loads(truth_file.read_text()).get("objects", [])
-    return [
-        decode_mask(Mask.model_validate(o["mask"]), width, height) for o in objects if o.get("mask")
-    ]
 
 
 def _colour(rng: np.random.Generator) -> np.ndarray:
@@ -74,14 +64,16 @@ def pattern(height: int, width: int, rng: np.random.Generator) -> np.ndarray:
 
 
 def retexture(
-    rgb: np.ndarray, masks: list[np.ndarray], rng: np.random.Generator, chance: float
+    rgb: np.ndarray, masks: Sequence[Mask], rng: np.random.Generator, chance: float
 ) -> np.ndarray:
-    """The photo (uint8 RGB) with each object, with probability `chance`, given a random
-    pattern in its own shading."""
+    """The photo (uint8 RGB) with each object (its visible mask), with probability `chance`,
+    given a random pattern in its own shading."""
+    height, width = rgb.shape[:2]
     out = rgb.astype(np.float32)
-    for mask in masks:
+    for encoded in masks:
         if rng.random() >= chance:
             continue
+        mask = decode_mask(encoded, width, height)  # only the masks drawn for repainting
         rows, cols = np.flatnonzero(mask.any(axis=1)), np.flatnonzero(mask.any(axis=0))
         if len(rows) == 0:
             continue

@@ -47,10 +47,10 @@ class DetectorTrainConfig:
     coco_weight: float = 1.0  # 0: the new head alone for every class
     views: int = 1  # randomised views of each training photo
     # Fine-tune a copy of the backbone's stride-32 blocks for the head (docs/detector.md),
-    # at this fraction of the head's learning rate: they start trained, the head does not.
+    # at a fraction of the head's learning rate: they start trained, the head does not.
     tune_deep_blocks: bool = False
-    retexture: float = 0.0  # chance that a synthetic object is repainted (retexture.py)
     deep_blocks_learning_rate: float = 0.1
+    retexture: float = 0.0  # chance that a synthetic object is repainted (retexture.py)
     coco_model: Path = COCO_DETECTOR_DIR / MODEL_FILE
 
 
