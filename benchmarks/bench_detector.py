@@ -20,6 +20,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
 from holiscene.evaluation.detection_2d import MAP_SCORE_THRESHOLD, DetectionEvaluation, ScoredBox
 from holiscene.learning.detector.data import BoxedPhoto, boxed_photo, synthetic_photos
@@ -69,12 +70,17 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--synth-count", type=int, default=40)
     parser.add_argument("--threshold", type=float, default=SCORE_THRESHOLD)
     parser.add_argument("--json", type=Path, help="write the figures here too")
+    parser.add_argument(
+        "--per-class",
+        action="store_true",
+        help="also print the real boxes found per class (found / with the right class)",
+    )
     args = parser.parse_args(argv)
     models = args.model or [DEFAULT_DETECTOR_DIR]
     folders = sorted(p for p in args.real.iterdir() if (p / "detections.json").is_file())
     real = [boxed_photo(f) for f in folders]
     complete = [p for f, p in zip(folders, real, strict=True) if f.name.startswith("mm3d")]
-    results: dict[str, dict[str, object]] = {}
+    results: dict[str, dict[str, Any]] = {}
     with tempfile.TemporaryDirectory(prefix="bench-detector-") as scratch:
         seeds = range(args.synth_seed, args.synth_seed + args.synth_count)
         synthetic = synthetic_photos(seeds, Path(scratch))
@@ -117,9 +123,24 @@ def main(argv: list[str] | None = None) -> int:
             f"| {percent(r['synthetic_map'])} | {percent(synth_s['recall_right_class'])} "
             f"| {r['seconds_median']:.3f} |"
         )
+    if args.per_class:
+        print_per_class(results)
     if args.json:
         args.json.write_text(json.dumps(results, indent=1) + "\n")
     return 0
+
+
+def print_per_class(results: dict[str, dict[str, Any]]) -> None:
+    """Real boxes found per truth class, one column per model: where each model fails."""
+    names = list(results)
+    per_model = [results[name]["real"]["found_per_class"] for name in names]
+    classes = sorted(per_model[0], key=lambda c: (-per_model[0][c]["truth"], c))
+    print("\nReal boxes found / with the right class, per class (models in the order above)\n")
+    print("| class | boxes | " + " | ".join(f"model {i + 1}" for i in range(len(names))) + " |")
+    print("| --- | --- |" + " --- |" * len(names))
+    for cls in classes:
+        cells = [f"{m[cls]['found']} / {m[cls]['right_class']}" for m in per_model]
+        print(f"| {cls} | {per_model[0][cls]['truth']} | " + " | ".join(cells) + " |")
 
 
 if __name__ == "__main__":

@@ -27,3 +27,15 @@ def test_bad_settings_are_refused_and_nothing_is_written(
     assert status != 0
     assert message in capsys.readouterr().err
     assert not out.exists() and not cache.exists()
+
+
+def test_a_model_is_named_after_its_recipe() -> None:
+    """The models page and the benchmark tell models apart by this name."""
+    from holiscene.learning.detector.train import DetectorTrainConfig, model_name
+
+    plain = model_name(DetectorTrainConfig())
+    assert plain == "NYU-40 detector (COCO backbone, head fine-tuned on synthetic rooms)"
+    full = model_name(DetectorTrainConfig(tune_deep_blocks=True, cushion_rows=True, retexture=0.5))
+    assert "a copy of its stride-32 blocks" in full
+    assert full.endswith("synthetic rooms with rows of cushions and repainted surfaces)")
+    assert model_name(DetectorTrainConfig(retexture=0.5)).endswith("with repainted surfaces)")

@@ -40,6 +40,12 @@ def add_pipeline_commands(sub: argparse._SubParsersAction[argparse.ArgumentParse
     synth.add_argument("--count", type=int, default=1)
     synth.add_argument("-o", "--out", type=Path, required=True)
     synth.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    synth.add_argument(
+        "--cushion-rows",
+        action="store_true",
+        help="beds and sofas hold rows of cushions against their back (the detector's rooms); "
+        "folders are named synth-SEED-cushion-rows",
+    )
     synth.set_defaults(handler=_synth)
 
     evaluate = sub.add_parser(
@@ -170,13 +176,15 @@ def _synth(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
     from ..synth.generate import synthesize_to
+    from ..synth.plan import RoomStyle
 
     if args.count < 1 or args.workers < 1:
         raise CliError("--count and --workers must be at least 1")
     seeds = range(args.seed, args.seed + args.count)
+    style = RoomStyle(cushion_rows=args.cushion_rows)
     start = time.perf_counter()
     with ProcessPoolExecutor(max_workers=args.workers) as pool:
-        jobs = pool.map(synthesize_to, seeds, [args.out] * len(seeds))
+        jobs = pool.map(synthesize_to, seeds, [args.out] * len(seeds), [style] * len(seeds))
         for _ in tqdm(jobs, total=len(seeds), desc="synth", unit="scene", file=sys.stderr):
             pass
     seconds = time.perf_counter() - start

@@ -98,6 +98,12 @@ def add_detector_training_command(
         "(stripes, checks, prints, speckle) in its own shading; 0: as rendered",
     )
     detector.add_argument(
+        "--cushion-rows",
+        action="store_true",
+        help="train on rooms whose beds and sofas hold rows of cushions against their back "
+        "(validation rooms stay the generator's default)",
+    )
+    detector.add_argument(
         "--coco-weight",
         type=float,
         default=1.0,
@@ -157,6 +163,7 @@ def _train_detector(args: argparse.Namespace) -> int:
     try:
         from ..learning.detector.data import synthetic_photos
         from ..learning.detector.train import DetectorTrainConfig, train_detector
+        from ..synth.plan import RoomStyle
     except ImportError as error:
         raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
     if args.out.exists() and any(args.out.iterdir()):
@@ -176,7 +183,10 @@ def _train_detector(args: argparse.Namespace) -> int:
             progress(0.0, f"rendering rooms {done}/{total}")
 
         train = synthetic_photos(
-            range(DETECTOR_TRAIN_SEED, DETECTOR_TRAIN_SEED + args.scenes), cache, rendered
+            range(DETECTOR_TRAIN_SEED, DETECTOR_TRAIN_SEED + args.scenes),
+            cache,
+            rendered,
+            style=RoomStyle(cushion_rows=args.cushion_rows),
         )
         validation = synthetic_photos(
             range(DETECTOR_VALIDATION_SEED, DETECTOR_VALIDATION_SEED + args.validation_scenes),
@@ -193,6 +203,7 @@ def _train_detector(args: argparse.Namespace) -> int:
                 views=args.views,
                 tune_deep_blocks=args.tune_deep_blocks,
                 retexture=args.retexture,
+                cushion_rows=args.cushion_rows,
             )
             metrics = train_detector(train, validation, config, args.out, progress)
     print(f"validation mAP@0.5 {metrics['validation_map_at_0_5']:.3f} -> {args.out}")

@@ -63,6 +63,10 @@ class DetectionEvaluation:
     found_right_class: int = 0
     predictions_real: int = 0  # predictions that match some truth box, whatever its class
     truth_per_class: dict[str, int] = field(default_factory=lambda: defaultdict(int))
+    # Truth boxes found per truth class: [whatever the predicted class, with the right class].
+    found_per_class: dict[str, list[int]] = field(
+        default_factory=lambda: defaultdict(lambda: [0, 0])
+    )
     scored_hits: dict[str, list[tuple[float, bool]]] = field(
         default_factory=lambda: defaultdict(list)
     )
@@ -78,6 +82,10 @@ class DetectionEvaluation:
         self.predictions_real += sum(m is not None for m in any_class)
         for box in truth:
             self.truth_per_class[box.cls] += 1
+        for column, matches in enumerate((any_class, right_class)):
+            for matched in matches:
+                if matched is not None:
+                    self.found_per_class[truth[matched].cls][column] += 1
         for box, matched in zip(predicted, right_class, strict=True):
             self.scored_hits[box.cls].append((box.score, matched is not None))
 
@@ -100,6 +108,14 @@ class DetectionEvaluation:
             "precision": _share(self.predictions_real, self.predicted_boxes),
             "map": float(np.mean(list(ap.values()))) if ap else None,
             "ap": ap,
+            "found_per_class": {
+                cls: {
+                    "truth": count,
+                    "found": self.found_per_class[cls][0],
+                    "right_class": self.found_per_class[cls][1],
+                }
+                for cls, count in sorted(self.truth_per_class.items())
+            },
         }
 
 

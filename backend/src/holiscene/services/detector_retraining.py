@@ -63,6 +63,7 @@ DETECTOR_VALIDATION_SEED = 460_000
 EVALUATION_IOU = 0.5
 ROOMS_FOLDER = "detector-rooms"  # under the data directory: rendered rooms, kept between jobs
 RETEXTURE = 0.0  # chance that a synthetic object is repainted (learning/detector/retexture.py)
+CUSHION_ROWS = False  # training rooms' beds and sofas hold rows of cushions (synth/plan.py)
 
 Box = tuple[float, float, float, float]
 
@@ -77,6 +78,7 @@ class DetectorRetrainConfig:
     # stride-32 blocks is tuned too, and synthetic objects may be repainted.
     tune_deep_blocks: bool = True
     retexture: float = RETEXTURE
+    cushion_rows: bool = CUSHION_ROWS
     seed: int = 0
     cache_dir: Path | None = None  # where rendered rooms are kept
 
@@ -308,6 +310,7 @@ class DetectorRetrainJob(TrainingJob):
         # PyTorch only here, in the job: the server's request path never imports it.
         from ..learning.detector.data import synthetic_photos
         from ..learning.detector.train import DetectorTrainConfig, train_detector
+        from ..synth.plan import RoomStyle
 
         config = self.config
         cache = config.cache_dir or self.work_root.parent / ROOMS_FOLDER  # the data dir's
@@ -317,7 +320,12 @@ class DetectorRetrainJob(TrainingJob):
             self._log(f"rendering synthetic rooms {done}/{total}")
 
         first, validation_first = DETECTOR_TRAIN_SEED, DETECTOR_VALIDATION_SEED
-        rooms = synthetic_photos(range(first, first + config.synthetic_rooms), cache, rendered)
+        rooms = synthetic_photos(
+            range(first, first + config.synthetic_rooms),
+            cache,
+            rendered,
+            style=RoomStyle(cushion_rows=config.cushion_rows),
+        )
         validation = synthetic_photos(
             range(validation_first, validation_first + config.validation_rooms), cache, rendered
         )
@@ -332,6 +340,7 @@ class DetectorRetrainJob(TrainingJob):
             coco_weight=config.coco_weight,
             tune_deep_blocks=config.tune_deep_blocks,
             retexture=config.retexture,
+            cushion_rows=config.cushion_rows,
         )
         started = time.monotonic()
         metrics = train_detector(photos, validation, train_config, out_dir, self._training_progress)

@@ -36,8 +36,8 @@ from ..geometry.boxes import box_corners
 from ..geometry.camera import PinholeCamera, default_intrinsics, rot_y
 from ..segmentation.rle import encode_mask
 from . import ranges
-from .materials import Pattern, object_material, random_material
-from .plan import PlannedObject, RoomPlan, plan_room
+from .materials import Material, Pattern, object_material, random_material
+from .plan import DEFAULT_STYLE, PlannedObject, RoomPlan, RoomStyle, plan_room
 from .render import ROOM_INSTANCE, Frame, Lighting, RenderItem, render
 
 FLOOR_PATTERNS: tuple[Pattern, ...] = ("wood", "tiles", "fabric")
@@ -78,10 +78,14 @@ def _render_plan(plan: RoomPlan, keep: set[int], rng: np.random.Generator) -> Fr
             random_material(rng, "paint", (1.0, 3.0)),
         ),
     ]
+    materials: dict[int, Material] = {}
     for obj in plan.objects:
         if obj.key in keep:
             mesh = obj.shape.mesh.copy().apply_transform(world @ obj.room_transform())
-            items.append(RenderItem(mesh, obj.key, object_material(rng, obj.cls)))
+            material = object_material(rng, obj.cls)  # drawn always: the next draws stay put
+            shared = None if obj.looks_like is None else materials.get(obj.looks_like)
+            materials[obj.key] = shared or material
+            items.append(RenderItem(mesh, obj.key, materials[obj.key]))
     light_room = np.array(
         [
             rng.uniform(-0.3, 0.3) * plan.depth,
@@ -122,11 +126,11 @@ def _visible_keys(frame: Frame) -> dict[int, int]:
     return {int(i): int(c) for i, c in zip(ids, counts, strict=True)}
 
 
-def synthesize(seed: int) -> SyntheticScene:
+def synthesize(seed: int, style: RoomStyle = DEFAULT_STYLE) -> SyntheticScene:
     """Deterministic per seed. Objects too little visible to label are dropped with everything
     they hold up (so every labelled object's supporter is labelled too), then rendered again."""
     rng = np.random.default_rng(seed)
-    plan = plan_room(rng)
+    plan = plan_room(rng, style)
     render_seed = int(rng.integers(2**31))
     keep = {o.key for o in plan.objects}
     for _ in range(4):
@@ -139,10 +143,13 @@ def synthesize(seed: int) -> SyntheticScene:
             break
         keep -= dropped  # something visible stood on a hidden object: render without it
     K = _camera(plan).K
-    return SyntheticScene(f"synth-{seed}", _truth(plan, keep, frame, K, seed), frame, K)
+    name = f"synth-{seed}{style.folder_suffix}"
+    return SyntheticScene(name, _truth(plan, keep, frame, K, seed, name), frame, K)
 
 
-def _truth(plan: RoomPlan, keep: set[int], frame: Frame, K: np.ndarray, seed: int) -> Scene:
+def _truth(
+    plan: RoomPlan, keep: set[int], frame: Frame, K: np.ndarray, seed: int, name: str
+) -> Scene:
     height, width = frame.instance.shape
     kept = [o for o in plan.objects if o.key in keep]
     order = np.random.default_rng(seed + 1).permutation(len(kept))  # ids carry no placement order
@@ -173,7 +180,7 @@ def _truth(plan: RoomPlan, keep: set[int], frame: Frame, K: np.ndarray, seed: in
         for p in camera.project(layout_corners)
     ]
     return Scene(
-        name=f"synth-{seed}",
+        name=name,
         image=ImageInfo(file="img.png", width=width, height=height),
         camera=Camera(
             K=K.tolist(),
@@ -240,6 +247,6 @@ def write_scene(scene: SyntheticScene, out_dir: Path) -> Path:
     return target
 
 
-def synthesize_to(seed: int, out_dir: Path) -> Path:
+def synthesize_to(seed: int, out_dir: Path, style: RoomStyle = DEFAULT_STYLE) -> Path:
     """Generate and write one scene (a top-level function, so worker processes can run it)."""
-    return write_scene(synthesize(seed), out_dir)
+    return write_scene(synthesize(seed, style), out_dir)

@@ -39,6 +39,7 @@ class PlannedObject:
     support_type: str
     seed: int
     shape: Shape
+    looks_like: int | None = None  # another object's key whose material this one shares
 
     def footprint(self) -> tuple[float, float, float, float]:
         """Axis-aligned (x0, x1, z0, z1) of the object in the room frame."""
@@ -67,6 +68,25 @@ class PlannedObject:
             world = rot_y(math.radians(self.yaw_deg)) @ local + self.center
             out.append((float(world[1]), world[[0, 2]], x1 - x0, z1 - z0, surface.clearance))
         return out
+
+
+@dataclass(frozen=True)
+class RoomStyle:
+    """Choices that change what rooms hold. The default is the generator every synthetic figure
+    in docs/benchmarks.md was measured on; a choice here makes other rooms from the same seeds."""
+
+    # Beds and sofas hold rows of matching cushions against their back (lying or propped up,
+    # sometimes a smaller row in front), as people arrange them, instead of a few cushions
+    # scattered over the surface.
+    cushion_rows: bool = False
+
+    @property
+    def folder_suffix(self) -> str:
+        """Tells apart rooms of one seed made in different styles (a cache's folder names)."""
+        return "-cushion-rows" if self.cushion_rows else ""
+
+
+DEFAULT_STYLE = RoomStyle()
 
 
 @dataclass
@@ -129,8 +149,9 @@ def _quad(points: list[list[float]]) -> trimesh.Trimesh:
 class Planner:
     """Fills a RoomPlan; all randomness comes from one generator, so a seed fixes the room."""
 
-    def __init__(self, rng: np.random.Generator) -> None:
+    def __init__(self, rng: np.random.Generator, style: RoomStyle = DEFAULT_STYLE) -> None:
         self.rng = rng
+        self.style = style
         self.plan = self._room()
         self._next_key = 0
 
@@ -170,13 +191,14 @@ class Planner:
         yaw: float,
         parent: int | str,
         support_type: str,
+        looks_like: int | None = None,
     ) -> PlannedObject:
         seed = int(self.rng.integers(2**31))
         shape = generate_shape(
             cls, (float(size[0]), float(size[1]), float(size[2])), np.random.default_rng(seed)
         )
         obj = PlannedObject(
-            self._next_key, cls, size, center, yaw, parent, support_type, seed, shape
+            self._next_key, cls, size, center, yaw, parent, support_type, seed, shape, looks_like
         )
         self._next_key += 1
         self.plan.objects.append(obj)
@@ -275,8 +297,7 @@ class Planner:
         offset_local = np.array(
             [self.rng.uniform(-slack_x, slack_x), 0.0, self.rng.uniform(-slack_z, slack_z)]
         )
-        offset = rot_y(math.radians(parent.yaw_deg)) @ offset_local
-        center = np.array([centre[0], top + size[1] / 2 + 0.002, centre[1]]) + offset
+        center = _on_surface(parent, top, centre, offset_local, size)
         for sibling in self.plan.objects:
             same_surface = (
                 sibling.parent == parent.key and abs(sibling.center[1] - center[1]) < 0.05
@@ -285,6 +306,24 @@ class Planner:
             if same_surface and gap < (max(sibling.size[[0, 2]]) + max(size[[0, 2]])) / 2:
                 return None
         return self.add(cls, size, center, parent.yaw_deg, parent.key, "below")
+
+    def at_back_of(
+        self,
+        parent: PlannedObject,
+        surface_index: int,
+        cls: str,
+        size: FloatArray,
+        inset: float,
+        along: float,
+        looks_like: int | None = None,
+    ) -> PlannedObject:
+        """`cls` of `size` on a support surface of `parent`, `inset` from the surface's back
+        edge (the parent's own -x: a bed's headboard, a sofa's back), `along` its width from
+        the middle. The caller has sized and spaced it to fit."""
+        top, centre, extent_x, _, _ = parent.surfaces()[surface_index]
+        offset_local = np.array([-extent_x / 2 + inset + size[0] / 2, 0.0, along])
+        center = _on_surface(parent, top, centre, offset_local, size)
+        return self.add(cls, size, center, parent.yaw_deg, parent.key, "below", looks_like)
 
     def _wall_point(self, wall: str, along: float, off_wall: float, height: float) -> FloatArray:
         d, w = self.plan.depth / 2, self.plan.width / 2
@@ -298,6 +337,20 @@ class Planner:
 
     def wall_length(self, wall: str) -> float:
         return self.plan.width if wall in ("far", "back") else self.plan.depth
+
+
+def _on_surface(
+    parent: PlannedObject,
+    top: float,
+    centre: FloatArray,
+    offset_local: FloatArray,
+    size: FloatArray,
+) -> FloatArray:
+    """The room-frame centre of an object of `size` resting on a surface of `parent` (its
+    height and centre from `parent.surfaces()`), moved by `offset_local` in the parent's axes."""
+    offset = rot_y(math.radians(parent.yaw_deg)) @ offset_local
+    result: FloatArray = np.array([centre[0], top + size[1] / 2 + 0.002, centre[1]]) + offset
+    return result
 
 
 # Stand-in shape of the probe objects used to test a placement before building the real one.
@@ -338,8 +391,11 @@ def _bedroom(p: Planner) -> None:
     bed = _against_some_wall(p, "bed", bed_size, far_first=True)
     if bed is not None:
         wall, along = _wall_of(bed), _along_wall(bed)
-        for _ in range(int(p.rng.integers(1, 4))):
-            p.on_top(bed, "pillow")
+        if p.style.cushion_rows:
+            _cushion_rows(p, bed, first_row=(1, 2, 2, 2, 3, 4), scale=1.0)
+        else:
+            for _ in range(int(p.rng.integers(1, 4))):
+                p.on_top(bed, "pillow")
         stand_size = p.size_of("night_stand")
         for side in (-1, 1):
             if p.rng.random() < 0.85:
@@ -353,11 +409,60 @@ def _bedroom(p: Planner) -> None:
     _fill_walls(p, ["dresser", "cabinet", "night_stand", "bookshelf", "desk", "box", "chair"])
 
 
+def _cushion_rows(
+    p: Planner, parent: PlannedObject, first_row: tuple[int, ...], scale: float
+) -> None:
+    """Cushions in a row against the parent's back, as many as `first_row` draws, and on a
+    third of them a smaller row in front; `scale` sizes them (a sofa's are smaller)."""
+    surfaces = parent.shape.support_surfaces
+    if not surfaces:
+        return
+    back = min(range(len(surfaces)), key=lambda i: surfaces[i].x_range[0])
+    depth = _cushion_row(p, parent, back, int(p.rng.choice(first_row)), 0.0, scale)
+    if depth > 0 and p.rng.random() < 0.35:
+        _cushion_row(p, parent, back, int(p.rng.integers(1, 4)), depth, 0.7 * scale)
+
+
+def _cushion_row(
+    p: Planner,
+    parent: PlannedObject,
+    surface_index: int,
+    count: int,
+    inset: float,
+    scale: float,
+) -> float:
+    """`count` matching cushions (one size, one material) side by side across a surface,
+    `inset` from its back edge, propped up (thin and tall) or lying; returns the row's depth
+    (0 if none fit)."""
+    _, _, extent_x, extent_z, clearance = parent.surfaces()[surface_index]
+    if count < 1:
+        return 0.0
+    gap = p.rng.uniform(0.0, 0.04)
+    width = min(p.rng.uniform(0.45, 0.75) * scale, (0.95 * extent_z - gap * (count - 1)) / count)
+    if p.rng.random() < 0.5:  # propped against the back
+        size = np.array([p.rng.uniform(0.12, 0.2), p.rng.uniform(0.3, 0.5) * scale, width])
+    else:
+        size = np.array([p.rng.uniform(0.3, 0.5) * scale, p.rng.uniform(0.1, 0.2), width])
+    size[1] = min(size[1], 0.85 * clearance)
+    if width < 0.15 * scale or inset + size[0] > 0.9 * extent_x:
+        return 0.0
+    first: int | None = None
+    for along in (np.arange(count) - (count - 1) / 2) * (width + gap):
+        cushion = p.at_back_of(
+            parent, surface_index, "pillow", size.copy(), inset, float(along), first
+        )
+        first = cushion.key if first is None else first
+    return float(size[0])
+
+
 def _living(p: Planner) -> None:
     sofa = _against_some_wall(p, "sofa", p.size_of("sofa"))
     if sofa is not None:
-        for _ in range(int(p.rng.integers(0, 4))):
-            p.on_top(sofa, "pillow")
+        if p.style.cushion_rows:
+            _cushion_rows(p, sofa, first_row=(0, 1, 2, 2, 3), scale=0.7)
+        else:
+            for _ in range(int(p.rng.integers(0, 4))):
+                p.on_top(sofa, "pillow")
         inward = -rot_y(math.radians(sofa.yaw_deg)) @ np.array([-1.0, 0.0, 0.0])
         spot = sofa.center + inward * (sofa.size[0] / 2 + 0.6)
         table = p.free(
@@ -530,8 +635,8 @@ def _floor_boxes(p: Planner) -> None:
         )
 
 
-def plan_room(rng: np.random.Generator) -> RoomPlan:
-    planner = Planner(rng)
+def plan_room(rng: np.random.Generator, style: RoomStyle = DEFAULT_STYLE) -> RoomPlan:
+    planner = Planner(rng, style)
     _wall_items(planner)  # doors and windows first, so furniture does not block them
     THEMES[planner.plan.theme](planner)
     _floor_boxes(planner)

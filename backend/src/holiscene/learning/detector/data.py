@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from functools import partial
 from multiprocessing import get_context
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import cv2
 import numpy as np
@@ -21,6 +22,9 @@ from holiscene_schema import Mask
 
 from ...inputs import read_input_folder
 from .retexture import retexture
+
+if TYPE_CHECKING:
+    from ...synth.plan import RoomStyle
 
 MIN_VISIBLE = 0.4  # share of a box that must stay in a crop for the box to be kept
 MIN_SIDE_PX = 6.0
@@ -161,17 +165,21 @@ def synthetic_photos(
     cache_dir: Path,
     progress: Callable[[int, int], None] | None = None,
     workers: int = 2,
+    style: RoomStyle | None = None,
 ) -> list[BoxedPhoto]:
-    """Synthetic rooms of `seeds` (rendered into `cache_dir` once, as `holiscene synth` writes
-    them) with their exact boxes."""
+    """Synthetic rooms of `seeds` in `style` (the generator's default when None) with their
+    exact boxes, rendered into `cache_dir` once as `holiscene synth` writes them."""
     from ...synth.generate import synthesize_to  # the renderer is heavy: only when rendering
+    from ...synth.plan import DEFAULT_STYLE
 
-    missing = [s for s in seeds if not (cache_dir / f"synth-{s}" / "detections.json").is_file()]
+    style = style or DEFAULT_STYLE
+    folders = {s: cache_dir / f"synth-{s}{style.folder_suffix}" for s in seeds}
+    missing = [s for s in seeds if not (folders[s] / "detections.json").is_file()]
     if missing:
         cache_dir.mkdir(parents=True, exist_ok=True)
+        render = partial(synthesize_to, out_dir=cache_dir, style=style)
         with get_context("spawn").Pool(workers) as pool:
-            jobs = pool.imap_unordered(partial(synthesize_to, out_dir=cache_dir), missing)
-            for done, _ in enumerate(jobs, start=1):
+            for done, _ in enumerate(pool.imap_unordered(render, missing), start=1):
                 if progress:
                     progress(done, len(missing))
-    return [boxed_photo(cache_dir / f"synth-{s}") for s in seeds]
+    return [boxed_photo(folders[s]) for s in seeds]

@@ -51,6 +51,8 @@ class DetectorTrainConfig:
     tune_deep_blocks: bool = False
     deep_blocks_learning_rate: float = 0.1
     retexture: float = 0.0  # chance that a synthetic object is repainted (retexture.py)
+    # A record of the training rooms' style (synth/plan.py RoomStyle; the caller renders them).
+    cushion_rows: bool = False
     coco_model: Path = COCO_DETECTOR_DIR / MODEL_FILE
 
 
@@ -75,8 +77,12 @@ class FeatureSet:
 def model_name(config: DetectorTrainConfig) -> str:
     """What the model is, for people choosing one (the models page, the benchmark)."""
     tuned = "head and a copy of its stride-32 blocks" if config.tune_deep_blocks else "head"
-    repainted = " with repainted surfaces" if config.retexture > 0 else ""
-    return f"NYU-40 detector (COCO backbone, {tuned} fine-tuned on synthetic rooms{repainted})"
+    extras = [
+        *(["rows of cushions"] if config.cushion_rows else []),
+        *(["repainted surfaces"] if config.retexture > 0 else []),
+    ]
+    rooms = "synthetic rooms" + (f" with {' and '.join(extras)}" if extras else "")
+    return f"NYU-40 detector (COCO backbone, {tuned} fine-tuned on {rooms})"
 
 
 def final_classes(trained: Sequence[str]) -> list[str]:
