@@ -21,7 +21,14 @@ from holiscene.cli import main
 from holiscene.core.data_dir_owner import batch_presence
 from holiscene.core.settings import Settings
 from holiscene.inputs import read_input_folder
-from holiscene.services.batch import BATCH_STARTER, ORPHANED, STOPPED, ray_runtime, run_batch
+from holiscene.services.batch import (
+    BATCH_STARTER,
+    ORPHANED,
+    STOPPED,
+    new_batch_job,
+    ray_runtime,
+    run_batch,
+)
 from holiscene.services.workbench import Workbench, imported_scene
 from holiscene.store.jobs import BATCH_STAGE
 from holiscene.synth.generate import synthesize_to
@@ -181,6 +188,25 @@ def test_a_new_batch_takes_the_scenes_a_killed_batch_left_running(
         orphan = workbench.jobs.get(left.id)
         assert (orphan.status, orphan.error) == ("failed", ORPHANED)
         assert [r.kind for r in workbench.scenes.revisions(scene_id)] == ["import", "pipeline"]
+    finally:
+        workbench.close()
+
+
+def test_a_new_batch_takes_a_scene_whose_job_a_killed_batch_made_but_never_sent(
+    local_ray: None, rooms: list[Path], tmp_path: Path
+) -> None:
+    """Killed between making a scene's job and sending its photo to a worker, a batch leaves
+    the job queued. It is the batch's from the start, so the next batch fails it too."""
+    data = tmp_path / "data"
+    scene_id = _store(data, rooms[1])
+    workbench = Workbench(Settings(data_dir=data))
+    try:
+        left = new_batch_job(workbench, scene_id)  # where the killed batch stopped
+        assert workbench.jobs.get(left.id).status == "queued"
+        report = run_batch(workbench, [scene_id], workers=1)
+        assert report.done == [scene_id], report.failed
+        orphan = workbench.jobs.get(left.id)
+        assert (orphan.status, orphan.error) == ("failed", ORPHANED)
     finally:
         workbench.close()
 

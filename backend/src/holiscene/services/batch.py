@@ -33,6 +33,8 @@ from ..store.jobs import BATCH_STAGE, SceneJobRunningError
 from .reconstruction import Reconstruction, reconstruct_scene
 
 if TYPE_CHECKING:
+    from holiscene_schema import Job
+
     from ..store.scenes import SceneStore
     from .workbench import JobRun, Workbench
 
@@ -160,6 +162,14 @@ def run_batch(
     return batch.report
 
 
+def new_batch_job(workbench: Workbench, scene_id: str) -> Job:
+    """The scene's job on its latest revision, marked the batch's (BATCH_STAGE) from the
+    start: a batch killed before it sends the photo out leaves a job that the next batch
+    recognises as a killed batch's and fails, as it does those left out on a worker."""
+    revision = workbench.scenes.summary(scene_id).revision
+    return workbench.jobs.create(scene_id, revision, started_by=BATCH_STARTER, stage=BATCH_STAGE)
+
+
 @dataclass(frozen=True)
 class _Out:
     """A scene whose photo is on a worker."""
@@ -191,8 +201,7 @@ class _Batch:
         # fails it), so no job is left queued.
         with stop_signals_deferred():
             try:
-                revision = workbench.scenes.summary(scene_id).revision
-                job = workbench.jobs.create(scene_id, revision, started_by=BATCH_STARTER)
+                job = new_batch_job(workbench, scene_id)
             except SceneJobRunningError as busy:  # a server runs it: its result is not ours
                 self._finished(scene_id, str(busy))
                 return

@@ -22,8 +22,8 @@ class JobNotFoundError(NotFoundError):
     pass
 
 
-# The stage of a pipeline job whose photo is out on a batch's worker (`holiscene batch`):
-# the batch, not a server, finishes it.
+# The stage of a pipeline job a batch made (`holiscene batch`), queued until its photo is out
+# on a worker, then running: the batch, not a server, finishes it.
 BATCH_STAGE = "batch"
 
 # Jobs that train a model; only one of them runs at a time, whatever its kind.
@@ -88,11 +88,13 @@ class JobStore:
         kind: JobKind = "pipeline",
         started_by: str | None = None,
         max_waiting: int | None = None,
+        stage: str | None = None,
     ) -> Job:
-        """A queued pipeline job (or placement job) on a scene's revision. SceneJobRunningError
-        when the scene has one queued or running (the database refuses a second);
-        JobQueueFullError when `max_waiting` of them wait on all scenes (the caller serialises
-        this count and the insert with a lock)."""
+        """A queued pipeline job (or placement job) on a scene's revision, in `stage` if given
+        (a batch's job is the batch's from the start). SceneJobRunningError when the scene has
+        one queued or running (the database refuses a second); JobQueueFullError when
+        `max_waiting` of them wait on all scenes (the caller serialises this count and the
+        insert with a lock)."""
         if kind not in SCENE_JOB_KINDS:
             raise ValueError(f"{kind!r} is not a scene job kind")
         with Session(self.engine) as session:
@@ -100,7 +102,11 @@ class JobStore:
                 _check_queue_room(session, max_waiting)
             row = self._new(
                 JobRow(
-                    scene_id=scene_id, kind=kind, base_revision=base_revision, started_by=started_by
+                    scene_id=scene_id,
+                    kind=kind,
+                    base_revision=base_revision,
+                    started_by=started_by,
+                    stage=stage,
                 )
             )
             session.add(row)
