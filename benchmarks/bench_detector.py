@@ -115,8 +115,6 @@ def main(argv: list[str] | None = None) -> int:
     print("| --- | --- | --- | --- | --- | --- | --- |")
     for name, r in results.items():
         real_s, mm3d_s, synth_s = r["real"], r["mm3d"], r["synthetic"]
-        assert isinstance(real_s, dict) and isinstance(mm3d_s, dict) and isinstance(synth_s, dict)
-        assert isinstance(r["synthetic_map"], float | None)
         print(
             f"| {name} | {percent(real_s['recall_any_class'])} "
             f"| {percent(real_s['recall_right_class'])} | {percent(mm3d_s['precision'])} "

@@ -163,7 +163,6 @@ def _train_detector(args: argparse.Namespace) -> int:
     try:
         from ..learning.detector.data import synthetic_photos
         from ..learning.detector.train import DetectorTrainConfig, train_detector
-        from ..synth.plan import RoomStyle
     except ImportError as error:
         raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
     if args.out.exists() and any(args.out.iterdir()):
@@ -182,11 +181,20 @@ def _train_detector(args: argparse.Namespace) -> int:
         def rendered(done: int, total: int) -> None:
             progress(0.0, f"rendering rooms {done}/{total}")
 
+        config = DetectorTrainConfig(
+            seed=args.seed,
+            epochs=args.epochs,
+            coco_weight=args.coco_weight,
+            views=args.views,
+            tune_deep_blocks=args.tune_deep_blocks,
+            retexture=args.retexture,
+            cushion_rows=args.cushion_rows,
+        )
         train = synthetic_photos(
             range(DETECTOR_TRAIN_SEED, DETECTOR_TRAIN_SEED + args.scenes),
             cache,
             rendered,
-            style=RoomStyle(cushion_rows=args.cushion_rows),
+            style=config.room_style,
         )
         validation = synthetic_photos(
             range(DETECTOR_VALIDATION_SEED, DETECTOR_VALIDATION_SEED + args.validation_scenes),
@@ -196,15 +204,6 @@ def _train_detector(args: argparse.Namespace) -> int:
         if args.from_scratch:
             metrics = _train_scratch(args, train, validation, progress)
         else:
-            config = DetectorTrainConfig(
-                seed=args.seed,
-                epochs=args.epochs,
-                coco_weight=args.coco_weight,
-                views=args.views,
-                tune_deep_blocks=args.tune_deep_blocks,
-                retexture=args.retexture,
-                cushion_rows=args.cushion_rows,
-            )
             metrics = train_detector(train, validation, config, args.out, progress)
     print(f"validation mAP@0.5 {metrics['validation_map_at_0_5']:.3f} -> {args.out}")
     return 0

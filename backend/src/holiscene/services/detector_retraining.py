@@ -62,8 +62,6 @@ DETECTOR_TRAIN_SEED = 400_000
 DETECTOR_VALIDATION_SEED = 460_000
 EVALUATION_IOU = 0.5
 ROOMS_FOLDER = "detector-rooms"  # under the data directory: rendered rooms, kept between jobs
-RETEXTURE = 0.0  # chance that a synthetic object is repainted (learning/detector/retexture.py)
-CUSHION_ROWS = False  # training rooms' beds and sofas hold rows of cushions (synth/plan.py)
 
 Box = tuple[float, float, float, float]
 
@@ -77,8 +75,8 @@ class DetectorRetrainConfig:
     # The committed model's recipe (docs/detector.md): the head's own copy of the backbone's
     # stride-32 blocks is tuned too, and synthetic objects may be repainted.
     tune_deep_blocks: bool = True
-    retexture: float = RETEXTURE
-    cushion_rows: bool = CUSHION_ROWS
+    retexture: float = 0.0  # chance that a synthetic object is repainted
+    cushion_rows: bool = False  # training rooms dressed with rows of cushions (synth/plan.py)
     seed: int = 0
     cache_dir: Path | None = None  # where rendered rooms are kept
 
@@ -310,9 +308,16 @@ class DetectorRetrainJob(TrainingJob):
         # PyTorch only here, in the job: the server's request path never imports it.
         from ..learning.detector.data import synthetic_photos
         from ..learning.detector.train import DetectorTrainConfig, train_detector
-        from ..synth.plan import RoomStyle
 
         config = self.config
+        train_config = DetectorTrainConfig(
+            seed=config.seed,
+            epochs=config.epochs,
+            coco_weight=config.coco_weight,
+            tune_deep_blocks=config.tune_deep_blocks,
+            retexture=config.retexture,
+            cushion_rows=config.cushion_rows,
+        )
         cache = config.cache_dir or self.work_root.parent / ROOMS_FOLDER  # the data dir's
 
         def rendered(done: int, total: int) -> None:
@@ -324,7 +329,7 @@ class DetectorRetrainJob(TrainingJob):
             range(first, first + config.synthetic_rooms),
             cache,
             rendered,
-            style=RoomStyle(cushion_rows=config.cushion_rows),
+            style=train_config.room_style,
         )
         validation = synthetic_photos(
             range(validation_first, validation_first + config.validation_rooms), cache, rendered
@@ -333,14 +338,6 @@ class DetectorRetrainJob(TrainingJob):
         self._log(
             f"training on {len(rooms)} synthetic rooms and {len(stored)} stored scenes "
             f"(x{config.stored_repeats}), {len(validation)} synthetic rooms to validate"
-        )
-        train_config = DetectorTrainConfig(
-            seed=config.seed,
-            epochs=config.epochs,
-            coco_weight=config.coco_weight,
-            tune_deep_blocks=config.tune_deep_blocks,
-            retexture=config.retexture,
-            cushion_rows=config.cushion_rows,
         )
         started = time.monotonic()
         metrics = train_detector(photos, validation, train_config, out_dir, self._training_progress)

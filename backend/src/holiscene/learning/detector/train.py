@@ -24,6 +24,7 @@ from holiscene_schema import NYU40_CLASSES
 from holiscene_schema.detector_model import COCO_TO_NYU40, INPUT_SIZE
 
 from ...evaluation.detection_2d import MAP_SCORE_THRESHOLD, DetectionEvaluation, ScoredBox
+from ...synth.plan import RoomStyle
 from ..train import plot_curve, run_record
 from ..training_api import TrainProgress
 from .backbone import DEEP_STRIDE, FeatureExtractor, box_head_weights
@@ -51,9 +52,14 @@ class DetectorTrainConfig:
     tune_deep_blocks: bool = False
     deep_blocks_learning_rate: float = 0.1
     retexture: float = 0.0  # chance that a synthetic object is repainted (retexture.py)
-    # A record of the training rooms' style (synth/plan.py RoomStyle; the caller renders them).
+    # The training rooms' style (synth/plan.py RoomStyle): the caller renders them.
     cushion_rows: bool = False
     coco_model: Path = COCO_DETECTOR_DIR / MODEL_FILE
+
+    @property
+    def room_style(self) -> RoomStyle:
+        """The style the training rooms are rendered in."""
+        return RoomStyle(cushion_rows=self.cushion_rows)
 
 
 # Input tensor [1, S, S, 3] -> (what the trained net reads, the COCO heatmap, the deep
