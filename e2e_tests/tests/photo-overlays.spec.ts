@@ -220,7 +220,9 @@ test("a crowded scene's labels do not overlap; mask colouring and opacity are re
   await page.getByTestId("mask-opacity").fill("0.42");
 });
 
-test("a real photo: labels apart, sources in the object list", async ({ page }) => {
+test("a real photo: labels apart, sources and 3D box confidences in the object list", async ({
+  page,
+}) => {
   const doc = await seedScene(page.request, path.join(REAL, "im3d-1"), "im3d-1 overlays");
   await page.addInitScript(() => localStorage.setItem("holiscene.liveSuggestions", "off"));
   await openScene(page, doc.scene_id);
@@ -229,6 +231,13 @@ test("a real photo: labels apart, sources in the object list", async ({ page }) 
   expect(overlappingPairs(overlays.tags)).toEqual([]);
   const given = doc.scene.objects?.find((o) => o.source === "given" && o.class !== "floor");
   if (given) await expect(page.getByTestId(`object-source-${given.id}`)).toHaveText("given");
+  // The box refiner's chance that a 3D box is right, beside the source.
+  const judged = doc.scene.objects?.filter((o) => o.box_3d && o.box_3d_confidence != null) ?? [];
+  expect(judged.length).toBeGreaterThan(0);
+  for (const object of judged) {
+    const percent = Math.round((object.box_3d_confidence ?? 0) * 100);
+    await expect(page.getByTestId(`box-confidence-${object.id}`)).toHaveText(`3D ${percent}%`);
+  }
   await page.getByTestId("photo-panel").screenshot({
     path: path.join(SCREENSHOTS, "photo-real-labels.png"),
   });

@@ -66,6 +66,7 @@ function benchmarkScene(): { image: EncodedImage; objects: SceneObject[] } {
     ...blob(next),
     box_3d: null,
     corners_3d: null,
+    box_3d_confidence: null,
     mesh: null,
     note: null,
     set_by_person: [],

@@ -145,6 +145,13 @@ class SceneObject(SchemaModel):
     mask: Mask | None = None
     box_3d: Box3D | None = None
     corners_3d: BoxCorners | None = None
+    box_3d_confidence: float | None = Field(
+        default=None,
+        ge=0.0,
+        le=1.0,
+        description="How likely the 3D box is right: the box refiner's estimate of the chance "
+        "that it overlaps the true box at 3D IoU 0.15 or more; null where no model judged it",
+    )
     mesh: MeshRef | None = None
     score: float | None = Field(default=None, ge=0.0, le=1.0, description="Detection confidence")
     source: Literal["given", "detector", "manual"] | None = Field(

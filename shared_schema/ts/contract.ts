@@ -1048,6 +1048,10 @@ export interface SceneObject {
  */
 bbox: [number, number, number, number]
 box_3d: (Box3D | null)
+/**
+ * How likely the 3D box is right: the box refiner's estimate of the chance that it overlaps the true box at 3D IoU 0.15 or more; null where no model judged it
+ */
+box_3d_confidence: (number | null)
 class: ("wall" | "floor" | "cabinet" | "bed" | "chair" | "sofa" | "table" | "door" | "window" | "bookshelf" | "picture" | "counter" | "blinds" | "desk" | "shelves" | "curtain" | "dresser" | "pillow" | "mirror" | "floor_mat" | "clothes" | "ceiling" | "books" | "refrigerator" | "television" | "paper" | "towel" | "shower_curtain" | "box" | "whiteboard" | "person" | "night_stand" | "toilet" | "sink" | "lamp" | "bathtub" | "bag" | "otherstructure" | "otherfurniture" | "otherprop")
 corners_3d: ([[number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number], [number, number, number]] | null)
 id: string

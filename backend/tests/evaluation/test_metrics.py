@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from holiscene.evaluation.metrics import Evaluation
+from holiscene.evaluation.metrics import Evaluation, score_3d
 from holiscene.geometry.boxes import box_corners
 from holiscene.segmentation.rle import encode_mask
 from holiscene_schema import Camera, ImageInfo, Layout, Scene, SceneObject, SupportRelation
@@ -107,6 +107,29 @@ def test_average_precision_with_a_false_positive_ranked_first() -> None:
     # Ranked: false positive, then two hits -> precision 0, 1/2, 2/3 at recall 0, 1/2, 1.
     evaluation.detections["chair"] = [(0.9, False), (0.8, True), (0.7, True)]
     assert evaluation.average_precision()["chair"] == pytest.approx(2 / 3)
+
+
+def test_3d_boxes_rank_by_detection_score_times_box_confidence(truth: Scene) -> None:
+    """Two lamps, one placed wrong: ranked by the box confidence the wrong one comes second
+    (precision 1 at recall 1/2: AP 1/2); with the higher confidence it would come first
+    (precision 1/2: AP 1/4)."""
+    lamps = [obj(f"l{i}", "lamp", [i, 0, i + 1, 2], (3 * i, 5, 0)) for i in range(2)]
+    truth = truth.model_copy(update={"objects": lamps, "supports": []})
+    wrong = lamps[0].model_copy(update={"corners_3d": (np.array(lamps[0].corners_3d) + 5).tolist()})
+
+    def lamp_ap(confidences: tuple[float, float]) -> float:
+        judged = [
+            o.model_copy(update={"score": 0.8, "box_3d_confidence": c})
+            for o, c in zip((wrong, lamps[1]), confidences, strict=True)
+        ]
+        evaluation = Evaluation()
+        evaluation.add(truth.model_copy(update={"objects": judged}), truth)
+        return evaluation.average_precision()["lamp"]
+
+    assert lamp_ap((0.2, 0.9)) == pytest.approx(0.5)
+    assert lamp_ap((0.9, 0.2)) == pytest.approx(0.25)
+    assert score_3d(lamps[0]) == 1.0  # neither a score nor a confidence
+    assert score_3d(lamps[0].model_copy(update={"score": 0.5, "box_3d_confidence": 0.4})) == 0.2
 
 
 def test_box_recall_counts_every_box_the_same(truth: Scene) -> None:

@@ -23,14 +23,13 @@ from holiscene.core.settings import Settings
 from holiscene.inputs import read_input_folder
 from holiscene.services.batch import (
     BATCH_STARTER,
-    ORPHANED,
     STOPPED,
     new_batch_job,
     ray_runtime,
     run_batch,
 )
 from holiscene.services.workbench import Workbench, imported_scene
-from holiscene.store.jobs import BATCH_STAGE
+from holiscene.store.jobs import BATCH_ORPHANED, BATCH_STAGE
 from holiscene.synth.generate import synthesize_to
 from holiscene_schema import SupportRelation
 
@@ -186,7 +185,7 @@ def test_a_new_batch_takes_the_scenes_a_killed_batch_left_running(
         report = run_batch(workbench, [scene_id], workers=1)
         assert report.done == [scene_id], report.failed
         orphan = workbench.jobs.get(left.id)
-        assert (orphan.status, orphan.error) == ("failed", ORPHANED)
+        assert (orphan.status, orphan.error) == ("failed", BATCH_ORPHANED)
         assert [r.kind for r in workbench.scenes.revisions(scene_id)] == ["import", "pipeline"]
     finally:
         workbench.close()
@@ -206,7 +205,7 @@ def test_a_new_batch_takes_a_scene_whose_job_a_killed_batch_made_but_never_sent(
         report = run_batch(workbench, [scene_id], workers=1)
         assert report.done == [scene_id], report.failed
         orphan = workbench.jobs.get(left.id)
-        assert (orphan.status, orphan.error) == ("failed", ORPHANED)
+        assert (orphan.status, orphan.error) == ("failed", BATCH_ORPHANED)
     finally:
         workbench.close()
 

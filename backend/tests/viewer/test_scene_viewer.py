@@ -118,6 +118,7 @@ def test_selecting_an_object_highlights_it(synthetic_folder: Path, open_viewer: 
     assert f"| type | {support.type} |" in details
     assert "| confidence | 1.00 |" in details
     assert "| source | manual (synthetic) |" in details
+    assert "| 3D box confidence | - |" in details  # ground truth: no model judged its box
 
     # Clicking another object in the scene does the same through `select`.
     other = next(o.id for o in data.scene.objects if o.id != child)

@@ -16,6 +16,7 @@ import {
 import { rgbCss } from "../views/classColors";
 import { maskColours } from "../views/objectColors";
 import { maskStyle } from "../views/photo/maskStyle";
+import { boxConfidence } from "./boxConfidence";
 import { objectSource } from "./objectSource";
 import { supportSummary } from "./supportSummary";
 
@@ -37,7 +38,7 @@ interface Row {
 }
 
 const rowKey = (o: SceneObject) =>
-  JSON.stringify([o.id, o.class, o.source, o.score, o.set_by_person]);
+  JSON.stringify([o.id, o.class, o.source, o.score, o.set_by_person, boxConfidence(o)?.text]);
 
 function supporterOptions(object: SceneObject, objects: readonly SceneObject[]): HTMLElement[] {
   return [
@@ -160,6 +161,7 @@ function objectRow(
   );
   const status = el("span", { className: "badge", testid: `support-status-${id}` });
   const source = objectSource(object);
+  const boxTrust = boxConfidence(object);
   const element = el(
     "tr",
     {
@@ -191,6 +193,13 @@ function objectRow(
             testid: `object-source-${id}`,
             text: source.text,
             attrs: { title: source.title },
+          }),
+        boxTrust &&
+          el("span", {
+            className: `object-source box-confidence${boxTrust.doubtful ? " box-confidence--doubtful" : ""}`,
+            testid: `box-confidence-${id}`,
+            text: boxTrust.text,
+            attrs: { title: boxTrust.title },
           }),
       ),
       status,

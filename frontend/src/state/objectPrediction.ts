@@ -24,6 +24,7 @@ function newObject(edit: NewObject, cls: SceneObject["class"]): SceneObject {
     set_by_person: ["object"],
     box_3d: null,
     corners_3d: null,
+    box_3d_confidence: null,
     mesh: null,
     note: null,
   };

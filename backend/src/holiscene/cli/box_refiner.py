@@ -23,13 +23,14 @@ def add_box_refiner_training_command(
     train.add_argument("--validation-rooms", type=int, default=40)
     train.add_argument("--validation-seed", type=int, default=960000)
     train.add_argument("--epochs", type=int, default=30)
+    train.add_argument("--members", type=int, default=5, help="networks in the ensemble")
     train.add_argument("--workers", type=int, default=2, help="processes making the rooms")
     train.add_argument("--seed", type=int, default=0)
     train.set_defaults(handler=_train_box_refiner)
 
 
 def _train_box_refiner(args: argparse.Namespace) -> int:
-    for name in ("rooms", "validation_rooms", "epochs", "workers"):
+    for name in ("rooms", "validation_rooms", "epochs", "members", "workers"):
         if getattr(args, name) < 1:
             raise CliError(f"--{name.replace('_', '-')} must be at least 1")
     try:
@@ -44,6 +45,7 @@ def _train_box_refiner(args: argparse.Namespace) -> int:
             validation_rooms=args.validation_rooms,
             validation_seed=args.validation_seed,
             epochs=args.epochs,
+            members=args.members,
             workers=args.workers,
             seed=args.seed,
         )

@@ -6,7 +6,8 @@
   of only the parts inside the camera's view (no photo shows the walls behind or beside the
   camera; SUN RGB-D's layouts, annotated on depth scans, barely contain them either).
 - Camera pitch and roll mean absolute error in degrees.
-- 3D detection average precision at 3D IoU 0.15 per class and its mean (VOC all-point AP).
+- 3D detection average precision at 3D IoU 0.15 per class and its mean (VOC all-point AP;
+  boxes ranked by `score_3d`).
 - 2D mask IoU per ground-truth object.
 A prediction that lacks a value scores as wrong (IoU 0, support missing) and is counted, never
 silently skipped. A ground truth that lacks a kind of label (a dataset without support labels,
@@ -21,7 +22,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene
+from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene, SceneObject
 
 from ..geometry.camera import PinholeCamera
 from ..segmentation.rle import decode_mask
@@ -143,7 +144,7 @@ class Evaluation:
             gts = [np.array(o.corners_3d) for o in truth.objects if o.cls == cls and o.corners_3d]
             self.gt_boxes[cls] += len(gts)
             preds = [o for o in predicted.objects if o.cls == cls and o.corners_3d]
-            preds.sort(key=lambda o: -(o.score if o.score is not None else 1.0))
+            preds.sort(key=lambda o: -score_3d(o))
             used: set[int] = set()
             for pred in preds:
                 ious = [iou_3d(np.array(pred.corners_3d), g) for g in gts]
@@ -155,8 +156,7 @@ class Evaluation:
                 hit = best is not None and ious[best] >= AP_IOU
                 if hit and best is not None:
                     used.add(best)
-                score = pred.score if pred.score is not None else 1.0
-                self.detections[cls].append((score, hit))
+                self.detections[cls].append((score_3d(pred), hit))
 
     # -- summaries ---------------------------------------------------------------------
 
@@ -224,6 +224,15 @@ def truth_metrics(truth: Scene) -> list[str]:
         "mask": any(o.mask is not None for o in truth.objects),
     }
     return [metric for metric in METRICS if has[metric]]
+
+
+def score_3d(obj: SceneObject) -> float:
+    """How a 3D box ranks among its class's boxes: its detection score times how sure the box
+    refiner is of the box (as monocular 3D detectors rank by 2D score times 3D confidence); a
+    value no model gave counts as 1."""
+    detection = obj.score if obj.score is not None else 1.0
+    box = obj.box_3d_confidence if obj.box_3d_confidence is not None else 1.0
+    return detection * box
 
 
 def all_point_average_precision(scored_hits: list[tuple[float, bool]], truth_count: int) -> float:

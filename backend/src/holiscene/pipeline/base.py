@@ -95,6 +95,9 @@ class SceneContext:
     # Stage name -> what it found that is no problem (e.g. a fit's quality): a plain note.
     reports: dict[str, str] = field(default_factory=dict)
     object_notes: dict[str, str] = field(default_factory=dict)  # object id -> why a value is null
+    # Object id -> the chance its 3D box is right (SceneObject.box_3d_confidence), from the
+    # stage that judged the box; a box no stage judged has none.
+    box_confidences: dict[str, float] = field(default_factory=dict)
 
     @property
     def height(self) -> int:
@@ -120,6 +123,7 @@ SLOTS: frozenset[str] = frozenset(f.name for f in fields(SceneContext)) - {
     "notes",
     "reports",
     "object_notes",
+    "box_confidences",
 }
 
 

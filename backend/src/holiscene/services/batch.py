@@ -29,7 +29,7 @@ from ..core.data_dir_owner import batch_presence
 from ..core.errors import NotFoundError
 from ..core.interrupts import stop_signals_deferred
 from ..inputs import InputFiles
-from ..store.jobs import BATCH_STAGE, SceneJobRunningError
+from ..store.jobs import BATCH_ORPHANED, BATCH_STAGE, SceneJobRunningError
 from .reconstruction import Reconstruction, reconstruct_scene
 
 if TYPE_CHECKING:
@@ -52,7 +52,6 @@ LOOPBACK = "127.0.0.1"
 # reconstruct_scene's arguments that name folders on the driver's machine.
 FOLDER_ARGUMENTS = ("models_dir", "support_model_dir", "detector_model_dir")
 STOPPED = "the batch stopped before this scene was done; run holiscene batch again"
-ORPHANED = "the batch that ran this scene was killed before it was done; a new batch takes it"
 
 
 class UnknownScenesError(NotFoundError):
@@ -148,7 +147,7 @@ def run_batch(
     waiting = deque(scene_ids)
     with batch_presence(workbench.settings.data_dir) as others:
         if not others:  # what a killed batch left out is nobody's: its scenes can run again
-            workbench.jobs.fail_unfinished(ORPHANED, batch_jobs=True)
+            workbench.jobs.fail_unfinished(BATCH_ORPHANED, batch_jobs=True)
         try:
             while waiting or batch.out:
                 while waiting and len(batch.out) < workers:

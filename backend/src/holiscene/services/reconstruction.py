@@ -91,8 +91,8 @@ def reconstruct_scene(
 
 
 def _finished_object(ctx: SceneContext, obj: SceneObject) -> SceneObject:
-    """The object with what the stages computed for it: mask, 3D box, its corners and where its
-    mesh came from."""
+    """The object with what the stages computed for it: mask, 3D box, its corners, how sure the
+    box is and where its mesh came from."""
     mask = (ctx.masks or {}).get(obj.id)
     fitted = (ctx.object_meshes or {}).get(obj.id)
     box = (ctx.boxes_3d or {}).get(obj.id)
@@ -104,6 +104,7 @@ def _finished_object(ctx: SceneContext, obj: SceneObject) -> SceneObject:
             "mask": encode_mask(mask.pixels, mask.source) if mask is not None else None,
             "box_3d": box,
             "corners_3d": corners,
+            "box_3d_confidence": ctx.box_confidences.get(obj.id) if box is not None else None,
             "mesh": fitted.ref if fitted is not None and box is not None else obj.mesh,
             "note": ctx.object_notes.get(obj.id, obj.note),
         }

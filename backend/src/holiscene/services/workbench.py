@@ -35,7 +35,7 @@ from ..learning.training_api import METRICS_FILE
 from ..pipeline import PLACEMENT_STAGES
 from ..store import model_registry
 from ..store.files import SceneFiles
-from ..store.jobs import JobStore
+from ..store.jobs import BATCH_ORPHANED, JobStore
 from ..store.model_registry import KIND_FOLDERS, ModelNotFoundError, ModelStore, Registration
 from ..store.scenes import SceneChangedError, SceneStore
 from ..store.users import UserStore
@@ -160,11 +160,13 @@ class Workbench:
         lock, core.data_dir_owner): another server's jobs would be failed under it."""
         for kind, job_kind in RETRAIN_JOB_KINDS.items():
             self._recover_retrain_jobs(job_kind, self.registry(kind))
-        # A live batch's jobs are its own to finish (core.data_dir_owner).
-        live_batch = running_batches(self.settings.data_dir) > 0
-        count = self.jobs.fail_unfinished(
-            "the server stopped before this job finished; run it again",
-            batch_jobs=False if live_batch else None,
+        # A live batch's jobs are its own to finish (core.data_dir_owner); a dead batch's
+        # were never this server's: they fail as the next batch would fail them.
+        count = 0
+        if running_batches(self.settings.data_dir) == 0:
+            count += self.jobs.fail_unfinished(BATCH_ORPHANED, batch_jobs=True)
+        count += self.jobs.fail_unfinished(
+            "the server stopped before this job finished; run it again", batch_jobs=False
         )
         if count:
             log.warning("marked %d unfinished job(s) failed after restart", count)

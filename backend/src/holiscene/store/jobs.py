@@ -25,6 +25,8 @@ class JobNotFoundError(NotFoundError):
 # The stage of a pipeline job a batch made (`holiscene batch`), queued until its photo is out
 # on a worker, then running: the batch, not a server, finishes it.
 BATCH_STAGE = "batch"
+# Why such a job failed once no batch runs (the next batch, or a server start, fails it).
+BATCH_ORPHANED = "the batch that ran this scene was killed before it was done; a new batch takes it"
 
 # Jobs that train a model; only one of them runs at a time, whatever its kind.
 RETRAIN_KINDS: tuple[JobKind, ...] = ("retrain", "detector_retrain")

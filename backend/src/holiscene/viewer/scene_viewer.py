@@ -398,6 +398,7 @@ class SceneViewer:
             if obj.box_3d is not None:
                 size = " × ".join(f"{s:.2f}" for s in obj.box_3d.size)
                 rows.append(("box size (d × h × w)", f"{size} m"))
+                rows.append(("3D box confidence", _fmt(obj.box_3d_confidence)))
         if obj_id in self._arrow_skipped:
             rows.append(("arrow", f"not drawn: {self._arrow_skipped[obj_id]}"))
         if obj.note:

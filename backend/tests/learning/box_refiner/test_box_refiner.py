@@ -48,15 +48,17 @@ def _run(folder: Path, stages: tuple[str, ...]) -> Scene:
     return reconstruct_scene(inputs, name=folder.name, image_file="img.png", stages=stages).scene
 
 
-def _found(scene: Scene, truth: Scene) -> int:
+def _found(scene: Scene, truth: Scene) -> set[str]:
+    """The ids of the objects of `scene` whose 3D box finds its true box at IoU 0.15."""
     matched = match_objects(scene.objects, truth.objects)
     by_id = {o.id: o for o in scene.objects}
-    found = 0
+    found = set()
     for true_object in truth.objects:
         estimate = by_id.get(matched.get(true_object.id, ""))
         if true_object.box_3d is None or estimate is None or estimate.box_3d is None:
             continue
-        found += iou_3d(_corners(estimate.box_3d), _corners(true_object.box_3d)) >= 0.15
+        if iou_3d(_corners(estimate.box_3d), _corners(true_object.box_3d)) >= 0.15:
+            found.add(estimate.id)
     return found
 
 
@@ -123,20 +125,41 @@ def test_the_committed_model_refines_every_placed_box(rooms: list[Path]) -> None
     assert ratios.shape == (len(view.placed()), 4) and np.isfinite(ratios).all()
     assert np.abs(ratios[:, 0]).max() < math.log(2.0)  # no box moved to twice its distance
     assert np.abs(ratios).max() < math.log(10.0)  # thin sides may grow a lot, not without end
-    boxes = refiner.refine(view)
-    assert set(boxes) == {o.id for o in view.placed()}
-    assert any(boxes[i] != view.boxes[i] for i in boxes)
+    refinements = refiner.refine(view)
+    assert set(refinements) == {o.id for o in view.placed()}
+    assert any(r.box != view.boxes[i] for i, r in refinements.items())
+    assert all(0.0 < r.confidence < 1.0 for r in refinements.values())
 
 
 def test_refined_boxes_find_more_true_boxes_than_the_placement(rooms: list[Path]) -> None:
     placement = refiner = 0
     for folder in rooms:
         truth = Scene.model_validate_json((folder / "gt.json").read_text())
-        placement += _found(_run(folder, WITHOUT_REFINER), truth)
+        placement += len(_found(_run(folder, WITHOUT_REFINER), truth))
         scene = _run(folder, DEFAULT_STAGES)
         assert "boxes_by_refiner" in {s.name for s in scene.stages}
-        refiner += _found(scene, truth)
+        refiner += len(_found(scene, truth))
     assert refiner > placement, (refiner, placement)
+
+
+def test_the_refiner_is_surer_of_the_boxes_it_gets_right(rooms: list[Path]) -> None:
+    right: list[float] = []
+    wrong: list[float] = []
+    for folder in rooms:
+        truth = Scene.model_validate_json((folder / "gt.json").read_text())
+        scene = _run(folder, DEFAULT_STAGES)
+        found = _found(scene, truth)
+        for obj in scene.objects:
+            if obj.box_3d is None:
+                assert obj.box_3d_confidence is None
+                continue
+            assert obj.box_3d_confidence is not None
+            (right if obj.id in found else wrong).append(obj.box_3d_confidence)
+    assert right and wrong
+    assert np.mean(right) > np.mean(wrong) + 0.1, (np.mean(right), np.mean(wrong))
+    # Without the refiner no model judges the boxes.
+    placed = _run(rooms[0], WITHOUT_REFINER)
+    assert all(o.box_3d_confidence is None for o in placed.objects)
 
 
 def test_train_3d_writes_a_model_that_matches_pytorch(tmp_path: Path) -> None:
@@ -155,6 +178,8 @@ def test_train_3d_writes_a_model_that_matches_pytorch(tmp_path: Path) -> None:
             "2",
             "--epochs",
             "1",
+            "--members",
+            "2",
             "--workers",
             "1",
             "--first-seed",
@@ -166,6 +191,8 @@ def test_train_3d_writes_a_model_that_matches_pytorch(tmp_path: Path) -> None:
     assert metrics["onnx_max_abs_difference"] < 1e-4
     metadata = json.loads((out / "metadata.json").read_text())
     assert len(metadata["features"]) == len(metadata["mean"]) == len(metadata["std"])
+    assert metadata["members"] == 2 and len(metadata["curves"]) == 2
+    assert 0.0 <= metrics["validation_mean_confidence"] <= 1.0
     assert (out / "curve.png").stat().st_size > 1000
     # The new model loads at run time.
     assert box_refiner(out).classes == metadata["classes"]

@@ -1,7 +1,10 @@
-"""Training the box refiner (PyTorch): rooms made by `data.make_rooms`, a scene per step,
-smooth L1 on the log ratios, the learning rate annealed over the epochs; the epoch whose
-refined boxes find most true boxes on the validation rooms is kept, exported to ONNX, checked
-against PyTorch, and written with its normalisation, metrics and curve."""
+"""Training the box refiner (PyTorch): rooms made by `data.make_rooms`; several members, each
+from its own seed, trained a scene per step on the Laplace likelihood of the log ratios (each
+target's error scaled by the member's own expected error, so the few boxes the geometry put far
+off weigh less), the learning rate annealed over the epochs, each member kept at the epoch whose
+refined boxes find most true boxes on the validation rooms. The members' ensemble is exported to
+ONNX and checked against PyTorch; the confidence (`confidence.py`) is fitted on the validation
+rooms; all is written with the normalisation, metrics and curves."""
 
 from __future__ import annotations
 
@@ -10,6 +13,7 @@ import json
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import torch
@@ -20,12 +24,13 @@ from ...evaluation.box_iou import iou_3d
 from ...geometry.boxes import corners_of
 from ...shapes import SIZE_RANGES
 from ..export import keep_if_faithful
+from .confidence import FOUND_IOU, confidence_features, fit_confidence
 from .data import RoomSample, make_rooms
 from .features import PAIR_FEATURES, TARGETS, feature_names, refined
-from .net import BoxRefinerNet
+from .net import OUTPUT_PARTS, BoxRefinerEnsemble, BoxRefinerNet
 
 MODEL_FILE = "model.onnx"
-FOUND_IOU = 0.15  # the issue's measure: a true box is found by a box with 3D IoU >= 0.15
+OUTPUT_NAME = "refinement"
 EXPORT_TOLERANCE = 1e-4  # log ratios
 
 
@@ -37,9 +42,23 @@ class BoxRefinerTraining:
     validation_rooms: int = 40
     validation_seed: int = 960000
     epochs: int = 30
+    members: int = 5  # networks in the ensemble, trained from seeds seed, seed + 1, ...
     workers: int = 2
     seed: int = 0
-    curve: list[dict[str, float]] = field(default_factory=list)
+    curves: list[list[dict[str, float]]] = field(default_factory=list)  # per member
+
+
+@dataclass(frozen=True)
+class Normalised:
+    """The training rooms' features standardised, as tensors, and the standardisation."""
+
+    mean: torch.Tensor
+    std: torch.Tensor
+    scenes: list[tuple[torch.Tensor, torch.Tensor, torch.Tensor]]  # features, pairs, targets
+
+    def inputs(self, room: RoomSample) -> tuple[torch.Tensor, torch.Tensor]:
+        x = (torch.from_numpy(room.features) - self.mean) / self.std
+        return x[None], torch.from_numpy(room.pairs)[None]
 
 
 def _found(estimate: Box3D, truth: Box3D) -> bool:
@@ -56,22 +75,35 @@ def pipeline_found_share(rooms: list[RoomSample]) -> float:
     return found / _true_boxes(rooms)
 
 
-def refined_found_share(
-    net: BoxRefinerNet, rooms: list[RoomSample], mean: torch.Tensor, std: torch.Tensor
-) -> float:
-    """Share of the true boxes found at IoU 0.15 by the boxes `net` refines."""
+def _refined_boxes(
+    net: torch.nn.Module, rooms: list[RoomSample], data: Normalised
+) -> list[tuple[Box3D, Box3D, np.ndarray]]:
+    """(refined box, true box, the net's output row) for every matched box of `rooms`."""
     net.eval()
-    found = 0
+    out = []
     with torch.no_grad():
         for room in rooms:
             if not room.truths:
                 continue
-            x = (torch.from_numpy(room.features) - mean) / std
-            predicted = net(x[None], torch.from_numpy(room.pairs)[None])[0].numpy()
-            for estimate, truth, ratios in zip(room.estimates, room.truths, predicted, strict=True):
-                found += _found(refined(estimate, ratios), truth)
+            rows = net(*data.inputs(room))[0].numpy()
+            for estimate, truth, row in zip(room.estimates, room.truths, rows, strict=True):
+                out.append((refined(estimate, row[: len(TARGETS)]), truth, row))
     net.train()
+    return out
+
+
+def refined_found_share(net: torch.nn.Module, rooms: list[RoomSample], data: Normalised) -> float:
+    """Share of the true boxes found at IoU 0.15 by the boxes `net` refines."""
+    found = sum(_found(box, truth) for box, truth, _ in _refined_boxes(net, rooms, data))
     return found / _true_boxes(rooms)
+
+
+def laplace_loss(output: torch.Tensor, target: torch.Tensor) -> torch.Tensor:
+    """Negative log likelihood of the targets under a Laplace distribution per target, centred
+    on the predicted log ratio with the predicted log scale (constants dropped)."""
+    n = len(TARGETS)
+    ratios, log_scales = output[..., :n], output[..., n:]
+    return ((target - ratios).abs() * torch.exp(-log_scales) + log_scales).mean()
 
 
 def _gather(
@@ -88,7 +120,57 @@ def _gather(
     return rooms
 
 
-def export_onnx(net: BoxRefinerNet, path: Path, features: int) -> float:
+def _normalise(rooms: list[RoomSample]) -> Normalised:
+    everything = torch.from_numpy(np.concatenate([r.features for r in rooms]))
+    # A feature constant over the training rooms (a class the generator never makes) keeps
+    # unit scale: dividing by its tiny spread would blow up any photo that has it.
+    mean, spread = everything.mean(0), everything.std(0)
+    std = torch.where(spread < 1e-3, torch.ones_like(spread), spread + 1e-3)
+    scenes = [
+        (
+            (torch.from_numpy(r.features) - mean) / std,
+            torch.from_numpy(r.pairs),
+            torch.from_numpy(r.targets),
+        )
+        for r in rooms
+    ]
+    return Normalised(mean, std, scenes)
+
+
+def train_member(
+    data: Normalised, validation: list[RoomSample], run: BoxRefinerTraining, member: int
+) -> BoxRefinerNet:
+    """One network from seed `run.seed + member`, at its best validation epoch; its curve goes
+    to `run.curves`."""
+    torch.manual_seed(run.seed + member)
+    net = BoxRefinerNet(int(data.mean.shape[0]))
+    optimiser = torch.optim.AdamW(net.parameters(), lr=1e-3, weight_decay=0.01)
+    schedule = torch.optim.lr_scheduler.CosineAnnealingLR(optimiser, run.epochs)
+    curve: list[dict[str, float]] = []
+    run.curves.append(curve)
+    best: tuple[float, dict[str, torch.Tensor]] = (-1.0, {})
+    label = f"member {member + 1}/{run.members}"
+    for epoch in range(1, run.epochs + 1):
+        losses = []
+        order = torch.randperm(len(data.scenes)).tolist()
+        for index in tqdm(order, desc=f"{label} epoch {epoch}", leave=False, file=sys.stderr):
+            x, pairs, y = data.scenes[index]
+            loss = laplace_loss(net(x[None], pairs[None])[0], y)
+            optimiser.zero_grad()
+            loss.backward()  # type: ignore[no-untyped-call]
+            optimiser.step()
+            losses.append(loss.item())
+        schedule.step()
+        share = refined_found_share(net, validation, data)
+        curve.append({"epoch": epoch, "train_loss": float(np.mean(losses)), "found": share})
+        print(json.dumps({"member": member + 1, **curve[-1]}), file=sys.stderr, flush=True)
+        if share > best[0]:
+            best = (share, copy.deepcopy(net.state_dict()))
+    net.load_state_dict(best[1])
+    return net
+
+
+def export_onnx(net: BoxRefinerEnsemble, path: Path, features: int) -> float:
     """Write the ONNX model to `path` only if it agrees with PyTorch within EXPORT_TOLERANCE
     on a random scene of another size than the traced one (so the object axis is dynamic);
     returns the largest difference."""
@@ -100,11 +182,11 @@ def export_onnx(net: BoxRefinerNet, path: Path, features: int) -> float:
         example,
         str(tmp),
         input_names=["objects", "pairs"],
-        output_names=["log_ratios"],
+        output_names=[OUTPUT_NAME],
         dynamic_axes={
             "objects": {1: "n"},
             "pairs": {1: "n", 2: "n"},
-            "log_ratios": {1: "n"},
+            OUTPUT_NAME: {1: "n"},
         },
         opset_version=17,
         dynamo=False,
@@ -113,35 +195,61 @@ def export_onnx(net: BoxRefinerNet, path: Path, features: int) -> float:
     with torch.no_grad():
         expected = net(objects, pairs).numpy()
     feeds = {"objects": objects.numpy(), "pairs": pairs.numpy()}
-    return keep_if_faithful(tmp, path, feeds, "log_ratios", expected, EXPORT_TOLERANCE)
+    return keep_if_faithful(tmp, path, feeds, OUTPUT_NAME, expected, EXPORT_TOLERANCE)
 
 
-def _plot(curve: list[dict[str, float]], path: Path) -> None:
+def plot_curves(
+    curves: list[list[dict[str, float]]], pipeline_share: float, ensemble_share: float, path: Path
+) -> None:
+    """The members' training losses and validation shares, with the placement's share and
+    the ensemble's (each member at its kept epoch)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     figure, (loss_axis, found_axis) = plt.subplots(1, 2, figsize=(9, 3.5))
-    epochs = [c["epoch"] for c in curve]
-    loss_axis.plot(epochs, [c["train_loss"] for c in curve])
+    for member, curve in enumerate(curves, start=1):
+        epochs = [c["epoch"] for c in curve]
+        loss_axis.plot(epochs, [c["train_loss"] for c in curve], label=f"member {member}")
+        found_axis.plot(epochs, [100 * c["found"] for c in curve], label=f"member {member}")
+    found_axis.axhline(100 * pipeline_share, color="grey", ls="--", label="placement's boxes")
+    found_axis.axhline(100 * ensemble_share, color="black", label="the ensemble")
     loss_axis.set_xlabel("epoch")
-    loss_axis.set_ylabel("training loss (smooth L1)")
-    found_axis.plot(epochs, [100 * c["found_refined"] for c in curve], label="refined boxes")
-    found_axis.plot(
-        epochs, [100 * c["found_pipeline"] for c in curve], label="placement's boxes", ls="--"
-    )
+    loss_axis.set_ylabel("training loss (Laplace NLL)")
     found_axis.set_xlabel("epoch")
     found_axis.set_ylabel(f"validation boxes found at IoU {FOUND_IOU}, %")
-    found_axis.legend()
+    found_axis.legend(fontsize="small")
     figure.tight_layout()
     figure.savefig(path, dpi=90)
     plt.close(figure)
 
 
-def train_box_refiner(run: BoxRefinerTraining) -> dict[str, float]:
+def _fit_confidence_on(
+    ensemble: BoxRefinerEnsemble, validation: list[RoomSample], data: Normalised
+) -> tuple[dict[str, Any], dict[str, float]]:
+    """The confidence model fitted on the validation rooms' refined boxes (as JSON), and how
+    it fits there: the boxes' mean chance against the share found."""
+    n = len(TARGETS)
+    boxes = _refined_boxes(ensemble, validation, data)
+    if not boxes:
+        raise ValueError("no validation room has a placed object to fit the confidence on")
+    features = np.stack(
+        [confidence_features(b, row[n : 2 * n], row[2 * n :]) for b, _, row in boxes]
+    )
+    found = np.array([_found(box, truth) for box, truth, _ in boxes])
+    model = fit_confidence(features, found)
+    chances = model.chance(features)
+    fit = {
+        "validation_mean_confidence": float(chances.mean()),
+        "validation_share_of_boxes_right": float(found.mean()),
+        "validation_brier_score": float(np.mean((chances - found) ** 2)),
+    }
+    return model.to_json(), fit
+
+
+def train_box_refiner(run: BoxRefinerTraining) -> dict[str, Any]:
     torch.set_num_threads(1)
-    torch.manual_seed(run.seed)
     run.out.mkdir(parents=True, exist_ok=True)
     classes = sorted(SIZE_RANGES)
     seeds = range(run.first_seed, run.first_seed + run.rooms)
@@ -154,79 +262,48 @@ def train_box_refiner(run: BoxRefinerTraining) -> dict[str, float]:
     validation = _gather(validation_seeds, classes, run.workers, "validation rooms", failures)
     if not rooms:
         raise ValueError("no training room has a placed object")
-    everything = torch.from_numpy(np.concatenate([r.features for r in rooms]))
-    # A feature constant over the training rooms (a class the generator never makes) keeps
-    # unit scale: dividing by its tiny spread would blow up any photo that has it.
-    mean, spread = everything.mean(0), everything.std(0)
-    std = torch.where(spread < 1e-3, torch.ones_like(spread), spread + 1e-3)
-    data = [
-        (
-            (torch.from_numpy(r.features) - mean) / std,
-            torch.from_numpy(r.pairs),
-            torch.from_numpy(r.targets),
-        )
-        for r in rooms
-    ]
-    net = BoxRefinerNet(everything.shape[1])
-    optimiser = torch.optim.AdamW(net.parameters(), lr=1e-3, weight_decay=0.01)
-    schedule = torch.optim.lr_scheduler.CosineAnnealingLR(optimiser, run.epochs)
+    data = _normalise(rooms)
+    members = [train_member(data, validation, run, k) for k in range(run.members)]
+    ensemble = BoxRefinerEnsemble(members)
     pipeline_share = pipeline_found_share(validation)
-    best: tuple[float, dict[str, torch.Tensor]] = (-1.0, {})
-    for epoch in range(1, run.epochs + 1):
-        losses = []
-        for index in tqdm(
-            torch.randperm(len(data)).tolist(), desc=f"epoch {epoch}", leave=False, file=sys.stderr
-        ):
-            x, pairs, y = data[index]
-            loss = torch.nn.functional.smooth_l1_loss(net(x[None], pairs[None])[0], y, beta=0.1)
-            optimiser.zero_grad()
-            loss.backward()  # type: ignore[no-untyped-call]
-            optimiser.step()
-            losses.append(loss.item())
-        schedule.step()
-        refined_share = refined_found_share(net, validation, mean, std)
-        run.curve.append(
-            {
-                "epoch": epoch,
-                "train_loss": float(np.mean(losses)),
-                "found_pipeline": pipeline_share,
-                "found_refined": refined_share,
-            }
-        )
-        print(json.dumps(run.curve[-1]), file=sys.stderr, flush=True)
-        if refined_share > best[0]:
-            best = (refined_share, copy.deepcopy(net.state_dict()))
-    net.load_state_dict(best[1])
-    difference = export_onnx(net, run.out / MODEL_FILE, everything.shape[1])
-    best_epoch = max(run.curve, key=lambda c: c["found_refined"])
+    confidence, fit = _fit_confidence_on(ensemble, validation, data)
+    features = int(data.mean.shape[0])
+    ensemble_share = refined_found_share(ensemble, validation, data)
     metrics = {
         "validation_found_pipeline": pipeline_share,
-        "validation_found_refined": best_epoch["found_refined"],
-        "best_epoch": best_epoch["epoch"],
-        "onnx_max_abs_difference": difference,
-        "training_objects": int(everything.shape[0]),
+        "validation_found_refined": ensemble_share,
+        "validation_found_by_member": [max(c["found"] for c in curve) for curve in run.curves],
+        "best_epoch_by_member": [
+            max(curve, key=lambda c: c["found"])["epoch"] for curve in run.curves
+        ],
+        **fit,
+        "onnx_max_abs_difference": export_onnx(ensemble, run.out / MODEL_FILE, features),
+        "training_objects": sum(len(r.targets) for r in rooms),
         "rooms_the_pipeline_failed_on": len(failures),
     }
     (run.out / "metrics.json").write_text(json.dumps(metrics, indent=1) + "\n")
     metadata = {
         "model": MODEL_FILE,
         "inputs": ["objects", "pairs"],
-        "output": "log_ratios",
+        "output": OUTPUT_NAME,
+        "output_columns": [f"{t} {part}" for part in OUTPUT_PARTS for t in TARGETS],
         "targets": list(TARGETS),
         "classes": classes,
         "features": feature_names(classes),
-        "mean": [round(float(v), 6) for v in mean],
-        "std": [round(float(v), 6) for v in std],
+        "mean": [round(float(v), 6) for v in data.mean],
+        "std": [round(float(v), 6) for v in data.std],
+        "confidence": confidence,
         "found_iou": FOUND_IOU,
         "rooms": run.rooms,
         "first_seed": run.first_seed,
         "validation_rooms": run.validation_rooms,
         "validation_seed": run.validation_seed,
         "epochs": run.epochs,
+        "members": run.members,
         "seed": run.seed,
         "failed_rooms": failures,
-        "curve": run.curve,
+        "curves": run.curves,
     }
     (run.out / "metadata.json").write_text(json.dumps(metadata, indent=1) + "\n")
-    _plot(run.curve, run.out / "curve.png")
+    plot_curves(run.curves, pipeline_share, ensemble_share, run.out / "curve.png")
     return metrics
