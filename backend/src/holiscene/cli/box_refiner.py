@@ -20,7 +20,7 @@ def add_box_refiner_training_command(
     train.add_argument("-o", "--out", type=Path, required=True, help="new model directory")
     train.add_argument("--rooms", type=int, default=1500, help="training rooms")
     train.add_argument("--first-seed", type=int, default=610000, help="first training room's seed")
-    train.add_argument("--validation-rooms", type=int, default=40)
+    train.add_argument("--validation-rooms", type=int, default=200)
     train.add_argument("--validation-seed", type=int, default=960000)
     train.add_argument("--epochs", type=int, default=30)
     train.add_argument("--members", type=int, default=5, help="networks in the ensemble")

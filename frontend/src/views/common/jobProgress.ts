@@ -2,6 +2,18 @@
 import type { Job } from "@holiscene/schema";
 import { el } from "../../dom";
 
+/** The stage of a job `holiscene batch` made (the backend's store/jobs.py BATCH_STAGE): the
+ * batch, not the server, runs it. */
+const BATCH_STAGE = "batch";
+
+/** What a scene page says while the job it waits for is unfinished. */
+export function waitingText(job: Job): string {
+  return job.stage === BATCH_STAGE
+    ? "A batch (holiscene batch) is pre-annotating this scene; it opens when the batch has " +
+        "done it. If that batch was stopped, the next batch takes the scene."
+    : "The pipeline is still running on this scene; it opens when done.";
+}
+
 export function describeJob(job: Job): string {
   const percent = `${Math.round(job.progress * 100)}%`;
   const what = {
@@ -13,7 +25,7 @@ export function describeJob(job: Job): string {
   const retraining = job.kind === "retrain" || job.kind === "detector_retrain";
   switch (job.status) {
     case "queued":
-      return `${what} queued…`;
+      return job.stage === BATCH_STAGE ? `${what} queued in a batch…` : `${what} queued…`;
     case "running":
       return `Running${job.stage ? ` ${job.stage}` : ""} · ${percent}${job.message ? ` · ${job.message}` : ""}`;
     case "succeeded":

@@ -6,7 +6,7 @@ import { ApiError } from "../../api/errors";
 import { isFinished, pollJob } from "../../api/jobs";
 import { button, el } from "../../dom";
 import { SceneSession } from "../../state/sceneSession";
-import { jobProgress } from "../common/jobProgress";
+import { jobProgress, waitingText } from "../common/jobProgress";
 import { mayHaveGlb } from "../scene3d/viewportObjects";
 import { downloadMenu } from "./downloadMenu";
 import { sceneMeta } from "./sceneMeta";
@@ -96,7 +96,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     message.textContent = "Loading…";
     const job = await latestJob(sceneId, abort.signal);
     if (job && !isFinished(job)) {
-      message.textContent = "The pipeline is still running on this scene; it opens when done.";
+      message.textContent = waitingText(job);
       await waitForJob(job);
     } else if (job?.status === "failed") {
       progress.update(job);

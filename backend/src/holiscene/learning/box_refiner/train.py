@@ -39,7 +39,7 @@ class BoxRefinerTraining:
     out: Path
     rooms: int = 1500
     first_seed: int = 610000  # training rooms: first_seed, first_seed + 1, ...
-    validation_rooms: int = 40
+    validation_rooms: int = 200
     validation_seed: int = 960000
     epochs: int = 30
     members: int = 5  # networks in the ensemble, trained from seeds seed, seed + 1, ...

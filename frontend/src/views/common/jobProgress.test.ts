@@ -1,0 +1,35 @@
+// A job's text on the scene page: a batch's job says the batch has the scene, not that the
+// pipeline is running (nothing runs it until a batch does).
+import type { Job } from "@holiscene/schema";
+import { describe, expect, it } from "vitest";
+import { describeJob, waitingText } from "./jobProgress";
+
+const job = (stage: string | null): Job => ({
+  id: "j1",
+  kind: "pipeline",
+  status: "queued",
+  stage,
+  progress: 0,
+  message: null,
+  error: null,
+  log: "",
+  scene_id: "s1",
+  base_revision: 1,
+  result_revision: null,
+  result_model_id: null,
+  started_by: null,
+  created_at: "2026-12-05T00:00:00Z",
+  finished_at: null,
+});
+
+describe("job texts", () => {
+  it("says a batch has the scene when the job is a batch's", () => {
+    expect(waitingText(job("batch"))).toContain("holiscene batch");
+    expect(describeJob(job("batch"))).toBe("Pipeline queued in a batch…");
+  });
+
+  it("says the pipeline runs for a server's job", () => {
+    expect(waitingText(job(null))).toContain("still running");
+    expect(describeJob(job(null))).toBe("Pipeline queued…");
+  });
+});
