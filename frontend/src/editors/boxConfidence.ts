@@ -3,7 +3,8 @@
 // learned from; on real photos it ranks boxes, it is not a measured rate.
 import type { SceneObject } from "@holiscene/schema";
 
-/** Below this chance of being right a box is marked as doubtful. */
+/** Below this chance of being right a box is marked as doubtful (the backend's stage note
+ * counts with the same half: learning/box_refiner/confidence.py DOUBTFUL_CHANCE). */
 export const DOUBTFUL_BOX = 0.5;
 
 export interface BoxConfidenceText {

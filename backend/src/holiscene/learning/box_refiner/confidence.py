@@ -19,9 +19,13 @@ import numpy as np
 from holiscene_schema import Box3D
 from numpy.typing import NDArray
 
+from ...evaluation.metrics import AP_IOU
 from .features import TARGETS
 
-FOUND_IOU = 0.15  # the measure: a true box is found by a box with 3D IoU >= 0.15
+FOUND_IOU = AP_IOU  # a true box is found by a box with 3D IoU >= 0.15, as `holiscene eval` counts
+# Below this chance a refined box is more likely wrong than right (the stage's note; the
+# object list's orange badge, frontend/src/editors/boxConfidence.ts, uses the same half).
+DOUBTFUL_CHANCE = 0.5
 
 CONFIDENCE_FEATURES: tuple[str, ...] = (
     *(f"log expected error of the {t}" for t in TARGETS),

@@ -11,6 +11,7 @@ from __future__ import annotations
 import copy
 import json
 import sys
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -69,10 +70,16 @@ def _true_boxes(rooms: list[RoomSample]) -> int:
     return max(sum(len(room.truths) + room.missed for room in rooms), 1)
 
 
+def _share(found: Iterable[bool], rooms: list[RoomSample]) -> float:
+    """Share of the rooms' true boxes that `found` says were found (missed ones count too)."""
+    return sum(found) / _true_boxes(rooms)
+
+
 def pipeline_found_share(rooms: list[RoomSample]) -> float:
     """Share of the true boxes found at IoU 0.15 by the placement's boxes (fixed in training)."""
-    found = sum(_found(e, t) for r in rooms for e, t in zip(r.estimates, r.truths, strict=True))
-    return found / _true_boxes(rooms)
+    return _share(
+        (_found(e, t) for r in rooms for e, t in zip(r.estimates, r.truths, strict=True)), rooms
+    )
 
 
 def _refined_boxes(
@@ -94,8 +101,7 @@ def _refined_boxes(
 
 def refined_found_share(net: torch.nn.Module, rooms: list[RoomSample], data: Normalised) -> float:
     """Share of the true boxes found at IoU 0.15 by the boxes `net` refines."""
-    found = sum(_found(box, truth) for box, truth, _ in _refined_boxes(net, rooms, data))
-    return found / _true_boxes(rooms)
+    return _share((_found(box, truth) for box, truth, _ in _refined_boxes(net, rooms, data)), rooms)
 
 
 def laplace_loss(output: torch.Tensor, target: torch.Tensor) -> torch.Tensor:
@@ -226,18 +232,17 @@ def plot_curves(
 
 
 def _fit_confidence_on(
-    ensemble: BoxRefinerEnsemble, validation: list[RoomSample], data: Normalised
+    boxes: list[tuple[Box3D, Box3D, np.ndarray]], found: np.ndarray
 ) -> tuple[dict[str, Any], dict[str, float]]:
-    """The confidence model fitted on the validation rooms' refined boxes (as JSON), and how
-    it fits there: the boxes' mean chance against the share found."""
+    """The confidence model fitted on the validation rooms' refined boxes (`_refined_boxes`)
+    and whether each was found (as JSON), and how it fits there: the boxes' mean chance
+    against the share found."""
     n = len(TARGETS)
-    boxes = _refined_boxes(ensemble, validation, data)
     if not boxes:
         raise ValueError("no validation room has a placed object to fit the confidence on")
     features = np.stack(
         [confidence_features(b, row[n : 2 * n], row[2 * n :]) for b, _, row in boxes]
     )
-    found = np.array([_found(box, truth) for box, truth, _ in boxes])
     model = fit_confidence(features, found)
     chances = model.chance(features)
     fit = {
@@ -266,9 +271,12 @@ def train_box_refiner(run: BoxRefinerTraining) -> dict[str, Any]:
     members = [train_member(data, validation, run, k) for k in range(run.members)]
     ensemble = BoxRefinerEnsemble(members)
     pipeline_share = pipeline_found_share(validation)
-    confidence, fit = _fit_confidence_on(ensemble, validation, data)
+    # The ensemble's validation boxes, refined once for its share and the confidence's fit.
+    boxes = _refined_boxes(ensemble, validation, data)
+    found = np.array([_found(box, truth) for box, truth, _ in boxes], dtype=bool)
+    ensemble_share = _share(found.tolist(), validation)
+    confidence, fit = _fit_confidence_on(boxes, found)
     features = int(data.mean.shape[0])
-    ensemble_share = refined_found_share(ensemble, validation, data)
     metrics = {
         "validation_found_pipeline": pipeline_share,
         "validation_found_refined": ensemble_share,

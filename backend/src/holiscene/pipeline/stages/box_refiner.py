@@ -1,15 +1,16 @@
 """3D boxes refined by the learned box refiner (thesis Ch. 5; `learning.box_refiner`), after
 the placement: each box is moved along its ray and resized by what the network reads from
 the placement's boxes, the masks, supports and camera, and the other objects, and given the
-chance that it is right (`SceneObject.box_3d_confidence`). On held-out
-synthetic rooms this finds more true boxes than the placement alone (docs/benchmarks.md,
-"Learned box refinement"); `--stages` without it keeps the placement's boxes.
+chance that it is right (`SceneObject.box_3d_confidence`). On held-out synthetic rooms this
+finds more true boxes than the placement alone (docs/benchmarks.md, "Learned box
+refinement"); `--stages` without it keeps the placement's boxes.
 
 Skipped for a photo with depth (`Stage.single_photo_only`): the depth's boxes are better.
 """
 
 from __future__ import annotations
 
+from ...learning.box_refiner.confidence import DOUBTFUL_CHANCE
 from ...learning.box_refiner.features import SceneView
 from ...learning.box_refiner.runtime import box_refiner
 from ..base import SceneContext, Stage, required
@@ -43,7 +44,7 @@ class BoxesByRefiner(Stage):
         boxes.update({object_id: r.box for object_id, r in refined.items()})
         ctx.boxes_3d = boxes
         ctx.box_confidences.update({object_id: r.confidence for object_id, r in refined.items()})
-        doubtful = sum(r.confidence < 0.5 for r in refined.values())
+        doubtful = sum(r.confidence < DOUBTFUL_CHANCE for r in refined.values())
         ctx.reports[self.name] = (
             f"{len(refined)} boxes refined, {doubtful} of them more likely wrong than right"
         )
