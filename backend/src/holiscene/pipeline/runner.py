@@ -22,6 +22,7 @@ DEFAULT_STAGES: tuple[str, ...] = (
     "heights_by_metrology",
     "placement",
     "boxes_by_refiner",
+    "layout_holds_hung_objects",
     "boxes_from_depth",
     "shapes_fit",
     "shape_completion",

@@ -186,3 +186,27 @@ def room_of(layout: Layout | None) -> Room | None:
     if not np.all(room.size > 0.3):
         return None
     return room
+
+
+def widened_to_hold(corners: FloatArray, boxes: list[FloatArray]) -> tuple[FloatArray, list[float]]:
+    """The room's corners (floor 0-3, the ceiling's 4-7 above them) with each wall moved out
+    along its normal just far enough that every box (its 8 corners) is on the room's side of
+    it, and how far each of the four walls moved (0 for a wall no box crosses)."""
+    widened = np.array(corners, dtype=float)
+    floor = widened[:4, [0, 2]]
+    middle = floor.mean(axis=0)
+    points = np.concatenate(boxes)[:, [0, 2]] if boxes else np.zeros((0, 2))
+    moves = []
+    for i in range(4):
+        a, b = floor[i], floor[(i + 1) % 4]
+        edge = b - a
+        outward = np.array([edge[1], -edge[0]]) / max(float(np.linalg.norm(edge)), 1e-9)
+        if outward @ (middle - a) > 0:
+            outward = -outward
+        beyond = float(((points - a) @ outward).max()) if len(points) else 0.0
+        move = max(beyond, 0.0)
+        moves.append(move)
+        for corner in (i, (i + 1) % 4):  # the wall's two floor corners and the two above
+            widened[corner, [0, 2]] += outward * move
+            widened[corner + 4, [0, 2]] += outward * move
+    return widened, moves

@@ -6,6 +6,7 @@ from .completion import ShapeCompletion  # noqa: F401
 from .depth_boxes import BoxesFromDepth  # noqa: F401
 from .depth_layout import LayoutFromDepth  # noqa: F401
 from .grabcut import MasksGrabCut  # noqa: F401
+from .hung_objects import LayoutHoldsHungObjects  # noqa: F401
 from .metrology import HeightsByMetrology  # noqa: F401
 from .placement import PlacementStage  # noqa: F401
 from .restore import SceneFromRevision  # noqa: F401

@@ -195,6 +195,14 @@ class LayoutFromLines(Stage):
         ctx.reports[self.name] = note
 
 
+def image_corners(camera: PinholeCamera, corners: FloatArray) -> list[list[float] | None]:
+    """The stored 2D corners of stored 3D ones: None for a corner behind the camera."""
+    return [
+        None if np.isnan(p).any() else [round(float(v), 2) for v in p]
+        for p in camera.project(corners)
+    ]
+
+
 def write_layout(
     ctx: SceneContext,
     K_source: str,
@@ -212,7 +220,6 @@ def write_layout(
     # Stored rounded; the 2D corners are those of the stored 3D ones (a corner near the
     # camera's plane projects far away, where the rounding would show).
     corners = corners_world.round(4)
-    projected = camera.project(corners)
     ctx.vanishing_points = frame.vanishing_points(K)
     ctx.camera = Camera(
         K=K.tolist(),
@@ -223,9 +230,7 @@ def write_layout(
         height_source=height_source,
     )
     ctx.layout = Layout(
-        corners_2d=[
-            None if np.isnan(p).any() else [round(float(v), 2) for v in p] for p in projected
-        ],
+        corners_2d=image_corners(camera, corners),
         corners_3d=corners.tolist(),
         source="estimated",
         note=note,
