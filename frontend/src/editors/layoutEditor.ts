@@ -137,7 +137,7 @@ function mountLayoutEditor(
     save.disabled = !editable || saving || draft.edit() === null;
     reset.disabled = !editable || saving || !draft.dirty;
     // The placement job runs on the saved layout: save (or reset) the moved corners first.
-    replace.disabled = !editable || running || saving || draft.dirty || !draft.available;
+    replace.disabled = !editable || running || saving || draft.dirty || !draft.hasStoredRoom;
     const { text, alert } = layoutStatus(draft, session.saveState, message);
     status.textContent = text;
     status.classList.toggle("is-alert", alert);

@@ -134,13 +134,65 @@ describe("LayoutDraft", () => {
     expect(draft.dirty).toBe(false);
   });
 
-  it("is not available without a stored layout", () => {
+  it("is not available without a stored layout and without intrinsics", () => {
     const doc = documentFor(ROOM);
     doc.scene.layout = { corners_2d: null, corners_3d: null, source: null, note: null };
+    doc.scene.camera = null;
     const draft = new LayoutDraft(doc, inPhoto);
     expect(draft.available).toBe(false);
     draft.setEditing(true);
     expect(draft.editing).toBe(false);
+  });
+
+  it("puts up a room to start from when the scene has none, saved only once a corner moves", () => {
+    const doc = documentFor(ROOM);
+    doc.scene.layout = { corners_2d: null, corners_3d: null, source: null, note: null };
+    const camera = doc.scene.camera;
+    if (!camera) throw new Error("the fixture has a camera");
+    Object.assign(camera, { pitch_deg: null, roll_deg: null, height_m: null });
+    const draft = new LayoutDraft(doc, inPhoto);
+    expect(draft.available).toBe(true);
+    expect(draft.hasStoredRoom).toBe(false);
+    expect(draft.live).toBeNull(); // nothing shown before editing
+    draft.setEditing(true);
+    expect(draft.starting).toBe(true);
+    expect(draft.live?.pitchDeg).toBe(0); // no pitch known: a level camera
+    expect(draft.handles().map((h) => h.index)).toEqual([1, 2, 5, 6]);
+    expect(draft.dirty).toBe(false);
+    expect(draft.edit()).toBeNull();
+    // Stopping without a drag takes the room away again.
+    draft.setEditing(false);
+    expect(draft.live).toBeNull();
+    expect(draft.handles()).toEqual([]);
+
+    draft.setEditing(true);
+    const start = draft.beginDrag(1);
+    if (!start) throw new Error("the starting room's corner 1 has a handle");
+    draft.moveCorner(1, [start[0] - 30, start[1] + 10]);
+    draft.endDrag();
+    expect(draft.starting).toBe(false);
+    expect(draft.dirty).toBe(true);
+    const edit = draft.edit();
+    expect(edit?.corners_2d.filter((c) => c !== null)).toHaveLength(4);
+    expect(edit?.unseen_wall_distance).toBeCloseTo(1, 9); // the front wall, behind the camera
+    // A moved starting room is the user's: it stays when editing stops, until discarded.
+    draft.setEditing(false);
+    expect(draft.live).not.toBeNull();
+    draft.showStored();
+    expect(draft.live).toBeNull();
+    expect(draft.dirty).toBe(false);
+  });
+
+  it("gives way to a stored room when a revision brings one", () => {
+    const doc = documentFor(ROOM);
+    doc.scene.layout = { corners_2d: null, corners_3d: null, source: null, note: null };
+    const draft = new LayoutDraft(doc, inPhoto);
+    draft.setEditing(true);
+    expect(draft.live?.pitchDeg).toBe(PITCH); // the scene's pitch and roll are kept
+    draft.setDocument(documentFor(ROOM, {}, 4));
+    expect(draft.starting).toBe(false);
+    expect(draft.hasStoredRoom).toBe(true);
+    expect(draft.live?.corners3d).toEqual(ROOM);
   });
 });
 

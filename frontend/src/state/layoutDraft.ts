@@ -13,6 +13,7 @@ import {
   type RoomFit,
   RoomFitError,
 } from "../geometry/roomFit";
+import { type StarterRoom, starterRoom } from "../geometry/starterRoom";
 
 /** The layout stage's camera-height prior (backend editing/layout.py: CAMERA_HEIGHT_PRIOR_M). */
 export const CAMERA_HEIGHT_PRIOR_M = 1.4;
@@ -171,6 +172,8 @@ export class LayoutDraft {
   /** The camera's height set by hand in this draft (metres), or null for the scene's. */
   private cameraHeightM: number | null = null;
   private moved = false;
+  /** The room editing started from when the scene has none stored (see starterRoom). */
+  private starter: StarterRoom | null = null;
   private frame = 0;
   /** The state when the corner being dragged was grabbed. */
   private dragStart: { index: number; from: Point2; state: LayoutState } | null = null;
@@ -186,9 +189,21 @@ export class LayoutDraft {
     this.setState(this.storedState());
   }
 
-  /** Whether there is a stored layout to edit (its corners in the image and the room). */
+  /** Whether there is a layout to edit: a stored one (its corners in the image and the
+   * room), or, for a scene with intrinsics and no room, a starting room editing puts up. */
   get available(): boolean {
-    return storedRoom(this.doc) !== null && this.corners.some((c) => c !== null);
+    if (storedRoom(this.doc) === null) return this.doc.scene.camera != null;
+    return this.corners.some((c) => c !== null);
+  }
+
+  /** Whether the scene has a stored room (what a placement job places the objects in). */
+  get hasStoredRoom(): boolean {
+    return storedRoom(this.doc) !== null;
+  }
+
+  /** Whether the room shown is the starting room of a scene with none stored, unmoved. */
+  get starting(): boolean {
+    return this.starter !== null && !this.moved;
   }
 
   /** The camera's height the room is fitted with: set by hand in this draft, else the scene's. */
@@ -250,8 +265,26 @@ export class LayoutDraft {
   setEditing(on: boolean): void {
     if (this.editing === on || (on && !this.available)) return;
     this.editing = on;
+    if (on && storedRoom(this.doc) === null) this.putUpStarter();
+    // An untouched starting room goes when editing stops: nothing of it was the user's.
+    if (!on && this.starter !== null && !this.moved) this.toStored();
     if (on) this.warmUp();
     this.emit("mode");
+  }
+
+  private putUpStarter(): void {
+    const camera = this.doc.scene.camera;
+    if (!camera) return;
+    const { width, height } = this.doc.scene.image;
+    this.starter = starterRoom(
+      camera.K,
+      width,
+      height,
+      this.cameraHeight,
+      camera.pitch_deg ?? 0,
+      camera.roll_deg ?? 0,
+    );
+    this.toStored();
   }
 
   /**
@@ -278,6 +311,7 @@ export class LayoutDraft {
   setDocument(doc: SceneDocument, savedVersion: number | null = null): void {
     const before = this.doc;
     this.doc = doc;
+    if (storedRoom(doc) !== null) this.starter = null;
     if (savedVersion !== null && savedVersion === this.version && !this.dragging) {
       // The user's pinned corners stay pinned, at the stored (fitted) positions.
       this.toStored(this.used);
@@ -421,6 +455,7 @@ export class LayoutDraft {
   /** The stored layout's corners and room. `pinned`: corners to keep using (if known). */
   private toStored(pinned: readonly boolean[] = []): void {
     this.dragStart = null;
+    if (!this.editing) this.starter = null;
     this.setState(this.storedState(pinned));
     this.showStoredRoom();
   }
@@ -435,7 +470,7 @@ export class LayoutDraft {
   /** Show the stored room (the corners give the stored layout). */
   private showStoredRoom(): void {
     this.cancelFrame();
-    this.live = storedRoom(this.doc);
+    this.live = this.basisRoom();
     this.error = null;
     this.moved = false;
     this.fitTimes.length = 0;
@@ -458,12 +493,12 @@ export class LayoutDraft {
    * `pinned`: corners the user dragged before, used too.
    */
   private storedState(pinned: readonly boolean[] = []): LayoutState {
-    const stored = this.doc.scene.layout?.corners_2d ?? [];
+    const stored = this.starter?.corners2d ?? this.doc.scene.layout?.corners_2d ?? [];
     const corners = Array.from({ length: 8 }, (_, i): Corner => {
       const c = stored[i];
       return c ? [c[0], c[1]] : null;
     });
-    const room = storedRoom(this.doc)?.room ?? null;
+    const room = this.basisRoom()?.room ?? null;
     const choose = (used: boolean[]) => {
       const known = corners.map((c, i) => (used[i] ? c : null));
       const wall = unseenWall(known);
@@ -475,6 +510,14 @@ export class LayoutDraft {
     const visible = choose(corners.map((c, i) => c !== null && (this.inView(c) || !!pinned[i])));
     const chosen = visible.usable ? visible : choose(corners.map((c) => c !== null));
     return { corners, used: chosen.used, unseenDistance: chosen.distance, cameraHeightM: null };
+  }
+
+  /** The room the corners start from: the stored one, else the starting room, if any. */
+  private basisRoom(): LiveRoom | null {
+    const starter = this.starter;
+    if (starter === null) return storedRoom(this.doc);
+    const { pitchDeg, rollDeg, room, corners3d } = starter;
+    return { pitchDeg, rollDeg, room, corners3d };
   }
 
   private emit(change: LayoutChange): void {

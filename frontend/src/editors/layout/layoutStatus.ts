@@ -14,17 +14,36 @@ export function layoutStatus(
   message: StatusLine | null,
 ): StatusLine {
   if (message) return message;
-  if (!draft.available) return { text: "No room layout to edit yet.", alert: false };
+  if (!draft.available) {
+    return {
+      text: draft.hasStoredRoom
+        ? "The stored room has no corner in front of the camera to drag."
+        : "No room layout yet: the photo has no camera intrinsics (run the pipeline first).",
+      alert: false,
+    };
+  }
   if (draft.error !== null)
     return { text: `No room from these corners: ${draft.error}`, alert: true };
   if (draft.dirty && (saveState.kind === "error" || saveState.kind === "conflict")) {
     return { text: `Not saved: ${saveState.message} Your corners are kept.`, alert: true };
   }
   const live = draft.live;
+  if (!draft.editing && !draft.hasStoredRoom && !draft.dirty) {
+    return {
+      text: `No room layout yet: "Edit layout" puts up a room to start from.`,
+      alert: false,
+    };
+  }
   if (!draft.editing || !live) return { text: "", alert: false };
   const [depth, height, width] = live.room.size.map((s) => s.toFixed(2));
   const camera = `camera ${draft.cameraHeight.toFixed(2)} m high, pitch ${live.pitchDeg.toFixed(1)}°, roll ${live.rollDeg.toFixed(1)}°`;
   const room = `room ${depth} × ${width} m, ${height} m high; ${camera}`;
+  if (draft.starting) {
+    return {
+      text: `A room to start from: drag its yellow corners onto the photo's room corners (saved once one moves). ${room}`,
+      alert: false,
+    };
+  }
   return {
     text: draft.dirty ? `Moved (not saved): ${room}` : `Drag the yellow corners. ${room}`,
     alert: false,
