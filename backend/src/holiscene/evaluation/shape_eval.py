@@ -9,6 +9,12 @@ Scores are `shape_metrics`' Chamfer distance, EMD approximation and normal consi
 2048 surface samples per mesh, in the true box's frame scaled by its longest side (the object
 fits the unit cube, as ShapeNet objects are normalised for completion benchmarks; one scale
 for all three axes, so a picture's 2 cm thickness does not magnify its errors 50 times).
+
+A predicted mesh is also scored in its own box (`<library>, own box`): its samples in the
+predicted box's frame scaled by that box's longest side, against the true mesh in the true
+box's, the best of four quarter turns about the vertical (a box's yaw does not say where the
+object's front is). That leaves out where the box is, how big and how turned, and keeps the
+shape and its proportions: how good the model is, apart from the placement.
 """
 
 from __future__ import annotations
@@ -62,6 +68,19 @@ def _samples(mesh: trimesh.Trimesh, box: Box3D, seed: int) -> tuple[np.ndarray, 
     return unit_frame(points, box), normals
 
 
+def _own_box_score(
+    mesh: trimesh.Trimesh, box: Box3D, seed: int, truth: tuple[np.ndarray, np.ndarray]
+) -> dict[str, float]:
+    """Scores of a mesh in its own box's unit frame, at the quarter turn nearest the truth."""
+    points, normals = _samples(mesh, box, seed)
+    turned = []
+    for k in range(4):
+        turn = rot_y(k * math.pi / 2)
+        turned.append((points @ turn.T, normals @ turn.T))
+    best = min(turned, key=lambda pair: chamfer_distance(pair[0], truth[0]))
+    return _score(*best, truth)
+
+
 def _score(
     points: np.ndarray, normals: np.ndarray | None, truth: tuple[np.ndarray, np.ndarray]
 ) -> dict[str, float]:
@@ -103,7 +122,9 @@ class ShapeEvaluation:
             pred = by_id.get(matched.get(gt.id, ""))
             mesh = glb.get(pred.id) if pred is not None and pred.mesh is not None else None
             library = pred.mesh.library if pred is not None and pred.mesh is not None else ""
-            self._add_object(f"{truth.name}/{gt.id}", gt, library, mesh, points.get(gt.id))
+            own_box = pred.box_3d if pred is not None else None
+            key = f"{truth.name}/{gt.id}"
+            self._add_object(key, gt, library, mesh, points.get(gt.id), own_box)
 
     def _add_object(
         self,
@@ -112,6 +133,7 @@ class ShapeEvaluation:
         library: str,
         mesh: trimesh.Trimesh | None,
         observed: np.ndarray | None,
+        own_box: Box3D | None = None,
     ) -> None:
         true_mesh = _true_mesh(gt)
         if true_mesh is None or gt.box_3d is None:
@@ -121,6 +143,8 @@ class ShapeEvaluation:
         row = self.records.setdefault(key, {})
         if mesh is not None:
             row[library] = _score(*_samples(mesh, gt.box_3d, seed + 1), target)
+            if own_box is not None:
+                row[f"{library}, own box"] = _own_box_score(mesh, own_box, seed + 1, target)
         if observed is not None:
             row["partial_points"] = _score(unit_frame(observed, gt.box_3d), None, target)
 
@@ -155,7 +179,9 @@ def markdown_shapes(summary: dict[str, Any]) -> str:
         "",
         "## Shapes (true box's frame, longest side 1)",
         "",
-        f"{summary['objects']} objects with a true mesh.",
+        f"{summary['objects']} objects with a true mesh. `own box`: the mesh in its predicted box's"
+        " frame against the true mesh in the true box's, the best quarter turn (its shape alone,"
+        " not its placement).",
         "",
         "| shapes | objects | Chamfer | EMD (Sinkhorn + greedy, approx.) | normal consistency |",
         "| --- | --- | --- | --- | --- |",
