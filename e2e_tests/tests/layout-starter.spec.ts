@@ -1,7 +1,8 @@
 // User story: the pipeline found no room in a photo (too few straight lines for pitch and
 // roll). The annotator presses "Edit layout", gets a room to start from with its back corners
 // on the photo, drags one onto the photo's room, and saves: the scene has a hand-set room and
-// a camera pitch and roll. Putting up the starting room alone saves nothing.
+// a camera pitch and roll, and the layout stage's warning says so. Putting up the starting
+// room alone saves nothing.
 import { mkdirSync } from "node:fs";
 import path from "node:path";
 import type { SceneSummary } from "@holiscene/schema";
@@ -95,6 +96,10 @@ test("a photo without a room: editing starts one, and a dragged corner saves it"
   await expect(status).toContainText("Moved (not saved)");
   await page.getByTestId("layout-save").click();
   await expect(status).toContainText("Layout saved");
+  // The layout stage's warning says the room it could not find was set by hand since.
+  await expect(page.getByTestId("pipeline-warnings")).toContainText(
+    "too few vertical lines: pitch, roll and layout unknown (the room has since been set by hand)",
+  );
   await page.screenshot({ path: path.join(SCREENSHOTS, "layout-starter.png") });
 
   const after = await getScene(request, sceneId);

@@ -24,6 +24,20 @@ describe("pipeline warnings", () => {
     ]);
   });
 
+  it("says when the room the layout stage warned about was set by hand since", () => {
+    const stages = [
+      run("layout_from_lines", "too few vertical lines: pitch, roll and layout unknown", true),
+      run("placement", "camera pitch, roll or floor unknown: no 3D boxes", true),
+    ];
+    expect(pipelineWarnings(stages, true).map((w) => w.text)).toEqual([
+      "too few vertical lines: pitch, roll and layout unknown (the room has since been set by hand)",
+      "camera pitch, roll or floor unknown: no 3D boxes",
+    ]);
+    expect(pipelineWarnings(stages)[0]?.text).toBe(
+      "too few vertical lines: pitch, roll and layout unknown",
+    );
+  });
+
   it("has none for a scene without stages", () => {
     expect(pipelineWarnings([])).toEqual([]);
   });

@@ -9,10 +9,24 @@ export interface PipelineWarning {
   text: string;
 }
 
-export function pipelineWarnings(stages: readonly StageRun[]): PipelineWarning[] {
-  return stages.flatMap((run) =>
-    run.warning && run.note ? [{ stage: run.name.replaceAll("_", " "), text: run.note }] : [],
-  );
+/** The stages that find the room layout: their warnings are about the room the pipeline
+ * found, not one a person set since. */
+const LAYOUT_STAGES: ReadonlySet<string> = new Set(["layout_from_lines", "layout_from_depth"]);
+
+/** Each stage warning of the last pipeline run; `layoutSetByHand`: the room stored now was
+ * set by a person after it, which the layout stages' warnings then say. */
+export function pipelineWarnings(
+  stages: readonly StageRun[],
+  layoutSetByHand = false,
+): PipelineWarning[] {
+  return stages.flatMap((run) => {
+    if (!run.warning || !run.note) return [];
+    const since =
+      layoutSetByHand && LAYOUT_STAGES.has(run.name)
+        ? " (the room has since been set by hand)"
+        : "";
+    return [{ stage: run.name.replaceAll("_", " "), text: run.note + since }];
+  });
 }
 
 /** The panel (hidden while there is no warning) and how to stop updating it. */
@@ -33,7 +47,8 @@ export function pipelineWarningsPanel(session: SceneSession): {
     list,
   );
   const update = () => {
-    const warnings = pipelineWarnings(session.doc.scene.stages);
+    const { stages, layout } = session.doc.scene;
+    const warnings = pipelineWarnings(stages, layout?.source === "manual");
     element.hidden = warnings.length === 0;
     title.textContent = plural(warnings.length, "pipeline warning");
     list.replaceChildren(
