@@ -1,10 +1,9 @@
 import type { SceneDocument } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
-import { sceneDocument } from "../../testing/sceneDocuments";
-import { mayHaveGlb } from "./viewportObjects";
+import { sceneDocument, sceneObject } from "../../testing/sceneDocuments";
+import { mayHaveGlb, missingSceneText } from "./viewportObjects";
 
-const withStages = (names: string[]): SceneDocument => {
-  const doc = sceneDocument([]);
+const withStages = (names: string[], doc = sceneDocument([])): SceneDocument => {
   const stages = names.map((name) => ({ name, seconds: 0, note: null, warning: false }));
   return { ...doc, scene: { ...doc.scene, stages } };
 };
@@ -17,5 +16,16 @@ describe("whether the 3D view asks for scene.glb", () => {
   it("does not for a scene the pipeline has not run on (no 404 in the console)", () => {
     expect(mayHaveGlb(sceneDocument([]))).toBe(false);
     expect(mayHaveGlb(withStages(["objects_from_detections", "masks_grabcut"]))).toBe(false);
+  });
+});
+
+describe("what the 3D view says without a 3D scene", () => {
+  it("tells a scene the pipeline has not run on, one without objects, and one it placed none of", () => {
+    expect(missingSceneText(sceneDocument([]))).toMatch(/once the pipeline has run/);
+    expect(missingSceneText(withStages(["scene_mesh"]))).toMatch(/^No objects to show in 3D/);
+    const chair = sceneObject("o0", "chair");
+    expect(missingSceneText(withStages(["scene_mesh"], sceneDocument([chair])))).toMatch(
+      /placed no object in 3D/,
+    );
   });
 });

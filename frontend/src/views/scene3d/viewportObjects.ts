@@ -21,6 +21,15 @@ const glbKey = (doc: SceneDocument) => JSON.stringify(doc.scene.stages ?? []);
 export const mayHaveGlb = (doc: SceneDocument): boolean =>
   (doc.scene.stages ?? []).some((stage) => stage.name === "scene_mesh");
 
+/** What the 3D view says when a revision has no 3D scene: why, and what brings one. */
+export function missingSceneText(doc: SceneDocument): string {
+  if (!mayHaveGlb(doc)) return "No 3D objects yet: they appear once the pipeline has run.";
+  if (doc.scene.objects.length === 0) {
+    return "No objects to show in 3D: add them on the photo (Box, Detect objects), then run the pipeline again.";
+  }
+  return "The pipeline placed no object in 3D: its warnings above say why.";
+}
+
 export interface ViewportObjectsInputs {
   scene: THREE.Scene;
   session: SceneSession;
@@ -77,7 +86,7 @@ export class ViewportObjects {
       ? await fetch(api.glbUrl(session.sceneId, doc.revision), { signal: this.abort.signal })
       : null;
     if (response === null || response.status === 404) {
-      setStatus("missing", "No 3D objects yet: they appear once the pipeline has run.");
+      setStatus("missing", missingSceneText(doc));
       this.inputs.onMissing();
       return;
     }
