@@ -331,6 +331,45 @@ def test_placement_job_needs_a_layout(client: TestClient, t3d5: Path) -> None:
     assert client.post("/api/scenes/nope/placement-jobs").status_code == 404
 
 
+def test_a_room_set_by_hand_before_any_run(client: TestClient, t3d5: Path) -> None:
+    """The intrinsics given with the photo are the scene's camera from revision 1 (pitch and
+    roll unknown), so a room can be set by hand before the pipeline runs, and then the
+    objects placed in it."""
+    result = upload(client, t3d5, name="t3d-5", run_pipeline="false")
+    scene_id = result["scene"]["id"]
+    doc = client.get(f"/api/scenes/{scene_id}").json()
+    given = np.loadtxt(t3d5 / "cam_K.txt")
+    camera = doc["scene"]["camera"]
+    assert np.allclose(camera["K"], given)
+    assert (camera["K_source"], camera["pitch_deg"], camera["roll_deg"]) == ("given", None, None)
+    assert doc["scene"]["layout"]["corners_3d"] is None
+
+    # The back wall 5 m ahead, the wall behind the camera 1 m behind it (out of view).
+    corners = project_room_corners(
+        given, 5.0, -1.0, room([2.0, 1.3 - 1.4, 0.0], [6.0, 2.6, 4.0], 0)
+    )
+    assert [i for i, c in enumerate(corners) if c is not None] == [1, 2, 5, 6]
+    edit = {"kind": "set_layout", "corners_2d": corners, "unseen_wall_distance": 1.0}
+    response = _edit(client, scene_id, doc["revision"], edit)
+    assert response.status_code == 200, response.text  # type: ignore[attr-defined]
+    saved = response.json()["scene"]  # type: ignore[attr-defined]
+    assert saved["layout"]["source"] == "manual"
+    assert saved["camera"]["pitch_deg"] == pytest.approx(5.0, abs=1e-3)
+    assert saved["camera"]["roll_deg"] == pytest.approx(-1.0, abs=1e-3)
+    # Its objects have no masks before a run: placing them waits for the pipeline, which
+    # keeps the room set by hand.
+    refused = client.post(f"/api/scenes/{scene_id}/placement-jobs")
+    assert refused.status_code == 422
+    assert "no masks yet" in refused.json()["detail"]
+    run = client.post(f"/api/scenes/{scene_id}/pipeline-jobs")
+    assert run.status_code == 202, run.text
+    assert wait_for_job(client, run.json()["id"], timeout=60)["status"] == "succeeded"
+    after = client.get(f"/api/scenes/{scene_id}").json()["scene"]
+    assert after["layout"]["source"] == "manual"
+    assert after["camera"]["pitch_deg"] == pytest.approx(5.0, abs=1e-3)
+    assert any(o["box_3d"] is not None for o in after["objects"])
+
+
 def test_placement_stages_on_an_unchanged_scene_place_as_the_full_pipeline(t3d5: Path) -> None:
     inputs = read_input_folder(t3d5)
     full = reconstruct_scene(inputs, name="x", image_file="img.jpg").scene

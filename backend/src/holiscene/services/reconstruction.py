@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from holiscene_schema import (
+    Camera,
     ImageInfo,
     Layout,
     RemovedObject,
@@ -111,6 +112,14 @@ def _finished_object(ctx: SceneContext, obj: SceneObject) -> SceneObject:
     )
 
 
+def given_camera(inputs: InputFiles) -> Camera | None:
+    """The intrinsics given with the photo, before any run: with them the layout editor can
+    start a room by hand (pitch and roll come from the pipeline or from that room)."""
+    if inputs.K is None:
+        return None
+    return Camera(K=inputs.K.tolist(), K_source="given", pitch_deg=None, roll_deg=None)
+
+
 def imported_scene(inputs: InputFiles, name: str) -> Scene:
     """Revision 1 of a scene: the photo and its boxes as given, nothing inferred yet."""
     objects = objects_from_detections(inputs.detections or [])
@@ -126,7 +135,7 @@ def imported_scene(inputs: InputFiles, name: str) -> Scene:
     return Scene(
         name=name,
         image=image,
-        camera=inputs.camera,
+        camera=inputs.camera or given_camera(inputs),
         layout=inputs.layout or Layout(),
         depth=inputs.depth.ref() if inputs.depth is not None else None,
         objects=objects,

@@ -234,7 +234,13 @@ class Workbench:
         camera = scene.camera
         if camera is None or camera.pitch_deg is None or scene.layout.corners_3d is None:
             raise PlacementNotPossibleError(
-                "the scene has no camera pitch/roll or room layout yet: run the whole pipeline"
+                "the scene has no camera pitch/roll or room layout yet: run the whole pipeline, "
+                "or set the room by hand (Edit layout) and save it"
+            )
+        if scene.objects and all(o.mask is None for o in scene.objects):
+            raise PlacementNotPossibleError(
+                "the objects have no masks yet: run the whole pipeline "
+                "(it keeps a room set by hand)"
             )
         return self._queue(scene_id, current.revision, "placement", started_by)
 

@@ -45,9 +45,10 @@ def test_viewer_route_starts_reuses_and_rebuilds(
         pool: ViewerPool = client.app.state.viewers  # type: ignore[attr-defined]
         viewer = pool.get(scene_id)
         assert viewer is not None
-        # Imported, not yet run through the pipeline: no camera, no 3D, no supports.
-        assert viewer.frustum is None and viewer.objects == {} and viewer.arrows == {}
-        assert "no camera" in " ".join(viewer.notes)
+        # Imported, not yet run through the pipeline: the given intrinsics, pitch and roll
+        # unknown (the frustum drawn level); no 3D, no supports.
+        assert viewer.frustum is not None and viewer.objects == {} and viewer.arrows == {}
+        assert "camera pitch/roll unknown" in " ".join(viewer.notes)
         assert len(viewer.dropdown.options) == 1 + len(viewer.scene.objects)
 
         # The same scene again: the same viewer.

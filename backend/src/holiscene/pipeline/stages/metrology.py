@@ -43,11 +43,13 @@ class HeightsByMetrology(Stage):
         if camera is not None and room is not None and vps.shape == (3, 3):
             projection = projection_matrix(camera)
             reference = room_reference(projection, room, vps, (ctx.width, ctx.height))
-        if reference is None or room is None or projection is None:
+        if reference is None or room is None or projection is None or not masks:
             for obj in objects:
                 ctx.heights[obj.id] = height_prior(obj.cls)[0]
             ctx.notes[self.name] = (
-                "no room height line (camera, layout or vanishing points missing): "
+                "no object has a mask: every height is its class's prior mean"
+                if not masks
+                else "no room height line (camera, layout or vanishing points missing): "
                 "every height is its class's prior mean"
             )
             return
