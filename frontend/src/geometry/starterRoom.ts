@@ -10,7 +10,7 @@ import type { RoomBox } from "./roomFit";
 /** The wall behind the photographer, metres behind the camera (it is out of view). */
 export const STARTER_FRONT_WALL_M = 1;
 /** The starter room's height, metres (taller when the camera is higher). */
-export const STARTER_ROOM_HEIGHT_M = 2.6;
+const STARTER_ROOM_HEIGHT_M = 2.6;
 /** The share of the photo (each way, about its centre) the back wall fills at first. */
 const BACK_WALL_SHARE = 0.6;
 /** The back wall is pushed back by this factor until its corners are on the photo. */

@@ -47,15 +47,12 @@ class LayoutHoldsHungObjects(Stage):
             ctx.reports[self.name] = f"the layout is not an estimate ({source}): kept as it is"
             return
         boxes = required(ctx.boxes_3d, "boxes_3d")
-        hung = sorted(
-            s.child
+        hung = [
+            corners_of(box)
             for s in required(ctx.supports, "supports")
-            if s.parent == "wall" and boxes.get(s.child) is not None
-        )
-        corners, moves = widened_to_hold(
-            np.array(layout.corners_3d, dtype=float),
-            [corners_of(boxes[i]) for i in hung],  # type: ignore[arg-type]
-        )
+            if s.parent == "wall" and (box := boxes.get(s.child)) is not None
+        ]
+        corners, moves = widened_to_hold(np.array(layout.corners_3d, dtype=float), hung)
         moved = [m for m in moves if m >= MIN_MOVE_M]
         if not moved:
             ctx.reports[self.name] = (
