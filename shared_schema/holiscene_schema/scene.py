@@ -121,10 +121,11 @@ class Box3D(SchemaModel):
 
 
 class MeshRef(SchemaModel):
-    """Where an object's mesh comes from: the built-in library (class + seed), a file, or
-    `completion`: completed from the object's depth points (the mesh is only in the GLB)."""
+    """Where an object's mesh comes from: the built-in library (class + seed), a file,
+    `completion`: completed from the object's depth points, or `learned`: the class template
+    deformed by the mesh network (those two meshes are only in the GLB)."""
 
-    library: Literal["builtin", "user", "completion"]
+    library: Literal["builtin", "user", "completion", "learned"]
     cls: str = Field(alias="class")
     seed: int | None = None
     file: str | None = None

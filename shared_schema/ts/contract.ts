@@ -806,8 +806,9 @@ size: [number, number]
 source: ("given" | "box" | "grabcut" | "model" | "ground_truth" | "manual")
 }
 /**
- * Where an object's mesh comes from: the built-in library (class + seed), a file, or
- * `completion`: completed from the object's depth points (the mesh is only in the GLB).
+ * Where an object's mesh comes from: the built-in library (class + seed), a file,
+ * `completion`: completed from the object's depth points, or `learned`: the class template
+ * deformed by the mesh network (those two meshes are only in the GLB).
  * 
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "MeshRef".
@@ -815,7 +816,7 @@ source: ("given" | "box" | "grabcut" | "model" | "ground_truth" | "manual")
 export interface MeshRef {
 class: string
 file: (string | null)
-library: ("builtin" | "user" | "completion")
+library: ("builtin" | "user" | "completion" | "learned")
 seed: (number | null)
 }
 /**

@@ -11,6 +11,7 @@ from .box_refiner import add_box_refiner_training_command
 from .common import CliError, settings_from
 from .completion import add_completion_training_command
 from .export import add_export_command
+from .mesh_net import add_mesh_net_training_command
 from .pipeline import add_pipeline_commands
 from .scenes import add_demo_command, add_import_command
 from .serve import add_serve_command
@@ -52,5 +53,6 @@ def _parser() -> argparse.ArgumentParser:
     add_detector_training_command(sub)
     add_completion_training_command(sub)
     add_box_refiner_training_command(sub)
+    add_mesh_net_training_command(sub)
     add_view_command(sub)
     return parser

@@ -25,6 +25,7 @@ DEFAULT_STAGES: tuple[str, ...] = (
     "layout_holds_hung_objects",
     "boxes_from_depth",
     "shapes_fit",
+    "shapes_by_mesh_net",
     "shape_completion",
     "scene_mesh",
 )
@@ -40,6 +41,7 @@ PLACEMENT_STAGES: tuple[str, ...] = (
     "boxes_by_refiner",
     "boxes_from_depth",
     "shapes_fit",
+    "shapes_by_mesh_net",
     "shape_completion",
     "scene_mesh",
 )

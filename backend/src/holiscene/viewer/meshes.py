@@ -66,8 +66,9 @@ def glb_object_meshes(glb: bytes) -> dict[str, trimesh.Trimesh]:
     return out
 
 
-def fills_box(vertices: FloatArray, corners: FloatArray) -> bool:
-    """Whether a mesh's bounds in the box's own frame are the box's (within tolerance).
+def fills_box(vertices: FloatArray, corners: FloatArray, inside_only: bool = False) -> bool:
+    """Whether a mesh's bounds in the box's own frame are the box's (within tolerance), or with
+    `inside_only` lie within them (a completed mesh reaches only as far as its points).
 
     In the box's frame, not the world's: a fitted model touches each face of its box but
     not necessarily its corners, so turned by a yaw its world bounds are smaller."""
@@ -79,9 +80,10 @@ def fills_box(vertices: FloatArray, corners: FloatArray) -> bool:
         return False
     local = (np.asarray(vertices, dtype=float) - origin) @ (edges / lengths[:, None]).T
     tolerance = FIT_TOLERANCE_M + FIT_TOLERANCE_FRACTION * float(lengths.max())
-    low_ok = np.abs(local.min(axis=0)).max() <= tolerance
-    high_ok = np.abs(local.max(axis=0) - lengths).max() <= tolerance
-    return bool(low_ok and high_ok)
+    low, high = local.min(axis=0), local.max(axis=0) - lengths
+    if inside_only:
+        return bool(np.all(low >= -tolerance) and np.all(high <= tolerance))
+    return bool(np.abs(low).max() <= tolerance and np.abs(high).max() <= tolerance)
 
 
 def _placed(mesh: trimesh.Trimesh, obj: SceneObject) -> trimesh.Trimesh:
@@ -104,8 +106,8 @@ def _from_mesh_ref(obj: SceneObject, models_dir: Path | None) -> tuple[trimesh.T
         except UnknownClassError as exc:
             raise ValueError(str(exc)) from exc
         return _placed(shape.mesh, obj), "library"
-    if ref.library == "completion":
-        raise ValueError("a completed mesh is kept only in the scene's GLB")
+    if ref.library in ("completion", "learned"):
+        raise ValueError(f"a {ref.library} mesh is kept only in the scene's GLB")
     if ref.file is None or models_dir is None:
         raise ValueError(f"user model {ref.file!r}: no models folder given")
     path = models_dir / ref.file
@@ -114,9 +116,19 @@ def _from_mesh_ref(obj: SceneObject, models_dir: Path | None) -> tuple[trimesh.T
     return _placed(fit_to_box(load_model(path), size), obj), "user model"
 
 
+# The 12 outward triangles of a box whose corners are in BOX_CORNER_SIGNS order (bottom face
+# 0-3, the top 4-7 above them), so a box needs no convex hull (and no SciPy).
+_BOX_FACES = np.array(
+    [[0, 1, 2], [0, 2, 3], [4, 6, 5], [4, 7, 6]]
+    + [[i, i + 4, (i + 1) % 4 + 4] for i in range(4)]
+    + [[i, (i + 1) % 4 + 4, (i + 1) % 4] for i in range(4)]
+)
+
+
 def _box_mesh(corners: FloatArray) -> trimesh.Trimesh:
-    hull: trimesh.Trimesh = trimesh.Trimesh(vertices=corners, process=False).convex_hull
-    return hull
+    return trimesh.Trimesh(
+        vertices=np.asarray(corners, dtype=float), faces=_BOX_FACES, process=False
+    )
 
 
 def object_meshes(scene: Scene, glb: bytes | None, models_dir: Path | None = None) -> MeshPlan:
@@ -138,7 +150,8 @@ def object_meshes(scene: Scene, glb: bytes | None, models_dir: Path | None = Non
         source: MeshSource = "box"
         candidate = from_glb.get(obj.id)
         if candidate is not None:
-            if fills_box(np.asarray(candidate.vertices), corners):
+            completed = obj.mesh is not None and obj.mesh.library == "completion"
+            if fills_box(np.asarray(candidate.vertices), corners, inside_only=completed):
                 mesh, source = candidate, "scene.glb"
             else:
                 stale.append(obj.id)

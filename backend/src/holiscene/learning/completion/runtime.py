@@ -22,6 +22,7 @@ from holiscene_schema import Box3D
 from numpy.typing import NDArray
 
 from ...geometry.camera import rot_y
+from ..budget import single_thread_session
 from .meshing import mesh_from_points
 from .scans import KEEP_BOUND, PARTIAL_POINTS, resample
 
@@ -65,14 +66,8 @@ class Completion:
 
 class ShapeCompleter:
     def __init__(self, model_dir: Path = MODEL_DIR) -> None:
-        import onnxruntime as ort
-
         metadata = json.loads((model_dir / "metadata.json").read_text())
-        options = ort.SessionOptions()
-        options.intra_op_num_threads = 1
-        self.session = ort.InferenceSession(
-            str(model_dir / metadata["model"]), options, providers=["CPUExecutionProvider"]
-        )
+        self.session = single_thread_session(model_dir / metadata["model"])
         self.grown = int(metadata["skeleton_points"]) * int(metadata["grown_per_skeleton"])
 
     def complete_normalised(self, partial: NDArray[np.floating]) -> NDArray[np.float32]:

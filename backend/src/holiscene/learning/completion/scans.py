@@ -18,6 +18,7 @@ from numpy.typing import NDArray
 
 from ...shapes import SUPPORTED_CLASSES, Shape, generate_shape, typical_size
 from ...synth.raycast import MISS, RayCaster
+from ..budget import collect_samples, stack_fields
 
 FloatArray = NDArray[np.float32]
 
@@ -153,17 +154,5 @@ def make_sample(rng: np.random.Generator) -> CompletionSample | None:
 
 def make_samples(count: int, seed: int, progress: bool = True) -> dict[str, FloatArray]:
     """`count` pairs stacked into arrays `partial`, `surface`, `skeleton`."""
-    from tqdm import tqdm
-
-    rng = np.random.default_rng(seed)
-    rows: list[CompletionSample] = []
-    with tqdm(total=count, desc="scans", unit="scan", disable=not progress) as bar:
-        while len(rows) < count:
-            sample = make_sample(rng)
-            if sample is not None:
-                rows.append(sample)
-                bar.update(1)
-    return {
-        name: np.stack([getattr(r, name) for r in rows])
-        for name in ("partial", "surface", "skeleton")
-    }
+    rows = collect_samples(count, make_sample, seed, "scan", progress)
+    return stack_fields(rows, ("partial", "surface", "skeleton"))

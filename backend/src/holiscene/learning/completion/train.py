@@ -8,15 +8,13 @@ model.onnx, metadata.json, metrics.json and curve.png into the output folder.
 from __future__ import annotations
 
 import json
-import math
-import sys
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 import torch
 
+from ..budget import plot_curve, train_for_budget
 from .net import GROWN_PER_SKELETON, CompletionNet, chamfer
 from .scans import (
     KEEP_BOUND,
@@ -90,35 +88,16 @@ def _train_loop(
     data: dict[str, torch.Tensor],
     validation: dict[str, torch.Tensor],
 ) -> None:
-    optimiser = torch.optim.Adam(net.parameters(), lr=1e-3)
     count = data["partial"].shape[0]
-    start = time.monotonic()
-    step, last_check, losses = 0, start, []
-    while (elapsed := time.monotonic() - start) < run.time_budget:
-        for group in optimiser.param_groups:  # cosine annealing over the wall-clock budget
-            group["lr"] = 1e-3 * (
-                0.05 + 0.95 * 0.5 * (1 + math.cos(math.pi * elapsed / run.time_budget))
-            )
+
+    def step_loss() -> torch.Tensor:
         index = torch.randint(count, (run.batch,))
-        loss = _loss(net, _mirrored({name: value[index] for name, value in data.items()}))
-        optimiser.zero_grad()
-        loss.backward()  # type: ignore[no-untyped-call]
-        optimiser.step()
-        losses.append(loss.item())
-        step += 1
-        if time.monotonic() - last_check > run.time_budget / 12:
-            last_check = time.monotonic()
-            scores = _validate(net, validation)
-            run.curve.append(
-                {
-                    "seconds": round(elapsed, 1),
-                    "step": step,
-                    "train_loss": float(np.mean(losses)),
-                    **scores,
-                }
-            )
-            losses = []
-            print(json.dumps(run.curve[-1]), file=sys.stderr, flush=True)
+        return _loss(net, _mirrored({name: value[index] for name, value in data.items()}))
+
+    optimiser = torch.optim.Adam(net.parameters(), lr=1e-3)
+    train_for_budget(
+        optimiser, step_loss, lambda: _validate(net, validation), run.time_budget, run.curve
+    )
 
 
 def export_onnx(net: CompletionNet, path: Path) -> float:
@@ -147,24 +126,6 @@ def export_onnx(net: CompletionNet, path: Path) -> float:
     session = ort.InferenceSession(str(path), providers=["CPUExecutionProvider"])
     got = session.run(["completed"], {"partial": example.numpy()})[0]
     return float(np.abs(got - expected).max())
-
-
-def _plot(curve: list[dict[str, float]], path: Path) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figure, axis = plt.subplots(figsize=(6, 3.5))
-    steps = [c["step"] for c in curve]
-    axis.plot(steps, [c["completed_chamfer"] for c in curve], label="completed points")
-    axis.plot(steps, [c["partial_chamfer"] for c in curve], label="partial points", linestyle="--")
-    axis.set_xlabel("step")
-    axis.set_ylabel("validation Chamfer (box units)")
-    axis.legend()
-    figure.tight_layout()
-    figure.savefig(path, dpi=90)
-    plt.close(figure)
 
 
 def train_completion(run: CompletionTraining) -> dict[str, float]:
@@ -201,5 +162,10 @@ def train_completion(run: CompletionTraining) -> dict[str, float]:
         "curve": run.curve,
     }
     (run.out / "metadata.json").write_text(json.dumps(metadata, indent=1) + "\n")
-    _plot(run.curve, run.out / "curve.png")
+    plot_curve(
+        run.curve,
+        run.out / "curve.png",
+        {"completed_chamfer": "completed points", "partial_chamfer": "partial points"},
+        "validation Chamfer (box units)",
+    )
     return metrics

@@ -11,6 +11,7 @@ from .metrology import HeightsByMetrology  # noqa: F401
 from .placement import PlacementStage  # noqa: F401
 from .restore import SceneFromRevision  # noqa: F401
 from .shapes_fit import ShapesFit  # noqa: F401
+from .shapes_net import ShapesByMeshNet  # noqa: F401
 
 __all__ = [
     "boxes",

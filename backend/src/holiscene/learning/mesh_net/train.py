@@ -1,0 +1,226 @@
+"""Training the mesh network on library objects seen from room viewpoints (PyTorch).
+
+`train_mesh_net` makes the samples, trains for a wall-clock budget (learning rate annealed over
+it), chooses the face-cutting threshold on the validation samples, exports the ONNX model,
+checks it against PyTorch, and writes model.onnx, metadata.json, metrics.json and curve.png.
+
+Distances are measured as `holiscene eval --shapes` measures them: in the box's frame scaled
+so its longest side is 1.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import torch
+
+from ..budget import plot_curve, train_for_budget
+from .inputs import (
+    CONDITION_SIZE,
+    MAX_TEMPLATE_VERTICES,
+    MESH_CLASSES,
+    SILHOUETTE_PIXELS,
+    VERTEX_FEATURES,
+)
+from .net import MeshNet, chamfer
+from .samples import TEMPLATE_SAMPLES, TRUTH_POINTS, make_samples
+
+MODEL_FILE = "model.onnx"
+TRUTH_SUBSAMPLE = 1024  # truth points compared per step (a fresh subset each time)
+ERROR_WEIGHT = 0.5
+OFFSET_WEIGHT = 0.01
+# Face-cutting thresholds tried on the validation samples (eval-frame distance; inf: no cut).
+CUT_CHOICES = (math.inf, 0.12, 0.09, 0.07, 0.05, 0.04, 0.03)
+MIN_KEPT = 0.5  # never cut more than half of a mesh's surface
+
+
+@dataclass
+class MeshNetTraining:
+    out: Path
+    train_views: int = 16000
+    validation_views: int = 400
+    seed: int = 0
+    time_budget: float = 1500.0
+    batch: int = 32
+    curve: list[dict[str, float]] = field(default_factory=list)
+
+
+def sample_points(
+    vertices: torch.Tensor, indices: torch.Tensor, weights: torch.Tensor
+) -> torch.Tensor:
+    """Surface samples of a (moved) mesh: barycentric weights (B, P, 3) of vertex indices."""
+    batch = torch.arange(vertices.shape[0])[:, None, None]
+    corners = vertices[batch, indices.long()]  # (B, P, 3, 3)
+    return (corners * weights[..., None]).sum(dim=2)
+
+
+def _step_loss(net: MeshNet, batch: dict[str, torch.Tensor]) -> torch.Tensor:
+    moved, error = net(batch["silhouette"], batch["condition"], batch["template"])
+    scale = batch["scale"][:, None, :]
+    points = sample_points(moved, batch["sample_vertices"], batch["sample_weights"]) * scale
+    pick = torch.randperm(TRUTH_POINTS)[:TRUTH_SUBSAMPLE]
+    truth = batch["truth"][:, pick] * scale
+    distance, _, _ = chamfer(points, truth)
+    # The error head learns each moved vertex's distance to the truth (not pushed by it).
+    with torch.no_grad():
+        vertex_distance = torch.cdist(moved * scale, truth).min(dim=2).values
+    valid = torch.arange(MAX_TEMPLATE_VERTICES)[None, :] < batch["vertex_count"][:, None]
+    error_loss = ((error - vertex_distance).abs() * valid).sum() / valid.sum()
+    offsets = ((moved - batch["template"][..., :3]) ** 2).sum(dim=2)
+    offset_loss = (offsets * valid).sum() / valid.sum()
+    loss: torch.Tensor = distance.mean() + ERROR_WEIGHT * error_loss + OFFSET_WEIGHT * offset_loss
+    return loss
+
+
+def validation_scores(
+    net: MeshNet, validation: dict[str, torch.Tensor], thresholds: tuple[float, ...] = (math.inf,)
+) -> dict[str, float | list[float]]:
+    """Mean Chamfer of the template, of the moved template, and of it cut at each threshold."""
+    net.eval()
+    with torch.no_grad():
+        moved, error = net(
+            validation["silhouette"], validation["condition"], validation["template"]
+        )
+        scale = validation["scale"][:, None, :]
+        truth = validation["truth"] * scale
+        template = sample_points(
+            validation["template"][..., :3],
+            validation["sample_vertices"],
+            validation["sample_weights"],
+        )
+        points = sample_points(moved, validation["sample_vertices"], validation["sample_weights"])
+        sample_error = error[
+            torch.arange(len(error))[:, None, None], validation["sample_vertices"].long()
+        ].amax(dim=2)
+        cut = []
+        for threshold in thresholds:
+            values = []
+            if math.isinf(threshold):
+                cut.append(float(chamfer(points * scale, truth)[0].mean()))
+                continue
+            for i in range(len(points)):
+                keep = sample_error[i] <= threshold
+                if keep.float().mean() < MIN_KEPT:
+                    keep = sample_error[i] <= sample_error[i].median()
+                values.append(chamfer((points[i][keep] * scale[i])[None], truth[i][None])[0])
+            cut.append(float(torch.cat(values).mean()))
+    net.train()
+    return {
+        "template_chamfer": float(chamfer(template * scale, truth)[0].mean()),
+        "moved_chamfer": cut[0],
+        "cut_chamfer": cut,
+    }
+
+
+def _train_loop(
+    run: MeshNetTraining,
+    net: MeshNet,
+    data: dict[str, torch.Tensor],
+    validation: dict[str, torch.Tensor],
+) -> None:
+    count = data["silhouette"].shape[0]
+
+    def step_loss() -> torch.Tensor:
+        index = torch.randint(count, (run.batch,))
+        return _step_loss(net, {name: value[index] for name, value in data.items()})
+
+    def validate() -> dict[str, float]:
+        scores = validation_scores(net, validation)
+        return {name: float(scores[name]) for name in ("template_chamfer", "moved_chamfer")}  # type: ignore[arg-type]
+
+    optimiser = torch.optim.Adam(net.parameters(), lr=1e-3)
+    train_for_budget(
+        optimiser, step_loss, validate, run.time_budget, run.curve, floor=0.03, checks=15
+    )
+
+
+def export_onnx(net: MeshNet, path: Path) -> float:
+    """Write the ONNX model; the largest difference from PyTorch on random inputs."""
+    import onnxruntime as ort
+
+    net.eval()
+    example = (
+        (torch.rand(2, SILHOUETTE_PIXELS, SILHOUETTE_PIXELS) > 0.5).float(),
+        torch.rand(2, CONDITION_SIZE),
+        torch.rand(2, 300, VERTEX_FEATURES) - 0.5,
+    )
+    names = ["silhouette", "condition", "template"]
+    torch.onnx.export(
+        net,
+        example,
+        str(path),
+        input_names=names,
+        output_names=["vertices", "error"],
+        dynamic_axes={
+            "silhouette": {0: "batch"},
+            "condition": {0: "batch"},
+            "template": {0: "batch", 1: "vertices"},
+            "vertices": {0: "batch", 1: "vertices"},
+            "error": {0: "batch", 1: "vertices"},
+        },
+        opset_version=17,
+        dynamo=False,
+    )
+    with torch.no_grad():
+        expected = net(*example)
+    session = ort.InferenceSession(str(path), providers=["CPUExecutionProvider"])
+    got = session.run(None, {n: t.numpy() for n, t in zip(names, example, strict=True)})
+    return max(float(np.abs(g - e.numpy()).max()) for g, e in zip(got, expected, strict=True))
+
+
+def _tensors(arrays: dict[str, np.ndarray]) -> dict[str, torch.Tensor]:
+    return {name: torch.from_numpy(value) for name, value in arrays.items()}
+
+
+def train_mesh_net(run: MeshNetTraining) -> dict[str, float]:
+    torch.set_num_threads(2)
+    torch.manual_seed(run.seed)
+    run.out.mkdir(parents=True, exist_ok=True)
+    data = _tensors(make_samples(run.train_views, run.seed))
+    validation = _tensors(make_samples(run.validation_views, run.seed + 1_000_003))
+    net = MeshNet()
+    _train_loop(run, net, data, validation)
+    final = validation_scores(net, validation, CUT_CHOICES)
+    cut = list(final["cut_chamfer"])  # type: ignore[arg-type]
+    best = int(np.argmin(cut))
+    difference = export_onnx(net, run.out / MODEL_FILE)
+    if difference > 1e-3:
+        raise RuntimeError(f"the ONNX model differs from PyTorch by {difference}")
+    metrics = {
+        "template_chamfer": float(final["template_chamfer"]),  # type: ignore[arg-type]
+        "moved_chamfer": float(final["moved_chamfer"]),  # type: ignore[arg-type]
+        "cut_chamfer": cut[best],
+        "onnx_max_abs_difference": difference,
+        "steps": run.curve[-1]["step"] if run.curve else 0,
+    }
+    (run.out / "metrics.json").write_text(json.dumps(metrics, indent=1) + "\n")
+    metadata = {
+        "model": MODEL_FILE,
+        "inputs": ["silhouette", "condition", "template"],
+        "classes": list(MESH_CLASSES),
+        "silhouette_pixels": SILHOUETTE_PIXELS,
+        # null: cutting made no validation mesh closer to its truth, so nothing is cut.
+        "cut_threshold": None if math.isinf(CUT_CHOICES[best]) else CUT_CHOICES[best],
+        "cut_chamfer": dict(zip(map(str, CUT_CHOICES), cut, strict=True)),
+        "min_kept": MIN_KEPT,
+        "frame": "template in the box mapped onto [-0.5, 0.5]^3, x front, y up, z right",
+        "train_views": run.train_views,
+        "validation_views": run.validation_views,
+        "template_samples": TEMPLATE_SAMPLES,
+        "seed": run.seed,
+        "time_budget_s": run.time_budget,
+        "batch": run.batch,
+        "curve": run.curve,
+    }
+    (run.out / "metadata.json").write_text(json.dumps(metadata, indent=1) + "\n")
+    plot_curve(
+        run.curve,
+        run.out / "curve.png",
+        {"moved_chamfer": "deformed template", "template_chamfer": "template"},
+        "validation Chamfer (longest side = 1)",
+    )
+    return metrics
