@@ -268,6 +268,7 @@ def test_layout_edit_and_placement_job_through_the_api(client: TestClient, t3d5:
         "placement",
         "boxes_by_refiner",
         "shapes_fit",
+        "shapes_by_mesh_net",
         "scene_mesh",
     ]
     boxes_before = [o["box_3d"] for o in edited["scene"]["objects"]]
