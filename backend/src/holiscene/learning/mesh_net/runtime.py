@@ -37,7 +37,7 @@ class GeneratedMesh:
     mesh: trimesh.Trimesh  # world frame
     yaw_deg: float  # the turn chosen: the model's front, as a box yaw
     iou: float  # silhouette IoU with the mask
-    cut_faces: int
+    faces_cut: int  # by the topology modification
 
 
 def cut_faces(
