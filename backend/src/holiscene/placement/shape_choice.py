@@ -79,6 +79,16 @@ def turns(box: Box3D) -> list[tuple[float, tuple[float, float, float]]]:
     return [(box.yaw_deg + 90.0 * k, (d, h, w) if k % 2 == 0 else (w, h, d)) for k in range(4)]
 
 
+def best_of_turns(scores: list[float]) -> int:
+    """The index of the best of four turns' silhouette IoUs; a turn must beat the best so far
+    by TURN_MARGIN, so the box's own turn wins ties."""
+    best = 0
+    for k in range(1, len(scores)):
+        if scores[k] > scores[best] + TURN_MARGIN:
+            best = k
+    return best
+
+
 def fit_model(
     cls: str,
     box: Box3D,
@@ -122,10 +132,7 @@ def fit_model(
     stretched = first_mesh.copy()
     stretched.vertices = np.asarray(first_mesh.vertices) * np.array([w / d, 1.0, d / w])
     turn_scores = [score(first_mesh if k % 2 == 0 else stretched, options[k][0]) for k in range(4)]
-    best_turn = 0
-    for k in range(1, 4):
-        if turn_scores[k] > turn_scores[best_turn] + TURN_MARGIN:
-            best_turn = k
+    best_turn = best_of_turns(turn_scores)
     yaw, size = options[best_turn]
     if best_turn % 2 == 0:
         best = FittedModel(first_mesh, first_ref, yaw, turn_scores[best_turn])

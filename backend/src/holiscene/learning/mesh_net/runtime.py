@@ -24,7 +24,7 @@ from numpy.typing import NDArray
 
 from ...geometry.camera import rot_y
 from ...placement.projection import MaskTarget
-from ...placement.shape_choice import TURN_MARGIN, turns
+from ...placement.shape_choice import best_of_turns, turns
 from ...shapes import fit_to_box
 from ..budget import single_thread_session
 from .inputs import condition_vector, silhouette_input, template, view_direction
@@ -96,29 +96,27 @@ class MeshGenerator:
         target = MaskTarget(mask, max_side=96)
         centre = np.asarray(box.center, dtype=float)
 
-        def placed(mesh: trimesh.Trimesh, yaw: float) -> tuple[trimesh.Trimesh, float]:
-            world = np.asarray(mesh.vertices) @ rot_y(math.radians(yaw)).T + centre
-            faces = np.asarray(mesh.faces)
-            iou = target.iou_silhouette(target.silhouette(projection, world, faces))
-            return trimesh.Trimesh(world, faces, process=False), iou
+        def placed(
+            local: NDArray[np.floating], faces: NDArray[np.int64], yaw: float
+        ) -> tuple[NDArray[np.float64], float]:
+            world = np.asarray(local, dtype=float) @ rot_y(math.radians(yaw)).T + centre
+            return world, target.iou_silhouette(target.silhouette(projection, world, faces))
 
         # The turn is chosen with the template itself, as the library fit chooses it with its
         # first variant: the network bends any template towards the mask, which would make
-        # every turn look alike. The box's own turn wins ties.
+        # every turn look alike.
+        options = turns(box)
         scores = []
-        for yaw, size in turns(box):
+        for yaw, size in options:
             shape = template(cls, size)
-            local = trimesh.Trimesh(shape.positions * np.asarray(size), shape.faces, process=False)
-            scores.append(placed(local, yaw)[1])
-        best = 0
-        for k in range(1, 4):
-            if scores[k] > scores[best] + TURN_MARGIN:
-                best = k
-        yaw, size = turns(box)[best]
+            scores.append(placed(shape.positions * np.asarray(size), shape.faces, yaw)[1])
+        yaw, size = options[best_of_turns(scores)]
         direction = view_direction(np.zeros(3), centre, yaw)
         local = self.deform(cls, size, silhouette_input(mask), direction)
-        mesh, iou = placed(local, yaw)
-        return GeneratedMesh(mesh, yaw, iou, len(template(cls, size).faces) - len(local.faces))
+        faces = np.asarray(local.faces)
+        world, iou = placed(np.asarray(local.vertices), faces, yaw)
+        mesh = trimesh.Trimesh(world, faces, process=False)
+        return GeneratedMesh(mesh, yaw, iou, len(template(cls, size).faces) - len(faces))
 
 
 @lru_cache(maxsize=2)

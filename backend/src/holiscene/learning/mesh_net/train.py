@@ -64,7 +64,7 @@ def _step_loss(net: MeshNet, batch: dict[str, torch.Tensor]) -> torch.Tensor:
     points = sample_points(moved, batch["sample_vertices"], batch["sample_weights"]) * scale
     pick = torch.randperm(TRUTH_POINTS)[:TRUTH_SUBSAMPLE]
     truth = batch["truth"][:, pick] * scale
-    distance, _, _ = chamfer(points, truth)
+    distance = chamfer(points, truth)
     # The error head learns each moved vertex's distance to the truth (not pushed by it).
     with torch.no_grad():
         vertex_distance = torch.cdist(moved * scale, truth).min(dim=2).values
@@ -78,42 +78,34 @@ def _step_loss(net: MeshNet, batch: dict[str, torch.Tensor]) -> torch.Tensor:
 
 def validation_scores(
     net: MeshNet, validation: dict[str, torch.Tensor], thresholds: tuple[float, ...] = (math.inf,)
-) -> dict[str, float | list[float]]:
-    """Mean Chamfer of the template, of the moved template, and of it cut at each threshold."""
+) -> tuple[float, list[float]]:
+    """Mean Chamfer of the template, and of the moved template cut at each threshold (inf:
+    not cut)."""
     net.eval()
     with torch.no_grad():
         moved, error = net(
             validation["silhouette"], validation["condition"], validation["template"]
         )
-        scale = validation["scale"][:, None, :]
-        truth = validation["truth"] * scale
-        template = sample_points(
-            validation["template"][..., :3],
-            validation["sample_vertices"],
-            validation["sample_weights"],
-        )
-        points = sample_points(moved, validation["sample_vertices"], validation["sample_weights"])
-        sample_error = error[
-            torch.arange(len(error))[:, None, None], validation["sample_vertices"].long()
-        ].amax(dim=2)
-        cut = []
-        for threshold in thresholds:
-            values = []
-            if math.isinf(threshold):
-                cut.append(float(chamfer(points * scale, truth)[0].mean()))
-                continue
-            for i in range(len(points)):
-                keep = sample_error[i] <= threshold
-                if keep.float().mean() < MIN_KEPT:
-                    keep = sample_error[i] <= sample_error[i].median()
-                values.append(chamfer((points[i][keep] * scale[i])[None], truth[i][None])[0])
-            cut.append(float(torch.cat(values).mean()))
     net.train()
-    return {
-        "template_chamfer": float(chamfer(template * scale, truth)[0].mean()),
-        "moved_chamfer": cut[0],
-        "cut_chamfer": cut,
-    }
+    scale = validation["scale"][:, None, :]
+    truth = validation["truth"] * scale
+    indices, weights = validation["sample_vertices"], validation["sample_weights"]
+    template = sample_points(validation["template"][..., :3], indices, weights) * scale
+    points = sample_points(moved, indices, weights) * scale
+    sample_error = error[torch.arange(len(error))[:, None, None], indices.long()].amax(dim=2)
+    cut = []
+    for threshold in thresholds:
+        if math.isinf(threshold):
+            cut.append(float(chamfer(points, truth).mean()))
+            continue
+        values = []
+        for i in range(len(points)):
+            keep = sample_error[i] <= threshold
+            if keep.float().mean() < MIN_KEPT:
+                keep = sample_error[i] <= sample_error[i].median()
+            values.append(chamfer(points[i][keep][None], truth[i][None]))
+        cut.append(float(torch.cat(values).mean()))
+    return float(chamfer(template, truth).mean()), cut
 
 
 def _train_loop(
@@ -129,8 +121,8 @@ def _train_loop(
         return _step_loss(net, {name: value[index] for name, value in data.items()})
 
     def validate() -> dict[str, float]:
-        scores = validation_scores(net, validation)
-        return {name: float(scores[name]) for name in ("template_chamfer", "moved_chamfer")}  # type: ignore[arg-type]
+        template_chamfer, (moved_chamfer,) = validation_scores(net, validation)
+        return {"template_chamfer": template_chamfer, "moved_chamfer": moved_chamfer}
 
     optimiser = torch.optim.Adam(net.parameters(), lr=1e-3)
     train_for_budget(
@@ -184,15 +176,14 @@ def train_mesh_net(run: MeshNetTraining) -> dict[str, float]:
     validation = _tensors(make_samples(run.validation_views, run.seed + 1_000_003))
     net = MeshNet()
     _train_loop(run, net, data, validation)
-    final = validation_scores(net, validation, CUT_CHOICES)
-    cut = list(final["cut_chamfer"])  # type: ignore[arg-type]
+    template_chamfer, cut = validation_scores(net, validation, CUT_CHOICES)  # CUT_CHOICES[0]: inf
     best = int(np.argmin(cut))
     difference = export_onnx(net, run.out / MODEL_FILE)
     if difference > 1e-3:
         raise RuntimeError(f"the ONNX model differs from PyTorch by {difference}")
     metrics = {
-        "template_chamfer": float(final["template_chamfer"]),  # type: ignore[arg-type]
-        "moved_chamfer": float(final["moved_chamfer"]),  # type: ignore[arg-type]
+        "template_chamfer": template_chamfer,
+        "moved_chamfer": cut[0],
         "cut_chamfer": cut[best],
         "onnx_max_abs_difference": difference,
         "steps": run.curve[-1]["step"] if run.curve else 0,
