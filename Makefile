@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: surface-model coco-detector detector-model scratch-detector-model bench-detector bench-refine bench-batch completion-model box-refiner-model mesh-net-model bench-completion bench-writers calibrate-scale bench bench-layout bench-depth-layout bench-box-parts bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
+.PHONY: surface-model coco-detector detector-model scratch-detector-model bench-detector bench-refine bench-batch completion-model box-refiner-model mesh-net-model scene-net-model bench-completion bench-writers calibrate-scale bench bench-layout bench-depth-layout bench-box-parts bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -156,6 +156,11 @@ mesh-net-model: install-python
 	rm -rf /tmp/holiscene-mesh-net-model
 	$(PY) -m holiscene.cli train-meshes -o /tmp/holiscene-mesh-net-model
 	cp /tmp/holiscene-mesh-net-model/* backend/src/holiscene/learning/mesh_net_model/
+
+scene-net-model: install-python
+	rm -rf /tmp/holiscene-scene-net-model
+	$(PY) -m holiscene.cli train-scene-net -o /tmp/holiscene-scene-net-model --cache /tmp/holiscene-scene-net-cache
+	cp /tmp/holiscene-scene-net-model/* backend/src/holiscene/learning/scene_net_model/
 
 bench-completion: install-python
 	OMP_NUM_THREADS=1 $(PY) benchmarks/bench_completion.py

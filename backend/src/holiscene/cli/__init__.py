@@ -13,6 +13,7 @@ from .completion import add_completion_training_command
 from .export import add_export_command
 from .mesh_net import add_mesh_net_training_command
 from .pipeline import add_pipeline_commands
+from .scene_net import add_scene_net_training_command
 from .scenes import add_demo_command, add_import_command
 from .serve import add_serve_command
 from .training import (
@@ -54,5 +55,6 @@ def _parser() -> argparse.ArgumentParser:
     add_completion_training_command(sub)
     add_box_refiner_training_command(sub)
     add_mesh_net_training_command(sub)
+    add_scene_net_training_command(sub)
     add_view_command(sub)
     return parser

@@ -1,7 +1,6 @@
 """The box refiner network (PyTorch, training only): each object's features encoded by an MLP,
-then the object relation module (Total3DUnderstanding, after Hu et al. 2018): multi-head
-attention over the other objects of the photo whose weights also depend on the pair's 2D box
-geometry, and a head that reads the object with its context. Per target of `features.TARGETS`
+then the object relation module (`learning/relation.py`) over the other objects of the
+photo, and a head that reads the object with its context. Per target of `features.TARGETS`
 it gives the log ratio and the log of how far off that ratio is expected to be (the scale of a
 Laplace distribution around it). Trained one photo at a time (a batch of one scene, any number
 of objects).
@@ -13,12 +12,12 @@ measure of doubt.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import torch
 from torch import nn
 
+from ..relation import RelationModule
 from .features import PAIR_FEATURES, TARGETS
 
 # The ensemble's output per object: log ratios, log expected errors, members' spread.
@@ -29,15 +28,10 @@ LOG_SCALE_BOUNDS = (-6.0, 3.0)  # a scale of 0.0025 to 20 in log ratio: keeps th
 class BoxRefinerNet(nn.Module):
     def __init__(self, features: int, hidden: int = 128, heads: int = 4) -> None:
         super().__init__()
-        self.heads = heads
-        self.scale = 1.0 / math.sqrt(hidden // heads)  # of the attention's dot products
         self.encode = nn.Sequential(
             nn.Linear(features, hidden), nn.ReLU(), nn.Linear(hidden, hidden), nn.ReLU()
         )
-        self.query = nn.Linear(hidden, hidden)
-        self.key = nn.Linear(hidden, hidden)
-        self.value = nn.Linear(hidden, hidden)
-        self.geometry = nn.Sequential(nn.Linear(PAIR_FEATURES, 32), nn.ReLU(), nn.Linear(32, heads))
+        self.relation = RelationModule(hidden, heads, PAIR_FEATURES)
         self.head = nn.Sequential(
             nn.Linear(2 * hidden, hidden), nn.ReLU(), nn.Linear(hidden, 2 * len(TARGETS))
         )
@@ -46,19 +40,7 @@ class BoxRefinerNet(nn.Module):
         """objects (1, n, features) normalised, pairs (1, n, n, PAIR_FEATURES) -> (1, n, 8):
         the log ratios, then the log scales (bounded by LOG_SCALE_BOUNDS)."""
         encoded = self.encode(objects)
-        batch, n, hidden = encoded.shape
-        width = hidden // self.heads
-
-        def split(layer: nn.Linear) -> torch.Tensor:
-            heads: torch.Tensor = layer(encoded).reshape(batch, n, self.heads, width)
-            return heads.transpose(1, 2)
-
-        query, key, value = split(self.query), split(self.key), split(self.value)
-        appearance = query @ key.transpose(2, 3) * self.scale
-        # Geometric weight: a pair the geometry rules out gets (almost) no attention.
-        geometric = self.geometry(pairs).permute(0, 3, 1, 2)
-        weights = torch.softmax(appearance + torch.log(torch.relu(geometric) + 1e-6), dim=-1)
-        context = (weights @ value).transpose(1, 2).reshape(batch, n, hidden)
+        context = self.relation(encoded, pairs)
         out: torch.Tensor = self.head(torch.cat([encoded, context], dim=-1))
         targets = len(TARGETS)
         log_scales = out[..., targets:].clamp(*LOG_SCALE_BOUNDS)

@@ -109,6 +109,12 @@ def _degrade(image: np.ndarray, rng: np.random.Generator) -> np.ndarray:
     return np.ascontiguousarray(out)
 
 
+def photometric(rgb: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """The randomisation that moves no pixel (colour, light, noise, blur, JPEG): for
+    networks whose targets depend on the camera, which a crop or a flip would change."""
+    return _degrade(_colour(rgb, rng), rng)
+
+
 def randomise(
     photo: BoxedPhoto, rng: np.random.Generator, retexture_chance: float = 0.0
 ) -> BoxedPhoto:
@@ -121,7 +127,7 @@ def randomise(
         photo = _crop(photo, rng)
     if rng.random() < 0.5:
         photo = _flip(photo)
-    return BoxedPhoto(_degrade(_colour(photo.rgb, rng), rng), photo.boxes, photo.classes)
+    return BoxedPhoto(photometric(photo.rgb, rng), photo.boxes, photo.classes)
 
 
 def center_targets(
@@ -160,15 +166,15 @@ def boxed_photo(folder: Path) -> BoxedPhoto:
     return BoxedPhoto(inputs.photo.rgb, boxes, [d.cls for d in detections], masks)
 
 
-def synthetic_photos(
+def render_rooms(
     seeds: Sequence[int],
     cache_dir: Path,
     progress: Callable[[int, int], None] | None = None,
     workers: int = 2,
     style: RoomStyle | None = None,
-) -> list[BoxedPhoto]:
-    """Synthetic rooms of `seeds` in `style` (the generator's default when None) with their
-    exact boxes, rendered into `cache_dir` once as `holiscene synth` writes them."""
+) -> dict[int, Path]:
+    """The folders of the synthetic rooms of `seeds` in `style` (the generator's default when
+    None), rendered into `cache_dir` once as `holiscene synth` writes them."""
     from ...synth.generate import synthesize_to  # the renderer is heavy: only when rendering
     from ...synth.plan import DEFAULT_STYLE
 
@@ -182,4 +188,16 @@ def synthetic_photos(
             for done, _ in enumerate(pool.imap_unordered(render, missing), start=1):
                 if progress:
                     progress(done, len(missing))
+    return folders
+
+
+def synthetic_photos(
+    seeds: Sequence[int],
+    cache_dir: Path,
+    progress: Callable[[int, int], None] | None = None,
+    workers: int = 2,
+    style: RoomStyle | None = None,
+) -> list[BoxedPhoto]:
+    """Synthetic rooms of `seeds` (`render_rooms`) with their exact boxes."""
+    folders = render_rooms(seeds, cache_dir, progress, workers, style)
     return [boxed_photo(folders[s]) for s in seeds]

@@ -10,6 +10,7 @@ from .hung_objects import LayoutHoldsHungObjects  # noqa: F401
 from .metrology import HeightsByMetrology  # noqa: F401
 from .placement import PlacementStage  # noqa: F401
 from .restore import SceneFromRevision  # noqa: F401
+from .scene_net import BoxesByNetwork, LayoutByNetwork  # noqa: F401
 from .shapes_fit import ShapesFit  # noqa: F401
 from .shapes_net import ShapesByMeshNet  # noqa: F401
 
