@@ -13,7 +13,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from holiscene_schema import NYU40_CLASSES
-from holiscene_schema.detector_model import INPUT_SIZE
 from numpy.typing import NDArray
 
 from ..detector.backbone import DEEP_CHANNELS, FEATURE_CHANNELS, FeatureExtractor
@@ -131,6 +130,3 @@ def photo_features(
         np.stack(rows).astype(np.float32) if rows else np.zeros((0, OBJECT_INPUTS), np.float32)
     )
     return PhotoFeatures(room, camera_inputs(K, width, height), objects)
-
-
-assert INPUT_SIZE % 32 == 0  # the deep grid divides the neck's
