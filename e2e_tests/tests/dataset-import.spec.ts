@@ -3,15 +3,14 @@
 // photo whose labels are broken is named with the reason and the others are imported; the
 // repaired zip then adds only that photo, the others being skipped as imported before.
 import { execFileSync } from "node:child_process";
-import { mkdirSync } from "node:fs";
 import path from "node:path";
 import { expect, test } from "@playwright/test";
 import { importZip } from "../helpers/datasetImport";
 import { scratchDir } from "../helpers/scratch";
+import { screenshotPath } from "../helpers/screenshots";
 
 const REAL = path.resolve(import.meta.dirname, "../../../shared/data/real");
 const VENV = path.resolve(import.meta.dirname, "../../.venv/bin");
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
 
 // Zip the export as it is (coco.zip) and with the first outline of im3d-2.jpg cut to two
 // points (broken.zip), as a user would zip the folder.
@@ -58,7 +57,6 @@ function cocoZips(): { coco: string; broken: string } {
 
 test("a COCO zip imports from the scene list, naming the photo that did not", async ({ page }) => {
   const zips = cocoZips();
-  mkdirSync(SCREENSHOTS, { recursive: true });
   await page.goto("/#/");
   const form = page.getByTestId("dataset-import-form");
   await expect(form).toContainText("Import a dataset");
@@ -76,7 +74,7 @@ test("a COCO zip imports from the scene list, naming the photo that did not", as
   await expect(list).toContainText("im3d-1");
   await expect(list).toContainText("t3d-5");
   await expect(list).not.toContainText("im3d-2");
-  await form.screenshot({ path: path.join(SCREENSHOTS, "dataset-import-broken.png") });
+  await form.screenshot({ path: screenshotPath("dataset-import-broken.png") });
 
   await importZip(page, zips.coco);
   await expect(summary).toContainText(
@@ -89,7 +87,7 @@ test("a COCO zip imports from the scene list, naming the photo that did not", as
     await expect(list.locator("tbody tr", { hasText: name })).toHaveCount(1);
   }
   await page.getByText("Imported before (2)").click();
-  await form.screenshot({ path: path.join(SCREENSHOTS, "dataset-import-again.png") });
+  await form.screenshot({ path: screenshotPath("dataset-import-again.png") });
 
   await page.getByTestId("dataset-import-new").getByRole("link", { name: "im3d-2.jpg" }).click();
   await expect(page.getByTestId("scene-title")).toHaveText("im3d-2");

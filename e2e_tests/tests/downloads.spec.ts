@@ -1,7 +1,7 @@
 // User story: an annotator takes a scene out of the workbench: from the scene page its
 // scene.json, scene.glb and the photo's objects as COCO JSON; from the list, several scenes
 // at once as one zip, which "Import a dataset" (here or on another server) takes back.
-import { mkdirSync, readFileSync } from "node:fs";
+import { readFileSync } from "node:fs";
 import path from "node:path";
 import type { ImportResult, Scene, SceneSummary } from "@holiscene/schema";
 import type { Download, Page } from "@playwright/test";
@@ -9,9 +9,8 @@ import { expect, test } from "@playwright/test";
 import { getScene, seedScene, T3D_5 } from "../helpers/api";
 import { importZip } from "../helpers/datasetImport";
 import { openScene } from "../helpers/photo";
+import { screenshotPath } from "../helpers/screenshots";
 import { readZip } from "../helpers/zip";
-
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
 
 interface CocoFile {
   images: { id: number; file_name: string; width: number; height: number }[];
@@ -69,8 +68,7 @@ test("the scene page downloads scene.json, scene.glb and COCO JSON", async ({ pa
   await page.getByTestId("download-button").click();
   await expect(page.getByTestId("download-glb")).toBeVisible();
   await expect(page.getByTestId("download-no-glb")).toBeHidden();
-  mkdirSync(SCREENSHOTS, { recursive: true });
-  await page.screenshot({ path: path.join(SCREENSHOTS, "download-menu.png") });
+  await page.screenshot({ path: screenshotPath("download-menu.png") });
 
   const sceneJson = await downloadFrom(page, "download-scene-json");
   expect(sceneJson.suggestedFilename()).toBe("t3d-5_downloads.scene.json");
@@ -122,7 +120,7 @@ test("the scene page downloads scene.json, scene.glb and COCO JSON", async ({ pa
   await expect(page.getByTestId("download-glb")).toBeHidden();
   await expect(page.getByTestId("download-coco")).toBeVisible();
   await page.screenshot({
-    path: path.join(SCREENSHOTS, "download-menu-no-glb.png"),
+    path: screenshotPath("download-menu-no-glb.png"),
     clip: { x: 0, y: 0, width: 1440, height: 400 },
   });
   // A click elsewhere closes it too.
@@ -142,7 +140,7 @@ test("the list downloads the selected scenes as one zip", async ({ page }) => {
   await page.getByTestId(`select-scene-${unplaced}`).check();
   await expect(button).toHaveText("Download 2 selected scenes (zip)");
   await expect(page.getByTestId("select-all-scenes")).toHaveJSProperty("indeterminate", true);
-  await page.screenshot({ path: path.join(SCREENSHOTS, "download-selected.png") });
+  await page.screenshot({ path: screenshotPath("download-selected.png") });
 
   const [download] = await Promise.all([page.waitForEvent("download"), button.click()]);
   expect(download.suggestedFilename()).toBe("holiscene-2-scenes.zip");

@@ -1,14 +1,10 @@
 // User story: keyboard first. Every editing action has a shortcut, and "?" opens a list of
 // every shortcut registered on the page (the registry writes the list, so a key cannot work
 // without being listed); Escape or "?" closes it.
-import { mkdirSync } from "node:fs";
-import path from "node:path";
 import { expect, type Page, test } from "@playwright/test";
 import { seedScene, T3D_5 } from "../helpers/api";
 import { openScene } from "../helpers/photo";
-
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
+import { screenshotPath } from "../helpers/screenshots";
 
 // The actions of support editing, live suggestions, object suggestions, object editing, the
 // photo's tools and zoom, and no-lost-work, by their keys.
@@ -98,7 +94,7 @@ test("? lists every shortcut of the scene page, and Escape closes the list", asy
   }
   const twice = [...owners].filter(([key, texts]) => key !== "Escape" && texts.length > 1);
   expect(twice, "keys with two meanings").toEqual([]);
-  await page.screenshot({ path: path.join(SCREENSHOTS, "keyboard-help.png") });
+  await page.screenshot({ path: screenshotPath("keyboard-help.png") });
 
   await page.keyboard.press("Escape");
   await expect(help).toBeHidden();

@@ -5,8 +5,6 @@
 // revision; "Re-place objects" runs a placement job with its progress shown, and the 3D view
 // shows the new revision when it ends. On a real photo and on a synthetic room. And: a drag
 // saved by itself, then undone, is saved back, and a reload shows the room as it was.
-import { mkdirSync } from "node:fs";
-import path from "node:path";
 import type { Job, SceneDocument, SceneSummary } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getRevisions, getScene, T3D_5 } from "../helpers/api";
@@ -20,9 +18,8 @@ import {
   seedFolder,
   synthesize,
 } from "../helpers/scene3d";
+import { screenshotPath } from "../helpers/screenshots";
 
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
 const FIT_BUDGET_MS = 50;
 const STEPS = 10;
 
@@ -134,7 +131,7 @@ async function dragAndSave(page: Page, doc: SceneDocument, label: string): Promi
   report(label, drag.fitTimes);
   expect(Math.max(...drag.fitTimes)).toBeLessThanOrEqual(FIT_BUDGET_MS);
   await expect(bar).toHaveAttribute("data-dirty", "true");
-  await page.screenshot({ path: path.join(SCREENSHOTS, `${label}-dragged.png`), fullPage: true });
+  await page.screenshot({ path: screenshotPath(`${label}-dragged.png`), fullPage: true });
 
   // Saved as a new revision: the server's fit of the same corners is the room the 3D view
   // showed (the server rounds to 0.1 mm).
@@ -184,7 +181,7 @@ async function replaceObjects(page: Page, saved: SceneDocument, label: string): 
   );
   expect(moved.length).toBeGreaterThan(0);
   await nextFrames(page);
-  await page.screenshot({ path: path.join(SCREENSHOTS, `${label}-replaced.png`), fullPage: true });
+  await page.screenshot({ path: screenshotPath(`${label}-replaced.png`), fullPage: true });
 }
 
 test("layout editing on a real photo: live 3D room, a refused drag, save, re-place objects", async ({
@@ -218,7 +215,7 @@ test("layout editing on a real photo: live 3D room, a refused drag, save, re-pla
     expect(step.error).not.toBeNull();
   }
   await expect(page.getByTestId("layout-save")).toBeDisabled();
-  await page.screenshot({ path: path.join(SCREENSHOTS, "layout-refused.png"), fullPage: true });
+  await page.screenshot({ path: screenshotPath("layout-refused.png"), fullPage: true });
   await page.getByTestId("layout-reset").click();
   await page.getByTestId("layout-toggle").click();
   await expect(page.getByTestId("layout-bar")).toHaveAttribute("data-editing", "false");
@@ -321,7 +318,7 @@ async function dragOffPhotoCorner(page: Page, doc: SceneDocument): Promise<void>
   expect(await handle.getAttribute("data-pinned")).toBe("true");
   await nextFrames(page);
   expect(maxDifference(room, await scene3d(page, (p) => p.roomCorners()))).toBeGreaterThan(1e-4);
-  await page.screenshot({ path: path.join(SCREENSHOTS, "layout-off-photo-corner.png") });
+  await page.screenshot({ path: screenshotPath("layout-off-photo-corner.png") });
   await page.keyboard.press("Control+z");
   await expect(bar).toHaveAttribute("data-dirty", "false");
   expect(await cornerAt(page, index)).toEqual(corner);
@@ -423,7 +420,7 @@ test("the camera's height set by hand scales the room about the camera, undoes a
   // (The stored room is rounded to 0.1 mm and its corners to 0.01 px: the fit of those corners
   // is that room to about 0.1 mm; the height moved the corners by metres.)
   expect(maxDifference(scaled, await scene3d(page, (p) => p.roomCorners()))).toBeLessThan(2e-3);
-  await page.screenshot({ path: path.join(SCREENSHOTS, "layout-camera-height.png") });
+  await page.screenshot({ path: screenshotPath("layout-camera-height.png") });
 
   // Not a height: refused with the reason, the field shows the height in use.
   await field.fill("0");

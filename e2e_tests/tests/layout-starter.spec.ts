@@ -3,15 +3,11 @@
 // on the photo, drags one onto the photo's room, and saves: the scene has a hand-set room and
 // a camera pitch and roll, and the layout stage's warning says so. Putting up the starting
 // room alone saves nothing.
-import { mkdirSync } from "node:fs";
-import path from "node:path";
 import type { SceneSummary } from "@holiscene/schema";
 import { expect, test } from "@playwright/test";
 import { getRevisions, getScene, waitForJob } from "../helpers/api";
 import { layoutProbe } from "../helpers/scene3d";
-
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
+import { screenshotPath } from "../helpers/screenshots";
 
 test("a photo without a room: editing starts one, and a dragged corner saves it", async ({
   page,
@@ -100,7 +96,7 @@ test("a photo without a room: editing starts one, and a dragged corner saves it"
   await expect(page.getByTestId("pipeline-warnings")).toContainText(
     "too few vertical lines: pitch, roll and layout unknown (the room has since been set by hand)",
   );
-  await page.screenshot({ path: path.join(SCREENSHOTS, "layout-starter.png") });
+  await page.screenshot({ path: screenshotPath("layout-starter.png") });
 
   const after = await getScene(request, sceneId);
   expect(after.scene.layout?.source).toBe("manual");

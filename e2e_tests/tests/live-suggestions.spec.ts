@@ -3,8 +3,6 @@
 // after a correction the tree is decoded again with the correction pinned, and an object
 // whose best answer changed shows it as a suggestion (dotted arrow), with no request to the
 // server (every request is recorded from the correction until the arrow changed).
-import { mkdirSync } from "node:fs";
-import path from "node:path";
 import type { Request } from "@playwright/test";
 import { expect, test } from "@playwright/test";
 import { getScene, supportOf } from "../helpers/api";
@@ -17,10 +15,9 @@ import {
   slowAutosave,
   waitForModel,
 } from "../helpers/photo";
+import { screenshotPath } from "../helpers/screenshots";
 import { importSynthetic, synthesize } from "../helpers/synthetic";
 
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
 const STRUCTURAL = new Set(["floor", "wall", "ceiling"]);
 
 test("a correction re-scores the other predictions in the browser, without the server", async ({
@@ -68,7 +65,7 @@ test("a correction re-scores the other predictions in the browser, without the s
     `live suggestion: ${a} now on ${suggestion?.parent} (was ${b}), seen ${elapsed} ms after ` +
       "the click (Playwright's round trips included)",
   );
-  await page.screenshot({ path: path.join(SCREENSHOTS, "live-suggestion.png") });
+  await page.screenshot({ path: screenshotPath("live-suggestion.png") });
 
   // Undo takes the correction back, and the suggestion with it; redo brings both.
   await page.keyboard.press("Control+z");

@@ -2,16 +2,12 @@
 // the Brush paints more of it (the stroke shows at once), the Eraser takes some away, a
 // Polygon adds a part, and Refine cuts the mask again from strokes; each is saved as one
 // revision holding a "manual" mask, and a reload shows the same mask.
-import { mkdirSync } from "node:fs";
-import path from "node:path";
 import type { Mask, SceneDocument, SceneObject } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getRevisions, getScene, seedScene, T3D_5 } from "../helpers/api";
 import { screenPoint } from "../helpers/objects";
 import { clickObject, openScene, setAuthor } from "../helpers/photo";
-
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
+import { screenshotPath } from "../helpers/screenshots";
 
 type Xy = [number, number];
 
@@ -57,7 +53,7 @@ async function drag(
     const at = await screenPoint(page, ...point);
     await page.mouse.move(at.x, at.y, { steps: 6 });
   }
-  if (screenshot) await page.screenshot({ path: path.join(SCREENSHOTS, screenshot) });
+  if (screenshot) await page.screenshot({ path: screenshotPath(screenshot) });
   if (live) {
     // The live mask covers the photo exactly (at any zoom).
     const preview = await page.getByTestId("mask-preview").boundingBox();
@@ -183,7 +179,7 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   expect((await getRevisions(request, seeded.scene_id)).length).toBe(revisionsBefore + 1);
   await expect(page.getByTestId(`mask-${id}`)).toHaveAttribute("data-source", "manual");
   await expect(page.getByTestId("mask-preview")).toHaveCount(0);
-  await page.screenshot({ path: path.join(SCREENSHOTS, "mask-tools-brush.png") });
+  await page.screenshot({ path: screenshotPath("mask-tools-brush.png") });
   // Live drawing kept up: each pointer move was painted well within 50 ms.
   const { handlers, frames } = await redraws(page);
   expect(handlers.length).toBeGreaterThan(10);
@@ -268,7 +264,7 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   expect(object.mask?.source).toBe("manual");
   expect(maskHas(object.mask, middle)).toBe(false);
   expect(area(object.mask)).toBeLessThan(areaBrushed);
-  await page.screenshot({ path: path.join(SCREENSHOTS, "mask-tools-eraser.png") });
+  await page.screenshot({ path: screenshotPath("mask-tools-eraser.png") });
   await page.keyboard.press("0");
 
   // Polygon: four clicks below-left of the box, Backspace takes a stray point back, Enter
@@ -305,7 +301,7 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   await expect(page.getByTestId("polygon-draft")).toHaveAttribute("data-points", "5");
   await page.keyboard.press("Backspace");
   await expect(page.getByTestId("polygon-draft")).toHaveAttribute("data-points", "4");
-  await page.screenshot({ path: path.join(SCREENSHOTS, "mask-tools-polygon.png") });
+  await page.screenshot({ path: screenshotPath("mask-tools-polygon.png") });
   const polygonSaved = waitForEdit(page, seeded.scene_id);
   await page.keyboard.press("Enter");
   object = objectIn(await polygonSaved, id);
@@ -352,7 +348,7 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   expect(maskHas(object.mask, [(x1 + x2) / 2, midY])).toBe(true);
   await expect(page.getByTestId("refine-strokes")).toHaveAttribute("data-foreground", "1");
   await expect(page.getByTestId("mask-tool-status")).toHaveText(/Mask of/);
-  await page.screenshot({ path: path.join(SCREENSHOTS, "mask-tools-refine.png") });
+  await page.screenshot({ path: screenshotPath("mask-tools-refine.png") });
 
   // Alt+drag paints what is not the object: sent with the earlier stroke, and cut away.
   const notObject: Xy = [(x1 + x2) / 2 + 30, midY + 20];

@@ -4,15 +4,11 @@
 // offered back; the history shows each revision's diff and can revert; when two people edit
 // the same scene the second gets a clear conflict message and can merge or reload, keeping
 // their edit.
-import { mkdirSync } from "node:fs";
-import path from "node:path";
 import type { SceneDocument, SupportRelation } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getRevisions, getScene, postEdits, seedScene, supportOf, T3D_5 } from "../helpers/api";
 import { arrowOf, clickArrow, clickObject, openScene, setAuthor } from "../helpers/photo";
-
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
+import { screenshotPath } from "../helpers/screenshots";
 
 const flip = (t: string) => (t === "below" ? "behind" : "below");
 
@@ -127,7 +123,7 @@ test("edits whose save failed survive a closed tab and are offered back", async 
   const banner = again.getByTestId("recovery-banner");
   await expect(banner).toBeVisible();
   await expect(banner).toContainText("o3: on wall (behind)");
-  await again.screenshot({ path: path.join(SCREENSHOTS, "recovery-offered.png") });
+  await again.screenshot({ path: screenshotPath("recovery-offered.png") });
   await again.keyboard.press("Shift+U");
   await expect(banner).toBeHidden();
   await expect(again.getByTestId("arrow-o3")).toHaveAttribute("data-parent", "wall");
@@ -177,7 +173,7 @@ test("the history shows what each revision changed and reverts to any of them", 
   await expect(
     page.getByTestId(`revision-diff-${second.revision}`).locator("li[data-child='o3']"),
   ).toHaveAttribute("data-kind", "removed");
-  await page.screenshot({ path: path.join(SCREENSHOTS, "revision-diff.png"), fullPage: true });
+  await page.screenshot({ path: screenshotPath("revision-diff.png"), fullPage: true });
 
   // Revert to the pipeline's revision: every support exactly as the pipeline stored it.
   await page.getByTestId(`revision-revert-${predicted}`).click();
@@ -223,7 +219,7 @@ test("two people edit one scene: the second gets a conflict, merges or reloads, 
   await expect(conflict).toContainText("alice saved this scene");
   await expect(bob.getByTestId("conflict-theirs")).toContainText("by alice");
   await expect(bob.getByTestId("pending-edits")).toContainText("o3: on wall");
-  await bob.screenshot({ path: path.join(SCREENSHOTS, "conflict-two-people.png"), fullPage: true });
+  await bob.screenshot({ path: screenshotPath("conflict-two-people.png"), fullPage: true });
 
   // Merge (Shift+M): bob's edits saved on top of alice's, and he is told about o1.
   await bob.keyboard.press("Shift+M");

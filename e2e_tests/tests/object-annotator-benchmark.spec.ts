@@ -46,6 +46,7 @@ import {
   scoreScene,
 } from "../helpers/sceneScore";
 import { scratchDir } from "../helpers/scratch";
+import { screenshotPath } from "../helpers/screenshots";
 import { importSynthetic, synthesize } from "../helpers/synthetic";
 
 const SEED = 1002;
@@ -56,9 +57,7 @@ const POOR_MASK = 0.5;
 const STRUCTURAL_KEYS: Record<string, string> = { floor: "f", wall: "w", ceiling: "c" };
 /** The objects drawn by their mask (an object shown by its box is a rect). */
 const MASK_SHAPES = ".masks path[data-object]";
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
 const FIGURES = path.resolve(import.meta.dirname, "../test-results/object-annotator-benchmark");
-mkdirSync(SCREENSHOTS, { recursive: true });
 
 type Box = [number, number, number, number];
 
@@ -297,7 +296,7 @@ class Annotator {
     readonly truth: Scene,
     name: string,
   ) {
-    this.pickerShot = path.join(SCREENSHOTS, `object-annotator-${name}-picker.png`);
+    this.pickerShot = screenshotPath(`object-annotator-${name}-picker.png`);
   }
 
   async act(what: string, action: () => Promise<unknown>): Promise<void> {
@@ -582,7 +581,7 @@ async function finish(run: Annotator, name: string): Promise<Run> {
   await page.keyboard.press("Escape");
   await page.evaluate(() => window.scrollTo(0, 0)); // the menus scrolled the page down
   await page.mouse.move(5, 5);
-  await page.screenshot({ path: path.join(SCREENSHOTS, `object-annotator-${name}.png`) });
+  await page.screenshot({ path: screenshotPath(`object-annotator-${name}.png`) });
   const saved = await getScene(page.request, run.sceneId);
   return {
     name,

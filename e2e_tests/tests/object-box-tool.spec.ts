@@ -2,8 +2,6 @@
 // each with the class picker (typing part of a name, or an alias), and gives it a supporter;
 // the server cuts each object's mask. Moving a box with its handle is one more saved edit.
 // After a reload everything is there: objects, classes, boxes, masks and supports.
-import { mkdirSync } from "node:fs";
-import path from "node:path";
 import { expect, test } from "@playwright/test";
 import { getScene, importWithoutObjects, supportOf } from "../helpers/api";
 import {
@@ -13,9 +11,7 @@ import {
   pickClass,
   screenPoint,
 } from "../helpers/objects";
-
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
+import { screenshotPath } from "../helpers/screenshots";
 
 test("boxes drawn on an empty photo become objects with masks and supporters", async ({ page }) => {
   const sceneId = await importWithoutObjects(page.request, "t3d-5 box tool");
@@ -39,7 +35,7 @@ test("boxes drawn on an empty photo become objects with masks and supporters", a
   // The picker opens beside the box: type part of the name.
   await expect(page.getByTestId("class-picker")).toBeVisible();
   await page.getByTestId("class-picker-input").fill("be");
-  await page.screenshot({ path: path.join(SCREENSHOTS, "box-tool-class-picker.png") });
+  await page.screenshot({ path: screenshotPath("box-tool-class-picker.png") });
   // 1 picks the first line.
   await expect(page.getByTestId("class-option").first()).toHaveAttribute("data-name", "bed");
   await page.keyboard.press("1");
@@ -76,7 +72,7 @@ test("boxes drawn on an empty photo become objects with masks and supporters", a
     (await page.locator('[data-handle="e"]').boundingBox())?.width ?? 0;
   await expect.poll(handleWidth).toBeGreaterThan(7);
   expect(await handleWidth()).toBeLessThan(12);
-  await page.screenshot({ path: path.join(SCREENSHOTS, "box-tool-handles.png") });
+  await page.screenshot({ path: screenshotPath("box-tool-handles.png") });
   await dragOnPhoto(page, [148, 366.5], [156, 366.5]);
   await objectEditsSaved(page);
   // 0 fits the whole photo again.

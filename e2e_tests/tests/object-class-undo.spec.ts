@@ -2,16 +2,12 @@
 // picker on the selected object (its class listed first) and the new class is saved at once;
 // Delete removes an object with its mask and every support it took part in; Ctrl+Z takes
 // either back exactly, and Ctrl+Shift+Z does it again.
-import { mkdirSync } from "node:fs";
-import path from "node:path";
 import type { SceneDocument } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getScene, seedScene, T3D_5 } from "../helpers/api";
 import { chooseTool, objectEditsSaved } from "../helpers/objects";
 import { arrowOf, clickObject, openScene, slowAutosave } from "../helpers/photo";
-
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
+import { screenshotPath } from "../helpers/screenshots";
 
 const objectOf = (doc: SceneDocument, id: string) => doc.scene.objects?.find((o) => o.id === id);
 const supportsOf = (doc: SceneDocument, id: string) =>
@@ -80,7 +76,7 @@ test("a class changed with the picker, and an object deleted, come back with und
   await page.keyboard.press("Shift+C");
   await expect(page.getByTestId("class-option").first()).toHaveAttribute("data-name", "dresser");
   await page.getByTestId("class-picker-input").fill("sh");
-  await page.screenshot({ path: path.join(SCREENSHOTS, "class-picker-change.png") });
+  await page.screenshot({ path: screenshotPath("class-picker-change.png") });
   // ↓ moves to the second line (shower curtain), ↑ back; Enter picks.
   const input = page.getByTestId("class-picker-input");
   await input.press("ArrowDown");

@@ -3,16 +3,12 @@
 // loads their revision and applies the action on top of it, and says so. An action on an
 // object the other removed cannot be applied: it stays on screen with Retry and Discard (after
 // a reload too), so nothing anyone did is lost without them knowing.
-import { mkdirSync } from "node:fs";
-import path from "node:path";
 import type { SceneDocument } from "@holiscene/schema";
 import { type Browser, expect, type Page, test } from "@playwright/test";
 import { getScene, seedScene, T3D_5 } from "../helpers/api";
 import { chooseTool, objectEditsSaved, pickClass } from "../helpers/objects";
 import { clickObject, openScene, setAuthor } from "../helpers/photo";
-
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
+import { screenshotPath } from "../helpers/screenshots";
 
 const classOf = (doc: SceneDocument, id: string) =>
   doc.scene.objects?.find((o) => o.id === id)?.class;
@@ -80,7 +76,7 @@ test("two people editing objects at once: the second is told, and nothing is los
   );
   await expect(bob.getByTestId("object-edit-failure-text")).toContainText("dresser");
   await expect(bob.getByTestId("object-edit-retry")).toBeVisible();
-  await bob.screenshot({ path: path.join(SCREENSHOTS, "object-edit-conflict.png") });
+  await bob.screenshot({ path: screenshotPath("object-edit-conflict.png") });
   // His page shows the latest revision: the night stand is gone there too.
   await expect(bob.getByTestId(`mask-${o1}`)).toHaveCount(0);
   doc = await getScene(request, sceneId);
@@ -97,7 +93,7 @@ test("two people editing objects at once: the second is told, and nothing is los
   await expect(failureText).toContainText("Kept from your last visit.");
   await expect(failureText).toContainText("dresser");
   await expect(bob.getByTestId("object-edit-retry")).toBeVisible();
-  await bob.screenshot({ path: path.join(SCREENSHOTS, "object-edit-failure-kept.png") });
+  await bob.screenshot({ path: screenshotPath("object-edit-failure-kept.png") });
 
   // Discard is his choice; the message goes, and stays gone after another reload.
   await bob.getByTestId("object-edit-discard").click();

@@ -2,14 +2,10 @@
 // the browser by itself and suggests boxes on the photo; accepting one adds it to the scene
 // (the server makes its mask), rejecting one drops it. After a reload the accepted object is
 // there, with a mask, and nothing is suggested again (the scene has an object now).
-import { mkdirSync } from "node:fs";
-import path from "node:path";
 import type { SceneDocument } from "@holiscene/schema";
 import { expect, test } from "@playwright/test";
 import { getScene, importWithoutObjects } from "../helpers/api";
-
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
+import { screenshotPath } from "../helpers/screenshots";
 
 test("a scene without objects gets the detector's suggestions to accept or reject", async ({
   page,
@@ -32,7 +28,7 @@ test("a scene without objects gets the detector's suggestions to accept or rejec
   expect(classes).toContain("television");
   await expect(page.getByTestId("detector-actions")).toBeVisible();
   await expect(boxes.first().locator(".detector-label")).toHaveText(/^\w+ \d+%$/);
-  await page.screenshot({ path: path.join(SCREENSHOTS, "object-suggestions.png") });
+  await page.screenshot({ path: screenshotPath("object-suggestions.png") });
 
   // Accept the bed: click its box, then Accept. The edit is the contract's add_object.
   const bed = page.locator('[data-testid="detector-suggestion"][data-class="bed"]');
@@ -62,7 +58,7 @@ test("a scene without objects gets the detector's suggestions to accept or rejec
   await expect(tv).toHaveCount(0);
   await expect(boxes).toHaveCount(count - 2);
   await expect(status).toContainText("Rejected television");
-  await page.screenshot({ path: path.join(SCREENSHOTS, "object-suggestions-accepted.png") });
+  await page.screenshot({ path: screenshotPath("object-suggestions-accepted.png") });
 
   // After a reload: the bed is an object with a mask made by the server; the scene has an
   // object now, so the detector does not run by itself.

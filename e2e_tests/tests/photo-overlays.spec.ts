@@ -3,17 +3,16 @@
 // swatch the same), or by class on request, with an opacity slider; both stay after a reload.
 // After an object edit (a detector box accepted) the Relation Network scores the new objects
 // and the 3D panel offers to re-place the objects, which a placement job does.
-import { copyFileSync, mkdirSync, readFileSync, writeFileSync } from "node:fs";
+import { copyFileSync, readFileSync, writeFileSync } from "node:fs";
 import path from "node:path";
 import { expect, type Page, test } from "@playwright/test";
 import { getScene, importWithoutObjects, postEdits, seedScene } from "../helpers/api";
 import { openScene, waitForModel } from "../helpers/photo";
 import { scene3d } from "../helpers/scene3d";
 import { scratchDir } from "../helpers/scratch";
+import { screenshotPath } from "../helpers/screenshots";
 import { importSynthetic, synthesizeFolder } from "../helpers/synthetic";
 
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
 const REAL = path.resolve(import.meta.dirname, "../../../shared/data/real");
 
 interface Box {
@@ -130,7 +129,7 @@ test("a crowded scene's labels do not overlap; mask colouring and opacity are re
   // The pile is dense: some labels had to move off their objects, with a leader line.
   expect(before.leaders).toBeGreaterThan(0);
   await page.getByTestId("photo-panel").screenshot({
-    path: path.join(SCREENSHOTS, "photo-crowded-labels.png"),
+    path: screenshotPath("photo-crowded-labels.png"),
   });
 
   // Zoomed in on the pile, the labels and the arrows' tags keep their size on the screen,
@@ -150,7 +149,7 @@ test("a crowded scene's labels do not overlap; mask colouring and opacity are re
   expect(height(zoomed.anchors[0] as Box)).toBeCloseTo(height(before.anchors[0] as Box), 0);
   expect(overlappingPairs(zoomed.tags)).toEqual([]);
   await page.getByTestId("photo-panel").screenshot({
-    path: path.join(SCREENSHOTS, "photo-crowded-zoomed.png"),
+    path: screenshotPath("photo-crowded-zoomed.png"),
   });
   await page.keyboard.press("0");
   await expect(photo).toHaveAttribute("data-zoom", "1.000");
@@ -239,10 +238,10 @@ test("a real photo: labels apart, sources and 3D box confidences in the object l
     await expect(page.getByTestId(`box-confidence-${object.id}`)).toHaveText(`3D ${percent}%`);
   }
   await page.getByTestId("photo-panel").screenshot({
-    path: path.join(SCREENSHOTS, "photo-real-labels.png"),
+    path: screenshotPath("photo-real-labels.png"),
   });
   await page.getByTestId("object-table").screenshot({
-    path: path.join(SCREENSHOTS, "object-list-sources.png"),
+    path: screenshotPath("object-list-sources.png"),
   });
 });
 
@@ -295,7 +294,7 @@ test("a real photo with detector objects, some edited: every class in the object
   expect(rows.map((r) => r.id).sort()).toEqual(["d1", "d2", "d3", "d4", "d5", "d6"]);
   expect(rows.filter((r) => r.cut || !r.badgeInside)).toEqual([]);
   await page.getByTestId("object-table").screenshot({
-    path: path.join(SCREENSHOTS, "object-list-detector-edited.png"),
+    path: screenshotPath("object-list-detector-edited.png"),
   });
 });
 
@@ -329,7 +328,7 @@ test("after an object edit the model scores again and the 3D panel offers Re-pla
   await expect(notice).toBeVisible();
   await expect(page.getByTestId("placement-notice-text")).toContainText("1 object added");
   await page.getByTestId("scene3d-panel").screenshot({
-    path: path.join(SCREENSHOTS, "placement-notice.png"),
+    path: screenshotPath("placement-notice.png"),
   });
 
   // The object a person added is not in 3D until placed: the notice stays after a reload.

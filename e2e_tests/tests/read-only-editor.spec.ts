@@ -3,17 +3,13 @@
 // correction (on the page and in this browser), and turns read only with a banner saying why.
 // Once a reviewer sends the scene back, the next visit offers the kept correction, which is
 // then saved: no work is lost. Local single-user mode (the one person may review too).
-import { mkdirSync } from "node:fs";
-import path from "node:path";
 import type { SceneDocument } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getScene, seedScene, T3D_5 } from "../helpers/api";
 import { chooseTool } from "../helpers/objects";
 import { openScene, slowAutosave } from "../helpers/photo";
 import { seedFolder, synthesize } from "../helpers/scene3d";
-
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
+import { screenshotPath } from "../helpers/screenshots";
 
 test("a save refused by the workflow lock keeps the edit, shows why, and is saved once the scene is sent back", async ({
   page,
@@ -59,7 +55,7 @@ test("a save refused by the workflow lock keeps the edit, shows why, and is save
     expect.objectContaining({ child: support.child, parent: target }),
   ]);
   expect((await getScene(request, id)).revision).toBe(doc.revision);
-  await page.screenshot({ path: path.join(SCREENSHOTS, "read-only-refused.png"), fullPage: true });
+  await page.screenshot({ path: screenshotPath("read-only-refused.png"), fullPage: true });
 
   // The reviewer sends it back; the next visit offers the kept correction, and it is saved.
   const rejected = await request.post(`/api/scenes/${id}/reject`, {

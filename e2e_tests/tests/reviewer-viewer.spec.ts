@@ -2,16 +2,15 @@
 // and sees the room, the objects, the photo's camera and the support arrows, with a panel
 // listing every object and its supporter.
 import { execFileSync } from "node:child_process";
-import { mkdirSync, readFileSync } from "node:fs";
+import { readFileSync } from "node:fs";
 import path from "node:path";
 import type { ImportResult } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getScene, waitForJob } from "../helpers/api";
 import { scratchDir } from "../helpers/scratch";
+import { screenshotPath } from "../helpers/screenshots";
 
 const HOLISCENE = path.resolve(import.meta.dirname, "../../.venv/bin/holiscene");
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
 
 /** A synthetic room (seed 14: shelves with things on them, a door and a picture on walls). */
 function synthesize(): string {
@@ -143,7 +142,7 @@ test("opens the scene in viser with every object in its panel", async ({
     );
   }
   // Viser's notice about software WebGL (headless Chromium) may cover a corner; it is fine.
-  await viewer.screenshot({ path: path.join(SCREENSHOTS, "reviewer-viewer.png") });
+  await viewer.screenshot({ path: screenshotPath("reviewer-viewer.png") });
 
   // The same button again reuses the scene's viewer.
   await page.getByTestId("open-viser").click();

@@ -1,15 +1,13 @@
 // User story: a reviewer looks at the reconstruction in the page's 3D view: the room, the
 // objects, the photo's camera frustum with the photo on it and the support arrows; orbits;
 // picks objects there or on the photo and sees them selected in both; exports a PNG.
-import { mkdirSync, readFileSync } from "node:fs";
-import path from "node:path";
+import { readFileSync } from "node:fs";
 import { expect, test } from "@playwright/test";
 import { T3D_5 } from "../helpers/api";
 import { canvasColours } from "../helpers/canvas";
 import { nextFrames, openScene, scene3d, seedFolder } from "../helpers/scene3d";
+import { screenshotPath } from "../helpers/screenshots";
 
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
 const PNG_SIGNATURE = [0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a];
 
 test("shows the frustum and arrows, shares the selection with the photo, exports a PNG", async ({
@@ -47,7 +45,7 @@ test("shows the frustum and arrows, shares the selection with the photo, exports
   await expect
     .poll(async () => (await canvasColours(canvas)).distinct, { timeout: 15_000 })
     .toBeGreaterThan(8);
-  await canvas.screenshot({ path: path.join(SCREENSHOTS, "scene3d-frustum-arrows.png") });
+  await canvas.screenshot({ path: screenshotPath("scene3d-frustum-arrows.png") });
 
   // Orbit with the mouse: the view changes.
   const before = await canvas.screenshot();
@@ -86,7 +84,7 @@ test("shows the frustum and arrows, shares the selection with the photo, exports
   await page.getByTestId(`mask-${second}`).click({ force: true });
   await expect(page.getByTestId(`mask-${second}`)).toHaveClass(/is-selected/);
   await expect(canvas).toHaveAttribute("data-selected", second);
-  await page.screenshot({ path: path.join(SCREENSHOTS, "scene3d-selection.png"), fullPage: true });
+  await page.screenshot({ path: screenshotPath("scene3d-selection.png"), fullPage: true });
 
   // Export PNG downloads the view as a PNG file of the canvas's size.
   const downloading = page.waitForEvent("download");

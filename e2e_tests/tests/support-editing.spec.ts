@@ -2,8 +2,6 @@
 // corrects supports: in the object table, or on the photo (click an arrow, click or drag to
 // the new supporter, keys to flip, remove, accept and reject), with each edge's provenance
 // shown; the corrections are saved.
-import { mkdirSync } from "node:fs";
-import path from "node:path";
 import { expect, test } from "@playwright/test";
 import { getRevisions, getScene, seedScene, supportOf, T3D_5 } from "../helpers/api";
 import { canvasColours } from "../helpers/canvas";
@@ -17,9 +15,7 @@ import {
   setAuthor,
   slowAutosave,
 } from "../helpers/photo";
-
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
+import { screenshotPath } from "../helpers/screenshots";
 
 // These tests watch unsaved state and save by hand; no-lost-work.spec.ts covers autosave.
 test.beforeEach(async ({ page }) => {
@@ -63,8 +59,8 @@ test("shows masks, arrows and the 3D scene, and saves a changed supporter", asyn
   expect(colours.width).toBeGreaterThan(100);
   expect(colours.distinct).toBeGreaterThan(3);
   expect(colours.nonBackground).toBeGreaterThan(0.02);
-  await canvas.screenshot({ path: path.join(SCREENSHOTS, "scene3d.png") });
-  await page.screenshot({ path: path.join(SCREENSHOTS, "scene-page.png"), fullPage: true });
+  await canvas.screenshot({ path: screenshotPath("scene3d.png") });
+  await page.screenshot({ path: screenshotPath("scene-page.png"), fullPage: true });
 
   // Hovering an object's row highlights its mask, and hovering the mask its row.
   await page.getByTestId(`object-row-${child.id}`).hover();
@@ -95,7 +91,7 @@ test("shows masks, arrows and the 3D scene, and saves a changed supporter", asyn
   const status = page.getByTestId("save-status");
   await expect(status).toHaveAttribute("data-state", "saved");
   await expect(status).toHaveText(/^Saved/);
-  await page.screenshot({ path: path.join(SCREENSHOTS, "saved.png"), fullPage: true });
+  await page.screenshot({ path: screenshotPath("saved.png"), fullPage: true });
 
   // Reloaded, the page shows the saved change.
   await page.reload();
@@ -154,7 +150,7 @@ test("a save based on a stale revision shows a conflict and keeps the edit", asy
   await expect(bob.getByTestId(`type-select-${fourth.id}`)).toHaveValue("behind");
   await expect(bob.getByTestId(`arrow-${fourth.id}`)).toHaveAttribute("data-pending", "true");
   await expect(bob.getByTestId("pending-edits")).toContainText(fourth.id);
-  await bob.screenshot({ path: path.join(SCREENSHOTS, "conflict.png"), fullPage: true });
+  await bob.screenshot({ path: screenshotPath("conflict.png"), fullPage: true });
 
   // Reload: Alice's change appears, Bob's edit is re-applied on top, and saves.
   await bob.getByTestId("conflict-reload").click();
@@ -195,7 +191,7 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   );
   await expect(page.getByTestId("edge-info-provenance")).toContainText("predicted (auto");
   await expect(arrow("o1")).toHaveAttribute("data-source", "auto");
-  await page.screenshot({ path: path.join(SCREENSHOTS, "photo-arrow-selected.png") });
+  await page.screenshot({ path: screenshotPath("photo-arrow-selected.png") });
 
   // Click the new supporter: the arrow moves at once, unsaved and manual.
   await clickObject(page, "o0");
@@ -270,7 +266,7 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
     if (related) expect(opacity, `${id} is o2's edge`).toBe(1);
     else expect(opacity, `${id} is not o2's edge`).toBeLessThan(0.5);
   }
-  await page.screenshot({ path: path.join(SCREENSHOTS, "photo-hover-fading.png") });
+  await page.screenshot({ path: screenshotPath("photo-hover-fading.png") });
 
   // H hides the arrows and shows them again.
   await page.mouse.move(0, 0);
@@ -292,7 +288,7 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   }
   await clickArrow(page, "o1");
   await expect(page.getByTestId("edge-info-provenance")).toContainText("manual · e2e-photo");
-  await page.screenshot({ path: path.join(SCREENSHOTS, "photo-provenance.png") });
+  await page.screenshot({ path: screenshotPath("photo-provenance.png") });
 
   const doc = await getScene(request, seeded.scene_id);
   expect(supportOf(doc, "o1")).toMatchObject({

@@ -5,11 +5,11 @@
 // dashboard shows the counts. A submitted scene is read only for its annotator (a banner says
 // why; the support editor, the layout editor and their keys are off, the key list still opens)
 // until the reviewer sends it back. Runs on its own server, where login is required.
-import { mkdirSync } from "node:fs";
 import path from "node:path";
 import type { SceneDocument, SceneWorkflow } from "@holiscene/schema";
 import { type APIRequestContext, expect, type Page, test } from "@playwright/test";
 import { clickObject } from "../helpers/photo";
+import { screenshotPath } from "../helpers/screenshots";
 import {
   ADMIN,
   apiAs,
@@ -21,14 +21,12 @@ import {
   WORKFLOW_URL,
 } from "../helpers/workflow";
 
-const SCREENSHOTS = path.resolve(import.meta.dirname, "../screenshots");
-mkdirSync(SCREENSHOTS, { recursive: true });
 const REAL_PHOTO = path.resolve(import.meta.dirname, "../../../shared/data/real/im3d-3");
 const ANNOTATOR = { name: "anna", password: "marble-otter-62-sky" };
 const REVIEWER = { name: "rudi", password: "copper-fjord-35-lime" };
 
 const shot = (page: Page, name: string) =>
-  page.screenshot({ path: path.join(SCREENSHOTS, `workflow-${name}.png`), fullPage: true });
+  page.screenshot({ path: screenshotPath(`workflow-${name}.png`), fullPage: true });
 
 async function workflowOf(request: APIRequestContext, sceneId: string): Promise<SceneWorkflow> {
   return (await (await request.get(`/api/scenes/${sceneId}/workflow`)).json()) as SceneWorkflow;
