@@ -219,7 +219,7 @@ test("a crowded scene's labels do not overlap; mask colouring and opacity are re
   await page.getByTestId("mask-opacity").fill("0.42");
 });
 
-test("a real photo: labels apart, sources and 3D box confidences in the object list", async ({
+test("a real photo: labels apart, sources, 3D box confidences and mesh sources in the object list", async ({
   page,
 }) => {
   const doc = await seedScene(page.request, path.join(REAL, "im3d-1"), "im3d-1 overlays");
@@ -237,6 +237,23 @@ test("a real photo: labels apart, sources and 3D box confidences in the object l
     const percent = Math.round((object.box_3d_confidence ?? 0) * 100);
     await expect(page.getByTestId(`box-confidence-${object.id}`)).toHaveText(`3D ${percent}%`);
   }
+  // Which stage made each mesh: the mesh network's deformed templates among them.
+  const badgeOf = {
+    builtin: "library",
+    user: "file",
+    completion: "from depth",
+    learned: "learned",
+  };
+  const meshed = doc.scene.objects?.filter((o) => o.mesh) ?? [];
+  expect(meshed.some((o) => o.mesh?.library === "learned")).toBe(true);
+  for (const object of meshed) {
+    const library = object.mesh?.library ?? "builtin";
+    await expect(page.getByTestId(`object-mesh-${object.id}`)).toHaveText(
+      `mesh: ${badgeOf[library]}`,
+    );
+  }
+  const unmeshed = doc.scene.objects?.find((o) => !o.mesh && o.class !== "floor");
+  if (unmeshed) await expect(page.getByTestId(`object-mesh-${unmeshed.id}`)).toHaveCount(0);
   await page.getByTestId("photo-panel").screenshot({
     path: screenshotPath("photo-real-labels.png"),
   });

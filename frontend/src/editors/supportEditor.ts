@@ -17,6 +17,7 @@ import { rgbCss } from "../views/classColors";
 import { maskColours } from "../views/objectColors";
 import { maskStyle } from "../views/photo/maskStyle";
 import { boxConfidence } from "./boxConfidence";
+import { objectMesh } from "./objectMesh";
 import { objectSource } from "./objectSource";
 import { supportSummary } from "./supportSummary";
 
@@ -162,6 +163,7 @@ function objectRow(
   const status = el("span", { className: "badge", testid: `support-status-${id}` });
   const source = objectSource(object);
   const boxTrust = boxConfidence(object);
+  const mesh = objectMesh(object);
   const element = el(
     "tr",
     {
@@ -200,6 +202,13 @@ function objectRow(
             testid: `box-confidence-${id}`,
             text: boxTrust.text,
             attrs: { title: boxTrust.title },
+          }),
+        mesh &&
+          el("span", {
+            className: `object-source object-mesh object-mesh--${mesh.kind}`,
+            testid: `object-mesh-${id}`,
+            text: mesh.text,
+            attrs: { title: mesh.title },
           }),
       ),
       status,
