@@ -110,16 +110,16 @@ def main(argv: list[str] | None = None) -> int:
     )
     print(
         "| model | real: boxes found % | with right class % | mm3d: predictions real % "
-        "| synthetic mAP@0.5 | synthetic found % | s per photo |"
+        "| synthetic mAP@0.5 | synthetic found % | s per photo | real: boxes per photo |"
     )
-    print("| --- | --- | --- | --- | --- | --- | --- |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
     for name, r in results.items():
         real_s, mm3d_s, synth_s = r["real"], r["mm3d"], r["synthetic"]
         print(
             f"| {name} | {percent(real_s['recall_any_class'])} "
             f"| {percent(real_s['recall_right_class'])} | {percent(mm3d_s['precision'])} "
             f"| {percent(r['synthetic_map'])} | {percent(synth_s['recall_right_class'])} "
-            f"| {r['seconds_median']:.3f} |"
+            f"| {r['seconds_median']:.3f} | {real_s['predicted_boxes'] / real_s['photos']:.1f} |"
         )
     if args.per_class:
         print_per_class(results)

@@ -40,15 +40,17 @@ export async function seedScene(
   return getScene(request, imported.scene.id);
 }
 
-/** The real photo t3d-5 with an empty detections.json: a scene without objects. */
+/** A real photo (t3d-5 unless `dir` says) with an empty detections.json: a scene without
+ * objects. */
 export async function importWithoutObjects(
   request: APIRequestContext,
   name: string,
+  dir: string = T3D_5,
 ): Promise<string> {
   const response = await request.post("/api/scenes", {
     multipart: {
-      image: filePart(T3D_5, "img.jpg", "image/jpeg"),
-      cam_k: filePart(T3D_5, "cam_K.txt", "text/plain"),
+      image: filePart(dir, "img.jpg", "image/jpeg"),
+      cam_k: filePart(dir, "cam_K.txt", "text/plain"),
       detections: {
         name: "detections.json",
         mimeType: "application/json",

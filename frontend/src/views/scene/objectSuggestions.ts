@@ -5,6 +5,7 @@
 // left out). Click one to select it; Accept adds it to the scene (an add_object edit: the
 // server makes its mask and answers with the new revision), Reject drops it for this visit.
 // The bar above the photo says what the detector is doing, or why it failed.
+import { SCORE_THRESHOLD } from "../../inference/detectorTensor";
 import type { ObjectEditor } from "../../state/objectEditor";
 import { plural, type SceneSession } from "../../state/sceneSession";
 import { isStructural } from "../../state/supportGraph";
@@ -13,7 +14,7 @@ import { classHints } from "./classHints";
 import { type Offer, offerLabel } from "./detectionOffers";
 import { addingText, addOffers } from "./suggestions/addOffers";
 import { type DetectorBarActions, detectorBar } from "./suggestions/detectorBar";
-import { foundText, runDetector } from "./suggestions/detectorRun";
+import { fainterText, foundText, runDetector } from "./suggestions/detectorRun";
 import { offerBoxes } from "./suggestions/offerBoxes";
 import { OfferState } from "./suggestions/offerState";
 import { suggestionKeys } from "./suggestions/suggestionKeys";
@@ -58,6 +59,7 @@ export function mountObjectSuggestions(
     rejectSelected: onSelected((o) => reject([o])),
     acceptAll: () => void accept(shown()),
     rejectAll: () => reject(shown()),
+    showFainter: () => showFainter(),
   };
 
   const boxes = offerBoxes(svg, frameFor(width, height), width, (key) => {
@@ -76,6 +78,7 @@ export function mountObjectSuggestions(
       failed,
       editable: session.editable,
       open: open.length,
+      fainter: state.fainter(),
       chosen: state.selectedOffer(),
     });
   };
@@ -96,10 +99,10 @@ export function mountObjectSuggestions(
         say("Detecting objects…");
       });
       if (disposed) return;
-      state.reset(run.boxes);
+      state.reset(run.seen, SCORE_THRESHOLD);
       classHints.set(session.sceneId, run.seen);
       busy = null;
-      say(foundText(state.found, shown().length, run));
+      say(foundText(state.found, shown().length, state.fainter(), run));
     } catch (error) {
       if (disposed) return;
       busy = null;
@@ -126,6 +129,14 @@ export function mountObjectSuggestions(
     }
     const left = shown().length;
     say(`Added ${names}.${left > 0 ? ` ${plural(left, "suggestion")} left.` : ""}`);
+  };
+
+  /** Offer the run's boxes below the detector's threshold too: more real ones, more wrong. */
+  const showFainter = () => {
+    const fainter = state.fainter();
+    if (busy !== null || fainter === 0) return;
+    state.showFainter();
+    say(`Showing ${fainterText(fainter)} as well: most of them are wrong; accept the right ones.`);
   };
 
   const reject = (chosen: Offer[]) => {

@@ -1,6 +1,6 @@
-// The bar above the photo for object suggestions: "Detect objects", what the detector is doing
-// (or why it failed), and while there are boxes: the selected one, Accept, Reject, Accept all,
-// Reject all.
+// The bar above the photo for object suggestions: "Detect objects", "Show N fainter" when the
+// run saw boxes below the detector's threshold, what the detector is doing (or why it failed),
+// and while there are boxes: the selected one, Accept, Reject, Accept all, Reject all.
 import { button, el } from "../../../dom";
 import { type Offer, offerLabel } from "../detectionOffers";
 
@@ -17,6 +17,8 @@ export interface DetectorBarState {
   editable: boolean;
   /** How many boxes are open. */
   open: number;
+  /** How many more the run found below the detector's threshold, not shown yet. */
+  fainter: number;
   chosen: Offer | null;
 }
 
@@ -26,6 +28,7 @@ export interface DetectorBarActions {
   rejectSelected(): void;
   acceptAll(): void;
   rejectAll(): void;
+  showFainter(): void;
 }
 
 export interface DetectorBar {
@@ -76,6 +79,12 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
     "Drop every box shown",
     actions.rejectAll,
   );
+  const fainterButton = action(
+    "Show fainter",
+    "show-fainter-suggestions",
+    "Also offer the boxes the detector saw below its threshold: more of the real objects, and many wrong boxes",
+    actions.showFainter,
+  );
   const selection = el("span", { className: "detector-selection", testid: "detector-selection" });
   const actionRow = el(
     "span",
@@ -94,13 +103,17 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
     "div",
     { className: "detector-bar", testid: "detector-bar" },
     detectButton,
+    fainterButton,
     actionRow,
     statusLine,
   );
   return {
     element,
-    show({ busy, status, failed, editable, open, chosen }) {
+    show({ busy, status, failed, editable, open, fainter, chosen }) {
       detectButton.disabled = busy;
+      fainterButton.hidden = fainter === 0;
+      fainterButton.disabled = busy;
+      fainterButton.textContent = `Show ${fainter} fainter`;
       statusLine.textContent = status;
       statusLine.title = status;
       statusLine.classList.toggle("alert", failed);

@@ -10,9 +10,8 @@ import { HINT_SCORE } from "../classHints";
 const MB = (bytes: number) => `${(bytes / 1e6).toFixed(1)} MB`;
 
 export interface DetectorRun {
-  /** The boxes to offer (the model's score threshold). */
-  boxes: DetectedBox[];
-  /** Every box down to HINT_SCORE, for the class picker's hints (the offers among them). */
+  /** Every box down to HINT_SCORE: the offers (at the model's score threshold, SCORE_THRESHOLD),
+   * the fainter ones a person may ask for, and the class picker's hints. */
   seen: DetectedBox[];
   /** Loading the detector (about nothing once its session exists), milliseconds. */
   loadMs: number;
@@ -44,20 +43,27 @@ export async function runDetector(
   // (the per-class suppression only ever drops a box for a better one).
   const result = await model.detect(pixels, HINT_SCORE);
   return {
-    boxes: result.boxes.filter((b) => b.score >= SCORE_THRESHOLD),
     seen: result.boxes,
     loadMs: loaded - start,
     runMs: performance.now() - loaded,
   };
 }
 
-/** What the run found, for the status line: `found` boxes, `open` of them not labelled yet. */
-export function foundText(found: number, open: number, run: DetectorRun): string {
+/**
+ * What the run found, for the status line: `found` boxes, `open` of them not labelled yet,
+ * `fainter` more below the detector's threshold that a person can ask to see.
+ */
+export function foundText(found: number, open: number, fainter: number, run: DetectorRun): string {
   const seconds = (ms: number) => `${(ms / 1000).toFixed(1)} s`;
   const time =
     `in ${seconds(run.runMs)}` +
     (run.loadMs > 100 ? ` (loading the detector took ${seconds(run.loadMs)})` : "");
-  if (found === 0) return `No objects found ${time}.`;
-  if (open === 0) return `${plural(found, "box")} found ${time}, all labelled already.`;
-  return `${plural(open, "object")} suggested ${time}: click a box, then Accept or Reject.`;
+  const faint = fainter > 0 ? ` ${fainterText(fainter)} can be shown.` : "";
+  if (found === 0) return `No objects found ${time}.${faint}`;
+  if (open === 0) return `${plural(found, "box")} found ${time}, all labelled already.${faint}`;
+  return `${plural(open, "object")} suggested ${time}: click a box, then Accept or Reject.${faint}`;
 }
+
+/** "3 fainter boxes (below 30%)" */
+export const fainterText = (fainter: number) =>
+  `${plural(fainter, "fainter box")} (below ${Math.round(SCORE_THRESHOLD * 100)}%)`;

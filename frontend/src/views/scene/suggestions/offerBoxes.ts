@@ -1,6 +1,7 @@
 // The detector's suggested boxes over the photo: dashed boxes with class and score, larger
 // ones first so a smaller box inside one stays clickable; a click on a box selects it.
 import { svgEl } from "../../../dom";
+import { SCORE_THRESHOLD } from "../../../inference/detectorTensor";
 import { type Frame, strokeWidth } from "../../photo/arrowGeometry";
 import { type Offer, offerLabel } from "../detectionOffers";
 
@@ -9,6 +10,8 @@ function offerBox(offer: Offer, selected: boolean, frame: Frame, photoWidth: num
   const size = stroke * 5;
   const [x1, y1, x2, y2] = offer.bbox;
   const label = offerLabel(offer);
+  // Below the detector's threshold: offered only because the person asked for fainter boxes.
+  const faint = offer.score < SCORE_THRESHOLD;
   const labelWidth = label.length * size * 0.62 + size * 0.6;
   const labelHeight = size * 1.35;
   // Above the box, in the frame's margin if need be; inside it at the photo's top.
@@ -17,10 +20,12 @@ function offerBox(offer: Offer, selected: boolean, frame: Frame, photoWidth: num
   return svgEl(
     "g",
     {
-      class: `detector-suggestion${selected ? " is-selected" : ""}`,
+      class: `detector-suggestion${selected ? " is-selected" : ""}${faint ? " is-faint" : ""}`,
       "data-testid": "detector-suggestion",
       "data-key": offer.key,
       "data-class": offer.cls,
+      "data-score": String(Math.round(offer.score * 100)),
+      "data-bbox": offer.bbox.map((v) => v.toFixed(1)).join(","),
     },
     svgEl("title", {}, `Suggested ${label} (the detector's ${offer.sourceClass}): click to select`),
     svgEl("rect", {

@@ -1,37 +1,59 @@
 // The offers of one detector run: which are still open (not accepted, now objects; not
-// rejected; not over an object of their class) and which one is selected.
+// rejected; not over an object of their class) and which one is selected. A run keeps its
+// fainter boxes too (down to the class hints' score): a person who asks for them sees them as
+// offers, since at a low score the detector finds about twice the real boxes it finds at its
+// own threshold, at the cost of many wrong ones (docs/benchmarks.md, "Object detector").
 import type { SceneObject } from "@holiscene/schema";
 import type { DetectedBox } from "../../../inference/detectorTensor";
 import { type Offer, offersOf, openOffers } from "../detectionOffers";
 
 export class OfferState {
-  /** This run's boxes, best first. */
+  /** This run's boxes down to the faintest kept, best first. */
   private offers: Offer[] = [];
   private rejected: Offer[] = [];
+  /** Offers below this score stay hidden until `showFainter`. */
+  private minScore = 0;
+  private faintScore = 0;
   /** The selected offer's key. */
   selected: string | null = null;
 
   /** `objects` gives the scene's objects now. */
   constructor(private readonly objects: () => readonly SceneObject[]) {}
 
-  /** How many boxes the run found (open or not). */
+  /** How many boxes the run offered (open or not), the fainter ones once shown. */
   get found(): number {
-    return this.offers.length;
+    return this.offers.filter((o) => o.score >= this.minScore).length;
   }
 
   /** The offers still open. */
   open(): Offer[] {
-    return openOffers(this.offers, this.objects(), this.rejected);
+    return this.openAbove(this.minScore);
+  }
+
+  /** How many more offers would open if the fainter boxes were shown (0 once they are). */
+  fainter(): number {
+    if (this.minScore <= this.faintScore) return 0;
+    return this.openAbove(this.faintScore).length - this.open().length;
+  }
+
+  /** Offer the fainter boxes as well; the selection stays where it was. */
+  showFainter(): void {
+    this.minScore = this.faintScore;
   }
 
   selectedOffer(): Offer | null {
     return this.open().find((o) => o.key === this.selected) ?? null;
   }
 
-  /** A new run's boxes: all open again, the best one selected. */
-  reset(boxes: readonly DetectedBox[]): void {
+  /**
+   * A new run's boxes (`boxes` at or above `threshold` are offered, the others down to the
+   * faintest kept wait for `showFainter`): all open again, the best one selected.
+   */
+  reset(boxes: readonly DetectedBox[], threshold = 0): void {
     this.offers = offersOf(boxes);
     this.rejected = [];
+    this.minScore = threshold;
+    this.faintScore = Math.min(threshold, ...this.offers.map((o) => o.score));
     this.selected = this.open()[0]?.key ?? null;
   }
 
@@ -46,5 +68,10 @@ export class OfferState {
       this.selected = open[0]?.key ?? null;
     }
     return open;
+  }
+
+  private openAbove(score: number): Offer[] {
+    const offers = this.offers.filter((o) => o.score >= score);
+    return openOffers(offers, this.objects(), this.rejected);
   }
 }

@@ -1,0 +1,60 @@
+// A detector run's offers: its boxes at the threshold first, its fainter ones when asked for.
+import type { SceneObject } from "@holiscene/schema";
+import { describe, expect, it } from "vitest";
+import type { DetectedBox } from "../../../inference/detectorTensor";
+import { OfferState } from "./offerState";
+
+const box = (cls: string, bbox: [number, number, number, number], score: number): DetectedBox => ({
+  cls,
+  bbox,
+  score,
+  sourceClass: cls,
+});
+
+describe("offer state", () => {
+  const boxes = [
+    box("bed", [100, 100, 400, 400], 0.8),
+    box("lamp", [10, 10, 60, 80], 0.2),
+    box("picture", [450, 20, 600, 120], 0.12),
+    // Faint, and at the bed's place: the same thing, never offered.
+    box("sofa", [105, 100, 400, 400], 0.15),
+  ];
+
+  it("offers the boxes at the threshold and counts the fainter ones apart", () => {
+    const state = new OfferState(() => []);
+    state.reset(boxes, 0.3);
+    expect(state.open().map((o) => o.cls)).toEqual(["bed"]);
+    expect(state.found).toBe(1);
+    expect(state.fainter()).toBe(2);
+    expect(state.selectedOffer()?.cls).toBe("bed");
+  });
+
+  it("shows the fainter boxes when asked, keeping the selection", () => {
+    const state = new OfferState(() => []);
+    state.reset(boxes, 0.3);
+    state.showFainter();
+    expect(state.open().map((o) => o.cls)).toEqual(["bed", "lamp", "picture"]);
+    expect(state.found).toBe(4);
+    expect(state.fainter()).toBe(0);
+    expect(state.selectedOffer()?.cls).toBe("bed");
+  });
+
+  it("does not count fainter boxes over the scene's objects or rejected ones", () => {
+    const lamp = { id: "o1", class: "lamp", bbox: [10, 12, 60, 80] } as unknown as SceneObject;
+    const state = new OfferState(() => [lamp]);
+    state.reset(boxes, 0.3);
+    expect(state.fainter()).toBe(1);
+    state.showFainter();
+    const picture = state.open().find((o) => o.cls === "picture");
+    expect(picture).toBeDefined();
+    state.reject(picture ? [picture] : []);
+    expect(state.open().map((o) => o.cls)).toEqual(["bed"]);
+  });
+
+  it("has nothing fainter without a threshold", () => {
+    const state = new OfferState(() => []);
+    state.reset(boxes);
+    expect(state.fainter()).toBe(0);
+    expect(state.open()).toHaveLength(3);
+  });
+});
