@@ -102,7 +102,7 @@ export function mountObjectSuggestions(
       state.reset(run.seen, SCORE_THRESHOLD);
       classHints.set(session.sceneId, run.seen);
       busy = null;
-      say(foundText(state.found, shown().length, state.fainter(), run));
+      say(foundText(state.found, shown().length, run));
     } catch (error) {
       if (disposed) return;
       busy = null;

@@ -49,19 +49,16 @@ export async function runDetector(
   };
 }
 
-/**
- * What the run found, for the status line: `found` boxes, `open` of them not labelled yet,
- * `fainter` more below the detector's threshold that a person can ask to see.
- */
-export function foundText(found: number, open: number, fainter: number, run: DetectorRun): string {
+/** What the run found, for the status line: `found` boxes, `open` of them not labelled yet
+ * (the fainter ones have their own button in the bar). */
+export function foundText(found: number, open: number, run: DetectorRun): string {
   const seconds = (ms: number) => `${(ms / 1000).toFixed(1)} s`;
   const time =
     `in ${seconds(run.runMs)}` +
     (run.loadMs > 100 ? ` (loading the detector took ${seconds(run.loadMs)})` : "");
-  const faint = fainter > 0 ? ` ${fainterText(fainter)} can be shown.` : "";
-  if (found === 0) return `No objects found ${time}.${faint}`;
-  if (open === 0) return `${plural(found, "box")} found ${time}, all labelled already.${faint}`;
-  return `${plural(open, "object")} suggested ${time}: click a box, then Accept or Reject.${faint}`;
+  if (found === 0) return `No objects found ${time}.`;
+  if (open === 0) return `${plural(found, "box")} found ${time}, all labelled already.`;
+  return `${plural(open, "object")} suggested ${time}: click a box, then Accept or Reject.`;
 }
 
 /** "3 fainter boxes (below 30%)" */
