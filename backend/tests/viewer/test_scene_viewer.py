@@ -24,6 +24,7 @@ from holiscene.viewer.scene_viewer import (
     PARTIAL_RGB,
     SEE_THROUGH_OPACITY,
 )
+from holiscene_schema import MeshRef
 
 OpenViewer = Callable[[ViewerInput], SceneViewer]
 
@@ -161,6 +162,29 @@ def test_prediction_takes_meshes_from_its_glb(
     viewer.select(missing)
     assert "no 3D box" in viewer.details.content
     assert viewer.highlight is None
+
+
+def test_details_name_the_stage_that_made_a_glb_mesh(
+    synthetic_folder: Path, predicted_folder: Path, open_viewer: OpenViewer
+) -> None:
+    data = load_scene_path(predicted_folder, photo=synthetic_folder / "img.png")
+    placed = [o for o in data.scene.objects if o.corners_3d is not None]
+    made_by = {placed[0].id: "learned", placed[1].id: "completion"}
+    objects = [
+        o.model_copy(update={"mesh": MeshRef(library=made_by[o.id], cls=o.cls)})
+        if o.id in made_by
+        else o
+        for o in data.scene.objects
+    ]
+    scene = data.scene.model_copy(update={"objects": objects})
+    viewer = open_viewer(ViewerInput(scene, data.photo, data.glb, data.origin))
+    expected = {"learned": "mesh network", "completion": "shape completion"}
+    for obj_id, library in made_by.items():
+        viewer.select(obj_id)
+        assert f"| mesh | {expected[library]} (from scene.glb) |" in viewer.details.content
+    # Without a MeshRef the GLB is all the viewer knows.
+    viewer.select(placed[2].id)
+    assert "| mesh | scene.glb |" in viewer.details.content
 
 
 def test_glb_of_other_boxes_is_not_trusted(

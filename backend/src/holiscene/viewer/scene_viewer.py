@@ -85,6 +85,22 @@ def _photo_for_frustum(photo: NDArray[np.uint8]) -> NDArray[np.uint8]:
     return small
 
 
+# What made a mesh the viewer shows from scene.glb (MeshRef.library), for the object's details.
+MESH_MAKERS = {
+    "builtin": "furniture library",
+    "user": "user model",
+    "completion": "shape completion",
+    "learned": "mesh network",
+}
+
+
+def _mesh_text(obj: SceneObject, source: MeshSource) -> str:
+    """Where the shown mesh comes from: the stage that made it when it is the GLB's."""
+    if source != "scene.glb" or obj.mesh is None:
+        return source
+    return f"{MESH_MAKERS[obj.mesh.library]} (from scene.glb)"
+
+
 def _fmt(value: float | None, digits: int = 2) -> str:
     return "-" if value is None else f"{value:.{digits}f}"
 
@@ -394,7 +410,7 @@ class SceneViewer:
         if node is None:
             rows.append(("3D", "no 3D box"))
         else:
-            rows.append(("mesh", node.source))
+            rows.append(("mesh", _mesh_text(obj, node.source)))
             if obj.box_3d is not None:
                 size = " × ".join(f"{s:.2f}" for s in obj.box_3d.size)
                 rows.append(("box size (d × h × w)", f"{size} m"))
