@@ -99,6 +99,11 @@ test("a scene without objects says so and shows the pipeline's warnings", async 
   await expect(
     warnings.getByTestId("pipeline-warning").filter({ hasText: "intrinsics" }),
   ).toContainText("no cam_K.txt");
+  // The empty detections.json is said once; the stages after it do not blame the camera.
+  await expect(
+    warnings.getByTestId("pipeline-warning").filter({ hasText: "lists no objects" }),
+  ).toHaveCount(1);
+  await expect(warnings).not.toContainText("camera height");
   // A note that is no problem (the room's scale and where it came from) is not a warning.
   await expect(warnings).not.toContainText("scale from");
 });

@@ -85,3 +85,15 @@ def test_stage_notes_are_warnings_only_when_a_stage_could_not_do_something(t3d5:
     warnings = {run.name: run.note for run in runs if run.warning}
     assert "no detections.json" in (warnings["objects_from_detections"] or "")
     assert "no cam_K.txt" in (warnings["intrinsics"] or "")
+
+
+def test_an_empty_detections_file_is_one_warning_that_says_so(t3d5: Path) -> None:
+    given = read_input_folder(t3d5)
+    empty = InputFiles(photo=given.photo, K=given.K, detections=[])
+    scene = reconstruct_scene(empty, name="x", image_file="img.jpg").scene
+    assert scene.objects == []
+    warnings = {run.name: run.note for run in scene.stages if run.warning}
+    assert "lists no objects" in (warnings.pop("objects_from_detector") or "")
+    # The later stages have nothing to work on; none of them blames the camera or the room.
+    assert "boxes_by_refiner" not in warnings
+    assert not any("camera height" in (note or "") for note in warnings.values()), warnings

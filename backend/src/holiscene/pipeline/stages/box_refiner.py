@@ -27,12 +27,19 @@ class BoxesByRefiner(Stage):
     def run(self, ctx: SceneContext) -> None:
         camera = required(ctx.camera, "camera")
         boxes = dict(required(ctx.boxes_3d, "boxes_3d"))
-        if camera.height_m is None or not any(boxes.values()):
-            ctx.notes[self.name] = "no camera height or no 3D box: the placement's boxes are kept"
+        objects = required(ctx.objects, "objects")
+        if not objects:  # an empty scene is told once, by the stage that made the objects
+            ctx.reports[self.name] = "no objects to refine"
+            return
+        if camera.height_m is None:
+            ctx.notes[self.name] = "no camera height (metric scale): the placement's boxes are kept"
+            return
+        if not any(boxes.values()):
+            ctx.notes[self.name] = "no object has a 3D box to refine"
             return
         masks = required(ctx.masks, "masks")
         view = SceneView(
-            objects=required(ctx.objects, "objects"),
+            objects=objects,
             boxes=boxes,
             mask_pixels={i: int(m.pixels.sum()) for i, m in masks.items()},
             supports=required(ctx.supports, "supports"),

@@ -8,6 +8,11 @@ from ..base import Detection, SceneContext, Stage
 from ..people import keep_people_objects
 from ..registry import register_stage
 
+# A scene imported with an empty detections.json (objects to be added by people).
+NO_GIVEN_OBJECTS = (
+    "detections.json lists no objects: add them on the scene page (Detect objects, or the box tool)"
+)
+
 
 @register_stage
 class ObjectsFromDetections(Stage):
@@ -28,6 +33,8 @@ class ObjectsFromDetections(Stage):
         unknown = unknown_class_note(ctx.detections)
         if unknown:
             ctx.notes[self.name] = unknown
+        elif not ctx.objects:
+            ctx.notes[self.name] = NO_GIVEN_OBJECTS
 
 
 def unknown_class_note(detections: list[Detection]) -> str | None:

@@ -20,7 +20,7 @@ from ...learning.detector.runtime import (
 from ..base import PipelineBuildError, SceneContext, Stage
 from ..people import keep_people_objects
 from ..registry import register_stage
-from .detections import objects_from_detections, unknown_class_note
+from .detections import NO_GIVEN_OBJECTS, objects_from_detections, unknown_class_note
 
 
 @register_stage
@@ -57,6 +57,8 @@ class ObjectsFromDetector(Stage):
             ctx.notes[self.name] = unknown
         if ctx.detections is not None and not self.add_missing:
             ctx.objects = keep_people_objects(given, ctx.pinned_objects, ctx.removed_objects)
+            if not ctx.objects and not unknown:
+                ctx.notes[self.name] = NO_GIVEN_OBJECTS
             return
         found = self.detector.detect(ctx.image, self.score_threshold)
         if given:
