@@ -41,6 +41,42 @@ def test_uncertainty_is_the_mean_doubt_over_objects_that_need_a_supporter() -> N
     assert scene_uncertainty(manual) == pytest.approx(1.0 / 4)
 
 
+def test_an_object_only_the_detector_vouches_for_is_doubtful_by_its_score() -> None:
+    scene = make_scene(PREDICTED[:3], {"o0": 0.9, "o1": 0.3, "o2": None})
+    given = scene_uncertainty(scene)
+    detected = scene.model_copy(
+        update={
+            "objects": [
+                o.model_copy(update={"source": "detector", "score": 0.4}) if o.id == "o0" else o
+                for o in scene.objects
+            ]
+        }
+    )
+    # o0: real with chance 0.4, its supporter right with 0.9: doubt 1 - 0.4 * 0.9.
+    assert scene_uncertainty(detected) == pytest.approx((1 - 0.36 + 0.7 + 0.5 + 1.0) / 4)
+    assert scene_uncertainty(detected) > given
+    # Once a person touched it (accepted it, fixed its class...), its supporter's doubt alone.
+    touched = detected.model_copy(
+        update={
+            "objects": [
+                o.model_copy(update={"set_by_person": ["class"]}) if o.id == "o0" else o
+                for o in detected.objects
+            ]
+        }
+    )
+    assert scene_uncertainty(touched) == pytest.approx(given)
+    # A person's supporter settles it too.
+    settled = detected.model_copy(
+        update={
+            "supports": [
+                s.model_copy(update={"source": "manual"}) if s.child == "o0" else s
+                for s in detected.supports
+            ]
+        }
+    )
+    assert scene_uncertainty(settled) == pytest.approx((0.7 + 0.5 + 1.0) / 4)
+
+
 def test_a_scene_without_objects_to_support_is_the_most_uncertain() -> None:
     scene = make_scene([])
     assert scene_uncertainty(scene.model_copy(update={"objects": []})) == 1.0

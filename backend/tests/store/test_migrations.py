@@ -1,7 +1,7 @@
 """Migrations on databases written by earlier versions: 0003 on scenes stored before accounts
 and states existed, 0004 on accounts and sessions stored before idle timeouts and disabling,
 0005 on scenes without objects stored as the least uncertain, 0007 on scenes with several
-jobs waiting."""
+jobs waiting, 0010 on scenes with objects the detector made."""
 
 from __future__ import annotations
 
@@ -13,6 +13,7 @@ from alembic import command
 from alembic.config import Config
 from holiscene.core.db import MIGRATIONS_DIR, make_engine
 from holiscene.core.settings import Settings
+from holiscene_schema import Scene
 from sqlalchemy import Engine, inspect, text
 from sqlalchemy.exc import IntegrityError
 
@@ -120,6 +121,34 @@ def test_scenes_without_objects_become_the_most_uncertain(engine: Engine) -> Non
         "empty": (predicted.model_copy(update={"objects": [], "supports": []}), 0.0),
         "walls": (predicted.model_copy(update={"objects": walls, "supports": []}), 0.0),
     }
+    _store_scenes(engine, stored)
+    _migrate(engine, "head")
+    assert _uncertainties(engine) == {"objects": 0.85, "empty": 1.0, "walls": 1.0}
+    _migrate(engine, "0004", step=command.downgrade)
+    assert _uncertainties(engine) == {"objects": 0.85, "empty": 0.0, "walls": 0.0}
+
+
+def test_scenes_with_detected_objects_get_their_doubt(engine: Engine) -> None:
+    _migrate(engine, "0009")
+    given = make_scene([("o0", "floor", "below")], {"o0": 0.6})  # (0.4 + 1 * 3) / 4
+    detected = given.model_copy(
+        update={
+            "objects": [
+                o.model_copy(update={"source": "detector", "score": 0.5}) if o.id == "o0" else o
+                for o in given.objects
+            ]
+        }
+    )
+    _store_scenes(engine, {"given": (given, 0.85), "detected": (detected, 0.85)})
+    _migrate(engine, "head")
+    # o0 real with chance 0.5 and on the floor with 0.6: doubt 0.7 instead of 0.4.
+    assert _uncertainties(engine) == {"given": 0.85, "detected": pytest.approx(0.925)}
+    _migrate(engine, "0009", step=command.downgrade)
+    assert _uncertainties(engine) == {"given": 0.85, "detected": pytest.approx(0.85)}
+
+
+def _store_scenes(engine: Engine, stored: dict[str, tuple[Scene, float]]) -> None:
+    """Scenes as an earlier version stored them: id -> (revision 1, stored uncertainty)."""
     with engine.begin() as connection:
         for scene_id, (scene, uncertainty) in stored.items():
             connection.execute(
@@ -139,15 +168,11 @@ def test_scenes_without_objects_become_the_most_uncertain(engine: Engine) -> Non
                 {"id": scene_id, "scene": json.dumps(scene.model_dump(mode="json"))},
             )
 
-    def uncertainties() -> dict[str, float]:
-        with engine.connect() as connection:
-            rows = connection.execute(text("SELECT id, uncertainty FROM scenes")).all()
-        return {row[0]: row[1] for row in rows}
 
-    _migrate(engine, "head")
-    assert uncertainties() == {"objects": 0.85, "empty": 1.0, "walls": 1.0}
-    _migrate(engine, "0004", step=command.downgrade)
-    assert uncertainties() == {"objects": 0.85, "empty": 0.0, "walls": 0.0}
+def _uncertainties(engine: Engine) -> dict[str, float]:
+    with engine.connect() as connection:
+        rows = connection.execute(text("SELECT id, uncertainty FROM scenes")).all()
+    return {row[0]: row[1] for row in rows}
 
 
 def test_a_scene_keeps_only_its_newest_waiting_job(engine: Engine) -> None:

@@ -13,7 +13,15 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from holiscene_schema import STRUCTURAL_CLASSES, Role, Scene, SceneState, WorkflowAction
+from holiscene_schema import (
+    STRUCTURAL_CLASSES,
+    Role,
+    Scene,
+    SceneObject,
+    SceneState,
+    SupportRelation,
+    WorkflowAction,
+)
 
 from ..core.errors import DomainError
 
@@ -187,23 +195,33 @@ def _needs_supporter(scene: Scene) -> list[str]:
 
 
 def scene_uncertainty(scene: Scene) -> float:
-    """Mean over the objects that need a supporter of how unsure their supporter is:
-    1 - confidence for the pipeline's guess (0.5 when it gave none), 1 without a supporter,
-    0 when a person set it. 1 for a scene with no such objects: nothing in it is known yet
-    (its objects are still to be found), so it comes first for annotation."""
-    ids = _needs_supporter(scene)
-    if not ids:
+    """Mean over the objects that need a supporter of how unsure they are (`_object_doubt`).
+    1 for a scene with no such objects: nothing in it is known yet (its objects are still to
+    be found), so it comes first for annotation."""
+    objects = [o for o in scene.objects if o.cls not in STRUCTURAL_CLASSES]
+    if not objects:
         return 1.0
     supports = {s.child: s for s in scene.supports}
-    total = 0.0
-    for object_id in ids:
-        support = supports.get(object_id)
-        if support is None:
-            total += 1.0
-        elif support.source == "auto":
-            confidence = support.confidence
-            total += 1.0 - (UNKNOWN_CONFIDENCE if confidence is None else confidence)
-    return round(total / len(ids), 6)
+    total = sum(_object_doubt(o, supports.get(o.id)) for o in objects)
+    return round(total / len(objects), 6)
+
+
+def _object_doubt(obj: SceneObject, support: SupportRelation | None) -> float:
+    """How unsure the scene is of one object: of its supporter, 1 - confidence for the
+    pipeline's guess (0.5 when it gave none), 1 without a supporter, 0 when a person set it;
+    and of the object itself when the detector made it and no person has touched it since:
+    then the supporter only counts if the object is real, whose chance is its score."""
+    if support is None:
+        doubt = 1.0
+    elif support.source == "auto":
+        confidence = support.confidence
+        doubt = 1.0 - (UNKNOWN_CONFIDENCE if confidence is None else confidence)
+    else:
+        return 0.0
+    if obj.source == "detector" and not obj.set_by_person:
+        real = UNKNOWN_CONFIDENCE if obj.score is None else obj.score
+        doubt = 1.0 - (1.0 - doubt) * real
+    return doubt
 
 
 @dataclass(frozen=True)
