@@ -127,8 +127,12 @@ test("the detector's fainter boxes are offered when asked for, and find more of 
   expect(fainter).toBeGreaterThan(0);
   await expect(more).toHaveAttribute("title", /below its threshold/);
 
+  // The photo stays where it is (the person's pointer is over it) whatever the bar shows.
+  const photoTop = async () => (await page.getByTestId("photo").boundingBox())?.y;
+  const top = await photoTop();
   await more.click();
   await expect(boxes).toHaveCount(offered.length + fainter);
+  expect(await photoTop()).toBe(top);
   await expect(more).toBeHidden();
   await expect(status).toContainText(`Showing ${fainter} fainter`);
   const all = await suggestions(boxes);

@@ -1,6 +1,7 @@
-// The bar above the photo for object suggestions: "Detect objects", "Show N fainter" when the
-// run saw boxes below the detector's threshold, what the detector is doing (or why it failed),
-// and while there are boxes: the selected one, Accept, Reject, Accept all, Reject all.
+// The bar above the photo for object suggestions: "Detect objects", what the detector is doing
+// (or why it failed) with "Show N fainter" after it when the run saw boxes below the
+// detector's threshold, and while there are boxes: the selected one, Accept, Reject, Accept
+// all, Reject all.
 import { button, el } from "../../../dom";
 import { type Offer, offerLabel } from "../detectionOffers";
 
@@ -79,12 +80,16 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
     "Drop every box shown",
     actions.rejectAll,
   );
-  const fainterButton = action(
-    "Show fainter",
-    "show-fainter-suggestions",
-    "Also offer the boxes the detector saw below its threshold: more of the real objects, and many wrong boxes",
-    actions.showFainter,
-  );
+  // A link-sized button at the end of the status line: the line's height stays the same
+  // whether it shows or not, so the photo does not move when a detection ends.
+  const fainterButton = button("Show fainter", {
+    className: "detector-fainter",
+    testid: "show-fainter-suggestions",
+    title:
+      "Also offer the boxes the detector saw below its threshold: more of the real objects, " +
+      "and many wrong boxes",
+    onClick: actions.showFainter,
+  });
   const selection = el("span", { className: "detector-selection", testid: "detector-selection" });
   const actionRow = el(
     "span",
@@ -103,9 +108,8 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
     "div",
     { className: "detector-bar", testid: "detector-bar" },
     detectButton,
-    fainterButton,
     actionRow,
-    statusLine,
+    el("div", { className: "detector-status-row" }, statusLine, fainterButton),
   );
   return {
     element,
