@@ -7,7 +7,7 @@ import argparse
 import json
 from pathlib import Path
 
-from .common import CliError
+from .common import CliError, needs_pytorch
 
 
 def add_box_refiner_training_command(
@@ -33,10 +33,8 @@ def _train_box_refiner(args: argparse.Namespace) -> int:
     for name in ("rooms", "validation_rooms", "epochs", "members", "workers"):
         if getattr(args, name) < 1:
             raise CliError(f"--{name.replace('_', '-')} must be at least 1")
-    try:
+    with needs_pytorch():
         from ..learning.box_refiner.train import BoxRefinerTraining, train_box_refiner
-    except ImportError as error:
-        raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
     metrics = train_box_refiner(
         BoxRefinerTraining(
             out=args.out,

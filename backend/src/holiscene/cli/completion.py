@@ -7,6 +7,8 @@ import argparse
 import json
 from pathlib import Path
 
+from .common import needs_pytorch
+
 
 def add_completion_training_command(
     sub: argparse._SubParsersAction[argparse.ArgumentParser],
@@ -26,7 +28,8 @@ def add_completion_training_command(
 
 
 def _train_completion(args: argparse.Namespace) -> int:
-    from ..learning.completion.train import CompletionTraining, train_completion
+    with needs_pytorch():
+        from ..learning.completion.train import CompletionTraining, train_completion
 
     metrics = train_completion(
         CompletionTraining(

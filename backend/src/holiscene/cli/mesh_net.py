@@ -7,6 +7,8 @@ import argparse
 import json
 from pathlib import Path
 
+from .common import needs_pytorch
+
 
 def add_mesh_net_training_command(
     sub: argparse._SubParsersAction[argparse.ArgumentParser],
@@ -26,7 +28,8 @@ def add_mesh_net_training_command(
 
 
 def _train_meshes(args: argparse.Namespace) -> int:
-    from ..learning.mesh_net.train import MeshNetTraining, train_mesh_net
+    with needs_pytorch():
+        from ..learning.mesh_net.train import MeshNetTraining, train_mesh_net
 
     metrics = train_mesh_net(
         MeshNetTraining(

@@ -7,6 +7,8 @@ import argparse
 import json
 from pathlib import Path
 
+from .common import needs_pytorch
+
 
 def add_scene_net_training_command(
     sub: argparse._SubParsersAction[argparse.ArgumentParser],
@@ -33,7 +35,8 @@ def add_scene_net_training_command(
 
 
 def _train_scene_net(args: argparse.Namespace) -> int:
-    from ..learning.scene_net.train import SceneNetTrainConfig, train_scene_net
+    with needs_pytorch():
+        from ..learning.scene_net.train import SceneNetTrainConfig, train_scene_net
 
     config = SceneNetTrainConfig(
         rooms=args.rooms,

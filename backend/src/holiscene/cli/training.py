@@ -12,7 +12,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .common import CliError, settings_from
+from .common import CliError, needs_pytorch, settings_from
 
 if TYPE_CHECKING:
     from ..learning.detector.data import BoxedPhoto
@@ -142,10 +142,8 @@ def _training_progress(name: str) -> Iterator[Callable[[float, str], None]]:
 
 
 def _train_surfaces(args: argparse.Namespace) -> int:
-    try:
+    with needs_pytorch():
         from ..learning.surface_net import SurfaceTrainConfig, train_surface_model
-    except ImportError as error:
-        raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
     if args.out.exists() and any(args.out.iterdir()):
         raise CliError(f"{args.out} is not empty; give a new directory")
     if args.scenes < 1 or args.epochs < 1:
@@ -160,11 +158,9 @@ def _train_surfaces(args: argparse.Namespace) -> int:
 
 
 def _train_detector(args: argparse.Namespace) -> int:
-    try:
+    with needs_pytorch():
         from ..learning.detector.data import synthetic_photos
         from ..learning.detector.train import DetectorTrainConfig, train_detector
-    except ImportError as error:
-        raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
     if args.out.exists() and any(args.out.iterdir()):
         raise CliError(f"{args.out} is not empty; give a new directory")
     if min(args.scenes, args.validation_scenes, args.epochs, args.views) < 1:
@@ -224,10 +220,8 @@ def _train_scratch(
 def _train_rn(args: argparse.Namespace) -> int:
     from ..learning.training_api import TrainConfig
 
-    try:
+    with needs_pytorch():
         from ..learning.train import train_relation_model
-    except ImportError as error:
-        raise CliError(f"training needs PyTorch: pip install -e '.[train]' ({error})") from error
     if args.out.exists() and any(args.out.iterdir()):
         raise CliError(f"{args.out} is not empty; give a new directory")
     if args.synthetic_scenes < 0 or args.max_epochs < 1 or args.patience < 1:

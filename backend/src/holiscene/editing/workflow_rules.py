@@ -190,15 +190,15 @@ def describe(state: SceneState) -> str:
     return state.replace("_", " ")
 
 
-def _needs_supporter(scene: Scene) -> list[str]:
-    return [o.id for o in scene.objects if o.cls not in STRUCTURAL_CLASSES]
+def _needing_supporter(scene: Scene) -> list[SceneObject]:
+    return [o for o in scene.objects if o.cls not in STRUCTURAL_CLASSES]
 
 
 def scene_uncertainty(scene: Scene) -> float:
     """Mean over the objects that need a supporter of how unsure they are (`_object_doubt`).
     1 for a scene with no such objects: nothing in it is known yet (its objects are still to
     be found), so it comes first for annotation."""
-    objects = [o for o in scene.objects if o.cls not in STRUCTURAL_CLASSES]
+    objects = _needing_supporter(scene)
     if not objects:
         return 1.0
     supports = {s.child: s for s in scene.supports}
@@ -237,7 +237,7 @@ class Agreement:
 def support_agreement(first: Scene, second: Scene) -> Agreement:
     """Share of the objects (that need a supporter, in either scene) whose (supporter, type)
     is the same in both annotations; an object without a supporter in both counts as a match."""
-    ids = list(dict.fromkeys(_needs_supporter(first) + _needs_supporter(second)))
+    ids = list(dict.fromkeys(o.id for o in _needing_supporter(first) + _needing_supporter(second)))
     a = {s.child: (s.parent, s.type) for s in first.supports}
     b = {s.child: (s.parent, s.type) for s in second.supports}
     matching = sum(1 for object_id in ids if a.get(object_id) == b.get(object_id))

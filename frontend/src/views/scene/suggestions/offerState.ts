@@ -11,9 +11,8 @@ export class OfferState {
   /** This run's boxes down to the faintest kept, best first. */
   private offers: Offer[] = [];
   private rejected: Offer[] = [];
-  /** Offers below this score stay hidden until `showFainter`. */
+  /** Offers below this score stay hidden until `showFainter` (0: every box of the run). */
   private minScore = 0;
-  private faintScore = 0;
   /** The selected offer's key. */
   selected: string | null = null;
 
@@ -32,13 +31,13 @@ export class OfferState {
 
   /** How many more offers would open if the fainter boxes were shown (0 once they are). */
   fainter(): number {
-    if (this.minScore <= this.faintScore) return 0;
-    return this.openAbove(this.faintScore).length - this.open().length;
+    if (this.minScore === 0) return 0;
+    return this.openAbove(0).length - this.open().length;
   }
 
   /** Offer the fainter boxes as well; the selection stays where it was. */
   showFainter(): void {
-    this.minScore = this.faintScore;
+    this.minScore = 0;
   }
 
   selectedOffer(): Offer | null {
@@ -53,7 +52,6 @@ export class OfferState {
     this.offers = offersOf(boxes);
     this.rejected = [];
     this.minScore = threshold;
-    this.faintScore = Math.min(threshold, ...this.offers.map((o) => o.score));
     this.selected = this.open()[0]?.key ?? null;
   }
 
