@@ -22,6 +22,7 @@ from holiscene.export.total3d import (
 )
 from holiscene.geometry.boxes import box_corners
 from holiscene.geometry.camera import PinholeCamera
+from holiscene.viewer.meshes import object_meshes
 from holiscene_schema import NYU40_CLASSES, Box3D, Camera, Scene
 from PIL import Image
 
@@ -154,3 +155,44 @@ def test_a_scene_folder_holds_total3d_input_results_and_our_labels(
             continue
         corners = total3d_corners(entry["basis"], entry["coeffs"][0], entry["centroid"][0])
         assert np.allclose(corners, np.asarray(obj.corners_3d)[::-1], atol=2e-3), obj.id
+
+
+def total3d_placed_mesh(
+    obj_text: str, basis: np.ndarray, coeffs: np.ndarray, centroid: np.ndarray
+) -> np.ndarray:
+    """An exported .obj's vertices placed as Total3D's viewer places them
+    (utils/visualize.py format_mesh): bounds centred, stretched to the coeffs, turned by the
+    basis, moved to the centroid."""
+    points = np.array(
+        [
+            [float(v) for v in line.split()[1:4]]
+            for line in obj_text.splitlines()
+            if line.startswith("v ")
+        ]
+    )
+    points = points - (points.max(0) + points.min(0)) / 2.0
+    points = points / ((points.max(0) - points.min(0)) / 2.0) * coeffs
+    return np.asarray(points @ basis + centroid)
+
+
+def test_object_meshes_are_written_in_their_box_frame_as_total3d_places_them(
+    synthetic_folder: Path, tmp_path: Path
+) -> None:
+    truth = Scene.model_validate_json((synthetic_folder / "gt.json").read_text())
+    truth.objects[2].box_3d = None  # not placed: no mesh, the other files keep their index
+    folder = tmp_path / "room"
+    item = ArchivedScene("0123456789ab", 1, truth, synthetic_folder / "img.png", glb=None)
+    write_total3d_scene(item, folder)
+
+    placed_ids = [(i, o) for i, o in enumerate(truth.objects) if o.box_3d is not None]
+    expected = {f"{i}_{NYU40_CLASSES.index(o.cls) + 1}.obj" for i, o in placed_ids}
+    assert {p.name for p in folder.glob("*.obj")} == expected
+    world = object_meshes(truth, None).meshes
+    boxes = read_mat((folder / "bdb_3d.mat").read_bytes())["bdb"]
+    for index, obj in placed_ids:
+        entry = boxes[index]
+        text = (folder / f"{index}_{NYU40_CLASSES.index(obj.cls) + 1}.obj").read_text()
+        placed = total3d_placed_mesh(text, entry["basis"], entry["coeffs"][0], entry["centroid"][0])
+        assert world[obj.id].source == "library"
+        assert len(placed) == len(world[obj.id].vertices)
+        assert np.allclose(placed, world[obj.id].vertices, atol=2e-3), obj.id

@@ -86,7 +86,8 @@ EXPORT_FORMATS: dict[str, ExportFormat] = {
     "total3d": ExportFormat(
         write_total3d,
         "DIR/<scene>/ with Total3DUnderstanding's demo input (img.jpg, cam_K.txt, "
-        "detections.json with masks) and results (r_ex.mat, layout.mat, bdb_3d.mat), and "
+        "detections.json with masks) and results (r_ex.mat, layout.mat, bdb_3d.mat, one "
+        "<index>_<class id>.obj mesh per placed object), and "
         "supports.json",
     ),
     "relation-training": ExportFormat(

@@ -1,8 +1,8 @@
 """Stored scenes as Total3DUnderstanding's files: per scene its demo input (img.jpg,
-cam_K.txt, detections.json) and the camera, room layout and 3D boxes as its demo writes its
-results (r_ex.mat, layout.mat, bdb_3d.mat), plus our supports.json, each box's mask and the
-scene's gt.json when it has one, so the folder is also an input folder that imports back to
-the same scene labels.
+cam_K.txt, detections.json) and the camera, room layout, 3D boxes and object meshes as its
+demo writes its results (r_ex.mat, layout.mat, bdb_3d.mat, <index>_<class id>.obj), plus our
+supports.json, each box's mask and the scene's gt.json when it has one, so the folder is also
+an input folder that imports back to the same scene labels.
 
 Total3D's world frame is ours (origin at the camera, x forward, y up, z right), so the
 conversion is only of how rotations and boxes are written (docs/architecture.md,
@@ -15,7 +15,10 @@ conversion is only of how rotations and boxes are written (docs/architecture.md,
   rows (-right, up, front) = ((-sin yaw, 0, -cos yaw), (0, 1, 0), (cos yaw, 0, -sin yaw)),
   coeffs (size z, size y, size x) / 2: Total3D's orientation angle is yaw + 90 degrees;
 - Total3D lists a box's 8 corners top face first; for the room (layout.mat) its basis rows
-  are the room's own x, y, z.
+  are the room's own x, y, z;
+- an object's .obj is in its box's frame, coordinates along the basis rows: Total3D's viewer
+  centres a mesh's bounds, stretches them to the coeffs, turns by the basis and moves it to
+  the centroid.
 """
 
 from __future__ import annotations
@@ -25,12 +28,13 @@ import math
 from pathlib import Path
 
 import numpy as np
-from holiscene_schema import NYU40_CLASSES, Box3D, Camera
+from holiscene_schema import NYU40_CLASSES, Box3D, Camera, Scene
 from PIL import Image
 
 from ..core.atomic_files import write_atomic
 from ..geometry.camera import default_intrinsics, rot_x, rot_z
 from ..pipeline.stages.camera import ASSUMED_HFOV_DEG
+from ..viewer.meshes import object_meshes
 from .archive import ArchivedScene
 from .input_folder import write_labels
 from .matfile import MatCell, MatStruct, mat_file
@@ -71,18 +75,41 @@ def box_struct(box: Box3D | None, cls: str) -> MatStruct:
         return MatStruct(
             {"basis": np.full((3, 3), np.nan), "coeffs": nan, "centroid": nan, "classid": label}
         )
+    basis, coeffs, centroid = box_frame(box)
+    return MatStruct({"basis": basis, "coeffs": coeffs, "centroid": centroid, "classid": label})
+
+
+def box_frame(box: Box3D) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Total3D's (basis, coeffs, centroid) of a box."""
     yaw = math.radians(box.yaw_deg)
     front = [math.cos(yaw), 0.0, -math.sin(yaw)]
     left = [-math.sin(yaw), 0.0, -math.cos(yaw)]
     length, height, width = box.size
-    return MatStruct(
-        {
-            "basis": np.array([left, [0.0, 1.0, 0.0], front]),
-            "coeffs": np.array([width, height, length]) / 2.0,
-            "centroid": np.array(box.center, dtype=float),
-            "classid": label,
-        }
-    )
+    basis = np.array([left, [0.0, 1.0, 0.0], front])
+    return basis, np.array([width, height, length]) / 2.0, np.array(box.center, dtype=float)
+
+
+def object_obj_files(scene: Scene, glb: bytes | None) -> dict[str, bytes]:
+    """`<index>_<class id>.obj` per object with a 3D box (index as in detections.json and
+    bdb_3d.mat): its mesh as the 3D view draws it (the scene's GLB, else its library model,
+    else its box), in its box's frame (see the module's description)."""
+    meshes = object_meshes(scene, glb).meshes
+    files: dict[str, bytes] = {}
+    for index, obj in enumerate(scene.objects):
+        mesh = meshes.get(obj.id)
+        if mesh is None or obj.box_3d is None:
+            continue
+        basis, _, centroid = box_frame(obj.box_3d)
+        local = (mesh.vertices.astype(float) - centroid) @ basis.T
+        files[f"{index}_{NYU40_CLASSES.index(obj.cls) + 1}.obj"] = obj_text(local, mesh.faces)
+    return files
+
+
+def obj_text(vertices: np.ndarray, faces: np.ndarray) -> bytes:
+    """A Wavefront OBJ of vertices and triangles only (its face indices count from 1)."""
+    lines = [f"v {x:.6f} {y:.6f} {z:.6f}" for x, y, z in vertices]
+    lines += [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in faces]
+    return ("\n".join(lines) + "\n").encode()
 
 
 def jpeg_photo(photo: Path) -> bytes:
@@ -117,6 +144,9 @@ def write_total3d_scene(item: ArchivedScene, folder: Path) -> None:
         boxes = MatCell([box_struct(obj.box_3d, obj.cls) for obj in scene.objects])
         labels = np.array([NYU40_CLASSES.index(o.cls) + 1 for o in scene.objects], dtype=np.int64)
         write_atomic(folder / "bdb_3d.mat", mat_file({"bdb": boxes, "class_id": labels}))
+    glb = item.glb.read_bytes() if item.glb is not None and item.glb.is_file() else None
+    for name, data in object_obj_files(scene, glb).items():
+        write_atomic(folder / name, data)
 
 
 def write_total3d(chosen: list[ArchivedScene], out: Path) -> None:
