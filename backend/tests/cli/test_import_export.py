@@ -163,6 +163,27 @@ def test_export_refusals_write_nothing(tmp_path: Path, capsys: pytest.CaptureFix
     assert (out / "annotations.json").is_file() and (out / "keep.txt").is_file()
 
 
+def test_total3d_training_export_says_what_it_wrote_and_what_it_left_out(
+    tmp_path: Path, synthetic_folder: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    plain = labelme_file(tmp_path / "in" / "room.json", [shape("bed", [[5, 5], [40, 5], [40, 40]])])
+    assert main(["import", str(plain), "--data-dir", str(tmp_path / "data")]) == 0
+    capsys.readouterr()
+    assert _export(tmp_path / "data", tmp_path / "none", "total3d-training") == 2
+    assert "no scene can be a Total3D training sample" in capsys.readouterr().err
+    assert not any((tmp_path / "none").iterdir())
+
+    assert main(["import", str(synthetic_folder), "--data-dir", str(tmp_path / "data")]) == 0
+    capsys.readouterr()
+    assert _export(tmp_path / "data", tmp_path / "t3d", "total3d-training") == 0
+    printed = capsys.readouterr().out
+    assert "1 training and 0 test sample(s); 1 scene(s) left out" in printed
+    index = json.loads((tmp_path / "t3d" / "holiscene-index.json").read_text())
+    (sample,) = index["samples"]
+    assert sample["name"] == synthetic_folder.name and sample["labels"] == "ground truth"
+    assert (tmp_path / "t3d" / "sunrgbd_train_test_data" / "1.pkl").is_file()
+
+
 def test_importing_twice_adds_nothing(
     tmp_path: Path, synthetic_folder: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

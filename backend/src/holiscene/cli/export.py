@@ -45,10 +45,12 @@ def _export(args: argparse.Namespace) -> int:
         chosen = _chosen_scenes(scenes, args.scene_ids)
     out.mkdir(parents=True, exist_ok=True)
     try:
-        EXPORT_FORMATS[args.format].write(chosen, out)
+        note = EXPORT_FORMATS[args.format].write(chosen, out)
     except ExportRefusedError as exc:
         raise CliError(str(exc)) from exc
     print(f"exported {len(chosen)} scene(s) as {args.format} to {out}")
+    if note:
+        print(note)
     return 0
 
 

@@ -16,6 +16,7 @@ from .input_folder import given_intrinsics, write_labels
 from .nyu_supports import write_nyu_supports
 from .relation_training import write_relation_training
 from .total3d import write_total3d
+from .total3d_training import write_total3d_training
 
 COCO_FILE = "annotations.json"
 COCO_IMAGES = "images"
@@ -68,7 +69,7 @@ def write_scene_folders(chosen: list[ArchivedScene], out: Path) -> None:
 
 @dataclass(frozen=True)
 class ExportFormat:
-    write: Callable[[list[ArchivedScene], Path], None]
+    write: Callable[[list[ArchivedScene], Path], str | None]  # returns a note for the user
     description: str  # what DIR holds afterwards, for the command's help
 
 
@@ -89,6 +90,13 @@ EXPORT_FORMATS: dict[str, ExportFormat] = {
         "detections.json with masks) and results (r_ex.mat, layout.mat, bdb_3d.mat, one "
         "<index>_<class id>.obj mesh per placed object), and "
         "supports.json",
+    ),
+    "total3d-training": ExportFormat(
+        write_total3d_training,
+        "DIR laid out as Total3DUnderstanding's data/sunrgbd/ for its training code: a pickle "
+        "per scene with camera, layout and objects in its bins (sunrgbd_train_test_data/), "
+        "splits/train.json and test.json, the averages in preprocessed/, and "
+        "holiscene-index.json (which scene each sample is)",
     ),
     "relation-training": ExportFormat(
         write_relation_training,
