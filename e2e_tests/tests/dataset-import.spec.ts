@@ -11,6 +11,7 @@ import { screenshotPath } from "../helpers/screenshots";
 
 const REAL = path.resolve(import.meta.dirname, "../../../shared/data/real");
 const VENV = path.resolve(import.meta.dirname, "../../.venv/bin");
+const holiscene = (...args: string[]) => execFileSync(path.join(VENV, "holiscene"), args);
 
 // Zip the export as it is (coco.zip) and with the first outline of im3d-2.jpg cut to two
 // points (broken.zip), as a user would zip the folder.
@@ -34,23 +35,9 @@ function cocoZips(): { coco: string; broken: string } {
   const dir = scratchDir("holiscene-coco-");
   const data = path.join(dir, "data");
   const photos = ["im3d-1", "im3d-2", "t3d-5"].map((name) => path.join(REAL, name));
-  execFileSync(path.join(VENV, "holiscene"), [
-    "import",
-    ...photos,
-    "--no-pipeline",
-    "--data-dir",
-    data,
-  ]);
+  holiscene("import", ...photos, "--no-pipeline", "--data-dir", data);
   const exported = path.join(dir, "export");
-  execFileSync(path.join(VENV, "holiscene"), [
-    "export",
-    "--format",
-    "coco",
-    "-o",
-    exported,
-    "--data-dir",
-    data,
-  ]);
+  holiscene("export", "--format", "coco", "-o", exported, "--data-dir", data);
   execFileSync(path.join(VENV, "python"), ["-c", ZIP_EXPORT, exported, dir]);
   return { coco: path.join(dir, "coco.zip"), broken: path.join(dir, "broken.zip") };
 }
@@ -91,6 +78,52 @@ test("a COCO zip imports from the scene list, naming the photo that did not", as
 
   await page.getByTestId("dataset-import-new").getByRole("link", { name: "im3d-2.jpg" }).click();
   await expect(page.getByTestId("scene-title")).toHaveText("im3d-2");
+});
+
+// A synthetic room written as a SUN RGB-D image folder (the backend tests' writer), its first
+// outline cut to two clicks, zipped as SUNRGBD/kv1/NYU0042.
+const SUN_ZIP = `
+import json, sys, zipfile, pathlib
+root, room, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+sys.path.insert(0, str(root / "backend"))
+from tests.inputs.datasets.sunrgbd_files import write_sun_folder
+folder = out / "SUNRGBD" / "kv1" / "NYU0042"
+write_sun_folder(room, folder)
+index = folder / "annotation2Dfinal" / "index.json"
+annotation = json.loads(index.read_text())
+first = annotation["frames"][0]["polygon"][0]
+first["x"], first["y"] = first["x"][:2], first["y"][:2]
+index.write_text(json.dumps(annotation))
+with zipfile.ZipFile(out / "sun.zip", "w", zipfile.ZIP_DEFLATED) as archive:
+    for path in sorted((out / "SUNRGBD").rglob("*")):
+        if path.is_file():
+            archive.write(path, path.relative_to(out).as_posix())
+`;
+
+test("a SUN RGB-D outline of two clicks is left out with a note beside its photo", async ({
+  page,
+}) => {
+  const dir = scratchDir("holiscene-sun-");
+  const rooms = path.join(dir, "rooms");
+  holiscene("synth", "--seed", "14", "--count", "1", "--workers", "1", "-o", rooms);
+  const root = path.resolve(import.meta.dirname, "../..");
+  const room = path.join(rooms, "synth-14");
+  execFileSync(path.join(VENV, "python"), ["-c", SUN_ZIP, root, room, dir]);
+
+  await page.goto("/#/");
+  await importZip(page, path.join(dir, "sun.zip"));
+  const summary = page.getByTestId("dataset-import-summary");
+  await expect(summary).toContainText(
+    "sun.zip: 1 photo imported (1 with notes), 0 skipped as imported before",
+  );
+  const photo = page.getByTestId("dataset-import-new").locator("li");
+  await expect(photo).toContainText("SUNRGBD/kv1/NYU0042");
+  await expect(photo.locator(".import-note")).toHaveText(
+    /^polygon 0 of object \d+ \(.+\) has 2 point\(s\): left out$/,
+  );
+  await page.getByTestId("dataset-import-form").screenshot({
+    path: screenshotPath("dataset-import-sun-note.png"),
+  });
 });
 
 test("a file that is not a zip is refused with the reason", async ({ page }) => {

@@ -301,6 +301,11 @@ class ImportResult(SchemaModel):
 class ImportedPhoto(SchemaModel):
     name: str = Field(description="The photo's name in the upload (a file or folder)")
     scene_id: str = Field(description="Its scene: made now, or imported before (skipped)")
+    notes: list[str] = Field(
+        default_factory=list,
+        description="What was left out of the labels given with it (e.g. a support row of an "
+        "unknown type), while the photo and the rest were imported",
+    )
 
 
 class PhotoError(SchemaModel):

@@ -617,6 +617,10 @@ export interface ImportedPhoto {
  */
 name: string
 /**
+ * What was left out of the labels given with it (e.g. a support row of an unknown type), while the photo and the rest were imported
+ */
+notes: string[]
+/**
  * Its scene: made now, or imported before (skipped)
  */
 scene_id: string

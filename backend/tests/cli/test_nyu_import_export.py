@@ -119,3 +119,22 @@ def test_scenes_of_two_sizes_are_refused_before_anything_is_written(
     assert code == 2
     assert "the scenes must share one size; they have 64x48, 96x64" in capsys.readouterr().err
     assert not any(out.iterdir())
+
+
+def test_import_prints_the_support_rows_it_left_out_under_the_photo(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    image = bedroom()
+    image.supports = [(5, 3, 3), *image.supports]
+    nyu_folder(tmp_path / "nyu", [image])
+    assert (
+        main(["import", str(tmp_path / "nyu"), "--no-pipeline", "--data-dir", str(tmp_path / "a")])
+        == 0
+    )
+    lines = capsys.readouterr().out.splitlines()
+    stored = next(i for i, line in enumerate(lines) if line.endswith(", stored"))
+    assert lines[stored + 1] == (
+        "    note: support row 1 left out: type 3 is neither 1 (below) nor 2 (behind)"
+    )
+    (scene,) = _stored(tmp_path / "a")
+    assert ("o2", "o0", "below") in {(s.child, s.parent, s.type) for s in scene.supports}

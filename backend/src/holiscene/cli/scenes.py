@@ -159,8 +159,16 @@ def _import_one(
     if args.run_pipeline or args.no_pipeline:
         stored = workbench.import_scene(inputs, name, "import", run_pipeline=False).scene
         print(f"[{number}] {label}: scene {stored.id}, stored")
+        _print_notes(inputs)
         return 0, stored.id
     result = workbench.import_and_run(inputs, name)
     job = result.job
     print(f"[{number}] {label}: scene {result.scene.id}, pipeline {job.status if job else '-'}")
+    _print_notes(inputs)
     return (1 if job and job.status == "failed" else 0), result.scene.id
+
+
+def _print_notes(inputs: InputFiles) -> None:
+    """What the reader left out of the photo's labels, under its line."""
+    for note in inputs.notes:
+        print(f"    note: {note}")

@@ -226,6 +226,9 @@ class InputFiles:
     depth: DepthMap | None = None  # inputs/depth.py; registered to the photo
     camera: Camera | None = None
     layout: Layout | None = None
+    # What the reader left out of the labels given with the photo, for the user (revision 1
+    # shows it with the pipeline's warnings).
+    notes: tuple[str, ...] = ()
 
     @cached_property
     def digest(self) -> str:

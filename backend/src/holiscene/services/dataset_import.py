@@ -111,7 +111,7 @@ class DatasetImports:
         stored = self.workbench.import_scene(inputs, source.name, author, run_pipeline=False)
         if job.run_pipeline:
             self._queue_pipeline(stored.scene.id, author)
-        self.jobs.photo_done(job.id, "imported", label, stored.scene.id)
+        self.jobs.photo_done(job.id, "imported", label, stored.scene.id, inputs.notes)
 
     def _queue_pipeline(self, scene_id: str, author: str) -> None:
         """Queue the scene's pipeline, waiting while the queue is full (the server's

@@ -126,9 +126,11 @@ def imported_scene(inputs: InputFiles, name: str) -> Scene:
     image = ImageInfo(
         file=f"img{inputs.photo.suffix}", width=inputs.photo.width, height=inputs.photo.height
     )
-    unknown = unknown_class_note(inputs.detections or [])
+    note = "; ".join(
+        [n for n in [unknown_class_note(inputs.detections or [])] if n] + list(inputs.notes)
+    )
     # The import's own note, shown with the pipeline's warnings until a run replaces them.
-    stages = [StageRun(name="import", seconds=0.0, note=unknown, warning=True)] if unknown else []
+    stages = [StageRun(name="import", seconds=0.0, note=note, warning=True)] if note else []
     # Supports given with the photo are people's labels (a pipeline run keeps them) or, from
     # an export, the pipeline's guesses. An exported scene's camera and layout (scene.json)
     # start revision 1 as they were; a layout set by hand is kept by the pipeline then.

@@ -5,7 +5,8 @@ reports per photo."""
 from __future__ import annotations
 
 import uuid
-from typing import Literal
+from collections.abc import Sequence
+from typing import Any, Literal
 
 from holiscene_schema import ImportedPhoto, ImportJob, PhotoError
 from sqlalchemy import Engine
@@ -59,14 +60,20 @@ class ImportJobStore:
     def start(self, job_id: str) -> None:
         self._set(job_id, status="running")
 
-    def photo_done(self, job_id: str, outcome: Outcome, name: str, scene_id: str) -> None:
-        """One photo stored as a scene, or skipped as imported before as that scene."""
-        self._append(job_id, outcome, {"name": name, "scene_id": scene_id})
+    def photo_done(
+        self, job_id: str, outcome: Outcome, name: str, scene_id: str, notes: Sequence[str] = ()
+    ) -> None:
+        """One photo stored as a scene (with notes on what its labels lost), or skipped as
+        imported before as that scene."""
+        entry: dict[str, Any] = {"name": name, "scene_id": scene_id}
+        if notes:
+            entry["notes"] = list(notes)
+        self._append(job_id, outcome, entry)
 
     def photo_failed(self, job_id: str, name: str, message: str) -> None:
         self._append(job_id, "errors", {"name": name, "message": message})
 
-    def _append(self, job_id: str, column: str, entry: dict[str, str]) -> None:
+    def _append(self, job_id: str, column: str, entry: dict[str, Any]) -> None:
         # A read-modify-write: each import job has one writer, its worker.
         with Session(self.engine) as session:
             row = session.get(ImportJobRow, job_id)

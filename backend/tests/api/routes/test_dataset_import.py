@@ -6,6 +6,7 @@ nothing importable is refused with nothing stored."""
 from __future__ import annotations
 
 import io
+import json
 import stat
 import time
 import zipfile
@@ -279,3 +280,24 @@ def test_a_zip_of_sun_rgbd_image_folders_names_each_folder_by_its_path_in_the_zi
     assert "9 numbers" in job["errors"][0]["message"]
     scene = client.get(f"/api/scenes/{job['imported'][0]['scene_id']}").json()["scene"]
     assert scene["name"] == "NYU0001"
+    assert job["imported"][0]["notes"] == []
+
+
+def test_an_outline_too_short_to_draw_is_left_out_with_a_note_on_its_photo(
+    client: TestClient, tmp_path: Path, synthetic_folder: Path
+) -> None:
+    folder = tmp_path / "SUNRGBD" / "NYU0003"
+    write_sun_folder(synthetic_folder, folder)
+    index = folder / "annotation2Dfinal" / "index.json"
+    annotation = json.loads(index.read_text())
+    first = annotation["frames"][0]["polygon"][0]
+    first["x"], first["y"] = first["x"][:2], first["y"][:2]  # a stray pair of clicks
+    index.write_text(json.dumps(annotation))
+    job = _imported(client, _zip_folder(tmp_path / "SUNRGBD", top="SUNRGBD"))
+    (photo,) = job["imported"]
+    assert job["errors"] == []
+    (note,) = photo["notes"]
+    assert note.startswith(f"polygon 0 of object {first['object']} (") and "2 point(s)" in note
+    scene = client.get(f"/api/scenes/{photo['scene_id']}").json()["scene"]
+    stage = next(s for s in scene["stages"] if s["name"] == "import")
+    assert stage["warning"] and note in stage["note"]

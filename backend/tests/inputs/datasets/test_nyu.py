@@ -14,6 +14,7 @@ from holiscene.inputs.datasets import DatasetItem, dataset_items, is_dataset
 from holiscene.inputs.datasets.matlab import read_cell_of_matrices
 from holiscene.inputs.datasets.nyu import NYU_FX, nyu_files, nyu_regions
 from holiscene.segmentation.rle import decode_mask
+from holiscene.services.reconstruction import imported_scene
 
 from .nyu_files import HEIGHT, WIDTH, bedroom, nyu_folder, write_labelled, write_support_labels
 
@@ -90,17 +91,41 @@ def test_without_a_support_file_the_photos_import_without_supports(tmp_path: Pat
 
 
 def test_a_support_row_naming_a_missing_object_refuses_that_image_only(tmp_path: Path) -> None:
-    good, bad, bad_type = bedroom(0), bedroom(1), bedroom(2)
+    good, bad = bedroom(0), bedroom(1)
     bad.supports = [*bad.supports, (42, 0, 1)]
-    bad_type.supports = [(3, 0, 3)]
-    nyu_folder(tmp_path, [good, bad, bad_type])
+    nyu_folder(tmp_path, [good, bad])
     items = _read(tmp_path)
     assert items[0].inputs is not None and items[0].error is None
+    assert items[0].inputs.notes == ()
     assert items[1].inputs is None
     assert items[1].error == (
         "support row 7 names object 42, which is not there (the image has 7 numbered regions)"
     )
-    assert items[2].error == "support row 1: type 3 is neither 1 (below) nor 2 (behind)"
+
+
+def test_rows_of_another_type_and_second_supporters_are_left_out_with_a_note(
+    tmp_path: Path,
+) -> None:
+    image = bedroom()
+    # Row 1: a pillow "hanging" (the labelling tool's third type). Rows 2-4: the other pillow
+    # behind the lamp and (twice) on the bed. Rows 5-6: the bed on the floor, then on the
+    # floor's own region: the same support.
+    image.supports = [(5, 3, 3), (6, 4, 2), (6, 3, 1), (6, 3, 1), (3, 0, 1), (3, 2, 1)]
+    nyu_folder(tmp_path, [image])
+    (item,) = _read(tmp_path)
+    assert item.inputs is not None and item.error is None
+    relations = [(s.child, s.parent, s.type) for s in item.inputs.supports]
+    assert relations == [("o3", "o0", "below"), ("o0", "floor", "below")]
+    assert item.inputs.notes == (
+        "support row 1 left out: type 3 is neither 1 (below) nor 2 (behind)",
+        "object o3 has more than one supporter: row 3 kept, row(s) 2 left out",
+    )
+    # Revision 1 shows them with the pipeline's warnings.
+    scene = imported_scene(item.inputs, "bedroom")
+    (stage,) = scene.stages
+    assert stage.name == "import" and stage.warning and stage.note is not None
+    assert all(note in stage.note for note in item.inputs.notes)
+    assert "teapot" in stage.note  # beside the unknown class name's note
 
 
 def test_a_support_cycle_refuses_that_image(tmp_path: Path) -> None:

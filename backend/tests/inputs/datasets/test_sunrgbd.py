@@ -212,6 +212,10 @@ def test_a_bad_folder_is_its_own_error_and_the_rest_are_read(tmp_path: Path) -> 
     shutil.rmtree(_small_folder(root / "d_no_image") / "image")
     (_small_folder(root / "e_eight_numbers") / "intrinsics.txt").write_text("80 0 48 0 80 32 0 0")
     (_small_folder(root / "f_bad_tilt") / "extrinsics" / "2.txt").write_text("1 2 3\n")
+    # The toolbox reads only the rotation: a file of the 3x3 alone is fine.
+    (_small_folder(root / "h_rotation_only") / "extrinsics" / "1.txt").write_text(
+        "1 0 0\n0 1 0\n0 0 1\n"
+    )
     flat = {"X": [0, 1], "Z": [1, 2], "Ymin": 0, "Ymax": 1}
     write_json(
         _small_folder(root / "g_bad_box") / "annotation3Dfinal" / "index.json",
@@ -226,16 +230,22 @@ def test_a_bad_folder_is_its_own_error_and_the_rest_are_read(tmp_path: Path) -> 
         "e_eight_numbers",
         "f_bad_tilt",
         "g_bad_box",
+        "h_rotation_only",
     ]
-    assert items[0].inputs is not None and items[0].error is None
-    assert all(i.inputs is None for i in items[1:])
-    errors = [i.error or "" for i in items[1:]]
+    good, not_json, two_points, *broken, rotation_only = items
+    assert good.inputs is not None and good.error is None and good.inputs.notes == ()
+    assert rotation_only.inputs is not None and rotation_only.inputs.ground_truth is not None
+    # An outline of 2 points leaves out that outline (here the sofa's only one), not the photo.
+    assert two_points.inputs is not None and two_points.error is None
+    assert [d.cls for d in two_points.inputs.detections or []] == ["chair"]
+    assert two_points.inputs.notes == ("polygon 1 of object 2 (sofa) has 2 point(s): left out",)
+    assert all(i.inputs is None for i in [not_json, *broken])
+    errors = [i.error or "" for i in [not_json, *broken]]
     assert "index.json is not valid JSON" in errors[0]
-    assert "object 2: a polygon needs at least 3 points, it has 2" in errors[1]
-    assert "image/ holds no .jpg image" in errors[2]
-    assert "intrinsics.txt must hold 9 numbers" in errors[3] and "it holds 8" in errors[3]
-    assert "extrinsics/2.txt: must hold 3 rows of 4 numbers" in errors[4]
-    assert "annotation3Dfinal/index.json object 0: a box's floor polygon has 4 corners" in errors[5]
+    assert "image/ holds no .jpg image" in errors[1]
+    assert "intrinsics.txt must hold 9 numbers" in errors[2] and "it holds 8" in errors[2]
+    assert "extrinsics/2.txt: must hold 3 rows of 4 numbers" in errors[3]
+    assert "annotation3Dfinal/index.json object 0: a box's floor polygon has 4 corners" in errors[4]
 
 
 def test_holiscene_import_stores_the_ground_truth_beside_the_scene(

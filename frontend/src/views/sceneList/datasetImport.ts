@@ -1,6 +1,7 @@
 // "Import a dataset": a .zip of a COCO or LabelMe dataset, SUN RGB-D image folders or input
 // folders, imported by the server in the background; shows how far it got and, at the end,
-// what was imported, skipped as imported before, and each photo's error.
+// what was imported (with what its labels lost), skipped as imported before, and each photo's
+// error.
 import type { ImportedPhoto, ImportJob, PhotoError } from "@holiscene/schema";
 import { importsApi, pollImport } from "../../api/imports";
 import { button, el, failureAlert, labelledField } from "../../dom";
@@ -30,6 +31,8 @@ function sceneLinks(photos: ImportedPhoto[], testid: string): HTMLElement {
           text: photo.name,
           attrs: { href: `#/scenes/${encodeURIComponent(photo.scene_id)}` },
         }),
+        // What its labels lost on the way in (a support row of an unknown type...).
+        ...photo.notes.map((note) => el("span", { className: "import-note", text: note })),
       ),
     ),
   );
@@ -52,8 +55,9 @@ function errorList(errors: PhotoError[]): HTMLElement {
 
 /** What the import did, once it ended: counts first, then the lists behind them. */
 function summary(job: ImportJob): HTMLElement {
+  const noted = job.imported.filter((photo) => photo.notes.length > 0).length;
   const counts = [
-    `${plural(job.imported.length, "photo")} imported`,
+    `${plural(job.imported.length, "photo")} imported${noted ? ` (${noted} with notes)` : ""}`,
     `${job.skipped.length} skipped as imported before`,
     `${job.errors.length} not imported`,
   ].join(", ");

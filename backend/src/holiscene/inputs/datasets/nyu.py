@@ -229,7 +229,7 @@ class _NyuFile:
         detections = [self._detection(r, photo) for r in objects]
         ids = {(r.label, r.instance): f"o{i}" for i, r in enumerate(objects)}
         rows = self.supports[index] if self.supports is not None else np.zeros((0, 3))
-        supports = _supports(rows, regions, ids, classes)
+        supports, notes = _supports(rows, regions, ids, classes)
         K = nyu_intrinsics(photo.width, photo.height)
         truth = Scene(
             name=self.scene_stem(index),
@@ -245,6 +245,7 @@ class _NyuFile:
             supports=supports,
             ground_truth=truth,
             depth=depth,
+            notes=tuple(notes),
         )
 
     def _class(self, label: int) -> str:
@@ -287,9 +288,11 @@ def _supports(
     regions: list[Region],
     ids: dict[tuple[int, int], str],
     classes: dict[int, str],
-) -> tuple[SupportRelation, ...]:
-    """The image's support rows as relations over the object ids; a row that names a region
-    the image does not have, or an unknown type, refuses the image."""
+) -> tuple[tuple[SupportRelation, ...], list[str]]:
+    """The image's support rows as relations over the object ids, and notes on the rows left
+    out. A row that names a region the image does not have refuses the image. A row of
+    another type than below or behind (the labelling tool also had "hanging") is left out;
+    of several supporters of one object the first from below is kept, else the first."""
     numbered = {r.number: r for r in regions if r.number is not None}
 
     def parent(row: int, number: int) -> str:
@@ -298,16 +301,18 @@ def _supports(
         region = _region(row, number, numbered)
         return ids.get((region.label, region.instance)) or classes[region.label]
 
-    relations: dict[str, SupportRelation] = {}
+    candidates: dict[str, list[tuple[int, SupportRelation]]] = {}
+    notes: list[str] = []
     for row, (supported, supporter, kind) in enumerate(rows.tolist(), 1):
         region = _region(row, supported, numbered)
         child = ids.get((region.label, region.instance))
         if child is None:
             continue  # the room's own regions (a wall on the floor) are not objects
         if kind not in SUPPORT_TYPES:
-            raise InputError(
-                f"support row {row}: type {kind:g} is neither 1 (below) nor 2 (behind)"
+            notes.append(
+                f"support row {row} left out: type {kind:g} is neither 1 (below) nor 2 (behind)"
             )
+            continue
         relation = SupportRelation(
             child=child,
             parent=parent(row, int(supporter)),
@@ -315,14 +320,24 @@ def _supports(
             source="manual",
             author=SUPPORT_AUTHOR,
         )
-        if relations.setdefault(child, relation) != relation:
-            raise InputError(f"support row {row}: object {int(supported)} has two supporters")
+        candidates.setdefault(child, []).append((row, relation))
+    relations: dict[str, SupportRelation] = {}
+    for child, found in candidates.items():
+        kept_row, kept = next(((r, s) for r, s in found if s.type == "below"), found[0])
+        relations[child] = kept
+        others = sorted({r for r, s in found if s != kept})
+        if others:
+            listed = ", ".join(str(r) for r in others)
+            notes.append(
+                f"object {child} has more than one supporter: row {kept_row} kept, "
+                f"row(s) {listed} left out"
+            )
     problems = support_graph_problems(
         list(ids.values()), [(r.child, r.parent) for r in relations.values()]
     )
     if problems:
         raise InputError("support labels: " + "; ".join(problems))
-    return tuple(relations.values())
+    return tuple(relations.values()), notes
 
 
 def _region(row: int, number: float, numbered: dict[int, Region]) -> Region:

@@ -125,7 +125,10 @@ def read_image_folder(folder: Path, class_map: dict[str, str] | None = None) -> 
     elif (folder / ANNOTATION_3D).is_file() or (folder / LAYOUT_3D).is_file():
         raise InputError(f"{EXTRINSICS_FOLDER}/ holds no .txt: the 3D annotations need the tilt")
     depth = read_depth(folder, photo)
-    return InputFiles(photo=photo, K=K, detections=detections, ground_truth=truth, depth=depth)
+    notes = tuple(annotation.notes) if annotation is not None else ()
+    return InputFiles(
+        photo=photo, K=K, detections=detections, ground_truth=truth, depth=depth, notes=notes
+    )
 
 
 def read_depth(folder: Path, photo: Photo) -> DepthMap | None:
@@ -205,6 +208,7 @@ class Annotation2D:
 
     objects: list[str | None]
     outlines: dict[int, list[list[Any]]]
+    notes: list[str]  # the outlines left out (too few points to outline anything)
 
 
 def sun_name(raw: Any) -> str:
@@ -237,6 +241,7 @@ def _annotation_2d(folder: Path) -> Annotation2D | None:
     if not isinstance(polygons, list):
         raise InputError(f"{where}: frames[0].polygon must be a list")
     outlines: dict[int, list[list[Any]]] = {}
+    notes: list[str] = []
     for i, polygon in enumerate(polygons):
         if not isinstance(polygon, dict) or not {"x", "y", "object"} <= polygon.keys():
             raise InputError(f"{where}: polygon {i} must have 'x', 'y' and 'object'")
@@ -246,9 +251,15 @@ def _annotation_2d(folder: Path) -> Annotation2D | None:
         xs, ys = _as_list(polygon["x"]), _as_list(polygon["y"])
         if len(xs) != len(ys):
             raise InputError(f"{where}: polygon {i} has {len(xs)} x and {len(ys)} y values")
+        if len(xs) < 3:
+            # SUN's annotators left such outlines (a click or two); the photo's others stand.
+            notes.append(
+                f"polygon {i} of object {k} ({objects[k]}) has {len(xs)} point(s): left out"
+            )
+            continue
         flat = [v for point in zip(xs, ys, strict=True) for v in point]
         outlines.setdefault(k, []).append(flat)
-    return Annotation2D(objects, outlines)
+    return Annotation2D(objects, outlines, notes)
 
 
 def _objects(

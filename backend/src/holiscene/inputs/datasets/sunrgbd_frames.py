@@ -33,12 +33,15 @@ ROTATION_TOLERANCE = 1e-2  # extrinsics are written with a few decimals
 
 
 def rotation_from_extrinsics(numbers: list[float]) -> FloatArray:
-    """E (SUN gravity frame from OpenCV camera frame) from the 12 numbers of an extrinsics
-    file (3 rows of 4: the rotation's row and a translation, which SUN leaves at zero and
-    which is not used: annotations and camera share the origin). Made exactly orthonormal."""
-    if len(numbers) != 12:
-        raise InputError(f"must hold 3 rows of 4 numbers, it holds {len(numbers)} numbers")
-    rotation = np.array(numbers, dtype=float).reshape(3, 4)[:, :3]
+    """E (SUN gravity frame from OpenCV camera frame) from the numbers of an extrinsics file:
+    3 rows of 4 (the rotation's row and a translation, which SUN leaves at zero and which is
+    not used: annotations and camera share the origin), or the 3x3 rotation alone, which is
+    all SUN's toolbox reads of the file. Made exactly orthonormal."""
+    if len(numbers) not in (9, 12):
+        raise InputError(
+            f"must hold 3 rows of 4 numbers (or the 3x3 rotation), it holds {len(numbers)} numbers"
+        )
+    rotation = np.array(numbers, dtype=float).reshape(3, -1)[:, :3]
     if not np.all(np.isfinite(rotation)):
         raise InputError("holds a value that is not finite")
     if (
