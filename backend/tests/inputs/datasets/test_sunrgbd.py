@@ -68,6 +68,26 @@ def test_the_ground_truth_comes_back_as_generated(
         assert np.allclose(obj.corners_3d or [], expected.corners_3d or [], atol=1e-3)
 
 
+def test_3d_boxes_listed_in_another_order_find_their_objects_by_name_and_overlap(
+    synth_dir: Path, tmp_path: Path
+) -> None:
+    """If a folder's 3D file does not share the 2D file's object order (no public code relies
+    on it), each box still joins the object of its name its projection fits, even where the
+    index holds another object of the same name (this room has five boxes and three
+    pictures)."""
+    truth = write_sun_folder(synth_dir, tmp_path / "NYU0005")
+    path = tmp_path / "NYU0005" / "annotation3Dfinal" / "index.json"
+    boxes = json.loads(path.read_text())
+    boxes["objects"] = boxes["objects"][1:] + boxes["objects"][:1]  # every index moved by one
+    write_json(path, boxes)
+    found = _import_one(tmp_path / "NYU0005")
+    names = [o.cls for o in truth.objects]
+    assert any(names[i] == names[i + 1] for i in range(len(names) - 1))
+    for obj, expected in zip(found.objects, truth.objects, strict=True):
+        assert obj.box_3d is not None and expected.box_3d is not None, obj.id
+        assert np.allclose(obj.box_3d.center, expected.box_3d.center, atol=1e-3), obj.id
+
+
 def test_the_outlines_become_the_objects(synth_dir: Path, tmp_path: Path) -> None:
     truth = write_sun_folder(synth_dir, tmp_path / "NYU0005")
     (item,) = dataset_items(tmp_path / "NYU0005")
@@ -138,7 +158,8 @@ def _small_folder(folder: Path) -> Path:
 
 def test_3d_boxes_join_2d_objects_by_index_and_name(tmp_path: Path) -> None:
     folder = _small_folder(tmp_path / "a")
-    box = {"X": [-0.3, 0.3, 0.3, -0.3], "Z": [2.0, 2.0, 2.6, 2.6], "Ymin": 0.2, "Ymax": 1.0}
+    # Where the chair's outline is: left of the optical axis, taller than the photo.
+    box = {"X": [-1.2, -0.6, -0.6, -1.2], "Z": [2.0, 2.0, 2.6, 2.6], "Ymin": -0.8, "Ymax": 1.0}
     annotation = json.loads((folder / "annotation2Dfinal" / "index.json").read_text())
     annotation["frames"][0]["polygon"] += [
         {"x": [5, 9, 9], "y": [50, 50, 60], "object": 0},  # a second part of the chair
@@ -173,8 +194,8 @@ def test_3d_boxes_join_2d_objects_by_index_and_name(tmp_path: Path) -> None:
     box_3d = truth.objects[0].box_3d
     assert box_3d is not None and truth.objects[1].box_3d is None
     # Level camera, gravity frame along the camera: SUN's Z is forward, X right, Y down.
-    assert np.allclose(box_3d.center, [2.3, -0.6, 0.0]) and np.allclose(
-        box_3d.size, [0.6, 0.8, 0.6]
+    assert np.allclose(box_3d.center, [2.3, -0.1, -0.9]) and np.allclose(
+        box_3d.size, [0.6, 1.8, 0.6]
     )
     assert _yaw_gap(box_3d.yaw_deg, 180.0) < 1e-9  # its first two corners are the near side
     assert truth.layout.corners_3d is None and "5 corners" in (truth.layout.note or "")

@@ -34,6 +34,7 @@ from holiscene_schema import (
     SceneObject,
 )
 
+from ...evaluation.box_iou import iou_2d
 from ...geometry.boxes import box_corners
 from ...geometry.camera import FloatArray, PinholeCamera
 from ...pipeline.base import Detection
@@ -296,8 +297,11 @@ def ground_truth(
     o0, o1, ... as the import gives them) with their 3D boxes where annotated."""
     to_world = world_from_sun(sun_from_cv)
     pitch, roll = camera_pitch_roll(sun_from_cv)
-    layout = _layout(folder, to_world, PinholeCamera(K, pitch, roll))
-    boxes = _boxes_3d(folder, annotation, to_world)
+    camera_now = PinholeCamera(K, pitch, roll)
+    layout = _layout(folder, to_world, camera_now)
+    boxes = _boxes_3d(
+        folder, annotation, to_world, labelled, camera_now, (photo.width, photo.height)
+    )
     objects = [
         _truth_object(f"o{i}", detection, boxes.get(k)) for i, (k, detection) in enumerate(labelled)
     ]
@@ -370,28 +374,86 @@ def _object_list(path: Path, data: Any) -> list[Any]:
     return objects
 
 
+# A 3D box and a 2D object of its name are one object when the box's projection holds most of
+# the object's 2D box (the visible part of a partly hidden object lies inside it); of several
+# such objects, a box takes the one its projection overlaps most (IoU), as Total3D's
+# preprocessing pairs SUN's boxes by class and overlap.
+PAIRING_MIN_COVER = 0.5
+
+
 def _boxes_3d(
-    folder: Path, annotation: Annotation2D | None, to_world: FloatArray
+    folder: Path,
+    annotation: Annotation2D | None,
+    to_world: FloatArray,
+    labelled: list[tuple[int, Detection]],
+    camera: PinholeCamera,
+    size: tuple[int, int],
 ) -> dict[int, Box]:
-    """The world boxes of annotation3Dfinal by object index k, kept for the 2D objects of the
-    same index and name (the two files list the same objects)."""
+    """The world boxes of annotation3Dfinal by 2D object index k. A box goes to the 2D object
+    of its own index when the name is the same and the overlap agrees (the two files list the
+    same objects); otherwise to the object of its name its projection fits (see
+    PAIRING_MIN_COVER), else it is left out."""
     path = folder / ANNOTATION_3D
     if not path.is_file() or annotation is None:
         return {}
+    bboxes = {k: list(d.bbox) for k, d in labelled}
     boxes: dict[int, Box] = {}
+    unpaired: list[tuple[str, Box, list[float]]] = []
     for k, item in enumerate(_object_list(path, load_json(path))):
         if not isinstance(item, dict) or not item.get("polygon"):
             continue  # an object with no 3D box
-        two_d = annotation.objects[k] if k < len(annotation.objects) else None
-        if k not in annotation.outlines or two_d is None or two_d != sun_name(item.get("name")):
-            continue
+        name = sun_name(item.get("name"))
+        same_name = k in bboxes and annotation.objects[k] == name
         where = f"{ANNOTATION_3D} object {k}"
-        xs, zs, y_min, y_max = _floor_polygon(where, item["polygon"])
         try:
-            boxes[k] = object_box(xs, zs, y_min, y_max, to_world)
+            xs, zs, y_min, y_max = _floor_polygon(where, item["polygon"])
+            box = object_box(xs, zs, y_min, y_max, to_world)
         except InputError as exc:
-            raise InputError(f"{where}: {exc}") from exc
+            if same_name:
+                raise InputError(f"{where}: {exc}") from exc
+            continue  # a broken box no object claims is not the photo's error
+        bounds = _projected_bounds(box, camera, size)
+        if bounds is None:
+            continue  # behind the camera: it is no object of the photo
+        if same_name and _cover(bounds, bboxes[k]) >= PAIRING_MIN_COVER:
+            boxes[k] = box
+        else:
+            unpaired.append((name, box, bounds))
+    pairs = sorted(
+        (
+            (iou_2d(bounds, bboxes[k]), i, k)
+            for i, (name, _, bounds) in enumerate(unpaired)
+            for k in bboxes
+            if annotation.objects[k] == name and _cover(bounds, bboxes[k]) >= PAIRING_MIN_COVER
+        ),
+        reverse=True,
+    )
+    placed: set[int] = set()
+    for _, i, k in pairs:
+        if i not in placed and k not in boxes:
+            boxes[k] = unpaired[i][1]
+            placed.add(i)
     return boxes
+
+
+def _cover(bounds: list[float], bbox: list[float]) -> float:
+    """How much of the 2D box `bbox` lies inside `bounds` (both [x1, y1, x2, y2])."""
+    w = min(bounds[2], bbox[2]) - max(bounds[0], bbox[0])
+    h = min(bounds[3], bbox[3]) - max(bounds[1], bbox[1])
+    area = (bbox[2] - bbox[0]) * (bbox[3] - bbox[1])
+    return max(w, 0.0) * max(h, 0.0) / area if area > 0 else 0.0
+
+
+def _projected_bounds(box: Box, camera: PinholeCamera, size: tuple[int, int]) -> list[float] | None:
+    """The 2D bounds of a world box's corners in front of the camera, clipped to the photo."""
+    pixels = camera.project(box_corners(*box))
+    pixels = pixels[np.isfinite(pixels).all(axis=1)]
+    if not len(pixels):
+        return None
+    width, height = size
+    low = np.clip(pixels.min(axis=0), 0, [width, height])
+    high = np.clip(pixels.max(axis=0), 0, [width, height])
+    return [float(low[0]), float(low[1]), float(high[0]), float(high[1])]
 
 
 def _layout(folder: Path, to_world: FloatArray, camera: PinholeCamera) -> Layout:
