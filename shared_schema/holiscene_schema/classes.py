@@ -33,7 +33,9 @@ STRUCTURAL_CLASSES: frozenset[str] = frozenset({"wall", "floor", "ceiling"})
 # before "dresser".) NYU-40's meaning decides: a sofa chair (an armchair) is a chair, a
 # sofa bed a sofa (how it stands in a room), a mattress or headboard the bed it belongs to;
 # whole names are listed where the head word says the wrong thing ("toilet seat" is the
-# toilet, "cutting board" and "hair dryer" are props, "table cloth" is no clothes).
+# toilet, "cutting board" and "hair dryer" are props, "table cloth" is no clothes). Where
+# NYU's own 894-name mapping and ScanNet's agree on a word's class, it is theirs: lights and
+# boards other than whiteboards are structure, bins for waste and radiators furniture.
 _ALIASES_BY_CLASS: dict[str, tuple[str, ...]] = {
     "cabinet": (
         "cabinets", "cupboard", "file_cabinet", "filing_cabinet", "kitchen_cabinet",
@@ -57,7 +59,7 @@ _ALIASES_BY_CLASS: dict[str, tuple[str, ...]] = {
         "round_table", "conference_table", "folding_table", "tea_table", "console_table",
         "dinning_table",
     ),
-    "door": ("doors", "closet_door", "sliding_door", "glass_door"),
+    "door": ("doors", "closet_door", "sliding_door", "glass_door", "door_frame"),
     "window": ("windows", "window_frame", "skylight"),
     "bookshelf": ("bookcase", "book_shelf", "bookshelves", "book_case"),
     "picture": (
@@ -87,8 +89,8 @@ _ALIASES_BY_CLASS: dict[str, tuple[str, ...]] = {
     "paper": ("papers", "newspaper", "document", "documents", "envelope"),
     "towel": ("towels", "hand_towel", "bath_towel", "paper_towel"),
     "shower_curtain": ("shower_curtains",),
-    "box": ("boxes", "cardboard_box", "carton", "storage_box", "shoe_box", "package"),
-    "whiteboard": ("white_board", "blackboard", "chalkboard", "board", "bulletin_board"),
+    "box": ("boxes", "cardboard_box", "carton", "storage_box", "shoe_box", "package", "mailbox"),
+    "whiteboard": ("white_board", "dry_erase_board"),
     "person": (
         "people", "man", "woman", "child", "boy", "girl", "human", "baby", "kid", "adult",
         "student", "lady", "guy",
@@ -96,26 +98,34 @@ _ALIASES_BY_CLASS: dict[str, tuple[str, ...]] = {
     "night_stand": ("nightstand", "night_table", "bedside_table", "bed_side_table"),
     "toilet": ("toilets", "urinal", "toilet_seat", "toilet_bowl", "toilet_tank", "commode"),
     "sink": ("sinks", "bathroom_sink", "kitchen_sink", "basin", "wash_basin"),
-    "lamp": ("lamps", "table_lamp", "floor_lamp", "desk_lamp", "bedside_lamp", "lampshade"),
+    "lamp": (
+        "lamps", "table_lamp", "floor_lamp", "desk_lamp", "bedside_lamp", "lampshade",
+        "desk_light", "night_light", "reading_light",
+    ),
     "bathtub": ("bath_tub", "tub", "bath"),
     "bag": ("bags", "backpack", "handbag", "purse", "suitcase", "luggage", "paper_bag"),
     "otherstructure": (
         "column", "pillar", "beam", "stairs", "staircase", "stair", "railing", "fireplace",
-        "radiator", "vent", "duct", "pipe", "ledge", "step",
+        "vent", "duct", "pipe", "ledge", "step", "light", "ceiling_light", "chandelier",
+        "board", "bulletin_board", "blackboard", "chalkboard", "projector_screen", "mantel",
+        "mantle", "banister", "chimney", "gate", "light_switch", "range_hood", "curtain_rod",
+        "towel_rod", "rail", "handrail", "grab_bar", "windowsill", "window_sill", "stall",
+        "shower_stall",
     ),
     "otherfurniture": (
         "ottoman", "bench", "piano", "stand", "tv_stand", "rack", "coat_rack", "cart",
         "ironing_board", "footstool", "crib", "wardrobe", "closet", "armoire", "sideboard",
-        "hutch", "stove", "oven", "dishwasher", "washing_machine", "dryer",
+        "hutch", "stove", "oven", "dishwasher", "washing_machine", "dryer", "radiator",
+        "trash_can", "trash_bin", "garbage_bin", "garbage_can", "recycle_bin", "recycling_bin",
+        "waste_bin", "ladder", "stepladder", "crate", "stroller", "cradle", "bassinet",
+        "treadmill", "furnace",
     ),
     "otherprop": (
-        "void", "basket", "bin", "trash_can", "garbage_bin", "recycle_bin", "waste_bin",
-        "wastebasket", "clock", "fan", "plant", "potted_plant", "flower", "flowers", "vase",
+        "void", "basket", "bin", "wastebasket", "clock", "fan", "plant", "potted_plant", "flower", "flowers", "vase",
         "laptop", "computer", "keyboard", "mouse", "speaker", "printer", "phone", "telephone",
         "remote", "remote_control", "cup", "mug", "glass", "bottle", "bowl", "plate", "jar",
         "can", "pot", "pan", "kettle", "microwave", "toaster", "candle", "toy", "stuffed_animal",
-        "tissue_box", "soap", "cellphone", "cell_phone", "light", "ceiling_light", "chandelier",
-        "container", "tray", "decoration", "ornament", "statue", "sculpture", "globe",
+        "tissue_box", "soap", "cellphone", "cell_phone", "container", "tray", "decoration", "ornament", "statue", "sculpture", "globe",
         "umbrella", "shoe", "shoes", "hat", "blanket", "scissors", "pen", "pencil", "glasses",
         "toilet_paper", "cutting_board", "chopping_board", "hair_dryer", "table_cloth",
         "tablecloth", "holder", "dispenser", "quilt", "comforter", "duvet", "bedspread",

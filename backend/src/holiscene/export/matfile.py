@@ -1,5 +1,6 @@
 """MATLAB 5 MAT-files (the format of MATLAB's `save -v6`, which scipy.io.loadmat reads), written
-for the tools whose files are .mat: numeric matrices, structs and cell arrays.
+for the tools whose files are .mat: numeric matrices, char arrays (text), structs and cell
+arrays.
 
 The layout, from MATLAB's "MAT-File Format" reference: a 128-byte header, then one data
 element per variable. An element is a tag (type, byte count) and its data padded to 8 bytes;
@@ -18,8 +19,8 @@ from typing import Union
 import numpy as np
 
 # Data types of elements (miINT8, ...) and classes of arrays (mxDOUBLE_CLASS, ...).
-MI_INT8, MI_INT32, MI_UINT32, MI_DOUBLE, MI_INT64, MI_MATRIX = 1, 5, 6, 9, 12, 14
-MX_CELL, MX_STRUCT, MX_DOUBLE, MX_INT64 = 1, 2, 6, 14
+MI_INT8, MI_UINT16, MI_INT32, MI_UINT32, MI_DOUBLE, MI_INT64, MI_MATRIX = 1, 4, 5, 6, 9, 12, 14
+MX_CELL, MX_STRUCT, MX_CHAR, MX_DOUBLE, MX_INT64 = 1, 2, 4, 6, 14
 FIELD_NAME_LENGTH = 32  # bytes per field name, with its terminating zero: MATLAB's own limit
 
 _NUMERIC = {np.dtype(np.float64): (MX_DOUBLE, MI_DOUBLE), np.dtype(np.int64): (MX_INT64, MI_INT64)}
@@ -40,12 +41,13 @@ class MatCell:
     column: bool = False
 
 
-MatValue = Union[np.ndarray, MatStruct, MatCell]  # noqa: UP007 (a runtime alias)
+MatValue = Union[np.ndarray, str, MatStruct, MatCell]  # noqa: UP007 (a runtime alias)
 
 
 def mat_file(variables: Mapping[str, MatValue], description: str = "HoliScene") -> bytes:
     """The bytes of a MAT-file holding `variables` (name -> value). Arrays must be float64 or
-    int64; a 1-D array is saved as a row (1xN), as scipy.io.savemat does by default."""
+    int64; a 1-D array is saved as a row (1xN), as scipy.io.savemat does by default; a str is
+    a 1xN char array (UTF-16 code units, as MATLAB stores text)."""
     text = f"MATLAB 5.0 MAT-file, written by {description}".encode("ascii")[:116]
     header = text.ljust(116, b" ") + bytes(8) + struct.pack("<H2s", 0x0100, b"IM")
     return header + b"".join(_matrix(name, value) for name, value in variables.items())
@@ -60,6 +62,10 @@ def _matrix(name: str, value: MatValue) -> bytes:
     if isinstance(value, MatStruct):
         body = _struct_body(value)
         mx_class, dims = MX_STRUCT, (1, 1)
+    elif isinstance(value, str):
+        units = value.encode("utf-16-le")
+        mx_class, dims = MX_CHAR, (1, len(units) // 2)
+        body = _element(MI_UINT16, units)
     elif isinstance(value, MatCell):
         body = b"".join(_matrix("", item) for item in value.items)
         count = len(value.items)

@@ -9,14 +9,22 @@ from pathlib import Path
 import h5py
 import numpy as np
 import pytest
-from holiscene.export.matfile import MatCell, mat_file
+from holiscene.export.matfile import MatCell, MatValue, mat_file
 from holiscene.inputs.datasets import DatasetItem, dataset_items, is_dataset
 from holiscene.inputs.datasets.matlab import read_cell_of_matrices
 from holiscene.inputs.datasets.nyu import NYU_FX, nyu_files, nyu_regions
 from holiscene.segmentation.rle import decode_mask
 from holiscene.services.reconstruction import imported_scene
 
-from .nyu_files import HEIGHT, WIDTH, bedroom, nyu_folder, write_labelled, write_support_labels
+from .nyu_files import (
+    HEIGHT,
+    NAMES,
+    WIDTH,
+    bedroom,
+    nyu_folder,
+    write_labelled,
+    write_support_labels,
+)
 
 
 def _read(path: Path) -> list[DatasetItem]:
@@ -252,9 +260,15 @@ def test_depths_of_another_size_are_the_files_error(tmp_path: Path) -> None:
     assert item.error.startswith("depths is (1, 32, 48), images (1, 3, 64, 48): they differ")
 
 
-def _class_mapping(folder: Path, numbers: list[int]) -> None:
-    # NAMES: wall, floor, bed, lamp, pillow, teapot, picture
-    mapping = {"mapClass": np.array([numbers], dtype=np.float64)}
+def _class_mapping(folder: Path, numbers: list[int], names: tuple[str, ...] | None = None) -> None:
+    # NAMES: wall, floor, bed, lamp, pillow, teapot, picture. NYU's own file also holds the
+    # names it maps (allClassName, a cell of text) and the 40 classes (className), before
+    # mapClass.
+    mapping: dict[str, MatValue] = {}
+    if names is not None:
+        mapping["allClassName"] = MatCell(list(names))
+        mapping["className"] = MatCell(["wall", "floor", "cabinet"])
+    mapping["mapClass"] = np.array([numbers], dtype=np.float64)
     (folder / "classMapping40.mat").write_bytes(mat_file(mapping))
 
 
@@ -279,6 +293,21 @@ def test_nyus_own_class_mapping_beside_the_file_decides_the_classes(tmp_path: Pa
     (tmp_path / "class_map.json").write_text('{"lamp": "lamp"}')  # the user's map wins
     (item,) = _read(labelled)
     assert item.inputs is not None and (item.inputs.detections or [])[1].cls == "lamp"
+
+
+def test_a_class_mapping_that_names_its_classes_is_read_and_checked_against_the_names(
+    tmp_path: Path,
+) -> None:
+    labelled = nyu_folder(tmp_path, [bedroom()])
+    _class_mapping(tmp_path, [1, 2, 4, 39, 18, 40, 11], names=NAMES)
+    (item,) = _read(labelled)
+    assert item.inputs is not None, item.error
+    assert [d.cls for d in item.inputs.detections or []][1] == "otherfurniture"
+    other = ("wall", "floor", "bed", "lamp", "cushion", "teapot", "picture")
+    _class_mapping(tmp_path, [1, 2, 4, 39, 18, 40, 11], names=other)
+    (item,) = _read(labelled)
+    assert item.inputs is None and item.error is not None
+    assert "is for other names: its name 5 is 'cushion', the labelled file's 'pillow'" in item.error
 
 
 @pytest.mark.parametrize(

@@ -1,5 +1,6 @@
 """Reading MATLAB .mat files, as far as the NYU Depth v2 files need them: a cell array of
-numeric matrices (the support labels) in the level-5 format MATLAB writes by default, without
+numeric matrices (the support labels), a numeric matrix and a cell array of text (the names
+and mapping of classMapping40.mat) in the level-5 format MATLAB writes by default, without
 SciPy, and char arrays and cell arrays of a v7.3 file (HDF5, through h5py). Level-5 files are
 written by export.matfile.
 
@@ -28,16 +29,20 @@ import numpy as np
 
 HEADER_BYTES = 128
 MI_MATRIX, MI_COMPRESSED = 14, 15
-MX_CELL = 1
-# Numeric miTYPE codes and the numpy type of their values.
+MX_CELL, MX_CHAR = 1, 4
+# Numeric miTYPE codes and the numpy type of their values (miUTF8 and miUTF16 hold text).
 NUMERIC_TYPES = {1: "i1", 2: "u1", 3: "i2", 4: "u2", 5: "i4", 6: "u4", 7: "f4", 9: "f8"}
-NUMERIC_TYPES |= {12: "i8", 13: "u8"}
+NUMERIC_TYPES |= {12: "i8", 13: "u8", 16: "u1", 17: "u2"}
 # mxCLASS codes of numeric arrays (double, single, int8 ... uint64).
 NUMERIC_CLASSES = frozenset(range(6, 16))
 
 
 class MatFileError(ValueError):
     """A .mat file that does not hold what was expected; the message says what."""
+
+
+class MissingVariableError(MatFileError):
+    """A readable level-5 .mat file without the variable asked for."""
 
 
 def read_cell_of_matrices(path: Path, variable: str) -> list[np.ndarray]:
@@ -47,6 +52,15 @@ def read_cell_of_matrices(path: Path, variable: str) -> list[np.ndarray]:
     if not isinstance(value, list):
         raise MatFileError(f"{path.name}: {variable} is not a cell array")
     return value
+
+
+def read_strings(path: Path, variable: str) -> list[str]:
+    """The texts of the level-5 cell array of char arrays `variable`, in column-major order
+    (a char array's codes are UTF-16 code units, one row of text each)."""
+    value = _read_variable(path, variable, _hdf5_cell)
+    if not isinstance(value, list):
+        raise MatFileError(f"{path.name}: {variable} is not a cell array")
+    return ["".join(chr(int(c)) for c in codes.ravel(order="F")) for codes in value]
 
 
 def read_numeric_matrix(path: Path, variable: str) -> np.ndarray:
@@ -81,7 +95,7 @@ def _read_variable(
     except (struct.error, ValueError) as exc:  # sizes that do not fit the data
         raise MatFileError(f"{path.name} is corrupt: {exc}") from exc
     if value is None:
-        raise MatFileError(f"{path.name} holds no variable {variable!r}")
+        raise MissingVariableError(f"{path.name} holds no variable {variable!r}")
     return value
 
 
@@ -98,11 +112,20 @@ def _level5_variable(
             if len(inner) != 1:
                 raise MatFileError("a compressed element holds more than one variable")
             element_type, payload = inner[0]
-        if element_type == MI_MATRIX:
-            name, value = _matrix(payload, endian)
-            if name == variable:
-                return value
+        # Only the variable asked for is decoded: the others may be of a class this reader
+        # does not know (classMapping40.mat holds text and structs beside its mapping).
+        if element_type == MI_MATRIX and _matrix_name(payload, endian) == variable:
+            return _matrix(payload, endian)[1]
     return None
+
+
+def _matrix_name(payload: bytes, endian: str) -> str:
+    parts = []
+    for part in _elements(payload, 0, len(payload), endian):
+        parts.append(part)
+        if len(parts) == 3:
+            return part[1].decode("ascii", "replace")
+    return ""
 
 
 def _elements(data: bytes, position: int, end: int, endian: str) -> Iterator[tuple[int, bytes]]:
@@ -144,7 +167,7 @@ def _matrix(payload: bytes, endian: str) -> tuple[str, np.ndarray | list[np.ndar
                 raise MatFileError("a cell holds another cell array, not a matrix")
             cells.append(cell)
         return name, cells
-    if mx_class not in NUMERIC_CLASSES:
+    if mx_class not in NUMERIC_CLASSES | {MX_CHAR}:  # text comes as its character codes
         raise MatFileError(f"a matrix of MATLAB class {mx_class} is not numeric")
     if len(parts) < 4:
         return name, np.zeros(dims)

@@ -50,7 +50,14 @@ from ...pipeline.stages.detections import objects_from_detections
 from ..depth import depth_from_metres
 from ..validation import InputError, InputFiles, Photo, load_photo
 from .items import DatasetItem, class_map_beside, labelled_detection
-from .matlab import MatFileError, hdf5_string, read_cell_of_matrices, read_numeric_matrix
+from .matlab import (
+    MatFileError,
+    MissingVariableError,
+    hdf5_string,
+    read_cell_of_matrices,
+    read_numeric_matrix,
+    read_strings,
+)
 
 SUPPORT_FILE = "support_labels.mat"
 # NYU's published mapping of its 894 names to the 40 classes (Gupta et al., CVPR 2013):
@@ -112,15 +119,37 @@ def nyu40_mapping(path: Path, names: list[str]) -> dict[str, str]:
         return {}
     try:
         numbers = read_numeric_matrix(path, "mapClass").ravel(order="F")
+        mapped_names = _mapped_names(path)
     except MatFileError as exc:
         raise InputError(f"{CLASS_MAPPING_FILE}: {exc}") from exc
     if len(numbers) != len(names):
         raise InputError(
             f"{CLASS_MAPPING_FILE} maps {len(numbers)} names, the labelled file has {len(names)}"
         )
+    if mapped_names is not None:
+        # A mapping made for another release of the names would class every object wrong.
+        if len(mapped_names) != len(names):
+            raise InputError(
+                f"{CLASS_MAPPING_FILE} names {len(mapped_names)} classes, the labelled file "
+                f"{len(names)}"
+            )
+        for number, (mapped, name) in enumerate(zip(mapped_names, names, strict=True), 1):
+            if class_key(mapped) != class_key(name):
+                raise InputError(
+                    f"{CLASS_MAPPING_FILE} is for other names: its name {number} is "
+                    f"{mapped!r}, the labelled file's {name!r}"
+                )
     if not np.all((numbers >= 1) & (numbers <= len(NYU40_CLASSES)) & (numbers % 1 == 0)):
         raise InputError(f"{CLASS_MAPPING_FILE}: mapClass holds numbers outside 1-40")
     return {class_key(n): NYU40_CLASSES[int(k) - 1] for n, k in zip(names, numbers, strict=True)}
+
+
+def _mapped_names(path: Path) -> list[str] | None:
+    """The names classMapping40.mat maps (its `allClassName`), None when it has none."""
+    try:
+        return read_strings(path, "allClassName")
+    except MissingVariableError:
+        return None
 
 
 def nyu_files(folder: Path) -> list[Path]:
