@@ -125,6 +125,7 @@ def _sources(path: Path, workbench: Workbench) -> Iterator[PhotoSource]:
     """The photos of a path; a .zip is unpacked into a temporary folder first, with the
     limits an upload has (Settings.max_import_unpacked_mb, max_import_files)."""
     from ..inputs.archive import ArchiveLimits, unpack_zip
+    from ..inputs.datasets.items import confined_to
     from ..inputs.datasets.uploaded import photo_sources, upload_contents
 
     if not (path.is_file() and path.suffix.lower() == ".zip"):
@@ -136,9 +137,11 @@ def _sources(path: Path, workbench: Workbench) -> Iterator[PhotoSource]:
         unpacked = Path(folder) / path.stem
         with path.open("rb") as archive:
             unpack_zip(archive, unpacked, limits)
-        for source in upload_contents(unpacked).sources():
-            # Named by the zip, not by the temporary folder.
-            yield dataclasses.replace(source, label=source.label.replace(str(unpacked), str(path)))
+        with confined_to(unpacked):  # a zip names no file outside itself, as an upload
+            for source in upload_contents(unpacked).sources():
+                # Named by the zip, not by the temporary folder.
+                label = source.label.replace(str(unpacked), str(path))
+                yield dataclasses.replace(source, label=label)
 
 
 def _import_one(

@@ -22,6 +22,7 @@ from holiscene_schema import ImportJob
 from ..core.errors import user_facing_error
 from ..inputs import InputError
 from ..inputs.archive import ArchiveLimits, unpack_zip
+from ..inputs.datasets.items import confined_to
 from ..inputs.datasets.uploaded import PhotoSource, UploadContents, upload_contents
 from ..store.import_jobs import ImportJobStore
 from ..store.jobs import JobQueueFullError
@@ -84,11 +85,12 @@ class DatasetImports:
         """Import every photo of the unpacked upload; the folder is removed at the end."""
         try:
             self.jobs.start(job.id)
-            for source in contents.sources():
-                if self._stop.is_set():
-                    self.jobs.fail(job.id, RESTART_MESSAGE)
-                    return
-                self._import_photo(job, source, folder)
+            with confined_to(folder):
+                for source in contents.sources():
+                    if self._stop.is_set():
+                        self.jobs.fail(job.id, RESTART_MESSAGE)
+                        return
+                    self._import_photo(job, source, folder)
             self.jobs.finish(job.id)
         except Exception as exc:
             log.exception("import job %s failed", job.id)

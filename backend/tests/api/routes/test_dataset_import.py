@@ -133,6 +133,38 @@ def test_a_broken_photo_is_reported_and_the_others_imported(
     assert len(client.get("/api/scenes").json()) == 1
 
 
+def test_an_upload_cannot_name_a_photo_outside_itself(client: TestClient, tmp_path: Path) -> None:
+    """A server's other images (an absolute path, "../") are no photo an upload can import:
+    each such photo is refused, the rest imported."""
+    secret = tmp_path / "elsewhere" / "secret.png"
+    secret.parent.mkdir()
+    secret.write_bytes(photo_bytes(9))
+    labelme_file(tmp_path / "lm" / "fine.json", [shape("chair", COUCH)])
+    for name, image_path in (
+        ("absolute", str(secret)),
+        ("upward", "../" * 40 + str(secret).lstrip("/")),
+    ):
+        path = labelme_file(tmp_path / "lm" / f"{name}.json", [shape("chair", COUCH)])
+        document = json.loads(path.read_text())
+        document["imagePath"] = image_path
+        path.write_text(json.dumps(document))
+        path.with_suffix(".png").unlink()
+    job = _imported(client, _zip_folder(tmp_path / "lm"))
+    assert [p["name"].rsplit("/", 1)[-1] for p in job["imported"]] == ["fine.json"]
+    errors = {e["name"].rsplit("/", 1)[-1]: e["message"] for e in job["errors"]}
+    assert set(errors) == {"absolute.json", "upward.json"}
+    assert all("points outside the uploaded files" in m for m in errors.values()), errors
+
+    coco = _coco_dataset(tmp_path / "coco")
+    data = json.loads((coco / "annotations.json").read_text())
+    data["images"][0]["file_name"] = str(secret)
+    (coco / "annotations.json").write_text(json.dumps(data))
+    job = _imported(client, _zip_folder(coco))
+    assert [p["name"] for p in job["imported"]] == ["b.png"]
+    (error,) = job["errors"]
+    assert "points outside the uploaded files" in error["message"]
+
+
 def test_the_same_zip_twice_adds_nothing(client: TestClient, tmp_path: Path) -> None:
     data = _zip_folder(_coco_dataset(tmp_path / "coco"))
     first = _imported(client, data)

@@ -73,16 +73,15 @@ def box_floor_corners(center: list[float], size: list[float], yaw_deg: float) ->
 
 
 def mask_polygons(truth: Scene, index: int) -> list[dict[str, Any]]:
-    """The outlines of an object's mask as 2D polygons (one per part of 3 points or more)."""
+    """The outline of an object's mask as a 2D polygon, as an annotator draws it: its largest
+    part (each polygon is an object of its own to SUN's readers, so a sliver cut off by
+    something in front is not outlined apart)."""
     obj = truth.objects[index]
     assert obj.mask is not None
     pixels = decode_mask(obj.mask, truth.image.width, truth.image.height).astype(np.uint8)
     contours, _ = cv2.findContours(pixels, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_NONE)
-    return [
-        {"x": c[:, 0, 0].tolist(), "y": c[:, 0, 1].tolist(), "object": index}
-        for c in contours
-        if len(c) >= 3
-    ]
+    largest = max(contours, key=cv2.contourArea)
+    return [{"x": largest[:, 0, 0].tolist(), "y": largest[:, 0, 1].tolist(), "object": index}]
 
 
 def read_depth_mm(synth_dir: Path) -> np.ndarray:

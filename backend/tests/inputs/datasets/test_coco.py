@@ -45,7 +45,9 @@ def test_polygons_and_both_rle_forms_become_given_masks(tmp_path: Path) -> None:
                 "category_id": 1,
                 "bbox": [10, 20, 30, 30],
                 "iscrowd": 0,
-                "segmentation": [[10, 20, 39, 20, 39, 49, 10, 49]],
+                # COCO's coordinates: pixel x spans [x, x + 1), so the block's outline
+                # runs along its outer edges.
+                "segmentation": [[10, 20, 40, 20, 40, 50, 10, 50]],
             },
             {
                 "id": 2,
@@ -182,3 +184,14 @@ def test_a_bad_holiscene_support_refuses_its_image(
     (item,) = dataset_items(coco_file(tmp_path, annotations))
     assert item.inputs is None and item.error is not None
     assert "holiscene_support" in item.error and message in item.error, item.error
+
+
+def test_a_small_polygon_covers_the_pixels_whose_centres_it_holds_as_cocos_tools_do() -> None:
+    from holiscene.inputs.datasets.items import polygon_pixels
+
+    triangle = [0, 0, 10, 0, 0, 10]  # area 50
+    coco = polygon_pixels("t", triangle, 20, 20, at_pixel_centres=True)
+    assert coco.sum() == 45  # the pixels (i, j) with i + j + 1 < 10
+    assert coco[0, 8] and not coco[0, 9] and not coco[5, 5]
+    labelme = polygon_pixels("t", triangle, 20, 20)  # LabelMe's own fill takes the edge too
+    assert labelme.sum() > 60 and (labelme | coco).sum() == labelme.sum()

@@ -16,7 +16,14 @@ import numpy as np
 from holiscene_schema import STRUCTURAL_SUPPORTERS, SupportRelation
 
 from ..validation import InputError, InputFiles, load_photo, support_relations
-from .items import DatasetItem, class_map_beside, labelled_detection, load_json, polygon_pixels
+from .items import (
+    DatasetItem,
+    class_map_beside,
+    labelled_detection,
+    load_json,
+    named_file,
+    polygon_pixels,
+)
 
 IMAGE_FOLDER = "images"
 
@@ -78,8 +85,9 @@ def image_file(json_path: Path, file_name: str) -> Path:
         folder / IMAGE_FOLDER / file_name,
         folder / IMAGE_FOLDER / Path(file_name).name,
     ):
-        if candidate.is_file():
-            return candidate
+        found = named_file(candidate, f"the image file {file_name}")
+        if found is not None:
+            return found
     raise InputError(
         f"the image file {file_name} is missing (looked beside {json_path.name} and in "
         f"{IMAGE_FOLDER}/)"
@@ -167,7 +175,7 @@ def _segmentation_pixels(
     if isinstance(segmentation, list):
         mask = np.zeros((height, width), dtype=bool)
         for polygon in segmentation:
-            mask |= polygon_pixels(where, polygon, width, height)
+            mask |= polygon_pixels(where, polygon, width, height, at_pixel_centres=True)
         return mask
     if isinstance(segmentation, dict) and "counts" in segmentation and "size" in segmentation:
         if list(segmentation["size"]) != [height, width]:

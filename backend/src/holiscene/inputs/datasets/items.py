@@ -4,6 +4,9 @@ the helpers the readers share (a polygon's mask, a labelled box as a Detection).
 from __future__ import annotations
 
 import json
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -39,14 +42,47 @@ def load_json(path: Path) -> Any:
         raise InputError(f"{path.name} is not valid JSON: {exc}") from exc
 
 
+# The unpacked upload a server is importing: the files a dataset names (COCO's file_name,
+# LabelMe's imagePath) must lie inside it, so an upload cannot make a photo of any image the
+# server can read ("../../", an absolute path). None on the command line: the user's files.
+_UPLOAD_ROOT: ContextVar[Path | None] = ContextVar("holiscene_upload_root", default=None)
+
+
+@contextmanager
+def confined_to(root: Path) -> Iterator[None]:
+    """Dataset readers in this block refuse files named outside `root`."""
+    token = _UPLOAD_ROOT.set(root.resolve())
+    try:
+        yield
+    finally:
+        _UPLOAD_ROOT.reset(token)
+
+
+def named_file(candidate: Path, name: str) -> Path | None:
+    """A file a dataset names by `name`, as found at `candidate`: None when there is none
+    there; InputError when it lies outside the upload being imported."""
+    if not candidate.is_file():
+        return None
+    root = _UPLOAD_ROOT.get()
+    if root is not None and not candidate.resolve().is_relative_to(root):
+        raise InputError(f"{name} points outside the uploaded files")
+    return candidate
+
+
 def class_map_beside(path: Path) -> dict[str, str] | None:
     """The user's class names (class_map.json) in the folder of a dataset file, if any."""
     file = path.parent / CLASS_MAP_FILE
     return parse_class_map(file.read_bytes()) if file.is_file() else None
 
 
-def polygon_pixels(where: str, flat: Any, width: int, height: int) -> np.ndarray:
-    """The bool (H, W) mask inside a polygon [x1, y1, x2, y2, ...] in pixel coordinates."""
+def polygon_pixels(
+    where: str, flat: Any, width: int, height: int, *, at_pixel_centres: bool = False
+) -> np.ndarray:
+    """The bool (H, W) mask inside a polygon [x1, y1, x2, y2, ...] in pixel coordinates.
+
+    By default as LabelMe and PIL fill one: every pixel the outline touches is in. With
+    `at_pixel_centres`, as COCO's own tools rasterise: a pixel is in when its centre (x + 0.5,
+    y + 0.5) is inside, so a small object's mask is not a ring of pixels too large."""
     if (
         not isinstance(flat, list)
         or len(flat) % 2
@@ -55,10 +91,32 @@ def polygon_pixels(where: str, flat: Any, width: int, height: int) -> np.ndarray
         raise InputError(f"{where}: a polygon must be a flat list of x, y numbers")
     if len(flat) < 6:
         raise InputError(f"{where}: a polygon needs at least 3 points, it has {len(flat) // 2}")
-    canvas = Image.new("1", (width, height), 0)
     corners = [(float(x), float(y)) for x, y in zip(flat[::2], flat[1::2], strict=True)]
+    if at_pixel_centres:
+        return _centres_inside(np.array(corners), width, height)
+    canvas = Image.new("1", (width, height), 0)
     ImageDraw.Draw(canvas).polygon(corners, fill=1)
     return np.asarray(canvas, dtype=bool)
+
+
+def _centres_inside(corners: np.ndarray, width: int, height: int) -> np.ndarray:
+    """The pixels whose centre is inside the polygon (even-odd rule), tested only within its
+    bounds."""
+    out = np.zeros((height, width), dtype=bool)
+    x0, y0 = np.floor(corners.min(axis=0)).astype(int).clip(0, [width, height])
+    x1, y1 = np.ceil(corners.max(axis=0)).astype(int).clip(0, [width, height])
+    if x0 >= x1 or y0 >= y1:
+        return out
+    px, py = np.meshgrid(np.arange(x0, x1) + 0.5, np.arange(y0, y1) + 0.5)
+    inside = np.zeros(px.shape, dtype=bool)
+    for (ax, ay), (bx, by) in zip(corners, np.roll(corners, -1, axis=0), strict=True):
+        if ay == by:
+            continue  # a horizontal edge crosses no horizontal ray
+        spans = (ay > py) != (by > py)
+        crossing_x = ax + (py - ay) * (bx - ax) / (by - ay)
+        inside ^= spans & (px < crossing_x)
+    out[y0:y1, x0:x1] = inside
+    return out
 
 
 def labelled_detection(

@@ -266,21 +266,22 @@ def _annotation_2d(folder: Path) -> Annotation2D | None:
 def _objects(
     annotation: Annotation2D, photo: Photo, class_map: dict[str, str] | None
 ) -> list[tuple[int, Detection]]:
-    """Each object with outlines as (its index k, its detection), the mask the union of its
-    polygons. Walls, floors and ceilings are the room, not objects: they are left out."""
+    """Each outline as an object (its entry's index k, its detection), as the public readers
+    of SUN RGB-D take them: an entry may outline several things of its kind (two bookshelves
+    side by side), whose 3D boxes are then separate. Walls, floors and ceilings are the room,
+    not objects: they are left out."""
     labelled = []
     for k, polygons in annotation.outlines.items():
-        where = f"{ANNOTATION_2D} object {k}"
-        pixels = np.zeros((photo.height, photo.width), dtype=bool)
-        for polygon in polygons:
-            pixels |= polygon_pixels(where, polygon, photo.width, photo.height)
         name = annotation.objects[k]
         assert name is not None  # outlines only hold named objects
-        detection = labelled_detection(
-            where, name, None, pixels, photo.width, photo.height, class_map
-        )
-        if detection.cls not in STRUCTURAL_CLASSES:
-            labelled.append((k, detection))
+        for polygon in polygons:
+            where = f"{ANNOTATION_2D} object {k}"
+            pixels = polygon_pixels(where, polygon, photo.width, photo.height)
+            detection = labelled_detection(
+                where, name, None, pixels, photo.width, photo.height, class_map
+            )
+            if detection.cls not in STRUCTURAL_CLASSES:
+                labelled.append((k, detection))
     return labelled
 
 
@@ -303,9 +304,10 @@ def ground_truth(
         folder, annotation, to_world, labelled, camera_now, (photo.width, photo.height)
     )
     objects = [
-        _truth_object(f"o{i}", detection, boxes.get(k)) for i, (k, detection) in enumerate(labelled)
+        _truth_object(f"o{i}", detection, boxes.get(i)) for i, (_, detection) in enumerate(labelled)
     ]
-    height = -min(c[1] for c in layout.corners_3d) if layout.corners_3d else None
+    # The floor is Ymax below the camera (SUN's y points down) whatever the room's shape.
+    height = _floor_depth(folder)
     camera = Camera(
         K=K.tolist(),
         K_source="given",
@@ -389,50 +391,43 @@ def _boxes_3d(
     camera: PinholeCamera,
     size: tuple[int, int],
 ) -> dict[int, Box]:
-    """The world boxes of annotation3Dfinal by 2D object index k. A box goes to the 2D object
-    of its own index when the name is the same and the overlap agrees (the two files list the
-    same objects); otherwise to the object of its name its projection fits (see
-    PAIRING_MIN_COVER), else it is left out."""
+    """The world boxes of annotation3Dfinal by position in `labelled`. A box goes to an
+    outline of the 2D entry of its own index when the name is the same and the box fits it
+    (the two files list the same objects); otherwise to the outline of its name it fits
+    best (see PAIRING_MIN_COVER), else it is left out."""
     path = folder / ANNOTATION_3D
     if not path.is_file() or annotation is None:
         return {}
-    bboxes = {k: list(d.bbox) for k, d in labelled}
-    boxes: dict[int, Box] = {}
-    unpaired: list[tuple[str, Box, list[float]]] = []
+    bboxes = [list(d.bbox) for _, d in labelled]
+    names = [annotation.objects[k] for k, _ in labelled]
+    fitting: list[tuple[bool, float, int, int]] = []  # (own index, IoU, box, outline)
+    found: list[Box] = []
     for k, item in enumerate(_object_list(path, load_json(path))):
         if not isinstance(item, dict) or not item.get("polygon"):
             continue  # an object with no 3D box
         name = sun_name(item.get("name"))
-        same_name = k in bboxes and annotation.objects[k] == name
+        own = [i for i, (entry, _) in enumerate(labelled) if entry == k and names[i] == name]
         where = f"{ANNOTATION_3D} object {k}"
         try:
             xs, zs, y_min, y_max = _floor_polygon(where, item["polygon"])
             box = object_box(xs, zs, y_min, y_max, to_world)
         except InputError as exc:
-            if same_name:
+            if own:
                 raise InputError(f"{where}: {exc}") from exc
             continue  # a broken box no object claims is not the photo's error
         bounds = _projected_bounds(box, camera, size)
         if bounds is None:
             continue  # behind the camera: it is no object of the photo
-        if same_name and _cover(bounds, bboxes[k]) >= PAIRING_MIN_COVER:
-            boxes[k] = box
-        else:
-            unpaired.append((name, box, bounds))
-    pairs = sorted(
-        (
-            (iou_2d(bounds, bboxes[k]), i, k)
-            for i, (name, _, bounds) in enumerate(unpaired)
-            for k in bboxes
-            if annotation.objects[k] == name and _cover(bounds, bboxes[k]) >= PAIRING_MIN_COVER
-        ),
-        reverse=True,
-    )
+        found.append(box)
+        for i, bbox in enumerate(bboxes):
+            if names[i] == name and _cover(bounds, bbox) >= PAIRING_MIN_COVER:
+                fitting.append((i in own, iou_2d(bounds, bbox), len(found) - 1, i))
+    boxes: dict[int, Box] = {}
     placed: set[int] = set()
-    for _, i, k in pairs:
-        if i not in placed and k not in boxes:
-            boxes[k] = unpaired[i][1]
-            placed.add(i)
+    for _, _, b, i in sorted(fitting, reverse=True):  # own index first, then the best fits
+        if b not in placed and i not in boxes:
+            boxes[i] = found[b]
+            placed.add(b)
     return boxes
 
 
@@ -454,6 +449,17 @@ def _projected_bounds(box: Box, camera: PinholeCamera, size: tuple[int, int]) ->
     low = np.clip(pixels.min(axis=0), 0, [width, height])
     high = np.clip(pixels.max(axis=0), 0, [width, height])
     return [float(low[0]), float(low[1]), float(high[0]), float(high[1])]
+
+
+def _floor_depth(folder: Path) -> float | None:
+    """How far below the camera the floor of annotation3Dlayout's room is (its Ymax)."""
+    path = folder / LAYOUT_3D
+    if not path.is_file():
+        return None
+    for item in _object_list(path, load_json(path)):
+        if isinstance(item, dict) and item.get("polygon"):
+            return _floor_polygon(str(LAYOUT_3D), item["polygon"])[3]
+    return None
 
 
 def _layout(folder: Path, to_world: FloatArray, camera: PinholeCamera) -> Layout:
