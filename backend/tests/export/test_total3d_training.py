@@ -177,3 +177,23 @@ def test_nothing_is_written_when_no_scene_can_be_a_sample(
     with pytest.raises(ExportRefusedError, match="no camera pitch and roll"):
         write_total3d_training([lone], tmp_path)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_ground_truth_without_3d_boxes_gives_way_to_the_scenes_own_estimates(
+    synthetic_folder: Path, tmp_path: Path
+) -> None:
+    """NYU v2's ground truth has supports and masks but no 3D boxes or room."""
+    truth = Scene.model_validate_json((synthetic_folder / "gt.json").read_text())
+    flat = truth.model_copy(deep=True)
+    for obj in flat.objects:
+        obj.box_3d = obj.corners_3d = None
+    (tmp_path / "gt.json").write_text(flat.model_dump_json())
+    nyu_like = ArchivedScene(
+        "00000000000e", 2, truth, synthetic_folder / "img.png", None, tmp_path / "gt.json"
+    )
+    out = tmp_path / "out"
+    out.mkdir()
+    write_total3d_training([nyu_like], out)
+    index = json.loads((out / "holiscene-index.json").read_text())
+    (sample,) = index["samples"]
+    assert sample["labels"] == "estimated (its ground truth has no object with a 3D box in view)"

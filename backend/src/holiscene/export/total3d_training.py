@@ -140,10 +140,20 @@ class SceneGeometry:
 
 
 def scene_geometry(item: ArchivedScene) -> SceneGeometry | str:
-    """The scene's camera, room and placeable objects, or why it cannot be a sample."""
-    source, scene = "estimated", item.scene
+    """The scene's camera, room and placeable objects from its ground truth, or from its own
+    estimates when it has none or the ground truth lacks them (NYU v2 measured no 3D boxes);
+    else why it cannot be a sample."""
     if item.ground_truth is not None:
-        source, scene = "ground truth", Scene.model_validate_json(item.ground_truth.read_bytes())
+        truth = Scene.model_validate_json(item.ground_truth.read_bytes())
+        measured = _geometry(item, truth, "ground truth")
+        if not isinstance(measured, str):
+            return measured
+        estimated = _geometry(item, item.scene, f"estimated (its ground truth has {measured})")
+        return estimated if not isinstance(estimated, str) else measured
+    return _geometry(item, item.scene, "estimated")
+
+
+def _geometry(item: ArchivedScene, scene: Scene, source: str) -> SceneGeometry | str:
     camera = scene.camera
     if camera is None or camera.pitch_deg is None or camera.roll_deg is None:
         return "no camera pitch and roll"
