@@ -121,20 +121,18 @@ def test_scenes_of_two_sizes_are_refused_before_anything_is_written(
     assert not any(out.iterdir())
 
 
-def test_import_prints_the_support_rows_it_left_out_under_the_photo(
+def test_import_prints_the_support_rows_it_left_out_and_every_run_says_so(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     image = bedroom()
     image.supports = [(5, 3, 3), *image.supports]
     nyu_folder(tmp_path / "nyu", [image])
-    assert (
-        main(["import", str(tmp_path / "nyu"), "--no-pipeline", "--data-dir", str(tmp_path / "a")])
-        == 0
-    )
+    assert main(["import", str(tmp_path / "nyu"), "--data-dir", str(tmp_path / "a")]) == 0
     lines = capsys.readouterr().out.splitlines()
-    stored = next(i for i, line in enumerate(lines) if line.endswith(", stored"))
-    assert lines[stored + 1] == (
-        "    note: support row 1 left out: type 3 is neither 1 (below) nor 2 (behind)"
-    )
-    (scene,) = _stored(tmp_path / "a")
+    imported = next(i for i, line in enumerate(lines) if line.endswith("pipeline succeeded"))
+    note = "support row 1 left out: type 3 is neither 1 (below) nor 2 (behind)"
+    assert lines[imported + 1] == f"    note: {note}"
+    (scene,) = _stored(tmp_path / "a")  # the pipeline's revision
     assert ("o2", "o0", "below") in {(s.child, s.parent, s.type) for s in scene.supports}
+    (stage,) = [s for s in scene.stages if s.name == "import"]
+    assert stage.warning and stage.note == note

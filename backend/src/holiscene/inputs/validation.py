@@ -373,12 +373,30 @@ def scene_room(folder: Path, width: int, height: int) -> tuple[Camera | None, La
     return scene.camera, layout
 
 
+# Beside a stored scene: what its import left out of the labels given with the photo (a JSON
+# list of notes), so every pipeline run on it says so again.
+IMPORT_NOTES_FILE = "import_notes.json"
+
+
+def read_import_notes(folder: Path) -> tuple[str, ...]:
+    path = folder / IMPORT_NOTES_FILE
+    if not path.is_file():
+        return ()
+    try:
+        notes = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise InputError(f"{IMPORT_NOTES_FILE} is not a JSON list of notes: {exc}") from exc
+    if not isinstance(notes, list) or not all(isinstance(n, str) for n in notes):
+        raise InputError(f"{IMPORT_NOTES_FILE} must be a JSON list of notes")
+    return tuple(notes)
+
+
 def read_input_folder(folder: Path, *, use_depth: bool = True) -> InputFiles:
     """Read img.jpg or img.png, and cam_K.txt, detections.json, class_map.json (the
     user's own class names, see parse_class_map), supports.json (parse_supports), gt.json
-    (parse_ground_truth), scene.json's camera and layout (scene_room) and depth.png
+    (parse_ground_truth), scene.json's camera and layout (scene_room), depth.png
     (inputs/depth.py; unless not `use_depth`, for the single-photo path on a folder that has
-    depth) when present."""
+    depth) and a stored scene's import_notes.json when present."""
     if not folder.is_dir():
         raise InputError(f"{folder} is not a folder")
     images = [folder / n for n in ("img.jpg", "img.jpeg", "img.png") if (folder / n).is_file()]
@@ -423,4 +441,5 @@ def read_input_folder(folder: Path, *, use_depth: bool = True) -> InputFiles:
         depth=depth,
         camera=camera,
         layout=layout,
+        notes=read_import_notes(folder),
     )

@@ -77,6 +77,11 @@ def reconstruct_scene(
         removed_objects=list(removed_objects),
     )
     runs = pipeline.run(ctx, progress)
+    if inputs.notes:  # what the import left out of the given labels stays said
+        runs = [
+            StageRun(name="import", seconds=0.0, note="; ".join(inputs.notes), warning=True),
+            *runs,
+        ]
     scene = Scene(
         name=name,
         image=ImageInfo(file=image_file, width=ctx.width, height=ctx.height),

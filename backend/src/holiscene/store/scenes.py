@@ -53,6 +53,7 @@ from ..editing.edits import (
 from ..editing.workflow_rules import SceneStatus, scene_uncertainty
 from ..inputs import InputFiles, load_photo
 from ..inputs.depth import DEPTH_FILE
+from ..inputs.validation import IMPORT_NOTES_FILE
 from ..pipeline.people import keep_people_objects, people_objects_changed_since
 from .clock import as_utc, utcnow
 from .files import GROUND_TRUTH_FILE, SceneFiles
@@ -263,6 +264,8 @@ class SceneStore:
             if inputs.ground_truth is not None:
                 truth = inputs.ground_truth.model_dump_json(indent=1)
                 (folder / GROUND_TRUTH_FILE).write_text(truth + "\n")
+            if inputs.notes:  # what the import left out of the labels: every run shows it
+                (folder / IMPORT_NOTES_FILE).write_text(json.dumps(list(inputs.notes), indent=1))
             row = SceneRow(
                 id=scene_id,
                 name=scene.name,
