@@ -337,7 +337,10 @@ test("after an object edit the model scores again and the 3D panel offers Re-pla
   await expect(page.getByTestId("suggestion-status")).toContainText("1 object scored", {
     timeout: 60_000,
   });
-  const [added] = (await getScene(page.request, sceneId)).scene.objects ?? [];
+  // The page scores before its save reaches the server: wait for the stored object.
+  const storedObjects = async () => (await getScene(page.request, sceneId)).scene.objects ?? [];
+  await expect.poll(async () => (await storedObjects()).length, { timeout: 30_000 }).toBe(1);
+  const [added] = await storedObjects();
   if (!added) throw new Error("the accepted box is not in the scene");
   await expect(page.getByTestId(`object-source-${added.id}`)).toContainText("detector");
   // ... and the 3D panel says the 3D scene does not have it yet.

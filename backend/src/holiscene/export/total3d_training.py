@@ -13,9 +13,9 @@ train or test Total3D on the scenes labelled here. DIR is laid out as Total3D's 
 - `holiscene-index.json`: which scene and revision each <n> is, whether its labels are the
   ground truth it was imported with or the scene's own estimates, and what was left out.
 
-A scene is written from its ground truth (gt.json) when it was imported with one, else from
-its current revision; it needs the camera's pitch and roll, a room layout and at least one
-object with a 2D and a 3D box whose centre is in front of the camera. Everything is in
+A scene needs the camera's pitch and roll, a room layout and at least one object with a 2D
+and a 3D box whose centre is in front of the camera: from its ground truth (gt.json) when it
+was imported with one that has them, else from its current revision. Everything is in
 Total3D's world frame, which is ours (export/total3d.py). Arrays are pickled so that NumPy 1
 reads them too (as ndarray(shape, dtype, buffer), not NumPy 2's private module paths).
 """

@@ -100,21 +100,25 @@ def polygon_pixels(
 
 
 def _centres_inside(corners: np.ndarray, width: int, height: int) -> np.ndarray:
-    """The pixels whose centre is inside the polygon (even-odd rule), tested only within its
-    bounds."""
+    """The pixels whose centre is inside the polygon (even-odd rule): each edge flips the
+    pixels left of it on the rows whose centre line it crosses."""
     out = np.zeros((height, width), dtype=bool)
     x0, y0 = np.floor(corners.min(axis=0)).astype(int).clip(0, [width, height])
     x1, y1 = np.ceil(corners.max(axis=0)).astype(int).clip(0, [width, height])
     if x0 >= x1 or y0 >= y1:
         return out
-    px, py = np.meshgrid(np.arange(x0, x1) + 0.5, np.arange(y0, y1) + 0.5)
-    inside = np.zeros(px.shape, dtype=bool)
+    centres_x = np.arange(x0, x1) + 0.5
+    inside = np.zeros((y1 - y0, x1 - x0), dtype=bool)
     for (ax, ay), (bx, by) in zip(corners, np.roll(corners, -1, axis=0), strict=True):
-        if ay == by:
-            continue  # a horizontal edge crosses no horizontal ray
-        spans = (ay > py) != (by > py)
-        crossing_x = ax + (py - ay) * (bx - ax) / (by - ay)
-        inside ^= spans & (px < crossing_x)
+        low, high = min(ay, by), max(ay, by)
+        # The rows whose centre y + 0.5 lies in [low, high): a horizontal edge has none.
+        first = max(int(np.ceil(low - 0.5)) - y0, 0)
+        last = min(int(np.ceil(high - 0.5)) - y0, y1 - y0)
+        if first >= last:
+            continue
+        rows_y = np.arange(first, last) + y0 + 0.5
+        crossing_x = ax + (rows_y - ay) * (bx - ax) / (by - ay)
+        inside[first:last] ^= centres_x[None, :] < crossing_x[:, None]
     out[y0:y1, x0:x1] = inside
     return out
 

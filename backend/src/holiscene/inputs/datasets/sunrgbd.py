@@ -298,11 +298,9 @@ def ground_truth(
     o0, o1, ... as the import gives them) with their 3D boxes where annotated."""
     to_world = world_from_sun(sun_from_cv)
     pitch, roll = camera_pitch_roll(sun_from_cv)
-    camera_now = PinholeCamera(K, pitch, roll)
-    layout = _layout(folder, to_world, camera_now)
-    boxes = _boxes_3d(
-        folder, annotation, to_world, labelled, camera_now, (photo.width, photo.height)
-    )
+    pinhole = PinholeCamera(K, pitch, roll)
+    layout = _layout(folder, to_world, pinhole)
+    boxes = _boxes_3d(folder, annotation, to_world, labelled, pinhole, (photo.width, photo.height))
     objects = [
         _truth_object(f"o{i}", detection, boxes.get(i)) for i, (_, detection) in enumerate(labelled)
     ]
