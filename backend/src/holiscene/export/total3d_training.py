@@ -36,11 +36,12 @@ from holiscene_schema import NYU40_CLASSES, Scene, SceneObject
 from PIL import Image
 
 from ..core.atomic_files import write_atomic
+from ..geometry.camera import PinholeCamera
 from ..inputs.depth import depth_from_png
 from ..segmentation.rle import decode_mask
 from .archive import ArchivedScene
 from .errors import ExportRefusedError
-from .total3d import box_frame, camera_rotation
+from .total3d import box_frame
 
 SAMPLES_DIR = "sunrgbd_train_test_data"
 SPLITS_DIR = "splits"
@@ -88,17 +89,6 @@ def corners(basis: np.ndarray, coeffs: np.ndarray, centroid: np.ndarray) -> np.n
     return np.asarray(centroid + (CORNER_SIGNS * coeffs) @ basis)
 
 
-def project(points: np.ndarray, K: np.ndarray, cam_R: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Pixels of world points and their depth along the camera's forward axis: cam_R's
-    columns are the camera's forward, up and right in the world."""
-    forward_up_right = points @ cam_R
-    depth = forward_up_right[:, 0]
-    cv = np.stack([forward_up_right[:, 2], -forward_up_right[:, 1], depth], axis=1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        pixels = (cv @ K.T)[:, :2] / depth[:, None]
-    return pixels, depth
-
-
 def room_frame(corners_3d: list[list[float]]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The room as Total3D describes it: basis rows (the room's horizontal axis nearest the
     camera's forward, up, their cross product), half-sizes along them, and the centroid."""
@@ -133,7 +123,7 @@ class SceneGeometry:
     scene: Scene
     source: str  # "ground truth" or "estimated"
     K: np.ndarray
-    cam_R: np.ndarray
+    camera: PinholeCamera
     room: tuple[np.ndarray, np.ndarray, np.ndarray]
     objects: list[PlacedObject]
     left_out: list[str]  # object ids, each with why
@@ -159,7 +149,8 @@ def _geometry(item: ArchivedScene, scene: Scene, source: str) -> SceneGeometry |
         return "no camera pitch and roll"
     if scene.layout.corners_3d is None:
         return "no room layout"
-    K, cam_R = np.asarray(camera.K, dtype=float), camera_rotation(camera)
+    K = np.asarray(camera.K, dtype=float)
+    pinhole = PinholeCamera(K, camera.pitch_deg, camera.roll_deg)
     width, height = scene.image.width, scene.image.height
     placed, left_out = [], []
     for obj in scene.objects:
@@ -167,10 +158,10 @@ def _geometry(item: ArchivedScene, scene: Scene, source: str) -> SceneGeometry |
             left_out.append(f"{obj.id}: no 3D box")
             continue
         basis, coeffs, centroid = box_frame(obj.box_3d)
-        if project(centroid[None], K, cam_R)[1][0] <= 0:
+        if np.isnan(pinhole.project(centroid)).any():
             left_out.append(f"{obj.id}: its centre is behind the camera")
             continue
-        if _box_from_3d(corners(basis, coeffs, centroid), K, cam_R, width, height) is None:
+        if _box_from_3d(corners(basis, coeffs, centroid), pinhole, width, height) is None:
             left_out.append(f"{obj.id}: its 3D box is out of the photo")
             continue
         label = NYU40_CLASSES.index(obj.cls) + 1
@@ -178,16 +169,16 @@ def _geometry(item: ArchivedScene, scene: Scene, source: str) -> SceneGeometry |
     if not placed:
         return "no object with a 3D box in view"
     room = room_frame(scene.layout.corners_3d)
-    return SceneGeometry(item, scene, source, K, cam_R, room, placed, left_out)
+    return SceneGeometry(item, scene, source, K, pinhole, room, placed, left_out)
 
 
 def _box_from_3d(
-    box_corners: np.ndarray, K: np.ndarray, cam_R: np.ndarray, width: int, height: int
+    box_corners: np.ndarray, camera: PinholeCamera, width: int, height: int
 ) -> list[float] | None:
     """The projected box's 2D bounds clipped to the photo, None when empty (Total3D's
     check_bdb)."""
-    pixels, depth = project(box_corners, K, cam_R)
-    pixels = pixels[depth > 0]
+    pixels = camera.project(box_corners)
+    pixels = pixels[np.isfinite(pixels).all(axis=1)]  # the corners in front of the camera
     if not len(pixels):
         return None
     x1, y1 = max(float(pixels[:, 0].min()), 0.0), max(float(pixels[:, 1].min()), 0.0)
@@ -255,10 +246,10 @@ def _mask_entry(placed: PlacedObject, width: int, height: int) -> dict[str, Any]
 
 def training_sample(geometry: SceneGeometry, priors: Priors, sequence_id: int) -> dict[str, Any]:
     """One pickle's dict, as Total3D's utils/generate_data.py (save_gt_result) lays it out."""
-    scene, K, cam_R = geometry.scene, geometry.K, geometry.cam_R
+    scene, K, pinhole = geometry.scene, geometry.K, geometry.camera
     width, height = scene.image.width, scene.image.height
-    pitch = math.atan(cam_R[1, 0] / math.hypot(cam_R[0, 0], cam_R[2, 0]))
-    roll = math.atan(-cam_R[1, 2] / cam_R[1, 1])
+    # Total3D's pitch is positive looking up, ours looking down (docs/architecture.md).
+    pitch, roll = math.radians(-pinhole.pitch_deg), math.radians(pinhole.roll_deg)
     pitch_cls, pitch_reg = bin_class_and_offset(PITCH_BINS, pitch)
     roll_cls, roll_reg = bin_class_and_offset(ROLL_BINS, roll)
     camera = {
@@ -283,10 +274,10 @@ def training_sample(geometry: SceneGeometry, priors: Priors, sequence_id: int) -
     boxes: dict[str, list[Any]] = {}
     for placed in geometry.objects:
         box_corners = corners(placed.basis, placed.coeffs, placed.centroid)
-        from_3d = _box_from_3d(box_corners, K, cam_R, width, height)
+        from_3d = _box_from_3d(box_corners, pinhole, width, height)
         assert from_3d is not None  # scene_geometry kept only objects in view
         x1, y1, x2, y2 = placed.obj.bbox
-        u, v = project(placed.centroid[None], K, cam_R)[0][0]
+        u, v = pinhole.project(placed.centroid)[0]
         average = priors.size_by_label[placed.label]
         front = placed.basis[2]
         values = {

@@ -78,10 +78,7 @@ def reconstruct_scene(
     )
     runs = pipeline.run(ctx, progress)
     if inputs.notes:  # what the import left out of the given labels stays said
-        runs = [
-            StageRun(name="import", seconds=0.0, note="; ".join(inputs.notes), warning=True),
-            *runs,
-        ]
+        runs = [import_stage("; ".join(inputs.notes)), *runs]
     scene = Scene(
         name=name,
         image=ImageInfo(file=image_file, width=ctx.width, height=ctx.height),
@@ -94,6 +91,11 @@ def reconstruct_scene(
         stages=runs,
     )
     return Reconstruction(scene=scene, glb=ctx.scene_glb)
+
+
+def import_stage(note: str) -> StageRun:
+    """The import's own warning among a scene's stage runs."""
+    return StageRun(name="import", seconds=0.0, note=note, warning=True)
 
 
 def _finished_object(ctx: SceneContext, obj: SceneObject) -> SceneObject:
@@ -135,7 +137,7 @@ def imported_scene(inputs: InputFiles, name: str) -> Scene:
         [n for n in [unknown_class_note(inputs.detections or [])] if n] + list(inputs.notes)
     )
     # The import's own note, shown with the pipeline's warnings until a run replaces them.
-    stages = [StageRun(name="import", seconds=0.0, note=note, warning=True)] if note else []
+    stages = [import_stage(note)] if note else []
     # Supports given with the photo are people's labels (a pipeline run keeps them) or, from
     # an export, the pipeline's guesses. An exported scene's camera and layout (scene.json)
     # start revision 1 as they were; a layout set by hand is kept by the pipeline then.

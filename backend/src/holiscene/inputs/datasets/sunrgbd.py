@@ -299,13 +299,11 @@ def ground_truth(
     to_world = world_from_sun(sun_from_cv)
     pitch, roll = camera_pitch_roll(sun_from_cv)
     pinhole = PinholeCamera(K, pitch, roll)
-    layout = _layout(folder, to_world, pinhole)
+    layout, height = _layout(folder, to_world, pinhole)
     boxes = _boxes_3d(folder, annotation, to_world, labelled, pinhole, (photo.width, photo.height))
     objects = [
         _truth_object(f"o{i}", detection, boxes.get(i)) for i, (_, detection) in enumerate(labelled)
     ]
-    # The floor is Ymax below the camera (SUN's y points down) whatever the room's shape.
-    height = _floor_depth(folder)
     camera = Camera(
         K=K.tolist(),
         K_source="given",
@@ -449,23 +447,16 @@ def _projected_bounds(box: Box, camera: PinholeCamera, size: tuple[int, int]) ->
     return [float(low[0]), float(low[1]), float(high[0]), float(high[1])]
 
 
-def _floor_depth(folder: Path) -> float | None:
-    """How far below the camera the floor of annotation3Dlayout's room is (its Ymax)."""
-    path = folder / LAYOUT_3D
-    if not path.is_file():
-        return None
-    for item in _object_list(path, load_json(path)):
-        if isinstance(item, dict) and item.get("polygon"):
-            return _floor_polygon(str(LAYOUT_3D), item["polygon"])[3]
-    return None
-
-
-def _layout(folder: Path, to_world: FloatArray, camera: PinholeCamera) -> Layout:
+def _layout(
+    folder: Path, to_world: FloatArray, camera: PinholeCamera
+) -> tuple[Layout, float | None]:
     """The room of annotation3Dlayout (its first object with a polygon) as a cuboid, its
-    corners in the image too; a room that is not a 4-cornered box is left out with a note."""
+    corners in the image too (a room that is not a 4-cornered box is left out with a note),
+    and how far below the camera its floor is (its Ymax, SUN's y pointing down), whatever
+    its shape."""
     path = folder / LAYOUT_3D
     if not path.is_file():
-        return Layout()
+        return Layout(), None
     for item in _object_list(path, load_json(path)):
         if not isinstance(item, dict) or not item.get("polygon"):
             continue
@@ -473,12 +464,11 @@ def _layout(folder: Path, to_world: FloatArray, camera: PinholeCamera) -> Layout
         try:
             corners = room_corners(xs, zs, y_min, y_max, to_world)
         except InputError as exc:
-            return Layout(note=f"{LAYOUT_3D}: {exc}; no layout kept")
+            return Layout(note=f"{LAYOUT_3D}: {exc}; no layout kept"), y_max
         image = [
             None if np.isnan(p).any() else [round(float(p[0]), 2), round(float(p[1]), 2)]
             for p in camera.project(corners)
         ]
-        return Layout(
-            corners_2d=image, corners_3d=corners.round(DECIMALS).tolist(), source="ground_truth"
-        )
-    return Layout(note=f"{LAYOUT_3D} holds no room polygon")
+        corners_3d = corners.round(DECIMALS).tolist()
+        return Layout(corners_2d=image, corners_3d=corners_3d, source="ground_truth"), y_max
+    return Layout(note=f"{LAYOUT_3D} holds no room polygon"), None
