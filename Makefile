@@ -148,18 +148,18 @@ completion-model: install-python
 
 box-refiner-model: install-python
 	rm -rf /tmp/holiscene-box-refiner-model
-	OMP_NUM_THREADS=1 $(PY) -m holiscene.cli train-3d -o /tmp/holiscene-box-refiner-model
+	OMP_NUM_THREADS=1 $(PY) -m holiscene.cli train-3d box-refiner -o /tmp/holiscene-box-refiner-model
 	cp /tmp/holiscene-box-refiner-model/* backend/src/holiscene/learning/box_refiner_model/
 
 # The mesh network: 25 minutes on the 2 cores (docs/mesh-net.md).
 mesh-net-model: install-python
 	rm -rf /tmp/holiscene-mesh-net-model
-	$(PY) -m holiscene.cli train-meshes -o /tmp/holiscene-mesh-net-model
+	$(PY) -m holiscene.cli train-3d meshes -o /tmp/holiscene-mesh-net-model
 	cp /tmp/holiscene-mesh-net-model/* backend/src/holiscene/learning/mesh_net_model/
 
 scene-net-model: install-python
 	rm -rf /tmp/holiscene-scene-net-model
-	$(PY) -m holiscene.cli train-scene-net -o /tmp/holiscene-scene-net-model --cache /tmp/holiscene-scene-net-cache
+	$(PY) -m holiscene.cli train-3d scene-net -o /tmp/holiscene-scene-net-model --cache /tmp/holiscene-scene-net-cache
 	cp /tmp/holiscene-scene-net-model/* backend/src/holiscene/learning/scene_net_model/
 
 bench-completion: install-python

@@ -7,13 +7,11 @@ import sys
 from collections.abc import Sequence
 
 from .batch import add_batch_command
-from .box_refiner import add_box_refiner_training_command
 from .common import CliError, settings_from
 from .completion import add_completion_training_command
 from .export import add_export_command
-from .mesh_net import add_mesh_net_training_command
+from .learned_3d import add_learned_3d_training_command
 from .pipeline import add_pipeline_commands
-from .scene_net import add_scene_net_training_command
 from .scenes import add_demo_command, add_import_command
 from .serve import add_serve_command
 from .training import (
@@ -53,8 +51,6 @@ def _parser() -> argparse.ArgumentParser:
     add_surface_training_command(sub)
     add_detector_training_command(sub)
     add_completion_training_command(sub)
-    add_box_refiner_training_command(sub)
-    add_mesh_net_training_command(sub)
-    add_scene_net_training_command(sub)
+    add_learned_3d_training_command(sub)  # LEN + ODN, meshes, box refiner
     add_view_command(sub)
     return parser

@@ -170,6 +170,7 @@ def test_train_3d_writes_a_model_that_matches_pytorch(tmp_path: Path) -> None:
     code = main(
         [
             "train-3d",
+            "box-refiner",
             "-o",
             str(out),
             "--rooms",

@@ -1,5 +1,5 @@
 """Train the layout and object networks together on synthetic rooms (`holiscene
-train-scene-net`, `make scene-net-model`): render the rooms (or reuse a cache), read their
+train-3d scene-net`, `make scene-net-model`): render the rooms (or reuse a cache), read their
 features once, train for a wall-clock budget with the learning rate annealed
 (`learning.budget`), export to ONNX (checked against PyTorch) and write metadata.json,
 metrics.json and curve.png beside it."""
