@@ -34,8 +34,8 @@ function rememberEnabled(on: boolean): void {
 }
 
 /**
- * The scene's photo as stored pixels (RGBA), without EXIF rotation or colour management, as
- * the backend decodes it (PIL).
+ * The scene's photo as stored pixels (RGBA), without colour management, as the backend
+ * decodes it (PIL). A stored photo carries no EXIF turn: the backend stores it upright.
  */
 export async function photoPixels(url: string, signal?: AbortSignal): Promise<PixelImage> {
   // The photo's bytes, decoded here: a plain fetch (request() is for JSON messages).

@@ -27,7 +27,7 @@ from holiscene_schema import (
     normalise_class_name,
     support_graph_problems,
 )
-from PIL import Image, UnidentifiedImageError
+from PIL import ExifTags, Image, ImageOps, UnidentifiedImageError
 from pydantic import ValidationError
 
 from ..pipeline.base import Detection
@@ -40,6 +40,7 @@ MIN_IMAGE_SIDE = 32
 MAX_ASPECT_RATIO = 8.0
 BOX_TOLERANCE_PX = 2.0  # boxes may overhang the border by rounding, not more
 _FORMATS = {"JPEG": ".jpg", "PNG": ".png"}
+UPRIGHT_JPEG_QUALITY = 95  # a photo turned upright is encoded again; 95 keeps it near the original
 
 
 @dataclass(frozen=True)
@@ -57,8 +58,12 @@ class Photo:
         return int(self.rgb.shape[0])
 
 
-def load_photo(data: bytes, max_pixels: int = MAX_IMAGE_PIXELS) -> Photo:
-    """Decode a JPEG or PNG photo, checking its size from the header before decoding it."""
+def load_photo(data: bytes, max_pixels: int = MAX_IMAGE_PIXELS, *, exif_turn: bool = True) -> Photo:
+    """Decode a JPEG or PNG photo, checking its size from the header before decoding it.
+
+    A photo with an EXIF turn (phones store the sensor's pixels and the turn) is read upright,
+    as browsers and labelling tools show it, and its stored copy is encoded so; `exif_turn=False`
+    reads the pixels as stored (labels made without the turn) and drops the turn instead."""
     if not data:
         raise InputError("the photo is empty", 400)
     try:
@@ -85,10 +90,59 @@ def load_photo(data: bytes, max_pixels: int = MAX_IMAGE_PIXELS) -> Photo:
         )
     try:
         image.load()
-        rgb = np.asarray(image.convert("RGB"))
+        if _exif_orientation(image) == 1:
+            return Photo(
+                rgb=np.asarray(image.convert("RGB")), data=data, suffix=_FORMATS[image.format]
+            )
+        read = ImageOps.exif_transpose(image) if exif_turn else _without_turn(image)
+        return Photo(
+            rgb=np.asarray(read.convert("RGB")),
+            data=_encoded_like(read, image),
+            suffix=_FORMATS[image.format],
+        )
     except (OSError, SyntaxError, ValueError) as exc:
         raise InputError(f"the photo cannot be decoded (truncated or corrupt): {exc}") from exc
-    return Photo(rgb=rgb, data=data, suffix=_FORMATS[image.format])
+
+
+def _exif_orientation(image: Image.Image) -> int:
+    """The EXIF turn a phone stores beside the sensor's pixels (1: none). Browsers and labelling
+    tools show the photo turned, so its boxes, masks and K are in that upright frame."""
+    try:
+        orientation = image.getexif().get(ExifTags.Base.Orientation, 1)
+    except (OSError, SyntaxError, ValueError):
+        return 1  # an unreadable EXIF block: the pixels as stored
+    return orientation if isinstance(orientation, int) and 2 <= orientation <= 8 else 1
+
+
+def exif_turns_sides(data: bytes) -> bool:
+    """Whether the photo's EXIF turn swaps its width and height (a quarter turn)."""
+    try:
+        with Image.open(io.BytesIO(data)) as image:
+            return _exif_orientation(image) >= 5
+    except (UnidentifiedImageError, OSError, Image.DecompressionBombError):
+        return False
+
+
+def _without_turn(image: Image.Image) -> Image.Image:
+    kept = image.copy()
+    exif = kept.getexif()
+    del exif[ExifTags.Base.Orientation]
+    kept.info["exif"] = exif.tobytes()
+    return kept
+
+
+def _encoded_like(upright: Image.Image, original: Image.Image) -> bytes:
+    """The upright photo in the original's format, without the turn, so every reader of the
+    stored file (the page, the exports, the viewers) sees the pixels the pipeline saw."""
+    buffer = io.BytesIO()
+    options: dict[str, Any] = {"exif": upright.getexif().tobytes()}
+    if "icc_profile" in original.info:
+        options["icc_profile"] = original.info["icc_profile"]
+    if original.format == "JPEG":
+        options["quality"] = UPRIGHT_JPEG_QUALITY
+        upright = upright.convert("RGB") if upright.mode not in ("RGB", "L", "CMYK") else upright
+    upright.save(buffer, original.format, **options)
+    return buffer.getvalue()
 
 
 def parse_intrinsics(text: str) -> np.ndarray:

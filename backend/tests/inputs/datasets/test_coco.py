@@ -195,3 +195,34 @@ def test_a_small_polygon_covers_the_pixels_whose_centres_it_holds_as_cocos_tools
     assert coco[0, 8] and not coco[0, 9] and not coco[5, 5]
     labelme = polygon_pixels("t", triangle, 20, 20)  # LabelMe's own fill takes the edge too
     assert labelme.sum() > 60 and (labelme | coco).sum() == labelme.sum()
+
+
+@pytest.mark.parametrize("entry_size", ["upright", "as stored"])
+def test_a_photo_with_an_exif_quarter_turn_follows_the_size_its_entry_gives(
+    tmp_path: Path, entry_size: str
+) -> None:
+    """A phone photo stored 64 wide and 96 high with a quarter turn shows 96x64. Most tools label
+    what they show; an entry with the stored size was labelled without the turn."""
+    from PIL import ExifTags, Image
+
+    upright = np.zeros((HEIGHT, WIDTH, 3), dtype=np.uint8)
+    upright[:10, :20] = 255  # a white block at the upright photo's top left
+    stored = Image.fromarray(upright).transpose(Image.Transpose.ROTATE_90)
+    exif = Image.Exif()
+    exif[ExifTags.Base.Orientation] = 6
+    path = coco_file(tmp_path, [{"id": 1, "image_id": 1, "category_id": 1, "bbox": [0, 0, 20, 10]}])
+    stored.save(tmp_path / "images" / "a.png", exif=exif.tobytes())
+    if entry_size == "as stored":
+        data = json.loads(path.read_text())
+        data["images"][0].update(width=HEIGHT, height=WIDTH)
+        write_json(path, data)
+    (item,) = dataset_items(path)
+    assert item.error is None and item.inputs is not None
+    rgb = item.inputs.photo.rgb
+    if entry_size == "upright":
+        assert rgb.shape == (HEIGHT, WIDTH, 3) and rgb[:10, :20].min() == 255
+        assert item.inputs.notes == ()
+    else:
+        assert rgb.shape == (WIDTH, HEIGHT, 3)
+        np.testing.assert_array_equal(rgb, np.asarray(stored))
+        assert any("EXIF turn was left out" in note for note in item.inputs.notes)

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 from holiscene_schema import STRUCTURAL_SUPPORTERS, SupportRelation
 
-from ..validation import InputError, InputFiles, load_photo, support_relations
+from ..validation import InputError, InputFiles, exif_turns_sides, load_photo, support_relations
 from .items import (
     DatasetItem,
     class_map_beside,
@@ -103,8 +103,17 @@ def _read_image(
 ) -> InputFiles:
     if not isinstance(image, dict) or not isinstance(image.get("file_name"), str):
         raise InputError("an image entry must have an 'id' and a 'file_name'")
-    photo = load_photo(image_file(path, image["file_name"]).read_bytes())
+    data = image_file(path, image["file_name"]).read_bytes()
+    photo = load_photo(data)
     stated = (image.get("width"), image.get("height"))
+    notes: list[str] = []
+    unturned_size = (photo.height, photo.width)
+    if stated == unturned_size and photo.width != photo.height and exif_turns_sides(data):
+        # The entry's size is the stored pixels': its labels were drawn without the EXIF turn.
+        photo = load_photo(data, exif_turn=False)
+        notes.append(
+            "the photo's EXIF turn was left out: the COCO entry's size is the unturned one"
+        )
     if stated != (None, None) and stated != (photo.width, photo.height):
         raise InputError(
             f"the file is {photo.width}x{photo.height} pixels, the COCO entry says "
@@ -127,7 +136,9 @@ def _read_image(
             labelled_detection(where, name, bbox, pixels, photo.width, photo.height, class_map)
         )
         kept.append((where, annotation))
-    return InputFiles(photo=photo, K=None, detections=detections, supports=_supports(kept))
+    return InputFiles(
+        photo=photo, K=None, detections=detections, supports=_supports(kept), notes=tuple(notes)
+    )
 
 
 def _supports(kept: list[tuple[str, dict[str, Any]]]) -> tuple[SupportRelation, ...]:
