@@ -42,7 +42,7 @@ test("boxes drawn on an empty photo become objects with masks and supporters", a
   await expect(page.getByTestId("class-picker")).toHaveCount(0);
   await expect(page.locator('.masks [data-object="d1"]')).toHaveCount(1);
   await objectEditsSaved(page);
-  await expect(page.getByTestId("object-edit-status")).toContainText("saved as revision");
+  await expect(page.getByTestId("object-edit-status")).toContainText(": saved.");
 
   // The new object is selected: the floor holds it up (F).
   await expect(page.getByTestId("box-tool-selected")).toHaveCount(1);

@@ -128,6 +128,9 @@ test("a crowded scene's labels do not overlap; mask colouring and opacity are re
   });
   // The pile is dense: some labels had to move off their objects, with a leader line.
   expect(before.leaders).toBeGreaterThan(0);
+  const leaderIds = await page
+    .locator('.object-label[data-leader="true"]')
+    .evaluateAll((tags) => tags.map((tag) => (tag as SVGGElement).dataset.object ?? ""));
   await page.getByTestId("photo-panel").screenshot({
     path: screenshotPath("photo-crowded-labels.png"),
   });
@@ -214,6 +217,10 @@ test("a crowded scene's labels do not overlap; mask colouring and opacity are re
   const reloaded = await readOverlays(page);
   expect(new Set(reloaded.masks.map((m) => m.colour)).size).toBe(classes.size);
   expect(overlappingPairs(reloaded.tags)).toEqual([]);
+  // A tag a crowd pushed off its object selects that object when clicked, not the mask under it.
+  const moved = reloaded.tags.find((t) => t.id === leaderIds[0]) as Box;
+  await page.mouse.click((moved.left + moved.right) / 2, (moved.top + moved.bottom) / 2);
+  await expect(page.getByTestId(`object-row-${moved.id}`)).toHaveClass(/is-selected/);
   // Back to the default for the other tests in this browser profile.
   await page.getByTestId("mask-colouring").selectOption("object");
   await page.getByTestId("mask-opacity").fill("0.42");

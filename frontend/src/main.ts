@@ -6,7 +6,7 @@ import { ApiError } from "./api/errors";
 import { authApi } from "./api/workflow";
 import { button, el } from "./dom";
 import { confirmLeave, parseRoute } from "./router";
-import { bindAuthorInput } from "./state/author";
+import { bindAuthorInput, setAuthorFallback } from "./state/author";
 import { getCurrentUser, onCurrentUserChange, setCurrentUser } from "./state/currentUser";
 import { mountDashboardPage } from "./views/dashboard/dashboardPage";
 import { mountShortcutHelp } from "./views/help/shortcutHelp";
@@ -67,6 +67,7 @@ function mount(root: HTMLElement): () => void {
 
 function renderUserArea(user: CurrentUser | null): void {
   document.body.dataset.localMode = String(user?.local_mode ?? false);
+  setAuthorFallback(user?.name ?? null);
   if (!user) {
     userArea?.replaceChildren();
     return;

@@ -80,6 +80,25 @@ def test_a_long_file_name_is_cut_to_the_scene_name_limit(client: TestClient) -> 
         data={"run_pipeline": "false", "name": "y" * 201},
     )
     assert typed.status_code == 422 and "name" in typed.json()["detail"]
+    # The next photo of that name gets a number, still within the limit.
+    again = _import(client, "x" * 300 + ".png", _png(64, 48))
+    assert again.json()["scene"]["name"] == "x" * 198 + " 2"
+
+
+def test_photos_of_one_file_name_from_several_folders_get_numbered_names(
+    client: TestClient,
+) -> None:
+    names = [_import(client, "img.jpg", _png(64, 48)).json()["scene"]["name"] for _ in range(3)]
+    assert names == ["img", "img 2", "img 3"]
+    # A name the user typed is theirs, taken or not; "img 10" would not make "img" numbered.
+    typed = client.post(
+        "/api/scenes",
+        files={"image": ("img.jpg", _png(64, 48), "image/png")},
+        data={"run_pipeline": "false", "name": "img"},
+    )
+    assert typed.json()["scene"]["name"] == "img"
+    assert _import(client, "img 10.png", _png(64, 48)).json()["scene"]["name"] == "img 10"
+    assert _import(client, "img.png", _png(64, 48)).json()["scene"]["name"] == "img 4"
 
 
 @pytest.mark.parametrize(

@@ -1,13 +1,17 @@
-// The annotator's name, sent with every edit and kept in localStorage.
+// The annotator's name, sent with every edit and kept in localStorage. In single-user mode it
+// is what tells people apart (the server records it); until one is typed, the signed-in
+// account's name stands in, so the supports and the workflow name the same person.
 
 const KEY = "holiscene.author";
 export const DEFAULT_AUTHOR = "annotator";
+let fallback = DEFAULT_AUTHOR;
+let boundInput: HTMLInputElement | null = null;
 
 export function getAuthor(): string {
   try {
-    return localStorage.getItem(KEY)?.trim() || DEFAULT_AUTHOR;
+    return localStorage.getItem(KEY)?.trim() || fallback;
   } catch {
-    return DEFAULT_AUTHOR;
+    return fallback;
   }
 }
 
@@ -19,10 +23,21 @@ export function setAuthor(name: string): void {
   }
 }
 
+/** The name used while none is typed: the signed-in account's (null: none signed in). */
+export function setAuthorFallback(name: string | null): void {
+  fallback = name?.trim() || DEFAULT_AUTHOR;
+  if (boundInput) showIn(boundInput);
+}
+
+function showIn(input: HTMLInputElement): void {
+  input.value = getAuthor();
+  input.placeholder = fallback;
+}
+
 /** Keep a text input and the stored author name in step. */
 export function bindAuthorInput(input: HTMLInputElement): void {
-  input.value = getAuthor();
-  input.placeholder = DEFAULT_AUTHOR;
+  boundInput = input;
+  showIn(input);
   input.addEventListener("change", () => {
     setAuthor(input.value);
     input.value = getAuthor();

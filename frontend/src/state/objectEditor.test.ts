@@ -92,7 +92,7 @@ describe("ObjectEditor", () => {
     expect(editor.undoLabel).toBe("o1 → sofa");
     expect(editor.status).toMatchObject({
       kind: "idle",
-      message: "O1 → sofa: saved as revision 3.",
+      message: "O1 → sofa: saved.",
     });
   });
 

@@ -420,7 +420,9 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   ): Sent {
     this.session.adopt(doc);
     this.remember(doc);
-    const message = note ?? `${capital(label)}: saved as revision ${doc.revision}.`;
+    // No revision number: the save bar says which revision is the latest, and this line stays
+    // up while later saves move it on.
+    const message = note ?? `${capital(label)}: saved.`;
     this.setStatus({ kind: "idle", message, error: false });
     return { before, after: doc.revision, edits };
   }

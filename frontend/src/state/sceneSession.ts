@@ -582,7 +582,8 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
       if (!this.layout.dirty) lines.push("The room layout is already saved.");
     }
     const count = usable.length + (layoutChange && this.layout?.dirty ? 1 : 0);
-    lines.unshift(`Restored ${plural(count, "unsaved change")} from ${draft.savedAt}.`);
+    const when = new Date(draft.savedAt).toLocaleString(); // as the banner offering them said
+    lines.unshift(`Restored ${plural(count, "unsaved change")} from ${when}.`);
     this.recovered = null;
     this.drafts.clearRecovered(this.sceneId);
     this.edit("restore unsaved changes", usable, [], layoutChange);

@@ -61,6 +61,8 @@ from .revision_writes import WorkflowMove, add_revision, revision_values, write_
 from .scene_events import SceneHead, as_state, pipeline_committed, record_event
 from .tables import RevisionRow, SceneRow
 
+SCENE_NAME_LENGTH = 200  # tables.SceneRow.name's length
+
 _EDITS = TypeAdapter(list[Edit])
 # Runs inside a revision's write transaction, after the scene row moved to the new revision
 # number (given); raising rolls the whole write back. The workflow checks and records state.
@@ -208,6 +210,26 @@ class SceneStore:
                 )
                 for r in rows
             ]
+
+    def unused_name(self, name: str) -> str:
+        """`name`, or "name 2", "name 3"... when scenes already have it: photos uploaded from
+        different folders are often all called img.jpg."""
+        stem = name[: SCENE_NAME_LENGTH - 8]  # room for " 1234567"
+        with Session(self.engine) as session:
+            taken = set(
+                session.scalars(
+                    select(SceneRow.name).where(
+                        (SceneRow.name == name)
+                        | SceneRow.name.startswith(f"{stem} ", autoescape=True)
+                    )
+                ).all()
+            )
+        number, candidate = 1, name
+        while candidate in taken:
+            number += 1
+            suffix = f" {number}"
+            candidate = name[: SCENE_NAME_LENGTH - len(suffix)] + suffix
+        return candidate
 
     def imported_from(self, inputs: InputFiles) -> SceneSummary | None:
         """The scene these very files were imported as before (the oldest), or None."""

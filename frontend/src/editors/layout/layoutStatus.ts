@@ -8,6 +8,34 @@ export interface StatusLine {
   alert: boolean;
 }
 
+/** Ceilings people live under, and the narrowest room side, in metres. */
+const CEILING_M: readonly [number, number] = [2.0, 5.0];
+const NARROWEST_M = 1.2;
+/** The least headroom above the camera (a photo is taken at eye or chest height). */
+const HEADROOM_M = 0.3;
+
+/**
+ * What the dragged room has that rooms do not: a corner dropped on the wrong line (a ceiling
+ * corner on a picture's edge) makes such a room, and it is saved like any other, so the bar
+ * says so while the person can still drag it back.
+ */
+export function roomDoubts(size: readonly number[], cameraHeight: number): string[] {
+  const [depth = 0, height = 0, width = 0] = size;
+  const doubts: string[] = [];
+  if (height < CEILING_M[0] || height > CEILING_M[1]) {
+    doubts.push(`a ceiling ${height.toFixed(2)} m high`);
+  }
+  if (height - cameraHeight < HEADROOM_M) {
+    doubts.push(
+      `${Math.max(0, height - cameraHeight).toFixed(2)} m from the camera to the ceiling`,
+    );
+  }
+  if (Math.min(depth, width) < NARROWEST_M) {
+    doubts.push(`a room ${Math.min(depth, width).toFixed(2)} m across`);
+  }
+  return doubts;
+}
+
 export function layoutStatus(
   draft: LayoutDraft,
   saveState: SaveState,
@@ -44,8 +72,12 @@ export function layoutStatus(
       alert: false,
     };
   }
+  const doubts = roomDoubts(live.room.size, draft.cameraHeight);
+  const doubt = doubts.length
+    ? ` Is a corner on the wrong line? This gives ${doubts.join(", ")}.`
+    : "";
   return {
-    text: draft.dirty ? `Moved (not saved): ${room}` : `Drag the yellow corners. ${room}`,
-    alert: false,
+    text: (draft.dirty ? `Moved (not saved): ${room}` : `Drag the yellow corners. ${room}`) + doubt,
+    alert: doubts.length > 0,
   };
 }

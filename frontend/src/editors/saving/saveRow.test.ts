@@ -16,6 +16,13 @@ describe("the save status", () => {
     );
   });
 
+  it("names the latest revision once object actions have saved after the last save", () => {
+    // A support edit saved revision 14, then a mask and a class were saved as 15 and 16.
+    expect(statusText({ kind: "saved", revision: 14 }, 0, 16, true, null)).toBe(
+      "Saved as revision 16",
+    );
+  });
+
   it("keeps unsaved support edits and errors in front of an object action", () => {
     expect(statusText({ kind: "dirty" }, 2, 4, true, "add chair o3")).toBe(
       "2 unsaved changes on revision 4 · autosaving",

@@ -27,7 +27,8 @@ export function statusText(
     case "saving":
       return "Saving…";
     case "saved":
-      return `Saved as revision ${state.revision}`;
+      // Object actions save on their own path after this save: the latest revision is theirs.
+      return `Saved as revision ${Math.max(state.revision, revision)}`;
     case "conflict":
       return "Not saved: conflict";
     case "error":

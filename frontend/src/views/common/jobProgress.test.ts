@@ -32,4 +32,11 @@ describe("job texts", () => {
     expect(waitingText(job(null))).toContain("still running");
     expect(describeJob(job(null))).toBe("Pipeline queued…");
   });
+
+  it("names a running or failed job's stage as people read it", () => {
+    const running: Job = { ...job("layout_from_lines"), status: "running", progress: 0.42 };
+    expect(describeJob(running)).toBe("Running layout from lines · 42%");
+    const failed: Job = { ...job("masks_grabcut"), status: "failed", error: "no memory" };
+    expect(describeJob(failed)).toBe("Pipeline failed in masks grabcut: no memory");
+  });
 });

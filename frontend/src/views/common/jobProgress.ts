@@ -14,7 +14,13 @@ export function waitingText(job: Job): string {
     : "The pipeline is still running on this scene; it opens when done.";
 }
 
+/** A pipeline stage's name as people read it: "layout_from_lines" -> "layout from lines". */
+export function readableStage(name: string): string {
+  return name.replaceAll("_", " ");
+}
+
 export function describeJob(job: Job): string {
+  const stage = job.stage ? readableStage(job.stage) : null;
   const percent = `${Math.round(job.progress * 100)}%`;
   const what = {
     retrain: "Retraining",
@@ -27,13 +33,13 @@ export function describeJob(job: Job): string {
     case "queued":
       return job.stage === BATCH_STAGE ? `${what} queued in a batch…` : `${what} queued…`;
     case "running":
-      return `Running${job.stage ? ` ${job.stage}` : ""} · ${percent}${job.message ? ` · ${job.message}` : ""}`;
+      return `Running${stage ? ` ${stage}` : ""} · ${percent}${job.message ? ` · ${job.message}` : ""}`;
     case "succeeded":
       return retraining
         ? `Retraining finished: ${job.message ?? "done"}`
         : `${what} finished (revision ${job.result_revision ?? "?"})`;
     case "failed":
-      return `${what} failed${job.stage ? ` in ${job.stage}` : ""}: ${job.error ?? "unknown error"}`;
+      return `${what} failed${stage ? ` in ${stage}` : ""}: ${job.error ?? "unknown error"}`;
   }
 }
 

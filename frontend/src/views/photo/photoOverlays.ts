@@ -63,6 +63,27 @@ export class PhotoOverlays {
     return this.hitMap.at(x, y);
   }
 
+  /**
+   * The object whose label tag covers a photo point, or null. Tags are drawn over the masks,
+   * and a crowd pushes some off their objects: a click on one means its object.
+   */
+  labelAt(x: number, y: number): string | null {
+    const labels = this.layers.labels;
+    if (labels.getClientRects().length === 0) return null; // labels hidden (or none drawn)
+    const boxes = [...labels.querySelectorAll<SVGRectElement>(".object-label .label-box")];
+    for (const box of boxes.reverse()) {
+      const left = box.x.baseVal.value;
+      const top = box.y.baseVal.value;
+      const inside =
+        x >= left &&
+        x <= left + box.width.baseVal.value &&
+        y >= top &&
+        y <= top + box.height.baseVal.value;
+      if (inside) return box.closest<SVGGElement>(".object-label")?.dataset.object ?? null;
+    }
+    return null;
+  }
+
   /** The centre of the object's mask (for arrows drawn to it). */
   centroid(id: string): [number, number] | null {
     return this.regions.get(id)?.centroid ?? null;

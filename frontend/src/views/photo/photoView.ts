@@ -44,7 +44,8 @@ export function mountPhotoView(
   const pointOf = (event: MouseEvent) => toImage(svg, event);
   const maskAt = (event: MouseEvent): string | null => {
     const point = pointOf(event);
-    return point ? overlays.objectAt(point[0], point[1]) : null;
+    if (!point) return null;
+    return overlays.labelAt(point[0], point[1]) ?? overlays.objectAt(point[0], point[1]);
   };
   const objectAt = (event: MouseEvent): string | null => {
     const arrow = (event.target as Element).closest<SVGGElement>("[data-child]");

@@ -3,6 +3,7 @@
 import type { StageRun } from "@holiscene/schema";
 import { el } from "../../dom";
 import { plural, type SceneSession } from "../../state/sceneSession";
+import { readableStage } from "../common/jobProgress";
 
 export interface PipelineWarning {
   stage: string;
@@ -25,7 +26,7 @@ export function pipelineWarnings(
       layoutSetByHand && LAYOUT_STAGES.has(run.name)
         ? " (the room has since been set by hand)"
         : "";
-    return [{ stage: run.name.replaceAll("_", " "), text: run.note + since }];
+    return [{ stage: readableStage(run.name), text: run.note + since }];
   });
 }
 

@@ -62,6 +62,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     const session = new SceneSession(doc);
     shown = session;
     title.textContent = doc.scene.name;
+    document.title = `${doc.scene.name} · HoliScene`; // the tab names the scene, not its id
     const updateMeta = () => {
       const { text, title: note } = sceneMeta(session.doc);
       meta.textContent = text;

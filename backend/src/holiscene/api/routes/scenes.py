@@ -125,7 +125,8 @@ async def import_scene(
     inputs = InputFiles(photo=photo, K=K, detections=boxes, depth=depth_map)
     # A name from the file name is cut to fit (only a typed name is the user's to shorten).
     from_file = (image.filename or "photo").rsplit(".", 1)[0].strip()[:MAX_SCENE_NAME]
-    scene_name = (name or "").strip() or from_file or "photo"
+    typed = (name or "").strip()
+    scene_name = typed or workbench.scenes.unused_name(from_file or "photo")
     return workbench.import_scene(inputs, scene_name, author_of(user, author), run_pipeline)
 
 

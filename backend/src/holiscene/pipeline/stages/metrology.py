@@ -72,8 +72,13 @@ class HeightsByMetrology(Stage):
         bounds = [obj_id for obj_id, e in estimates.items() if e.source == "lower_bound"]
         parts = []
         if fallbacks:
-            parts.append(f"class prior for {len(fallbacks)}: " + ", ".join(fallbacks))
+            parts.append(
+                f"{len(fallbacks)} given their class's typical height instead: "
+                + ", ".join(fallbacks)
+            )
         if bounds:
-            parts.append("top hidden, at least the prior mean: " + ", ".join(bounds))
+            parts.append(
+                "top hidden, so at least their class's typical height: " + ", ".join(bounds)
+            )
         if parts:
             ctx.notes[self.name] = "; ".join(parts)
