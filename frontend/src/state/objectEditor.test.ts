@@ -16,6 +16,7 @@ import {
   restoreEdits,
   savedAlready,
   touchedIds,
+  uncutNote,
 } from "./objectEditor";
 import type { SceneSession } from "./sceneSession";
 
@@ -364,5 +365,37 @@ describe("an action whose answer was lost", () => {
     ).toBeNull();
     expect(savedAlready(stored as never, 3, added.slice(0, 1))).toBeNull();
     expect(savedAlready([{ number: 6, edits: null }] as never, 3, added)).toBeNull();
+  });
+});
+
+describe("new objects the server could not cut out", () => {
+  const withMask = (id: string, source: "box" | "grabcut"): SceneObject => ({
+    ...object(id),
+    mask: { origin: [0, 0], size: [4, 4], rle: [0, 16], source },
+  });
+  const add = (id: string): NewObject => ({
+    kind: "add_object",
+    id,
+    class: "chair",
+    bbox: [0, 0, 4, 4],
+    source: "detector",
+  });
+
+  it("are named, with how to fix their masks", () => {
+    const doc = documentOf(3, [withMask("d1", "box"), withMask("d2", "grabcut")]);
+    expect(uncutNote([add("d1"), add("d2")], doc)).toBe(
+      " The automatic cut could not separate d1 from its surroundings: the mask is the whole " +
+        "box (Brush, Eraser or Refine fix it).",
+    );
+  });
+
+  it("say nothing when every new object was cut, or its mask was given", () => {
+    const doc = documentOf(3, [withMask("d1", "grabcut"), withMask("o1", "box")]);
+    expect(uncutNote([add("d1"), { kind: "remove_object", id: "o2" }], doc)).toBe("");
+    const given = {
+      ...add("o1"),
+      mask: { origin: [0, 0], size: [4, 4], rle: [0, 16], source: "box" },
+    };
+    expect(uncutNote([given as NewObject], doc)).toBe("");
   });
 });

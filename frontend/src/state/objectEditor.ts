@@ -35,6 +35,23 @@ export type NewObject = Omit<AddObject, "mask" | "score"> &
 
 export type ObjectEdit = NewObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject;
 
+/**
+ * What to say of new objects the server could not cut out (their mask is their whole box,
+ * which then covers whatever else is in it): "" when every one was cut.
+ */
+export function uncutNote(edits: readonly ObjectEdit[], doc: SceneDocument): string {
+  const added = new Set(edits.flatMap((e) => (e.kind === "add_object" && !e.mask ? [e.id] : [])));
+  const uncut = (doc.scene.objects ?? []).filter(
+    (o) => added.has(o.id) && o.mask?.source === "box",
+  );
+  if (uncut.length === 0) return "";
+  const ids = uncut.map((o) => o.id).join(", ");
+  return (
+    ` The automatic cut could not separate ${ids} from ${uncut.length === 1 ? "its" : "their"} ` +
+    "surroundings: the mask is the whole box (Brush, Eraser or Refine fix it)."
+  );
+}
+
 /** What the editor is doing: nothing (with what the last action did), or saving an action. */
 export type ObjectEditStatus =
   | { kind: "idle"; message: string | null; error: boolean }
@@ -422,7 +439,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     this.remember(doc);
     // No revision number: the save bar says which revision is the latest, and this line stays
     // up while later saves move it on.
-    const message = note ?? `${capital(label)}: saved.`;
+    const message = (note ?? `${capital(label)}: saved.`) + uncutNote(edits, doc);
     this.setStatus({ kind: "idle", message, error: false });
     return { before, after: doc.revision, edits };
   }

@@ -8,7 +8,7 @@ import json
 import logging
 import shutil
 import threading
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -22,6 +22,7 @@ from holiscene_schema import (
     ModelKind,
     RetrainRequest,
     Scene,
+    StageRun,
 )
 
 from ..core.data_dir_owner import running_batches
@@ -341,8 +342,12 @@ class Workbench:
         """Store a job's computed result as the scene's next revision and finish the job."""
         assert job.scene_id is not None and job.base_revision is not None  # job_run checked
         if job.kind == "placement":
+            earlier = self.scenes.document(job.scene_id, job.base_revision).scene.stages
+            placed = result.scene.model_copy(
+                update={"stages": with_earlier_runs(earlier, result.scene.stages)}
+            )
             revision = self.scenes.commit_placement_result(
-                job.scene_id, job.base_revision, result.scene, result.glb
+                job.scene_id, job.base_revision, placed, result.glb
             )
         else:
             # A layout set by hand up to the revision read above is in the result (kept);
@@ -390,6 +395,15 @@ class Workbench:
         self.run_job(job.id)
         finished = self.jobs.get(job.id)
         return ImportResult(scene=self.scenes.summary(result.scene.id, finished), job=finished)
+
+
+def with_earlier_runs(earlier: Sequence[StageRun], rerun: Sequence[StageRun]) -> list[StageRun]:
+    """A placement job's stage runs over the pipeline's: it re-runs only the stages after the
+    layout, and what the others said (masks left as boxes, a detector that found nothing)
+    still holds, so the scene page keeps showing it."""
+    again = {run.name: run for run in rerun}
+    kept = [again.pop(run.name, run) for run in earlier]
+    return [*again.values(), *kept]
 
 
 def job_stages(

@@ -1,22 +1,43 @@
 // The detector's suggested boxes over the photo: dashed boxes with class and score, larger
-// ones first so a smaller box inside one stays clickable; a click on a box selects it.
+// ones first so a smaller box inside one stays clickable; a click on a box selects it. Their
+// tags keep clear of each other and of the objects' labels (offerLabelPlacement.ts).
 import { svgEl } from "../../../dom";
 import { SCORE_THRESHOLD } from "../../../inference/detectorTensor";
 import { type Frame, strokeWidth } from "../../photo/arrowGeometry";
+import type { Rect } from "../../photo/cornerHandles";
 import { type Offer, offerLabel } from "../detectionOffers";
+import { placeTags } from "./offerLabelPlacement";
 
-function offerBox(offer: Offer, selected: boolean, frame: Frame, photoWidth: number): SVGGElement {
+/** The tag's font size and box for a label of this text. */
+function tagSize(label: string, frame: Frame): { size: number; width: number; height: number } {
+  const size = strokeWidth(frame) * 5;
+  return { size, width: label.length * size * 0.62 + size * 0.6, height: size * 1.35 };
+}
+
+/** The objects' own label tags drawn in the photo's SVG (labelLayer.ts), in photo pixels. */
+function objectLabelRects(svg: SVGSVGElement): Rect[] {
+  return [...svg.querySelectorAll<SVGRectElement>(".object-label .label-box")].map((box) => {
+    const left = box.x.baseVal.value;
+    const top = box.y.baseVal.value;
+    return {
+      left,
+      top,
+      right: left + box.width.baseVal.value,
+      bottom: top + box.height.baseVal.value,
+    };
+  });
+}
+
+function offerBox(offer: Offer, selected: boolean, frame: Frame, tagRect: Rect): SVGGElement {
   const stroke = strokeWidth(frame);
-  const size = stroke * 5;
   const [x1, y1, x2, y2] = offer.bbox;
   const label = offerLabel(offer);
+  const { size } = tagSize(label, frame);
   // Below the detector's threshold: offered only because the person asked for fainter boxes.
   const faint = offer.score < SCORE_THRESHOLD;
-  const labelWidth = label.length * size * 0.62 + size * 0.6;
-  const labelHeight = size * 1.35;
-  // Above the box, in the frame's margin if need be; inside it at the photo's top.
-  const top = y1 - labelHeight >= -frame.margin ? y1 - labelHeight : y1;
-  const left = Math.min(x1, photoWidth + frame.margin - labelWidth);
+  const { left, top } = tagRect;
+  const labelWidth = tagRect.right - tagRect.left;
+  const labelHeight = tagRect.bottom - tagRect.top;
   return svgEl(
     "g",
     {
@@ -99,8 +120,23 @@ export function offerBoxes(
     layer,
     draw(open, selected) {
       const byArea = [...open].sort((a, b) => area(b) - area(a));
+      const requests = byArea.map((offer) => ({
+        box: offer.bbox,
+        ...tagSize(offerLabel(offer), frame),
+      }));
+      const scores = byArea.map((offer) => offer.score);
+      const surest = scores.map((_, i) => i).sort((a, b) => (scores[b] ?? 0) - (scores[a] ?? 0));
+      const bounds = {
+        left: -frame.margin,
+        top: -frame.margin,
+        right: photoWidth + frame.margin,
+        bottom: frame.height + frame.margin,
+      };
+      const tags = placeTags(requests, surest, bounds, objectLabelRects(svg));
       layer.replaceChildren(
-        ...byArea.map((offer) => offerBox(offer, offer.key === selected, frame, photoWidth)),
+        ...byArea.map((offer, i) =>
+          offerBox(offer, offer.key === selected, frame, tags[i] as Rect),
+        ),
       );
     },
   };
