@@ -168,6 +168,7 @@ def test_3d_boxes_join_2d_objects_by_index_and_name(tmp_path: Path) -> None:
     annotation = json.loads((folder / "annotation2Dfinal" / "index.json").read_text())
     annotation["frames"][0]["polygon"] += [
         {"x": [5, 9, 9], "y": [50, 50, 60], "object": 0},  # a second part of the chair
+        {"x": [80, 90, 90], "y": [50, 50, 60], "object": 0},  # another chair, outside its box
         {"x": [1, 2, 2], "y": [1, 1, 2], "object": 7},  # no such object: left out
     ]
     annotation["objects"] += [{"name": "Teapot3"}, {"name": "wall"}]  # a wall is the room
@@ -190,20 +191,30 @@ def test_3d_boxes_join_2d_objects_by_index_and_name(tmp_path: Path) -> None:
     write_json(folder / "annotation3Dlayout" / "index.json", {"objects": [{"polygon": room}]})
     (item,) = dataset_items(folder)
     assert item.inputs is not None and item.inputs.ground_truth is not None
-    # Each outline is an object, as SUN's public readers take them.
-    chair, chair_part, sofa, teapot = item.inputs.detections or []
-    assert (chair.cls, chair_part.cls, sofa.cls, teapot.cls) == (
+    # Each outline is an object, as SUN's public readers take them, but for a piece inside
+    # the 3D box of another outline of its entry: that is one object cut in two.
+    chair, other_chair, sofa, teapot = item.inputs.detections or []
+    assert (chair.cls, other_chair.cls, sofa.cls, teapot.cls) == (
         "chair",
         "chair",
         "sofa",
         "otherprop",
     )
     assert teapot.source_class == "teapot" and not teapot.class_known
-    assert chair.bbox == (10.0, 10.0, 31.0, 41.0) and chair_part.bbox == (5.0, 50.0, 10.0, 61.0)
+    assert chair.bbox == (5.0, 10.0, 31.0, 61.0)  # the outline (10, 10, 31, 41) and its piece
+    assert chair.mask is not None and chair.mask.source == "given"
+    pieces = decode_mask(chair.mask, 96, 64)
+    assert pieces[20, 20] and pieces[52, 8] and not pieces[45, 20]  # two parts, not their hull
+    assert other_chair.bbox == (80.0, 50.0, 91.0, 61.0)
+    assert item.inputs.notes == (
+        "annotation2Dfinal/index.json object 0 (chair): 2 outlines inside its one 3D box "
+        "joined as one object",
+    )
     truth = item.inputs.ground_truth
     assert [o.id for o in truth.objects] == ["o0", "o1", "o2", "o3"]
     box_3d = truth.objects[0].box_3d  # the outline the box fits best
     assert box_3d is not None and truth.objects[1].box_3d is None
+    assert truth.objects[0].mask == chair.mask.model_copy(update={"source": "ground_truth"})
     assert truth.objects[2].box_3d is None  # the table's box names no sofa
     # Level camera, gravity frame along the camera: SUN's Z is forward, X right, Y down.
     assert np.allclose(box_3d.center, [2.3, -0.1, -0.9]) and np.allclose(

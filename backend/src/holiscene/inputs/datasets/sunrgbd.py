@@ -19,7 +19,7 @@ import os
 import re
 import sys
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -38,6 +38,7 @@ from ...evaluation.box_iou import iou_2d
 from ...geometry.boxes import box_corners
 from ...geometry.camera import FloatArray, PinholeCamera
 from ...pipeline.base import Detection
+from ...segmentation.rle import decode_mask, encode_mask
 from ..depth import DepthMap, depth_from_png
 from ..validation import (
     InputError,
@@ -118,17 +119,20 @@ def read_image_folder(folder: Path, class_map: dict[str, str] | None = None) -> 
     K = read_intrinsics(folder / INTRINSICS_FILE)
     annotation = _annotation_2d(folder)
     labelled = _objects(annotation, photo, class_map) if annotation is not None else None
-    detections = [d for _, d in labelled] if labelled is not None else None
+    notes = list(annotation.notes) if annotation is not None else []
     sun_from_cv = read_extrinsics(folder)
     truth = None
     if sun_from_cv is not None:
-        truth = ground_truth(folder, photo, K, sun_from_cv, annotation, labelled or [])
+        measured = ground_truth(folder, photo, K, sun_from_cv, annotation, labelled or [])
+        truth = measured.scene
+        labelled = measured.labelled if labelled is not None else None  # None: no 2D file
+        notes += measured.notes
     elif (folder / ANNOTATION_3D).is_file() or (folder / LAYOUT_3D).is_file():
         raise InputError(f"{EXTRINSICS_FOLDER}/ holds no .txt: the 3D annotations need the tilt")
+    detections = [d for _, d in labelled] if labelled is not None else None
     depth = read_depth(folder, photo)
-    notes = tuple(annotation.notes) if annotation is not None else ()
     return InputFiles(
-        photo=photo, K=K, detections=detections, ground_truth=truth, depth=depth, notes=notes
+        photo=photo, K=K, detections=detections, ground_truth=truth, depth=depth, notes=tuple(notes)
     )
 
 
@@ -285,6 +289,14 @@ def _objects(
     return labelled
 
 
+@dataclass(frozen=True)
+class MeasuredScene:
+    scene: Scene
+    # The outlines as objects, pieces of one object inside its 3D box joined (_join_pieces).
+    labelled: list[tuple[int, Detection]]
+    notes: list[str]
+
+
 def ground_truth(
     folder: Path,
     photo: Photo,
@@ -292,7 +304,7 @@ def ground_truth(
     sun_from_cv: FloatArray,
     annotation: Annotation2D | None,
     labelled: list[tuple[int, Detection]],
-) -> Scene:
+) -> MeasuredScene:
     """The scene as SUN RGB-D measured it, in the world frame: the camera (K, pitch, roll,
     and its height when the room is annotated), the room cuboid, and the 2D objects (ids
     o0, o1, ... as the import gives them) with their 3D boxes where annotated."""
@@ -300,7 +312,11 @@ def ground_truth(
     pitch, roll = camera_pitch_roll(sun_from_cv)
     pinhole = PinholeCamera(K, pitch, roll)
     layout, height = _layout(folder, to_world, pinhole)
-    boxes = _boxes_3d(folder, annotation, to_world, labelled, pinhole, (photo.width, photo.height))
+    size = (photo.width, photo.height)
+    boxes = _boxes_3d(folder, annotation, to_world, labelled, pinhole, size)
+    notes: list[str] = []
+    if annotation is not None:
+        labelled, boxes, notes = _join_pieces(annotation, labelled, boxes, pinhole, size)
     objects = [
         _truth_object(f"o{i}", detection, boxes.get(i)) for i, (_, detection) in enumerate(labelled)
     ]
@@ -312,13 +328,14 @@ def ground_truth(
         height_m=round(height, DECIMALS) if height is not None and height > 0 else None,
         height_source="ground_truth" if height is not None and height > 0 else None,
     )
-    return Scene(
+    scene = Scene(
         name=folder.name,
         image=ImageInfo(file=f"img{photo.suffix}", width=photo.width, height=photo.height),
         camera=camera,
         layout=layout,
         objects=objects,
     )
+    return MeasuredScene(scene, labelled, notes)
 
 
 Box = tuple[FloatArray, FloatArray, float]  # world centre, size (front, up, right), yaw
@@ -425,6 +442,70 @@ def _boxes_3d(
             boxes[i] = found[b]
             placed.add(b)
     return boxes
+
+
+# An outline no 3D box claimed, this much inside the projection of the 3D box of another
+# outline of its entry, is a piece of that object (drawn apart where something in front of
+# it cuts it in two), not another thing of its kind.
+PIECE_MIN_COVER = 0.8
+
+
+def _join_pieces(
+    annotation: Annotation2D,
+    labelled: list[tuple[int, Detection]],
+    boxes: dict[int, Box],
+    camera: PinholeCamera,
+    size: tuple[int, int],
+) -> tuple[list[tuple[int, Detection]], dict[int, Box], list[str]]:
+    """The objects with each piece joined to the outline whose 3D box holds it (mask and 2D
+    box made one), the 3D boxes by the new positions, and a note per joined object. Without
+    a 3D box nothing tells pieces from several things, so such outlines stay objects."""
+    bounds = {i: _projected_bounds(box, camera, size) for i, box in boxes.items()}
+    into: dict[int, int] = {}  # a piece's position -> the position of the outline it joins
+    for i, (entry, detection) in enumerate(labelled):
+        if i in boxes:
+            continue
+        covers = [
+            (_cover(b, list(detection.bbox)), j)
+            for j, b in bounds.items()
+            if b is not None and labelled[j][0] == entry
+        ]
+        best = max(covers, default=(0.0, -1))
+        if best[0] >= PIECE_MIN_COVER:
+            into[i] = best[1]
+    if not into:
+        return labelled, boxes, []
+    width, height = size
+    joined: list[tuple[int, Detection]] = []
+    joined_boxes: dict[int, Box] = {}
+    notes = []
+    for j, (entry, detection) in enumerate(labelled):
+        if j in into:
+            continue
+        pieces = [labelled[i][1] for i, target in into.items() if target == j]
+        if pieces:
+            detection = _joined(detection, pieces, width, height)
+            name = annotation.objects[entry]
+            notes.append(
+                f"{ANNOTATION_2D} object {entry} ({name}): {len(pieces) + 1} outlines inside "
+                "its one 3D box joined as one object"
+            )
+        if j in boxes:
+            joined_boxes[len(joined)] = boxes[j]
+        joined.append((entry, detection))
+    return joined, joined_boxes, notes
+
+
+def _joined(detection: Detection, pieces: list[Detection], width: int, height: int) -> Detection:
+    pixels = np.zeros((height, width), dtype=bool)
+    for part in (detection, *pieces):
+        if part.mask is not None:
+            pixels |= decode_mask(part.mask, width, height)
+    mask = encode_mask(pixels, "given")
+    if mask is None:
+        return detection
+    (x0, y0), (w, h) = mask.origin, mask.size
+    return replace(detection, bbox=(float(x0), float(y0), float(x0 + w), float(y0 + h)), mask=mask)
 
 
 def _cover(bounds: list[float], bbox: list[float]) -> float:
