@@ -157,6 +157,14 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId(`scene-state-${photoId}`)).toHaveText("predicted");
   await expect(page.getByTestId(`scene-state-${roomId}`)).toHaveText("predicted");
   await shot(page, "list-annotator");
+  await expect(page.getByTestId("next-review")).toBeHidden(); // reviewing is not theirs
+  // Nor is retraining or choosing the active model: the models page says so and offers neither.
+  await page.goto("/#/models");
+  await expect(page.getByTestId("models-admin-only")).toBeVisible();
+  await expect(page.getByTestId("model-list")).toBeVisible();
+  await expect(page.getByTestId("retrain-form")).toBeHidden();
+  await expect(page.locator("[data-testid^='promote-']")).toHaveCount(0);
+  await page.goto("/#/");
   await page.getByTestId("next-scene").click();
   await expect(page).toHaveURL(new RegExp(`#/scenes/${first.id}$`));
   await expect(page.getByTestId("object-table")).toBeVisible({ timeout: 60_000 });
@@ -193,7 +201,11 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId("scene-list").locator("tbody tr")).toHaveCount(2);
   await expect(page.getByTestId(`scene-assignee-${first.id}`)).toHaveText(ANNOTATOR.name);
   await shot(page, "list-reviewer");
-  await openScene(page, first.id);
+  // "Next to review" opens the submitted scene waiting longest, and takes nothing.
+  await page.getByTestId("next-review").click();
+  await expect(page).toHaveURL(new RegExp(`#/scenes/${first.id}$`));
+  await expect(page.getByTestId("object-table")).toBeVisible({ timeout: 60_000 });
+  await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
   await expect(page.getByTestId("workflow-submit")).toBeHidden();
   // The reviewer judges it as submitted: read only for them too.
   await expect(page.getByTestId("read-only-reason")).toHaveText("Submitted for review — read only");

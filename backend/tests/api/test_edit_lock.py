@@ -49,7 +49,7 @@ def test_editable_follows_the_state_and_the_user(api: Api, accounts: Accounts) -
     assert may["ann"] == (True, None)
     assert may["ada"] == (True, None)  # an admin may take a scene over
     for other in ("bob", "rita"):
-        assert may[other] == (False, "ann is annotating this scene")
+        assert may[other] == (False, "the scene is being annotated by ann")
 
     submitted = api.act("ann", scene_id, "submit")
     assert submitted.status_code == 200
@@ -62,7 +62,10 @@ def test_editable_follows_the_state_and_the_user(api: Api, accounts: Accounts) -
     assert rejected.json()["editable"] is False  # rita: ann fixes it
     may = _everyone(api, scene_id)
     assert may["ann"] == (True, None) and may["ada"] == (True, None)
-    assert may["bob"] == (False, "ann is annotating this scene")
+    assert may["bob"] == (
+        False,
+        "the scene was sent back to ann, who fixes it (an admin can take it over)",
+    )
 
     assert api.edit("ann", scene_id, _set("o2", "o0")).status_code == 200
     assert api.act("ann", scene_id, "submit").status_code == 200

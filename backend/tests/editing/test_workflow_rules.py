@@ -114,9 +114,9 @@ def test_taking_a_scene() -> None:
     )
     mine = SceneStatus("in_annotation", "ann", 1)
     assert take_for_annotation(mine, ANN) is None  # editing on: nothing changes
-    with pytest.raises(WorkflowError, match="ann is annotating"):
+    with pytest.raises(WorkflowError, match="being annotated by ann"):
         take_for_annotation(mine, BOB)
-    with pytest.raises(WorkflowError, match="ann is annotating"):
+    with pytest.raises(WorkflowError, match="being annotated by ann"):
         take_for_annotation(mine, REV)
     admin_takes = take_for_annotation(mine, ADMIN)
     assert admin_takes is not None and admin_takes.assignee == "ada"

@@ -65,6 +65,9 @@ export const workflowApi = {
   /** Take the next scene to annotate (404 when none is waiting). */
   next: () => request<SceneSummary>("/scenes/next", { method: "POST" }),
 
+  /** The scene waiting longest for the caller's review; nothing is assigned (404: none). */
+  nextToReview: () => request<SceneSummary>("/scenes/next-review"),
+
   get: (sceneId: string, signal?: AbortSignal) =>
     request<SceneWorkflow>(`${sceneUrl(sceneId)}/workflow`, { signal }),
 

@@ -107,7 +107,13 @@ def take_for_annotation(
     if state in ("new", "predicted"):
         return Transition("claim", "in_annotation", actor.name)
     if assignee not in (None, actor.name) and not has_role(actor.role, "admin"):
-        raise WorkflowError(f"{assignee} is annotating this scene")
+        # Worded to start with "the scene": pages make the first letter a capital, and a
+        # person's name is spelled as they chose it.
+        if state == "rejected":
+            raise WorkflowError(
+                f"the scene was sent back to {assignee}, who fixes it (an admin can take it over)"
+            )
+        raise WorkflowError(f"the scene is being annotated by {assignee}")
     if state == "rejected":
         return Transition("reopen", "in_annotation", actor.name)
     if assignee != actor.name:  # in annotation, unassigned or taken over by an admin

@@ -264,15 +264,25 @@ def plot_curve(
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import MaxNLocator
 
     fig, loss_axis = plt.subplots(figsize=(6, 3.5), dpi=100)
     epochs = [c["epoch"] for c in curve]
-    loss_axis.plot(epochs, [c["train_loss"] for c in curve], color="tab:red", label="train loss")
+    # Dots as well as lines: a short retrain's one or two epochs would draw no line at all.
+    marker = "o" if len(epochs) <= 20 else None
+    loss_axis.plot(
+        epochs, [c["train_loss"] for c in curve], color="tab:red", marker=marker, label="train loss"
+    )
     loss_axis.set_xlabel("epoch")
+    loss_axis.xaxis.set_major_locator(MaxNLocator(integer=True))  # epochs are whole
     loss_axis.set_ylabel(loss_label, color="tab:red")
     accuracy_axis = loss_axis.twinx()
     accuracy_axis.plot(
-        epochs, [c["validation_accuracy"] for c in curve], color="tab:blue", label="validation"
+        epochs,
+        [c["validation_accuracy"] for c in curve],
+        color="tab:blue",
+        marker=marker,
+        label="validation",
     )
     accuracy_axis.set_ylabel(accuracy_label, color="tab:blue")
     accuracy_axis.set_ylim(0, 1)

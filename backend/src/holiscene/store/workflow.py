@@ -195,6 +195,19 @@ class WorkflowStore:
                     )
         raise NoSceneWaitingError("every candidate was taken by someone else; try again")
 
+    def next_to_review(self, actor: Actor) -> SceneSummary:
+        """The scene waiting longest for review that the reviewer did not annotate (any, in
+        single-user mode). Nothing changes: reviewing needs no claim, and a scene opened but
+        not judged stays for the next reviewer."""
+        query = select(SceneRow).where(SceneRow.state == "submitted")
+        if not actor.local:
+            query = query.where(SceneRow.assignee.is_distinct_from(actor.name))
+        with Session(self.engine) as session:
+            row = session.scalars(query.order_by(SceneRow.updated_at).limit(1)).first()
+        if row is None:
+            raise NoSceneWaitingError("no scene is waiting for your review")
+        return self.scenes.summary(row.id)
+
     @staticmethod
     def _next_candidates(session: Session, actor: Actor) -> list[SceneRow]:
         mine = select(SceneRow).where(SceneRow.state == "rejected", SceneRow.assignee == actor.name)

@@ -23,6 +23,7 @@ NEEDS: dict[tuple[str, str], str] = {
     ("POST", "/api/scenes/{scene_id}/accept"): "reviewer",
     ("POST", "/api/scenes/{scene_id}/reject"): "reviewer",
     ("POST", "/api/scenes/{scene_id}/second-annotation"): "reviewer",
+    ("GET", "/api/scenes/next-review"): "reviewer",
     ("POST", "/api/models/retrain"): "admin",
     ("POST", "/api/models/{model_id}/promote"): "admin",
     ("GET", "/api/users"): "admin",

@@ -157,6 +157,29 @@ def test_reviewers_do_not_review_their_own_work(api: Api, accounts: Accounts) ->
     assert api.act("rex", scene_id, "accept").status_code == 200
 
 
+def test_next_to_review_opens_the_oldest_submitted_scene_of_someone_else(
+    api: Api, accounts: Accounts
+) -> None:
+    scenes = accounts.workbench.scenes
+    older, newer, own = (store_predicted_scene(scenes, name) for name in ("a", "b", "c"))
+    for who, scene_id in (("ann", older), ("bob", newer), ("rita", own)):
+        assert api.post(who, f"/api/scenes/{scene_id}/take").status_code == 200
+    for who, scene_id in (("ann", older), ("bob", newer), ("rita", own)):
+        assert api.act(who, scene_id, "submit").status_code == 200
+    before = api.snapshot(older)
+    assert api.get("rita", "/api/scenes/next-review")["id"] == older
+    assert api.snapshot(older) == before  # opening it to review assigns nothing
+    assert api.act("rex", older, "accept").status_code == 200
+    assert api.get("rita", "/api/scenes/next-review")["id"] == newer
+    assert api.act("rex", newer, "reject", comment="o1 is on the desk").status_code == 200
+    # Only rita's own submission waits: not for her, but for rex.
+    nothing = api.client.get("/api/scenes/next-review", headers=accounts.headers("rita"))
+    assert nothing.status_code == 404 and "review" in nothing.json()["detail"]
+    assert api.get("rex", "/api/scenes/next-review")["id"] == own
+    refused = api.client.get("/api/scenes/next-review", headers=accounts.headers("ann"))
+    assert refused.status_code == 403
+
+
 def test_next_scene_picks_the_most_uncertain_first(api: Api, accounts: Accounts) -> None:
     scenes = accounts.workbench.scenes
     # Mean doubt (1 - confidence) over 4 objects, 0.9 unless given:

@@ -25,7 +25,12 @@ export interface ModelHistory {
 export function modelHistory(): ModelHistory {
   const list = el("ol", { className: "model-history", testid: "model-history" });
   return {
-    element: el("section", { className: "card" }, el("h2", { text: "History" }), list),
+    element: el(
+      "section",
+      { className: "card" },
+      el("h2", { text: "History of the active model" }),
+      list,
+    ),
     show: (events) => list.replaceChildren(...events.map(eventItem)),
   };
 }

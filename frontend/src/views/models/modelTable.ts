@@ -4,6 +4,7 @@ import type { ModelInfo } from "@holiscene/schema";
 import { modelsApi } from "../../api/models";
 import { button, el, formatTime } from "../../dom";
 import { getAuthor } from "../../state/author";
+import { hasRole } from "../../state/currentUser";
 import type { KindText } from "./kindText";
 
 const STATUS_TEXT: Record<ModelInfo["status"], string> = {
@@ -75,6 +76,10 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
   );
 
   const promote = async (model: ModelInfo, promoteButton: HTMLButtonElement) => {
+    const worse =
+      `v${model.version} did worse than the model it was compared with on the held-out ` +
+      `scenes (${heldoutText(model)}). Make it active anyway?`;
+    if (model.status === "rejected" && !window.confirm(worse)) return;
     promoteButton.disabled = true;
     notice.textContent = `Making v${model.version} active…`;
     try {
@@ -83,17 +88,20 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
       await onPromoted();
     } catch (error) {
       promoteButton.disabled = false;
-      notice.textContent = `Could not make v${model.version} active: ${String(error)}`;
+      const reason = error instanceof Error ? error.message : String(error);
+      notice.textContent = `Could not make v${model.version} active: ${reason}`;
     }
   };
 
   const modelRow = (model: ModelInfo): HTMLTableRowElement => {
     const action = model.active
       ? el("span", { className: "badge badge--active", text: "Active" })
-      : button("Make active", {
-          testid: `promote-${model.version}`,
-          onClick: (event) => void promote(model, event.currentTarget as HTMLButtonElement),
-        });
+      : hasRole("admin")
+        ? button("Make active", {
+            testid: `promote-${model.version}`,
+            onClick: (event) => void promote(model, event.currentTarget as HTMLButtonElement),
+          })
+        : el("span");
     const curve = button("Curve", {
       testid: `curve-${model.version}`,
       disabled: !model.has_curve,
@@ -113,7 +121,11 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
         { attrs: { title: model.note ?? "" } },
         el("span", {
           className: `badge badge--${model.status}`,
-          text: STATUS_TEXT[model.status],
+          // A model an admin made active although it lost its held-out test says so.
+          text:
+            model.active && model.status === "rejected"
+              ? "rejected, made active by hand"
+              : STATUS_TEXT[model.status],
         }),
       ),
       el("td", { text: heldoutText(model) }),

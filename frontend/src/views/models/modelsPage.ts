@@ -6,6 +6,7 @@
 import { modelsApi } from "../../api/models";
 import { el } from "../../dom";
 import type { ModelKind } from "../../router";
+import { hasRole } from "../../state/currentUser";
 import { curveCard } from "./curveCard";
 import { KIND_TEXT } from "./kindText";
 import { modelHistory } from "./modelHistory";
@@ -40,10 +41,19 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
   const text = KIND_TEXT[kind];
   const curve = curveCard();
   const history = modelHistory();
-  const table = modelTable({ text, onCurve: curve.show, onPromoted: refresh });
-  const form = retrainForm({ kind, text, signal: abort.signal, onFinished: refresh });
+  const table = modelTable({ text, onCurve: curve.show, onPromoted: () => refresh() });
+  // A finished retrain shows the new model's curve: it is what the admin waited for.
+  const form = retrainForm({ kind, text, signal: abort.signal, onFinished: () => refresh(true) });
+  const admin = hasRole("admin");
+  form.element.hidden = !admin;
+  const adminsOnly = el("p", {
+    className: "field-hint",
+    testid: "models-admin-only",
+    text: "Retraining and changing the active model are for admins.",
+  });
+  adminsOnly.hidden = admin;
 
-  async function refresh(): Promise<void> {
+  async function refresh(newest = false): Promise<void> {
     try {
       const [models, events] = await Promise.all([
         modelsApi.listModels(abort.signal, kind),
@@ -51,8 +61,10 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
       ]);
       table.show(models);
       history.show(events);
-      const shown = models.find((m) => m.id === curve.shownId) ?? models.find((m) => m.active);
-      curve.show(shown ?? models[0]);
+      // The model asked for, else the newest with a curve (the committed default has none).
+      const withCurve = models.filter((m) => m.has_curve).sort((a, b) => b.version - a.version)[0];
+      const asked = newest ? undefined : models.find((m) => m.id === curve.shownId);
+      curve.show(asked ?? withCurve ?? models.find((m) => m.active) ?? models[0]);
     } catch (error) {
       if (!abort.signal.aborted) table.showError(`Could not load the models: ${String(error)}`);
     }
@@ -72,6 +84,7 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
         el("a", { text: "← All scenes", attrs: { href: "#/" } }),
       ),
       kindSwitch(kind),
+      adminsOnly,
       table.element,
       curve.element,
       form.element,

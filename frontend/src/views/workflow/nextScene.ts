@@ -1,38 +1,52 @@
 // "Next scene": take the scene to annotate next (a rejected one of yours, else the predicted
 // scene the pipeline is least sure of) and open it. A button and a key: N on the scene list;
-// ">" on the scene page, where N already selects the next object.
+// ">" on the scene page, where N already selects the next object. A reviewer also gets "Next
+// to review", which opens the scene waiting longest for review without taking anything, so
+// a reviewer who means to review never becomes a scene's annotator by mistake.
+import type { SceneSummary } from "@holiscene/schema";
 import { ApiError } from "../../api/errors";
 import { workflowApi } from "../../api/workflow";
 import { button, el } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
 import { hasRole } from "../../state/currentUser";
 
-/** The button and its message line; `key` works while they are mounted. */
+/** The buttons and their message line; `key` works while they are mounted. */
 export function nextSceneControl(key: string): { element: HTMLElement; dispose: () => void } {
   const message = el("span", {
     className: "next-scene-message",
     testid: "next-scene-message",
     attrs: { role: "status" },
   });
+  const reviewer = hasRole("reviewer");
   const nextButton = button("Next scene", {
-    className: "primary",
+    className: reviewer ? "" : "primary",
     testid: "next-scene",
-    title: `Take the next scene to annotate (${key})`,
+    title: `Take the next scene to annotate: it becomes yours (${key})`,
   });
-  const go = async () => {
-    nextButton.disabled = true;
+  const reviewButton = button("Next to review", {
+    className: "primary",
+    testid: "next-review",
+    title: "Open the scene waiting longest for review (nothing is assigned to you)",
+  });
+  const open = (fetch: () => Promise<SceneSummary>, failed: string) => async () => {
+    nextButton.disabled = reviewButton.disabled = true;
     message.textContent = "";
     try {
-      const scene = await workflowApi.next();
+      const scene = await fetch();
       window.location.hash = `#/scenes/${encodeURIComponent(scene.id)}`;
     } catch (error) {
       message.textContent =
-        error instanceof ApiError ? error.message : `Could not take a scene: ${String(error)}`;
+        error instanceof ApiError ? error.message : `${failed}: ${String(error)}`;
     } finally {
-      nextButton.disabled = false;
+      nextButton.disabled = reviewButton.disabled = false;
     }
   };
+  const go = open(() => workflowApi.next(), "Could not take a scene");
   nextButton.addEventListener("click", () => void go());
+  reviewButton.addEventListener(
+    "click",
+    () => void open(() => workflowApi.nextToReview(), "Could not find a scene to review")(),
+  );
   const removeKey = registerShortcut({
     keys: key,
     description: "Take the next scene to annotate (the most uncertain first)",
@@ -40,7 +54,8 @@ export function nextSceneControl(key: string): { element: HTMLElement; dispose: 
     run: () => void go(),
     enabled: () => hasRole("annotator") && !nextButton.disabled,
   });
-  const element = el("span", { className: "next-scene" }, nextButton, message);
+  reviewButton.hidden = !reviewer;
+  const element = el("span", { className: "next-scene" }, reviewButton, nextButton, message);
   element.hidden = !hasRole("annotator");
   return { element, dispose: removeKey };
 }

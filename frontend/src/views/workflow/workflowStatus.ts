@@ -48,7 +48,7 @@ export function noteText({ flow, pending, me, labelled }: NoteInputs): string {
         : `When every supporter is right, submit the scene for review. ${labelled}`;
     case "submitted":
       if (flow.assignee === name && !me?.local_mode)
-        return "Submitted: waiting for another reviewer.";
+        return "Submitted: a reviewer will accept it or send it back to you.";
       return `Submitted by ${flow.assignee ?? "an annotator"} at revision ${flow.revision}. ${labelled}`;
     case "accepted":
       return `Accepted. ${labelled}`;

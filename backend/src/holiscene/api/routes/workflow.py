@@ -38,6 +38,13 @@ def next_scene(user: AnnotatorDep, workbench: WorkbenchDep) -> SceneSummary:
     return workbench.workflow.next_scene(user)
 
 
+@router.get("/scenes/next-review", response_model=SceneSummary, responses=_ERRORS)
+def next_to_review(user: ReviewerDep, workbench: WorkbenchDep) -> SceneSummary:
+    """The submitted scene waiting longest that the caller did not annotate; nothing is
+    assigned (404 when none waits)."""
+    return workbench.workflow.next_to_review(user)
+
+
 @router.get("/scenes/{scene_id}/workflow", response_model=SceneWorkflow, responses=_ERRORS)
 def scene_workflow(scene_id: str, user: UserDep, workbench: WorkbenchDep) -> SceneWorkflow:
     """State, assignee, the reviewer's comment when rejected, every state change, and whether

@@ -124,7 +124,9 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
       statusLine.classList.toggle("alert--error", failed);
       statusLine.setAttribute("role", failed ? "alert" : "status");
       actionRow.hidden = open === 0;
-      selection.textContent = chosen ? `Selected: ${offerLabel(chosen)}` : "No box selected";
+      const picked = chosen ? `Selected: ${offerLabel(chosen)}` : "No box selected";
+      // Looking at the detector's boxes is fine on a read-only scene; adding them is not.
+      selection.textContent = editable ? picked : `${picked} · view only: the scene is read only`;
       const why = editable ? "" : " (the scene is read only)";
       acceptButton.disabled = busy || !editable || chosen === null;
       acceptAllButton.disabled = busy || !editable;
