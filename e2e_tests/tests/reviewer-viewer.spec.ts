@@ -144,7 +144,19 @@ test("opens the scene in viser with every object in its panel", async ({
   // Viser's notice about software WebGL (headless Chromium) may cover a corner; it is fine.
   await viewer.screenshot({ path: screenshotPath("reviewer-viewer.png") });
 
-  // The same button again reuses the scene's viewer.
+  // An edit saved after the viewer opened: the link says the viewer is behind.
+  const link = page.getByTestId("viser-link");
+  await expect(link).toHaveText(`viewer of revision ${doc.revision}`);
+  const child = doc.scene.supports?.find((s) => s.parent !== "wall")?.child ?? "";
+  await page.getByTestId(`supporter-select-${child}`).selectOption("wall");
+  await page.keyboard.press("Control+s");
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
+  await expect(link).toHaveText(
+    `viewer of revision ${doc.revision} (now ${doc.revision + 1}: open again)`,
+  );
+
+  // The same button again reuses the scene's viewer, now on the latest revision.
   await page.getByTestId("open-viser").click();
-  await expect(page.getByTestId("viser-link")).toHaveAttribute("href", url ?? "");
+  await expect(link).toHaveAttribute("href", url ?? "");
+  await expect(link).toHaveText(`viewer of revision ${doc.revision + 1}`);
 });

@@ -174,6 +174,9 @@ function objectRow(
         mouseenter: () => session.hover(id),
         mouseleave: () => session.hover(null),
         focusin: () => session.select(id),
+        // A click on the row's name selects the object: the way to one hidden under another
+        // on the photo. (Its menus select it when they take the focus.)
+        click: () => session.select(id),
       },
     },
     el(

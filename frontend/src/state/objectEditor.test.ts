@@ -157,6 +157,44 @@ describe("ObjectEditor", () => {
     expect(classes(session)).toEqual({ o1: "chair", d1: "bed", d2: "desk", d3: "lamp" });
   });
 
+  it("a second action that fails while one is kept joins it: Retry saves both, in order", async () => {
+    await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
+    server.refuseNext = "down";
+    await editor.apply([{ kind: "set_class", id: "o1", class: "mirror" }], "o1 → mirror");
+    server.refuseNext = "down";
+    const stand: NewObject = {
+      kind: "add_object",
+      id: "d1",
+      class: "night_stand",
+      bbox: [1, 1, 9, 9],
+      source: "manual",
+    };
+    await editor.apply([stand], "add night stand d1");
+    expect(editor.failure?.label).toBe("o1 → mirror, then add night stand d1");
+    // A failed undo is no work of its own: it does not take their place.
+    server.refuseNext = "down";
+    expect(await editor.undo()).toBeNull(); // of "o1 → sofa": refused too
+    expect(server.refuseNext).toBeNull();
+    expect(editor.failure?.label).toBe("o1 → mirror, then add night stand d1");
+    expect(await editor.retry()).toBe(true);
+    expect(classes(session)).toEqual({ o1: "mirror", d1: "night_stand" });
+    expect(editor.failure).toBeNull();
+  });
+
+  it("an undo does not throw away what someone changed in the object since", async () => {
+    await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
+    // A colleague makes o1 a desk; this page loads their revision.
+    await server.post("s1", 2, "colleague", [{ kind: "set_class", id: "o1", class: "desk" }]);
+    session.adopt(server.latest);
+    const posted = server.requests.length;
+    expect(await editor.undo()).toBeNull();
+    expect(server.requests.length).toBe(posted);
+    expect(classes(session)).toEqual({ o1: "desk" });
+    expect(editor.status).toMatchObject({ kind: "idle", error: true });
+    expect(JSON.stringify(editor.status)).toContain("changed o1 since");
+    expect(editor.undoLabel).toBe("o1 → sofa"); // still there, for when it is safe again
+  });
+
   it("a refused action is kept with its reason until retried (then saved once) or dropped", async () => {
     server.refuseNext = "unknown class 'sofaa'";
     expect(await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa")).toBe(

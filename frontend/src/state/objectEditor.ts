@@ -88,6 +88,17 @@ export function touchedIds(edits: readonly ObjectEdit[]): string[] {
   return [...new Set(edits.map((edit) => edit.id))];
 }
 
+/** The ids among `ids` whose object differs between two revisions (or is in only one). */
+export function objectsChanged(
+  ids: readonly string[],
+  from: SceneDocument,
+  to: SceneDocument,
+): string[] {
+  const state = (doc: SceneDocument, id: string) =>
+    canonical(doc.scene.objects?.find((o) => o.id === id) ?? null);
+  return ids.filter((id) => state(from, id) !== state(to, id));
+}
+
 /** The edits that put the objects back as they were in `revision` (or remove them). */
 export function restoreEdits(ids: readonly string[], revision: number): RestoreObject[] {
   return ids.map((id) => ({ kind: "restore_object", id, from_revision: revision }));
@@ -206,6 +217,8 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   private waiting = 0;
   /** Sends the failed action again; true once saved. */
   private retryFailed: (() => Promise<boolean>) | null = null;
+  /** The failed action's edits (null: none failed, or it was an undo or redo). */
+  private failedEdits: ObjectEdit[] | null = null;
   /** Ids of new objects in actions not saved yet. */
   private readonly reserved = new Set<string>();
   /** Revisions this page had loaded, by number (an undo shows the one it restores at once). */
@@ -251,7 +264,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     const added = edits.filter((e) => e.kind === "add_object").map((e) => e.id);
     for (const id of added) this.reserved.add(id);
     return this.enqueue(async () => {
-      const sent = await this.send(label, edits, () => this.apply(edits, label));
+      const sent = await this.send(label, edits, () => this.apply(edits, label), true);
       for (const id of added) this.reserved.delete(id);
       if (!sent) return false;
       this.history.record({
@@ -293,10 +306,20 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
       const ids = entry.changes.map((c) => c.key);
       const first = entry.changes[0];
       const revision = (way === "undo" ? first?.before : first?.after) ?? 0;
+      // An undo puts back the revision before the action: if someone changed the objects
+      // since the action, that would silently throw their change away.
+      const left = way === "undo" && first ? this.seen.get(first.after) : undefined;
+      const since = left ? objectsChanged(ids, left, this.session.doc) : [];
+      if (since.length > 0) {
+        giveBack();
+        this.refuseOverwrite(`${way} ${entry.label}`, since);
+        return null;
+      }
       const sent = await this.send(
         `${way} ${entry.label}`,
         restoreEdits(ids, revision),
         async () => (await this.step(way)) !== null,
+        false,
       );
       if (!sent) giveBack();
       this.changed();
@@ -308,13 +331,17 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   async retry(): Promise<boolean> {
     const failed = this.failure;
     const again = this.retryFailed;
+    const edits = this.failedEdits;
     if (!failed || !again) return false;
     this.setFailure(null, null);
     // Stored until saved: a tab closed while it is being sent loses nothing.
     const saved = await again();
     if (saved && this.failure === null) this.keepFailed(null);
     // Not sent at all (the scene is read only now): still offered.
-    if (!saved && this.failure === null) this.setFailure(failed, again);
+    if (!saved && this.failure === null) {
+      this.setFailure(failed, again);
+      this.failedEdits = edits;
+    }
     return saved;
   }
 
@@ -327,6 +354,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   }
 
   private setFailure(failure: FailedAction | null, retry: (() => Promise<boolean>) | null): void {
+    if (failure === null) this.failedEdits = null;
     this.failure = failure;
     this.retryFailed = retry;
     this.changed();
@@ -361,6 +389,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     label: string,
     edits: readonly ObjectEdit[],
     retry: () => Promise<boolean>,
+    isAction: boolean,
   ): Promise<Sent | null> {
     const session = this.session;
     const lock = session.lock;
@@ -400,6 +429,12 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
         return { before: saved - 1, after: saved, edits: sending };
       }
       const who = authorsSince(revisions, before, latest);
+      const pageDoc = this.seen.get(before);
+      const changed = pageDoc ? objectsChanged(touchedIds(edits), pageDoc, session.doc) : [];
+      if (!isAction && changed.length > 0) {
+        this.refuseOverwrite(label, changed, who);
+        return null;
+      }
       const rebased = rebaseEdits(edits, session.objects);
       if (rebased.edits === null) {
         const gone = rebased.missing.join(", ");
@@ -409,15 +444,19 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
             "no longer in the scene: your change was not applied.",
           edits,
           retry,
+          isAction,
         );
         return null;
       }
       const renames = rebased.renamed.map(([from, to]) => ` ${from} was taken: yours is ${to}.`);
+      if (changed.length > 0) {
+        renames.push(` Both of you changed ${changed.join(", ")}: yours is kept on top.`);
+      }
       const note = `${who} saved revision ${latest} meanwhile; your change was applied on top.${renames.join("")}`;
       return this.adopt(label, latest, rebased.edits, await this.post(latest, rebased.edits), note);
     } catch (error) {
       if (shown) session.adopt(shown); // not saved: back to what the server has
-      this.fail(label, errorText(error), edits, retry);
+      this.fail(label, errorText(error), edits, retry, isAction);
       return null;
     }
   }
@@ -449,16 +488,52 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     return post(this.session.sceneId, baseRevision, (this.options.author ?? getAuthor)(), edits);
   }
 
+  /**
+   * Keep an action that could not be saved, to retry or discard. One is kept (here and in the
+   * drafts), so a second failed action joins the first (Retry sends both, in order) rather than
+   * taking its place; an undo or redo that fails is no work of its own and never displaces one.
+   */
   private fail(
     label: string,
     message: string,
     edits: readonly ObjectEdit[],
     retry: () => Promise<boolean>,
+    isAction: boolean,
+  ): void {
+    const earlier = this.failure;
+    if (earlier && this.failedEdits) {
+      if (!isAction) {
+        this.setStatus({ kind: "idle", message: `Not saved: ${label}. ${message}`, error: true });
+        return;
+      }
+      const both = [...this.failedEdits, ...edits];
+      const together = `${earlier.label}, then ${label}`;
+      this.setFailed(together, message, both, () => this.apply(both, together), true);
+      return;
+    }
+    this.setFailed(label, message, edits, retry, isAction);
+  }
+
+  private setFailed(
+    label: string,
+    message: string,
+    edits: readonly ObjectEdit[],
+    retry: () => Promise<boolean>,
+    isAction: boolean,
   ): void {
     this.keepFailed({ label, message, edits: [...edits] });
     this.failure = { label, message };
+    this.failedEdits = isAction ? [...edits] : null;
     this.retryFailed = retry;
     this.setStatus({ kind: "idle", message: null, error: false });
+  }
+
+  /** An undo or redo not sent: it would overwrite what someone changed since. */
+  private refuseOverwrite(label: string, ids: readonly string[], who = "Someone"): void {
+    const message =
+      `Not done: ${label}. ${who} changed ${ids.join(", ")} since; undoing would throw that ` +
+      "change away. Change the object by hand instead.";
+    this.setStatus({ kind: "idle", message, error: true });
   }
 
   private setStatus(status: ObjectEditStatus): void {

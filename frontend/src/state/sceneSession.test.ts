@@ -75,6 +75,27 @@ describe("SceneSession editing", () => {
     expect(session.pending).toHaveLength(0);
   });
 
+  it("drops unsaved edits about an object a new revision removed, and says so", () => {
+    session.edit("o2 on o1", [{ kind: "set_support", child: "o2", parent: "o1", type: "below" }]);
+    session.edit("o1 on floor", [
+      { kind: "set_support", child: "o1", parent: "floor", type: "below" },
+    ]);
+    session.edit("o0 on wall", [
+      { kind: "set_support", child: "o0", parent: "wall", type: "behind" },
+    ]);
+    // The object editor removed o1: revision 3 comes back from the server without it.
+    const without = sceneDocument(
+      ["o0", "o2"].map((id, i) => sceneObject(id, "box", [i * 20, 0, i * 20 + 8, 8])),
+      [auto("o0", "floor")],
+      { revision: 3 },
+    );
+    session.adopt(without);
+    // Only the edit the server can still take is left: saving is not refused for the others.
+    expect(session.pending.map((e) => e.child)).toEqual(["o0"]);
+    expect(session.notice).toContain('Dropped your unsaved edit "o2');
+    expect(session.notice).toContain('"o1');
+  });
+
   it("discarding is an action too", () => {
     session.edit("remove", [{ kind: "remove_support", child: "o1" }]);
     session.discard();

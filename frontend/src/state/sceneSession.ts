@@ -548,7 +548,19 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     if (doc.scene_id !== this.sceneId) return;
     this.setDocument(doc);
     const pending = this.pending;
-    for (const edit of pending) this.stage(edit);
+    // An unsaved supporter of (or on) an object the new revision removed can never be saved,
+    // and would make the server refuse the other unsaved edits with it: dropped, and said.
+    const dropped: string[] = [];
+    for (const edit of pending) {
+      const problem = editProblem(edit, doc.scene.objects ?? []);
+      if (problem) {
+        this.edits.delete(edit.child);
+        dropped.push(`Dropped your unsaved edit "${describeEdit(edit)}": ${problem}.`);
+      } else {
+        this.stage(edit);
+      }
+    }
+    if (dropped.length > 0) this.notice = dropped.join(" ");
     // Without unsaved edits the supports shown and suggested are the new document's, worked
     // out already by the views that drew it: kept, not decoded again.
     this.editsChanged(pending.length === 0);

@@ -87,11 +87,11 @@ def test_a_scene_goes_through_every_state(api: Api, accounts: Accounts) -> None:
 
     # Someone else's scene: no edits, no submission; nothing changes.
     before = api.snapshot(scene_id)
-    _refused(
-        api, scene_id, api.edit("bob", scene_id, _set("o1", "floor")), 409, "ann is annotating"
-    )
+    _refused(api, scene_id, api.edit("bob", scene_id, _set("o1", "floor")), 409, "annotated by ann")
     _refused(api, scene_id, api.act("bob", scene_id, "submit"), 409, "only the annotator")
-    _refused(api, scene_id, api.post("bob", f"/api/scenes/{scene_id}/take"), 409, "ann is")
+    _refused(
+        api, scene_id, api.post("bob", f"/api/scenes/{scene_id}/take"), 409, "annotated by ann"
+    )
     # Submitting an older revision than the latest is refused too.
     stale = api.act("ann", scene_id, "submit", revision=flow["revision"] - 1)
     _refused(api, scene_id, stale, 409, "changed since you loaded it")
@@ -120,7 +120,7 @@ def test_a_scene_goes_through_every_state(api: Api, accounts: Accounts) -> None:
         comment,
     )
     _refused(api, scene_id, api.act("rita", scene_id, "accept"), 409, "only a submitted scene")
-    _refused(api, scene_id, api.edit("bob", scene_id, _set("o2", "o0")), 409, "ann is annotating")
+    _refused(api, scene_id, api.edit("bob", scene_id, _set("o2", "o0")), 409, "sent back to ann")
 
     # The annotator fixes it (the edit reopens it) and submits again; another reviewer accepts.
     assert api.edit("ann", scene_id, _set("o2", "o0")).status_code == 200

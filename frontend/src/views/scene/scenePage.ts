@@ -30,6 +30,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
   const rerun = button("Run pipeline again", { testid: "run-pipeline", disabled: true });
   const content = el("div", { className: "scene-grid" });
   let shown: SceneSession | null = null; // the scene on the page, once loaded
+  const viser = viserLink(sceneId);
   const downloads = downloadMenu(sceneId, () => shown === null || mayHaveGlb(shown.doc));
   container.replaceChildren(
     el(
@@ -43,7 +44,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
         meta,
         el("span", { className: "spacer" }),
         downloads.element,
-        viserLink(sceneId),
+        viser.element,
         rerun,
       ),
       progress.element,
@@ -69,10 +70,14 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       meta.title = note;
     };
     updateMeta();
+    viser.showRevision(doc.revision);
     mountSceneWorkbench(content, session, disposers);
     disposers.push(
       session.subscribe((change) => {
-        if (change === "document") updateMeta();
+        if (change === "document") {
+          updateMeta();
+          viser.showRevision(session.doc.revision);
+        }
         if (change === "lock") rerun.disabled = !session.editable;
       }),
     );

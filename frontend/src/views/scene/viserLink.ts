@@ -3,8 +3,16 @@
 import { api } from "../../api/client";
 import { button, el } from "../../dom";
 
+export interface ViserLink {
+  element: HTMLElement;
+  /** The scene's revision on the page: a viewer of an older one says it is behind. */
+  showRevision(revision: number): void;
+}
+
 /** A button that opens the viewer, and a link to it once it runs. */
-export function viserLink(sceneId: string): HTMLElement {
+export function viserLink(sceneId: string): ViserLink {
+  let opened: number | null = null; // the revision the running viewer shows
+  let latest = 0;
   const link = el("a", {
     testid: "viser-link",
     attrs: { target: "_blank", rel: "noopener", hidden: true },
@@ -22,7 +30,8 @@ export function viserLink(sceneId: string): HTMLElement {
     try {
       const info = await api.openViewer(sceneId);
       link.href = info.url;
-      link.textContent = `viewer of revision ${info.revision}`;
+      opened = info.revision;
+      showLinkText();
       link.title = `${info.url} — from a shell: ${info.command}`;
       link.hidden = false;
       if (tab) tab.location.href = info.url;
@@ -35,5 +44,18 @@ export function viserLink(sceneId: string): HTMLElement {
       openButton.disabled = false;
     }
   };
-  return el("span", { className: "viser-link" }, openButton, " ", link);
+  function showLinkText(): void {
+    if (opened === null) return;
+    link.textContent =
+      latest > opened
+        ? `viewer of revision ${opened} (now ${latest}: open again)`
+        : `viewer of revision ${opened}`;
+  }
+  return {
+    element: el("span", { className: "viser-link" }, openButton, " ", link),
+    showRevision(revision) {
+      latest = revision;
+      showLinkText();
+    },
+  };
 }
