@@ -64,6 +64,15 @@ class RevisionServer {
   };
 }
 
+/** A new object drawn with the box tool. */
+const drawn = (id: string, cls: string): NewObject => ({
+  kind: "add_object",
+  id,
+  class: cls,
+  bbox: [1, 1, 9, 9],
+  source: "manual",
+});
+
 const classes = (session: SceneSession) =>
   Object.fromEntries(session.objects.map((o) => [o.id, o.class]));
 
@@ -144,13 +153,7 @@ describe("ObjectEditor", () => {
     expect(editor.newObjectIds(1)).toEqual(["d2"]); // d1 is in the scene now, d2 free again
 
     server.refuseNext = "down";
-    const lamp: NewObject = {
-      kind: "add_object",
-      id: "d2",
-      class: "lamp",
-      bbox: [1, 1, 9, 9],
-      source: "manual",
-    };
+    const lamp = drawn("d2", "lamp");
     await editor.apply([lamp], "add lamp");
     await editor.apply([{ ...lamp, id: "d2", class: "desk" }], "add desk"); // took d2
     await editor.retry();
@@ -162,14 +165,7 @@ describe("ObjectEditor", () => {
     server.refuseNext = "down";
     await editor.apply([{ kind: "set_class", id: "o1", class: "mirror" }], "o1 → mirror");
     server.refuseNext = "down";
-    const stand: NewObject = {
-      kind: "add_object",
-      id: "d1",
-      class: "night_stand",
-      bbox: [1, 1, 9, 9],
-      source: "manual",
-    };
-    await editor.apply([stand], "add night stand d1");
+    await editor.apply([drawn("d1", "night_stand")], "add night stand d1");
     expect(editor.failure?.label).toBe("o1 → mirror, then add night stand d1");
     // A failed undo is no work of its own: it does not take their place.
     server.refuseNext = "down";
