@@ -191,6 +191,16 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   );
   expect(handlers[handlers.length - 1]).toBeLessThan(50);
 
+  // The stroke's second half again adds no pixel: no revision for nothing, and the tool says so.
+  const from = await screenPoint(page, x2 + 20, midY);
+  const to = await screenPoint(page, ...outside);
+  await page.mouse.move(from.x, from.y);
+  await page.mouse.down();
+  await page.mouse.move(to.x, to.y, { steps: 6 });
+  await page.mouse.up();
+  await expect(page.getByTestId("mask-tool-status")).toHaveText(/the mask is unchanged/);
+  expect((await getRevisions(request, seeded.scene_id)).length).toBe(revisionsBefore + 1);
+
   // Undo puts the stored mask back as it was; redo brings the painted one again.
   const brushedMask = object.mask;
   await page.keyboard.press("Control+z");

@@ -54,3 +54,14 @@ export function describeDetail(detail: unknown): string | null {
   }
   return null;
 }
+
+/**
+ * What went wrong, for a person: the API's message, or, when no answer came at all (the
+ * browser's "Failed to fetch"), that the server could not be reached.
+ */
+export function errorText(error: unknown): string {
+  if (error instanceof TypeError && /fetch|network|load failed/i.test(error.message)) {
+    return "the server could not be reached (is it running? your changes are kept)";
+  }
+  return error instanceof Error ? error.message : String(error);
+}

@@ -4,6 +4,7 @@
 // objects in the saved room (a placement job, with its progress).
 import "./layoutEditor.css";
 import type { Job } from "@holiscene/schema";
+import { errorText } from "../api/errors";
 import { isFinished } from "../api/jobs";
 import { button, el } from "../dom";
 import type { Point2 } from "../geometry/camera";
@@ -70,8 +71,6 @@ export function mountLayoutEditing(
     },
   };
 }
-
-const errorText = (error: unknown) => (error instanceof Error ? error.message : String(error));
 
 function mountLayoutEditor(
   bar: HTMLElement,

@@ -20,7 +20,7 @@ import type {
   SetMask,
 } from "@holiscene/schema";
 import { api } from "../api/client";
-import { ConflictError } from "../api/errors";
+import { ConflictError, errorText } from "../api/errors";
 import { freshIds } from "../views/scene/detectionOffers";
 import { getAuthor } from "./author";
 import { HistoryKeeper } from "./editHistory";
@@ -197,7 +197,6 @@ export function saveDone(session: SceneSession): Promise<void> {
   });
 }
 
-const errorText = (error: unknown) => (error instanceof Error ? error.message : String(error));
 const capital = (text: string) => text.charAt(0).toUpperCase() + text.slice(1);
 
 /** What one sent action did: the revisions before and after it, and the edits as sent. */

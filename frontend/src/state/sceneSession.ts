@@ -11,7 +11,7 @@ import type {
   SupportRelation,
 } from "@holiscene/schema";
 import { api } from "../api/client";
-import { ApiError, ConflictError } from "../api/errors";
+import { ApiError, ConflictError, errorText } from "../api/errors";
 import { type Draft, DraftStore } from "./draftStore";
 import { type HistoryChange, HistoryKeeper } from "./editHistory";
 import { type EditLock, type EditPermission, editLock, lockText } from "./editLock";
@@ -687,8 +687,4 @@ const workflowKey = (workflow: SceneWorkflow | null) =>
 export function plural(count: number, noun: string): string {
   if (count === 1) return `${count} ${noun}`;
   return `${count} ${noun}${/(s|x|ch|sh)$/.test(noun) ? "es" : "s"}`;
-}
-
-function errorText(error: unknown): string {
-  return error instanceof Error ? error.message : String(error);
 }

@@ -93,6 +93,20 @@ export class MaskDrawing {
       );
       return;
     }
+    const before = this.session.object(objectId)?.mask;
+    const same = (a: readonly number[], b: readonly number[]) =>
+      a.length === b.length && a.every((v, i) => v === b[i]);
+    if (
+      before?.source === "manual" &&
+      same(before.origin, mask.origin) &&
+      same(before.size, mask.size) &&
+      same(before.rle, mask.rle)
+    ) {
+      // A stroke over pixels the mask already had (or never had): no revision for nothing.
+      preview.hide();
+      this.say(`${label}: the mask is unchanged.`);
+      return;
+    }
     this.pending = { objectId, raster };
     const saved = await this.host.objects.apply([{ kind: "set_mask", id: objectId, mask }], label);
     if (this.pending?.raster === raster) this.pending = null;

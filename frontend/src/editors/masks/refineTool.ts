@@ -2,6 +2,7 @@
 // after each stroke the server's GrabCut cuts the mask again from all of them, and the answer
 // is saved as the object's mask.
 import type { Stroke } from "@holiscene/schema";
+import { errorText } from "../../api/errors";
 import { refineMask } from "../../api/maskRefine";
 import type { Sheet } from "../liveLayer";
 import { MaskRaster, type Point } from "../maskPainting";
@@ -10,8 +11,6 @@ import { intoPhoto, refineBox } from "../refineBox";
 import type { MaskDrawing } from "./maskDrawing";
 
 export const REFINE_KEY = "K";
-
-const errorText = (error: unknown) => (error instanceof Error ? error.message : String(error));
 
 interface RefineDraft {
   objectId: string;
