@@ -496,12 +496,9 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
       );
       const before = (child: string) => previous.scene.supports?.find((s) => s.child === child);
       const after = (child: string) => doc.scene.supports?.find((s) => s.child === child);
+      lines.push(...this.dropUnsavable(doc));
       for (const edit of this.pending) {
-        const problem = editProblem(edit, doc.scene.objects ?? []);
-        if (problem) {
-          lines.push(`Dropped your edit "${describeEdit(edit)}": ${problem}.`);
-          this.edits.delete(edit.child);
-        } else if (isNoOp(edit, doc.scene.supports ?? [])) {
+        if (isNoOp(edit, doc.scene.supports ?? [])) {
           lines.push(`Your edit "${describeEdit(edit)}" is already in revision ${doc.revision}.`);
           this.edits.delete(edit.child);
         } else if (!sameRelation(before(edit.child), after(edit.child))) {
@@ -548,22 +545,25 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     if (doc.scene_id !== this.sceneId) return;
     this.setDocument(doc);
     const pending = this.pending;
-    // An unsaved supporter of (or on) an object the new revision removed can never be saved,
-    // and would make the server refuse the other unsaved edits with it: dropped, and said.
-    const dropped: string[] = [];
-    for (const edit of pending) {
-      const problem = editProblem(edit, doc.scene.objects ?? []);
-      if (problem) {
-        this.edits.delete(edit.child);
-        dropped.push(`Dropped your unsaved edit "${describeEdit(edit)}": ${problem}.`);
-      } else {
-        this.stage(edit);
-      }
-    }
+    const dropped = this.dropUnsavable(doc);
+    for (const edit of this.pending) this.stage(edit);
     if (dropped.length > 0) this.notice = dropped.join(" ");
     // Without unsaved edits the supports shown and suggested are the new document's, worked
     // out already by the views that drew it: kept, not decoded again.
     this.editsChanged(pending.length === 0);
+  }
+
+  /**
+   * Drop the unsaved edits `doc` can no longer take (a supporter of, or on, an object it does
+   * not hold): the server would refuse the other unsaved edits with them. What was dropped.
+   */
+  private dropUnsavable(doc: SceneDocument): string[] {
+    return this.pending.flatMap((edit) => {
+      const problem = editProblem(edit, doc.scene.objects ?? []);
+      if (!problem) return [];
+      this.edits.delete(edit.child);
+      return [`Dropped your unsaved edit "${describeEdit(edit)}": ${problem}.`];
+    });
   }
 
   /** After a conflict: the latest revision with the unsaved edits on top, saved at once. */

@@ -19,6 +19,9 @@ from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any, TypeVar
 
+from ..learning.box_refiner.config import BoxRefinerTraining
+from ..learning.mesh_net.config import MeshNetTraining
+from ..learning.scene_net.config import SceneNetTrainConfig
 from .common import CliError, needs_pytorch
 
 NETWORK_FOLDERS = {
@@ -28,37 +31,32 @@ NETWORK_FOLDERS = {
 }  # the names of the committed models' folders in holiscene/learning/
 
 
+# The CLI's runs take their defaults from the training configs (torch-free modules), so a
+# default lives in one place; the box refiner's run is its config itself.
+
+
 @dataclass(frozen=True)
 class SceneNetRun:
+    """SceneNetTrainConfig's options, with where the model and the rendered rooms go."""
+
     out: Path
     cache: Path
-    rooms: int = 2400
-    validation_rooms: int = 200
-    views: int = 2
+    rooms: int = SceneNetTrainConfig.rooms
+    validation_rooms: int = SceneNetTrainConfig.validation_rooms
+    views: int = SceneNetTrainConfig.views
     seed: int = 0
-    time_budget: float = 1200.0
+    time_budget: float = SceneNetTrainConfig.budget_s
 
 
 @dataclass(frozen=True)
 class MeshNetRun:
-    out: Path
-    views: int = 16000
-    validation_views: int = 400
-    seed: int = 0
-    time_budget: float = 1500.0
+    """MeshNetTraining's options, named as the command's."""
 
-
-@dataclass(frozen=True)
-class BoxRefinerRun:
     out: Path
-    rooms: int = 1500
-    first_seed: int = 610000
-    validation_rooms: int = 200
-    validation_seed: int = 960000
-    epochs: int = 30
-    members: int = 5
-    workers: int = 2
+    views: int = MeshNetTraining.train_views
+    validation_views: int = MeshNetTraining.validation_views
     seed: int = 0
+    time_budget: float = MeshNetTraining.time_budget
 
 
 def add_learned_3d_training_command(
@@ -106,22 +104,26 @@ def add_learned_3d_training_command(
         "box-refiner", help="the 3D box refiner (single photos run through the geometry)"
     )
     _add_out(refiner)
-    refiner.add_argument("--rooms", type=int, default=BoxRefinerRun.rooms, help="training rooms")
     refiner.add_argument(
-        "--first-seed", type=int, default=BoxRefinerRun.first_seed, help="first room's seed"
-    )
-    refiner.add_argument("--validation-rooms", type=int, default=BoxRefinerRun.validation_rooms)
-    refiner.add_argument("--validation-seed", type=int, default=BoxRefinerRun.validation_seed)
-    refiner.add_argument("--epochs", type=int, default=BoxRefinerRun.epochs)
-    refiner.add_argument(
-        "--members", type=int, default=BoxRefinerRun.members, help="networks in the ensemble"
+        "--rooms", type=int, default=BoxRefinerTraining.rooms, help="training rooms"
     )
     refiner.add_argument(
-        "--workers", type=int, default=BoxRefinerRun.workers, help="processes making the rooms"
+        "--first-seed", type=int, default=BoxRefinerTraining.first_seed, help="first room's seed"
+    )
+    refiner.add_argument(
+        "--validation-rooms", type=int, default=BoxRefinerTraining.validation_rooms
+    )
+    refiner.add_argument("--validation-seed", type=int, default=BoxRefinerTraining.validation_seed)
+    refiner.add_argument("--epochs", type=int, default=BoxRefinerTraining.epochs)
+    refiner.add_argument(
+        "--members", type=int, default=BoxRefinerTraining.members, help="networks in the ensemble"
+    )
+    refiner.add_argument(
+        "--workers", type=int, default=BoxRefinerTraining.workers, help="processes making the rooms"
     )
     refiner.add_argument("--seed", type=int, default=0)
     refiner.set_defaults(
-        handler=lambda args: _report(_train_box_refiner(_run_from(BoxRefinerRun, args)))
+        handler=lambda args: _report(_train_box_refiner(_run_from(BoxRefinerTraining, args)))
     )
 
     every = networks.add_parser(
@@ -154,17 +156,19 @@ def _add_time_budget(parser: argparse.ArgumentParser, default: float) -> None:
     )
 
 
-RunT = TypeVar("RunT", SceneNetRun, MeshNetRun, BoxRefinerRun)
+RunT = TypeVar("RunT", SceneNetRun, MeshNetRun, BoxRefinerTraining)
 
 
 def _run_from(run_type: type[RunT], args: argparse.Namespace) -> RunT:
-    """A network's run from its subcommand's options, which carry the run's field names."""
-    return run_type(**{field.name: getattr(args, field.name) for field in fields(run_type)})
+    """A network's run from its subcommand's options, which carry the run's field names (the
+    fields no option sets, such as the training curves, keep their defaults)."""
+    given = {f.name: getattr(args, f.name) for f in fields(run_type) if hasattr(args, f.name)}
+    return run_type(**given)
 
 
 def plan_all(
     out: Path, cache: Path | None, scale: float, seed: int
-) -> tuple[SceneNetRun, MeshNetRun, BoxRefinerRun]:
+) -> tuple[SceneNetRun, MeshNetRun, BoxRefinerTraining]:
     """`train-3d all`: each network's run with its defaults times `scale`, in its own folder
     named as the committed model's."""
     if not 0.0 < scale <= 1.0:
@@ -173,35 +177,30 @@ def plan_all(
     def count(default: int, least: int = 1) -> int:
         return max(least, round(default * scale))
 
-    scene_defaults, mesh_defaults, refiner_defaults = (
-        SceneNetRun(out, out),
-        MeshNetRun(out),
-        BoxRefinerRun(out),
-    )
     return (
         SceneNetRun(
             out=out / NETWORK_FOLDERS["scene-net"],
             cache=cache or out / "scene_net_cache",
-            rooms=count(scene_defaults.rooms, 2),
-            validation_rooms=count(scene_defaults.validation_rooms, 2),
-            views=scene_defaults.views,
+            rooms=count(SceneNetRun.rooms, 2),
+            validation_rooms=count(SceneNetRun.validation_rooms, 2),
+            views=SceneNetRun.views,
             seed=seed,
-            time_budget=scene_defaults.time_budget * scale,
+            time_budget=SceneNetRun.time_budget * scale,
         ),
         MeshNetRun(
             out=out / NETWORK_FOLDERS["meshes"],
-            views=count(mesh_defaults.views, 8),
-            validation_views=count(mesh_defaults.validation_views, 4),
+            views=count(MeshNetRun.views, 8),
+            validation_views=count(MeshNetRun.validation_views, 4),
             seed=seed,
-            time_budget=mesh_defaults.time_budget * scale,
+            time_budget=MeshNetRun.time_budget * scale,
         ),
-        BoxRefinerRun(
+        BoxRefinerTraining(
             out=out / NETWORK_FOLDERS["box-refiner"],
-            rooms=count(refiner_defaults.rooms, 2),
-            validation_rooms=count(refiner_defaults.validation_rooms, 2),
-            epochs=count(refiner_defaults.epochs),
-            members=count(refiner_defaults.members, 2),
-            workers=refiner_defaults.workers,
+            rooms=count(BoxRefinerTraining.rooms, 2),
+            validation_rooms=count(BoxRefinerTraining.validation_rooms, 2),
+            epochs=count(BoxRefinerTraining.epochs),
+            members=count(BoxRefinerTraining.members, 2),
+            workers=BoxRefinerTraining.workers,
             seed=seed,
         ),
     )
@@ -238,7 +237,7 @@ def _check_counts(run: object, names: tuple[str, ...]) -> None:
 def _train_scene_net(run: SceneNetRun) -> dict[str, Any]:
     _check_counts(run, ("rooms", "validation_rooms", "views"))
     with needs_pytorch():
-        from ..learning.scene_net.train import SceneNetTrainConfig, train_scene_net
+        from ..learning.scene_net.train import train_scene_net
 
     config = SceneNetTrainConfig(
         rooms=run.rooms,
@@ -254,7 +253,7 @@ def _train_scene_net(run: SceneNetRun) -> dict[str, Any]:
 def _train_meshes(run: MeshNetRun) -> dict[str, Any]:
     _check_counts(run, ("views", "validation_views"))
     with needs_pytorch():
-        from ..learning.mesh_net.train import MeshNetTraining, train_mesh_net
+        from ..learning.mesh_net.train import train_mesh_net
 
     metrics: dict[str, Any] = train_mesh_net(
         MeshNetTraining(
@@ -268,22 +267,10 @@ def _train_meshes(run: MeshNetRun) -> dict[str, Any]:
     return metrics
 
 
-def _train_box_refiner(run: BoxRefinerRun) -> dict[str, Any]:
+def _train_box_refiner(run: BoxRefinerTraining) -> dict[str, Any]:
     _check_counts(run, ("rooms", "validation_rooms", "epochs", "members", "workers"))
     with needs_pytorch():
-        from ..learning.box_refiner.train import BoxRefinerTraining, train_box_refiner
+        from ..learning.box_refiner.train import train_box_refiner
 
-    metrics: dict[str, Any] = train_box_refiner(
-        BoxRefinerTraining(
-            out=run.out,
-            rooms=run.rooms,
-            first_seed=run.first_seed,
-            validation_rooms=run.validation_rooms,
-            validation_seed=run.validation_seed,
-            epochs=run.epochs,
-            members=run.members,
-            workers=run.workers,
-            seed=run.seed,
-        )
-    )
+    metrics: dict[str, Any] = train_box_refiner(run)
     return metrics

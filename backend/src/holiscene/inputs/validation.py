@@ -48,6 +48,8 @@ class Photo:
     rgb: np.ndarray  # (H, W, 3) uint8
     data: bytes  # the file as given
     suffix: str  # ".jpg" or ".png"
+    # Read upright through an EXIF quarter turn: the file's own pixels are `rgb` on its side.
+    turned_sides: bool = False
 
     @property
     def width(self) -> int:
@@ -90,7 +92,8 @@ def load_photo(data: bytes, max_pixels: int = MAX_IMAGE_PIXELS, *, exif_turn: bo
         )
     try:
         image.load()
-        if _exif_orientation(image) == 1:
+        orientation = _exif_orientation(image)
+        if orientation == 1:
             return Photo(
                 rgb=np.asarray(image.convert("RGB")), data=data, suffix=_FORMATS[image.format]
             )
@@ -99,6 +102,7 @@ def load_photo(data: bytes, max_pixels: int = MAX_IMAGE_PIXELS, *, exif_turn: bo
             rgb=np.asarray(read.convert("RGB")),
             data=_encoded_like(read, image),
             suffix=_FORMATS[image.format],
+            turned_sides=exif_turn and orientation >= 5,  # orientations 5-8 swap the sides
         )
     except (OSError, SyntaxError, ValueError) as exc:
         raise InputError(f"the photo cannot be decoded (truncated or corrupt): {exc}") from exc
@@ -112,15 +116,6 @@ def _exif_orientation(image: Image.Image) -> int:
     except (OSError, SyntaxError, ValueError):
         return 1  # an unreadable EXIF block: the pixels as stored
     return orientation if isinstance(orientation, int) and 2 <= orientation <= 8 else 1
-
-
-def exif_turns_sides(data: bytes) -> bool:
-    """Whether the photo's EXIF turn swaps its width and height (a quarter turn)."""
-    try:
-        with Image.open(io.BytesIO(data)) as image:
-            return _exif_orientation(image) >= 5
-    except (UnidentifiedImageError, OSError, Image.DecompressionBombError):
-        return False
 
 
 def _without_turn(image: Image.Image) -> Image.Image:

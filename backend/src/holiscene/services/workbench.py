@@ -66,6 +66,8 @@ class JobRun:
     revision: int
     inputs: InputFiles
     arguments: dict[str, Any]
+    # The stage runs of the revision read: a placement job keeps those of the stages it skips.
+    earlier_stages: tuple[StageRun, ...] = ()
 
 
 # The retrain job kind of each model kind.
@@ -336,15 +338,19 @@ class Workbench:
         inputs = read_input_folder(
             self.scenes.files.folder(job.scene_id), use_depth=current.scene.depth is not None
         )
-        return JobRun(revision=current.revision, inputs=inputs, arguments=arguments)
+        return JobRun(
+            revision=current.revision,
+            inputs=inputs,
+            arguments=arguments,
+            earlier_stages=tuple(current.scene.stages),
+        )
 
     def store_job_result(self, job: Job, run: JobRun, result: Reconstruction) -> None:
         """Store a job's computed result as the scene's next revision and finish the job."""
         assert job.scene_id is not None and job.base_revision is not None  # job_run checked
         if job.kind == "placement":
-            earlier = self.scenes.document(job.scene_id, job.base_revision).scene.stages
             placed = result.scene.model_copy(
-                update={"stages": with_earlier_runs(earlier, result.scene.stages)}
+                update={"stages": with_earlier_runs(run.earlier_stages, result.scene.stages)}
             )
             revision = self.scenes.commit_placement_result(
                 job.scene_id, job.base_revision, placed, result.glb

@@ -59,9 +59,7 @@ from .clock import as_utc, utcnow
 from .files import GROUND_TRUTH_FILE, SceneFiles
 from .revision_writes import WorkflowMove, add_revision, revision_values, write_at_once
 from .scene_events import SceneHead, as_state, pipeline_committed, record_event
-from .tables import RevisionRow, SceneRow
-
-SCENE_NAME_LENGTH = 200  # tables.SceneRow.name's length
+from .tables import SCENE_NAME_LENGTH, RevisionRow, SceneRow
 
 _EDITS = TypeAdapter(list[Edit])
 # Runs inside a revision's write transaction, after the scene row moved to the new revision

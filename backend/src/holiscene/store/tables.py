@@ -25,11 +25,16 @@ class Base(DeclarativeBase):
     pass
 
 
+# The longest scene name (PostgreSQL refuses a longer one); the upload form and the store's
+# numbered names keep to it.
+SCENE_NAME_LENGTH = 200
+
+
 class SceneRow(Base):
     __tablename__ = "scenes"
 
     id: Mapped[str] = mapped_column(String(32), primary_key=True)
-    name: Mapped[str] = mapped_column(String(200))
+    name: Mapped[str] = mapped_column(String(SCENE_NAME_LENGTH))
     created_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
     updated_at: Mapped[datetime] = mapped_column(DateTime(timezone=True))
     current_revision: Mapped[int] = mapped_column(Integer)

@@ -143,3 +143,21 @@ export function renderLabels(
   });
   group.replaceChildren(...tags, ...flags.map((f) => f.node));
 }
+
+/** The label tags drawn under `root` (the photo's SVG or its labels layer), each with its
+ * object and rectangle in photo pixels, in drawing order (the topmost last). */
+export function drawnLabelTags(root: Element): { id: string; rect: Rect }[] {
+  return [...root.querySelectorAll<SVGRectElement>(".object-label .label-box")].map((box) => {
+    const left = box.x.baseVal.value;
+    const top = box.y.baseVal.value;
+    return {
+      id: box.closest<SVGGElement>(".object-label")?.dataset.object ?? "",
+      rect: {
+        left,
+        top,
+        right: left + box.width.baseVal.value,
+        bottom: top + box.height.baseVal.value,
+      },
+    };
+  });
+}

@@ -8,7 +8,7 @@ import type { Rgb } from "../classColors";
 import { maskColours } from "../objectColors";
 import { type Frame, strokeWidth } from "./arrowGeometry";
 import { renderArrows } from "./arrowLayer";
-import { renderLabels } from "./labelLayer";
+import { drawnLabelTags, renderLabels } from "./labelLayer";
 import { GREY, maskNode, renderOutlines } from "./maskLayer";
 import { HitMap, objectRegion, type Region } from "./maskRaster";
 import { maskStyle } from "./maskStyle";
@@ -70,18 +70,10 @@ export class PhotoOverlays {
   labelAt(x: number, y: number): string | null {
     const labels = this.layers.labels;
     if (labels.getClientRects().length === 0) return null; // labels hidden (or none drawn)
-    const boxes = [...labels.querySelectorAll<SVGRectElement>(".object-label .label-box")];
-    for (const box of boxes.reverse()) {
-      const left = box.x.baseVal.value;
-      const top = box.y.baseVal.value;
-      const inside =
-        x >= left &&
-        x <= left + box.width.baseVal.value &&
-        y >= top &&
-        y <= top + box.height.baseVal.value;
-      if (inside) return box.closest<SVGGElement>(".object-label")?.dataset.object ?? null;
-    }
-    return null;
+    const hit = drawnLabelTags(labels)
+      .reverse()
+      .find(({ rect }) => x >= rect.left && x <= rect.right && y >= rect.top && y <= rect.bottom);
+    return hit?.id || null;
   }
 
   /** The centre of the object's mask (for arrows drawn to it). */

@@ -46,13 +46,12 @@ from ...inputs.depth import (
 )
 from ...learning.completion.scene_points import MAX_POINTS, scene_depth_points, stored_depth
 from ...store.scenes import SceneNotFoundError
+from ...store.tables import SCENE_NAME_LENGTH
 from ..deps import AnnotatorDep, UserDep, WorkbenchDep, author_of
 from ..permissions import with_edit_permission
 
 router = APIRouter(prefix="/api/scenes", tags=["scenes"])
 
-# The scenes table's name column is String(200): PostgreSQL refuses a longer one.
-MAX_SCENE_NAME = 200
 
 _ERRORS: dict[int | str, dict[str, object]] = {
     404: {"model": ErrorMessage},
@@ -101,7 +100,7 @@ async def import_scene(
         DepthUnits | None,
         Form(description='"mm" (PNG, the default), "sunrgbd" (PNG, SUN RGB-D\'s bits), "m" (.npy)'),
     ] = None,
-    name: Annotated[str | None, Form(max_length=MAX_SCENE_NAME)] = None,
+    name: Annotated[str | None, Form(max_length=SCENE_NAME_LENGTH)] = None,
     author: Annotated[str, Form(min_length=1, max_length=64)] = "import",
     run_pipeline: Annotated[bool, Form()] = True,
 ) -> ImportResult:
@@ -124,7 +123,7 @@ async def import_scene(
         boxes = parse_detections(raw, photo.width, photo.height, names)
     inputs = InputFiles(photo=photo, K=K, detections=boxes, depth=depth_map)
     # A name from the file name is cut to fit (only a typed name is the user's to shorten).
-    from_file = (image.filename or "photo").rsplit(".", 1)[0].strip()[:MAX_SCENE_NAME]
+    from_file = (image.filename or "photo").rsplit(".", 1)[0].strip()[:SCENE_NAME_LENGTH]
     typed = (name or "").strip()
     scene_name = typed or workbench.scenes.unused_name(from_file or "photo")
     return workbench.import_scene(inputs, scene_name, author_of(user, author), run_pipeline)

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 from holiscene_schema import STRUCTURAL_SUPPORTERS, SupportRelation
 
-from ..validation import InputError, InputFiles, exif_turns_sides, load_photo, support_relations
+from ..validation import InputError, InputFiles, load_photo, support_relations
 from .items import (
     DatasetItem,
     class_map_beside,
@@ -107,8 +107,8 @@ def _read_image(
     photo = load_photo(data)
     stated = (image.get("width"), image.get("height"))
     notes: list[str] = []
-    unturned_size = (photo.height, photo.width)
-    if stated == unturned_size and photo.width != photo.height and exif_turns_sides(data):
+    unturned_size = (photo.height, photo.width)  # a square photo's size says nothing
+    if photo.turned_sides and stated == unturned_size != (photo.width, photo.height):
         # The entry's size is the stored pixels': its labels were drawn without the EXIF turn.
         photo = load_photo(data, exif_turn=False)
         notes.append(

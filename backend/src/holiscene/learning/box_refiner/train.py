@@ -12,7 +12,7 @@ import copy
 import json
 import sys
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -26,6 +26,7 @@ from ...geometry.boxes import corners_of
 from ...shapes import SIZE_RANGES
 from ..export import keep_if_faithful
 from .confidence import FOUND_IOU, confidence_features, fit_confidence
+from .config import BoxRefinerTraining
 from .data import RoomSample, make_rooms
 from .features import PAIR_FEATURES, TARGETS, feature_names, refined
 from .net import OUTPUT_PARTS, BoxRefinerEnsemble, BoxRefinerNet
@@ -33,20 +34,6 @@ from .net import OUTPUT_PARTS, BoxRefinerEnsemble, BoxRefinerNet
 MODEL_FILE = "model.onnx"
 OUTPUT_NAME = "refinement"
 EXPORT_TOLERANCE = 1e-4  # log ratios
-
-
-@dataclass
-class BoxRefinerTraining:
-    out: Path
-    rooms: int = 1500
-    first_seed: int = 610000  # training rooms: first_seed, first_seed + 1, ...
-    validation_rooms: int = 200
-    validation_seed: int = 960000
-    epochs: int = 30
-    members: int = 5  # networks in the ensemble, trained from seeds seed, seed + 1, ...
-    workers: int = 2
-    seed: int = 0
-    curves: list[list[dict[str, float]]] = field(default_factory=list)  # per member
 
 
 @dataclass(frozen=True)

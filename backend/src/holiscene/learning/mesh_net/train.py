@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 import torch
 
 from ..budget import plot_curve, train_for_budget
+from .config import MeshNetTraining
 from .inputs import (
     CONDITION_SIZE,
     MAX_TEMPLATE_VERTICES,
@@ -36,17 +36,6 @@ OFFSET_WEIGHT = 0.01
 # Face-cutting thresholds tried on the validation samples (eval-frame distance; inf: no cut).
 CUT_CHOICES = (math.inf, 0.12, 0.09, 0.07, 0.05, 0.04, 0.03)
 MIN_KEPT = 0.5  # never cut more than half of a mesh's surface
-
-
-@dataclass
-class MeshNetTraining:
-    out: Path
-    train_views: int = 16000
-    validation_views: int = 400
-    seed: int = 0
-    time_budget: float = 1500.0
-    batch: int = 32
-    curve: list[dict[str, float]] = field(default_factory=list)
 
 
 def sample_points(

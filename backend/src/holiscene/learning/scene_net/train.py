@@ -9,7 +9,6 @@ from __future__ import annotations
 import json
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -21,26 +20,13 @@ from ..detector.backbone import FeatureExtractor
 from ..detector.data import render_rooms
 from ..detector.runtime import COCO_DETECTOR_DIR, MODEL_FILE
 from ..train import run_record
+from .config import SceneNetTrainConfig
 from .evaluate import ValidationScores, score_predictions
 from .net import Batch, SceneNet, export_scene_net, joint_loss
 from .samples import PhotoSample, room_samples
 
 METADATA_FILE = "metadata.json"
 TRAIN_SEED, VALIDATION_SEED = 600000, 660000
-
-
-@dataclass(frozen=True)
-class SceneNetTrainConfig:
-    rooms: int = 2400
-    validation_rooms: int = 200
-    budget_s: float = 1200.0
-    batch: int = 16
-    learning_rate: float = 1e-3
-    hidden: int = 256
-    views: int = 2  # randomised views of each training room
-    weight_decay: float = 0.01
-    seed: int = 0
-    threads: int = 2
 
 
 def batch_of(samples: Sequence[PhotoSample]) -> Batch:

@@ -5,6 +5,7 @@ import { svgEl } from "../../../dom";
 import { SCORE_THRESHOLD } from "../../../inference/detectorTensor";
 import { type Frame, strokeWidth } from "../../photo/arrowGeometry";
 import type { Rect } from "../../photo/cornerHandles";
+import { drawnLabelTags } from "../../photo/labelLayer";
 import { type Offer, offerLabel } from "../detectionOffers";
 import { placeTags } from "./offerLabelPlacement";
 
@@ -12,20 +13,6 @@ import { placeTags } from "./offerLabelPlacement";
 function tagSize(label: string, frame: Frame): { size: number; width: number; height: number } {
   const size = strokeWidth(frame) * 5;
   return { size, width: label.length * size * 0.62 + size * 0.6, height: size * 1.35 };
-}
-
-/** The objects' own label tags drawn in the photo's SVG (labelLayer.ts), in photo pixels. */
-function objectLabelRects(svg: SVGSVGElement): Rect[] {
-  return [...svg.querySelectorAll<SVGRectElement>(".object-label .label-box")].map((box) => {
-    const left = box.x.baseVal.value;
-    const top = box.y.baseVal.value;
-    return {
-      left,
-      top,
-      right: left + box.width.baseVal.value,
-      bottom: top + box.height.baseVal.value,
-    };
-  });
 }
 
 function offerBox(offer: Offer, selected: boolean, frame: Frame, tagRect: Rect): SVGGElement {
@@ -132,7 +119,12 @@ export function offerBoxes(
         right: photoWidth + frame.margin,
         bottom: frame.height + frame.margin,
       };
-      const tags = placeTags(requests, surest, bounds, objectLabelRects(svg));
+      const tags = placeTags(
+        requests,
+        surest,
+        bounds,
+        drawnLabelTags(svg).map((tag) => tag.rect),
+      );
       layer.replaceChildren(
         ...byArea.map((offer, i) =>
           offerBox(offer, offer.key === selected, frame, tags[i] as Rect),
