@@ -5,6 +5,7 @@ from __future__ import annotations
 import time
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 from fastapi.testclient import TestClient
@@ -77,3 +78,21 @@ def wait_for_job(client: TestClient, job_id: str, timeout: float = 30.0) -> dict
             return job  # type: ignore[no-any-return]
         time.sleep(0.05)
     raise AssertionError(f"job {job_id} did not finish in {timeout} s")
+
+
+def imported_scene(
+    client: TestClient, folder: Path, name: str, run_pipeline: bool = True
+) -> dict[str, Any]:
+    """The latest revision of `folder` uploaded as a new scene (after its pipeline job)."""
+    result = upload(client, folder, name=name, run_pipeline=str(run_pipeline).lower())
+    if run_pipeline:
+        job = wait_for_job(client, result["job"]["id"])
+        assert job["status"] == "succeeded", job
+    doc: dict[str, Any] = client.get(f"/api/scenes/{result['scene']['id']}").json()
+    return doc
+
+
+def post_edits(client: TestClient, doc: dict[str, Any], *edits: dict[str, Any]) -> Any:
+    """The response to `edits` made by "ann" on the revision `doc`."""
+    body = {"base_revision": doc["revision"], "author": "ann", "edits": list(edits)}
+    return client.post(f"/api/scenes/{doc['scene_id']}/edits", json=body)

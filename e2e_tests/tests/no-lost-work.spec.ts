@@ -156,7 +156,11 @@ test("the history shows what each revision changed and reverts to any of them", 
       type: guessOf(seeded, "o2").type,
     },
   ]);
-  const second = await postEdits(request, first, "bob", [{ kind: "remove_support", child: "o3" }]);
+  const second = await postEdits(request, first, "bob", [
+    { kind: "remove_support", child: "o3" },
+    { kind: "remove_object", id: "o2" },
+    { kind: "set_class", id: "o0", class: "sofa" },
+  ]);
 
   await openScene(page, seeded.scene_id);
   await setAuthor(page, "e2e-history");
@@ -175,21 +179,26 @@ test("the history shows what each revision changed and reverts to any of them", 
   ).toHaveAttribute("data-kind", "removed");
   await page.screenshot({ path: screenshotPath("revision-diff.png"), fullPage: true });
 
-  // Revert to the pipeline's revision: every support exactly as the pipeline stored it.
+  // Revert to the pipeline's revision: the whole scene as the pipeline stored it (bob's removed
+  // dresser and his sofa too, not only the supports).
   await page.getByTestId(`revision-revert-${predicted}`).click();
-  await autosaved(page);
+  const latest = async () => (await getScene(request, seeded.scene_id)).revision;
+  await expect.poll(latest).toBe(second.revision + 1);
   let doc = await getScene(request, seeded.scene_id);
-  expect(doc.revision).toBe(second.revision + 1);
-  expect(doc.scene.supports).toEqual(seeded.scene.supports);
+  expect(doc.scene).toEqual(seeded.scene);
+  await expect(page.getByTestId("object-edit-status")).toContainText(
+    `Revert to revision ${predicted}: saved.`,
+  );
+  await expect(page.getByTestId("object-row-o2")).toBeVisible();
   await expect(page.getByTestId("revision-list").locator("li").first()).toContainText(
-    `as in revision ${predicted}`,
+    `the scene as in revision ${predicted}`,
   );
 
-  // Undo the revert: bob's and alice's supports come back as they were.
+  // Undo the revert: bob's and alice's changes come back as they were.
   await page.keyboard.press("Control+z");
-  await autosaved(page);
+  await expect.poll(latest).toBe(second.revision + 2);
   doc = await getScene(request, seeded.scene_id);
-  expect(doc.scene.supports).toEqual(second.scene.supports);
+  expect(doc.scene).toEqual(second.scene);
 });
 
 test("two people edit one scene: the second gets a conflict, merges or reloads, nothing is lost", async ({

@@ -148,8 +148,19 @@ class RestoreObject(SchemaModel):
 
 ObjectEdit = AddObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject
 
+
+class RestoreScene(SchemaModel):
+    """Put the whole scene back as revision `from_revision` had it: its objects (classes, boxes,
+    masks, 3D boxes, shapes), supports, room layout and camera, the objects people had removed,
+    and the pipeline stages behind them. The photo, its depth and the scene's name stay. The
+    history's "Revert to this"; undo is a restore_scene of the revision before it."""
+
+    kind: Literal["restore_scene"] = "restore_scene"
+    from_revision: RevisionNumber
+
+
 Edit = Annotated[
-    SetSupport | RemoveSupport | RestoreSupport | SetLayout | ObjectEdit,
+    SetSupport | RemoveSupport | RestoreSupport | SetLayout | ObjectEdit | RestoreScene,
     Field(discriminator="kind"),
 ]
 

@@ -41,6 +41,7 @@ RemoveObject?: RemoveObject
 RemoveSupport?: RemoveSupport
 RemovedObject?: RemovedObject
 RestoreObject?: RestoreObject
+RestoreScene?: RestoreScene
 RestoreSupport?: RestoreSupport
 RetrainRequest?: RetrainRequest
 ReviewRequest?: ReviewRequest
@@ -391,7 +392,7 @@ base_revision: number
  * @minItems 1
  * @maxItems 500
  */
-edits: [(SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject), ...((SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject))[]]
+edits: [(SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject | RestoreScene), ...((SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject | RestoreScene))[]]
 }
 /**
  * Make `parent` the supporter of `child` (replacing any supporter it had).
@@ -526,6 +527,19 @@ export interface RestoreObject {
 from_revision: number
 id: string
 kind: "restore_object"
+}
+/**
+ * Put the whole scene back as revision `from_revision` had it: its objects (classes, boxes,
+ * masks, 3D boxes, shapes), supports, room layout and camera, the objects people had removed,
+ * and the pipeline stages behind them. The photo, its depth and the scene's name stay. The
+ * history's "Revert to this"; undo is a restore_scene of the revision before it.
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "RestoreScene".
+ */
+export interface RestoreScene {
+from_revision: number
+kind: "restore_scene"
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
@@ -1003,7 +1017,7 @@ revision: number
 export interface RevisionInfo {
 author: string
 created_at: string
-edits: ((SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject)[] | null)
+edits: ((SetSupport | RemoveSupport | RestoreSupport | SetLayout | AddObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject | RestoreScene)[] | null)
 kind: ("import" | "pipeline" | "edit" | "reset")
 number: number
 summary: string

@@ -57,10 +57,14 @@ function isDraft(value: unknown): value is Draft {
 function isFailedObjectAction(value: unknown): value is FailedObjectAction {
   if (!value || typeof value !== "object") return false;
   const a = value as Partial<FailedObjectAction>;
-  const isEdit = (e: unknown) =>
-    !!e &&
-    typeof (e as Partial<ObjectEdit>).kind === "string" &&
-    typeof (e as Partial<ObjectEdit>).id === "string";
+  const isEdit = (e: unknown) => {
+    const edit = e as { kind?: unknown; id?: unknown; from_revision?: unknown } | null;
+    if (!edit || typeof edit.kind !== "string") return false;
+    // A revert names a revision, every other object edit an object.
+    return edit.kind === "restore_scene"
+      ? typeof edit.from_revision === "number"
+      : typeof edit.id === "string";
+  };
   return (
     typeof a.label === "string" &&
     typeof a.message === "string" &&

@@ -7,6 +7,7 @@ import { beforeEach, describe, expect, it } from "vitest";
 import { ApiError } from "../api/errors";
 import { MemoryStorage } from "../testing/memoryStorage";
 import { sceneDocument, sceneObject, sessionOn } from "../testing/sceneDocuments";
+import { revertTo } from "../views/scene/history/revertRevision";
 import { DraftStore } from "./draftStore";
 import {
   type NewObject,
@@ -17,6 +18,7 @@ import {
   savedAlready,
   touchedIds,
   uncutNote,
+  WHOLE_SCENE,
 } from "./objectEditor";
 import type { SceneSession } from "./sceneSession";
 
@@ -47,7 +49,11 @@ class RevisionServer {
     }
     let objects = [...(this.latest.scene.objects ?? [])];
     for (const edit of edits) {
-      if (edit.kind === "add_object") objects.push(object(edit.id, edit.class));
+      if (edit.kind === "restore_scene") {
+        const then = this.revisions.find((r) => r.revision === edit.from_revision);
+        if (!then) throw new ApiError(422, "no such revision", "422");
+        objects = [...(then.scene.objects ?? [])];
+      } else if (edit.kind === "add_object") objects.push(object(edit.id, edit.class));
       else if (edit.kind === "remove_object") objects = objects.filter((o) => o.id !== edit.id);
       else if (edit.kind === "set_class")
         objects = objects.map((o) => (o.id === edit.id ? object(o.id, edit.class) : o));
@@ -127,6 +133,55 @@ describe("ObjectEditor", () => {
     await editor.apply([{ kind: "set_class", id: "o1", class: "desk" }], "o1 → desk");
     expect(editor.redoLabel).toBeNull();
     expect(editor.undoLabel).toBe("o1 → desk");
+  });
+
+  it("a revert restores the whole scene as one action, and its undo the revision before it", async () => {
+    await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
+    await editor.apply([drawn("d1", "lamp")], "add lamp d1");
+    await revertTo(editor, 1, server.revisions[0] as SceneDocument);
+    expect(server.requests.at(-1)).toEqual({
+      base: 3,
+      edits: [{ kind: "restore_scene", from_revision: 1 }],
+    });
+    expect(classes(session)).toEqual({ o1: "chair" });
+    expect(editor.undoLabel).toBe("revert to revision 1");
+
+    expect(await editor.undo()).toBe("revert to revision 1");
+    expect(server.requests.at(-1)?.edits).toEqual([{ kind: "restore_scene", from_revision: 3 }]);
+    expect(classes(session)).toEqual({ o1: "sofa", d1: "lamp" });
+    expect(await editor.redo()).toBe("revert to revision 1");
+    expect(classes(session)).toEqual({ o1: "chair" });
+
+    // Nothing to do: said, not sent.
+    const sent = server.requests.length;
+    await revertTo(editor, 4, server.revisions[3] as SceneDocument);
+    expect(server.requests.length).toBe(sent);
+    expect(session.message).toBe("The scene is already as in revision 4.");
+  });
+
+  it("a revert waits for unsaved support edits to be saved or discarded", async () => {
+    await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
+    session.edit("o1 on the floor", [
+      { kind: "set_support", child: "o1", parent: "floor", type: "below" },
+    ]);
+    const sent = server.requests.length;
+    await revertTo(editor, 1, server.revisions[0] as SceneDocument);
+    expect(server.requests.length).toBe(sent);
+    expect(session.message).toContain("Save or discard your 1 unsaved change first");
+    expect(session.unsavedCount).toBe(1); // still there
+  });
+
+  it("an undo of a revert is refused when anything in the scene changed since", async () => {
+    await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
+    await revertTo(editor, 1, server.revisions[0] as SceneDocument);
+    await server.post("s1", 3, "colleague", [drawn("d9", "lamp")]);
+    session.adopt(server.latest);
+    const posted = server.requests.length;
+    expect(await editor.undo()).toBeNull();
+    expect(server.requests.length).toBe(posted);
+    expect(JSON.stringify(editor.status)).toContain("changed the scene since");
+    expect(touchedIds([{ kind: "restore_scene", from_revision: 1 }])).toEqual([WHOLE_SCENE]);
+    expect(restoreEdits([WHOLE_SCENE], 2)).toEqual([{ kind: "restore_scene", from_revision: 2 }]);
   });
 
   it("actions made quickly run one after another, each on the revision before it", async () => {

@@ -12,6 +12,7 @@ import type {
   EditRequest,
   RemoveObject,
   RestoreObject,
+  RestoreScene,
   RevisionInfo,
   SceneDocument,
   SceneObject,
@@ -33,7 +34,17 @@ import type { Undoable } from "./undoOrder";
 export type NewObject = Omit<AddObject, "mask" | "score"> &
   Partial<Pick<AddObject, "mask" | "score">>;
 
-export type ObjectEdit = NewObject | RemoveObject | SetClass | SetBbox | SetMask | RestoreObject;
+export type ObjectEdit =
+  | NewObject
+  | RemoveObject
+  | SetClass
+  | SetBbox
+  | SetMask
+  | RestoreObject
+  | RestoreScene;
+
+/** What an action that restored the whole scene touched: no object id looks like it. */
+export const WHOLE_SCENE = "*scene";
 
 /**
  * What to say of new objects the server could not cut out (their mask is their whole box,
@@ -83,9 +94,21 @@ const postToApi: PostEdits = (sceneId, baseRevision, author, edits) => {
   return api.postEdits(sceneId, { base_revision: baseRevision, author, edits: [first, ...rest] });
 };
 
-/** The objects an action names, each once, in order. */
+/** The objects an action names, each once, in order (WHOLE_SCENE for a restored scene). */
 export function touchedIds(edits: readonly ObjectEdit[]): string[] {
-  return [...new Set(edits.map((edit) => edit.id))];
+  return [...new Set(edits.map((edit) => (edit.kind === "restore_scene" ? WHOLE_SCENE : edit.id)))];
+}
+
+/** `ids` for a person to read ("the scene" for WHOLE_SCENE). */
+export function touchedText(ids: readonly string[]): string {
+  return ids.map((id) => (id === WHOLE_SCENE ? "the scene" : id)).join(", ");
+}
+
+/** What an undo must find unchanged: the object, or for WHOLE_SCENE all a revert puts back. */
+function touchedState(doc: SceneDocument, id: string): string {
+  if (id !== WHOLE_SCENE) return canonical(doc.scene.objects?.find((o) => o.id === id) ?? null);
+  const { objects, supports, layout, camera, removed_by_person } = doc.scene;
+  return canonical({ objects, supports, layout, camera, removed_by_person });
 }
 
 /** The ids among `ids` whose object differs between two revisions (or is in only one). */
@@ -94,13 +117,18 @@ export function objectsChanged(
   from: SceneDocument,
   to: SceneDocument,
 ): string[] {
-  const state = (doc: SceneDocument, id: string) =>
-    canonical(doc.scene.objects?.find((o) => o.id === id) ?? null);
-  return ids.filter((id) => state(from, id) !== state(to, id));
+  return ids.filter((id) => touchedState(from, id) !== touchedState(to, id));
 }
 
-/** The edits that put the objects back as they were in `revision` (or remove them). */
-export function restoreEdits(ids: readonly string[], revision: number): RestoreObject[] {
+/**
+ * The edits that put the objects back as they were in `revision` (or remove them); the whole
+ * scene when the action restored it.
+ */
+export function restoreEdits(
+  ids: readonly string[],
+  revision: number,
+): (RestoreObject | RestoreScene)[] {
+  if (ids.includes(WHOLE_SCENE)) return [{ kind: "restore_scene", from_revision: revision }];
   return ids.map((id) => ({ kind: "restore_object", id, from_revision: revision }));
 }
 
@@ -122,6 +150,10 @@ export function rebaseEdits(
   const missing: string[] = [];
   const out: ObjectEdit[] = [];
   for (const edit of edits) {
+    if (edit.kind === "restore_scene") {
+      out.push(edit); // always applies: the server restores the revision as a whole
+      continue;
+    }
     const id = renamed.get(edit.id) ?? edit.id;
     if (edit.kind === "add_object") {
       const free = present.has(id)
@@ -449,7 +481,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
       }
       const renames = rebased.renamed.map(([from, to]) => ` ${from} was taken: yours is ${to}.`);
       if (changed.length > 0) {
-        renames.push(` Both of you changed ${changed.join(", ")}: yours is kept on top.`);
+        renames.push(` Both of you changed ${touchedText(changed)}: yours is kept on top.`);
       }
       const note = `${who} saved revision ${latest} meanwhile; your change was applied on top.${renames.join("")}`;
       return this.adopt(label, latest, rebased.edits, await this.post(latest, rebased.edits), note);
@@ -460,7 +492,8 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     }
   }
 
-  private remember(doc: SceneDocument): void {
+  /** A revision this page has loaded: an undo or a revert naming it is shown at once. */
+  remember(doc: SceneDocument): void {
     this.seen.set(doc.revision, doc);
     // The revisions an undo or redo may name: those of the last actions.
     if (this.seen.size > 100) this.seen.delete(this.seen.keys().next().value as number);
@@ -530,7 +563,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   /** An undo or redo not sent: it would overwrite what someone changed since. */
   private refuseOverwrite(label: string, ids: readonly string[], who = "Someone"): void {
     const message =
-      `Not done: ${label}. ${who} changed ${ids.join(", ")} since; undoing would throw that ` +
+      `Not done: ${label}. ${who} changed ${touchedText(ids)} since; undoing would throw that ` +
       "change away. Change the object by hand instead.";
     this.setStatus({ kind: "idle", message, error: true });
   }

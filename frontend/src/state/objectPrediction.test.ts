@@ -106,4 +106,18 @@ describe("predictDocument", () => {
     expect(ids(restored)?.sort()).toEqual(["c", "l", "t"]);
     expect(edges(restored)).toEqual(edges(original));
   });
+
+  it("a revert to a revision at hand shows that revision's scene on this one's photo", () => {
+    const removed = predictDocument(original, [{ kind: "remove_object", id: "t" }], none);
+    if (!removed) throw new Error("predicted");
+    const later = { ...removed, revision: 4, scene: { ...removed.scene, name: "renamed" } };
+    const edit = { kind: "restore_scene", from_revision: 3 } as const;
+    const reverted = predictDocument(later, [edit], (n) => (n === 3 ? original : undefined));
+    expect(ids(reverted)).toEqual(["t", "c", "l"]);
+    expect(edges(reverted)).toEqual(edges(original));
+    expect(reverted?.scene.layout).toEqual(original.scene.layout);
+    expect(reverted?.scene.name).toBe("renamed");
+    expect(reverted?.revision).toBe(4);
+    expect(predictDocument(later, [edit], none)).toBeNull();
+  });
 });

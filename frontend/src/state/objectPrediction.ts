@@ -1,9 +1,10 @@
 // What an object action will do to the scene, shown before the server answers (so an edit is
 // redrawn at once, not after the round trip): a removal takes the object and every support it
 // took part in away, a class or box change shows the new class or box, and a restore puts
-// back the object and its supports of a revision seen before. The server's revision replaces
-// the prediction as soon as it comes (masks the server cuts are only known then, so a new object
-// without a mask is shown by its box until the answer brings the mask).
+// back the object and its supports (or, for a revert, the whole scene) of a revision seen
+// before. The server's revision replaces the prediction as soon as it comes (masks the server
+// cuts are only known then, so a new object without a mask is shown by its box until the
+// answer brings the mask).
 import type { SceneDocument, SceneObject, SupportRelation } from "@holiscene/schema";
 import { storedClass } from "./classNames";
 import type { NewObject, ObjectEdit } from "./objectEditor";
@@ -40,9 +41,19 @@ export function predictDocument(
   edits: readonly ObjectEdit[],
   revision: (number: number) => SceneDocument | undefined,
 ): SceneDocument | null {
-  let objects = [...(doc.scene.objects ?? [])];
-  let supports = [...(doc.scene.supports ?? [])];
+  let scene = doc.scene;
+  let objects = [...(scene.objects ?? [])];
+  let supports = [...(scene.supports ?? [])];
   for (const edit of edits) {
+    if (edit.kind === "restore_scene") {
+      const then = revision(edit.from_revision);
+      if (!then) return null;
+      // The photo, its depth and the name stay, as the server keeps them.
+      scene = { ...then.scene, name: scene.name, image: scene.image, depth: scene.depth };
+      objects = [...(scene.objects ?? [])];
+      supports = [...(scene.supports ?? [])];
+      continue;
+    }
     const index = objects.findIndex((o) => o.id === edit.id);
     const object = objects[index];
     if (edit.kind === "add_object") {
@@ -79,5 +90,5 @@ export function predictDocument(
       }
     } else return null;
   }
-  return { ...doc, scene: { ...doc.scene, objects, supports } };
+  return { ...doc, scene: { ...scene, objects, supports } };
 }

@@ -2,8 +2,7 @@
 import type { Scene, SupportRelation } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
 import { supportRelation } from "../testing/supports";
-import { describeChange, diffScenes, diffSupports, revertEdits } from "./revisionDiff";
-import { shownSupports } from "./supportGraph";
+import { describeChange, diffScenes, diffSupports } from "./revisionDiff";
 
 const rel = supportRelation;
 
@@ -51,21 +50,5 @@ describe("revision diff", () => {
     expect(diff.objectsAdded).toEqual(["o4"]);
     expect(diff.objectsRemoved).toEqual(["o3"]);
     expect(diff.layoutChanged).toBe(true);
-  });
-
-  it("revert restores every differing support, provenance included", () => {
-    const edits = revertEdits(scene(after), after, 2, scene(before));
-    expect(edits.map((e) => [e.child, e.from_revision])).toEqual([
-      ["o0", 2],
-      ["o1", 2],
-      ["o2", 2],
-      ["o3", 2],
-    ]);
-    const reverted = [...shownSupports(after, edits).values()];
-    expect(reverted.map((s) => [s.child, s.parent, s.type, s.source])).toEqual(
-      before.map((s) => [s.child, s.parent, s.type, s.source]),
-    );
-    // An object gone since is left out.
-    expect(revertEdits(scene(after, ["o0", "o1", "o2"]), after, 2, scene(before))).toHaveLength(3);
   });
 });

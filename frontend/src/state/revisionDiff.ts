@@ -1,7 +1,6 @@
-// What changed between two revisions of a scene (the history's diff), and the edits that put
-// the supports back as an earlier revision had them (revert).
+// What changed between two revisions of a scene (the history's diff).
 import type { Scene, SupportRelation } from "@holiscene/schema";
-import { type RestoreSupportEdit, sameRelation } from "./supportGraph";
+import { sameRelation } from "./supportGraph";
 
 export type ChangeKind = "added" | "removed" | "moved" | "retyped" | "confirmed" | "provenance";
 
@@ -74,25 +73,4 @@ export function describeChange(change: SupportChange): string {
     provenance: "set again",
   };
   return `${change.child}: ${verb[change.kind]}: ${relationText(change.before)} → ${relationText(change.after)}`;
-}
-
-/**
- * Edits that give the current scene the supports of revision `number` (whose scene is
- * `target`), provenance included: one RestoreSupport per object that differs and still exists.
- */
-export function revertEdits(
-  current: Scene,
-  shown: readonly SupportRelation[],
-  number: number,
-  target: Scene,
-): RestoreSupportEdit[] {
-  const exists = new Set((current.objects ?? []).map((o) => o.id));
-  return diffSupports(shown, target.supports ?? [])
-    .filter((c) => exists.has(c.child))
-    .map((c) => ({
-      kind: "restore_support",
-      child: c.child,
-      from_revision: number,
-      restores: c.after,
-    }));
 }

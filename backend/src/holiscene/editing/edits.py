@@ -18,6 +18,7 @@ from holiscene_schema import (
     RemoveObject,
     RemoveSupport,
     RestoreObject,
+    RestoreScene,
     RestoreSupport,
     Scene,
     SceneObject,
@@ -54,8 +55,9 @@ class InvalidEditError(DomainError, ValueError):
 
 
 def restore_revisions(edits: Sequence[Edit]) -> set[int]:
-    """The earlier revisions the edits restore supports or objects from."""
-    return {e.from_revision for e in edits if isinstance(e, RestoreSupport | RestoreObject)}
+    """The earlier revisions the edits restore supports, objects or the whole scene from."""
+    restoring = RestoreSupport | RestoreObject | RestoreScene
+    return {e.from_revision for e in edits if isinstance(e, restoring)}
 
 
 def needs_photo(edits: Sequence[Edit]) -> bool:
@@ -106,13 +108,26 @@ def apply_edits(
     RGB photo, is needed to cut masks in boxes (needs_photo)."""
     draft = _Draft.of(scene)
     for edit in edits:
-        if isinstance(edit, SetLayout):
+        if isinstance(edit, RestoreScene):
+            draft = _Draft.of(_restored_scene(draft.scene, edit, earlier or {}))
+        elif isinstance(edit, SetLayout):
             draft.scene = _with_layout(draft.scene, edit)
         elif isinstance(edit, OBJECT_EDITS):
             _apply_object_edit(draft, edit, photo, earlier or {})
         else:
             _apply_support_edit(draft, edit, author, now, earlier or {})
     return draft.result()
+
+
+def _restored_scene(scene: Scene, edit: RestoreScene, earlier: Mapping[int, Scene]) -> Scene:
+    """The earlier revision's scene on this scene's photo: what people and the pipeline made
+    goes back, the inputs (photo, depth) and the name stay."""
+    restored = earlier.get(edit.from_revision)
+    if restored is None:
+        raise InvalidEditError(f"no revision {edit.from_revision} to restore the scene from")
+    return restored.model_copy(
+        update={"name": scene.name, "image": scene.image, "depth": scene.depth}
+    )
 
 
 def _with_layout(scene: Scene, edit: SetLayout) -> Scene:
@@ -249,6 +264,8 @@ def describe_edits(edits: Sequence[Edit]) -> str:
             parts.append(f"{edit.id} mask drawn")
         elif isinstance(edit, RestoreObject):
             parts.append(f"{edit.id} as in revision {edit.from_revision}")
+        elif isinstance(edit, RestoreScene):
+            parts.append(f"the scene as in revision {edit.from_revision}")
         else:
             parts.append(f"{edit.child} support removed")
     return "; ".join(parts)

@@ -12,7 +12,8 @@ from fastapi.testclient import TestClient
 from holiscene.segmentation.rle import decode_mask
 from holiscene_schema import Mask
 
-from ...conftest import upload, wait_for_job
+from ...conftest import imported_scene, wait_for_job
+from ...conftest import post_edits as _edit
 
 WIDTH, HEIGHT = 730, 530
 # A box around the left dresser's drawers (o2's box is [419, 226, 564, 343]).
@@ -20,17 +21,7 @@ DRESSER_BOX = [425.0, 230.0, 560.0, 340.0]
 
 
 def _imported(client: TestClient, folder: Path, run_pipeline: bool = False) -> dict[str, Any]:
-    result = upload(client, folder, name="t3d-5", run_pipeline=str(run_pipeline).lower())
-    if run_pipeline:
-        job = wait_for_job(client, result["job"]["id"])
-        assert job["status"] == "succeeded", job
-    doc: dict[str, Any] = client.get(f"/api/scenes/{result['scene']['id']}").json()
-    return doc
-
-
-def _edit(client: TestClient, doc: dict[str, Any], *edits: dict[str, Any]) -> Any:
-    body = {"base_revision": doc["revision"], "author": "ann", "edits": list(edits)}
-    return client.post(f"/api/scenes/{doc['scene_id']}/edits", json=body)
+    return imported_scene(client, folder, "t3d-5", run_pipeline)
 
 
 def _add(object_id: str, cls: str, bbox: list[float], **extra: Any) -> dict[str, Any]:

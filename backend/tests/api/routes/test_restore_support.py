@@ -8,20 +8,12 @@ from typing import Any
 
 from fastapi.testclient import TestClient
 
-from ...conftest import upload, wait_for_job
+from ...conftest import imported_scene
+from ...conftest import post_edits as _edit
 
 
 def _imported(client: TestClient, folder: Path) -> dict[str, Any]:
-    result = upload(client, folder, name="t3d-5")
-    job = wait_for_job(client, result["job"]["id"])
-    assert job["status"] == "succeeded", job
-    doc: dict[str, Any] = client.get(f"/api/scenes/{result['scene']['id']}").json()
-    return doc
-
-
-def _edit(client: TestClient, doc: dict[str, Any], *edits: dict[str, Any]) -> Any:
-    body = {"base_revision": doc["revision"], "author": "ann", "edits": list(edits)}
-    return client.post(f"/api/scenes/{doc['scene_id']}/edits", json=body)
+    return imported_scene(client, folder, "t3d-5")
 
 
 def _support(doc: dict[str, Any], child: str) -> dict[str, Any] | None:

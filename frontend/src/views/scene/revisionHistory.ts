@@ -1,17 +1,22 @@
 // The scene's revisions, newest first, refreshed whenever a new revision is loaded. Each one
-// can show what it changed (diff against the revision before it) and be reverted to: the
-// supports go back exactly as that revision stored them (a new revision; undo takes it back).
+// can show what it changed (diff against the revision before it) and be reverted to: the whole
+// scene goes back exactly as that revision stored it (a new revision; undo takes it back).
 
 import type { RevisionInfo, SceneDocument } from "@holiscene/schema";
 import { deferred } from "../../afterPaint";
 import { api } from "../../api/client";
 import { button, el, formatTime } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
+import type { ObjectEditor } from "../../state/objectEditor";
 import type { SceneSession } from "../../state/sceneSession";
 import { diffLines } from "./history/diffLines";
 import { revertTo } from "./history/revertRevision";
 
-export function mountRevisionHistory(container: HTMLElement, session: SceneSession): () => void {
+export function mountRevisionHistory(
+  container: HTMLElement,
+  session: SceneSession,
+  editor: ObjectEditor,
+): () => void {
   const list = el("ol", { className: "revision-list", testid: "revision-list" });
   const summary = el("summary", { text: "History", testid: "history-toggle" });
   const details = el("details", { className: "history", testid: "history" }, summary, list);
@@ -43,7 +48,7 @@ export function mountRevisionHistory(container: HTMLElement, session: SceneSessi
   const revert = async (info: RevisionInfo, revertButton: HTMLButtonElement) => {
     revertButton.disabled = true;
     try {
-      await revertTo(session, info.number, await revision(info.number));
+      await revertTo(editor, info.number, await revision(info.number));
     } catch (error) {
       session.say(`Could not revert: ${String(error)}`);
     } finally {
@@ -66,7 +71,7 @@ export function mountRevisionHistory(container: HTMLElement, session: SceneSessi
     const revertButton = button("Revert to this", {
       className: "link-button",
       testid: `revision-revert-${info.number}`,
-      title: "Put the supports back as they were in this revision",
+      title: "Put the whole scene back as it was in this revision (objects, supports, room)",
     });
     revertButton.onclick = () => void revert(info, revertButton);
     revertButton.disabled = !session.editable;

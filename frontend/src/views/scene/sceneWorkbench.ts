@@ -93,7 +93,7 @@ export function mountSceneWorkbench(
       objectEditor,
     ),
     mountSupportSuggestions(suggestions, table, session),
-    mountRevisionHistory(history, session),
+    mountRevisionHistory(history, session, objectEditor),
     mountWorkflowBar(workflow, session),
     banner.dispose,
     warnings.dispose,

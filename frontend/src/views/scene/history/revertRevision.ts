@@ -1,32 +1,30 @@
-// Reverting to a revision: the supports go back exactly as that revision stored them, as one
-// edit of the session (saved at once: a new revision, which undo takes back).
+// Reverting to a revision: the whole scene (objects, supports, room layout, camera) goes back
+// as that revision had it, as one object action: a new revision at once, which undo takes back.
 import type { SceneDocument } from "@holiscene/schema";
-import { getAuthor } from "../../../state/author";
-import { revertEdits } from "../../../state/revisionDiff";
-import type { SceneSession } from "../../../state/sceneSession";
+import { type ObjectEditor, objectsChanged, WHOLE_SCENE } from "../../../state/objectEditor";
+import { plural } from "../../../state/sceneSession";
 
 export async function revertTo(
-  session: SceneSession,
+  editor: ObjectEditor,
   number: number,
   target: SceneDocument,
 ): Promise<void> {
-  const shown = [...session.shown().values()].map(
-    (s) =>
-      s.saved ?? {
-        child: s.child,
-        parent: s.parent,
-        type: s.type,
-        source: s.source,
-        author: s.author,
-        time: s.time,
-        confidence: s.confidence,
-      },
-  );
-  const edits = revertEdits(session.doc.scene, shown, number, target.scene);
-  if (edits.length === 0) {
-    session.say(`The supports are already as in revision ${number}.`);
+  const session = editor.session;
+  const unsaved = session.unsavedCount;
+  if (unsaved > 0) {
+    // The revert would be saved under them: they would come back on top of the old scene.
+    session.say(
+      `Save or discard your ${plural(unsaved, "unsaved change")} first: a revert replaces the whole scene.`,
+    );
     return;
   }
-  session.edit(`revert to revision ${number}`, edits);
-  await session.save(getAuthor());
+  if (objectsChanged([WHOLE_SCENE], target, session.doc).length === 0) {
+    session.say(`The scene is already as in revision ${number}.`);
+    return;
+  }
+  editor.remember(target); // shown at once, before the server answers
+  await editor.apply(
+    [{ kind: "restore_scene", from_revision: number }],
+    `revert to revision ${number}`,
+  );
 }
