@@ -185,6 +185,15 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await page.keyboard.press(">"); // the next scene, from the scene page
   await expect(page).toHaveURL(new RegExp(`#/scenes/${second.id}$`));
   await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+  // Taken by mistake: given back (after a confirmation), it waits for an annotator again.
+  page.once("dialog", (dialog) => void dialog.accept());
+  await page.getByTestId("workflow-release").click();
+  await expect(page.getByTestId("workflow-state")).toHaveText("predicted");
+  await expect(page.getByTestId("workflow-events").locator("li").last()).toContainText(
+    `${ANNOTATOR.name} gave it back`,
+  );
+  await page.getByTestId("workflow-take").click();
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
   await correctASupporter(page, admin, second.id);
   await page.locator("body").click({ position: { x: 5, y: 5 } }); // keys go to the page
   await page.keyboard.press("Shift+Enter");

@@ -531,7 +531,15 @@ class PasswordChange(SchemaModel):
 
 
 WorkflowAction = Literal[
-    "import", "predict", "claim", "reopen", "submit", "accept", "reject", "second_annotation"
+    "import",
+    "predict",
+    "claim",
+    "release",
+    "reopen",
+    "submit",
+    "accept",
+    "reject",
+    "second_annotation",
 ]
 
 
@@ -562,6 +570,12 @@ class SceneWorkflow(EditPermission):
         "submitted again",
     )
     events: list[WorkflowEvent] = Field(description="Oldest first")
+
+
+class ReleaseRequest(SchemaModel):
+    revision: RevisionNumber = Field(
+        description="The revision the annotator gives back (the latest)"
+    )
 
 
 class SubmitRequest(SchemaModel):

@@ -1189,7 +1189,7 @@ state: ("new" | "predicted" | "in_annotation" | "submitted" | "accepted" | "reje
  * via the `definition` "WorkflowEvent".
  */
 export interface WorkflowEvent {
-action: ("import" | "predict" | "claim" | "reopen" | "submit" | "accept" | "reject" | "second_annotation")
+action: ("import" | "predict" | "claim" | "release" | "reopen" | "submit" | "accept" | "reject" | "second_annotation")
 actor: string
 annotation_round: number
 /**

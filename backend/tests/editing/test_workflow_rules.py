@@ -8,6 +8,7 @@ from holiscene.editing.workflow_rules import (
     SceneStatus,
     WorkflowError,
     has_role,
+    release,
     review,
     scene_uncertainty,
     submit,
@@ -152,3 +153,17 @@ def test_submitting_and_reviewing() -> None:
     # The local single-user mode plays every part.
     local = Actor("local", "admin", local=True)
     assert review(SceneStatus("submitted", "local", 1), local, accept=True).to_state == "accepted"
+
+
+def test_release_gives_a_scene_back_as_new_or_predicted_unless_sent_back_to_be_fixed() -> None:
+    taken = SceneStatus("in_annotation", "ann", 1)
+    assert release(taken, ANN, predicted=True, sent_back=False).to_state == "predicted"
+    back = release(taken, ANN, predicted=False, sent_back=False)
+    assert (back.action, back.to_state, back.assignee) == ("release", "new", None)
+    with pytest.raises(WorkflowError, match="only they or an admin"):
+        release(taken, BOB, predicted=True, sent_back=False)
+    with pytest.raises(WorkflowError, match="sent back by a reviewer"):
+        release(taken, ANN, predicted=True, sent_back=True)
+    assert release(taken, ADMIN, predicted=True, sent_back=True).to_state == "predicted"
+    with pytest.raises(WorkflowError, match="only a scene in annotation"):
+        release(SceneStatus("submitted", "ann", 1), ANN, predicted=True, sent_back=False)

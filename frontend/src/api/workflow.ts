@@ -73,6 +73,10 @@ export const workflowApi = {
 
   take: (sceneId: string) => request<SceneSummary>(`${sceneUrl(sceneId)}/take`, { method: "POST" }),
 
+  /** Give back a scene in annotation: it waits for the next annotator again. */
+  release: (sceneId: string, revision: number) =>
+    request<SceneWorkflow>(`${sceneUrl(sceneId)}/release`, jsonBody({ revision })),
+
   submit: (sceneId: string, revision: number) =>
     request<SceneWorkflow>(`${sceneUrl(sceneId)}/submit`, jsonBody({ revision })),
 

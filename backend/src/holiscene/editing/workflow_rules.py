@@ -133,6 +133,27 @@ def edit_refusal(
     return None
 
 
+def release(status: SceneStatus, actor: Actor, predicted: bool, sent_back: bool) -> Transition:
+    """Give back a scene taken by mistake: it waits for an annotator again, with its edits.
+    `predicted`: the pipeline has run on it (else it is new again); `sent_back`: a reviewer
+    rejected it in this annotation round, and then it stays with its annotator to fix."""
+    if status.state != "in_annotation":
+        raise WorkflowError(
+            f"only a scene in annotation can be given back; this one is {describe(status.state)}"
+        )
+    if status.assignee not in (None, actor.name) and not has_role(actor.role, "admin"):
+        raise WorkflowError(
+            f"the scene is being annotated by {status.assignee}: only they or an admin can "
+            "give it back"
+        )
+    if sent_back and not has_role(actor.role, "admin"):
+        raise WorkflowError(
+            "the scene was sent back by a reviewer to be fixed: fix it and submit it again "
+            "(an admin can give it back)"
+        )
+    return Transition("release", "predicted" if predicted else "new", None)
+
+
 def submit(status: SceneStatus, actor: Actor) -> Transition:
     if status.state != "in_annotation":
         raise WorkflowError(

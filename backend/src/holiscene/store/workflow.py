@@ -225,6 +225,19 @@ class WorkflowStore:
         )
         return rejected + list(predicted)
 
+    def release(self, scene_id: str, revision: int, actor: Actor) -> SceneWorkflow:
+        """Give back a scene in annotation: unassigned, predicted again (new when the pipeline
+        never ran on it), its revisions kept."""
+        predicted = self.scenes.latest_pipeline_document(scene_id) is not None
+        with Session(self.engine) as session:
+            sent_back = _rejected_this_round(session, _row(session, scene_id))
+        return self._change(
+            scene_id,
+            revision,
+            lambda status: workflow_rules.release(status, actor, predicted, sent_back),
+            actor,
+        )
+
     def submit(self, scene_id: str, revision: int, actor: Actor) -> SceneWorkflow:
         return self._change(
             scene_id, revision, lambda status: workflow_rules.submit(status, actor), actor
@@ -421,6 +434,20 @@ def _earlier_annotators(db: Session | Connection, row: SceneHead) -> set[str]:
             )
         )
     )
+
+
+def _rejected_this_round(session: Session, row: SceneRow) -> bool:
+    """Whether a reviewer rejected the scene in its current annotation round."""
+    found = session.scalar(
+        select(SceneEventRow.id)
+        .where(
+            SceneEventRow.scene_id == row.id,
+            SceneEventRow.action == "reject",
+            SceneEventRow.annotation_round == row.annotation_round,
+        )
+        .limit(1)
+    )
+    return found is not None
 
 
 def _apply(

@@ -149,6 +149,44 @@ def test_a_scene_goes_through_every_state(api: Api, accounts: Accounts) -> None:
     assert all(e["assignee"] == "ann" for e in flow["events"][2:])
 
 
+def test_a_scene_taken_by_mistake_is_given_back_with_its_edits(
+    api: Api, accounts: Accounts
+) -> None:
+    scene_id = store_predicted_scene(accounts.workbench.scenes)
+    edited = api.edit("ann", scene_id, _set("o2", "floor"))
+    assert edited.status_code == 200, edited.text
+    before = api.snapshot(scene_id)
+    _refused(api, scene_id, api.act("bob", scene_id, "release"), 409, "only they or an admin")
+    stale = api.act("ann", scene_id, "release", revision=edited.json()["revision"] - 1)
+    _refused(api, scene_id, stale, 409, "changed since you loaded it")
+    assert api.snapshot(scene_id) == before
+
+    released = api.act("ann", scene_id, "release")
+    assert released.status_code == 200, released.text
+    flow = released.json()
+    assert (flow["state"], flow["assignee"]) == ("predicted", None)
+    assert flow["events"][-1]["action"] == "release"
+    assert flow["revision"] == edited.json()["revision"]  # the edit stays
+    _refused(api, scene_id, api.act("ann", scene_id, "release"), 409, "only a scene in annotation")
+    # It waits for the next annotator, who gets it with ann's edit.
+    taken = api.post("bob", "/api/scenes/next")
+    assert taken.status_code == 200 and taken.json()["id"] == scene_id
+    assert taken.json()["assignee"] == "bob"
+    doc = api.get("bob", f"/api/scenes/{scene_id}")
+    assert any(s["child"] == "o2" and s["author"] == "ann" for s in doc["scene"]["supports"])
+
+    # Sent back by a reviewer: its annotator fixes it; an admin may still give it back.
+    assert api.act("bob", scene_id, "submit").status_code == 200
+    assert (
+        api.act("rita", scene_id, "reject", comment="o1 is on the wrong thing").status_code == 200
+    )
+    assert api.edit("bob", scene_id, _set("o1", "floor")).status_code == 200
+    _refused(api, scene_id, api.act("bob", scene_id, "release"), 409, "sent back by a reviewer")
+    by_admin = api.act("ada", scene_id, "release")
+    assert by_admin.status_code == 200, by_admin.text
+    assert (by_admin.json()["state"], by_admin.json()["assignee"]) == ("predicted", None)
+
+
 def test_reviewers_do_not_review_their_own_work(api: Api, accounts: Accounts) -> None:
     scene_id = store_predicted_scene(accounts.workbench.scenes)
     assert api.post("rita", f"/api/scenes/{scene_id}/take").json()["assignee"] == "rita"

@@ -1,5 +1,5 @@
-// The workflow bar's buttons: take, submit, accept, reject (with the comment box it opens) and
-// "ask for a second annotation", each shown only when the user's role and the scene's state
+// The workflow bar's buttons: take, give back, submit, accept, reject (with the comment box it
+// opens) and "ask for a second annotation", each shown only when the user's role and the scene's state
 // allow it. What they do is the bar's business (onTake, ...).
 import type { CurrentUser, SceneWorkflow } from "@holiscene/schema";
 import { button, el } from "../../dom";
@@ -16,6 +16,8 @@ export interface ActionState {
   annotator: boolean;
   mine: boolean;
   canSubmit: boolean;
+  /** Give the scene back to the queue: its annotator (or an admin), unless sent back to fix. */
+  canRelease: boolean;
   canReview: boolean;
   reviewer: boolean;
 }
@@ -30,6 +32,10 @@ export function actionState(
   const mine = flow.assignee === me?.name;
   const annotator = hasRole("annotator", me);
   const reviewer = hasRole("reviewer", me);
+  const admin = hasRole("admin", me);
+  const sentBack = flow.events.some(
+    (e) => e.action === "reject" && e.annotation_round === flow.annotation_round,
+  );
   return {
     flow,
     pending,
@@ -38,6 +44,11 @@ export function actionState(
     reviewer,
     mine,
     canSubmit: flow.state === "in_annotation" && mine && annotator && !busy,
+    // In local mode one person plays every part: there is nobody to give it back to.
+    canRelease:
+      flow.state === "in_annotation" &&
+      me?.local_mode !== true &&
+      ((mine && annotator && !sentBack) || admin),
     canReview:
       flow.state === "submitted" && reviewer && (!mine || me?.local_mode === true) && !busy,
   };
@@ -46,6 +57,7 @@ export function actionState(
 export interface ActionHandlers {
   onTake(): void;
   onSubmit(): void;
+  onRelease(): void;
   onAccept(): void;
   /** The reviewer sends the comment (trimmed; never empty). */
   onReject(comment: string): void;
@@ -72,6 +84,11 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
     button(text, { className: primary ? "primary" : "", testid, title, hidden: true });
   const take = actionButton("Start annotating", "workflow-take", "Take this scene for annotation");
   const submit = actionButton("Submit for review", "workflow-submit", "Submit (Shift+Enter)", true);
+  const release = actionButton(
+    "Give back",
+    "workflow-release",
+    "Put the scene back in the queue for another annotator (your saved changes stay)",
+  );
   const accept = actionButton("Accept", "workflow-accept", "Accept (Shift+Enter)", true);
   const reject = actionButton("Reject…", "workflow-reject", "Reject with a comment (Shift+X)");
   const again = actionButton(
@@ -106,6 +123,7 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
   };
   take.addEventListener("click", handlers.onTake);
   submit.addEventListener("click", handlers.onSubmit);
+  release.addEventListener("click", handlers.onRelease);
   accept.addEventListener("click", handlers.onAccept);
   reject.addEventListener("click", openReject);
   rejectCancel.addEventListener("click", () => {
@@ -134,6 +152,12 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
     submit.disabled = !now.canSubmit || pending > 0;
     submit.title =
       pending > 0 ? "Save your changes first" : "Submit this revision for review (Shift+Enter)";
+    release.hidden = !now.canRelease;
+    release.disabled = busy || pending > 0;
+    release.title =
+      pending > 0
+        ? "Save or discard your changes first"
+        : "Put the scene back in the queue for another annotator (your saved changes stay)";
     accept.hidden = reject.hidden = !now.canReview;
     accept.disabled = reject.disabled = busy;
     if (!now.canReview) rejectBox.hidden = true;
@@ -142,7 +166,16 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
   };
 
   return {
-    element: el("div", { className: "workflow-actions" }, take, submit, accept, reject, again),
+    element: el(
+      "div",
+      { className: "workflow-actions" },
+      take,
+      submit,
+      release,
+      accept,
+      reject,
+      again,
+    ),
     rejectBox,
     submit,
     accept,

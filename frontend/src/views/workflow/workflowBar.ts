@@ -1,6 +1,6 @@
 // The scene's place in the annotation workflow, on the scene page: its state, who annotates
 // it, the reviewer's comment when it came back, and the actions the user's role allows now
-// (take, submit, accept, reject with a comment, ask for a second annotation), with keys:
+// (take, give back, submit, accept, reject with a comment, ask for a second annotation), with keys:
 // Shift+Enter does the main step (submit, or accept for a reviewer), Shift+X rejects, ">" takes
 // the next scene (the support editor has N, Shift+A and Shift+R already).
 
@@ -33,6 +33,12 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
   const actions = workflowActions({
     onTake: () => void act(() => workflowApi.take(session.sceneId)),
     onSubmit: () => void act(() => workflowApi.submit(session.sceneId, revision())),
+    onRelease: () => {
+      const question =
+        "Give this scene back? It waits in the queue for the next annotator; every saved revision stays in its history.";
+      if (window.confirm(question))
+        void act(() => workflowApi.release(session.sceneId, revision()));
+    },
     onAccept: () => void act(() => workflowApi.accept(session.sceneId, revision())),
     onReject: (text) =>
       void act(async () => {

@@ -8,6 +8,7 @@ const ACTION_TEXT: Record<WorkflowEvent["action"], string> = {
   import: "imported",
   predict: "predicted",
   claim: "took it",
+  release: "gave it back",
   reopen: "reopened it",
   submit: "submitted",
   accept: "accepted",

@@ -8,6 +8,7 @@ from holiscene_schema import (
     Dashboard,
     ErrorMessage,
     RejectRequest,
+    ReleaseRequest,
     ReviewRequest,
     SceneSummary,
     SceneWorkflow,
@@ -57,6 +58,17 @@ def take_scene(scene_id: str, user: AnnotatorDep, workbench: WorkbenchDep) -> Sc
     """Start annotating this scene (editing it does the same). 409 when someone else is
     annotating it, or it is submitted or accepted."""
     return workbench.workflow.take(scene_id, user)
+
+
+@router.post("/scenes/{scene_id}/release", response_model=SceneWorkflow, responses=_ERRORS)
+def release_scene(
+    scene_id: str, body: ReleaseRequest, user: AnnotatorDep, workbench: WorkbenchDep
+) -> SceneWorkflow:
+    """Give back a scene taken by mistake (its annotator, or an admin): it waits for "Next
+    scene" again, with every revision kept. 409 unless it is in annotation, or when a reviewer
+    sent it back to be fixed (admins may); `revision` must be the latest."""
+    flow = workbench.workflow.release(scene_id, body.revision, user)
+    return with_edit_permission(flow, workbench, user)
 
 
 @router.post("/scenes/{scene_id}/submit", response_model=SceneWorkflow, responses=_ERRORS)

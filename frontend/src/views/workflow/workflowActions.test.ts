@@ -1,0 +1,50 @@
+// Who is offered "Give back": the scene's annotator (not when a reviewer sent it back to be
+// fixed) and admins; never in local single-user mode.
+import type { CurrentUser, SceneWorkflow, WorkflowEvent } from "@holiscene/schema";
+import { describe, expect, it } from "vitest";
+import { actionState } from "./workflowActions";
+
+const user = (name: string, role: CurrentUser["role"], local_mode = false): CurrentUser => ({
+  name,
+  role,
+  local_mode,
+});
+
+const event = (action: WorkflowEvent["action"], annotation_round = 1): WorkflowEvent =>
+  ({ action, annotation_round, actor: "x", at: "2026-12-05T00:00:00Z" }) as WorkflowEvent;
+
+const flow = (
+  state: SceneWorkflow["state"],
+  assignee: string | null,
+  events: WorkflowEvent[] = [],
+  annotation_round = 1,
+): SceneWorkflow =>
+  ({ state, assignee, events, annotation_round, revision: 3, scene_id: "s" }) as SceneWorkflow;
+
+const canRelease = (f: SceneWorkflow, me: CurrentUser) => actionState(f, me, 0, false).canRelease;
+
+describe("give back", () => {
+  it("is offered to the scene's annotator and to admins while it is in annotation", () => {
+    const taken = flow("in_annotation", "ann", [event("claim")]);
+    expect(canRelease(taken, user("ann", "annotator"))).toBe(true);
+    expect(canRelease(taken, user("bob", "annotator"))).toBe(false);
+    expect(canRelease(taken, user("rita", "reviewer"))).toBe(false);
+    expect(canRelease(taken, user("ada", "admin"))).toBe(true);
+    expect(canRelease(flow("submitted", "ann"), user("ann", "annotator"))).toBe(false);
+    expect(canRelease(flow("predicted", null), user("ann", "annotator"))).toBe(false);
+  });
+
+  it("is not offered for a scene sent back in this round, nor in local mode", () => {
+    const fixing = flow("in_annotation", "ann", [
+      event("submit"),
+      event("reject"),
+      event("reopen"),
+    ]);
+    expect(canRelease(fixing, user("ann", "annotator"))).toBe(false);
+    expect(canRelease(fixing, user("ada", "admin"))).toBe(true);
+    const secondRound = flow("in_annotation", "ann", [event("reject", 1), event("claim", 2)], 2);
+    expect(canRelease(secondRound, user("ann", "annotator"))).toBe(true);
+    const local = flow("in_annotation", "local");
+    expect(canRelease(local, user("local", "admin", true))).toBe(false);
+  });
+});
