@@ -110,7 +110,9 @@ test("boxes drawn on an empty photo become objects with masks and supporters", a
   await chooseTool(page, "select");
 });
 
-test("a box whose answer never arrived is saved once: Retry finds it saved", async ({ page }) => {
+test("a box whose answer never arrived is saved once: sent again by itself, it finds itself saved", async ({
+  page,
+}) => {
   const sceneId = await importWithoutObjects(page.request, "t3d-5 lost answer");
   await page.goto(`/#/scenes/${sceneId}`);
   await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
@@ -131,11 +133,15 @@ test("a box whose answer never arrived is saved once: Retry finds it saved", asy
   // The list points at the retry, not at adding the objects again.
   await expect(page.getByTestId("support-summary")).toContainText('"add bed d1" has no answer');
 
-  // Sent again, it meets the revision it made itself: nothing is added twice.
-  await page.getByTestId("object-edit-retry").click();
+  await expect(page.getByTestId("object-edit-failure-text")).toContainText(
+    "Trying again every few seconds",
+  );
+  // Sent again a few seconds later, it meets the revision it made itself: nothing is added twice.
   await expect(page.getByTestId("object-edit-status")).toContainText(
     `already saved as revision ${before + 1}`,
+    { timeout: 20_000 },
   );
+  await expect(page.getByTestId("object-edit-failure")).toBeHidden();
   await objectEditsSaved(page);
   expect(sent).toBe(2);
   const saved = await getScene(page.request, sceneId);

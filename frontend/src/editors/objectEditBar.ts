@@ -45,7 +45,10 @@ export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor)
     status.dataset.state = state.kind;
     const failed = editor.failure;
     failure.hidden = failed === null;
-    failureText.textContent = failed ? `Not saved: ${failed.label}. ${failed.message} ` : "";
+    const again = failed?.retrying ? " Trying again every few seconds." : "";
+    failureText.textContent = failed
+      ? `Not saved: ${failed.label}. ${failed.message}${again} `
+      : "";
     bar.hidden = failed === null && status.textContent === "";
   };
   update();

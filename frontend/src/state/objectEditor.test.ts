@@ -3,7 +3,7 @@
 // a new action forgets what was undone, a failed action is kept until retried or dropped; and
 // how an action is re-applied on a newer revision after a conflict.
 import type { SceneDocument, SceneObject } from "@holiscene/schema";
-import { beforeEach, describe, expect, it } from "vitest";
+import { beforeEach, describe, expect, it, vi } from "vitest";
 import { ApiError } from "../api/errors";
 import { MemoryStorage } from "../testing/memoryStorage";
 import { sceneDocument, sceneObject, sessionOn } from "../testing/sceneDocuments";
@@ -31,6 +31,8 @@ class RevisionServer {
   readonly revisions: SceneDocument[];
   readonly requests: { base: number; edits: ObjectEdit[] }[] = [];
   refuseNext: string | null = null;
+  /** Requests still to fail as an unreachable server's do (no answer at all). */
+  unreachableFor = 0;
 
   constructor(first: SceneDocument) {
     this.revisions = [first];
@@ -42,6 +44,10 @@ class RevisionServer {
 
   post = async (_scene: string, base: number, _author: string, edits: ObjectEdit[]) => {
     this.requests.push({ base, edits });
+    if (this.unreachableFor > 0) {
+      this.unreachableFor--;
+      throw new TypeError("Failed to fetch");
+    }
     if (this.refuseNext) {
       const reason = this.refuseNext;
       this.refuseNext = null;
@@ -244,6 +250,35 @@ describe("ObjectEditor", () => {
     expect(editor.status).toMatchObject({ kind: "idle", error: true });
     expect(JSON.stringify(editor.status)).toContain("changed o1 since");
     expect(editor.undoLabel).toBe("o1 → sofa"); // still there, for when it is safe again
+  });
+
+  it("an action that got no answer is sent again by itself until it is saved", async () => {
+    editor = new ObjectEditor(session, { author: () => "tester", post: server.post, retryMs: 5 });
+    server.unreachableFor = 2;
+    expect(await editor.apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa")).toBe(
+      false,
+    );
+    expect(editor.failure).toMatchObject({ label: "o1 → sofa", retrying: true });
+    expect(editor.failure?.message).toContain("could not be reached");
+    await vi.waitFor(() => expect(editor.failure).toBeNull());
+    expect(server.requests).toHaveLength(3);
+    expect(classes(session)).toEqual({ o1: "sofa" });
+    expect(session.drafts.loadFailedAction(session.sceneId)).toBeNull();
+    expect(server.revisions).toHaveLength(2); // saved once
+  });
+
+  it("a refused action is not sent again by itself, and leaving the page stops the retries", async () => {
+    editor = new ObjectEditor(session, { author: () => "tester", post: server.post, retryMs: 5 });
+    server.refuseNext = "unknown class";
+    await editor.apply([{ kind: "set_class", id: "o1", class: "sofaa" }], "o1 → sofaa");
+    expect(editor.failure?.retrying).toBeUndefined();
+    server.unreachableFor = 100;
+    await editor.apply([{ kind: "set_class", id: "o1", class: "desk" }], "o1 → desk");
+    editor.dispose();
+    const sent = server.requests.length;
+    await new Promise((resolve) => setTimeout(resolve, 30));
+    expect(server.requests.length).toBe(sent);
+    expect(editor.failure?.label).toBe("o1 → sofaa, then o1 → desk"); // still kept
   });
 
   it("a refused action is kept with its reason until retried (then saved once) or dropped", async () => {

@@ -6,7 +6,8 @@
 // conflict (someone saved first) the latest revision is loaded and the action sent again on top
 // of it when the objects it changes still exist; otherwise it stays, with Retry and Discard, so
 // nothing a person did is silently lost: it is kept in localStorage too (the session's
-// DraftStore) until saved or dropped, and a later visit offers it again.
+// DraftStore) until saved or dropped, and a later visit offers it again. One that failed on
+// the way (the server unreachable or failing) is also sent again by itself every few seconds.
 import type {
   AddObject,
   EditRequest,
@@ -21,7 +22,7 @@ import type {
   SetMask,
 } from "@holiscene/schema";
 import { api } from "../api/client";
-import { ConflictError, errorText } from "../api/errors";
+import { ApiError, ConflictError, errorText } from "../api/errors";
 import { freshIds } from "../views/scene/detectionOffers";
 import { getAuthor } from "./author";
 import { HistoryKeeper } from "./editHistory";
@@ -72,6 +73,16 @@ export type ObjectEditStatus =
 export interface FailedAction {
   label: string;
   message: string;
+  /** Sent again by itself soon (it failed on the way, not by the server's refusal). */
+  retrying?: boolean;
+}
+
+export const OBJECT_RETRY_MS = 5000;
+
+/** Whether sending again may succeed without any change: the request never got an answer, or
+ * the server failed (5xx); a refusal (4xx) would only be refused again. */
+function failedOnTheWay(error: unknown): boolean {
+  return error instanceof ApiError ? error.status >= 500 : error instanceof TypeError;
 }
 
 /** Sends one request of edits on a revision; the API by default (tests give their server). */
@@ -254,10 +265,11 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   private readonly reserved = new Set<string>();
   /** Revisions this page had loaded, by number (an undo shows the one it restores at once). */
   private readonly seen = new Map<number, SceneDocument>();
+  private retryTimer: ReturnType<typeof setTimeout> | null = null;
 
   constructor(
     readonly session: SceneSession,
-    private readonly options: { author?: () => string; post?: PostEdits } = {},
+    private readonly options: { author?: () => string; post?: PostEdits; retryMs?: number } = {},
   ) {
     super();
     const kept = session.drafts.loadFailedAction(session.sceneId);
@@ -265,6 +277,11 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
       this.failure = { label: kept.label, message: `${kept.message} (Kept from your last visit.)` };
       this.retryFailed = () => this.apply(kept.edits, kept.label);
     }
+  }
+
+  /** Stop sending a failed action again by itself (the page is left; it stays in the drafts). */
+  dispose(): void {
+    this.cancelRetry();
   }
 
   /** Told after every change of status, failure or history. */
@@ -368,9 +385,9 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     // Stored until saved: a tab closed while it is being sent loses nothing.
     const saved = await again();
     if (saved && this.failure === null) this.keepFailed(null);
-    // Not sent at all (the scene is read only now): still offered.
+    // Not sent at all (the scene is read only now): still offered, for the person to retry.
     if (!saved && this.failure === null) {
-      this.setFailure(failed, again);
+      this.setFailure({ label: failed.label, message: failed.message }, again);
       this.failedEdits = edits;
     }
     return saved;
@@ -386,6 +403,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
 
   private setFailure(failure: FailedAction | null, retry: (() => Promise<boolean>) | null): void {
     if (failure === null) this.failedEdits = null;
+    this.cancelRetry();
     this.failure = failure;
     this.retryFailed = retry;
     this.changed();
@@ -487,7 +505,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
       return this.adopt(label, latest, rebased.edits, await this.post(latest, rebased.edits), note);
     } catch (error) {
       if (shown) session.adopt(shown); // not saved: back to what the server has
-      this.fail(label, errorText(error), edits, retry, isAction);
+      this.fail(label, errorText(error), edits, retry, isAction, failedOnTheWay(error));
       return null;
     }
   }
@@ -531,6 +549,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     edits: readonly ObjectEdit[],
     retry: () => Promise<boolean>,
     isAction: boolean,
+    onTheWay = false,
   ): void {
     const earlier = this.failure;
     if (earlier && this.failedEdits) {
@@ -540,10 +559,10 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
       }
       const both = [...this.failedEdits, ...edits];
       const together = `${earlier.label}, then ${label}`;
-      this.setFailed(together, message, both, () => this.apply(both, together), true);
+      this.setFailed(together, message, both, () => this.apply(both, together), true, onTheWay);
       return;
     }
-    this.setFailed(label, message, edits, retry, isAction);
+    this.setFailed(label, message, edits, retry, isAction, onTheWay);
   }
 
   private setFailed(
@@ -552,12 +571,25 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     edits: readonly ObjectEdit[],
     retry: () => Promise<boolean>,
     isAction: boolean,
+    onTheWay: boolean,
   ): void {
     this.keepFailed({ label, message, edits: [...edits] });
-    this.failure = { label, message };
+    this.failure = onTheWay ? { label, message, retrying: true } : { label, message };
     this.failedEdits = isAction ? [...edits] : null;
     this.retryFailed = retry;
+    this.cancelRetry();
+    if (onTheWay) {
+      this.retryTimer = setTimeout(() => {
+        this.retryTimer = null;
+        void this.retry();
+      }, this.options.retryMs ?? OBJECT_RETRY_MS);
+    }
     this.setStatus({ kind: "idle", message: null, error: false });
+  }
+
+  private cancelRetry(): void {
+    if (this.retryTimer !== null) clearTimeout(this.retryTimer);
+    this.retryTimer = null;
   }
 
   /** An undo or redo not sent: it would overwrite what someone changed since. */

@@ -66,6 +66,7 @@ export function mountSceneWorkbench(
   const objectEditor = new ObjectEditor(session);
   const photoView = mountPhotoView(photo.body, session, objectEditor);
   disposers.push(
+    () => objectEditor.dispose(),
     photoView.dispose,
     // after the photo view: it draws in its SVG
     mountObjectSuggestions(photo.body, session, objectEditor),
