@@ -60,6 +60,12 @@ def restore_revisions(edits: Sequence[Edit]) -> set[int]:
     return {e.from_revision for e in edits if isinstance(e, restoring)}
 
 
+def restored_scene_revision(edits: Sequence[Edit]) -> int | None:
+    """The revision the last restore_scene of the edits restores (None: none does)."""
+    restores = [e.from_revision for e in edits if isinstance(e, RestoreScene)]
+    return restores[-1] if restores else None
+
+
 def needs_photo(edits: Sequence[Edit]) -> bool:
     """Whether applying the edits may need the scene's photo (to cut a mask in a box)."""
     return any(

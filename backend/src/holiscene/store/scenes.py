@@ -7,6 +7,7 @@ writers on the same base exactly one wins and the other gets a RevisionConflictE
 
 from __future__ import annotations
 
+import enum
 import json
 import uuid
 from collections.abc import Callable, Sequence
@@ -49,6 +50,7 @@ from ..editing.edits import (
     keep_manual_supports,
     needs_photo,
     restore_revisions,
+    restored_scene_revision,
 )
 from ..editing.workflow_rules import SceneStatus, scene_uncertainty
 from ..inputs import InputFiles, load_photo
@@ -98,6 +100,15 @@ _NUMBERED = _revision_query(RevisionRow.number == _NUMBER)
 _CURRENT_IF = _revision_query(
     (RevisionRow.number == SceneRow.current_revision) & (SceneRow.current_revision == _NUMBER)
 )
+
+
+class _Keep(enum.Enum):
+    """The scene's scene.glb stays as it is (a revision that does not make or restore one)."""
+
+    KEEP = enum.auto()
+
+
+_KEEP = _Keep.KEEP
 
 
 class SceneNotFoundError(NotFoundError):
@@ -354,7 +365,13 @@ class SceneStore:
         """Store `edited` (the request's edits on its base revision) as the next revision.
         `unchanged`: the workflow status the scene must still have, for a write without a hook
         (else SceneRowChangedError, nothing written); `move`: the workflow move the rules
-        allow from it, written with the revision."""
+        allow from it, written with the revision. A restore of a whole earlier revision also
+        brings back the scene.glb that revision had; its write cannot keep `unchanged` (the
+        caller gives a hook instead)."""
+        restored = restored_scene_revision(request.edits)
+        glb: int | _Keep | None = (
+            _KEEP if restored is None else self._glb_revision_at(scene_id, restored)
+        )
         return self._commit_revision(
             scene_id,
             request.base_revision,
@@ -363,6 +380,7 @@ class SceneStore:
             kind="edit",
             summary=describe_edits(request.edits),
             edits=request.edits,
+            glb_revision=glb,
             hook=hook,
             unchanged=unchanged,
             move=move,
@@ -480,7 +498,7 @@ class SceneStore:
                 kind="pipeline",
                 summary=f"pipeline: {', '.join(s.name for s in scene.stages)}",
                 edits=None,
-                glb_revision=new_revision if glb is not None else None,
+                glb_revision=new_revision if glb is not None else _KEEP,
                 hook=committed,
             )
         except BaseException:
@@ -500,6 +518,25 @@ class SceneStore:
                 )
             )
             return any(e.get("kind") == "set_layout" for batch in edits for e in batch or [])
+
+    def _glb_revision_at(self, scene_id: str, number: int) -> int | None:
+        """The revision whose scene.glb the scene had at revision `number` (None: none yet): a
+        pipeline or placement run's that wrote one, else what the revision it restored (a
+        revert) or the one before it had. Edits keep the GLB."""
+        with Session(self.reads) as session:
+            rows = session.execute(
+                select(RevisionRow.number, RevisionRow.kind, RevisionRow.edits).where(
+                    RevisionRow.scene_id == scene_id, RevisionRow.number <= number
+                )
+            ).all()
+        by_number = {row.number: row for row in rows}
+        while number in by_number:
+            row = by_number[number]
+            if row.kind == "pipeline" and self.files.glb_path(scene_id, number).is_file():
+                return number
+            restored = restored_scene_revision(_EDITS.validate_python(row.edits or []))
+            number = restored if restored is not None and restored < number else number - 1
+        return None
 
     def _earlier_scenes(self, scene_id: str, numbers: set[int]) -> dict[int, Scene]:
         """The scenes of these revisions; a number without a revision is left out."""
@@ -541,7 +578,7 @@ class SceneStore:
         kind: RevisionKind,
         summary: str,
         edits: Sequence[Edit] | None,
-        glb_revision: int | None = None,
+        glb_revision: int | _Keep | None = _KEEP,
         hook: RevisionHook | None = None,
         unchanged: SceneStatus | None = None,
         move: WorkflowMove | None = None,
@@ -555,11 +592,13 @@ class SceneStore:
         now = utcnow()
         revision = revision_values(scene_id, new_revision, author, kind, summary, edits, scene, now)
         objects, uncertainty = len(scene.objects), scene_uncertainty(scene)
-        if hook is None and glb_revision is None:
+        if hook is None and isinstance(glb_revision, _Keep):
             stored = write_at_once(
                 self.reads, base_revision, revision, objects, uncertainty, unchanged, move
             )
         else:
+            if unchanged is not None or move is not None:  # only the one statement checks them
+                raise ValueError("a workflow status to keep needs a write without a hook or GLB")
             moved = (
                 update(SceneRow)
                 .where(SceneRow.id == scene_id, SceneRow.current_revision == base_revision)
@@ -568,7 +607,7 @@ class SceneStore:
                     updated_at=now,
                     object_count=objects,
                     uncertainty=uncertainty,
-                    **({} if glb_revision is None else {"glb_revision": glb_revision}),
+                    **({} if isinstance(glb_revision, _Keep) else {"glb_revision": glb_revision}),
                 )
             )
             stored = self._write_with_hook(moved, revision, hook)

@@ -31,6 +31,7 @@ from sqlalchemy.orm import Session
 
 from ..core.errors import DomainError, NotFoundError
 from ..editing import workflow_rules
+from ..editing.edits import restored_scene_revision
 from ..editing.workflow_rules import STATES, Actor, SceneStatus, Transition, WorkflowError
 from .clock import as_utc
 from .revision_writes import WorkflowMove
@@ -138,7 +139,8 @@ class WorkflowStore:
 
         base = self.scenes.document_for_write(scene_id, request.base_revision, refuse)
         edited = self.scenes.edited(scene_id, base.scene, request)
-        if seen:
+        # A revert also moves the scene's GLB: not in the one statement, so under the hook.
+        if seen and restored_scene_revision(request.edits) is None:
             status, move = seen[0]
             try:
                 return self.scenes.commit_edits(

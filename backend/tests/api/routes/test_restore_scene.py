@@ -7,10 +7,14 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import pytest
 from fastapi.testclient import TestClient
 
-from ...conftest import imported_scene
+from ...conftest import imported_scene, wait_for_job
 from ...conftest import post_edits as _edit
+
+# Revert writes the scene's GLB pointer with the revision: on SQLite and on PostgreSQL.
+pytestmark = pytest.mark.both_databases
 
 
 def _imported(client: TestClient, folder: Path) -> dict[str, Any]:
@@ -99,3 +103,42 @@ def test_a_restore_on_a_stale_revision_conflicts(client: TestClient, t3d5: Path)
     _changed_everywhere(client, predicted)
     stale = _edit(client, predicted, _restore(predicted["revision"]))
     assert stale.status_code == 409
+
+
+def _glb(client: TestClient, scene_id: str) -> bytes | None:
+    response = client.get(f"/api/scenes/{scene_id}/scene.glb")
+    if response.status_code == 404:
+        return None
+    assert response.status_code == 200, response.text
+    return response.content
+
+
+def test_a_restored_scene_brings_back_its_3d_scene(client: TestClient, t3d5: Path) -> None:
+    predicted = _imported(client, t3d5)
+    scene_id = predicted["scene_id"]
+    predicted_glb = _glb(client, scene_id)
+    assert predicted_glb is not None
+    removed = _edit(client, predicted, {"kind": "remove_object", "id": "o2"}).json()
+    started = client.post(f"/api/scenes/{scene_id}/placement-jobs")
+    assert started.status_code == 202, started.text
+    assert wait_for_job(client, started.json()["id"], timeout=120)["status"] == "succeeded"
+    placed = client.get(f"/api/scenes/{scene_id}").json()
+    assert placed["revision"] == removed["revision"] + 1
+    placed_glb = _glb(client, scene_id)
+    assert placed_glb is not None and placed_glb != predicted_glb
+
+    reverted = _edit(client, placed, _restore(predicted["revision"])).json()
+    assert _glb(client, scene_id) == predicted_glb
+    # A revert of the revert finds the placement's GLB through it.
+    again = _edit(client, reverted, _restore(placed["revision"])).json()
+    assert _glb(client, scene_id) == placed_glb
+    # The imported revision had none: neither has the scene now.
+    _edit(client, again, _restore(1))
+    assert _glb(client, scene_id) is None
+    # A revision that was itself a revert leads to the GLB it brought back.
+    latest = client.get(f"/api/scenes/{scene_id}").json()
+    latest = _edit(client, latest, _restore(reverted["revision"])).json()
+    assert _glb(client, scene_id) == predicted_glb
+    # An edit that restores nothing keeps the GLB as it is.
+    _edit(client, latest, {"kind": "set_class", "id": "o1", "class": "table"})
+    assert _glb(client, scene_id) == predicted_glb
