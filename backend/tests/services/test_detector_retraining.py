@@ -58,7 +58,7 @@ def never_detecting(tmp_path: Path) -> Path:
     return never_detecting_dir(tmp_path / "never-detects")
 
 
-def test_retrain_promotes_a_detector_not_worse_and_rolls_back(
+def test_retrain_keeps_a_tied_detector_as_a_candidate_to_promote_and_roll_back(
     settings: Settings, never_detecting: Path, rooms_cache: Path
 ) -> None:
     workbench = _workbench(settings, never_detecting)
@@ -78,16 +78,29 @@ def test_retrain_promotes_a_detector_not_worse_and_rolls_back(
         assert job.status == "succeeded", job.error
         assert (job.kind, job.progress) == ("detector_retrain", 1.0)
         new = workbench.detectors.get(job.result_model_id or "")
-        assert (new.kind, new.version, new.status, new.active) == ("detector", 2, "accepted", True)
         assert new.parent_id == seeded.id and new.parent_heldout_accuracy == 0.0
-        assert new.parent_heldout_recall == 0.0 and new.heldout_recall is not None
+        assert new.parent_heldout_recall == 0.0
+        assert new.heldout_accuracy is not None and new.heldout_recall is not None
+        # Against the detector that never detects: made active if it found anything on the
+        # held-out scenes (which of the random scene ids are held out decides); if it found
+        # nothing either, a tie: the active one stays and the new one waits as a candidate.
+        if (new.heldout_accuracy, new.heldout_recall) == (0.0, 0.0):
+            assert (new.version, new.status, new.active) == (2, "candidate", False)
+            assert new.note == "the same held-out scores as v1, which stays active"
+            assert workbench.detectors.active().id == seeded.id
+            assert job.message and job.message.startswith("detector v2 kept as a candidate")
+            workbench.detectors.promote(new.id, "alice", "made active by hand")
+            new = workbench.detectors.get(new.id)
+        else:
+            assert (new.version, new.status) == (2, "accepted"), job.log
+            assert job.message and job.message.startswith("detector v2 is active"), job.log
+        assert new.kind == "detector" and new.active
         assert new.heldout_accuracy is not None and new.validation_accuracy is not None
         # The split is decided by a hash of the (random) scene ids: 1 or 2 of the 3 are held out.
         trained_ids, heldout_ids = heldout_split(scene_ids)
         assert (new.training_scenes, new.heldout_scenes) == (len(trained_ids), len(heldout_ids))
         assert new.training_scenes >= 1 and new.heldout_scenes >= 1
         assert new.has_curve and new.metrics["curve"][0]["epoch"] == 1
-        assert job.message and job.message.startswith("detector v2 is active"), job.log
         for line in ("3 scenes with confirmed boxes", "epoch 1", "new detector: mAP@0.5"):
             assert line in job.log, job.log
         with Session(workbench.engine) as session:
@@ -164,6 +177,11 @@ def test_detector_retrain_through_the_api(
 
         done = wait_for_job(client, job["id"], timeout=120)
         assert done["status"] == "succeeded", done
+        new = client.get(f"/api/models/{done['result_model_id']}").json()
+        if not new["active"]:  # a tie with the detector that never detects
+            assert new["status"] == "candidate", done["log"]
+            promoted = client.post(f"/api/models/{new['id']}/promote", json={"note": "by hand"})
+            assert promoted.status_code == 200, promoted.text
         active = client.get("/api/models/active?kind=detector").json()
         assert (active["id"], active["kind"], active["version"]) == (
             done["result_model_id"],

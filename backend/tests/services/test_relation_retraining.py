@@ -14,7 +14,11 @@ from fastapi.testclient import TestClient
 from holiscene.api.app import create_app
 from holiscene.core.settings import Settings
 from holiscene.learning.training_api import TrainConfig
-from holiscene.services.relation_retraining import heldout_split, labelled_scenes
+from holiscene.services.relation_retraining import (
+    heldout_split,
+    heldout_verdict,
+    labelled_scenes,
+)
 from holiscene.services.workbench import Workbench
 from holiscene.store import model_registry as registry_module
 from holiscene.store.model_registry import Registration, active_model_dir
@@ -71,6 +75,16 @@ def test_heldout_split_is_fixed_by_scene_id() -> None:
         train, held = heldout_split(pair)
         assert len(train) == 1 and len(held) == 1
     assert heldout_split(["only"]) == (["only"], [])
+
+
+def test_a_new_model_is_made_active_only_when_it_does_better_on_the_held_out_scenes() -> None:
+    assert heldout_verdict([0.5, 0.2], None, None).status == "accepted"  # nothing to compare
+    assert heldout_verdict([0.5, 0.2], [0.4, 0.9], 1).promote  # the first score decides
+    assert heldout_verdict([0.5, 0.3], [0.5, 0.2], 1).promote  # the next breaks its tie
+    assert heldout_verdict([0.4, 0.9], [0.5, 0.2], 1).status == "rejected"
+    tie = heldout_verdict([0.5, 0.2], [0.5 + 1e-12, 0.2], 3)
+    assert (tie.status, tie.promote) == ("candidate", False)
+    assert tie.note == "the same held-out scores as v3, which stays active"
 
 
 def test_only_supports_set_by_people_are_labels(workbench: Workbench) -> None:

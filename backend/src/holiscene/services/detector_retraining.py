@@ -5,7 +5,8 @@ confirmed boxes, hold the same fixed fifth of them out (heldout_split, decided b
 fine-tune a new detector head on synthetic rooms plus the other stored scenes
 (learning.detector.train, PyTorch, imported only inside the job), score the new detector and
 the active one on the held-out scenes (mAP@0.5 and recall at IoU 0.5), register the new one
-whatever the outcome, and make it active only if its held-out mAP@0.5 is not lower.
+whatever the outcome, and make it active only if it does better there (mAP@0.5 first, recall
+on a tie); one exactly as good is kept as a candidate (heldout_verdict).
 
 The boxes that count as confirmed, in each scene's current revision (walls, floors and
 ceilings are never the detector's to find):
@@ -23,7 +24,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -52,7 +53,9 @@ from .relation_retraining import (
     TRAIN_END,
     NotEnoughLabelsError,
     TrainingJob,
+    Verdict,
     heldout_split,
+    heldout_verdict,
     jsonable,
 )
 
@@ -267,14 +270,18 @@ class DetectorRetrainJob(TrainingJob):
         parent_score = self._score_parent(parent, heldout)
         self._check_stop()
 
-        better = parent_score is None or new_score.map >= parent_score.map
+        verdict = heldout_verdict(
+            [new_score.map, new_score.recall],
+            None if parent_score is None else [parent_score.map, parent_score.recall],
+            parent.version if parent else None,
+        )
         registration = self._registration(
-            parent, new_score, parent_score, better, validation_map, train_items, heldout_items
+            parent, new_score, parent_score, verdict, validation_map, train_items, heldout_items
         )
         info = self.models.register(
             model_dir,
             registration,
-            promote=better,
+            promote=verdict.promote,
             expected_active=parent.id if parent else None,
             actor=self.author,
         )
@@ -320,19 +327,27 @@ class DetectorRetrainJob(TrainingJob):
         )
         cache = config.cache_dir or self.work_root.parent / ROOMS_FOLDER  # the data dir's
 
-        def rendered(done: int, total: int) -> None:
-            self._check_stop()
-            self._log(f"rendering synthetic rooms {done}/{total}")
+        # Of the training's share of the bar, rendering the rooms (cached after the first run)
+        # takes the first 30%, the training run the rest.
+        def rendered(what: str, before: int, total_rooms: int) -> Callable[[int, int], None]:
+            def report(done: int, total: int) -> None:
+                self._training_progress(0.3 * (before + done) / max(total_rooms, 1), "")
+                self._log(f"rendering {what} {done}/{total}")
+
+            return report
 
         first, validation_first = DETECTOR_TRAIN_SEED, DETECTOR_VALIDATION_SEED
+        all_rooms = config.synthetic_rooms + config.validation_rooms
         rooms = synthetic_photos(
             range(first, first + config.synthetic_rooms),
             cache,
-            rendered,
+            rendered("training rooms", 0, all_rooms),
             style=train_config.room_style,
         )
         validation = synthetic_photos(
-            range(validation_first, validation_first + config.validation_rooms), cache, rendered
+            range(validation_first, validation_first + config.validation_rooms),
+            cache,
+            rendered("validation rooms", config.synthetic_rooms, all_rooms),
         )
         photos = [*rooms, *(p for p in stored for _ in range(config.stored_repeats))]
         self._log(
@@ -340,7 +355,13 @@ class DetectorRetrainJob(TrainingJob):
             f"(x{config.stored_repeats}), {len(validation)} synthetic rooms to validate"
         )
         started = time.monotonic()
-        metrics = train_detector(photos, validation, train_config, out_dir, self._training_progress)
+        metrics = train_detector(
+            photos,
+            validation,
+            train_config,
+            out_dir,
+            lambda fraction, line: self._training_progress(0.3 + 0.7 * fraction, line),
+        )
         self._log(f"training took {time.monotonic() - started:.1f} s")
         return float(metrics["validation_map_at_0_5"])
 
@@ -362,13 +383,14 @@ class DetectorRetrainJob(TrainingJob):
         parent: ModelInfo | None,
         score: DetectorScore,
         parent_score: DetectorScore | None,
-        better: bool,
+        verdict: Verdict,
         validation_map: float,
         train_items: Sequence[BoxedScene],
         heldout_items: Sequence[BoxedScene],
     ) -> Registration:
         return Registration(
-            status="accepted" if better else "rejected",
+            status=verdict.status,
+            note=verdict.note,
             parent_id=parent.id if parent else None,
             job_id=self.job_id,
             heldout_accuracy=score.map,

@@ -2,7 +2,8 @@
 
 A retrain job gathers the scenes people labelled, keeps a fixed share of them out of training,
 trains a new model in a temporary folder, measures it and the active model on the held-out
-scenes, registers it whatever the outcome, and makes it active only if it is not worse.
+scenes, registers it whatever the outcome, and makes it active only if it does better there
+(one exactly as good is kept as a candidate: heldout_verdict).
 
 Nothing half-made reaches the registry: training writes under `<data_dir>/training/<job>/`,
 which is deleted when the job ends and at every start; the registry copies a model in only
@@ -23,7 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from holiscene_schema import ModelInfo, RetrainRequest, Scene
+from holiscene_schema import ModelInfo, ModelStatus, RetrainRequest, Scene
 
 from ..core.errors import DomainError, user_facing_error
 from ..inputs import load_photo
@@ -270,14 +271,18 @@ class RetrainJob(TrainingJob):
                 self._log(f"the active model v{parent.version} could not be evaluated: {exc}")
         self._check_stop()
 
-        better = parent_accuracy is None or new_accuracy >= parent_accuracy
+        verdict = heldout_verdict(
+            [new_accuracy],
+            None if parent_accuracy is None else [parent_accuracy],
+            parent.version if parent else None,
+        )
         info = self._register(
             result.model_dir,
             result.validation_accuracy,
             parent,
             new_accuracy,
             parent_accuracy,
-            better,
+            verdict,
             [by_id[i].key for i in train_ids],
             [by_id[i].key for i in heldout_ids],
         )
@@ -307,12 +312,13 @@ class RetrainJob(TrainingJob):
         parent: ModelInfo | None,
         new_accuracy: float,
         parent_accuracy: float | None,
-        better: bool,
+        verdict: Verdict,
         train_keys: list[str],
         heldout_keys: list[str],
     ) -> ModelInfo:
         registration = Registration(
-            status="accepted" if better else "rejected",
+            status=verdict.status,
+            note=verdict.note,
             parent_id=parent.id if parent else None,
             job_id=self.job_id,
             heldout_accuracy=new_accuracy,
@@ -328,7 +334,7 @@ class RetrainJob(TrainingJob):
         return self.models.register(
             model_dir,
             registration,
-            promote=better,
+            promote=verdict.promote,
             expected_active=parent.id if parent else None,
             actor=self.author,
         )
@@ -353,6 +359,37 @@ def _outcome(
     if info.status == "candidate":
         return f"v{info.version} kept as a candidate ({info.note}): {accuracy:.3f} vs {against}"
     return f"v{info.version} rejected: held-out accuracy {accuracy:.3f} is worse than {against}"
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """What a retrained model's held-out scores make of it."""
+
+    status: ModelStatus  # accepted (made active), candidate (a tie) or rejected
+    note: str | None = None
+
+    @property
+    def promote(self) -> bool:
+        return self.status == "accepted"
+
+
+def heldout_verdict(
+    new: Sequence[float], active: Sequence[float] | None, active_version: int | None
+) -> Verdict:
+    """The new model against the active one on the same held-out scenes, score by score (the
+    first decides, the next break its ties). Better: made active. Exactly as good: the scenes
+    cannot tell the two apart, so the active model stays and the new one is a candidate, to
+    make active by hand. Worse: rejected (kept, to inspect)."""
+    if active is None:
+        return Verdict("accepted")
+    mine, theirs = [round(x, 9) for x in new], [round(x, 9) for x in active]
+    if mine > theirs:
+        return Verdict("accepted")
+    if mine == theirs:
+        return Verdict(
+            "candidate", f"the same held-out scores as v{active_version}, which stays active"
+        )
+    return Verdict("rejected")
 
 
 def jsonable(value: Any) -> Any:

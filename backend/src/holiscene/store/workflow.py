@@ -168,7 +168,8 @@ class WorkflowStore:
 
     def next_scene(self, actor: Actor) -> SceneSummary:
         """The annotator's next scene, now assigned to them: first one of theirs a reviewer
-        rejected (oldest first), else the predicted scene the pipeline is least sure of."""
+        rejected (oldest first), else the predicted scene the pipeline is least sure of; the
+        scenes they gave back come after all others."""
         for _ in range(20):  # another annotator may take a candidate first: try the next
             with Session(self.engine) as session:
                 candidates = self._next_candidates(session, actor)
@@ -224,8 +225,16 @@ class WorkflowStore:
                 SceneRow.created_at,
             )
             .limit(50)
+        ).all()
+        given_back = set(
+            session.scalars(
+                select(SceneEventRow.scene_id).where(
+                    SceneEventRow.action == "release", SceneEventRow.actor == actor.name
+                )
+            )
         )
-        return rejected + list(predicted)
+        # Given back as taken by mistake: offering it straight back would trap them in it.
+        return rejected + sorted(predicted, key=lambda row: row.id in given_back)
 
     def release(self, scene_id: str, revision: int, actor: Actor) -> SceneWorkflow:
         """Give back a scene in annotation: unassigned, predicted again (new when the pipeline

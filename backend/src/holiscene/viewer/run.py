@@ -17,11 +17,12 @@ def serve_until_interrupted(scene: str, settings: Settings, port: int, photo: Pa
     server, _viewer = start_viewer(data, port)
     url = viewer_url(server)
     busy = f" (port {port} was busy)" if port not in (0, server.get_port()) else ""
-    print(f"viewer of {data.origin}: {url}{busy}", flush=True)
-    print("press Ctrl+C to stop", file=sys.stderr, flush=True)
-    # Ctrl+C and a process manager's SIGTERM both end the viewer cleanly.
+    # Ctrl+C and a process manager's SIGTERM both end the viewer cleanly. The address is
+    # printed inside the handler: whoever reads it may stop the viewer at once.
     try:
         with stop_signals_interrupt():
+            print(f"viewer of {data.origin}: {url}{busy}", flush=True)
+            print("press Ctrl+C to stop", file=sys.stderr, flush=True)
             while True:
                 time.sleep(3600)
     except KeyboardInterrupt:

@@ -168,6 +168,15 @@ def test_a_scene_taken_by_mistake_is_given_back_with_its_edits(
     assert flow["events"][-1]["action"] == "release"
     assert flow["revision"] == edited.json()["revision"]  # the edit stays
     _refused(api, scene_id, api.act("ann", scene_id, "release"), 409, "only a scene in annotation")
+    # ann's next scene is another one: the scene she gave back comes after all others.
+    other = store_predicted_scene(
+        accounts.workbench.scenes,
+        name="less uncertain",
+        confidences={"o0": 0.99, "o1": 0.99, "o2": 0.99, "o3": 0.99},
+    )
+    assert api.workflow(other)["state"] == "predicted"
+    mine = api.post("ann", "/api/scenes/next")
+    assert mine.status_code == 200 and mine.json()["id"] == other
     # It waits for the next annotator, who gets it with ann's edit.
     taken = api.post("bob", "/api/scenes/next")
     assert taken.status_code == 200 and taken.json()["id"] == scene_id

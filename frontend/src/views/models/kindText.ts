@@ -25,7 +25,8 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
     retrainHint:
       "Trains a new Relation Network on the synthetic scenes and on every scene whose supports " +
       "a person set. A fixed fifth of those scenes is held out: the new model becomes active " +
-      "only if it is at least as accurate on them as the active one. Every model is kept.",
+      "only if it is more accurate on them than the active one (exactly as accurate: kept as a " +
+      "candidate, to make active by hand). Every model is kept.",
     epochs: ["Epochs at most", "default (40)"],
     synthetic: ["Synthetic scenes", "default (1200)"],
   },
@@ -41,7 +42,8 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
       "Fine-tunes a new detector on synthetic rooms and on every scene whose boxes a person " +
       "confirmed: drawn, given with the photo, accepted suggestions, or all of a scene a " +
       "reviewer accepted. A fixed fifth of those scenes is held out: the new detector becomes " +
-      "active only if its mAP@0.5 on them is at least the active one's. Every detector is kept.",
+      "active only if it does better on them (mAP@0.5, then recall); exactly as well: kept as " +
+      "a candidate, to make active by hand. Every detector is kept.",
     epochs: ["Epochs", "default (12)"],
     synthetic: ["Synthetic rooms", "default (300)"],
   },

@@ -76,10 +76,13 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
   );
 
   const promote = async (model: ModelInfo, promoteButton: HTMLButtonElement) => {
-    const worse =
-      `v${model.version} did worse than the model it was compared with on the held-out ` +
-      `scenes (${heldoutText(model)}). Make it active anyway?`;
-    if (model.status === "rejected" && !window.confirm(worse)) return;
+    // Every pipeline run and the page's suggestions change with the active model: asked first.
+    const question =
+      model.status === "rejected"
+        ? `v${model.version} did worse than the model it was compared with on the held-out ` +
+          `scenes (${heldoutText(model)}). Make it active anyway?`
+        : `Make v${model.version} the active model? Pipeline runs and suggestions use it from now on.`;
+    if (!window.confirm(question)) return;
     promoteButton.disabled = true;
     notice.textContent = `Making v${model.version} active…`;
     try {

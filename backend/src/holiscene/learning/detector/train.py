@@ -106,9 +106,11 @@ def extract(
     say: TrainProgress,
     label: str,
     retexture: float = 0.0,
+    share: tuple[float, float] = (0.0, 0.0),
 ) -> FeatureSet:
     """What `extractor` makes of each photo (randomised first when `rng` is given): the
-    backbone's features, or for a net trained from scratch its input."""
+    backbone's features, or for a net trained from scratch its input. `share`: the part of
+    the run's progress this extraction covers, from and to."""
     index_of = {c: i for i, c in enumerate(classes)}
     feature_set = FeatureSet(features=np.zeros(0, np.float16), coco=None)
     for n, original in enumerate(photos):
@@ -135,7 +137,8 @@ def extract(
         )
         feature_set.photo_sizes.append((width, height))
         if n % 20 == 0 or n == len(photos) - 1:
-            say(0.0, f"{label}: features {n + 1}/{len(photos)}")
+            done = share[0] + (share[1] - share[0]) * (n + 1) / len(photos)
+            say(done, f"{label}: features {n + 1}/{len(photos)}")
     return feature_set
 
 
@@ -301,8 +304,13 @@ def train_detector(
     head = DetectorHead(len(trained), box_head_weights(config.coco_model), config.hidden, blocks)
     extractor = FeatureExtractor(config.coco_model, deep_input=head.deep_input)
     views = [p for p in train_photos for _ in range(config.views)]
-    train = extract(views, trained, extractor, rng, False, say, "training photos", config.retexture)
-    validation = extract(validation_photos, trained, extractor, None, True, say, "validation")
+    # Of the run's progress, the features take the first quarter, the epochs the rest.
+    train = extract(
+        views, trained, extractor, rng, False, say, "training photos", config.retexture, (0, 0.2)
+    )
+    validation = extract(
+        validation_photos, trained, extractor, None, True, say, "validation", share=(0.2, 0.25)
+    )
     steps = -(-len(views) // config.batch)
     optimiser, schedule = _optimiser(head, config, steps * config.epochs)
     curve: list[dict[str, float]] = []
@@ -331,7 +339,7 @@ def train_detector(
             best, best_epoch = score, epoch
             best_state = {k: v.clone() for k, v in head.state_dict().items()}
         say(
-            epoch / config.epochs,
+            0.25 + 0.75 * epoch / config.epochs,
             f"epoch {epoch}: loss {curve[-1]['train_loss']:.3f}, "
             f"validation mAP@0.5 {score:.3f} (best {best:.3f})",
         )
