@@ -142,6 +142,13 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
     await expect(page.getByTestId("accounts-message")).toHaveText(`Added ${user.name} (${role}).`);
     await expect(page.getByTestId(`account-${user.name}`)).toBeVisible();
   }
+  // Disabling an account asks first; enabling it again does not.
+  page.once("dialog", (dialog) => void dialog.accept());
+  await page.getByTestId(`disable-account-${REVIEWER.name}`).click();
+  await expect(page.getByTestId(`account-status-${REVIEWER.name}`)).toContainText("disabled");
+  await expect(page.getByTestId("accounts-message")).toHaveText(`${REVIEWER.name} is disabled.`);
+  await page.getByTestId(`enable-account-${REVIEWER.name}`).click();
+  await expect(page.getByTestId(`account-status-${REVIEWER.name}`)).toHaveText("active");
   // A weak password is refused with the server's reason.
   await page.getByTestId("new-user-name").fill("weak");
   await page.getByTestId("new-user-password").fill("aaaaaaaaaaaa");

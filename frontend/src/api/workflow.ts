@@ -52,6 +52,9 @@ export const usersApi = {
     request<UserInfo>(userUrl(name), { ...jsonBody({ role }), method: "PATCH" }),
   resetPassword: (name: string, password: string) =>
     request<void>(`${userUrl(name)}/password`, jsonBody({ password })),
+  /** Disable (no login, sessions ended) or enable an account again. */
+  setDisabled: (name: string, disabled: boolean) =>
+    request<UserInfo>(`${userUrl(name)}/${disabled ? "disable" : "enable"}`, { method: "POST" }),
 };
 
 export const workflowApi = {

@@ -35,9 +35,12 @@ export function mountEdgeInfo(container: HTMLElement, session: SceneSession): ()
       const object = session.object(child);
       const shown = session.displayed(child);
       const name = `${child}${object ? ` (${classText(object.class)})` : ""}`;
-      edge.textContent = shown
-        ? `${name} on ${shown.parent}, ${shown.type}`
-        : `${name}: no supporter`;
+      // A suggestion for an object without a supporter is not one yet: the list says "none".
+      edge.textContent = !shown
+        ? `${name}: no supporter`
+        : shown.suggested && !shown.support
+          ? `${name}: no supporter yet; the model suggests ${shown.parent}, ${shown.type} (A accepts)`
+          : `${name} on ${shown.parent}, ${shown.type}`;
       const suggestion = session.suggestions().get(child);
       const was = shown?.support ?? session.savedSupport(child);
       provenance.textContent = shown

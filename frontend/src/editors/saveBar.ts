@@ -3,7 +3,7 @@
 // visit left unsaved (restore or discard), and the conflict message with its merge and reload
 // actions. Edits are autosaved (state/autosave.ts) and kept in localStorage until the server
 // has them, so leaving the page needs no warning: nothing is lost.
-import { el } from "../dom";
+import { button, el } from "../dom";
 import { getAuthor } from "../state/author";
 import type { ObjectEditor } from "../state/objectEditor";
 import type { SceneSession } from "../state/sceneSession";
@@ -37,6 +37,7 @@ export function mountSaveBar(
     redoLast,
     saveNow: () => void session.save(author()),
     objectAction: () => (objects?.status.kind === "busy" ? objects.status.label : null),
+    objectFailed: () => objects?.failure?.label ?? null,
   });
   const recovery = recoveryBanner(session);
   const conflict = conflictPanel({ merge, reload });
@@ -45,7 +46,19 @@ export function mountSaveBar(
     testid: "save-error",
     attrs: { role: "alert" },
   });
-  const notice = el("p", { className: "alert alert--info", testid: "reload-notice" });
+  const noticeText = el("span", { testid: "reload-notice-text" });
+  const notice = el(
+    "p",
+    { className: "alert alert--info save-notice", testid: "reload-notice" },
+    noticeText,
+    button("×", {
+      className: "link-button save-notice-close",
+      testid: "reload-notice-close",
+      title: "Dismiss this note",
+      attrs: { "aria-label": "Dismiss this note" },
+      onClick: () => session.dismissNotice(),
+    }),
+  );
   const pending = pendingList(session);
   container.replaceChildren(
     row.element,
@@ -64,7 +77,7 @@ export function mountSaveBar(
     error.hidden = state.kind !== "error";
     error.textContent = state.kind === "error" ? state.message : "";
     notice.hidden = !session.notice;
-    notice.textContent = session.notice ?? "";
+    noticeText.textContent = session.notice ?? "";
     recovery.update();
     pending.update();
   };

@@ -344,9 +344,7 @@ export function mountSupportEditor(
   // Only scrolls: taking the focus would send the photo's shortcut keys into the select.
   const scrollToSelected = () => {
     const row = rows.find((r) => r.object.id === session.selected);
-    if (row && !row.element.contains(document.activeElement)) {
-      row.element.scrollIntoView({ block: "nearest" });
-    }
+    if (row && !row.element.contains(document.activeElement)) revealInPanel(row.element);
   };
 
   build();
@@ -366,4 +364,21 @@ export function mountSupportEditor(
     unsubscribe();
     stopFailure?.();
   };
+}
+
+/**
+ * Scroll the editor panel (not the page) so that `row` shows below the panel's sticky save
+ * bar. Where the panel does not scroll by itself (one column: it sits under the photo), the
+ * page is left where it is: jumping away from the photo the person just clicked would lose it.
+ */
+function revealInPanel(row: HTMLElement): void {
+  const panel = row.closest<HTMLElement>(".panel--editor");
+  if (!panel || panel.scrollHeight <= panel.clientHeight) return;
+  const box = panel.getBoundingClientRect();
+  const bar = panel.querySelector<HTMLElement>(".save-bar")?.getBoundingClientRect();
+  const top = Math.max(box.top, bar?.bottom ?? box.top) + 4;
+  const bottom = box.bottom - 4;
+  const at = row.getBoundingClientRect();
+  if (at.top < top) panel.scrollTop -= top - at.top;
+  else if (at.bottom > bottom) panel.scrollTop += Math.min(at.bottom - bottom, at.top - top);
 }

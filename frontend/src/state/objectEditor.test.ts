@@ -160,9 +160,10 @@ describe("ObjectEditor", () => {
 
     // Nothing to do: said, not sent.
     const sent = server.requests.length;
-    await revertTo(editor, 4, server.revisions[3] as SceneDocument);
+    expect(await revertTo(editor, 4, server.revisions[3] as SceneDocument)).toBe(
+      "The scene is already as in revision 4.",
+    );
     expect(server.requests.length).toBe(sent);
-    expect(session.message).toBe("The scene is already as in revision 4.");
   });
 
   it("a revert waits for unsaved support edits to be saved or discarded", async () => {
@@ -171,9 +172,10 @@ describe("ObjectEditor", () => {
       { kind: "set_support", child: "o1", parent: "floor", type: "below" },
     ]);
     const sent = server.requests.length;
-    await revertTo(editor, 1, server.revisions[0] as SceneDocument);
+    expect(await revertTo(editor, 1, server.revisions[0] as SceneDocument)).toContain(
+      "Save or discard your 1 unsaved change first",
+    );
     expect(server.requests.length).toBe(sent);
-    expect(session.message).toContain("Save or discard your 1 unsaved change first");
     expect(session.unsavedCount).toBe(1); // still there
   });
 

@@ -50,5 +50,26 @@ describe("revision diff", () => {
     expect(diff.objectsAdded).toEqual(["o4"]);
     expect(diff.objectsRemoved).toEqual(["o3"]);
     expect(diff.layoutChanged).toBe(true);
+    expect(diff.objectsChanged).toEqual([]);
+  });
+
+  it("names what changed of each object kept: class, box, mask, and 3D box or shape apart", () => {
+    const a = scene(before);
+    const [o0, o1, o2] = a.objects;
+    if (!o0 || !o1 || !o2) throw new Error("objects");
+    const b = {
+      ...a,
+      objects: [
+        { ...o0, class: "night_stand", mask: { origin: [0, 0], size: [1, 1], rle: [0, 1] } },
+        { ...o1, bbox: [0, 0, 2, 2] },
+        { ...o2, box_3d: { center: [0, 0, 2], size: [1, 1, 1], yaw: 0 } },
+        ...a.objects.slice(3),
+      ],
+    } as unknown as Scene;
+    expect(diffScenes(a, b).objectsChanged).toEqual([
+      { id: "o0", drawn: ["class box → night stand", "mask redrawn"], placed: [] },
+      { id: "o1", drawn: ["box moved or resized"], placed: [] },
+      { id: "o2", drawn: [], placed: ["3D box"] },
+    ]);
   });
 });

@@ -1,5 +1,6 @@
 // What changed between two revisions of a scene (the history's diff).
-import type { Scene, SupportRelation } from "@holiscene/schema";
+import type { Scene, SceneObject, SupportRelation } from "@holiscene/schema";
+import { classText } from "./classNames";
 import { sameRelation } from "./supportGraph";
 
 export type ChangeKind = "added" | "removed" | "moved" | "retyped" | "confirmed" | "provenance";
@@ -11,11 +12,37 @@ export interface SupportChange {
   after: SupportRelation | null;
 }
 
+/** An object of both revisions, and what of it changed: what a person sees on the photo
+ * (class, box, mask) and what the placement made of it (3D box, shape). */
+export interface ObjectChange {
+  id: string;
+  /** "class otherprop → chair", "box moved or resized", "mask redrawn" */
+  drawn: string[];
+  /** "3D box", "shape" */
+  placed: string[];
+}
+
 export interface SceneDiff {
   supports: SupportChange[];
   objectsAdded: string[];
   objectsRemoved: string[];
+  objectsChanged: ObjectChange[];
   layoutChanged: boolean;
+}
+
+const same = (a: unknown, b: unknown) => JSON.stringify(a ?? null) === JSON.stringify(b ?? null);
+
+function objectChange(before: SceneObject, after: SceneObject): ObjectChange | null {
+  const drawn = [
+    before.class !== after.class && `class ${classText(before.class)} → ${classText(after.class)}`,
+    !same(before.bbox, after.bbox) && "box moved or resized",
+    !same(before.mask, after.mask) && "mask redrawn",
+  ].filter((part): part is string => typeof part === "string");
+  const placed = [
+    !same(before.box_3d, after.box_3d) && "3D box",
+    !same(before.mesh, after.mesh) && "shape",
+  ].filter((part): part is string => typeof part === "string");
+  return drawn.length + placed.length > 0 ? { id: after.id, drawn, placed } : null;
 }
 
 function changeKind(before: SupportRelation | null, after: SupportRelation | null): ChangeKind {
@@ -43,14 +70,18 @@ export function diffSupports(
 }
 
 export function diffScenes(before: Scene, after: Scene): SceneDiff {
-  const ids = (scene: Scene) => new Set((scene.objects ?? []).map((o) => o.id));
-  const was = ids(before);
-  const is = ids(after);
+  const old = new Map((before.objects ?? []).map((o) => [o.id, o]));
+  const is = new Set((after.objects ?? []).map((o) => o.id));
+  const kept = (after.objects ?? []).flatMap((o) => {
+    const was = old.get(o.id);
+    return was ? [[was, o] as const] : [];
+  });
   return {
     supports: diffSupports(before.supports ?? [], after.supports ?? []),
-    objectsAdded: [...is].filter((id) => !was.has(id)),
-    objectsRemoved: [...was].filter((id) => !is.has(id)),
-    layoutChanged: JSON.stringify(before.layout) !== JSON.stringify(after.layout),
+    objectsAdded: [...is].filter((id) => !old.has(id)),
+    objectsRemoved: [...old.keys()].filter((id) => !is.has(id)),
+    objectsChanged: kept.flatMap(([was, now]) => objectChange(was, now) ?? []),
+    layoutChanged: !same(before.layout, after.layout) || !same(before.camera, after.camera),
   };
 }
 

@@ -10,6 +10,7 @@ import type {
   SceneWorkflow,
   SupportRelation,
 } from "@holiscene/schema";
+import { STRUCTURAL_SUPPORTERS } from "@holiscene/schema";
 import { api } from "../api/client";
 import { ApiError, ConflictError, errorText } from "../api/errors";
 import { type Draft, DraftStore } from "./draftStore";
@@ -410,6 +411,12 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     this.emit("select");
   }
 
+  /** The person has read the notice (what a reload, merge or recovery reported). */
+  dismissNotice(): void {
+    this.notice = null;
+    this.emit("message");
+  }
+
   /** Tell the user why an action did nothing (null: clear). */
   say(message: string | null): void {
     this.message = message;
@@ -620,6 +627,13 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     this.layout?.setDocument(doc, layoutVersion);
     this.emit("document");
     this.lockChanged();
+    // A removed object stays neither hovered (which dims every other) nor selected.
+    const present = (id: string | null) =>
+      id === null ||
+      (STRUCTURAL_SUPPORTERS as readonly string[]).includes(id) ||
+      this.object(id) !== undefined;
+    if (!present(this.hovered)) this.hover(null);
+    if (!present(this.selected)) this.select(null);
   }
 
   /** `keepCaches`: the supports shown and suggested did not change (nothing was restaged). */

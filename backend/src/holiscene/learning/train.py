@@ -274,7 +274,7 @@ def plot_curve(
         epochs, [c["train_loss"] for c in curve], color="tab:red", marker=marker, label="train loss"
     )
     loss_axis.set_xlabel("epoch")
-    loss_axis.xaxis.set_major_locator(MaxNLocator(integer=True))  # epochs are whole
+
     loss_axis.set_ylabel(loss_label, color="tab:red")
     accuracy_axis = loss_axis.twinx()
     accuracy_axis.plot(
@@ -286,6 +286,13 @@ def plot_curve(
     )
     accuracy_axis.set_ylabel(accuracy_label, color="tab:blue")
     accuracy_axis.set_ylim(0, 1)
+    # Epochs are whole. The locator falls back to fractions when fewer than two whole numbers
+    # are in view (one epoch: 0.945-1.05), so a short run gets its epochs as the ticks.
+    if len(epochs) < 5:
+        loss_axis.set_xlim(epochs[0] - 0.5, epochs[-1] + 0.5)
+        loss_axis.set_xticks(epochs)
+    else:
+        loss_axis.xaxis.set_major_locator(MaxNLocator(integer=True))
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)

@@ -23,6 +23,15 @@ describe("the save status", () => {
     );
   });
 
+  it("says an object action kept after it failed is not saved, where nothing else is out", () => {
+    expect(statusText({ kind: "saved", revision: 5 }, 0, 5, true, null, "remove door o9")).toBe(
+      "Not saved: remove door o9 (above the photo)",
+    );
+    expect(statusText({ kind: "dirty" }, 1, 5, true, null, "remove door o9")).toBe(
+      "1 unsaved change on revision 5 · autosaving",
+    );
+  });
+
   it("keeps unsaved support edits and errors in front of an object action", () => {
     expect(statusText({ kind: "dirty" }, 2, 4, true, "add chair o3")).toBe(
       "2 unsaved changes on revision 4 · autosaving",

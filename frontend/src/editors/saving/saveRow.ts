@@ -10,11 +10,13 @@ export function statusText(
   revision: number,
   savable: boolean,
   objectAction: string | null,
+  objectFailed: string | null = null,
 ): string {
-  // An object action saves on its own path: while it is out, "no unsaved changes" or
-  // "Saved as revision N" would tell the annotator it is safe to leave when it is not yet.
-  if (objectAction !== null && (state.kind === "clean" || state.kind === "saved")) {
-    return `Saving: ${objectAction}…`;
+  // An object action saves on its own path: while it is out, or kept after it failed, "no
+  // unsaved changes" or "Saved as revision N" would tell the annotator all is safe.
+  if (state.kind === "clean" || state.kind === "saved") {
+    if (objectAction !== null) return `Saving: ${objectAction}…`;
+    if (objectFailed !== null) return `Not saved: ${objectFailed} (above the photo)`;
   }
   switch (state.kind) {
     case "clean":
@@ -45,6 +47,8 @@ export interface SaveRowInputs {
   saveNow(): void;
   /** The object action being saved, if one is (state/objectEditor.ts). */
   objectAction?: () => string | null;
+  /** The object action kept after it failed, if one is. */
+  objectFailed?: () => string | null;
 }
 
 export interface SaveRow {
@@ -60,6 +64,7 @@ export function saveRow({
   redoLast,
   saveNow,
   objectAction = () => null,
+  objectFailed = () => null,
 }: SaveRowInputs): SaveRow {
   const status = el("span", {
     className: "save-status",
@@ -95,9 +100,22 @@ export function saveRow({
     const unsaved = session.unsavedCount;
     const editable = session.editable;
     const action = objectAction();
-    status.textContent = statusText(state, unsaved, session.doc.revision, session.savable, action);
+    const failed = objectFailed();
+    const quiet = state.kind === "clean" || state.kind === "saved";
+    status.textContent = statusText(
+      state,
+      unsaved,
+      session.doc.revision,
+      session.savable,
+      action,
+      failed,
+    );
     status.dataset.state =
-      action !== null && state.kind !== "saving" ? "saving-object" : state.kind;
+      action !== null && state.kind !== "saving"
+        ? "saving-object"
+        : failed !== null && quiet
+          ? "object-failed"
+          : state.kind;
     const busy = state.kind === "saving";
     save.disabled = !editable || busy || !session.savable || state.kind === "conflict";
     discard.disabled = !editable || busy || unsaved === 0;

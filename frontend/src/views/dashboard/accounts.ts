@@ -1,11 +1,12 @@
-// The dashboard's accounts card (admins): every account with its role (changed in place) and a
-// password reset, and the form that adds an account.
+// The dashboard's accounts card (admins): every account with its role (changed in place), a
+// password reset and disabling it (or enabling it again), and the form that adds an account.
 import type { UserInfo } from "@holiscene/schema";
 import { ApiError } from "../../api/errors";
 import { type Role, usersApi } from "../../api/workflow";
 import { button, el, formatTime, labelledField } from "../../dom";
 
 const ROLES: readonly Role[] = ["annotator", "reviewer", "admin"];
+const NAME_RULE = "lower-case letters, digits, _ . - (starting with a letter or digit)";
 
 /** Where an account action reports: a line of news, or an error. */
 interface Report {
@@ -13,7 +14,7 @@ interface Report {
   fail(error: unknown): void;
 }
 
-/** An account's row: its role (a select that changes it) and "Reset password…". */
+/** An account's row: its role (a select that changes it), "Reset password…" and Disable. */
 function userRow(user: UserInfo, report: Report, onChange: () => void): HTMLTableRowElement {
   const role = el(
     "select",
@@ -41,13 +42,34 @@ function userRow(user: UserInfo, report: Report, onChange: () => void): HTMLTabl
       report.fail(err);
     }
   });
+  const access = button(user.disabled ? "Enable" : "Disable…", {
+    testid: `${user.disabled ? "enable" : "disable"}-account-${user.name}`,
+    title: user.disabled
+      ? "Let this account log in again"
+      : "Stop this account logging in and end its sessions (its work stays)",
+  });
+  access.addEventListener("click", async () => {
+    const question = `Disable ${user.name}? They are logged out and cannot log in until enabled again; their scenes and labels stay.`;
+    if (!user.disabled && !window.confirm(question)) return;
+    try {
+      await usersApi.setDisabled(user.name, !user.disabled);
+      report.say(user.disabled ? `${user.name} can log in again.` : `${user.name} is disabled.`);
+      onChange();
+    } catch (err) {
+      report.fail(err);
+    }
+  });
+  const status = user.disabled
+    ? `disabled${user.disabled_at ? ` since ${formatTime(user.disabled_at)}` : ""}`
+    : "active";
   return el(
     "tr",
-    { testid: `account-${user.name}` },
+    { testid: `account-${user.name}`, className: user.disabled ? "is-disabled" : "" },
     el("th", { text: user.name, attrs: { scope: "row" } }),
     el("td", {}, role),
     el("td", { text: formatTime(user.created_at) }),
-    el("td", {}, reset),
+    el("td", { text: status, testid: `account-status-${user.name}` }),
+    el("td", { className: "account-actions" }, reset, access),
   );
 }
 
@@ -61,6 +83,8 @@ function newUserForm(report: Report, onAdded: () => Promise<void>): HTMLFormElem
       maxlength: 64,
       autocomplete: "off",
       pattern: "[a-z0-9][a-z0-9_.\\-]*",
+      // The browser shows the title when the pattern refuses a name.
+      title: NAME_RULE,
     },
   });
   const role = el(
@@ -80,13 +104,14 @@ function newUserForm(report: Report, onAdded: () => Promise<void>): HTMLFormElem
   const form = el(
     "form",
     { className: "user-form", testid: "new-user-form" },
-    labelledField("Name", name),
+    labelledField("Name", name, el("span", { className: "field-hint", text: NAME_RULE })),
     labelledField("Role", role),
     labelledField("Password", password),
     create,
   );
   form.addEventListener("submit", async (event) => {
     event.preventDefault();
+    report.say(""); // the last answer is about another request
     create.disabled = true;
     try {
       const user = await usersApi.create({
@@ -121,7 +146,11 @@ export function accountsSection(signal: AbortSignal, onChange: () => void): HTML
   const load = async () => {
     try {
       const users = await usersApi.list(signal);
-      body.replaceChildren(...users.map((user) => userRow(user, report, onChange)));
+      const changed = () => {
+        void load(); // a disabled account's row reads so
+        onChange();
+      };
+      body.replaceChildren(...users.map((user) => userRow(user, report, changed)));
     } catch (err) {
       if (!signal.aborted) report.fail(err);
     }
@@ -144,7 +173,7 @@ export function accountsSection(signal: AbortSignal, onChange: () => void): HTML
         el(
           "tr",
           {},
-          ...["Name", "Role", "Since", ""].map((text) =>
+          ...["Name", "Role", "Since", "Status", ""].map((text) =>
             el("th", { text, attrs: { scope: "col" } }),
           ),
         ),

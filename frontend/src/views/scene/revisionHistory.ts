@@ -5,6 +5,7 @@
 import type { RevisionInfo, SceneDocument } from "@holiscene/schema";
 import { deferred } from "../../afterPaint";
 import { api } from "../../api/client";
+import { errorText } from "../../api/errors";
 import { button, el, formatTime } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
 import type { ObjectEditor } from "../../state/objectEditor";
@@ -19,7 +20,13 @@ export function mountRevisionHistory(
 ): () => void {
   const list = el("ol", { className: "revision-list", testid: "revision-list" });
   const summary = el("summary", { text: "History", testid: "history-toggle" });
-  const details = el("details", { className: "history", testid: "history" }, summary, list);
+  // Why a revert did nothing, beside the button clicked; gone with the next revision.
+  const note = el("p", {
+    className: "alert alert--info history-note",
+    testid: "history-note",
+    attrs: { role: "status" },
+  });
+  const details = el("details", { className: "history", testid: "history" }, summary, note, list);
   container.replaceChildren(details);
   const documents = new Map<number, Promise<SceneDocument>>(); // revisions never change
   const revision = (n: number) => {
@@ -47,10 +54,11 @@ export function mountRevisionHistory(
 
   const revert = async (info: RevisionInfo, revertButton: HTMLButtonElement) => {
     revertButton.disabled = true;
+    note.textContent = "";
     try {
-      await revertTo(editor, info.number, await revision(info.number));
+      note.textContent = (await revertTo(editor, info.number, await revision(info.number))) ?? "";
     } catch (error) {
-      session.say(`Could not revert: ${String(error)}`);
+      note.textContent = `Could not revert: ${errorText(error)}`;
     } finally {
       revertButton.disabled = false;
     }
@@ -119,7 +127,10 @@ export function mountRevisionHistory(
   // After the new revision is drawn: the list is below the photo, and its request can wait.
   const refreshLater = deferred(() => void refresh());
   const unsubscribe = session.subscribe((change) => {
-    if (change === "document") refreshLater();
+    if (change === "document") {
+      note.textContent = "";
+      refreshLater();
+    }
     if (change === "lock") {
       for (const revertButton of list.querySelectorAll<HTMLButtonElement>(
         "[data-testid^='revision-revert-']",

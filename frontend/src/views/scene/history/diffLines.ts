@@ -1,14 +1,24 @@
-// The lines of a revision's diff in the history: each support changed, objects added or
-// removed, and whether the room layout moved.
+// The lines of a revision's diff in the history: each support changed, objects added,
+// removed or changed (class, box, mask; 3D boxes and shapes in one line), and whether the room
+// layout or camera moved.
 import type { SceneDocument } from "@holiscene/schema";
 import { el } from "../../../dom";
 import { describeChange, diffScenes } from "../../../state/revisionDiff";
+import { plural } from "../../../state/sceneSession";
 
 /** What `after` changed from `before` (null: `after` is the imported scene). */
 export function diffLines(before: SceneDocument | null, after: SceneDocument): HTMLLIElement[] {
   const diff = before
     ? diffScenes(before.scene, after.scene)
-    : { supports: [], objectsAdded: [], objectsRemoved: [], layoutChanged: false };
+    : {
+        supports: [],
+        objectsAdded: [],
+        objectsRemoved: [],
+        objectsChanged: [],
+        layoutChanged: false,
+      };
+  const drawn = diff.objectsChanged.filter((c) => c.drawn.length > 0);
+  const placed = diff.objectsChanged.filter((c) => c.placed.length > 0).map((c) => c.id);
   const lines = [
     ...diff.supports.map((c) =>
       el("li", {
@@ -22,8 +32,25 @@ export function diffLines(before: SceneDocument | null, after: SceneDocument): H
     ...(diff.objectsRemoved.length > 0
       ? [el("li", { text: `objects removed: ${diff.objectsRemoved.join(", ")}` })]
       : []),
-    ...(diff.layoutChanged ? [el("li", { text: "room layout changed" })] : []),
+    ...drawn.map((c) =>
+      el("li", {
+        text: `${c.id}: ${c.drawn.join(", ")}`,
+        attrs: { "data-object": c.id },
+      }),
+    ),
+    ...(placed.length > 0
+      ? [
+          el("li", {
+            text: `3D box or shape of ${plural(placed.length, "object")}: ${placed.join(", ")}`,
+          }),
+        ]
+      : []),
+    ...(diff.layoutChanged ? [el("li", { text: "room layout or camera changed" })] : []),
   ];
   if (lines.length > 0) return lines;
-  return [el("li", { text: before ? "no change to supports" : "the imported scene" })];
+  return [
+    el("li", {
+      text: before ? "no change to objects, supports or the room" : "the imported scene",
+    }),
+  ];
 }
