@@ -119,8 +119,13 @@ def test_taking_a_scene() -> None:
         take_for_annotation(mine, BOB)
     with pytest.raises(WorkflowError, match="being annotated by ann"):
         take_for_annotation(mine, REV)
-    admin_takes = take_for_annotation(mine, ADMIN)
+    # An admin takes a scene over by taking it, not by an edit.
+    with pytest.raises(WorkflowError, match="being annotated by ann: take it over to edit it"):
+        take_for_annotation(mine, ADMIN)
+    admin_takes = take_for_annotation(mine, ADMIN, taking=True)
     assert admin_takes is not None and admin_takes.assignee == "ada"
+    with pytest.raises(WorkflowError, match="sent back to ann, who fixes it: take it over"):
+        take_for_annotation(SceneStatus("rejected", "ann", 1), ADMIN)
     rejected = take_for_annotation(SceneStatus("rejected", "ann", 1), ANN)
     assert rejected is not None and (rejected.action, rejected.to_state) == (
         "reopen",

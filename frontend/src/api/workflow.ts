@@ -71,8 +71,12 @@ export const workflowApi = {
   /** The scene waiting longest for the caller's review; nothing is assigned (404: none). */
   nextToReview: () => request<SceneSummary>("/scenes/next-review"),
 
-  get: (sceneId: string, signal?: AbortSignal) =>
-    request<SceneWorkflow>(`${sceneUrl(sceneId)}/workflow`, { signal }),
+  /** `background`: the page checks by itself (not activity, see BACKGROUND_HEADER). */
+  get: (sceneId: string, signal?: AbortSignal, background = false) =>
+    request<SceneWorkflow>(
+      `${sceneUrl(sceneId)}/workflow`,
+      background ? inBackground({ signal }) : { signal },
+    ),
 
   take: (sceneId: string) => request<SceneSummary>(`${sceneUrl(sceneId)}/take`, { method: "POST" }),
 

@@ -76,9 +76,13 @@ class Transition:
 
 
 def take_for_annotation(
-    status: SceneStatus, actor: Actor, earlier_annotators: Iterable[str] = ()
+    status: SceneStatus,
+    actor: Actor,
+    earlier_annotators: Iterable[str] = (),
+    taking: bool = False,
 ) -> Transition | None:
-    """What editing (or taking) the scene does to its state; None when nothing changes.
+    """What editing (or, with `taking`, taking) the scene does to its state; None when nothing
+    changes.
 
     Raises WorkflowError when the actor may not work on the scene now. `earlier_annotators`:
     who submitted it in an earlier annotation round (a second annotation must be
@@ -106,14 +110,15 @@ def take_for_annotation(
         )
     if state in ("new", "predicted"):
         return Transition("claim", "in_annotation", actor.name)
-    if assignee not in (None, actor.name) and not has_role(actor.role, "admin"):
+    admin = has_role(actor.role, "admin")
+    if assignee not in (None, actor.name) and not (admin and taking):
         # Worded to start with "the scene": pages make the first letter a capital, and a
-        # person's name is spelled as they chose it.
+        # person's name is spelled as they chose it. An admin takes a scene over by taking it,
+        # never by an edit: a stray click must not lock its annotator out unawares.
+        over = " (an admin can take it over)" if not admin else ": take it over to edit it"
         if state == "rejected":
-            raise WorkflowError(
-                f"the scene was sent back to {assignee}, who fixes it (an admin can take it over)"
-            )
-        raise WorkflowError(f"the scene is being annotated by {assignee}")
+            raise WorkflowError(f"the scene was sent back to {assignee}, who fixes it{over}")
+        raise WorkflowError(f"the scene is being annotated by {assignee}{over if admin else ''}")
     if state == "rejected":
         return Transition("reopen", "in_annotation", actor.name)
     if assignee != actor.name:  # in annotation, unassigned or taken over by an admin

@@ -152,11 +152,11 @@ class WorkflowStore:
         return self.scenes.commit_edits(scene_id, request, edited, hook=take)
 
     def take(self, scene_id: str, actor: Actor) -> SceneSummary:
-        """Take a scene for annotation without editing it yet."""
+        """Take a scene for annotation without editing it yet (an admin: also take it over)."""
         with Session(self.engine) as session:
             row = _row(session, scene_id)
             transition = workflow_rules.take_for_annotation(
-                status_of(row), actor, _earlier_annotators(session, row)
+                status_of(row), actor, _earlier_annotators(session, row), taking=True
             )
             if transition is not None:
                 if _apply_if_unchanged(session, row, transition, actor, row.current_revision):

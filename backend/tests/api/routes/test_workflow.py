@@ -196,6 +196,24 @@ def test_a_scene_taken_by_mistake_is_given_back_with_its_edits(
     assert (by_admin.json()["state"], by_admin.json()["assignee"]) == ("predicted", None)
 
 
+def test_an_admin_takes_a_scene_over_by_taking_it_not_by_an_edit(
+    api: Api, accounts: Accounts
+) -> None:
+    scene_id = store_predicted_scene(accounts.workbench.scenes)
+    assert api.edit("ann", scene_id, _set("o2", "floor")).status_code == 200
+    before = api.snapshot(scene_id)
+    refused = api.edit("ada", scene_id, _set("o1", "floor"))
+    _refused(api, scene_id, refused, 409, "being annotated by ann: take it over to edit it")
+    doc = api.get("ada", f"/api/scenes/{scene_id}")
+    assert doc["editable"] is False and "take it over" in doc["editable_reason"]
+    assert api.snapshot(scene_id) == before
+
+    taken = api.post("ada", f"/api/scenes/{scene_id}/take")
+    assert taken.status_code == 200 and taken.json()["assignee"] == "ada"
+    assert api.edit("ada", scene_id, _set("o1", "floor")).status_code == 200
+    _refused(api, scene_id, api.edit("ann", scene_id, _set("o3", "floor")), 409, "by ada")
+
+
 def test_reviewers_do_not_review_their_own_work(api: Api, accounts: Accounts) -> None:
     scene_id = store_predicted_scene(accounts.workbench.scenes)
     assert api.post("rita", f"/api/scenes/{scene_id}/take").json()["assignee"] == "rita"

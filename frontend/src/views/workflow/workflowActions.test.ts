@@ -48,3 +48,17 @@ describe("give back", () => {
     expect(canRelease(local, user("local", "admin", true))).toBe(false);
   });
 });
+
+describe("take over", () => {
+  it("is offered to admins on a scene someone else annotates or fixes, not to its annotator", () => {
+    const taken = flow("in_annotation", "ann");
+    const takeOver = (f: SceneWorkflow, me: CurrentUser) =>
+      actionState(f, me, 0, false).canTakeOver;
+    expect(takeOver(taken, user("ada", "admin"))).toBe(true);
+    expect(takeOver(flow("rejected", "ann"), user("ada", "admin"))).toBe(true);
+    expect(takeOver(taken, user("ann", "annotator"))).toBe(false);
+    expect(takeOver(taken, user("rita", "reviewer"))).toBe(false);
+    expect(takeOver(flow("in_annotation", "ada"), user("ada", "admin"))).toBe(false);
+    expect(takeOver(flow("submitted", "ann"), user("ada", "admin"))).toBe(false);
+  });
+});

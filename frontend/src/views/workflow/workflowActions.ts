@@ -18,6 +18,8 @@ export interface ActionState {
   canSubmit: boolean;
   /** Give the scene back to the queue: its annotator (or an admin), unless sent back to fix. */
   canRelease: boolean;
+  /** An admin may take over a scene someone else annotates (edits alone do not). */
+  canTakeOver: boolean;
   canReview: boolean;
   reviewer: boolean;
 }
@@ -49,6 +51,11 @@ export function actionState(
       flow.state === "in_annotation" &&
       me?.local_mode !== true &&
       ((mine && annotator && !sentBack) || admin),
+    canTakeOver:
+      admin &&
+      !mine &&
+      flow.assignee !== null &&
+      (flow.state === "in_annotation" || flow.state === "rejected"),
     canReview:
       flow.state === "submitted" && reviewer && (!mine || me?.local_mode === true) && !busy,
   };
@@ -144,10 +151,18 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
     const { flow, pending, busy, mine } = now;
     const state = flow.state;
     take.hidden = !(
-      now.annotator &&
-      (state === "new" || state === "predicted" || (state === "rejected" && mine))
+      (now.annotator &&
+        (state === "new" || state === "predicted" || (state === "rejected" && mine))) ||
+      now.canTakeOver
     );
-    take.textContent = state === "rejected" ? "Reopen for changes" : "Start annotating";
+    take.textContent = now.canTakeOver
+      ? `Take over from ${flow.assignee}`
+      : state === "rejected"
+        ? "Reopen for changes"
+        : "Start annotating";
+    take.title = now.canTakeOver
+      ? `Make this scene yours: ${flow.assignee}'s next save is refused`
+      : "Take this scene for annotation";
     submit.hidden = !(state === "in_annotation" && mine);
     submit.disabled = !now.canSubmit || pending > 0;
     submit.title =

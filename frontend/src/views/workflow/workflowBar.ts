@@ -21,6 +21,19 @@ import "./workflow.css";
 // buttons and the reject box) and workflowKeys; this bar loads the scene's workflow, runs the
 // actions one at a time and shows the outcome in both.
 
+const WORKFLOW_CHECK_MS = 10_000;
+
+/** Whether two answers show the same workflow step (nothing to redraw). */
+function sameStep(a: SceneWorkflow, b: SceneWorkflow): boolean {
+  return (
+    a.state === b.state &&
+    a.assignee === b.assignee &&
+    a.revision === b.revision &&
+    a.events.length === b.events.length &&
+    a.editable === b.editable
+  );
+}
+
 export function mountWorkflowBar(container: HTMLElement, session: SceneSession): () => void {
   const abort = new AbortController();
   let flow: SceneWorkflow | null = null;
@@ -31,7 +44,13 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
   const error = hiddenErrorAlert("workflow-error");
   const revision = () => session.doc.revision;
   const actions = workflowActions({
-    onTake: () => void act(() => workflowApi.take(session.sceneId)),
+    onTake: () => {
+      const assignee = flow?.assignee;
+      const mine = assignee === getCurrentUser()?.name;
+      const question = `${assignee} is annotating this scene. Take it over? Their next save is refused; what they saved stays.`;
+      if (assignee && !mine && !window.confirm(question)) return;
+      void act(() => workflowApi.take(session.sceneId));
+    },
     onSubmit: () => void act(() => workflowApi.submit(session.sceneId, revision())),
     onRelease: () => {
       const question =
@@ -86,13 +105,15 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
     actions.show(actionState(flow, me(), pending, busy));
   };
 
-  const load = async () => {
+  const load = async (background = false) => {
     try {
-      flow = await workflowApi.get(session.sceneId, abort.signal);
+      const loaded = await workflowApi.get(session.sceneId, abort.signal, background);
+      if (background && flow && sameStep(flow, loaded)) return;
+      flow = loaded;
       session.setWorkflow(flow); // submitted and accepted scenes are read only
       render();
     } catch (err) {
-      if (!abort.signal.aborted) showError(err);
+      if (!abort.signal.aborted && !background) showError(err);
     }
   };
 
@@ -132,7 +153,13 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
     }
   });
   void load();
+  // Someone else may submit, accept, reject or take the scene while this page is open: looked
+  // at again every few seconds while the tab is visible, so the buttons and the lock follow.
+  const watch = setInterval(() => {
+    if (document.visibilityState === "visible" && !busy) void load(true);
+  }, WORKFLOW_CHECK_MS);
   return () => {
+    clearInterval(watch);
     loadLater.cancel();
     abort.abort();
     unsubscribe();
