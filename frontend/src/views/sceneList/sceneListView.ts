@@ -29,7 +29,11 @@ function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowE
         attrs: { src: api.imageUrl(scene.id), alt: "", loading: "lazy", width: 96 },
       }),
     ),
-    el("th", { attrs: { scope: "row" } }, el("a", { text: scene.name, attrs: { href } })),
+    el(
+      "th",
+      { className: "scene-name", attrs: { scope: "row" } },
+      el("a", { text: scene.name, attrs: { href, title: scene.name } }),
+    ),
     el(
       "td",
       {},
@@ -46,9 +50,9 @@ function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowE
       text: scene.uncertainty === null ? "—" : scene.uncertainty.toFixed(2),
       attrs: { title: "Mean doubt of the pipeline's supporters (1 - confidence)" },
     }),
-    el("td", { text: `${scene.width}×${scene.height}` }),
+    el("td", { className: "narrow-hidden", text: `${scene.width}×${scene.height}` }),
     el("td", { text: String(scene.object_count) }),
-    el("td", { text: String(scene.revision) }),
+    el("td", { className: "narrow-hidden", text: String(scene.revision) }),
     el("td", { text: formatTime(scene.updated_at) }),
     el("td", {
       className: job?.status === "failed" ? "is-failed" : "",
@@ -83,7 +87,13 @@ export function mountSceneList(container: HTMLElement): () => void {
           "Revision",
           "Updated",
           "Pipeline",
-        ].map((text) => el("th", { text, attrs: { scope: "col" } })),
+        ].map((text) =>
+          el("th", {
+            text,
+            className: text === "Size" || text === "Revision" ? "narrow-hidden" : "",
+            attrs: { scope: "col" },
+          }),
+        ),
       ),
     ),
     body,
