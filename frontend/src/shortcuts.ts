@@ -77,7 +77,10 @@ function typingTarget(event: KeyboardEvent): boolean {
     );
   }
   if (target instanceof HTMLSelectElement) {
-    return !(event.ctrlKey || event.metaKey || event.altKey) && event.key !== "Escape";
+    // A list has no use for Escape or Shift+Enter (submit, accept): they stay the page's, so
+    // submitting right after choosing a supporter in its list works.
+    const pageKey = event.key === "Escape" || (event.key === "Enter" && event.shiftKey);
+    return !(event.ctrlKey || event.metaKey || event.altKey) && !pageKey;
   }
   return false;
 }
