@@ -47,7 +47,8 @@ def test_editable_follows_the_state_and_the_user(api: Api, accounts: Accounts) -
     assert (edited.json()["editable"], edited.json()["editable_reason"]) == (True, None)
     may = _everyone(api, scene_id)
     assert may["ann"] == (True, None)
-    assert may["ada"] == (True, None)  # an admin may take a scene over
+    # An admin takes a scene over by taking it, not by an edit.
+    assert may["ada"] == (False, "the scene is being annotated by ann: take it over to edit it")
     for other in ("bob", "rita"):
         assert may[other] == (False, "the scene is being annotated by ann")
 
@@ -61,7 +62,11 @@ def test_editable_follows_the_state_and_the_user(api: Api, accounts: Accounts) -
     assert rejected.status_code == 200
     assert rejected.json()["editable"] is False  # rita: ann fixes it
     may = _everyone(api, scene_id)
-    assert may["ann"] == (True, None) and may["ada"] == (True, None)
+    assert may["ann"] == (True, None)
+    assert may["ada"] == (
+        False,
+        "the scene was sent back to ann, who fixes it: take it over to edit it",
+    )
     assert may["bob"] == (
         False,
         "the scene was sent back to ann, who fixes it (an admin can take it over)",

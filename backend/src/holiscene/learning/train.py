@@ -288,7 +288,7 @@ def plot_curve(
     accuracy_axis.set_ylim(0, 1)
     # Epochs are whole. The locator falls back to fractions when fewer than two whole numbers
     # are in view (one epoch: 0.945-1.05), so a short run gets its epochs as the ticks.
-    if len(epochs) < 5:
+    if 0 < len(epochs) < 5:  # an untrained model's curve is empty
         loss_axis.set_xlim(epochs[0] - 0.5, epochs[-1] + 0.5)
         loss_axis.set_xticks(epochs)
     else:
