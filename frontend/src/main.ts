@@ -125,7 +125,7 @@ async function logOut(): Promise<void> {
 
 /** The session ended while a page was open: log in again over it, so nothing on the page
  * (unsaved edits included) is lost; then the page carries on. */
-function loginOverPage(): void {
+function loginOverPage(reason: string | null): void {
   if (document.querySelector("[data-testid='login-overlay']")) return;
   const before = getCurrentUser();
   const inner = el("div");
@@ -138,7 +138,12 @@ function loginOverPage(): void {
     },
     el("p", {
       className: "alert alert--info",
-      text: "Your session ended. Log in again to carry on; nothing on this page was lost.",
+      testid: "login-overlay-reason",
+      // The server says why (expired, idle, or the account was disabled: logging in again
+      // as the same person cannot help then).
+      text: reason
+        ? `${reason.charAt(0).toUpperCase()}${reason.slice(1)}. Nothing on this page was lost: log in to carry on.`
+        : "Your session ended. Log in again to carry on; nothing on this page was lost.",
     }),
     inner,
   );
@@ -150,8 +155,8 @@ function loginOverPage(): void {
   });
 }
 
-sessionEvents.onUnauthorized = () => {
-  if (getCurrentUser()) loginOverPage();
+sessionEvents.onUnauthorized = (reason) => {
+  if (getCurrentUser()) loginOverPage(reason);
 };
 onCurrentUserChange(renderUserArea);
 

@@ -10,7 +10,7 @@ import type {
   SceneSummary,
   ViewerInfo,
 } from "@holiscene/schema";
-import { ApiError, ConflictError } from "./errors";
+import { ApiError, ConflictError, describeDetail } from "./errors";
 
 export const BASE = "/api";
 
@@ -26,8 +26,13 @@ async function readDetail(response: Response): Promise<unknown> {
   }
 }
 
-/** Told when an answer is 401 (no session, or it ended): main.ts then shows the login page. */
-export const sessionEvents: { onUnauthorized: (() => void) | null } = { onUnauthorized: null };
+/**
+ * Told when an answer is 401 (no session, or it ended), with the server's reason (e.g. the
+ * account was disabled): main.ts then shows the login page.
+ */
+export const sessionEvents: { onUnauthorized: ((reason: string | null) => void) | null } = {
+  onUnauthorized: null,
+};
 
 async function fetchOk(path: string, init: RequestInit, accept: string): Promise<Response> {
   const response = await fetch(`${BASE}${path}`, {
@@ -36,7 +41,9 @@ async function fetchOk(path: string, init: RequestInit, accept: string): Promise
   });
   if (!response.ok) {
     const detail = await readDetail(response);
-    if (response.status === 401 && !path.startsWith("/auth/")) sessionEvents.onUnauthorized?.();
+    if (response.status === 401 && !path.startsWith("/auth/")) {
+      sessionEvents.onUnauthorized?.(describeDetail(detail));
+    }
     if (response.status === 409) throw new ConflictError(detail);
     throw new ApiError(response.status, detail, `${response.status} ${response.statusText}`);
   }

@@ -352,8 +352,16 @@ class Workbench:
             placed = result.scene.model_copy(
                 update={"stages": with_earlier_runs(run.earlier_stages, result.scene.stages)}
             )
+            # The stages this job ran (the revision keeps the earlier ones' notes too), and
+            # who asked: the history reads "re-placed objects", not a whole pipeline run.
+            ran = [s.name for s in result.scene.stages if s.name != "scene_from_revision"]
             revision = self.scenes.commit_placement_result(
-                job.scene_id, job.base_revision, placed, result.glb
+                job.scene_id,
+                job.base_revision,
+                placed,
+                result.glb,
+                author=job.started_by or "pipeline",
+                summary=f"objects placed again: {', '.join(ran)}",
             )
         else:
             # A layout set by hand up to the revision read above is in the result (kept);

@@ -459,21 +459,33 @@ class SceneStore:
         raise RevisionConflictError(self.document(scene_id).revision)
 
     def commit_placement_result(
-        self, scene_id: str, base_revision: int, result: Scene, glb: bytes | None
+        self,
+        scene_id: str,
+        base_revision: int,
+        result: Scene,
+        glb: bytes | None,
+        author: str = "pipeline",
+        summary: str | None = None,
     ) -> int:
         """Store a placement run made on `base_revision`, only if the scene is still at that
         revision: the run carries that revision's layout, camera and supports, and storing it
         on top of a newer revision would silently undo what was saved since. Otherwise
         SceneChangedError, and nothing is written."""
         try:
-            return self._commit_result(scene_id, base_revision, result, glb)
+            return self._commit_result(scene_id, base_revision, result, glb, author, summary)
         except RevisionConflictError as conflict:
             raise SceneChangedError(base_revision, conflict.current_revision) from conflict
 
     # -- helpers -------------------------------------------------------------------------
 
     def _commit_result(
-        self, scene_id: str, base_revision: int, scene: Scene, glb: bytes | None
+        self,
+        scene_id: str,
+        base_revision: int,
+        scene: Scene,
+        glb: bytes | None,
+        author: str = "pipeline",
+        summary: str | None = None,
     ) -> int:
         """A pipeline or placement run as revision base_revision + 1, if the scene is still at
         `base_revision` (RevisionConflictError otherwise). The GLB is written once the revision
@@ -494,9 +506,9 @@ class SceneStore:
                 scene_id,
                 base_revision,
                 scene,
-                author="pipeline",
+                author=author,
                 kind="pipeline",
-                summary=f"pipeline: {', '.join(s.name for s in scene.stages)}",
+                summary=summary or f"pipeline: {', '.join(s.name for s in scene.stages)}",
                 edits=None,
                 glb_revision=new_revision if glb is not None else _KEEP,
                 hook=committed,

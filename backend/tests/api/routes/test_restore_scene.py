@@ -124,6 +124,11 @@ def test_a_restored_scene_brings_back_its_3d_scene(client: TestClient, t3d5: Pat
     assert wait_for_job(client, started.json()["id"], timeout=120)["status"] == "succeeded"
     placed = client.get(f"/api/scenes/{scene_id}").json()
     assert placed["revision"] == removed["revision"] + 1
+    # The history says who placed the objects again, and only the stages that job ran.
+    entry = client.get(f"/api/scenes/{scene_id}/revisions").json()[-1]
+    assert entry["author"] == "local"
+    assert entry["summary"].startswith("objects placed again: ")
+    assert "placement" in entry["summary"] and "masks_grabcut" not in entry["summary"]
     placed_glb = _glb(client, scene_id)
     assert placed_glb is not None and placed_glb != predicted_glb
 

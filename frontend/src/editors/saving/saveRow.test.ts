@@ -23,12 +23,12 @@ describe("the save status", () => {
     );
   });
 
-  it("says an object action kept after it failed is not saved, where nothing else is out", () => {
+  it("says an object action kept after it failed is not saved, beside unsaved support edits too", () => {
     expect(statusText({ kind: "saved", revision: 5 }, 0, 5, true, null, "remove door o9")).toBe(
       "Not saved: remove door o9 (above the photo)",
     );
     expect(statusText({ kind: "dirty" }, 1, 5, true, null, "remove door o9")).toBe(
-      "1 unsaved change on revision 5 · autosaving",
+      "1 unsaved change on revision 5 · autosaving · not saved: remove door o9",
     );
   });
 

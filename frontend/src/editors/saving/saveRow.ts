@@ -18,6 +18,17 @@ export function statusText(
     if (objectAction !== null) return `Saving: ${objectAction}…`;
     if (objectFailed !== null) return `Not saved: ${objectFailed} (above the photo)`;
   }
+  const failedToo = objectFailed === null ? "" : ` · not saved: ${objectFailed}`;
+  return supportStatus(state, pending, revision, savable) + failedToo;
+}
+
+/** The support and layout edits' part of the status. */
+function supportStatus(
+  state: SaveState,
+  pending: number,
+  revision: number,
+  savable: boolean,
+): string {
   switch (state.kind) {
     case "clean":
       return `Revision ${revision} · no unsaved changes`;

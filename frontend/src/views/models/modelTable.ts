@@ -124,10 +124,10 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
         { attrs: { title: model.note ?? "" } },
         el("span", {
           className: `badge badge--${model.status}`,
-          // A model an admin made active although it lost its held-out test says so.
+          // A model an admin made active although it lost (or tied) its held-out test says so.
           text:
-            model.active && model.status === "rejected"
-              ? "rejected, made active by hand"
+            model.active && (model.status === "rejected" || model.status === "candidate")
+              ? `${STATUS_TEXT[model.status]}, made active by hand`
               : STATUS_TEXT[model.status],
         }),
       ),

@@ -57,8 +57,11 @@ export function mountRevisionHistory(
     note.textContent = "";
     try {
       note.textContent = (await revertTo(editor, info.number, await revision(info.number))) ?? "";
+      // The note heads the list; the button clicked may be far down it.
+      if (note.textContent) note.scrollIntoView({ block: "nearest" });
     } catch (error) {
       note.textContent = `Could not revert: ${errorText(error)}`;
+      note.scrollIntoView({ block: "nearest" });
     } finally {
       revertButton.disabled = false;
     }

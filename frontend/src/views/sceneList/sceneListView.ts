@@ -13,6 +13,7 @@ import { SceneSelection } from "./sceneSelection";
 import { uploadForm } from "./uploadForm";
 
 const REFRESH_WHILE_RUNNING_MS = 2000;
+const REFRESH_IDLE_MS = 10_000;
 
 function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowElement {
   const href = `#/scenes/${encodeURIComponent(scene.id)}`;
@@ -31,8 +32,12 @@ function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowE
     ),
     el(
       "th",
-      { className: "scene-name", attrs: { scope: "row" } },
-      el("a", { text: scene.name, attrs: { href, title: scene.name } }),
+      { attrs: { scope: "row" } },
+      el("a", {
+        className: "scene-name-link",
+        text: scene.name,
+        attrs: { href, title: scene.name },
+      }),
     ),
     el(
       "td",
@@ -108,13 +113,22 @@ export function mountSceneList(container: HTMLElement): () => void {
   );
   const next = nextSceneControl("N");
   let timer = 0;
-  // `background`: the timed refresh while a job runs, which is not activity (api/client.ts).
+  let shown = "";
+  // `background`: the timed refresh (faster while a job runs), which is not activity
+  // (api/client.ts). Others take, submit and review scenes meanwhile: the list follows.
   const refresh = async (background = false) => {
     clearTimeout(timer);
+    if (background && document.visibilityState !== "visible") {
+      timer = window.setTimeout(() => void refresh(true), REFRESH_IDLE_MS);
+      return;
+    }
     try {
       const state = (filter.value || null) as SceneState | null;
       const scenes = await workflowApi.listScenes(state, abort.signal, background);
-      body.replaceChildren(...scenes.map((scene) => sceneRow(scene, selection)));
+      const now = JSON.stringify(scenes);
+      // Unchanged rows are left alone: a checkbox or link under the pointer stays put.
+      if (now !== shown) body.replaceChildren(...scenes.map((scene) => sceneRow(scene, selection)));
+      shown = now;
       selection.listed(scenes.map((scene) => scene.id));
       table.hidden = scenes.length === 0;
       status.textContent =
@@ -124,7 +138,8 @@ export function mountSceneList(container: HTMLElement): () => void {
             ? `No scene is ${stateLabel(state)}.`
             : "No scenes yet: import a photo above.";
       const running = scenes.some((s) => s.latest_job && !isFinished(s.latest_job));
-      if (running) timer = window.setTimeout(() => void refresh(true), REFRESH_WHILE_RUNNING_MS);
+      const wait = running ? REFRESH_WHILE_RUNNING_MS : REFRESH_IDLE_MS;
+      timer = window.setTimeout(() => void refresh(true), wait);
     } catch (error) {
       if (!abort.signal.aborted) status.textContent = `Could not load scenes: ${String(error)}`;
     }

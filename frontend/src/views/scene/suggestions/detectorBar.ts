@@ -111,9 +111,14 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
     actionRow,
     el("div", { className: "detector-status-row" }, statusLine, fainterButton),
   );
+  // Until the first detection, nothing can appear there: no room is kept (a band of blank
+  // space above the photo otherwise).
+  let used = false;
   return {
     element,
     show({ busy, status, failed, editable, open, fainter, chosen }) {
+      used ||= busy || open > 0;
+      actionRow.classList.toggle("is-unused", !used);
       detectButton.disabled = busy;
       fainterButton.hidden = fainter === 0;
       fainterButton.disabled = busy;
