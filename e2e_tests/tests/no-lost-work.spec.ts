@@ -199,6 +199,16 @@ test("the history shows what each revision changed and reverts to any of them", 
   await expect.poll(latest).toBe(second.revision + 2);
   doc = await getScene(request, seeded.scene_id);
   expect(doc.scene).toEqual(second.scene);
+
+  // Bob saves again, unseen by this page: a revert now is not applied on top of his revision.
+  const third = await postEdits(request, doc, "bob", [
+    { kind: "set_class", id: "o1", class: "desk" },
+  ]);
+  await page.getByTestId(`revision-revert-${predicted}`).click();
+  await expect(page.getByTestId("object-edit-status")).toContainText(
+    `bob saved revision ${third.revision} meanwhile; reverting now would throw their change away`,
+  );
+  expect((await getScene(request, seeded.scene_id)).revision).toBe(third.revision);
 });
 
 test("two people edit one scene: the second gets a conflict, merges or reloads, nothing is lost", async ({

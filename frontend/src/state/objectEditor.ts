@@ -484,6 +484,15 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
         this.refuseOverwrite(label, changed, who);
         return null;
       }
+      // A revert on top of a colleague's newer revision would throw all of it away: the
+      // person looks at it first, and reverts again if they still want to.
+      if (changed.includes(WHOLE_SCENE)) {
+        const message =
+          `Not done: ${label}. ${who} saved revision ${latest} meanwhile; reverting now would ` +
+          "throw their change away. Look at it in the history, then revert again if you still want to.";
+        this.setStatus({ kind: "idle", message, error: true });
+        return null;
+      }
       const rebased = rebaseEdits(edits, session.objects);
       if (rebased.edits === null) {
         const gone = rebased.missing.join(", ");
