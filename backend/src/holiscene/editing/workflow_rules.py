@@ -115,10 +115,11 @@ def take_for_annotation(
         # Worded to start with "the scene": pages make the first letter a capital, and a
         # person's name is spelled as they chose it. An admin takes a scene over by taking it,
         # never by an edit: a stray click must not lock its annotator out unawares.
-        over = " (an admin can take it over)" if not admin else ": take it over to edit it"
+        take_over = ": take it over to edit it" if admin else ""
         if state == "rejected":
-            raise WorkflowError(f"the scene was sent back to {assignee}, who fixes it{over}")
-        raise WorkflowError(f"the scene is being annotated by {assignee}{over if admin else ''}")
+            hint = take_over or " (an admin can take it over)"
+            raise WorkflowError(f"the scene was sent back to {assignee}, who fixes it{hint}")
+        raise WorkflowError(f"the scene is being annotated by {assignee}{take_over}")
     if state == "rejected":
         return Transition("reopen", "in_annotation", actor.name)
     if assignee != actor.name:  # in annotation, unassigned or taken over by an admin

@@ -408,15 +408,19 @@ class SceneStore:
             hook=hook,
         )
 
-    def latest_pipeline_document(self, scene_id: str) -> SceneDocument | None:
-        """The newest revision the pipeline wrote, or None."""
+    def latest_pipeline_revision(self, scene_id: str) -> int | None:
+        """The number of the newest revision the pipeline wrote, or None."""
         with Session(self.engine) as session:
-            number = session.scalar(
+            return session.scalar(
                 select(RevisionRow.number)
                 .where(RevisionRow.scene_id == scene_id, RevisionRow.kind == "pipeline")
                 .order_by(RevisionRow.number.desc())
                 .limit(1)
             )
+
+    def latest_pipeline_document(self, scene_id: str) -> SceneDocument | None:
+        """The newest revision the pipeline wrote, or None."""
+        number = self.latest_pipeline_revision(scene_id)
         return self.document(scene_id, number) if number is not None else None
 
     def with_pipeline_result(self) -> set[str]:
@@ -546,7 +550,11 @@ class SceneStore:
             row = by_number[number]
             if row.kind == "pipeline" and self.files.glb_path(scene_id, number).is_file():
                 return number
-            restored = restored_scene_revision(_EDITS.validate_python(row.edits or []))
+            # The stored edits as written (JSON): only a restore_scene's revision is wanted.
+            restores = [
+                e["from_revision"] for e in row.edits or [] if e.get("kind") == "restore_scene"
+            ]
+            restored = restores[-1] if restores else None
             number = restored if restored is not None and restored < number else number - 1
         return None
 

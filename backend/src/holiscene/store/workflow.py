@@ -239,7 +239,7 @@ class WorkflowStore:
     def release(self, scene_id: str, revision: int, actor: Actor) -> SceneWorkflow:
         """Give back a scene in annotation: unassigned, predicted again (new when the pipeline
         never ran on it), its revisions kept."""
-        predicted = self.scenes.latest_pipeline_document(scene_id) is not None
+        predicted = self.scenes.latest_pipeline_revision(scene_id) is not None
         with Session(self.engine) as session:
             sent_back = _rejected_this_round(session, _row(session, scene_id))
         return self._change(

@@ -14,6 +14,9 @@ import { uploadForm } from "./uploadForm";
 
 const REFRESH_WHILE_RUNNING_MS = 2000;
 const REFRESH_IDLE_MS = 10_000;
+// Header columns that give way in a narrow window (.narrow-hidden in styles.css; their cells in
+// sceneRow carry the class too).
+const NARROW_HIDDEN = new Set(["Size", "Revision"]);
 
 function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowElement {
   const href = `#/scenes/${encodeURIComponent(scene.id)}`;
@@ -95,7 +98,7 @@ export function mountSceneList(container: HTMLElement): () => void {
         ].map((text) =>
           el("th", {
             text,
-            className: text === "Size" || text === "Revision" ? "narrow-hidden" : "",
+            className: NARROW_HIDDEN.has(text) ? "narrow-hidden" : "",
             attrs: { scope: "col" },
           }),
         ),

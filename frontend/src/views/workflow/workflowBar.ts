@@ -23,17 +23,6 @@ import "./workflow.css";
 
 const WORKFLOW_CHECK_MS = 10_000;
 
-/** Whether two answers show the same workflow step (nothing to redraw). */
-function sameStep(a: SceneWorkflow, b: SceneWorkflow): boolean {
-  return (
-    a.state === b.state &&
-    a.assignee === b.assignee &&
-    a.revision === b.revision &&
-    a.events.length === b.events.length &&
-    a.editable === b.editable
-  );
-}
-
 export function mountWorkflowBar(container: HTMLElement, session: SceneSession): () => void {
   const abort = new AbortController();
   let flow: SceneWorkflow | null = null;
@@ -108,7 +97,8 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
   const load = async (background = false) => {
     try {
       const loaded = await workflowApi.get(session.sceneId, abort.signal, background);
-      if (background && flow && sameStep(flow, loaded)) return;
+      // The same answer as before: nothing to redraw.
+      if (background && JSON.stringify(flow) === JSON.stringify(loaded)) return;
       flow = loaded;
       session.setWorkflow(flow); // submitted and accepted scenes are read only
       render();
