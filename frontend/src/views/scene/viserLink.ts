@@ -1,5 +1,7 @@
 // "Open in viser": asks the server for the scene's viser viewer (started on demand on
-// 127.0.0.1, one per scene, POST /api/scenes/{id}/viewer) and opens it in a new tab.
+// 127.0.0.1, one per scene, POST /api/scenes/{id}/viewer) and opens it in a new tab. Once
+// opened, the viewer follows the page: a newer revision asks the server again, which rebuilds
+// the running viewer in place (its open tab redraws without a reload).
 import { api } from "../../api/client";
 import { button, el } from "../../dom";
 
@@ -9,10 +11,13 @@ export interface ViserLink {
   showRevision(revision: number): void;
 }
 
+const VIEWER_FOLLOW_MS = 2000;
+
 /** A button that opens the viewer, and a link to it once it runs. */
 export function viserLink(sceneId: string): ViserLink {
   let opened: number | null = null; // the revision the running viewer shows
   let latest = 0;
+  let followTimer: ReturnType<typeof setTimeout> | undefined;
   const link = el("a", {
     testid: "viser-link",
     attrs: { target: "_blank", rel: "noopener", hidden: true },
@@ -21,6 +26,19 @@ export function viserLink(sceneId: string): ViserLink {
     testid: "open-viser",
     title: "The 3D review viewer (viser), in a new tab",
   });
+  // Saves come in bursts while someone edits: rebuild once they pause.
+  const follow = () => {
+    clearTimeout(followTimer);
+    followTimer = setTimeout(async () => {
+      if (opened === null || latest <= opened) return;
+      try {
+        opened = (await api.openViewer(sceneId)).revision;
+      } catch {
+        // The link keeps saying the viewer is behind; "Open in viser" tries again.
+      }
+      showLinkText();
+    }, VIEWER_FOLLOW_MS);
+  };
   openButton.onclick = async () => {
     // Open the tab now, while the click still counts as the user's: popup blockers refuse
     // a window opened after an await.
@@ -56,6 +74,7 @@ export function viserLink(sceneId: string): ViserLink {
     showRevision(revision) {
       latest = revision;
       showLinkText();
+      if (opened !== null && latest > opened) follow();
     },
   };
 }
