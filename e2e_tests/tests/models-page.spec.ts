@@ -77,6 +77,8 @@ test("an admin retrains, makes the new model active and rolls back", async ({ pa
   await page.getByTestId(`promote-${active.version}`).click();
   await expect(page.getByTestId(`model-row-${active.version}`)).toHaveClass(/is-active/);
   expect(asked.at(-1)).toContain(`Make v${active.version} the active model?`);
+  // The job's outcome line stays, marked as history: it no longer says which model is active.
+  await expect(page.getByTestId("retrain-since")).toBeVisible();
   await expect(row).not.toHaveClass(/is-active/);
   expect((await models(page.request)).find((m) => m.active)?.id).toBe(active.id);
 });

@@ -41,9 +41,16 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
   const text = KIND_TEXT[kind];
   const curve = curveCard();
   const history = modelHistory();
-  const table = modelTable({ text, onCurve: curve.show, onPromoted: () => refresh() });
   // A finished retrain shows the new model's curve: it is what the admin waited for.
   const form = retrainForm({ kind, text, signal: abort.signal, onFinished: () => refresh(true) });
+  const table = modelTable({
+    text,
+    onCurve: curve.show,
+    onPromoted: () => {
+      form.activeChanged();
+      return refresh();
+    },
+  });
   const admin = hasRole("admin");
   form.element.hidden = !admin;
   const adminsOnly = el("p", {

@@ -36,6 +36,8 @@ export interface RetrainForm {
   element: HTMLFormElement;
   /** Show the kind's newest retrain job, and follow it while it runs. */
   resume(job: Job): void;
+  /** The active model was changed by hand: a finished job's outcome line is history now. */
+  activeChanged(): void;
 }
 
 export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInputs): RetrainForm {
@@ -50,6 +52,13 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
   const progress = jobProgress("retrain-progress");
   progress.element.hidden = true;
   const log = el("pre", { className: "job-log", testid: "retrain-log", attrs: { hidden: true } });
+  const since = el("p", {
+    className: "field-hint",
+    testid: "retrain-since",
+    text: "Since this job ended, the active model was changed by hand: the list above and the history below say which one is active.",
+    attrs: { hidden: true },
+  });
+  let shownJob: Job | null = null;
   const form = el(
     "form",
     { className: "card", testid: "retrain-form" },
@@ -59,10 +68,13 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
     el("div", { className: "form-actions" }, retrain),
     retrainError,
     progress.element,
+    since,
     log,
   );
 
   const showJob = (job: Job) => {
+    if (job.id !== shownJob?.id) since.hidden = true;
+    shownJob = job;
     progress.element.hidden = false;
     progress.update(job);
     log.hidden = job.log === "";
@@ -112,6 +124,9 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
     resume(job) {
       if (isFinished(job)) showJob(job);
       else void follow(job);
+    },
+    activeChanged() {
+      if (shownJob && isFinished(shownJob)) since.hidden = false;
     },
   };
 }
