@@ -7,9 +7,9 @@
 // some with one supporting object's detected class changed to "pillow", as a detector's
 // mistake would, so that the network gets several edges wrong (k counted at run time against
 // gt.json). The annotator works as a person would: it looks at the arrows on the photo (the
-// model's live suggestions included), picks the first wrong one, clicks it, then clicks the
-// true supporter (or presses F / W / C for floor, wall, ceiling) and T if the type is still
-// wrong; when every arrow is right it presses Shift+A once to accept the rest. Every click and
+// model's live suggestions included), picks the first wrong one, clicks it (or the "?" flag
+// of an object without one), then clicks the true supporter (or presses F / W / C for floor,
+// wall, ceiling) and T if the type is still wrong; when every arrow is right it presses Shift+A once to accept the rest. Every click and
 // key press counts as one action (pointer moves do not). Autosave stores the result, which
 // must equal the truth, every edge set by a person.
 //
@@ -142,11 +142,9 @@ async function annotate(
     const { child, parent, type } = wrong;
     corrected.add(child);
     const now = shown[child];
+    // The arrow, or the "?" flag of an object without one: either arms the pick.
     if (now) await act(() => clickArrow(page, child));
-    else {
-      await act(() => page.keyboard.press("Escape")); // clicking an object would pick it
-      await act(() => clickObject(page, child));
-    }
+    else await act(() => page.getByTestId(`unsupported-${child}`).click());
     if (now?.parent !== parent) {
       const key = STRUCTURAL_KEYS[parent];
       await timed(child, parent, null, () =>

@@ -429,8 +429,9 @@ class Annotator {
   /** Select an object by clicking it; Esc first when one is selected (a click would make it
    * that one's supporter). */
   async select(id: string): Promise<void> {
-    if ((await this.page.locator("tr.object-row.is-selected").count()) > 0)
-      await this.key("Escape", "Esc (clear the selection)");
+    // A click picks a supporter only while a pick is armed (an arrow was clicked).
+    if ((await this.page.locator("svg.is-picking").count()) > 0)
+      await this.key("Escape", "Esc (end the pick)");
     await this.act(`click ${id}`, () => clickObject(this.page, id));
     await expect(this.page.getByTestId(`object-row-${id}`)).toHaveClass(/is-selected/);
   }

@@ -59,7 +59,7 @@ test("a class changed with the picker, and an object deleted, come back with und
   const start = seeded.revision;
   await slowAutosave(page); // a support edit stays unsaved (undone without a revision)
   await openScene(page, sceneId);
-  // The box tool selects what is clicked (the select tool would pick a supporter instead).
+  // The box tool selects what is clicked, as the select tool does.
   await chooseTool(page, "box");
 
   // Shift+C on the selected dresser: the picker lists its class first.

@@ -200,6 +200,21 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   await expect(arrow("o1")).toHaveAttribute("data-source", "manual");
   await expect(page.getByTestId("edge-info-provenance")).toHaveText("your edit, not saved yet");
 
+  // The pick is spent: clicking objects now only selects them, as someone looking around would.
+  await expect(page.getByTestId("photo")).not.toHaveClass(/is-picking/);
+  await clickObject(page, "o2");
+  await clickObject(page, "o3");
+  await expect(arrow("o1")).toHaveAttribute("data-parent", "o0");
+  await expect(arrow("o2")).toHaveAttribute("data-parent", guess("o2").parent);
+  await expect(arrow("o2")).toHaveAttribute("data-source", "auto");
+  // S arms a pick for the object selected otherwise: the next click picks its supporter.
+  await clickObject(page, "o1");
+  await page.keyboard.press("s");
+  await expect(page.getByTestId("photo")).toHaveClass(/is-picking/);
+  await clickObject(page, "o0");
+  await expect(arrow("o1")).toHaveAttribute("data-parent", "o0");
+  await expect(arrow("o1")).toHaveClass(/is-selected/);
+
   // T flips below/behind; Shift+Delete removes the supporter; Ctrl+Z brings it back.
   const typeBefore = (await arrowOf(page, "o1"))?.type ?? "";
   await page.keyboard.press("t");

@@ -1,11 +1,16 @@
-// Editing supports with the mouse on the photo. Click an arrow to select it (its object);
-// with an arrow selected, click another object to make it the supporter; or drag an arrow
-// (from its head or anywhere on it) and drop it on the new supporter. Clicking the selected
-// object or the background clears the selection; clicking an object selects it. While the
-// scene is read only, clicks only select.
+// Editing supports with the mouse on the photo. Click an arrow (or an unsupported object's
+// "?" flag) to select its object and arm a pick: the next click on another object makes that
+// object the supporter. S arms a pick for an object selected otherwise (its label, the list,
+// N). Or drag an arrow (from its head or anywhere on it) and drop it on the new supporter.
+// Clicking an object only selects it unless a pick is armed: an annotator who clicks from
+// object to object to look at them changes nothing. Clicking the selected object or the
+// background clears the selection. While the scene is read only, clicks only select.
 import { svgEl } from "../dom";
+import { registerShortcut } from "../shortcuts";
 import type { SceneSession } from "../state/sceneSession";
 import { setSupporter } from "./supportActions";
+
+export const PICK_SUPPORTER_KEY = "S";
 
 export interface PhotoPicking {
   svg: SVGSVGElement;
@@ -25,15 +30,28 @@ const arrowAt = (event: Event): string | null =>
   (event.target as Element | null)?.closest<SVGGElement>(".arrow[data-child]")?.dataset.child ??
   null;
 
+/** The object whose "?" flag (no supporter) is under the pointer. */
+const flagAt = (event: Event): string | null =>
+  (event.target as Element | null)?.closest<SVGGElement>("[data-unsupported]")?.dataset
+    .unsupported ?? null;
+
 export function mountArrowEditing(picking: PhotoPicking, session: SceneSession): () => void {
   const { svg } = picking;
   const dragLayer = svgEl("g", { class: "drag-layer", "data-testid": "drag-layer" });
   svg.append(dragLayer);
   let press: { child: string; x: number; y: number; dragging: boolean } | null = null;
   let swallowClick = false;
+  // The object whose supporter the next click on another object picks; null: clicks select.
+  let armed: string | null = null;
+  const showPicking = () => svg.classList.toggle("is-picking", armed !== null);
+  const arm = (child: string | null) => {
+    armed = child !== null && session.editable ? child : null;
+    showPicking();
+  };
 
   const pickSupporter = (child: string, parent: string) => {
     session.say(setSupporter(session, child, parent));
+    arm(null); // picked: the next click selects again
   };
 
   const onClick = (event: MouseEvent) => {
@@ -41,20 +59,21 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
       swallowClick = false;
       return;
     }
-    const arrow = arrowAt(event);
+    const arrow = arrowAt(event) ?? flagAt(event);
     if (arrow) {
       session.say(null);
       session.select(arrow);
+      arm(arrow);
       return;
     }
     const object = picking.objectAt(event);
     const selected = session.selected;
-    // Read only: a click selects what it is on, it picks no supporter.
-    if (selected && object && object !== selected && session.editable)
+    if (armed !== null && armed === selected && object && object !== selected)
       pickSupporter(selected, object);
     else {
       session.say(null);
       session.select(object === selected ? null : object);
+      arm(null);
     }
   };
 
@@ -126,12 +145,28 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
 
   svg.addEventListener("click", onClick);
   svg.addEventListener("pointerdown", onDown);
-  const showPicking = () => svg.classList.toggle("is-picking", session.selected !== null);
   const unsubscribe = session.subscribe((change) => {
-    if (change === "select") showPicking();
+    // Another selection (the list, a key) or a locked scene ends the pick.
+    if ((change === "select" && session.selected !== armed) || change === "lock") arm(null);
+  });
+  const removeKey = registerShortcut({
+    keys: PICK_SUPPORTER_KEY,
+    description: "Pick the selected object's supporter: then click the object that holds it up",
+    scope: "Support editing",
+    enabled: () => session.editable,
+    run: () => {
+      const child = session.selected;
+      arm(child);
+      session.say(
+        child
+          ? `Click the object that holds up ${child} (or press F, W or C; Esc cancels).`
+          : "Select an arrow or object first (click it).",
+      );
+    },
   });
   return () => {
     unsubscribe();
+    removeKey();
     svg.removeEventListener("click", onClick);
     svg.removeEventListener("pointerdown", onDown);
     window.removeEventListener("pointermove", onMove);

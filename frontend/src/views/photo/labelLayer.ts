@@ -24,8 +24,12 @@ function flagFor(object: SceneObject, size: number): { node: SVGGElement; rect: 
   const [cx, cy, r] = [x1 + size, y1 + size, size * 0.9];
   const node = svgEl(
     "g",
-    { class: "unsupported-flag", "data-testid": `unsupported-${object.id}` },
-    svgEl("title", {}, `${object.id} has no supporter`),
+    {
+      class: "unsupported-flag",
+      "data-testid": `unsupported-${object.id}`,
+      "data-unsupported": object.id,
+    },
+    svgEl("title", {}, `${object.id} has no supporter: click, then click what holds it up`),
     svgEl("circle", { cx, cy, r }),
     svgEl("text", { x: cx, y: cy, dy: "0.35em", "font-size": size * 1.2 }, "?"),
   );
