@@ -166,6 +166,33 @@ describe("SceneSession editing", () => {
   });
 });
 
+describe("the model's suggestions", () => {
+  it("replace a guess while the scene is editable, and never on a read-only scene", () => {
+    const session = sessionOn(doc([auto("o0", "floor"), auto("o1", "o0")]), new MemoryStorage());
+    const changes: string[] = [];
+    session.subscribe((change) => changes.push(change));
+    session.setSuggester(
+      () => new Map([["o1", { child: "o1", parent: "wall", type: "behind", probability: 0.4 }]]),
+    );
+    expect(session.displayed("o1")).toMatchObject({ parent: "wall", suggested: true });
+
+    // Submitted: a reviewer sees what is stored, not what the model would say next.
+    session.setWorkflow({
+      scene_id: "s",
+      state: "submitted",
+      assignee: "ann",
+      annotation_round: 1,
+      events: [],
+      review_comment: null,
+      revision: 2,
+    });
+    expect(session.editable).toBe(false);
+    expect(session.suggestions().size).toBe(0);
+    expect(session.displayed("o1")).toMatchObject({ parent: "o0", suggested: false });
+    expect(changes).toContain("suggestions"); // the arrows are drawn again
+  });
+});
+
 describe("plural", () => {
   it("counts nouns, with -es where English wants it", () => {
     expect(plural(1, "box")).toBe("1 box");

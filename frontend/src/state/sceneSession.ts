@@ -251,8 +251,10 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     this.emit("suggestions");
   }
 
-  /** The model's current suggestions (none until it has scored the scene). */
+  /** The model's current suggestions (none until it has scored the scene). None while the
+   * scene is read only: a reviewer, or someone locked out, sees what is stored. */
   suggestions(): Map<string, SuggestedSupport> {
+    if (!this.editable) return new Map();
     this.suggestionCache ??= this.suggester?.(this) ?? new Map();
     return this.suggestionCache;
   }
@@ -669,6 +671,8 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     this.shownLock = key;
     if (lock !== null) this.layout?.setEditing(false);
     this.emit("lock");
+    this.suggestionCache = null;
+    this.emit("suggestions"); // shown only while editable
     if (wasLocked && lock === null && this.saveState.kind === "error") {
       this.setSaveState(this.unsavedCount > 0 ? { kind: "dirty" } : { kind: "clean" });
     }
