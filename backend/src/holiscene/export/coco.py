@@ -9,7 +9,8 @@ tools that read COCO.
 
 coco_dataset writes several scenes as one file (an image each), every annotation with its
 object's support as `holiscene_support` {parent, type} (the parent an object's
-`holiscene_id`, or floor/wall/ceiling).
+`holiscene_id`, or floor/wall/ceiling) with who set it: `author` for a person's label, or
+`source` "auto" and `confidence` for the pipeline's guess, so a guess imports as a guess.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ import numpy as np
 from holiscene_schema import NYU40_CLASSES, STRUCTURAL_CLASSES, Scene, SceneObject
 
 from ..segmentation.rle import decode_mask
+from .input_folder import support_provenance
 
 CATEGORY_IDS: dict[str, int] = {name: index + 1 for index, name in enumerate(NYU40_CLASSES)}
 
@@ -109,7 +111,11 @@ def coco_dataset(scenes: Sequence[tuple[Scene, str]], description: str) -> dict[
             annotation = _annotation(obj, len(annotations) + 1, width, height, image_id)
             support = supports.get(obj.id)
             if support is not None:
-                annotation["holiscene_support"] = {"parent": support.parent, "type": support.type}
+                annotation["holiscene_support"] = {
+                    "parent": support.parent,
+                    "type": support.type,
+                    **support_provenance(support),
+                }
             annotations.append(annotation)
     return {
         "info": {"description": description, "version": "1"},

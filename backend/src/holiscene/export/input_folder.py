@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene
+from holiscene_schema import STRUCTURAL_SUPPORTERS, Scene, SupportRelation
 
 from ..core.atomic_files import write_atomic
 from ..inputs.depth import DEPTH_FILE
@@ -42,19 +42,26 @@ def supports_items(scene: Scene) -> list[dict[str, Any]]:
     items = []
     for support in scene.supports:
         parent = support.parent
-        item: dict[str, Any] = {
-            "child": position[support.child],
-            "parent": parent if parent in STRUCTURAL_SUPPORTERS else position[parent],
-            "type": support.type,
-        }
-        if support.source == "manual" and support.author:
-            item["author"] = support.author
-        if support.source == "auto":  # a guess imports as a guess, not as a person's label
-            item["source"] = "auto"
-            if support.confidence is not None:
-                item["confidence"] = support.confidence
-        items.append(item)
+        items.append(
+            {
+                "child": position[support.child],
+                "parent": parent if parent in STRUCTURAL_SUPPORTERS else position[parent],
+                "type": support.type,
+                **support_provenance(support),
+            }
+        )
     return items
+
+
+def support_provenance(support: SupportRelation) -> dict[str, Any]:
+    """Who set a support, as the importers read it back: the author of a person's label, or
+    source "auto" and the confidence of the pipeline's guess (a guess imports as a guess, not
+    as a person's label)."""
+    if support.source == "auto":
+        if support.confidence is None:
+            return {"source": "auto"}
+        return {"source": "auto", "confidence": support.confidence}
+    return {"author": support.author} if support.author else {}
 
 
 def intrinsics_text(K: np.ndarray | list[list[float]]) -> str:
