@@ -90,6 +90,7 @@ def test_an_export_imports_back_to_the_same_labels(
         iou = (mask & expected).sum() / (mask | expected).sum()
         assert iou > 0.99, (before.id, iou)
     assert _supports_by_position(back) == _supports_by_position(stored)
+
     # Who set each support comes back: a person's name, and a guess stays a guess (an
     # unchecked guess imported as a person's label would train and count as one).
     def provenance(scene: Scene) -> set[tuple[str, str, str | None, float | None]]:
