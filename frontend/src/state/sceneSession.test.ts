@@ -185,6 +185,8 @@ describe("the model's suggestions", () => {
       events: [],
       review_comment: null,
       revision: 2,
+      editable: false,
+      editable_reason: "submitted: waiting for review",
     });
     expect(session.editable).toBe(false);
     expect(session.suggestions().size).toBe(0);
