@@ -242,3 +242,41 @@ def test_floor_and_ceiling_swapped_is_refused() -> None:
     swapped = [fit_input["corners_2d"][(i + 4) % 8] for i in range(8)]
     with pytest.raises(ValueError, match="is not below the horizon"):
         fit_room(**{**fit_input, "corners_2d": swapped})
+
+
+# A room with one floor corner (1) in the photo (730 x 530) and the others extrapolated far
+# outside it, as the layout stage stores such a room.
+_ONE_IN_VIEW_K = [[632.2, 0.0, 365.0], [0.0, 632.2, 265.0], [0.0, 0.0, 1.0]]
+_ONE_IN_VIEW: list[list[float] | None] = [
+    [-1179.94, 1080.88],
+    [219.33, 223.45],
+    [962.6, 295.86],
+    None,
+    [-22135.56, -6569.82],
+    [157.64, -172.67],
+    [1205.78, -352.11],
+    None,
+]
+
+
+def test_a_drag_the_closed_form_start_cannot_take_starts_from_the_room_shown() -> None:
+    shown = fit_room(_ONE_IN_VIEW_K, _ONE_IN_VIEW, 1.77)
+    assert shown.rms_px < 1.0
+    dragged = [list(c) if c is not None else None for c in _ONE_IN_VIEW]
+    dragged[1] = [199.33, 253.45]  # 20 px left, 30 px down
+    with pytest.raises(ValueError, match="initial guess puts a known corner behind the camera"):
+        fit_room(_ONE_IN_VIEW_K, dragged, 1.77)
+
+    start = room_fit.RoomStart(
+        shown.pitch_deg, shown.roll_deg, room_fit.room_box_of_corners(shown.corners_3d)
+    )
+    assert np.allclose(start.room.center, shown.room.center, atol=1e-9)
+    assert np.allclose(start.room.size, shown.room.size, atol=1e-9)
+    assert start.room.yaw_deg == pytest.approx(shown.room.yaw_deg, abs=1e-9)
+    fit = fit_room(_ONE_IN_VIEW_K, dragged, 1.77, start=start)
+    assert fit.converged
+    assert fit.rms_px < 20.0  # the far corners hold the rest of the room in place
+    assert np.all((fit.room.size > 0.5) & (fit.room.size < 10.0))
+    # A start the corners can take themselves is unchanged by `start`.
+    same = fit_room(_ONE_IN_VIEW_K, _ONE_IN_VIEW, 1.77, start=start)
+    assert same.rms_px == pytest.approx(shown.rms_px) and same.trials == shown.trials

@@ -125,3 +125,38 @@ describe("fitRoom on the shared vectors", () => {
     expect(() => fitCase({ ...testCase, input })).toThrow(message);
   });
 });
+
+describe("fitRoom's start", () => {
+  // One floor corner (1) in a 730 x 530 photo, the others extrapolated far outside it
+  // (backend tests/geometry/test_room_fit.py has the same room).
+  const K = [
+    [632.2, 0, 365],
+    [0, 632.2, 265],
+    [0, 0, 1],
+  ];
+  const corners: ([number, number] | null)[] = [
+    [-1179.94, 1080.88],
+    [219.33, 223.45],
+    [962.6, 295.86],
+    null,
+    [-22135.56, -6569.82],
+    [157.64, -172.67],
+    [1205.78, -352.11],
+    null,
+  ];
+
+  it("is the room shown when a drag tips the corners' own start behind the camera", () => {
+    const shown = fitRoom(K, corners, 1.77);
+    expect(shown.rmsPx).toBeLessThan(1);
+    const dragged = [...corners];
+    dragged[1] = [199.33, 253.45]; // 20 px left, 30 px down
+    expect(() => fitRoom(K, dragged, 1.77)).toThrow(/initial guess puts a known corner behind/);
+    const fit = fitRoom(K, dragged, 1.77, { start: shown });
+    expect(fit.converged).toBe(true);
+    expect(fit.rmsPx).toBeLessThan(20);
+    for (const side of fit.room.size) expect(side).toBeGreaterThan(0.5);
+    // Corners that give their own start ignore it.
+    const same = fitRoom(K, corners, 1.77, { start: shown });
+    expect(same.trials).toBe(shown.trials);
+  });
+});

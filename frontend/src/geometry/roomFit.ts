@@ -79,9 +79,18 @@ export interface RoomFit {
   converged: boolean;
 }
 
+/** A room to start from when the corners give no usable start (room_fit.py's step 3). */
+export interface RoomStart {
+  pitchDeg: number;
+  rollDeg: number;
+  room: RoomBox;
+}
+
 export interface FitRoomOptions {
   /** Distance from the camera to a wall without known corners (ignored when every wall has one). */
   unseenWallDistance?: number | null;
+  /** The room shown before the last corner moved: the start when the corners' own fails. */
+  start?: RoomStart | null;
 }
 
 /** The corners do not determine a room (the message says why). */
@@ -132,7 +141,7 @@ export function fitRoom(
   options: FitRoomOptions = {},
 ): RoomFit {
   const observations = checkedObservations(K, corners2d, cameraHeight, options.unseenWallDistance);
-  const result = levenbergMarquardt(observations, initialGuess(observations));
+  const result = levenbergMarquardt(observations, startOf(observations, options.start ?? null));
   const { params, residuals } = result;
   if (Math.min(at(params, 5), at(params, 6), at(params, 7)) <= 0) {
     throw new RoomFitError("the fit turned the room inside out: the corners are inconsistent");
@@ -334,6 +343,34 @@ function initialGuess(observations: Observations): Float64Array {
     depth,
     height,
     width,
+  ]);
+}
+
+/** The closed-form start, or `start` when that one fails (room_fit.py's step 3). */
+function startOf(observations: Observations, start: RoomStart | null): Float64Array {
+  let guess: Float64Array;
+  try {
+    guess = initialGuess(observations);
+  } catch (error) {
+    if (start === null || !(error instanceof RoomFitError)) throw error;
+    return paramsOf(start);
+  }
+  if (start === null || residualsAndJacobian(guess, observations) !== null) return guess;
+  return paramsOf(start);
+}
+
+/** The parameter vector of a room (its centre's height is the floor's, not a parameter). */
+function paramsOf({ pitchDeg, rollDeg, room }: RoomStart): Float64Array {
+  const { center, size } = room;
+  return Float64Array.from([
+    radians(pitchDeg),
+    radians(rollDeg),
+    radians(room.yawDeg),
+    center[0],
+    center[2],
+    size[0],
+    size[1],
+    size[2],
   ]);
 }
 

@@ -407,6 +407,7 @@ export class LayoutDraft {
     try {
       const fit = fitRoom(camera.K, this.fitCorners(), this.cameraHeight, {
         unseenWallDistance: this.unseenDistance,
+        start: this.live ?? this.basisRoom(),
       });
       const { width, height } = this.doc.scene.image;
       const problem = fitProblem(fit, width, height);

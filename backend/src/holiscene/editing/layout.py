@@ -16,7 +16,7 @@ import numpy as np
 from holiscene_schema import Camera, HeightSource, Layout, Scene, SetLayout
 
 from ..geometry.metric_scale import CAMERA_HEIGHT_PRIOR
-from ..geometry.room_fit import fit_room, project_room_corners
+from ..geometry.room_fit import RoomStart, fit_room, project_room_corners, room_box_of_corners
 
 CAMERA_HEIGHT_PRIOR_M = CAMERA_HEIGHT_PRIOR[0]  # the layout stage's prior
 # A known corner may lie outside the photo (a room corner beside or behind the frame), but not
@@ -68,6 +68,15 @@ def _check_corners(scene: Scene, edit: SetLayout) -> None:
             )
 
 
+def _stored_room(scene: Scene) -> RoomStart | None:
+    """The room the scene has now: where the fit starts when the dragged corners give no
+    start of their own (the page starts from the room it showed, which is this one or close)."""
+    camera, corners = scene.camera, scene.layout.corners_3d
+    if camera is None or corners is None or camera.pitch_deg is None or camera.roll_deg is None:
+        return None
+    return RoomStart(camera.pitch_deg, camera.roll_deg, room_box_of_corners(corners))
+
+
 def apply_set_layout(scene: Scene, edit: SetLayout) -> Scene:
     """The scene with the layout and camera pitch/roll fitted to the edit's corners."""
     if scene.camera is None:
@@ -78,7 +87,13 @@ def apply_set_layout(scene: Scene, edit: SetLayout) -> Scene:
         metres, height_source = edit.camera_height_m, "manual"
     K = np.asarray(scene.camera.K, dtype=float)
     try:
-        fit = fit_room(K, edit.corners_2d, metres, unseen_wall_distance=edit.unseen_wall_distance)
+        fit = fit_room(
+            K,
+            edit.corners_2d,
+            metres,
+            unseen_wall_distance=edit.unseen_wall_distance,
+            start=_stored_room(scene),
+        )
     except ValueError as error:
         raise LayoutEditError(str(error)) from error
     size = fit.room.size

@@ -26,6 +26,11 @@ against shared_schema/vectors/room_fit.json: change them together and regenerate
    its ceiling corner on the ceiling. The yaw is the mean direction of the known plan edges,
    each wall's position the mean of its known plan corners along the room's axes (an unseen
    wall: `unseen_wall_distance` from the camera).
+   When this start puts a known corner behind the camera (or the corners give no start at
+   all), and the caller passes `start` (the room shown before the last corner moved, as an
+   annotator drags), Levenberg-Marquardt starts from that room instead. With one corner in
+   view, the rest extrapolated far outside the photo, a drag of a few tens of pixels could
+   tip the closed-form start over while the room it leads to is fine.
 4. Levenberg-Marquardt on the reprojection error of every known corner (plus, for an unseen
    wall, its distance from the camera against `unseen_wall_distance`, weighted by fx so it
    reads as pixels at 1 m; no corner depends on that wall, so the prior holds exactly):
@@ -86,6 +91,15 @@ class RoomBox:
 
 
 @dataclass(frozen=True)
+class RoomStart:
+    """A room to start from when the corners give no usable start (see step 3)."""
+
+    pitch_deg: float
+    roll_deg: float
+    room: RoomBox
+
+
+@dataclass(frozen=True)
 class RoomFit:
     pitch_deg: float
     roll_deg: float
@@ -130,11 +144,13 @@ def fit_room(
     camera_height: float,
     *,
     unseen_wall_distance: float | None = None,
+    start: RoomStart | None = None,
 ) -> RoomFit:
-    """Camera pitch/roll and room box from the layout corners; ValueError when not determined."""
+    """Camera pitch/roll and room box from the layout corners; ValueError when not determined.
+    `start`: the room to start from when the corners' own start fails (step 3)."""
     observations = _observations(K, corners_2d, camera_height, unseen_wall_distance)
     params, residuals, trials, converged = _levenberg_marquardt(
-        observations, _initial_guess(observations)
+        observations, _start(observations, start)
     )
     if min(params[5], params[6], params[7]) <= 0.0:
         raise ValueError("the fit turned the room inside out: the corners are inconsistent")
@@ -321,6 +337,48 @@ def _initial_guess(observations: _Observations) -> FloatArray:
             height,
             width,
         ]
+    )
+
+
+def _start(observations: _Observations, start: RoomStart | None) -> FloatArray:
+    """The closed-form start, or `start` when that one fails (see step 3)."""
+    try:
+        guess = _initial_guess(observations)
+    except ValueError:
+        if start is None:
+            raise
+        return _params_of(start)
+    if start is None or _residuals_and_jacobian(guess, observations) is not None:
+        return guess
+    return _params_of(start)
+
+
+def _params_of(start: RoomStart) -> FloatArray:
+    """The parameter vector of a room (its centre's height is the floor's, not a parameter)."""
+    room = start.room
+    return np.array(
+        [
+            math.radians(start.pitch_deg),
+            math.radians(start.roll_deg),
+            math.radians(room.yaw_deg),
+            room.center[0],
+            room.center[2],
+            room.size[0],
+            room.size[1],
+            room.size[2],
+        ]
+    )
+
+
+def room_box_of_corners(corners_3d: Sequence[Sequence[float]] | FloatArray) -> RoomBox:
+    """The box whose corners (in the order of BOX_CORNER_SIGNS) these are."""
+    corners = np.asarray(corners_3d, dtype=float)
+    x_axis, z_axis = corners[1] - corners[0], corners[3] - corners[0]
+    height = corners[4:, 1].mean() - corners[:4, 1].mean()
+    return RoomBox(
+        center=corners.mean(axis=0),
+        size=np.array([np.linalg.norm(x_axis), height, np.linalg.norm(z_axis)]),
+        yaw_deg=math.degrees(math.atan2(-x_axis[2], x_axis[0])),
     )
 
 
