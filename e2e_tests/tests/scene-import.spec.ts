@@ -106,6 +106,12 @@ test("a scene without objects says so and shows the pipeline's warnings", async 
   await expect(warnings).not.toContainText("camera height");
   // A note that is no problem (the room's scale and where it came from) is not a warning.
   await expect(warnings).not.toContainText("scale from");
+  // Open the first time; on the next visit folded to a line that names the stages.
+  await expect(warnings).toHaveAttribute("open", "");
+  await page.reload();
+  await expect(page.getByTestId("pipeline-warnings-title")).toContainText("intrinsics");
+  await expect(warnings).not.toHaveAttribute("open", "");
+  await expect(warnings.getByTestId("pipeline-warning").first()).toBeHidden();
 });
 
 test("a dataset's own class names: a class map maps them, an unknown one is kept and flagged", async ({

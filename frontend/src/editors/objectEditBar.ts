@@ -1,6 +1,7 @@
 // What the object editor is doing, above the photo: saving an action, what the last one did
 // (e.g. that it was applied on top of someone else's revision), and an action that could not
-// be saved, kept with Retry and Discard until the person chooses.
+// be saved, kept with Retry and Discard until the person chooses. The status keeps its one
+// line when empty, so the photo does not move as messages come and go.
 import { button, el } from "../dom";
 import type { ObjectEditor } from "../state/objectEditor";
 
@@ -10,6 +11,8 @@ export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor)
     testid: "object-edit-status",
     attrs: { role: "status", "aria-live": "polite" },
   });
+  // A long message shows whole on a click (and in its tooltip); the next one is one line again.
+  status.addEventListener("click", () => status.classList.toggle("is-expanded"));
   const failureText = el("span", { testid: "object-edit-failure-text" });
   const failure = el(
     "span",
@@ -41,6 +44,8 @@ export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor)
   const update = () => {
     const state = editor.status;
     status.textContent = state.kind === "busy" ? `Saving: ${state.label}…` : (state.message ?? "");
+    if (status.title !== status.textContent) status.classList.remove("is-expanded");
+    status.title = status.textContent;
     status.classList.toggle("is-error", state.kind === "idle" && state.error);
     status.dataset.state = state.kind;
     const failed = editor.failure;
@@ -49,7 +54,6 @@ export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor)
     failureText.textContent = failed
       ? `Not saved: ${failed.label}. ${failed.message}${again} `
       : "";
-    bar.hidden = failed === null && status.textContent === "";
   };
   update();
   const unsubscribe = editor.subscribe(update);

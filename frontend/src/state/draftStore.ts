@@ -2,6 +2,8 @@
 // crash loses nothing: the next visit to the scene offers them back. An object action the
 // server did not take (object edits are not drafts: each is saved at once) is kept beside them
 // until it is saved or the person drops it.
+
+import { browserStorage } from "./browserStorage";
 import type { LayoutState } from "./layoutDraft";
 import type { ObjectEdit } from "./objectEditor";
 import type { Edit } from "./supportGraph";
@@ -34,14 +36,6 @@ const hasChanges = (draft: Draft) => draft.edits.length > 0 || !!draft.layout;
 const key = (sceneId: string) => `holiscene.draft.${sceneId}`;
 const recoveredKey = (sceneId: string) => `holiscene.draft.${sceneId}.recovered`;
 const failedKey = (sceneId: string) => `holiscene.draft.${sceneId}.failedObjectAction`;
-
-function browserStorage(): Storage | null {
-  try {
-    return typeof localStorage === "undefined" ? null : localStorage;
-  } catch {
-    return null; // storage refused (private mode): drafts last for the page only
-  }
-}
 
 function isDraft(value: unknown): value is Draft {
   if (!value || typeof value !== "object") return false;

@@ -1,6 +1,7 @@
 // How the masks look on the photo: coloured by object (default) or by class, and how opaque.
 // Remembered in this browser; the photo and the object list follow changes at once.
 import { el } from "../../dom";
+import { browserStorage } from "../../state/browserStorage";
 import type { Colouring } from "../objectColors";
 
 export interface MaskStyle {
@@ -12,14 +13,6 @@ export interface MaskStyle {
 export const DEFAULT_MASK_STYLE: MaskStyle = { colouring: "object", opacity: 0.42 };
 const KEY = "holiscene.maskStyle";
 const MIN_OPACITY = 0.05;
-
-function browserStorage(): Storage | null {
-  try {
-    return localStorage;
-  } catch {
-    return null;
-  }
-}
 
 /** A stored style, with anything missing or out of range taken from the default. */
 function parseStyle(text: string | null): MaskStyle {

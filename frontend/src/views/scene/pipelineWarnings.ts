@@ -1,7 +1,10 @@
 // The pipeline's warnings on the scene page: one line per stage that could not do something
-// (its note, marked as a warning in the stored scene), above the photo and the editor.
+// (its note, marked as a warning in the stored scene), above the photo and the editor. Open the
+// first time this browser shows a scene's warnings; after that folded to one line that names
+// the stages, so the photo is not pushed down the page on every visit.
 import type { StageRun } from "@holiscene/schema";
 import { el } from "../../dom";
+import { browserStorage } from "../../state/browserStorage";
 import { plural, type SceneSession } from "../../state/sceneSession";
 import { readableStage } from "../common/jobProgress";
 
@@ -36,13 +39,15 @@ export function pipelineWarningsPanel(session: SceneSession): {
   dispose: () => void;
 } {
   const title = el("summary", { testid: "pipeline-warnings-title" });
+  const seenKey = `holiscene.warningsSeen.${session.sceneId}`;
+  let shown: string | null = null; // the warnings listed now
   const list = el("ul", { className: "pipeline-warnings-list" });
   const element = el(
     "details",
     {
       className: "pipeline-warnings",
       testid: "pipeline-warnings",
-      attrs: { open: true, "aria-label": "Pipeline warnings" },
+      attrs: { "aria-label": "Pipeline warnings" },
     },
     title,
     list,
@@ -51,7 +56,14 @@ export function pipelineWarningsPanel(session: SceneSession): {
     const { stages, layout } = session.doc.scene;
     const warnings = pipelineWarnings(stages, layout?.source === "manual");
     element.hidden = warnings.length === 0;
-    title.textContent = plural(warnings.length, "pipeline warning");
+    const stagesNamed = [...new Set(warnings.map((w) => w.stage))].join(", ");
+    title.textContent = `${plural(warnings.length, "pipeline warning")}: ${stagesNamed}`;
+    const seen = JSON.stringify(warnings);
+    if (seen === shown) return; // the same warnings: leave the panel as the person set it
+    shown = seen;
+    const storage = browserStorage();
+    element.open = warnings.length > 0 && storage?.getItem(seenKey) !== seen;
+    if (warnings.length > 0) storage?.setItem(seenKey, seen);
     list.replaceChildren(
       ...warnings.map((w) =>
         el(

@@ -137,7 +137,9 @@ export function datasetImportForm(signal: AbortSignal, onScenes: () => void): HT
       "A .zip of a COCO or LabelMe dataset (the JSON with its images), SUN RGB-D image " +
         "folders, or input folders (img.jpg with cam_K.txt, detections.json…), as ",
       el("code", { text: "holiscene export" }),
-      " writes them. Photos imported before are skipped. NYU Depth v2's .mat is too large " +
+      " writes them. A photo imported before with the very same files is skipped; the same " +
+        "photo with other labels (a scene downloaded and edited) comes in as a new scene. " +
+        "NYU Depth v2's .mat is too large " +
         "to upload: import it on the server with ",
       el("code", { text: "holiscene import" }),
       ".",
