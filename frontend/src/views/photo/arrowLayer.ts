@@ -135,6 +135,51 @@ function arrowFor(
   return group;
 }
 
+interface TagRequest {
+  id: string;
+  parent: string;
+  at: Point;
+  half: readonly [number, number];
+}
+
+interface SharedTag {
+  ids: string[];
+  at: Point;
+  half: readonly [number, number];
+}
+
+/** Tags of one supporter within about a tag's width of each other, joined (greedily, in
+ * order) into one tag at their mean place. */
+export function sharedTags(tags: readonly TagRequest[]): SharedTag[] {
+  const groups: (SharedTag & { parent: string; points: Point[] })[] = [];
+  for (const tag of tags) {
+    const near = groups.find(
+      (g) =>
+        g.parent === tag.parent &&
+        Math.abs(g.at[0] - tag.at[0]) < 2.5 * tag.half[0] &&
+        Math.abs(g.at[1] - tag.at[1]) < 4 * tag.half[1],
+    );
+    if (!near) {
+      groups.push({
+        ids: [tag.id],
+        parent: tag.parent,
+        at: tag.at,
+        half: tag.half,
+        points: [tag.at],
+      });
+      continue;
+    }
+    near.ids.push(tag.id);
+    near.points.push(tag.at);
+    const n = near.points.length;
+    near.at = [
+      near.points.reduce((sum, p) => sum + p[0], 0) / n,
+      near.points.reduce((sum, p) => sum + p[1], 0) / n,
+    ];
+  }
+  return groups.map(({ ids, at, half }) => ({ ids, at, half }));
+}
+
 export function renderArrows(
   group: SVGGElement,
   objects: readonly SceneObject[],
@@ -156,23 +201,34 @@ export function renderArrows(
       : support && { parent: support.parent, type: support.type, support };
     return edge ? [{ object, edge }] : [];
   });
-  // The floor, wall and ceiling tags of objects side by side would pile up: placed apart.
+  // The floor, wall and ceiling tags of objects side by side would pile up: the tags of one
+  // supporter close together become one tag (a row of books on the wall: one "wall", an arrow
+  // to each), and the tags left are placed apart.
   const size = strokeWidth(frame) * scale * 5; // as arrowFor's tags
-  const requests: LabelRequest[] = edges.flatMap(({ object, edge }) => {
-    const to = centroids.get(object.id);
-    if (!to || !isStructural(edge.parent)) return [];
-    const [hw, hh] = labelHalf(edge.parent, size);
-    const [x, y] = structuralAnchor(edge.parent, object, to, frame, [hw, hh]);
-    const box = [x - hw, y - hh, x + hw, y + hh] as const;
-    return [{ id: object.id, anchor: [x, y], box, width: 2 * hw, height: 2 * hh }];
-  });
-  const anchors = placeLabels(requests, drawingRect(frame), [], size * 0.1);
-  const anchorAt = new Map(
-    anchors.map(({ id, rect }) => [
-      id,
-      [(rect.left + rect.right) / 2, (rect.top + rect.bottom) / 2] as Point,
-    ]),
+  const clusters = sharedTags(
+    edges.flatMap(({ object, edge }) => {
+      const to = centroids.get(object.id);
+      if (!to || !isStructural(edge.parent)) return [];
+      const half = labelHalf(edge.parent, size);
+      const at = structuralAnchor(edge.parent, object, to, frame, half);
+      return [{ id: object.id, parent: edge.parent, at, half }];
+    }),
   );
+  const requests: LabelRequest[] = clusters.map(({ ids, at: [x, y], half: [hw, hh] }) => ({
+    id: ids[0] as string,
+    anchor: [x, y],
+    box: [x - hw, y - hh, x + hw, y + hh] as const,
+    width: 2 * hw,
+    height: 2 * hh,
+  }));
+  const anchors = placeLabels(requests, drawingRect(frame), [], size * 0.1);
+  const anchorAt = new Map<string, Point>();
+  for (const { id, rect } of anchors) {
+    const centre: Point = [(rect.left + rect.right) / 2, (rect.top + rect.bottom) / 2];
+    for (const member of clusters.find((c) => c.ids[0] === id)?.ids ?? []) {
+      anchorAt.set(member, centre);
+    }
+  }
   const arrows = edges.flatMap(({ object, edge }) => {
     const arrow = arrowFor(edge, object, centroids, frame, anchorAt.get(object.id), scale);
     return arrow ? [arrow] : [];

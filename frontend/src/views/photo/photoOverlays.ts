@@ -157,13 +157,28 @@ export class PhotoOverlays {
     const { svg, session } = this;
     const { hovered, selected } = session;
     svg.classList.toggle("has-hover", hovered !== null);
+    // A selection (a click, N, the list) keeps its own edges in view and fades the rest less
+    // than a hover does; the selected arrow is drawn last, over a crowd of others.
+    svg.classList.toggle("has-selection", selected !== null);
     for (const node of svg.querySelectorAll<SVGElement>("[data-object], [data-child]")) {
       const id = node.dataset.object ?? node.dataset.child;
       node.classList.toggle("is-hovered", id === hovered);
       node.classList.toggle("is-selected", id === selected);
       // An arrow from the hovered object to what it holds up stays in view too.
       node.classList.toggle("is-related", hovered !== null && node.dataset.parent === hovered);
+      node.classList.toggle(
+        "is-related-to-selected",
+        selected !== null && node.dataset.parent === selected,
+      );
     }
+    const selectedArrow =
+      selected === null
+        ? null
+        : this.layers.arrows.querySelector<SVGElement>(
+            `.arrow[data-child="${CSS.escape(selected)}"]`,
+          );
+    if (selectedArrow && selectedArrow !== selectedArrow.parentNode?.lastChild)
+      selectedArrow.parentNode?.appendChild(selectedArrow);
     renderOutlines(
       this.layers.outlines,
       session.objects,
