@@ -78,6 +78,19 @@ describe("brush strokes", () => {
     expect(raster.has(9, 10)).toBe(false);
     expect(raster.has(10, 10)).toBe(true);
   });
+
+  it("an eraser stroke beside the mask leaves the same pixels", () => {
+    const before = new MaskRaster({ left: 0, top: 0, right: 40, bottom: 40 });
+    before.paintStroke([[10, 10]], 4, 1);
+    const after = before.copy();
+    after.paintStroke([[30, 30]], 4, 0); // nothing there to erase
+    expect(after.samePixels(before)).toBe(true);
+    after.paintStroke([[10, 10]], 2, 0);
+    expect(after.samePixels(before)).toBe(false);
+    expect(before.samePixels(new MaskRaster({ left: 0, top: 0, right: 40, bottom: 41 }))).toBe(
+      false,
+    );
+  });
 });
 
 describe("polygons", () => {

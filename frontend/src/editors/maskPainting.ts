@@ -80,6 +80,14 @@ export class MaskRaster {
     return total;
   }
 
+  /** Whether `other` covers the same window with the same pixels set. */
+  samePixels(other: MaskRaster): boolean {
+    const [a, b] = [this.window, other.window];
+    if (a.left !== b.left || a.top !== b.top || a.right !== b.right || a.bottom !== b.bottom)
+      return false;
+    return this.bits.every((bit, i) => bit === other.bits[i]);
+  }
+
   copy(): MaskRaster {
     const copy = new MaskRaster(this.window);
     copy.bits.set(this.bits);

@@ -10,6 +10,7 @@ describe("support summary", () => {
   it("tells an empty scene to get objects, as a warning", () => {
     const summary = supportSummary([], 0);
     expect(summary.text).toMatch(/^No objects yet\. Press Detect objects \(D\)/);
+    expect(summary.text).toContain("Box tool (B)"); // when the detector finds nothing
     expect(summary.text).not.toContain("supported");
     expect(summary.warn).toBe(true);
   });

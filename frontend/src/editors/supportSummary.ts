@@ -12,7 +12,7 @@ export interface SupportSummary {
 }
 
 const ADD_OBJECTS =
-  "Press Detect objects (D) and accept the suggestions you want, or import the photo again with a detections.json";
+  "Press Detect objects (D) and accept the suggestions you want, or draw each object's box with the Box tool (B)";
 
 export function supportSummary(
   objects: readonly SceneObject[],

@@ -93,16 +93,10 @@ export class MaskDrawing {
       );
       return;
     }
-    const before = this.session.object(objectId)?.mask;
-    const same = (a: readonly number[], b: readonly number[]) =>
-      a.length === b.length && a.every((v, i) => v === b[i]);
-    if (
-      before?.source === "manual" &&
-      same(before.origin, mask.origin) &&
-      same(before.size, mask.size) &&
-      same(before.rle, mask.rle)
-    ) {
-      // A stroke over pixels the mask already had (or never had): no revision for nothing.
+    const object = this.session.object(objectId);
+    if (object && raster.samePixels(this.startingRaster(object))) {
+      // A stroke over pixels the mask already had (or never had): no revision for nothing,
+      // whoever made the mask (GrabCut's stays GrabCut's).
       preview.hide();
       this.say(`${label}: the mask is unchanged.`);
       return;
