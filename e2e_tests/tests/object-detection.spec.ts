@@ -57,7 +57,9 @@ test("a scene without objects gets the detector's suggestions to accept or rejec
   expect(classes).toContain("bed");
   expect(classes).toContain("television");
   await expect(page.getByTestId("detector-actions")).toBeVisible();
-  await expect(boxes.first().locator(".detector-label")).toHaveText(/^\w+ \d+%$/);
+  await expect(
+    page.getByTestId("detector-suggestion-tag").first().locator(".detector-label"),
+  ).toHaveText(/^\w+ \d+%$/);
   await page.screenshot({ path: screenshotPath("object-suggestions.png") });
 
   // Accept the bed: click its box, then Accept. The edit is the contract's add_object.
@@ -147,6 +149,33 @@ test("the detector's fainter boxes are offered when asked for, and find more of 
     truth.filter((t) => list.some((o) => iou(o.bbox, t.bbox) >= 0.5)).length;
   expect(found(all)).toBeGreaterThan(found(offered));
   await page.screenshot({ path: screenshotPath("object-suggestions-fainter.png") });
+
+  // Every tag is drawn over every box (the likelier tag over a fainter one where the two could
+  // not be kept apart): a click on a tag selects its own box.
+  const tags = page.getByTestId("detector-suggestion-tag");
+  let clicked = 0;
+  for (let i = 0; i < (await tags.count()); i++) {
+    const tag = tags.nth(i);
+    const key = await tag.getAttribute("data-key");
+    const rect = await tag.locator(".detector-label-box").boundingBox();
+    if (!rect) continue;
+    const [x, y] = [rect.x + rect.width / 2, rect.y + rect.height / 2];
+    const onTop = await page.evaluate(
+      ([px, py]) =>
+        document
+          .elementFromPoint(px as number, py as number)
+          ?.closest("[data-key]")
+          ?.getAttribute("data-key"),
+      [x, y],
+    );
+    if (onTop !== key) continue; // under a likelier tag
+    await page.mouse.click(x, y);
+    await expect(
+      page.locator(`[data-testid="detector-suggestion"][data-key="${key}"]`),
+    ).toHaveClass(/is-selected/);
+    clicked++;
+  }
+  expect(clicked).toBeGreaterThan((await tags.count()) / 2);
 });
 
 test("the detector's failure is said plainly, and Detect objects can try again", async ({

@@ -1,6 +1,7 @@
 // The detector's suggested boxes over the photo: dashed boxes with class and score, larger
-// ones first so a smaller box inside one stays clickable; a click on a box selects it. Their
-// tags keep clear of each other and of the objects' labels (offerLabelPlacement.ts).
+// ones first so a smaller box inside one stays clickable, and every tag over every box, so a
+// box's tag is never under another box; a click on a box or its tag selects it. The tags keep
+// clear of each other and of the objects' labels (offerLabelPlacement.ts).
 import { svgEl } from "../../../dom";
 import { SCORE_THRESHOLD } from "../../../inference/detectorTensor";
 import { type Frame, strokeWidth } from "../../photo/arrowGeometry";
@@ -15,27 +16,35 @@ function tagSize(label: string, frame: Frame): { size: number; width: number; he
   return { size, width: label.length * size * 0.62 + size * 0.6, height: size * 1.35 };
 }
 
-function offerBox(offer: Offer, selected: boolean, frame: Frame, tagRect: Rect): SVGGElement {
+/** The offer's box and, drawn over all boxes, its tag: both select it (`data-key`). */
+function offerBox(
+  offer: Offer,
+  selected: boolean,
+  frame: Frame,
+  tagRect: Rect,
+): { box: SVGGElement; tag: SVGGElement } {
   const stroke = strokeWidth(frame);
   const [x1, y1, x2, y2] = offer.bbox;
   const label = offerLabel(offer);
   const { size } = tagSize(label, frame);
   // Below the detector's threshold: offered only because the person asked for fainter boxes.
   const faint = offer.score < SCORE_THRESHOLD;
+  const classes = `detector-suggestion${selected ? " is-selected" : ""}${faint ? " is-faint" : ""}`;
   const { left, top } = tagRect;
   const labelWidth = tagRect.right - tagRect.left;
   const labelHeight = tagRect.bottom - tagRect.top;
-  return svgEl(
+  const title = `Suggested ${label} (the detector's ${offer.sourceClass}): click to select`;
+  const box = svgEl(
     "g",
     {
-      class: `detector-suggestion${selected ? " is-selected" : ""}${faint ? " is-faint" : ""}`,
+      class: classes,
       "data-testid": "detector-suggestion",
       "data-key": offer.key,
       "data-class": offer.cls,
       "data-score": String(Math.round(offer.score * 100)),
       "data-bbox": offer.bbox.map((v) => v.toFixed(1)).join(","),
     },
-    svgEl("title", {}, `Suggested ${label} (the detector's ${offer.sourceClass}): click to select`),
+    svgEl("title", {}, title),
     svgEl("rect", {
       class: "detector-box-halo",
       x: x1,
@@ -53,6 +62,15 @@ function offerBox(offer: Offer, selected: boolean, frame: Frame, tagRect: Rect):
       "stroke-width": stroke * (selected ? 1.4 : 0.9),
       "stroke-dasharray": `${stroke * 4} ${stroke * 2.5}`,
     }),
+  );
+  const tag = svgEl(
+    "g",
+    {
+      class: `${classes} detector-suggestion-tag`,
+      "data-testid": "detector-suggestion-tag",
+      "data-key": offer.key,
+    },
+    svgEl("title", {}, title),
     svgEl("rect", {
       class: "detector-label-box",
       x: left,
@@ -73,6 +91,7 @@ function offerBox(offer: Offer, selected: boolean, frame: Frame, tagRect: Rect):
       label,
     ),
   );
+  return { box, tag };
 }
 
 const area = (offer: Offer) => (offer.bbox[2] - offer.bbox[0]) * (offer.bbox[3] - offer.bbox[1]);
@@ -125,11 +144,12 @@ export function offerBoxes(
         bounds,
         drawnLabelTags(svg).map((tag) => tag.rect),
       );
-      layer.replaceChildren(
-        ...byArea.map((offer, i) =>
-          offerBox(offer, offer.key === selected, frame, tags[i] as Rect),
-        ),
+      const drawn = byArea.map((offer, i) =>
+        offerBox(offer, offer.key === selected, frame, tags[i] as Rect),
       );
+      // Tags the placement could not keep apart overlap: the likelier one on top.
+      const tagsFaintFirst = [...surest].reverse().map((i) => (drawn[i] as (typeof drawn)[0]).tag);
+      layer.replaceChildren(...drawn.map((d) => d.box), ...tagsFaintFirst);
     },
   };
 }
