@@ -295,5 +295,30 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
     ["submit", ANNOTATOR.name],
     ["accept", REVIEWER.name],
   ]);
+
+  // A page that may only watch follows someone else's saves: the reviewer has a new scene open
+  // while the annotator takes it and saves from another client; within the workflow check's
+  // 10 s the page shows their revision, without a reload.
+  const thirdId = await importFolder(admin, synthesize(14), "img.png", "synthetic room 14");
+  await openScene(page, thirdId);
+  const shown = (await (await admin.get(`/api/scenes/${thirdId}`)).json()) as SceneDocument;
+  await expect(page.getByTestId("scene-meta")).toContainText(`revision ${shown.revision}`);
+  const annotator = await apiAs(newContext, ANNOTATOR);
+  expect((await annotator.post(`/api/scenes/${thirdId}/take`)).status()).toBe(200);
+  const moved = (shown.scene.supports ?? []).find((s) => s.parent !== "wall");
+  if (!moved) throw new Error("the synthetic room has a support to change");
+  const saved = await annotator.post(`/api/scenes/${thirdId}/edits`, {
+    data: {
+      base_revision: shown.revision,
+      author: ANNOTATOR.name,
+      edits: [{ kind: "set_support", child: moved.child, parent: "wall", type: "behind" }],
+    },
+  });
+  expect(saved.status(), await saved.text()).toBe(200);
+  await expect(page.getByTestId("scene-meta")).toContainText(`revision ${shown.revision + 1}`, {
+    timeout: 20_000,
+  });
+  await expect(page.getByTestId(`supporter-select-${moved.child}`)).toHaveValue("wall");
+  await annotator.dispose();
   await admin.dispose();
 });

@@ -102,6 +102,10 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
       flow = loaded;
       session.setWorkflow(flow); // submitted and accepted scenes are read only
       render();
+      // Someone else saved while this page may only watch (a reviewer, an annotator locked
+      // out): show their revision, and the save bar says who changed what.
+      if (background && !session.editable && loaded.revision > session.doc.revision)
+        await session.reloadLatest();
     } catch (err) {
       if (!abort.signal.aborted && !background) showError(err);
     }
