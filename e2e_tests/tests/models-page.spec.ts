@@ -44,6 +44,8 @@ test("an admin retrains, makes the new model active and rolls back", async ({ pa
   if (!trained) throw new Error("the retrain registered no model");
   const row = page.getByTestId(`model-row-${trained.version}`);
   await expect(row).toBeVisible();
+  // Its held-out figure says how many labelled objects it rests on.
+  await expect(row).toContainText(`on ${trained.heldout_items} labelled object`);
   // The card shows the curve the admin waited for, not the active model's.
   await expect(page.locator(".card h2", { hasText: "Training curve of" })).toHaveText(
     `Training curve of v${trained.version}`,

@@ -410,6 +410,12 @@ class ModelInfo(SchemaModel):
     )
     training_scenes: int = Field(ge=0, description="Labelled scenes it was trained on")
     heldout_scenes: int = Field(ge=0, description="Labelled scenes it was evaluated on")
+    heldout_items: int | None = Field(
+        default=None,
+        ge=0,
+        description="What those scenes held to score: labelled objects (relation) or "
+        "confirmed boxes (detector); a handful decides little",
+    )
     has_curve: bool
     note: str | None = None
     metrics: dict[str, Any] = Field(default_factory=dict, description="The model's metrics.json")

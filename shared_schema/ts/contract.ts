@@ -867,6 +867,10 @@ has_curve: boolean
  */
 heldout_accuracy: (number | null)
 /**
+ * What those scenes held to score: labelled objects (relation) or confirmed boxes (detector); a handful decides little
+ */
+heldout_items: (number | null)
+/**
  * Detector: share of the held-out confirmed boxes found with the right class (IoU 0.5)
  */
 heldout_recall: (number | null)

@@ -100,6 +100,7 @@ def test_retrain_keeps_a_tied_detector_as_a_candidate_to_promote_and_roll_back(
         trained_ids, heldout_ids = heldout_split(scene_ids)
         assert (new.training_scenes, new.heldout_scenes) == (len(trained_ids), len(heldout_ids))
         assert new.training_scenes >= 1 and new.heldout_scenes >= 1
+        assert new.heldout_items is not None and new.heldout_items >= new.heldout_scenes
         assert new.has_curve and new.metrics["curve"][0]["epoch"] == 1
         for line in ("3 scenes with confirmed boxes", "epoch 1", "new detector: mAP@0.5"):
             assert line in job.log, job.log

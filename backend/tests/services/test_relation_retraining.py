@@ -140,6 +140,9 @@ def test_retrain_promotes_a_better_model_and_refuses_a_worse_one(workbench: Work
     assert sorted(k.split("@")[0] for k in keys) == sorted(scene_ids)
     assert unlabelled not in {k.split("@")[0] for k in keys}
     assert good_data["heldout_scenes"] == worse_data["heldout_scenes"]
+    # How many labelled objects the held-out figures rest on, shown beside them.
+    assert good.heldout_items is not None and good.heldout_items >= 1
+    assert worse.heldout_items == good.heldout_items
     assert good_data["started_by"] == "alice"
     seen = json.loads((workbench.models.folder(good.id) / "data.json").read_text())
     assert sorted(seen["labelled_scenes"]) == sorted(good_data["training_scenes"])

@@ -401,6 +401,7 @@ class DetectorRetrainJob(TrainingJob):
             data={
                 "training_scenes": [item.key for item in train_items],
                 "heldout_scenes": [item.key for item in heldout_items],
+                "heldout_items": sum(len(item.boxes) for item in heldout_items),
                 "heldout": {
                     "new": dataclasses.asdict(score),
                     "active": dataclasses.asdict(parent_score) if parent_score else None,

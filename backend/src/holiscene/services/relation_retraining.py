@@ -285,6 +285,7 @@ class RetrainJob(TrainingJob):
             verdict,
             [by_id[i].key for i in train_ids],
             [by_id[i].key for i in heldout_ids],
+            sum(s.labelled for s in heldout),
         )
         message = _outcome(info, new_accuracy, parent, parent_accuracy)
         self._log(message)
@@ -315,6 +316,7 @@ class RetrainJob(TrainingJob):
         verdict: Verdict,
         train_keys: list[str],
         heldout_keys: list[str],
+        heldout_objects: int,
     ) -> ModelInfo:
         registration = Registration(
             status=verdict.status,
@@ -327,6 +329,7 @@ class RetrainJob(TrainingJob):
             data={
                 "training_scenes": train_keys,
                 "heldout_scenes": heldout_keys,
+                "heldout_items": heldout_objects,
                 "config": jsonable(dataclasses.asdict(self.config)),
                 "started_by": self.author,
             },

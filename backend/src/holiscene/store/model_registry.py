@@ -395,10 +395,15 @@ class ModelStore:
             validation_accuracy=row.validation_accuracy,
             training_scenes=len(data.get("training_scenes", [])),
             heldout_scenes=len(data.get("heldout_scenes", [])),
+            heldout_items=_count(data.get("heldout_items")),
             has_curve=(self.folder(row.id) / CURVE_FILE).is_file(),
             note=row.note,
             metrics=row.metrics or {},
         )
+
+
+def _count(value: Any) -> int | None:
+    return value if isinstance(value, int) and not isinstance(value, bool) else None
 
 
 def _events_of_kind(query: Select[*_Columns], kind: ModelKind) -> Select[*_Columns]:

@@ -7,6 +7,8 @@ export interface KindText {
   usedBy: string;
   empty: string;
   heldoutColumn: string;
+  /** What the held-out figures count, one and many: labelled objects, confirmed boxes. */
+  heldoutItems: [one: string, many: string];
   validationColumn: string;
   retrainHint: string;
   epochs: [label: string, placeholder: string];
@@ -21,6 +23,7 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
       "The pipeline and the browser use the active model. Any model can be made active again.",
     empty: "No Relation Network model is registered yet: retrain to make one.",
     heldoutColumn: "Held-out accuracy",
+    heldoutItems: ["labelled object", "labelled objects"],
     validationColumn: "Validation accuracy",
     retrainHint:
       "Trains a new Relation Network on the synthetic scenes and on every scene whose supports " +
@@ -37,6 +40,7 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
       "The pipeline finds objects with the active detector. Any detector can be made active again.",
     empty: "No object detector is registered yet: retrain to make one.",
     heldoutColumn: "Held-out mAP@0.5 · recall",
+    heldoutItems: ["confirmed box", "confirmed boxes"],
     validationColumn: "Validation mAP@0.5",
     retrainHint:
       "Fine-tunes a new detector on synthetic rooms and on every scene whose boxes a person " +

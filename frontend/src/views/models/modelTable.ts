@@ -21,13 +21,18 @@ const percent = (value: number | null) =>
 const figures = (value: number, recall: number | null) =>
   recall === null ? percent(value) : `${percent(value)} · ${percent(recall)}`;
 
-function heldoutText(model: ModelInfo): string {
+/** The held-out figures, the parent's beside them, and how many items they rest on (a
+ * figure from a handful of objects decides little, and the admin should see that). */
+function heldoutText(model: ModelInfo, text: KindText): string {
   if (model.heldout_accuracy === null) return "—";
   const parent =
     model.parent_version !== null && model.parent_heldout_accuracy !== null
       ? ` (v${model.parent_version}: ${figures(model.parent_heldout_accuracy, model.parent_heldout_recall)})`
       : "";
-  return `${figures(model.heldout_accuracy, model.heldout_recall)}${parent}`;
+  const items = model.heldout_items;
+  const [one, many] = text.heldoutItems;
+  const count = items == null ? "" : `, on ${items} ${items === 1 ? one : many}`;
+  return `${figures(model.heldout_accuracy, model.heldout_recall)}${parent}${count}`;
 }
 
 export interface ModelTableInputs {
@@ -80,7 +85,7 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
     const question =
       model.status === "rejected"
         ? `v${model.version} did worse than the model it was compared with on the held-out ` +
-          `scenes (${heldoutText(model)}). Make it active anyway?`
+          `scenes (${heldoutText(model, text)}). Make it active anyway?`
         : `Make v${model.version} the active model? Pipeline runs and suggestions use it from now on.`;
     if (!window.confirm(question)) return;
     promoteButton.disabled = true;
@@ -131,7 +136,7 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
               : STATUS_TEXT[model.status],
         }),
       ),
-      el("td", { text: heldoutText(model) }),
+      el("td", { text: heldoutText(model, text) }),
       el("td", { text: percent(model.validation_accuracy) }),
       el("td", {
         text:
