@@ -245,3 +245,30 @@ def test_a_zip_of_exported_scenes_imports(
     assert main(["import", str(broken), *data]) == 1
     assert f"error: {broken}: the upload is not a .zip file" in capsys.readouterr().err
     assert len(_stored(tmp_path / "b")) == 1
+
+
+def test_export_of_the_scenes_in_one_workflow_state(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from holiscene.editing.workflow_rules import Actor
+    from holiscene.store.workflow import WorkflowStore
+
+    data = tmp_path / "data"
+    for name in ("kept", "draft"):
+        room = labelme_file(
+            tmp_path / "in" / f"{name}.json", [shape("bed", [[5, 5], [40, 5], [40, 40]])]
+        )
+        assert main(["import", str(room), "--data-dir", str(data)]) == 0
+    assert _export(data, tmp_path / "none", "scene", "--state", "accepted") == 2
+    assert "no scene is accepted" in capsys.readouterr().err
+    assert not (tmp_path / "none").exists()
+
+    with scene_store(Settings(data_dir=data)) as scenes:
+        (kept,) = [s for s in scenes.list_summaries() if s.name == "kept"]
+        workflow, person = WorkflowStore(scenes.engine, scenes), Actor("local", "admin", local=True)
+        workflow.take(kept.id, person)
+        workflow.submit(kept.id, kept.revision, person)
+        workflow.accept(kept.id, kept.revision, person, None)
+    assert _export(data, tmp_path / "out", "scene", "--state", "accepted") == 0
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["kept"]
+    assert "exported 1 scene(s)" in capsys.readouterr().out

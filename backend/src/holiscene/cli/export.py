@@ -7,7 +7,9 @@ import argparse
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, get_args
+
+from holiscene_schema import SceneState
 
 from ..export.errors import ExportRefusedError
 from ..export.folders import EXPORT_FORMATS
@@ -30,6 +32,11 @@ def add_export_command(sub: argparse._SubParsersAction[argparse.ArgumentParser])
     export.add_argument(
         "--scene", dest="scene_ids", action="append", metavar="ID", help="(repeat; default: all)"
     )
+    export.add_argument(
+        "--state",
+        choices=list(get_args(SceneState)),
+        help="only the scenes in this workflow state (e.g. accepted: the reviewed labels)",
+    )
     export.add_argument("--force", action="store_true", help="write into a non-empty DIR")
     export.add_argument("--data-dir", type=Path)
     export.add_argument("--database-url")
@@ -42,7 +49,7 @@ def _export(args: argparse.Namespace) -> int:
         raise CliError(f"{out} is not an empty folder; use --force to write into it")
     # Everything is read (and every id checked) before anything is written.
     with scene_store(settings_from(args)) as scenes:
-        chosen = _chosen_scenes(scenes, args.scene_ids)
+        chosen = _chosen_scenes(scenes, args.scene_ids, args.state)
     out.mkdir(parents=True, exist_ok=True)
     try:
         note = EXPORT_FORMATS[args.format].write(chosen, out)
@@ -71,17 +78,23 @@ def scene_store(settings: Settings) -> Iterator[SceneStore]:
         engine.dispose()
 
 
-def _chosen_scenes(scenes: SceneStore, scene_ids: list[str] | None) -> list[ArchivedScene]:
+def _chosen_scenes(
+    scenes: SceneStore, scene_ids: list[str] | None, state: SceneState | None = None
+) -> list[ArchivedScene]:
+    """The scenes asked for (each once, in the order given; default: all), only those in
+    `state` when one is given."""
     from ..export.archive import archived_scene
-    from ..store.scenes import SceneNotFoundError
 
-    ids = scene_ids or [s.id for s in scenes.list_summaries()]
+    stored = [s.id for s in scenes.list_summaries()]
+    ids = list(dict.fromkeys(scene_ids)) if scene_ids else stored
+    unknown = [i for i in ids if i not in set(stored)]
+    if unknown:
+        raise CliError(f"no scene {unknown[0]!r} in the store")
+    if state is not None:
+        in_state = {s.id for s in scenes.list_summaries(state)}
+        ids = [i for i in ids if i in in_state]
+        if not ids:
+            raise CliError(f"no scene{' of those given' if scene_ids else ''} is {state}")
     if not ids:
         raise CliError("the store holds no scenes")
-    chosen = []
-    for scene_id in dict.fromkeys(ids):  # each once, in the order given
-        try:
-            chosen.append(archived_scene(scenes, scene_id))
-        except SceneNotFoundError as exc:
-            raise CliError(f"no scene {scene_id!r} in the store") from exc
-    return chosen
+    return [archived_scene(scenes, scene_id) for scene_id in ids]
