@@ -39,7 +39,15 @@ interface Row {
 }
 
 const rowKey = (o: SceneObject) =>
-  JSON.stringify([o.id, o.class, o.source, o.score, o.set_by_person, boxConfidence(o)?.text]);
+  JSON.stringify([
+    o.id,
+    o.class,
+    o.source_class,
+    o.source,
+    o.score,
+    o.set_by_person,
+    boxConfidence(o)?.text,
+  ]);
 
 function supporterOptions(object: SceneObject, objects: readonly SceneObject[]): HTMLElement[] {
   return [
@@ -74,7 +82,12 @@ function statusText(support: ShownSupport | undefined): string {
 
 /** The object's class: a button opening the picker when classes can be changed here. */
 function classCell(object: SceneObject, changeClass: ChangeClass | undefined): HTMLElement {
-  const text = classText(object.class);
+  // A name the class picker or a dataset mapped to its NYU-40 class (stool: chair) shows both.
+  const named = object.source_class;
+  const text =
+    named && named !== object.class
+      ? `${classText(object.class)} (${named})`
+      : classText(object.class);
   if (!changeClass) return el("span", { className: "object-class", text });
   const cell: HTMLButtonElement = button(text, {
     className: "object-class object-class-button",
