@@ -177,6 +177,13 @@ test("the history shows what each revision changed and reverts to any of them", 
   await expect(
     page.getByTestId(`revision-diff-${second.revision}`).locator("li[data-child='o3']"),
   ).toHaveAttribute("data-kind", "removed");
+  // "Since" lists everything from the pipeline's revision to now in one list: alice's move and
+  // bob's removals and class change.
+  await page.getByTestId(`revision-since-button-${predicted}`).click();
+  const since = page.getByTestId(`revision-diff-${predicted}`);
+  await expect(since.locator("li[data-child='o1']")).toHaveAttribute("data-kind", "moved");
+  await expect(since).toContainText("objects removed: o2");
+  await expect(since.locator("li[data-object='o0']")).toContainText("class");
   await page.screenshot({ path: screenshotPath("revision-diff.png"), fullPage: true });
 
   // Revert to the pipeline's revision: the whole scene as the pipeline stored it (bob's removed

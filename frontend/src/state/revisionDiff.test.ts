@@ -61,14 +61,14 @@ describe("revision diff", () => {
       ...a,
       objects: [
         { ...o0, class: "night_stand", mask: { origin: [0, 0], size: [1, 1], rle: [0, 1] } },
-        { ...o1, bbox: [0, 0, 2, 2] },
+        { ...o1, bbox: [0, 0, 2.4, 1.6] },
         { ...o2, box_3d: { center: [0, 0, 2], size: [1, 1, 1], yaw: 0 } },
         ...a.objects.slice(3),
       ],
     } as unknown as Scene;
     expect(diffScenes(a, b).objectsChanged).toEqual([
       { id: "o0", drawn: ["class box → night stand", "mask redrawn"], placed: [] },
-      { id: "o1", drawn: ["box moved or resized"], placed: [] },
+      { id: "o1", drawn: ["box 0,0–1,1 → 0,0–2,2"], placed: [] },
       { id: "o2", drawn: [], placed: ["3D box"] },
     ]);
   });

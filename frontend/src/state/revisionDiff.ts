@@ -16,7 +16,7 @@ export interface SupportChange {
  * (class, box, mask) and what the placement made of it (3D box, shape). */
 export interface ObjectChange {
   id: string;
-  /** "class otherprop → chair", "box moved or resized", "mask redrawn" */
+  /** "class otherprop → chair", "box 10,20–110,220 → 12,20–110,220", "mask redrawn" */
   drawn: string[];
   /** "3D box", "shape" */
   placed: string[];
@@ -32,10 +32,16 @@ export interface SceneDiff {
 
 const same = (a: unknown, b: unknown) => JSON.stringify(a ?? null) === JSON.stringify(b ?? null);
 
+/** A box as whole pixels, left,top–right,bottom: a reviewer checks the edge they asked for. */
+const boxText = (bbox: readonly number[]) => {
+  const [x1, y1, x2, y2] = bbox.map((v) => Math.round(v));
+  return `${x1},${y1}–${x2},${y2}`;
+};
+
 function objectChange(before: SceneObject, after: SceneObject): ObjectChange | null {
   const drawn = [
     before.class !== after.class && `class ${classText(before.class)} → ${classText(after.class)}`,
-    !same(before.bbox, after.bbox) && "box moved or resized",
+    !same(before.bbox, after.bbox) && `box ${boxText(before.bbox)} → ${boxText(after.bbox)}`,
     !same(before.mask, after.mask) && "mask redrawn",
   ].filter((part): part is string => typeof part === "string");
   const placed = [

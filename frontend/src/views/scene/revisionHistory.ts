@@ -39,14 +39,27 @@ export function mountRevisionHistory(
     return doc;
   };
 
-  const showDiff = async (info: RevisionInfo, box: HTMLElement) => {
-    box.hidden = !box.hidden;
-    if (box.hidden || box.childElementCount > 0) return;
-    box.append(el("li", { text: "Loading…" }));
+  /** Show (or hide) in `box` what changed from revision `from` (null: none) to `to`; `mode`
+   * says which question the box answers, so the other button asks again. */
+  const showDiff = async (
+    box: HTMLElement,
+    mode: string,
+    from: number | null,
+    to: () => Promise<SceneDocument>,
+  ) => {
+    if (!box.hidden && box.dataset.mode === mode) {
+      box.hidden = true;
+      return;
+    }
+    box.hidden = false;
+    box.dataset.mode = mode;
+    box.replaceChildren(el("li", { text: "Loading…" }));
     try {
-      const after = await revision(info.number);
-      const before = info.number > 1 ? await revision(info.number - 1) : null;
-      box.replaceChildren(...diffLines(before, after));
+      const after = await to();
+      const before = from !== null && from >= 1 ? await revision(from) : null;
+      const lines = diffLines(before, after);
+      const none = mode === "since" && lines.length === 0;
+      box.replaceChildren(...(none ? [el("li", { text: "nothing has changed since" })] : lines));
     } catch (error) {
       box.replaceChildren(el("li", { text: `Could not load the diff: ${String(error)}` }));
     }
@@ -77,7 +90,14 @@ export function mountRevisionHistory(
       className: "link-button",
       testid: `revision-diff-button-${info.number}`,
       title: "What this revision changed",
-      onClick: () => void showDiff(info, diff),
+      onClick: () => void showDiff(diff, "own", info.number - 1, () => revision(info.number)),
+    });
+    // A reviewer checks what changed since the revision they sent back, in one list.
+    const sinceButton = button("Since", {
+      className: "link-button",
+      testid: `revision-since-button-${info.number}`,
+      title: "What changed from this revision to the current one",
+      onClick: () => void showDiff(diff, "since", info.number, async () => session.doc),
     });
     const revertButton = button("Revert to this", {
       className: "link-button",
@@ -92,7 +112,8 @@ export function mountRevisionHistory(
       el("strong", { text: `#${info.number}` }),
       ` ${info.kind} by ${info.author} · ${formatTime(info.created_at)} · ${info.summary} `,
       showButton,
-      info.number < current ? revertButton : el("span", { className: "badge", text: "current" }),
+      ...(info.number < current ? [" ", sinceButton, " ", revertButton] : []),
+      info.number < current ? "" : el("span", { className: "badge", text: "current" }),
       diff,
     );
   };
