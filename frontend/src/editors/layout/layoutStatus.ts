@@ -51,7 +51,12 @@ export function layoutStatus(
     };
   }
   if (draft.error !== null)
-    return { text: `No room from these corners: ${draft.error}`, alert: true };
+    return {
+      text:
+        `No room from these corners: ${draft.error}. The room shown is the last one that fit; ` +
+        "move the corner back, or Reset.",
+      alert: true,
+    };
   if (draft.dirty && (saveState.kind === "error" || saveState.kind === "conflict")) {
     return { text: `Not saved: ${saveState.message} Your corners are kept.`, alert: true };
   }

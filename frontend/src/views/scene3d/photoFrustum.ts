@@ -6,7 +6,8 @@ import * as THREE from "three";
 import { invert, type Matrix3Like, matVec, worldFromCv } from "../../geometry/camera";
 
 const LINE = 0x1d2430;
-const OPACITY = 0.92;
+// See-through enough that an object close in front of the camera still shows behind the photo.
+const OPACITY = 0.75;
 /** While the depth points are shown: from the photo's viewpoint they lie behind the photo. */
 const SEE_THROUGH_OPACITY = 0.35;
 

@@ -9,7 +9,7 @@ import { RoomMesh } from "./roomMesh";
 import { SupportArrows3d } from "./supportArrows3d";
 
 /** Distance of the frustum's image plane from the camera centre, metres. */
-const FRUSTUM_DEPTH = 0.6;
+const FRUSTUM_DEPTH = 0.4;
 
 export class LiveLayers {
   readonly room = new RoomMesh();
