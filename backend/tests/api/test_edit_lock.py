@@ -18,7 +18,11 @@ pytestmark = pytest.mark.both_databases
 
 # Any corners: the lock is checked before the edit is looked at.
 LAYOUT = {"kind": "set_layout", "corners_2d": [[1.0, 1.0], [60.0, 1.0], [60.0, 40.0]] + [None] * 5}
-SUBMITTED = "submitted for review (by ann): a reviewer must reject it before it can be edited"
+SUBMITTED = "submitted for review (by ann)"
+# What its annotator and the other annotators are told; reviewers and admins are told how they
+# change what they judge.
+SUBMITTED_TO_ANNOTATORS = f"{SUBMITTED}: a reviewer must reject it before it can be edited"
+SUBMITTED_TO_REVIEWERS = f"{SUBMITTED}: it stays as submitted while you judge it"
 
 
 @pytest.fixture()
@@ -56,7 +60,8 @@ def test_editable_follows_the_state_and_the_user(api: Api, accounts: Accounts) -
     assert submitted.status_code == 200
     assert submitted.json()["editable"] is False
     for who, (editable, reason) in _everyone(api, scene_id).items():
-        assert not editable and reason is not None and SUBMITTED in reason, who
+        told = SUBMITTED_TO_REVIEWERS if who in ("rita", "ada") else SUBMITTED_TO_ANNOTATORS
+        assert not editable and reason is not None and told in reason, (who, reason)
 
     rejected = api.act("rita", scene_id, "reject", comment="the books lie on the table")
     assert rejected.status_code == 200

@@ -94,8 +94,14 @@ def take_for_annotation(
     may take it over), and an accepted scene changes only through a second annotation."""
     state, assignee = status.state, status.assignee
     if state == "submitted":
+        by = assignee or "someone"
+        if has_role(actor.role, "reviewer") and actor.name != assignee:
+            raise WorkflowError(
+                f"the scene is submitted for review (by {by}): it stays as submitted while "
+                "you judge it; to have something changed, send it back with a comment"
+            )
         raise WorkflowError(
-            f"the scene is submitted for review (by {assignee or 'someone'}): a reviewer must "
+            f"the scene is submitted for review (by {by}): a reviewer must "
             "reject it before it can be edited"
         )
     if state == "accepted":
