@@ -1,7 +1,7 @@
 // Object labels on the photo (each object's id on a dark tag with its mask colour), placed
 // apart by labelPlacement.ts, with a leader line when a crowd pushed the tag off its object;
-// and a "?" flag on objects without a supporter. Labels keep clear of the flags and of the
-// centroids, where the support arrows end.
+// and a "?" flag on objects without a supporter (at its centroid, where its arrow would end).
+// Labels keep clear of the flags and of the centroids, where the support arrows end.
 import type { SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
 import { isStructural, type ShownSupport } from "../../state/supportGraph";
@@ -19,9 +19,14 @@ const PAD = 0.4;
 const SWATCH = 0.45;
 const HEIGHT = 1.4;
 
-function flagFor(object: SceneObject, size: number): { node: SVGGElement; rect: Rect } {
-  const [x1, y1] = object.bbox;
-  const [cx, cy, r] = [x1 + size, y1 + size, size * 0.9];
+/** The "?" flag sits where the object's arrow would end (its centroid): inside its own mask,
+ * never on a corner another object's box may cover. */
+function flagFor(
+  object: SceneObject,
+  size: number,
+  centroid: readonly [number, number],
+): { node: SVGGElement; rect: Rect } {
+  const [cx, cy, r] = [centroid[0], centroid[1], size * 0.9];
   const node = svgEl(
     "g",
     {
@@ -118,7 +123,7 @@ export function renderLabels(
   const size = strokeWidth(frame) * 5.5 * scale;
   const flags = objects
     .filter((o) => regions.has(o.id) && !supports.has(o.id) && !isStructural(o.class))
-    .map((o) => flagFor(o, size));
+    .map((o) => flagFor(o, size, (regions.get(o.id) as Region).centroid));
   const requests: LabelRequest[] = objects.flatMap((object) => {
     const region = regions.get(object.id);
     if (!region) return [];
