@@ -33,3 +33,18 @@ def test_hashed_assets_are_kept_for_good_and_the_page_is_checked_every_time(
         assert "immutable" not in missing.headers.get("cache-control", "")
         # The security headers still come with the files.
         assert script.headers["x-content-type-options"] == "nosniff"
+
+
+def test_an_unknown_address_gets_a_page_in_a_browser_and_json_under_api(tmp_path: Path) -> None:
+    web = tmp_path / "web"
+    web.mkdir()
+    (web / "index.html").write_text("<p>workbench</p>")
+    (web / "404.html").write_text("<h1>No such page</h1>")
+    settings = Settings(data_dir=tmp_path / "data", web_dir=web)
+    with TestClient(
+        create_app(settings), base_url=f"http://{settings.host}:{settings.port}"
+    ) as client:
+        page = client.get("/scenes/abc")  # typed without the app's /#/
+        assert page.status_code == 404 and "No such page" in page.text
+        api = client.get("/api/no-such-thing")
+        assert api.status_code == 404 and api.json() == {"detail": "Not Found"}
