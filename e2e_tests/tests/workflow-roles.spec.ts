@@ -319,6 +319,15 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
     timeout: 20_000,
   });
   await expect(page.getByTestId(`supporter-select-${moved.child}`)).toHaveValue("wall");
+  // The dashboard follows too: the annotator submits, the open dashboard counts it.
+  await page.getByTestId("dashboard-link").click();
+  await expect(page.getByTestId("state-count-in_annotation")).toHaveText("1");
+  const submitted = await annotator.post(`/api/scenes/${thirdId}/submit`, {
+    data: { revision: shown.revision + 1 },
+  });
+  expect(submitted.status(), await submitted.text()).toBe(200);
+  await expect(page.getByTestId("state-count-submitted")).toHaveText("1", { timeout: 20_000 });
+  await expect(page.getByTestId("state-count-in_annotation")).toHaveText("0");
   await annotator.dispose();
   await admin.dispose();
 });

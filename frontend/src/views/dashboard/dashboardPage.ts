@@ -7,6 +7,8 @@ import { hasRole } from "../../state/currentUser";
 import "../workflow/workflow.css";
 import { accountsSection } from "./accounts";
 
+const DASHBOARD_CHECK_MS = 10_000;
+
 const percent = (share: number) => `${(100 * share).toFixed(1)} %`;
 
 function table(testid: string, headers: string[], numeric: number[], rows: HTMLElement[]) {
@@ -95,9 +97,14 @@ export function mountDashboardPage(container: HTMLElement): () => void {
   const content = el("div", { className: "dashboard-content" });
   const status = el("p", { testid: "dashboard-status", attrs: { role: "status" } });
   const refreshButton = button("Refresh", { testid: "dashboard-refresh" });
-  const refresh = async () => {
+  let shown = "";
+  const refresh = async (background = false) => {
     try {
       const dashboard = await workflowApi.dashboard(abort.signal);
+      // Checked again in the background: redrawn only when a figure moved.
+      const key = JSON.stringify(dashboard);
+      if (background && key === shown) return;
+      shown = key;
       const mean = dashboard.mean_agreement;
       content.replaceChildren(
         statesSection(dashboard),
@@ -136,6 +143,7 @@ export function mountDashboardPage(container: HTMLElement): () => void {
       status.textContent = "";
       status.hidden = true;
     } catch (err) {
+      if (background) return; // the figures shown stay; the next check tries again
       status.hidden = false;
       if (!abort.signal.aborted)
         status.textContent = `Could not load the dashboard: ${err instanceof Error ? err.message : String(err)}`;
@@ -159,5 +167,12 @@ export function mountDashboardPage(container: HTMLElement): () => void {
     ),
   );
   void refresh();
-  return () => abort.abort();
+  // Counts move as people work: looked at again while the tab is visible.
+  const watch = setInterval(() => {
+    if (document.visibilityState === "visible") void refresh(true);
+  }, DASHBOARD_CHECK_MS);
+  return () => {
+    clearInterval(watch);
+    abort.abort();
+  };
 }
