@@ -80,6 +80,22 @@ test("a save refused by the workflow lock keeps the edit, shows why, and is save
     source: "manual",
   });
   await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+
+  // Submitting with an object left without a supporter asks first; saying no submits nothing.
+  await select.selectOption("");
+  await page.locator("body").click({ position: { x: 5, y: 5 } });
+  await page.keyboard.press("Control+s");
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
+  let asked = "";
+  page.once("dialog", (dialog) => {
+    asked = dialog.message();
+    void dialog.dismiss();
+  });
+  await page.getByTestId("workflow-submit").click();
+  await expect.poll(() => asked).toContain(`(${support.child}) has no supporter`);
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+  const workflow = await (await request.get(`/api/scenes/${id}/workflow`)).json();
+  expect(workflow.state).toBe("in_annotation");
 });
 
 /** Submit the scene from the workflow bar, then send it back with a comment (one person reviews). */

@@ -41,13 +41,9 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
   svg.append(dragLayer);
   let press: { child: string; x: number; y: number; dragging: boolean } | null = null;
   let swallowClick = false;
-  // The object whose supporter the next click on another object picks; null: clicks select.
-  let armed: string | null = null;
-  const showPicking = () => svg.classList.toggle("is-picking", armed !== null);
-  const arm = (child: string | null) => {
-    armed = child !== null && session.editable ? child : null;
-    showPicking();
-  };
+  // The pick lives in the session (the selection bar's hint says what a click will do).
+  const arm = (child: string | null) =>
+    session.setPicking(child !== null && session.editable ? child : null);
 
   const pickSupporter = (child: string, parent: string) => {
     session.say(setSupporter(session, child, parent));
@@ -68,7 +64,7 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     }
     const object = picking.objectAt(event);
     const selected = session.selected;
-    if (armed !== null && armed === selected && object && object !== selected)
+    if (session.picking !== null && session.picking === selected && object && object !== selected)
       pickSupporter(selected, object);
     else {
       session.say(null);
@@ -146,8 +142,9 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
   svg.addEventListener("click", onClick);
   svg.addEventListener("pointerdown", onDown);
   const unsubscribe = session.subscribe((change) => {
-    // Another selection (the list, a key) or a locked scene ends the pick.
-    if ((change === "select" && session.selected !== armed) || change === "lock") arm(null);
+    // A locked scene ends the pick (another selection ends it in the session).
+    if (change === "lock") arm(null);
+    if (change === "select") svg.classList.toggle("is-picking", session.picking !== null);
   });
   const removeKey = registerShortcut({
     keys: PICK_SUPPORTER_KEY,

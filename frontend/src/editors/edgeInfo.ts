@@ -47,8 +47,11 @@ export function mountEdgeInfo(container: HTMLElement, session: SceneSession): ()
         ? provenanceText(shown.support, suggestion) +
           (suggestion && was ? ` (was ${was.parent}, ${was.type})` : "")
         : "";
+      // What a click on another object does now: picks the supporter, or only selects.
+      const pick =
+        session.picking === child ? "click the new supporter" : "S then click the new supporter";
       hint.textContent = session.editable
-        ? "click the new supporter (F floor, W wall, C ceiling) · A accept · R reject · T below/behind · Shift+Del no supporter · Del remove the object · Esc"
+        ? `${pick} (F floor, W wall, C ceiling) · A accept · R reject · T below/behind · Shift+Del no supporter · Del remove the object · Esc`
         : "read only: nothing can be changed now · Esc";
     }
     message.textContent = session.message ?? "";

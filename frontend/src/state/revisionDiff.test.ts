@@ -62,14 +62,18 @@ describe("revision diff", () => {
       objects: [
         { ...o0, class: "night_stand", mask: { origin: [0, 0], size: [1, 1], rle: [0, 1] } },
         { ...o1, bbox: [0, 0, 2.4, 1.6] },
-        { ...o2, box_3d: { center: [0, 0, 2], size: [1, 1, 1], yaw: 0 } },
+        {
+          ...o2,
+          source_class: "crate",
+          box_3d: { center: [0, 0, 2], size: [1, 1, 1], yaw: 0 },
+        },
         ...a.objects.slice(3),
       ],
     } as unknown as Scene;
     expect(diffScenes(a, b).objectsChanged).toEqual([
       { id: "o0", drawn: ["class box → night stand", "mask redrawn"], placed: [] },
       { id: "o1", drawn: ["box 0,0–1,1 → 0,0–2,2"], placed: [] },
-      { id: "o2", drawn: [], placed: ["3D box"] },
+      { id: "o2", drawn: ["class box → box (crate)"], placed: ["3D box"] },
     ]);
   });
 });

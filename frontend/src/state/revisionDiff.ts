@@ -32,6 +32,12 @@ export interface SceneDiff {
 
 const same = (a: unknown, b: unknown) => JSON.stringify(a ?? null) === JSON.stringify(b ?? null);
 
+/** The class as the object list shows it: an alias picked for it (stool) in brackets. */
+const namedClass = (object: SceneObject) =>
+  object.source_class && object.source_class !== object.class
+    ? `${classText(object.class)} (${object.source_class})`
+    : classText(object.class);
+
 /** A box as whole pixels, left,top–right,bottom: a reviewer checks the edge they asked for. */
 const boxText = (bbox: readonly number[]) => {
   const [x1, y1, x2, y2] = bbox.map((v) => Math.round(v));
@@ -40,7 +46,8 @@ const boxText = (bbox: readonly number[]) => {
 
 function objectChange(before: SceneObject, after: SceneObject): ObjectChange | null {
   const drawn = [
-    before.class !== after.class && `class ${classText(before.class)} → ${classText(after.class)}`,
+    namedClass(before) !== namedClass(after) &&
+      `class ${namedClass(before)} → ${namedClass(after)}`,
     !same(before.bbox, after.bbox) && `box ${boxText(before.bbox)} → ${boxText(after.bbox)}`,
     !same(before.mask, after.mask) && "mask redrawn",
   ].filter((part): part is string => typeof part === "string");

@@ -111,6 +111,9 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
   saveState: SaveState = { kind: "clean" };
   hovered: string | null = null;
   selected: string | null = null;
+  /** The object whose supporter the next click on another object picks (an arrow or a "?"
+   * flag was clicked, or S pressed; editors/arrowEditing.ts), else null: clicks select. */
+  picking: string | null = null;
   /** Why the last editing action did nothing, for the selection bar (null: nothing to say). */
   message: string | null = null;
   /** A message about the last reload or recovery (what happened to the unsaved edits). */
@@ -410,6 +413,14 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
 
   select(id: string | null): void {
     this.selected = id;
+    if (this.picking !== id) this.picking = null; // another selection ends a pick
+    this.emit("select");
+  }
+
+  /** Arm (an object id) or end (null) a supporter pick for the selected object. */
+  setPicking(id: string | null): void {
+    if (this.picking === id) return;
+    this.picking = id;
     this.emit("select");
   }
 

@@ -10,7 +10,8 @@ import { ApiError } from "../../api/errors";
 import { workflowApi } from "../../api/workflow";
 import { el, hiddenErrorAlert } from "../../dom";
 import { getCurrentUser } from "../../state/currentUser";
-import type { SceneSession } from "../../state/sceneSession";
+import { plural, type SceneSession } from "../../state/sceneSession";
+import { isStructural } from "../../state/supportGraph";
 import { nextSceneControl } from "./nextScene";
 import { actionState, workflowActions } from "./workflowActions";
 import { workflowKeys } from "./workflowKeys";
@@ -40,7 +41,18 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
       if (assignee && !mine && !window.confirm(question)) return;
       void act(() => workflowApi.take(session.sceneId));
     },
-    onSubmit: () => void act(() => workflowApi.submit(session.sceneId, revision())),
+    onSubmit: () => {
+      // The page says to submit when every supporter is right: an object left without one is
+      // asked about (a reviewer would send the scene back for it).
+      const missing = session.objects
+        .filter((o) => !isStructural(o.class) && !session.shown().has(o.id))
+        .map((o) => o.id);
+      const question =
+        `${plural(missing.length, "object")} (${missing.join(", ")}) ${missing.length === 1 ? "has" : "have"} ` +
+        "no supporter. Submit for review anyway? The scene is locked until a reviewer decides.";
+      if (missing.length > 0 && !window.confirm(question)) return;
+      void act(() => workflowApi.submit(session.sceneId, revision()));
+    },
     onRelease: () => {
       const question =
         "Give this scene back? It waits in the queue for the next annotator; every saved revision stays in its history.";

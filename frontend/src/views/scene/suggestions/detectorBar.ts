@@ -132,6 +132,7 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
       const picked = chosen ? `Selected: ${offerLabel(chosen)}` : "No box selected";
       // Looking at the detector's boxes is fine on a read-only scene; adding them is not.
       selection.textContent = editable ? picked : `${picked} · view only: the scene is read only`;
+      selection.title = selection.textContent;
       const why = editable ? "" : " (the scene is read only)";
       acceptButton.disabled = busy || !editable || chosen === null;
       acceptAllButton.disabled = busy || !editable;
