@@ -4,13 +4,14 @@
 import type { SceneObject } from "@holiscene/schema";
 import { STRUCTURAL_SUPPORTERS, SUPPORT_TYPES } from "@holiscene/schema";
 import { button, el, placeChildren } from "../dom";
-import { classText } from "../state/classNames";
+import { classText, objectClassText } from "../state/classNames";
 import type { SceneSession } from "../state/sceneSession";
 import {
   defaultType,
   isStructural,
   type ShownSupport,
   type SupportType,
+  withoutSupporter,
   wouldCycle,
 } from "../state/supportGraph";
 import { rgbCss } from "../views/classColors";
@@ -82,12 +83,7 @@ function statusText(support: ShownSupport | undefined): string {
 
 /** The object's class: a button opening the picker when classes can be changed here. */
 function classCell(object: SceneObject, changeClass: ChangeClass | undefined): HTMLElement {
-  // A name the class picker or a dataset mapped to its NYU-40 class (stool: chair) shows both.
-  const named = object.source_class;
-  const text =
-    named && named !== object.class
-      ? `${classText(object.class)} (${named})`
-      : classText(object.class);
+  const text = objectClassText(object);
   if (!changeClass) return el("span", { className: "object-class", text });
   const cell: HTMLButtonElement = button(text, {
     className: "object-class object-class-button",
@@ -348,7 +344,7 @@ export function mountSupportEditor(
   };
   const update = () => {
     for (const row of rows) row.update();
-    const missing = rows.filter((r) => !session.shown().has(r.object.id)).length;
+    const missing = withoutSupporter(session.objects, session.shown()).length;
     const label = unconfirmed?.failure?.label ?? null;
     const { text, warn } = supportSummary(session.objects, missing, label);
     if (summary.textContent !== text) summary.textContent = text;

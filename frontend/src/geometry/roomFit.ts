@@ -141,7 +141,15 @@ export function fitRoom(
   options: FitRoomOptions = {},
 ): RoomFit {
   const observations = checkedObservations(K, corners2d, cameraHeight, options.unseenWallDistance);
-  const result = levenbergMarquardt(observations, startOf(observations, options.start ?? null));
+  const fallback = options.start ? paramsOf(options.start) : null;
+  let guess: Float64Array;
+  try {
+    guess = initialGuess(observations);
+  } catch (error) {
+    if (fallback === null || !(error instanceof RoomFitError)) throw error;
+    guess = fallback;
+  }
+  const result = levenbergMarquardt(observations, guess, fallback);
   const { params, residuals } = result;
   if (Math.min(at(params, 5), at(params, 6), at(params, 7)) <= 0) {
     throw new RoomFitError("the fit turned the room inside out: the corners are inconsistent");
@@ -346,19 +354,6 @@ function initialGuess(observations: Observations): Float64Array {
   ]);
 }
 
-/** The closed-form start, or `start` when that one fails (room_fit.py's step 3). */
-function startOf(observations: Observations, start: RoomStart | null): Float64Array {
-  let guess: Float64Array;
-  try {
-    guess = initialGuess(observations);
-  } catch (error) {
-    if (start === null || !(error instanceof RoomFitError)) throw error;
-    return paramsOf(start);
-  }
-  if (start === null || residualsAndJacobian(guess, observations) !== null) return guess;
-  return paramsOf(start);
-}
-
 /** The parameter vector of a room (its centre's height is the floor's, not a parameter). */
 function paramsOf({ pitchDeg, rollDeg, room }: RoomStart): Float64Array {
   const { center, size } = room;
@@ -531,13 +526,22 @@ interface Minimum {
   converged: boolean;
 }
 
-/** Minimise the squared residuals from params (step 4 of room_fit.py's docstring). */
-function levenbergMarquardt(observations: Observations, start: Float64Array): Minimum {
-  let evaluation = residualsAndJacobian(start, observations);
+/** Minimise the squared residuals from `start`, or from `fallback` when `start` puts a known
+ * corner behind the camera (steps 3-4 of room_fit.py's docstring). */
+function levenbergMarquardt(
+  observations: Observations,
+  start: Float64Array,
+  fallback: Float64Array | null = null,
+): Minimum {
+  let params = start;
+  let evaluation = residualsAndJacobian(params, observations);
+  if (evaluation === null && fallback !== null) {
+    params = fallback; // the start puts a known corner behind the camera
+    evaluation = residualsAndJacobian(params, observations);
+  }
   if (evaluation === null) {
     throw new RoomFitError("the initial guess puts a known corner behind the camera");
   }
-  let params = start;
   let cost = sumOfSquares(evaluation.residuals);
   let [normal, gradient] = normalEquations(evaluation);
   let damping = LAMBDA_INIT;

@@ -26,6 +26,13 @@ export const classKey = (text: string): string =>
 /** The name shown for a class: "night stand" for `night_stand`. */
 export const classText = (cls: string): string => cls.replaceAll("_", " ");
 
+/** An object's class as the page shows it: a name it was picked or imported under that maps
+ * to the class (stool: chair) in brackets, "chair (stool)". */
+export const objectClassText = (object: { class: string; source_class?: string | null }) =>
+  object.source_class && object.source_class !== object.class
+    ? `${classText(object.class)} (${object.source_class})`
+    : classText(object.class);
+
 /** The NYU-40 class a name is stored as: a class, an alias, a plural of either ("chairs",
  * "couches"), or a free name resolved by its words ("office chair", "chiar"); null when the
  * server would refuse it. */

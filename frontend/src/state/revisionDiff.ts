@@ -1,6 +1,6 @@
 // What changed between two revisions of a scene (the history's diff).
 import type { Scene, SceneObject, SupportRelation } from "@holiscene/schema";
-import { classText } from "./classNames";
+import { objectClassText } from "./classNames";
 import { sameRelation } from "./supportGraph";
 
 export type ChangeKind = "added" | "removed" | "moved" | "retyped" | "confirmed" | "provenance";
@@ -32,12 +32,6 @@ export interface SceneDiff {
 
 const same = (a: unknown, b: unknown) => JSON.stringify(a ?? null) === JSON.stringify(b ?? null);
 
-/** The class as the object list shows it: an alias picked for it (stool) in brackets. */
-const namedClass = (object: SceneObject) =>
-  object.source_class && object.source_class !== object.class
-    ? `${classText(object.class)} (${object.source_class})`
-    : classText(object.class);
-
 /** A box as whole pixels, left,top–right,bottom: a reviewer checks the edge they asked for. */
 const boxText = (bbox: readonly number[]) => {
   const [x1, y1, x2, y2] = bbox.map((v) => Math.round(v));
@@ -46,8 +40,8 @@ const boxText = (bbox: readonly number[]) => {
 
 function objectChange(before: SceneObject, after: SceneObject): ObjectChange | null {
   const drawn = [
-    namedClass(before) !== namedClass(after) &&
-      `class ${namedClass(before)} → ${namedClass(after)}`,
+    objectClassText(before) !== objectClassText(after) &&
+      `class ${objectClassText(before)} → ${objectClassText(after)}`,
     !same(before.bbox, after.bbox) && `box ${boxText(before.bbox)} → ${boxText(after.bbox)}`,
     !same(before.mask, after.mask) && "mask redrawn",
   ].filter((part): part is string => typeof part === "string");

@@ -29,6 +29,14 @@ export function isStructural(parent: string): parent is StructuralSupporter {
   return (STRUCTURAL_SUPPORTERS as readonly string[]).includes(parent);
 }
 
+/** The objects (room parts aside) that have no supporter among `shown`. */
+export function withoutSupporter<T extends { id: string; class: string }>(
+  objects: readonly T[],
+  shown: ReadonlyMap<string, unknown>,
+): T[] {
+  return objects.filter((o) => !isStructural(o.class) && !shown.has(o.id));
+}
+
 /** An object's supporter as shown: saved, or changed by an edit not yet saved. */
 export interface ShownSupport {
   child: string;

@@ -85,14 +85,13 @@ def _chosen_scenes(
     `state` when one is given."""
     from ..export.archive import archived_scene
 
-    stored = [s.id for s in scenes.list_summaries()]
-    ids = list(dict.fromkeys(scene_ids)) if scene_ids else stored
-    unknown = [i for i in ids if i not in set(stored)]
+    state_of = {s.id: s.state for s in scenes.list_summaries()}
+    ids = list(dict.fromkeys(scene_ids)) if scene_ids else list(state_of)
+    unknown = [i for i in ids if i not in state_of]
     if unknown:
         raise CliError(f"no scene {unknown[0]!r} in the store")
     if state is not None:
-        in_state = {s.id for s in scenes.list_summaries(state)}
-        ids = [i for i in ids if i in in_state]
+        ids = [i for i in ids if state_of[i] == state]
         if not ids:
             raise CliError(f"no scene{' of those given' if scene_ids else ''} is {state}")
     if not ids:

@@ -149,9 +149,14 @@ def fit_room(
     """Camera pitch/roll and room box from the layout corners; ValueError when not determined.
     `start`: the room to start from when the corners' own start fails (step 3)."""
     observations = _observations(K, corners_2d, camera_height, unseen_wall_distance)
-    params, residuals, trials, converged = _levenberg_marquardt(
-        observations, _start(observations, start)
-    )
+    fallback = _params_of(start) if start is not None else None
+    try:
+        guess = _initial_guess(observations)
+    except ValueError:
+        if fallback is None:
+            raise
+        guess = fallback
+    params, residuals, trials, converged = _levenberg_marquardt(observations, guess, fallback)
     if min(params[5], params[6], params[7]) <= 0.0:
         raise ValueError("the fit turned the room inside out: the corners are inconsistent")
     center, size, yaw_deg = _room_box(params, observations.camera_height)
@@ -340,19 +345,6 @@ def _initial_guess(observations: _Observations) -> FloatArray:
     )
 
 
-def _start(observations: _Observations, start: RoomStart | None) -> FloatArray:
-    """The closed-form start, or `start` when that one fails (see step 3)."""
-    try:
-        guess = _initial_guess(observations)
-    except ValueError:
-        if start is None:
-            raise
-        return _params_of(start)
-    if start is None or _residuals_and_jacobian(guess, observations) is not None:
-        return guess
-    return _params_of(start)
-
-
 def _params_of(start: RoomStart) -> FloatArray:
     """The parameter vector of a room (its centre's height is the floor's, not a parameter)."""
     room = start.room
@@ -455,10 +447,14 @@ def _residuals_and_jacobian(
 
 
 def _levenberg_marquardt(
-    observations: _Observations, params: FloatArray
+    observations: _Observations, params: FloatArray, fallback: FloatArray | None = None
 ) -> tuple[FloatArray, FloatArray, int, bool]:
-    """Minimise the squared residuals from params: (params, residuals, trials, converged)."""
+    """Minimise the squared residuals from params (from `fallback` when params put a known
+    corner behind the camera): (params, residuals, trials, converged)."""
     evaluated = _residuals_and_jacobian(params, observations)
+    if evaluated is None and fallback is not None:
+        params = fallback
+        evaluated = _residuals_and_jacobian(params, observations)
     if evaluated is None:
         raise ValueError("the initial guess puts a known corner behind the camera")
     residuals, jacobian = evaluated

@@ -5,6 +5,7 @@ import { SCENE_STATES, stateLabel, workflowApi } from "../../api/workflow";
 import { button, el } from "../../dom";
 import { hasRole } from "../../state/currentUser";
 import "../workflow/workflow.css";
+import { everyWhileVisible } from "../common/everyWhileVisible";
 import { accountsSection } from "./accounts";
 
 const DASHBOARD_CHECK_MS = 10_000;
@@ -168,11 +169,9 @@ export function mountDashboardPage(container: HTMLElement): () => void {
   );
   void refresh();
   // Counts move as people work: looked at again while the tab is visible.
-  const watch = setInterval(() => {
-    if (document.visibilityState === "visible") void refresh(true);
-  }, DASHBOARD_CHECK_MS);
+  const stopWatching = everyWhileVisible(DASHBOARD_CHECK_MS, () => void refresh(true));
   return () => {
-    clearInterval(watch);
+    stopWatching();
     abort.abort();
   };
 }

@@ -222,12 +222,11 @@ export function renderArrows(
     height: 2 * hh,
   }));
   const anchors = placeLabels(requests, drawingRect(frame), [], size * 0.1);
+  const membersOf = new Map(clusters.map((c) => [c.ids[0] as string, c.ids]));
   const anchorAt = new Map<string, Point>();
   for (const { id, rect } of anchors) {
     const centre: Point = [(rect.left + rect.right) / 2, (rect.top + rect.bottom) / 2];
-    for (const member of clusters.find((c) => c.ids[0] === id)?.ids ?? []) {
-      anchorAt.set(member, centre);
-    }
+    for (const member of membersOf.get(id) ?? []) anchorAt.set(member, centre);
   }
   const arrows = edges.flatMap(({ object, edge }) => {
     const arrow = arrowFor(edge, object, centroids, frame, anchorAt.get(object.id), scale);

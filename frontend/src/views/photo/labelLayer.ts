@@ -4,7 +4,7 @@
 // Labels keep clear of the flags and of the centroids, where the support arrows end.
 import type { SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
-import { isStructural, type ShownSupport } from "../../state/supportGraph";
+import { type ShownSupport, withoutSupporter } from "../../state/supportGraph";
 import { type Rgb, rgbCss } from "../classColors";
 import { type Frame, strokeWidth } from "./arrowGeometry";
 import { clampToRect, drawingRect, type Rect } from "./cornerHandles";
@@ -121,8 +121,8 @@ export function renderLabels(
   scale = 1,
 ): void {
   const size = strokeWidth(frame) * 5.5 * scale;
-  const flags = objects
-    .filter((o) => regions.has(o.id) && !supports.has(o.id) && !isStructural(o.class))
+  const flags = withoutSupporter(objects, supports)
+    .filter((o) => regions.has(o.id))
     .map((o) => flagFor(o, size, (regions.get(o.id) as Region).centroid));
   const requests: LabelRequest[] = objects.flatMap((object) => {
     const region = regions.get(object.id);

@@ -112,8 +112,9 @@ export function mountRevisionHistory(
       el("strong", { text: `#${info.number}` }),
       ` ${info.kind} by ${info.author} · ${formatTime(info.created_at)} · ${info.summary} `,
       showButton,
-      ...(info.number < current ? [" ", sinceButton, " ", revertButton] : []),
-      info.number < current ? "" : el("span", { className: "badge", text: "current" }),
+      ...(info.number < current
+        ? [" ", sinceButton, " ", revertButton]
+        : [el("span", { className: "badge", text: "current" })]),
       diff,
     );
   };

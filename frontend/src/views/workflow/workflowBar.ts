@@ -11,7 +11,8 @@ import { workflowApi } from "../../api/workflow";
 import { el, hiddenErrorAlert } from "../../dom";
 import { getCurrentUser } from "../../state/currentUser";
 import { plural, type SceneSession } from "../../state/sceneSession";
-import { isStructural } from "../../state/supportGraph";
+import { withoutSupporter } from "../../state/supportGraph";
+import { everyWhileVisible } from "../common/everyWhileVisible";
 import { nextSceneControl } from "./nextScene";
 import { actionState, workflowActions } from "./workflowActions";
 import { workflowKeys } from "./workflowKeys";
@@ -44,9 +45,7 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
     onSubmit: () => {
       // The page says to submit when every supporter is right: an object left without one is
       // asked about (a reviewer would send the scene back for it).
-      const missing = session.objects
-        .filter((o) => !isStructural(o.class) && !session.shown().has(o.id))
-        .map((o) => o.id);
+      const missing = withoutSupporter(session.objects, session.shown()).map((o) => o.id);
       const question =
         `${plural(missing.length, "object")} (${missing.join(", ")}) ${missing.length === 1 ? "has" : "have"} ` +
         "no supporter. Submit for review anyway? The scene is locked until a reviewer decides.";
@@ -161,11 +160,11 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
   void load();
   // Someone else may submit, accept, reject or take the scene while this page is open: looked
   // at again every few seconds while the tab is visible, so the buttons and the lock follow.
-  const watch = setInterval(() => {
-    if (document.visibilityState === "visible" && !busy) void load(true);
-  }, WORKFLOW_CHECK_MS);
+  const stopWatching = everyWhileVisible(WORKFLOW_CHECK_MS, () => {
+    if (!busy) void load(true);
+  });
   return () => {
-    clearInterval(watch);
+    stopWatching();
     loadLater.cancel();
     abort.abort();
     unsubscribe();
