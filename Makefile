@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: surface-model coco-detector detector-model scratch-detector-model bench-detector bench-refine bench-batch completion-model box-refiner-model mesh-net-model scene-net-model bench-completion bench-writers calibrate-scale bench bench-layout bench-depth-layout bench-box-parts bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
+.PHONY: surface-model coco-detector picodet-detector detector-model scratch-detector-model bench-detector bench-refine bench-batch completion-model box-refiner-model mesh-net-model scene-net-model bench-completion bench-writers calibrate-scale bench bench-layout bench-depth-layout bench-box-parts bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -107,6 +107,10 @@ bench-box-parts: install-python
 coco-detector: install-python
 	$(PY) scripts/convert_coco_detector.py
 
+# The default detector: COCO PicoDet from its PyPI package, converted and checked against Paddle.
+picodet-detector: install-python
+	$(PY) scripts/convert_picodet_detector.py
+
 # The NYU-40 detector: a head fine-tuned on synthetic rooms over the COCO backbone.
 detector-model: install-python
 	rm -rf /tmp/holiscene-detector-model
@@ -123,7 +127,8 @@ scratch-detector-model: install-python
 	cp /tmp/holiscene-scratch-detector/* backend/src/holiscene/learning/scratch_detector/
 
 bench-detector: install-python
-	$(PY) benchmarks/bench_detector.py --model backend/src/holiscene/learning/coco_detector \
+	$(PY) benchmarks/bench_detector.py --model backend/src/holiscene/learning/picodet_detector \
+		--model backend/src/holiscene/learning/coco_detector \
 		--model backend/src/holiscene/learning/nyu_detector \
 		--model backend/src/holiscene/learning/scratch_detector
 

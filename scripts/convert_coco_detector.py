@@ -14,24 +14,25 @@ package's licence written to --out.
 
 from __future__ import annotations
 
-import argparse
-import hashlib
-import json
-import shutil
 import subprocess
-import sys
 import tarfile
 import tempfile
 from pathlib import Path
 
-import cv2
 import numpy as np
 import onnx
 import onnxruntime as ort
-from holiscene.learning.detector.runtime import COCO_DETECTOR_DIR, preprocess
+from holiscene.learning.detector.runtime import COCO_DETECTOR_DIR
 from holiscene.learning.detector.tfjs_convert import convert
 from holiscene.learning.detector.tfjs_graph import load_graph_model
 from holiscene_schema.detector_model import COCO_CLASSES, INPUT_NAME, INPUT_SIZE, OUTPUT_NAME
+from model_conversion import (
+    contract_inputs,
+    conversion_parser,
+    photo_paths,
+    sha256,
+    write_detector_dir,
+)
 from tqdm import tqdm
 
 PACKAGE = "@vladmandic/human"
@@ -42,10 +43,6 @@ TF_OUTPUT = "tower_0/detections"
 HEAD_OUTPUTS = ("tower_0/keypoints", "tower_0/wh")  # where the graph's NCHW part ends
 REPO = Path(__file__).resolve().parent.parent
 REFERENCE_SCRIPT = REPO / "scripts" / "tfjs_reference.mjs"
-
-
-def sha256(path: Path) -> str:
-    return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
 def fetch_package(scratch: Path) -> Path:
@@ -69,25 +66,15 @@ def fetch_package(scratch: Path) -> Path:
     return scratch / "package"
 
 
-def photo_paths(photos: Path) -> list[Path]:
-    found = sorted(p for p in photos.glob("*/img.jpg"))
-    found += sorted(p for p in photos.glob("*.jpg"))
-    return found
-
-
 def check_against_tfjs(
     model_file: Path, graph_file: Path, photos: list[Path], work: Path
 ) -> dict[str, float]:
     """Largest differences of scores and box coordinates between ONNX and TensorFlow.js."""
     work.mkdir()
     inputs: dict[str, np.ndarray] = {}
-    for index, path in enumerate(tqdm(photos, desc="preprocess", unit="photo")):
-        bgr = cv2.imread(str(path), cv2.IMREAD_COLOR)
-        if bgr is None:
-            raise SystemExit(f"cannot read photo {path}")
-        tensor = preprocess(cv2.cvtColor(bgr, cv2.COLOR_BGR2RGB))
-        inputs[f"p{index:03d}"] = tensor
-        (work / f"p{index:03d}.input.f32").write_bytes(tensor.astype("<f4").tobytes())
+    for name, tensor in contract_inputs(photos, "preprocess"):
+        inputs[name] = tensor
+        (work / f"{name}.input.f32").write_bytes(tensor.astype("<f4").tobytes())
     print("running TensorFlow.js (CPU backend) for the reference outputs ...")
     subprocess.run(
         ["node", str(REFERENCE_SCRIPT), str(graph_file), str(work), TF_OUTPUT],
@@ -107,15 +94,9 @@ def check_against_tfjs(
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--photos", type=Path, default=REPO.parent / "shared" / "data" / "real")
-    parser.add_argument("--out", type=Path, default=COCO_DETECTOR_DIR)
-    parser.add_argument("--tolerance", type=float, default=1e-3)
+    parser = conversion_parser(__doc__.split("\n\n")[0], COCO_DETECTOR_DIR)
     args = parser.parse_args(argv)
     photos = photo_paths(args.photos)
-    if not photos:
-        print(f"no photos (*/img.jpg or *.jpg) in {args.photos} to check with", file=sys.stderr)
-        return 2
     with tempfile.TemporaryDirectory(prefix="holiscene-detector-") as scratch_name:
         scratch = Path(scratch_name)
         print(f"fetching {PACKAGE}@{PACKAGE_VERSION} and TensorFlow.js {TFJS_VERSION} ...")
@@ -146,9 +127,6 @@ def main(argv: list[str] | None = None) -> int:
         if max(worst["score"], box_fraction) > args.tolerance or worst["class_mismatches"]:
             print(f"the ONNX model differs from TensorFlow.js by more than {args.tolerance}")
             return 1
-        args.out.mkdir(parents=True, exist_ok=True)
-        shutil.copyfile(model_file, args.out / "model.onnx")
-        shutil.copyfile(package / "LICENSE", args.out / "LICENSE")
         weights_file = graph_file.with_suffix(".bin")
         metadata = {
             "name": "COCO CenterNet (MobileNetV3), converted",
@@ -173,10 +151,8 @@ def main(argv: list[str] | None = None) -> int:
                 "max_box_difference_of_input_size": worst["box_px"] / INPUT_SIZE,
                 "tolerance": args.tolerance,
             },
-            "model_sha256": sha256(args.out / "model.onnx"),
         }
-        (args.out / "metadata.json").write_text(json.dumps(metadata, indent=2) + "\n")
-        print(f"wrote {args.out / 'model.onnx'} ({(args.out / 'model.onnx').stat().st_size} bytes)")
+        write_detector_dir(args.out, model_file, package / "LICENSE", metadata)
     return 0
 
 

@@ -140,7 +140,7 @@ def test_infer_on_a_black_photo_gives_an_empty_flagged_scene(tmp_path: Path) -> 
     assert scene.objects == []
     runs = {s.name: s for s in scene.stages}
     assert runs["objects_from_detector"].warning
-    assert "found no objects" in (runs["objects_from_detector"].note or "")
+    assert "one flat colour" in (runs["objects_from_detector"].note or "")
 
 
 def test_infer_refuses_a_strip_of_a_photo(

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from holiscene.learning.detector.row_matching import unmatched_rows
 from holiscene.learning.detector.runtime import (
     DEFAULT_DETECTOR_DIR,
     MODEL_FILE,
@@ -73,40 +74,6 @@ def raw_rows(entry: dict[str, Any]) -> np.ndarray:
 
 def as_json(boxes: list[DetectedBox]) -> list[dict[str, Any]]:
     return [dv.box_json(b) for b in boxes]
-
-
-def row_difference(a: np.ndarray, b: np.ndarray) -> float:
-    """Box corners as shares of the input size, scores as they are, class indices exactly."""
-    if a[5] != b[5]:
-        return math.inf
-    return float(max(np.abs(a[:4] - b[:4]).max() / INPUT_SIZE, abs(a[4] - b[4])))
-
-
-def unmatched_rows(actual: np.ndarray, expected: np.ndarray, tol: float) -> list[str]:
-    """The rows of either side without a partner on the other (empty: they match). Peaks whose
-    scores differ by less than `tol` may come in another order on another runtime, and the
-    last rows may be others when their scores are that close to the cut (the same rule as
-    matchRows in e2e_tests/tests/detector-model.spec.ts)."""
-    a, e = actual.reshape(-1, 6), expected.reshape(-1, 6)
-    partner = [i if row_difference(a[i], e[i]) <= tol else -1 for i in range(len(a))]
-    taken = {j for j in partner if j >= 0}
-    for i in (i for i in range(len(a)) if partner[i] < 0):
-        near = [
-            j
-            for j in range(len(e))
-            if j not in taken
-            and row_difference(a[i], e[j]) <= tol
-            and abs(a[i][4] - e[i][4]) <= tol
-        ]
-        if near:
-            partner[i] = min(near, key=lambda j: abs(j - i))
-            taken.add(partner[i])
-    cut = e[-1][4]
-    left = [f"actual row {i}" for i in range(len(a)) if partner[i] < 0 and abs(a[i][4] - cut) > tol]
-    left += [
-        f"expected row {j}" for j in range(len(e)) if j not in taken and abs(e[j][4] - cut) > tol
-    ]
-    return left
 
 
 def assert_same_boxes(actual: list[dict[str, Any]], expected: list[dict[str, Any]]) -> None:
@@ -184,22 +151,6 @@ def test_onnxruntime_reproduces_the_raw_rows(case: dict[str, Any]) -> None:
     expected = raw_rows(case["expected"][OUTPUT_NAME])
     assert raw.shape == expected.shape
     assert unmatched_rows(raw, expected, RAW_TOL) == []
-
-
-def test_row_matching_allows_near_ties_only() -> None:
-    rows = np.array(
-        [[0, 0, 10, 10, 0.5, 1], [0, 0, 20, 20, 0.49999, 2], [5, 5, 9, 9, 0.3, 1]],
-        dtype=np.float64,
-    )
-    assert unmatched_rows(rows, rows, RAW_TOL) == []
-    assert unmatched_rows(rows[[1, 0, 2]], rows, RAW_TOL) == []  # scores 1e-5 apart
-    assert unmatched_rows(rows[[0, 2, 1]], rows, RAW_TOL) != []  # 0.3 is not near 0.49999
-    moved = rows.copy()
-    moved[0, 2] += 0.1  # a corner off by 0.1 input pixels: 2e-4 of the input size
-    assert unmatched_rows(moved, rows, RAW_TOL) == ["actual row 0", "expected row 0"]
-    other = rows.copy()
-    other[0, 5] = 3
-    assert unmatched_rows(other, rows, RAW_TOL) != []
 
 
 @pytest.mark.parametrize("case", cases())

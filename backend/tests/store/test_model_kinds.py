@@ -170,17 +170,22 @@ def test_an_empty_detector_registry_says_so(engine: Engine, settings: Settings) 
 def test_the_detector_kind_is_seeded_from_the_committed_detector(settings: Settings) -> None:
     workbench = Workbench(settings)
     try:
-        seeded, offered = sorted(workbench.detectors.list_models(), key=lambda m: m.version)
+        seeded, *offered = sorted(workbench.detectors.list_models(), key=lambda m: m.version)
         assert (seeded.kind, seeded.version, seeded.status, seeded.active) == (
             "detector",
             1,
             "default",
             True,
         )
-        # The NYU-40 detector shipped beside it waits for an admin to choose it.
-        assert (offered.version, offered.status, offered.active) == (2, "candidate", False)
-        nyu = registry_module.OFFERED_DETECTOR_DIRS[0] / "model.onnx"
-        assert workbench.detectors.file(offered.id, "model.onnx").read_bytes() == nyu.read_bytes()
+        # The detectors shipped beside it (the NYU-40 head, the COCO CenterNet) wait for an
+        # admin to choose one.
+        shipped = registry_module.OFFERED_DETECTOR_DIRS
+        assert [(m.version, m.status, m.active) for m in offered] == [
+            (2 + index, "candidate", False) for index in range(len(shipped))
+        ]
+        for model, folder in zip(offered, shipped, strict=True):
+            copied = workbench.detectors.file(model.id, "model.onnx").read_bytes()
+            assert copied == (folder / "model.onnx").read_bytes()
         source = registry_module.default_detector_dir()
         assert source is not None
         copied = workbench.detectors.file(seeded.id, "model.onnx")
@@ -189,6 +194,34 @@ def test_the_detector_kind_is_seeded_from_the_committed_detector(settings: Setti
         assert workbench.models.active().kind == "relation"
     finally:
         workbench.close()
+
+
+def test_a_registry_seeded_before_a_new_default_is_offered_it_once(
+    settings: Settings, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    old_default = fake_detector_dir(tmp_path / "old", b"old-default")
+    shipped_beside = fake_detector_dir(tmp_path / "beside", b"shipped-beside")
+    new_default = fake_detector_dir(tmp_path / "new", b"new-default")
+    monkeypatch.setattr(registry_module, "DEFAULT_DETECTOR_DIRS", (old_default,))
+    monkeypatch.setattr(registry_module, "OFFERED_DETECTOR_DIRS", (shipped_beside,))
+    Workbench(settings).close()
+    # The code moves on: a new default, the old one now shipped beside it.
+    monkeypatch.setattr(registry_module, "DEFAULT_DETECTOR_DIRS", (new_default,))
+    monkeypatch.setattr(registry_module, "OFFERED_DETECTOR_DIRS", (shipped_beside, old_default))
+    for _ in range(2):  # the second start adds nothing
+        workbench = Workbench(settings)
+        try:
+            models = sorted(workbench.detectors.list_models(), key=lambda m: m.version)
+            contents = [workbench.detectors.file(m.id, "model.onnx").read_bytes() for m in models]
+            assert contents == [b"old-default", b"shipped-beside", b"new-default"]
+            assert [(m.status, m.active) for m in models] == [
+                ("default", True),
+                ("candidate", False),
+                ("candidate", False),
+            ], "the admin chooses; the active detector does not change under people"
+            assert "the default shipped with the code now" in (models[2].note or "")
+        finally:
+            workbench.close()
 
 
 @pytest.fixture()

@@ -107,7 +107,8 @@ class Workbench:
             default_detector_dir or model_registry.default_detector_dir(),
             kind="detector",
         )
-        if self.detectors.seed_if_empty() is not None and default_detector_dir is None:
+        self.detectors.seed_if_empty()
+        if default_detector_dir is None:
             self._offer_shipped_detectors()
         # One worker: the pipeline uses both cores through numpy/OpenCV already.
         self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="pipeline")
@@ -122,19 +123,35 @@ class Workbench:
         self.imports = DatasetImports(self, self._stop)
 
     def _offer_shipped_detectors(self) -> None:
-        """Register the detectors shipped beside the default one, not active
-        (model_registry.OFFERED_DETECTOR_DIRS): an admin chooses on the models page."""
-        for folder in model_registry.OFFERED_DETECTOR_DIRS:
-            if not (folder / detector_runtime.MODEL_FILE).is_file():
+        """Register the detectors shipped with the code that the registry does not hold yet,
+        not active (model_registry.OFFERED_DETECTOR_DIRS, and the default when the registry
+        was seeded with an older one): an admin chooses on the models page."""
+        registered = [
+            self.detectors.file(model.id, detector_runtime.MODEL_FILE)
+            for model in self.detectors.list_models()
+        ]
+        for folder in (
+            *model_registry.DEFAULT_DETECTOR_DIRS,
+            *model_registry.OFFERED_DETECTOR_DIRS,
+        ):
+            model_file = folder / detector_runtime.MODEL_FILE
+            if not model_file.is_file() or any(_same_file(model_file, r) for r in registered):
                 continue
-            metrics = json.loads((folder / METRICS_FILE).read_text())
+            # A converted model has no training metrics; a trained one has its validation mAP.
+            metrics_file = folder / METRICS_FILE
+            metrics = json.loads(metrics_file.read_text()) if metrics_file.is_file() else {}
             self.detectors.register(
                 folder,
                 Registration(
                     status="candidate",
                     validation_accuracy=metrics.get("validation_map_at_0_5"),
                     data={"source": f"committed detector {folder.name}"},
-                    note="shipped with the code, not the default (see docs/detector.md)",
+                    note=(
+                        "the default shipped with the code now; this registry began with "
+                        "an older one (see docs/detector.md)"
+                        if folder in model_registry.DEFAULT_DETECTOR_DIRS
+                        else "shipped with the code, not the default (see docs/detector.md)"
+                    ),
                 ),
             )
 
@@ -409,6 +426,10 @@ class Workbench:
         self.run_job(job.id)
         finished = self.jobs.get(job.id)
         return ImportResult(scene=self.scenes.summary(result.scene.id, finished), job=finished)
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    return b.is_file() and a.stat().st_size == b.stat().st_size and a.read_bytes() == b.read_bytes()
 
 
 def with_earlier_runs(earlier: Sequence[StageRun], rerun: Sequence[StageRun]) -> list[StageRun]:

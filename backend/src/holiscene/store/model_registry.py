@@ -50,8 +50,12 @@ DEFAULT_MODEL_DIR = Path(__file__).resolve().parents[1] / "learning" / "default_
 # The detectors an empty detector registry starts from: the first with a model file.
 DEFAULT_DETECTOR_DIRS: tuple[Path, ...] = (detector_runtime.DEFAULT_DETECTOR_DIR,)
 # Detectors shipped beside the default and registered with it, not active, for an admin to
-# choose: the NYU-40 head is better on synthetic rooms and worse on real photos.
-OFFERED_DETECTOR_DIRS: tuple[Path, ...] = (detector_runtime.NYU_DETECTOR_DIR,)
+# choose: the NYU-40 head is better on synthetic rooms and worse on real photos; the COCO
+# CenterNet was the default before PicoDet.
+OFFERED_DETECTOR_DIRS: tuple[Path, ...] = (
+    detector_runtime.NYU_DETECTOR_DIR,
+    detector_runtime.COCO_DETECTOR_DIR,
+)
 NO_MODEL_MESSAGE = "no Relation Network model is registered"
 NO_MODEL_MESSAGES: Mapping[ModelKind, str] = {
     "relation": NO_MODEL_MESSAGE,

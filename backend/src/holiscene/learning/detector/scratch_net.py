@@ -31,8 +31,7 @@ from holiscene_schema.detector_model import (
 )
 from torch import nn
 
-from ..export import keep_if_faithful
-from .net import EXPORT_TOLERANCE, centernet_decode
+from .net import centernet_decode, keep_detector_if_faithful
 
 NET_SIZE = INPUT_SIZE // 2  # what the net sees after the graph's 2x2 mean
 STRIDE = 8  # input pixels per heatmap cell
@@ -136,6 +135,4 @@ def export_scratch_detector(net: ScratchNet, example: np.ndarray, path: Path) ->
     )
     with torch.no_grad():
         expected = detector(*args).numpy()
-    return keep_if_faithful(
-        tmp, path, {INPUT_NAME: example}, OUTPUT_NAME, expected, EXPORT_TOLERANCE
-    )
+    return keep_detector_if_faithful(tmp, path, example, expected)

@@ -60,6 +60,15 @@ class ObjectsFromDetector(Stage):
             if not ctx.objects and not unknown:
                 ctx.notes[self.name] = NO_GIVEN_OBJECTS
             return
+        if _featureless(ctx.image):
+            # A detector still "sees" something in a blank frame (PicoDet: a person at 0.31
+            # in a black one); nothing there is an object.
+            ctx.objects = keep_people_objects(given, ctx.pinned_objects, ctx.removed_objects)
+            ctx.notes[self.name] = (
+                "the photo is one flat colour, so the detector was not run: "
+                "check the photo, or draw the objects' boxes"
+            )
+            return
         found = self.detector.detect(ctx.image, self.score_threshold)
         if given:
             found = [box for box in found if not _overlaps_any(box, given)]
@@ -80,6 +89,14 @@ class ObjectsFromDetector(Stage):
                 f"the detector found no objects (score at least {self.score_threshold:g}) "
                 "and no boxes were given: draw the objects' boxes"
             )
+
+
+# Grey-level standard deviation (0-255) below which a photo has no detail to detect in.
+FEATURELESS_STD = 2.0
+
+
+def _featureless(image: np.ndarray) -> bool:
+    return float(np.asarray(image, dtype=np.float32).mean(axis=2).std()) < FEATURELESS_STD
 
 
 def _overlaps_any(box: DetectedBox, objects: list[SceneObject]) -> bool:
