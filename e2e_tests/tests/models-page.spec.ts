@@ -84,3 +84,20 @@ test("an admin retrains, makes the new model active and rolls back", async ({ pa
   await expect(row).not.toHaveClass(/is-active/);
   expect((await models(page.request)).find((m) => m.active)?.id).toBe(active.id);
 });
+
+test("the detector list says which network each version is", async ({ page }) => {
+  const response = await page.request.get("/api/models?kind=detector");
+  expect(response.status()).toBe(200);
+  const detectors = (await response.json()) as ModelInfo[];
+  const named = detectors.filter((m) => m.name);
+  expect(named.length).toBeGreaterThanOrEqual(2);
+  await page.goto("/#/models");
+  await page.getByTestId("model-kind-detector").click();
+  for (const model of named) {
+    await expect(page.getByTestId(`model-row-${model.version}`).locator(".model-name")).toHaveText(
+      model.name ?? "",
+    );
+  }
+  const active = detectors.find((m) => m.active);
+  expect(active?.name).toContain("PicoDet");
+});

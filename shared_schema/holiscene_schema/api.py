@@ -379,6 +379,11 @@ class ModelInfo(SchemaModel):
         description="relation: a Relation Network (supports); detector: an object detector"
     )
     version: int = Field(ge=1, description="Counted per kind")
+    name: str | None = Field(
+        default=None,
+        description="What the model is, from its metadata.json (detectors: which network, "
+        "trained on what); None when it does not say",
+    )
     created_at: datetime
     status: ModelStatus
     active: bool

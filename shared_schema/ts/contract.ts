@@ -893,6 +893,10 @@ kind: ("relation" | "detector")
 metrics: {
 [k: string]: unknown
 }
+/**
+ * What the model is, from its metadata.json (detectors: which network, trained on what); None when it does not say
+ */
+name: (string | null)
 note: (string | null)
 /**
  * The parent's figure on the same held-out scenes

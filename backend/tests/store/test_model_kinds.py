@@ -4,6 +4,7 @@ Networks; the API takes the kind; the pipeline uses the active detector."""
 
 from __future__ import annotations
 
+import json
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -186,6 +187,11 @@ def test_the_detector_kind_is_seeded_from_the_committed_detector(settings: Setti
         for model, folder in zip(offered, shipped, strict=True):
             copied = workbench.detectors.file(model.id, "model.onnx").read_bytes()
             assert copied == (folder / "model.onnx").read_bytes()
+        # Each says which network it is (the models page shows it under the version).
+        names = [m.name for m in (seeded, *offered)]
+        folders = [registry_module.default_detector_dir(), *shipped]
+        assert names == [json.loads((f / "metadata.json").read_text())["name"] for f in folders]
+        assert len(set(names)) == len(names) and workbench.models.list_models()[0].name is None
         source = registry_module.default_detector_dir()
         assert source is not None
         copied = workbench.detectors.file(seeded.id, "model.onnx")

@@ -380,12 +380,24 @@ class ModelStore:
         query = self._of_kind(select(ModelRow.id, ModelRow.version))
         return {mid: v for mid, v in session.execute(query)}
 
+    def _name(self, model_id: str) -> str | None:
+        """A detector's name from its metadata.json (the files never change once registered)."""
+        if self.kind != "detector":
+            return None
+        try:
+            metadata = _read_json(self.folder(model_id) / detector_runtime.METADATA_FILE)
+        except InvalidModelDirError:
+            return None  # the list still shows; loading that detector says what is wrong
+        name = metadata.get("name")
+        return name if isinstance(name, str) else None
+
     def _info(self, row: ModelRow, active: str | None, versions: dict[str, int]) -> ModelInfo:
         data = row.data or {}
         return ModelInfo(
             id=row.id,
             kind=self.kind,
             version=row.version,
+            name=self._name(row.id),
             created_at=as_utc(row.created_at),
             status=row.status,
             active=row.id == active,

@@ -122,7 +122,13 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
         className: model.active ? "is-active" : "",
         attrs: { "data-status": model.status },
       },
-      el("th", { text: `v${model.version}`, attrs: { scope: "row", title: model.id } }),
+      // Which network it is: three shipped detectors would otherwise be three bare versions.
+      el(
+        "th",
+        { attrs: { scope: "row", title: model.id } },
+        `v${model.version}`,
+        model.name ? el("span", { className: "model-name", text: model.name }) : "",
+      ),
       el("td", { text: formatTime(model.created_at) }),
       el(
         "td",
