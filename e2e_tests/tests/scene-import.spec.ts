@@ -92,7 +92,7 @@ test("a scene without objects says so and shows the pipeline's warnings", async 
 
   await page.goto(`/#/scenes/${imported.scene.id}`);
   const summary = page.getByTestId("support-summary");
-  await expect(summary).toHaveText(/^No objects yet\. Press Detect objects \(D\)/);
+  await expect(summary).toHaveText(/^No objects yet\. Accept the detector's suggested boxes/);
   await expect(summary).not.toContainText("supported");
   const warnings = page.getByTestId("pipeline-warnings");
   await expect(warnings).toBeVisible();

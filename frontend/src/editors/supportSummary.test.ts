@@ -9,7 +9,7 @@ const object = (id: string, cls: string) =>
 describe("support summary", () => {
   it("tells an empty scene to get objects, as a warning", () => {
     const summary = supportSummary([], 0);
-    expect(summary.text).toMatch(/^No objects yet\. Press Detect objects \(D\)/);
+    expect(summary.text).toMatch(/^No objects yet\. Accept the detector's suggested boxes/);
     expect(summary.text).toContain("Box tool (B)"); // when the detector finds nothing
     expect(summary.text).not.toContain("supported");
     expect(summary.warn).toBe(true);

@@ -11,8 +11,10 @@ export interface SupportSummary {
   warn: boolean;
 }
 
+// True whether or not the detector's boxes are on the photo already (it runs by itself on an
+// empty scene): accept the ones you want, or ask for them.
 const ADD_OBJECTS =
-  "Press Detect objects (D) and accept the suggestions you want, or draw each object's box with the Box tool (B)";
+  "Accept the detector's suggested boxes you want (Detect objects, D, suggests them), or draw each object's box with the Box tool (B)";
 
 export function supportSummary(
   objects: readonly SceneObject[],
