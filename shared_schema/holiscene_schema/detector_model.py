@@ -33,6 +33,9 @@ MAX_DETECTIONS = 100
 SCORE_THRESHOLD = 0.3
 NMS_IOU = 0.5
 MIN_BOX_PX = 4.0
+# A photo whose grey levels (0-255) vary less than this (standard deviation) is one flat
+# colour: it is not given to the detector, which still "sees" objects in a blank frame.
+FLAT_PHOTO_STD = 2.0
 OPSET = 17
 
 # The 80 COCO classes in the order of the pretrained model's class index.
@@ -104,6 +107,7 @@ def detector_contract() -> dict[str, Any]:
         "score_threshold": SCORE_THRESHOLD,
         "nms_iou": NMS_IOU,
         "min_box_px": MIN_BOX_PX,
+        "flat_photo_std": FLAT_PHOTO_STD,
         "coco_classes": list(COCO_CLASSES),
         "coco_to_nyu40": list(COCO_TO_NYU40),
         "opset": OPSET,

@@ -11,6 +11,7 @@ import {
   decodeDetections,
   detectorInput,
   INPUT_SIZE,
+  isFlatPhoto,
   labelMapping,
   MIN_BOX_PX,
   NMS_IOU,
@@ -234,5 +235,22 @@ describe("detector helpers", () => {
       /does not match/,
     );
     expect(() => labelMapping({ label_space: "voc", classes: ["chair"] })).toThrow(/unknown/);
+  });
+});
+
+describe("isFlatPhoto", () => {
+  const photo = (values: number[], stride = 4) => ({
+    width: values.length,
+    height: 1,
+    data: values.flatMap((v) => (stride === 4 ? [v, v, v, 255] : [v, v, v])),
+  });
+
+  it("finds a black or one-grey photo flat, with 3 or 4 bytes per pixel", () => {
+    expect(isFlatPhoto(photo([0, 0, 0, 0]))).toBe(true);
+    expect(isFlatPhoto(photo([128, 129, 128, 129], 3))).toBe(true);
+  });
+
+  it("finds a photo with detail not flat", () => {
+    expect(isFlatPhoto(photo([0, 10, 0, 10]))).toBe(false);
   });
 });

@@ -11,6 +11,27 @@ export const INPUT_SIZE: number = DETECTOR_MODEL.input_size;
 export const SCORE_THRESHOLD: number = DETECTOR_MODEL.score_threshold;
 export const NMS_IOU: number = DETECTOR_MODEL.nms_iou;
 export const MIN_BOX_PX: number = DETECTOR_MODEL.min_box_px;
+export const FLAT_PHOTO_STD: number = DETECTOR_MODEL.flat_photo_std;
+
+/** A photo of one flat colour (3 or 4 bytes per pixel): its grey levels, each pixel's mean of
+ * R, G and B, vary by less than FLAT_PHOTO_STD. The detector is not run on it (the backend's
+ * objects_from_detector stage skips it too): it still "sees" objects in a blank frame. */
+export function isFlatPhoto(photo: PixelImage): boolean {
+  const count = photo.width * photo.height;
+  if (count === 0) return true;
+  const stride = photo.data.length / count;
+  let sum = 0;
+  let sumSquares = 0;
+  for (let i = 0; i < count; i++) {
+    const at = stride * i;
+    const grey =
+      ((photo.data[at] ?? 0) + (photo.data[at + 1] ?? 0) + (photo.data[at + 2] ?? 0)) / 3;
+    sum += grey;
+    sumSquares += grey * grey;
+  }
+  const mean = sum / count;
+  return Math.sqrt(Math.max(0, sumSquares / count - mean * mean)) < FLAT_PHOTO_STD;
+}
 const ROW = DETECTOR_MODEL.output.shape[2]; // x1, y1, x2, y2, score, class index
 
 export type Box = [number, number, number, number];

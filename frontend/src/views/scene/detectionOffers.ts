@@ -97,4 +97,7 @@ export function addObjectEdit(offer: Offer, id: string): AddObjectEdit {
 }
 
 /** "chair 87%" */
-export const offerLabel = (offer: Offer) => `${offer.cls} ${Math.round(offer.score * 100)}%`;
+/** A score as people read it: "42%". */
+export const percentText = (score: number) => `${Math.round(score * 100)}%`;
+
+export const offerLabel = (offer: Offer) => `${offer.cls} ${percentText(offer.score)}`;

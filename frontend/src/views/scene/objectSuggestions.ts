@@ -11,7 +11,7 @@ import { plural, type SceneSession } from "../../state/sceneSession";
 import { isStructural } from "../../state/supportGraph";
 import { frameFor } from "../photo/arrowGeometry";
 import { classHints } from "./classHints";
-import { type Offer, offerLabel } from "./detectionOffers";
+import { type Offer, offerLabel, percentText } from "./detectionOffers";
 import { addingText, addOffers } from "./suggestions/addOffers";
 import { type DetectorBarActions, detectorBar } from "./suggestions/detectorBar";
 import { fainterText, foundText, runDetector } from "./suggestions/detectorRun";
@@ -48,6 +48,9 @@ export function mountObjectSuggestions(
   let disposed = false;
 
   const shown = () => state.open();
+  // "Accept all" takes the boxes at the detector's threshold: the fainter ones, once shown,
+  // are mostly wrong and are accepted one by one.
+  const confident = () => shown().filter((offer) => offer.score >= SCORE_THRESHOLD);
   const onSelected = (act: (offer: Offer) => void) => () => {
     const offer = state.selectedOffer();
     if (offer) act(offer);
@@ -57,7 +60,13 @@ export function mountObjectSuggestions(
     detect: () => void detect(),
     acceptSelected: onSelected((o) => void accept([o])),
     rejectSelected: onSelected((o) => reject([o])),
-    acceptAll: () => void accept(shown()),
+    acceptAll: () => {
+      if (confident().length > 0) void accept(confident());
+      else
+        say(
+          `Accept all takes the boxes at ${percentText(SCORE_THRESHOLD)} or more; select a fainter one and press Accept.`,
+        );
+    },
     rejectAll: () => reject(shown()),
     showFainter: () => showFainter(),
   };
@@ -78,6 +87,7 @@ export function mountObjectSuggestions(
       failed,
       editable: session.editable,
       open: open.length,
+      confident: confident().length,
       fainter: state.fainter(),
       chosen: state.selectedOffer(),
     });

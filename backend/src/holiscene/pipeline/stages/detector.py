@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 from holiscene_schema import SceneObject
-from holiscene_schema.detector_model import NMS_IOU, SCORE_THRESHOLD
+from holiscene_schema.detector_model import FLAT_PHOTO_STD, NMS_IOU, SCORE_THRESHOLD
 
 from ...learning.detector.runtime import (
     DEFAULT_DETECTOR_DIR,
@@ -91,12 +91,8 @@ class ObjectsFromDetector(Stage):
             )
 
 
-# Grey-level standard deviation (0-255) below which a photo has no detail to detect in.
-FEATURELESS_STD = 2.0
-
-
 def _featureless(image: np.ndarray) -> bool:
-    return float(np.asarray(image, dtype=np.float32).mean(axis=2).std()) < FEATURELESS_STD
+    return float(np.asarray(image, dtype=np.float32).mean(axis=2).std()) < FLAT_PHOTO_STD
 
 
 def _overlaps_any(box: DetectedBox, objects: list[SceneObject]) -> bool:

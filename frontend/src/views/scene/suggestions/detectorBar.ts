@@ -3,7 +3,8 @@
 // detector's threshold, and while there are boxes: the selected one, Accept, Reject, Accept
 // all, Reject all.
 import { button, el } from "../../../dom";
-import { type Offer, offerLabel } from "../detectionOffers";
+import { SCORE_THRESHOLD } from "../../../inference/detectorTensor";
+import { type Offer, offerLabel, percentText } from "../detectionOffers";
 
 export const DETECT_KEY = "D";
 export const ACCEPT_KEY = "Y";
@@ -18,6 +19,8 @@ export interface DetectorBarState {
   editable: boolean;
   /** How many boxes are open. */
   open: number;
+  /** How many of them are at the detector's threshold or above ("Accept all" takes those). */
+  confident: number;
   /** How many more the run found below the detector's threshold, not shown yet. */
   fainter: number;
   chosen: Offer | null;
@@ -71,7 +74,7 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
   const acceptAllButton = action(
     "Accept all",
     "accept-all-suggestions",
-    `Add every box shown as an object (${ACCEPT_ALL_KEY})`,
+    `Add every box at ${percentText(SCORE_THRESHOLD)} or more as an object (${ACCEPT_ALL_KEY})`,
     actions.acceptAll,
   );
   const rejectAllButton = action(
@@ -116,7 +119,7 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
   let used = false;
   return {
     element,
-    show({ busy, status, failed, editable, open, fainter, chosen }) {
+    show({ busy, status, failed, editable, open, confident, fainter, chosen }) {
       used ||= busy || open > 0;
       actionRow.classList.toggle("is-unused", !used);
       detectButton.disabled = busy;
@@ -135,11 +138,13 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
       selection.title = selection.textContent;
       const why = editable ? "" : " (the scene is read only)";
       acceptButton.disabled = busy || !editable || chosen === null;
-      acceptAllButton.disabled = busy || !editable;
+      acceptAllButton.disabled = busy || !editable || confident === 0;
       rejectButton.disabled = busy || chosen === null;
       rejectAllButton.disabled = busy;
       acceptButton.title = `Add the selected box as an object (${ACCEPT_KEY})${why}`;
-      acceptAllButton.title = `Add every box shown as an object (${ACCEPT_ALL_KEY})${why}`;
+      acceptAllButton.title =
+        `Add every box at ${percentText(SCORE_THRESHOLD)} or more as an object ` +
+        `(${ACCEPT_ALL_KEY}); fainter boxes one by one${why}`;
     },
   };
 }

@@ -2,10 +2,11 @@
 // what it found.
 import { api } from "../../../api/client";
 import { activeDetector, detectorModel } from "../../../inference/detector";
-import { type DetectedBox, SCORE_THRESHOLD } from "../../../inference/detectorTensor";
+import { type DetectedBox, isFlatPhoto, SCORE_THRESHOLD } from "../../../inference/detectorTensor";
 import { photoPixels } from "../../../inference/supportSuggestions";
 import { plural } from "../../../state/sceneSession";
 import { HINT_SCORE } from "../classHints";
+import { percentText } from "../detectionOffers";
 
 const MB = (bytes: number) => `${(bytes / 1e6).toFixed(1)} MB`;
 
@@ -17,6 +18,8 @@ export interface DetectorRun {
   loadMs: number;
   /** Reading the photo and detecting, milliseconds. */
   runMs: number;
+  /** The photo is one flat colour: the detector was not run (isFlatPhoto). */
+  flat: boolean;
 }
 
 /**
@@ -39,14 +42,11 @@ export async function runDetector(
   const loaded = performance.now();
   detecting();
   const pixels = await photoPixels(api.imageUrl(sceneId));
+  const flat = isFlatPhoto(pixels);
   // One decoding at the hints' score: its boxes above the threshold are exactly the offers
   // (the per-class suppression only ever drops a box for a better one).
-  const result = await model.detect(pixels, HINT_SCORE);
-  return {
-    seen: result.boxes,
-    loadMs: loaded - start,
-    runMs: performance.now() - loaded,
-  };
+  const seen = flat ? [] : (await model.detect(pixels, HINT_SCORE)).boxes;
+  return { seen, loadMs: loaded - start, runMs: performance.now() - loaded, flat };
 }
 
 /** What the run found, for the status line: `found` boxes, `open` of them not labelled yet
@@ -56,6 +56,7 @@ export function foundText(found: number, open: number, run: DetectorRun): string
   const time =
     `in ${seconds(run.runMs)}` +
     (run.loadMs > 100 ? ` (loading the detector took ${seconds(run.loadMs)})` : "");
+  if (run.flat) return "The photo is one flat colour: there is nothing to detect in it.";
   if (found === 0) return `No objects found ${time}.`;
   if (open === 0) return `${plural(found, "box")} found ${time}, all labelled already.`;
   return `${plural(open, "object")} suggested ${time}: click a box, then Accept or Reject.`;
@@ -63,4 +64,4 @@ export function foundText(found: number, open: number, run: DetectorRun): string
 
 /** "3 fainter boxes (below 30%)" */
 export const fainterText = (fainter: number) =>
-  `${plural(fainter, "fainter box")} (below ${Math.round(SCORE_THRESHOLD * 100)}%)`;
+  `${plural(fainter, "fainter box")} (below ${percentText(SCORE_THRESHOLD)})`;

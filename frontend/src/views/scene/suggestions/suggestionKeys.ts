@@ -38,7 +38,8 @@ export function suggestionKeys(keys: SuggestionKeyInputs): () => void {
     }),
     registerShortcut({
       keys: ACCEPT_ALL_KEY,
-      description: "Accept every suggested box as an object",
+      description:
+        "Accept every suggested box at the detector's threshold (fainter ones one by one)",
       scope: SCOPE,
       run: keys.acceptAll,
       enabled: () => hasOffers() && idle() && editable(),
