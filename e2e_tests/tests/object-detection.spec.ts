@@ -50,6 +50,8 @@ test("a scene without objects gets the detector's suggestions to accept or rejec
   const status = page.getByTestId("detector-status");
   await expect(status).toContainText(/Loading the object detector|Detecting objects|suggested/);
   await expect(status).toContainText("suggested in", { timeout: 90_000 });
+  // It names the detector that ran: the registry's active one, the default PicoDet here.
+  await expect(status).toContainText("by COCO PicoDet");
   const boxes = page.getByTestId("detector-suggestion");
   const count = await boxes.count();
   expect(count).toBeGreaterThanOrEqual(2);

@@ -20,6 +20,8 @@ export interface DetectorRun {
   runMs: number;
   /** The photo is one flat colour: the detector was not run (isFlatPhoto). */
   flat: boolean;
+  /** Which detector ran (the registry's active one), as its metadata names it. */
+  detector: string;
 }
 
 /**
@@ -46,16 +48,23 @@ export async function runDetector(
   // One decoding at the hints' score: its boxes above the threshold are exactly the offers
   // (the per-class suppression only ever drops a box for a better one).
   const seen = flat ? [] : (await model.detect(pixels, HINT_SCORE)).boxes;
-  return { seen, loadMs: loaded - start, runMs: performance.now() - loaded, flat };
+  return {
+    seen,
+    loadMs: loaded - start,
+    runMs: performance.now() - loaded,
+    flat,
+    detector: info.name,
+  };
 }
 
 /** What the run found, for the status line: `found` boxes, `open` of them not labelled yet
  * (the fainter ones have their own button in the bar). */
 export function foundText(found: number, open: number, run: DetectorRun): string {
   const seconds = (ms: number) => `${(ms / 1000).toFixed(1)} s`;
+  // Which detector: after an admin switches models, a reviewer can tell whose boxes these are.
   const time =
-    `in ${seconds(run.runMs)}` +
-    (run.loadMs > 100 ? ` (loading the detector took ${seconds(run.loadMs)})` : "");
+    `in ${seconds(run.runMs)} by ${run.detector}` +
+    (run.loadMs > 100 ? ` (loading it took ${seconds(run.loadMs)})` : "");
   if (run.flat) return "The photo is one flat colour: there is nothing to detect in it.";
   if (found === 0) return `No objects found ${time}.`;
   if (open === 0) return `${plural(found, "box")} found ${time}, all labelled already.`;
