@@ -30,6 +30,7 @@ from holiscene.learning.detector.picodet_contract import (
     input_model,
     wrap_picodet,
 )
+from holiscene.learning.detector.row_matching import row_difference
 from holiscene.learning.detector.runtime import PICODET_DETECTOR_DIR
 from holiscene_schema.detector_model import COCO_CLASSES, INPUT_NAME, INPUT_SIZE, OPSET, OUTPUT_NAME
 from model_conversion import (
@@ -101,26 +102,23 @@ def matched(
     ours: np.ndarray, theirs: np.ndarray, min_score: float, tolerance: float
 ) -> tuple[int, int, float, float]:
     """Rows of either side at or above min_score without a partner on the other (same class,
-    score and box within tolerance), and the largest score and box differences of partners.
-    ours: x1, y1, x2, y2, score, class; theirs: class, score, x1, y1, x2, y2."""
+    score and box within tolerance, by row_matching.row_difference), and the largest score and
+    box differences of partners. ours: x1, y1, x2, y2, score, class; theirs: class, score, x1,
+    y1, x2, y2 (Paddle's order, in any order of rows)."""
     theirs = theirs[:, [2, 3, 4, 5, 1, 0]]
     unmatched = 0
     worst_score = worst_box = 0.0
     for first, second in ((ours, theirs), (theirs, ours)):
         # Rows just below the bar on one side may sit just above it on the other.
         for row in first[first[:, 4] >= min_score + tolerance]:
-            same = second[second[:, 5] == row[5]]
-            if not len(same):
+            differences = [row_difference(row, other) for other in second]
+            best = int(np.argmin(differences)) if differences else -1
+            if best < 0 or differences[best] > tolerance:
                 unmatched += 1
                 continue
-            box = np.abs(same[:, :4] - row[:4]).max(axis=1) / INPUT_SIZE
-            score = np.abs(same[:, 4] - row[4])
-            best = int(np.argmin(np.maximum(box, score)))
-            if max(box[best], score[best]) > tolerance:
-                unmatched += 1
-                continue
-            worst_score = max(worst_score, float(score[best]))
-            worst_box = max(worst_box, float(box[best]))
+            partner = second[best]
+            worst_score = max(worst_score, float(abs(partner[4] - row[4])))
+            worst_box = max(worst_box, float(np.abs(partner[:4] - row[:4]).max() / INPUT_SIZE))
     return unmatched, len(ours[ours[:, 4] >= min_score]), worst_score, worst_box
 
 

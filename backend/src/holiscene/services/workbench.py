@@ -126,16 +126,14 @@ class Workbench:
         """Register the detectors shipped with the code that the registry does not hold yet,
         not active (model_registry.OFFERED_DETECTOR_DIRS, and the default when the registry
         was seeded with an older one): an admin chooses on the models page."""
-        registered = [
-            self.detectors.file(model.id, detector_runtime.MODEL_FILE)
-            for model in self.detectors.list_models()
-        ]
+        registered = [self.detectors.folder(model.id) for model in self.detectors.list_models()]
         for folder in (
             *model_registry.DEFAULT_DETECTOR_DIRS,
             *model_registry.OFFERED_DETECTOR_DIRS,
         ):
-            model_file = folder / detector_runtime.MODEL_FILE
-            if not model_file.is_file() or any(_same_file(model_file, r) for r in registered):
+            if not (folder / detector_runtime.MODEL_FILE).is_file() or any(
+                _same_detector(folder, r) for r in registered
+            ):
                 continue
             # A converted model has no training metrics; a trained one has its validation mAP.
             metrics_file = folder / METRICS_FILE
@@ -428,8 +426,19 @@ class Workbench:
         return ImportResult(scene=self.scenes.summary(result.scene.id, finished), job=finished)
 
 
-def _same_file(a: Path, b: Path) -> bool:
-    return b.is_file() and a.stat().st_size == b.stat().st_size and a.read_bytes() == b.read_bytes()
+def _same_detector(shipped: Path, registered: Path) -> bool:
+    """The same detector files. Runs at every start: the model files (megabytes) are read only
+    when their sizes and the small metadata files already agree (retrained heads share the
+    shipped head's size, not its metadata)."""
+    model, copy = shipped / detector_runtime.MODEL_FILE, registered / detector_runtime.MODEL_FILE
+    metadata = detector_runtime.METADATA_FILE
+    return (
+        copy.is_file()
+        and (registered / metadata).is_file()
+        and model.stat().st_size == copy.stat().st_size
+        and (shipped / metadata).read_bytes() == (registered / metadata).read_bytes()
+        and model.read_bytes() == copy.read_bytes()
+    )
 
 
 def with_earlier_runs(earlier: Sequence[StageRun], rerun: Sequence[StageRun]) -> list[StageRun]:

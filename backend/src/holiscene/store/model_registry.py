@@ -381,15 +381,10 @@ class ModelStore:
         return {mid: v for mid, v in session.execute(query)}
 
     def _name(self, model_id: str) -> str | None:
-        """A detector's name from its metadata.json (the files never change once registered)."""
+        """A detector's name from its metadata.json."""
         if self.kind != "detector":
             return None
-        try:
-            metadata = _read_json(self.folder(model_id) / detector_runtime.METADATA_FILE)
-        except InvalidModelDirError:
-            return None  # the list still shows; loading that detector says what is wrong
-        name = metadata.get("name")
-        return name if isinstance(name, str) else None
+        return _detector_name(self.folder(model_id) / detector_runtime.METADATA_FILE)
 
     def _info(self, row: ModelRow, active: str | None, versions: dict[str, int]) -> ModelInfo:
         data = row.data or {}
@@ -416,6 +411,18 @@ class ModelStore:
             note=row.note,
             metrics=row.metrics or {},
         )
+
+
+@functools.lru_cache(maxsize=256)
+def _detector_name(metadata_file: Path) -> str | None:
+    """Read once per registered detector: its files never change once registered, and every
+    listing of the models page names them all."""
+    try:
+        metadata = _read_json(metadata_file)
+    except InvalidModelDirError:
+        return None  # the list still shows; loading that detector says what is wrong
+    name = metadata.get("name")
+    return name if isinstance(name, str) else None
 
 
 def _count(value: Any) -> int | None:

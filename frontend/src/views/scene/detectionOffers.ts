@@ -96,8 +96,8 @@ export function addObjectEdit(offer: Offer, id: string): AddObjectEdit {
   };
 }
 
-/** "chair 87%" */
 /** A score as people read it: "42%". */
 export const percentText = (score: number) => `${Math.round(score * 100)}%`;
 
+/** "chair 87%" */
 export const offerLabel = (offer: Offer) => `${offer.cls} ${percentText(offer.score)}`;

@@ -48,9 +48,6 @@ export function mountObjectSuggestions(
   let disposed = false;
 
   const shown = () => state.open();
-  // "Accept all" takes the boxes at the detector's threshold: the fainter ones, once shown,
-  // are mostly wrong and are accepted one by one.
-  const confident = () => shown().filter((offer) => offer.score >= SCORE_THRESHOLD);
   const onSelected = (act: (offer: Offer) => void) => () => {
     const offer = state.selectedOffer();
     if (offer) act(offer);
@@ -61,7 +58,8 @@ export function mountObjectSuggestions(
     acceptSelected: onSelected((o) => void accept([o])),
     rejectSelected: onSelected((o) => reject([o])),
     acceptAll: () => {
-      if (confident().length > 0) void accept(confident());
+      const confident = state.confident();
+      if (confident.length > 0) void accept(confident);
       else
         say(
           `Accept all takes the boxes at ${percentText(SCORE_THRESHOLD)} or more; select a fainter one and press Accept.`,
@@ -87,7 +85,7 @@ export function mountObjectSuggestions(
       failed,
       editable: session.editable,
       open: open.length,
-      confident: confident().length,
+      confident: state.confident().length,
       fainter: state.fainter(),
       chosen: state.selectedOffer(),
     });

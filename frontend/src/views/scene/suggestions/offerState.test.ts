@@ -37,6 +37,8 @@ describe("offer state", () => {
     expect(state.found).toBe(4);
     expect(state.fainter()).toBe(0);
     expect(state.selectedOffer()?.cls).toBe("bed");
+    // "Accept all" still takes only the boxes at the threshold.
+    expect(state.confident().map((o) => o.cls)).toEqual(["bed"]);
   });
 
   it("does not count fainter boxes over the scene's objects or rejected ones", () => {

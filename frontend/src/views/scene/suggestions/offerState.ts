@@ -13,6 +13,8 @@ export class OfferState {
   private rejected: Offer[] = [];
   /** Offers below this score stay hidden until `showFainter` (0: every box of the run). */
   private minScore = 0;
+  /** The detector's own threshold: the boxes at or above it are its suggestions proper. */
+  private threshold = 0;
   /** The selected offer's key. */
   selected: string | null = null;
 
@@ -27,6 +29,12 @@ export class OfferState {
   /** The offers still open. */
   open(): Offer[] {
     return this.openAbove(this.minScore);
+  }
+
+  /** The open offers at the detector's threshold or above ("Accept all" takes these: the
+   * fainter ones, once shown, are mostly wrong and are accepted one by one). */
+  confident(): Offer[] {
+    return this.openAbove(this.threshold);
   }
 
   /** How many more offers would open if the fainter boxes were shown (0 once they are). */
@@ -52,6 +60,7 @@ export class OfferState {
     this.offers = offersOf(boxes);
     this.rejected = [];
     this.minScore = threshold;
+    this.threshold = threshold;
     this.selected = this.open()[0]?.key ?? null;
   }
 
