@@ -1,6 +1,6 @@
 // User story: an annotator opens a scene that has no objects yet; the object detector runs in
 // the browser by itself and suggests boxes on the photo; accepting one adds it to the scene
-// (the server makes its mask), rejecting one drops it. After a reload the accepted object is
+// (the server makes its mask), rejecting one drops it (later runs too, until asked for again). After a reload the accepted object is
 // there, with a mask, and nothing is suggested again (the scene has an object now).
 
 import { readFileSync } from "node:fs";
@@ -109,11 +109,17 @@ test("a scene without objects gets the detector's suggestions to accept or rejec
   await expect(boxes).toHaveCount(0);
   await expect(status).toHaveText("");
 
-  // Detecting again offers what is still unlabelled: not the bed.
+  // Detecting again offers what is still unlabelled: not the bed, and not the chair rejected
+  // before the reload, until the person asks for the rejected boxes again.
   await page.getByTestId("detect-objects").click();
-  await expect(status).toContainText("suggested in", { timeout: 60_000 });
+  await expect(status).toContainText("1 rejected before left out", { timeout: 60_000 });
   await expect(bed).toHaveCount(0);
+  await expect(chair).toHaveCount(0);
+  await expect(boxes).toHaveCount(count - 2);
+  await page.getByTestId("offer-rejected-suggestions").click();
+  await expect(chair).toHaveCount(1);
   await expect(boxes).toHaveCount(count - 1);
+  await expect(page.getByTestId("offer-rejected-suggestions")).toBeHidden();
 });
 
 test("the detector's fainter boxes are offered when asked for, and find more of the photo's objects", async ({

@@ -56,7 +56,7 @@ const overlaps = (offer: Offer, other: { cls: string; bbox: readonly number[] })
 export function openOffers(
   offers: readonly Offer[],
   objects: readonly SceneObject[],
-  rejected: readonly Offer[] = [],
+  rejected: readonly Pick<Offer, "cls" | "bbox">[] = [],
 ): Offer[] {
   const taken = [
     ...objects.map((o) => ({ cls: o.class as string, bbox: o.bbox })),

@@ -3,7 +3,9 @@
 // or by itself when a scene without objects opens, and its boxes are offered as new objects:
 // dashed boxes with class and score over the photo (boxes over an object of their class are
 // left out). Click one to select it; Accept adds it to the scene (an add_object edit: the
-// server makes its mask and answers with the new revision), Reject drops it for this visit.
+// server makes its mask and answers with the new revision), Reject drops it: later runs leave
+// it out too (remembered in this browser, suggestions/rejectedOffers.ts) until the person asks
+// for the rejected boxes again.
 // The bar above the photo says what the detector is doing, or why it failed.
 import { SCORE_THRESHOLD } from "../../inference/detectorTensor";
 import type { ObjectEditor } from "../../state/objectEditor";
@@ -17,6 +19,7 @@ import { type DetectorBarActions, detectorBar } from "./suggestions/detectorBar"
 import { fainterText, foundText, runDetector } from "./suggestions/detectorRun";
 import { offerBoxes } from "./suggestions/offerBoxes";
 import { OfferState } from "./suggestions/offerState";
+import { loadRejected, saveRejected } from "./suggestions/rejectedOffers";
 import { suggestionKeys } from "./suggestions/suggestionKeys";
 import "./objectSuggestions.css";
 
@@ -41,7 +44,11 @@ export function mountObjectSuggestions(
   if (!svg) throw new Error("mount the photo view before the object suggestions");
   const { width, height } = session.doc.scene.image;
 
-  const state = new OfferState(() => session.objects);
+  const state = new OfferState(
+    () => session.objects,
+    loadRejected(session.sceneId),
+    (rejected) => saveRejected(session.sceneId, rejected),
+  );
   let busy: Busy = null;
   let status = "";
   let failed = false;
@@ -67,6 +74,7 @@ export function mountObjectSuggestions(
     },
     rejectAll: () => reject(shown()),
     showFainter: () => showFainter(),
+    offerRejected: () => offerRejected(),
   };
 
   const boxes = offerBoxes(svg, frameFor(width, height), width, (key) => {
@@ -87,6 +95,7 @@ export function mountObjectSuggestions(
       open: open.length,
       confident: state.confident().length,
       fainter: state.fainter(),
+      rejected: state.rejectedHidden(),
       chosen: state.selectedOffer(),
     });
   };
@@ -110,7 +119,7 @@ export function mountObjectSuggestions(
       state.reset(run.seen, SCORE_THRESHOLD);
       classHints.set(session.sceneId, run.seen);
       busy = null;
-      say(foundText(state.found, shown().length, run));
+      say(foundText(state.found, shown().length, run, state.rejectedHidden()));
     } catch (error) {
       if (disposed) return;
       busy = null;
@@ -145,6 +154,14 @@ export function mountObjectSuggestions(
     if (busy !== null || fainter === 0) return;
     state.showFainter();
     say(`Showing ${fainterText(fainter)} as well: most of them are wrong; accept the right ones.`);
+  };
+
+  /** Offer again the boxes rejected on this scene, in this run and before. */
+  const offerRejected = () => {
+    const hidden = state.rejectedHidden();
+    if (busy !== null || hidden === 0) return;
+    state.forgetRejected();
+    say(`Offering ${plural(hidden, "rejected box")} again.`);
   };
 
   const reject = (chosen: Offer[]) => {

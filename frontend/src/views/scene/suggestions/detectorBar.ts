@@ -1,7 +1,7 @@
 // The bar above the photo for object suggestions: "Detect objects", what the detector is doing
 // (or why it failed) with "Show N fainter" after it when the run saw boxes below the
-// detector's threshold, and while there are boxes: the selected one, Accept, Reject, Accept
-// all, Reject all.
+// detector's threshold and "Offer N rejected again" when boxes rejected before are left out,
+// and while there are boxes: the selected one, Accept, Reject, Accept all, Reject all.
 import { button, el } from "../../../dom";
 import { SCORE_THRESHOLD } from "../../../inference/detectorTensor";
 import { type Offer, offerLabel, percentText } from "../detectionOffers";
@@ -23,6 +23,8 @@ export interface DetectorBarState {
   confident: number;
   /** How many more the run found below the detector's threshold, not shown yet. */
   fainter: number;
+  /** How many of the run's boxes are left out because they were rejected before. */
+  rejected: number;
   chosen: Offer | null;
 }
 
@@ -33,6 +35,7 @@ export interface DetectorBarActions {
   acceptAll(): void;
   rejectAll(): void;
   showFainter(): void;
+  offerRejected(): void;
 }
 
 export interface DetectorBar {
@@ -93,6 +96,13 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
       "and many wrong boxes",
     onClick: actions.showFainter,
   });
+  const rejectedButton = button("Offer rejected again", {
+    className: "detector-fainter",
+    testid: "offer-rejected-suggestions",
+    title:
+      "Offer again the boxes rejected on this scene (rejections are remembered in this browser)",
+    onClick: actions.offerRejected,
+  });
   const selection = el("span", { className: "detector-selection", testid: "detector-selection" });
   const actionRow = el(
     "span",
@@ -112,20 +122,23 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
     { className: "detector-bar", testid: "detector-bar" },
     detectButton,
     actionRow,
-    el("div", { className: "detector-status-row" }, statusLine, fainterButton),
+    el("div", { className: "detector-status-row" }, statusLine, fainterButton, rejectedButton),
   );
   // Until the first detection, nothing can appear there: no room is kept (a band of blank
   // space above the photo otherwise).
   let used = false;
   return {
     element,
-    show({ busy, status, failed, editable, open, confident, fainter, chosen }) {
+    show({ busy, status, failed, editable, open, confident, fainter, rejected, chosen }) {
       used ||= busy || open > 0;
       actionRow.classList.toggle("is-unused", !used);
       detectButton.disabled = busy;
       fainterButton.hidden = fainter === 0;
       fainterButton.disabled = busy;
       fainterButton.textContent = `Show ${fainter} fainter`;
+      rejectedButton.hidden = rejected === 0;
+      rejectedButton.disabled = busy;
+      rejectedButton.textContent = `Offer ${rejected} rejected again`;
       statusLine.textContent = status;
       statusLine.title = status;
       statusLine.classList.toggle("alert", failed);

@@ -21,6 +21,16 @@ describe("foundText", () => {
     );
   });
 
+  it("says when boxes rejected before are left out", () => {
+    expect(foundText(4, 2, run({ loadMs: 10 }), 2)).toBe(
+      "2 objects suggested in 0.6 s by COCO PicoDet-S 416 (LCNet), converted " +
+        "(2 rejected before left out): click a box, then Accept or Reject.",
+    );
+    expect(foundText(3, 0, run({ loadMs: 10 }), 1)).toMatch(
+      /, all labelled or rejected already \(1 rejected before left out\)\.$/,
+    );
+  });
+
   it("says why nothing was looked for in a flat photo", () => {
     expect(foundText(0, 0, run({ flat: true }))).toMatch(/one flat colour/);
   });

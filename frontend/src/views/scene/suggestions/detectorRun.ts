@@ -57,9 +57,9 @@ export async function runDetector(
   };
 }
 
-/** What the run found, for the status line: `found` boxes, `open` of them not labelled yet
- * (the fainter ones have their own button in the bar). */
-export function foundText(found: number, open: number, run: DetectorRun): string {
+/** What the run found, for the status line: `found` boxes, `open` of them not labelled yet,
+ * `rejected` left out as rejected before (the fainter ones have their own button in the bar). */
+export function foundText(found: number, open: number, run: DetectorRun, rejected = 0): string {
   const seconds = (ms: number) => `${(ms / 1000).toFixed(1)} s`;
   // Which detector: after an admin switches models, a reviewer can tell whose boxes these are.
   const time =
@@ -67,8 +67,12 @@ export function foundText(found: number, open: number, run: DetectorRun): string
     (run.loadMs > 100 ? ` (loading it took ${seconds(run.loadMs)})` : "");
   if (run.flat) return "The photo is one flat colour: there is nothing to detect in it.";
   if (found === 0) return `No objects found ${time}.`;
-  if (open === 0) return `${plural(found, "box")} found ${time}, all labelled already.`;
-  return `${plural(open, "object")} suggested ${time}: click a box, then Accept or Reject.`;
+  const left = rejected > 0 ? ` (${rejected} rejected before left out)` : "";
+  if (open === 0) {
+    const settled = rejected > 0 ? "all labelled or rejected already" : "all labelled already";
+    return `${plural(found, "box")} found ${time}, ${settled}${left}.`;
+  }
+  return `${plural(open, "object")} suggested ${time}${left}: click a box, then Accept or Reject.`;
 }
 
 /** "3 fainter boxes (below 30%)" */

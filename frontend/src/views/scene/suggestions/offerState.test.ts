@@ -53,6 +53,28 @@ describe("offer state", () => {
     expect(state.open().map((o) => o.cls)).toEqual(["bed"]);
   });
 
+  it("leaves boxes rejected on an earlier run out of the next, until asked for again", () => {
+    const remembered: string[][] = [];
+    const state = new OfferState(
+      () => [],
+      [{ cls: "lamp", bbox: [12, 10, 60, 82] }],
+      (rejected) => remembered.push(rejected.map((r) => r.cls)),
+    );
+    state.reset(boxes);
+    expect(state.open().map((o) => o.cls)).toEqual(["bed", "picture"]);
+    expect(state.rejectedHidden()).toBe(1);
+    const bed = state.open()[0];
+    state.reject(bed ? [bed] : []);
+    expect(remembered).toEqual([["lamp", "bed"]]);
+    state.reset(boxes); // "Detect objects" again
+    expect(state.open().map((o) => o.cls)).toEqual(["picture"]);
+    expect(state.rejectedHidden()).toBe(2);
+    state.forgetRejected();
+    expect(remembered.at(-1)).toEqual([]);
+    expect(state.open().map((o) => o.cls)).toEqual(["bed", "lamp", "picture"]);
+    expect(state.rejectedHidden()).toBe(0);
+  });
+
   it("has nothing fainter without a threshold", () => {
     const state = new OfferState(() => []);
     state.reset(boxes);

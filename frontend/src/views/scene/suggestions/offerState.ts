@@ -6,11 +6,11 @@
 import type { SceneObject } from "@holiscene/schema";
 import type { DetectedBox } from "../../../inference/detectorTensor";
 import { type Offer, offersOf, openOffers } from "../detectionOffers";
+import type { RejectedOffer } from "./rejectedOffers";
 
 export class OfferState {
   /** This run's boxes down to the faintest kept, best first. */
   private offers: Offer[] = [];
-  private rejected: Offer[] = [];
   /** Offers below this score stay hidden until `showFainter` (0: every box of the run). */
   private minScore = 0;
   /** The detector's own threshold: the boxes at or above it are its suggestions proper. */
@@ -18,8 +18,15 @@ export class OfferState {
   /** The selected offer's key. */
   selected: string | null = null;
 
-  /** `objects` gives the scene's objects now. */
-  constructor(private readonly objects: () => readonly SceneObject[]) {}
+  /**
+   * `objects` gives the scene's objects now; `rejected`, the boxes rejected before (on any run:
+   * they stay rejected), and `remember` hears every change to them.
+   */
+  constructor(
+    private readonly objects: () => readonly SceneObject[],
+    private rejected: readonly RejectedOffer[] = [],
+    private readonly remember: (rejected: readonly RejectedOffer[]) => void = () => {},
+  ) {}
 
   /** How many boxes the run offered (open or not), the fainter ones once shown. */
   get found(): number {
@@ -43,6 +50,18 @@ export class OfferState {
     return this.openAbove(0).length - this.open().length;
   }
 
+  /** How many of the shown boxes are left out only because they were rejected before. */
+  rejectedHidden(): number {
+    const offers = this.offers.filter((o) => o.score >= this.minScore);
+    return openOffers(offers, this.objects()).length - this.open().length;
+  }
+
+  /** Offer the rejected boxes again (a rejection was a mistake). */
+  forgetRejected(): void {
+    this.rejected = [];
+    this.remember(this.rejected);
+  }
+
   /** Offer the fainter boxes as well; the selection stays where it was. */
   showFainter(): void {
     this.minScore = 0;
@@ -54,18 +73,18 @@ export class OfferState {
 
   /**
    * A new run's boxes (`boxes` at or above `threshold` are offered, the others down to the
-   * faintest kept wait for `showFainter`): all open again, the best one selected.
+   * faintest kept wait for `showFainter`): open unless rejected before, the best one selected.
    */
   reset(boxes: readonly DetectedBox[], threshold = 0): void {
     this.offers = offersOf(boxes);
-    this.rejected = [];
     this.minScore = threshold;
     this.threshold = threshold;
     this.selected = this.open()[0]?.key ?? null;
   }
 
   reject(chosen: readonly Offer[]): void {
-    this.rejected = [...this.rejected, ...chosen];
+    this.rejected = [...this.rejected, ...chosen.map(({ cls, bbox }) => ({ cls, bbox }))];
+    this.remember(this.rejected);
   }
 
   /** The selection moves to the first open offer when its own is gone; returns the open ones. */
