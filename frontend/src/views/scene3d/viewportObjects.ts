@@ -13,17 +13,26 @@ import type { Scene3dStatus } from "./viewportDom";
 /** What the GLB depends on: the stages that made the revision (edits keep them). */
 const glbKey = (doc: SceneDocument) => JSON.stringify(doc.scene.stages ?? []);
 
+const meshStageRan = (doc: SceneDocument) =>
+  (doc.scene.stages ?? []).some((stage) => stage.name === "scene_mesh");
+
 /**
  * Whether a stage that writes scene.glb made the revision (the pipeline's scene_mesh, also run
- * by "Re-place objects"): without one there is none to ask for, and the 404 would show in the
+ * by "Re-place objects") and had something to put in it (a placed object, the room, or a floor
+ * at a known camera height and pitch; export/glb.py writes nothing otherwise, as for a photo of
+ * one flat colour): without one there is none to ask for, and the 404 would show in the
  * console as an error.
  */
-export const mayHaveGlb = (doc: SceneDocument): boolean =>
-  (doc.scene.stages ?? []).some((stage) => stage.name === "scene_mesh");
+export const mayHaveGlb = (doc: SceneDocument): boolean => {
+  const { objects, layout, camera } = doc.scene;
+  if (!meshStageRan(doc)) return false;
+  const floorKnown = camera?.height_m != null && camera.pitch_deg != null;
+  return floorKnown || layout?.corners_3d != null || objects.some((o) => o.box_3d != null);
+};
 
 /** What the 3D view says when a revision has no 3D scene: why, and what brings one. */
 export function missingSceneText(doc: SceneDocument): string {
-  if (!mayHaveGlb(doc)) return "No 3D objects yet: they appear once the pipeline has run.";
+  if (!meshStageRan(doc)) return "No 3D objects yet: they appear once the pipeline has run.";
   if (doc.scene.objects.length === 0) {
     return "No objects to show in 3D: add them on the photo (Box, Detect objects), then run the pipeline again.";
   }
