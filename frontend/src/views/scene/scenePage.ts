@@ -146,5 +146,6 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     abort.abort();
     disposeContent();
     downloads.dispose();
+    viser.dispose();
   };
 }

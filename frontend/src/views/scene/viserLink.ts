@@ -9,6 +9,8 @@ export interface ViserLink {
   element: HTMLElement;
   /** The scene's revision on the page: a viewer of an older one says it is behind. */
   showRevision(revision: number): void;
+  /** The page is left: a rebuild waiting for the saves to pause is not asked for. */
+  dispose(): void;
 }
 
 const VIEWER_FOLLOW_MS = 2000;
@@ -75,6 +77,10 @@ export function viserLink(sceneId: string): ViserLink {
       latest = revision;
       showLinkText();
       if (opened !== null && latest > opened) follow();
+    },
+    dispose() {
+      clearTimeout(followTimer);
+      opened = null;
     },
   };
 }
