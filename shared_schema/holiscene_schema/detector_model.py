@@ -32,6 +32,10 @@ INPUT_SIZE = 512
 MAX_DETECTIONS = 100
 SCORE_THRESHOLD = 0.3
 NMS_IOU = 0.5
+# Above this IoU two boxes are one place whatever their classes (NMS is per class, so one thing
+# can come as a "sofa" and as a "bed"): where boxes become objects or suggestions, the likelier
+# one stands for that place (not part of `decode`, whose rows also feed the class hints).
+SAME_PLACE_IOU = 0.7
 MIN_BOX_PX = 4.0
 # A photo whose grey levels (0-255) vary less than this (standard deviation) is one flat
 # colour: it is not given to the detector, which still "sees" objects in a blank frame.
@@ -106,6 +110,7 @@ def detector_contract() -> dict[str, Any]:
         "input_size": INPUT_SIZE,
         "score_threshold": SCORE_THRESHOLD,
         "nms_iou": NMS_IOU,
+        "same_place_iou": SAME_PLACE_IOU,
         "min_box_px": MIN_BOX_PX,
         "flat_photo_std": FLAT_PHOTO_STD,
         "coco_classes": list(COCO_CLASSES),

@@ -1,6 +1,6 @@
 // Which of the detector's boxes the scene page offers as new objects, and the edit that adds
 // one (POST /api/scenes/{id}/edits, kind "add_object": the server makes its mask).
-import type { AddObject, SceneObject } from "@holiscene/schema";
+import { type AddObject, DETECTOR_MODEL, type SceneObject } from "@holiscene/schema";
 import { type Box, boxIou, type DetectedBox } from "../../inference/detectorTensor";
 
 /** Boxes that overlap an object (or a rejected offer) of their class more than this are not
@@ -38,10 +38,11 @@ export function offersOf(boxes: readonly DetectedBox[]): Offer[] {
     }));
 }
 
-/** Above this IoU a box is the same place whatever the classes say (the detector's NMS is per
- * class, so one thing can come as a "box" and as "books"; an object there is settled: its
- * class is fixed with the picker, not by adding a twin). */
-export const SAME_PLACE_IOU = 0.7;
+/** Above this IoU a box is the same place whatever the classes say (the contract's
+ * same_place_iou; the detector's NMS is per class, so one thing can come as a "box" and as
+ * "books"; an object there is settled: its class is fixed with the picker, not by adding a
+ * twin). The pipeline's objects_from_detector stage keeps one box per place the same way. */
+export const SAME_PLACE_IOU: number = DETECTOR_MODEL.same_place_iou;
 
 const overlaps = (offer: Offer, other: { cls: string; bbox: readonly number[] }) => {
   const iou = boxIou(offer.bbox, other.bbox);

@@ -8,7 +8,12 @@ from typing import Any
 
 import numpy as np
 from holiscene_schema import SceneObject
-from holiscene_schema.detector_model import FLAT_PHOTO_STD, NMS_IOU, SCORE_THRESHOLD
+from holiscene_schema.detector_model import (
+    FLAT_PHOTO_STD,
+    NMS_IOU,
+    SAME_PLACE_IOU,
+    SCORE_THRESHOLD,
+)
 
 from ...learning.detector.runtime import (
     DEFAULT_DETECTOR_DIR,
@@ -26,8 +31,10 @@ from .detections import NO_GIVEN_OBJECTS, objects_from_detections, unknown_class
 @register_stage
 class ObjectsFromDetector(Stage):
     """Given boxes become objects as they are (source "given"); without them the detector's
-    boxes do (source "detector", with their score). `add_missing=True` also adds the
-    detector's boxes that overlap no given box (IoU at most the NMS threshold)."""
+    boxes do (source "detector", with their score), one per place: of boxes of other classes
+    at the same place (IoU over SAME_PLACE_IOU) the likeliest stands for it, so one bed does not
+    become a bed, a sofa and a piece of furniture. `add_missing=True` also adds the detector's
+    boxes that overlap no given box (IoU at most the NMS threshold)."""
 
     name = "objects_from_detector"
     requires = frozenset({"image", "detections"})
@@ -69,7 +76,7 @@ class ObjectsFromDetector(Stage):
                 "check the photo, or draw the objects' boxes"
             )
             return
-        found = self.detector.detect(ctx.image, self.score_threshold)
+        found = one_box_per_place(self.detector.detect(ctx.image, self.score_threshold))
         if given:
             found = [box for box in found if not _overlaps_any(box, given)]
         added = [
@@ -89,6 +96,18 @@ class ObjectsFromDetector(Stage):
                 f"the detector found no objects (score at least {self.score_threshold:g}) "
                 "and no boxes were given: draw the objects' boxes"
             )
+
+
+def one_box_per_place(found: list[DetectedBox]) -> list[DetectedBox]:
+    """The boxes, likeliest first, without those at the place of a likelier one (IoU over
+    SAME_PLACE_IOU, whatever the classes)."""
+    kept: list[DetectedBox] = []
+    for box in sorted(found, key=lambda b: -b.score):
+        places = np.array([k.bbox for k in kept], dtype=np.float64)
+        if kept and box_iou(np.array(box.bbox), places).max() > SAME_PLACE_IOU:
+            continue
+        kept.append(box)
+    return kept
 
 
 def _featureless(image: np.ndarray) -> bool:
