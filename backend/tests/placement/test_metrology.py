@@ -5,8 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from holiscene.pipeline.stages.metrology import HeightsByMetrology
+from holiscene.pipeline.stages.metrology import HeightsByMetrology, fallback_note
 from holiscene.placement.metrology import (
+    OUTSIDE_PRIOR,
+    HeightEstimate,
     height_lines,
     height_prior,
     room_reference,
@@ -78,6 +80,24 @@ def test_objects_without_a_vertical_edge_fall_back_to_the_prior_and_say_so() -> 
     assert ctx.heights is not None
     assert ctx.heights[victim.id] == pytest.approx(height_prior(victim.cls)[0], abs=1e-3)
     assert victim.id in ctx.notes["heights_by_metrology"]
+
+
+def test_the_note_groups_the_objects_not_measured_by_why() -> None:
+    estimates = {
+        "o2": HeightEstimate(0.9, 0.0, "prior", OUTSIDE_PRIOR, 0.081),
+        "o0": HeightEstimate(0.9, 0.0, "prior", OUTSIDE_PRIOR, 0.11),
+        "o1": HeightEstimate(0.9, 0.0, "prior", "bottom hidden"),
+        "o3": HeightEstimate(0.8, 0.0, "measured"),
+        "o4": HeightEstimate(2.0, 0.0, "lower_bound", "top hidden: at least this"),
+    }
+    order = ["o0", "o1", "o2", "o3", "o4"]
+    assert fallback_note(estimates, order) == (
+        "3 of 5 objects given their class's typical height instead (measured outside its "
+        "class's range: o0 0.11 m, o2 0.08 m; bottom hidden: o1); top hidden, so at least "
+        "their class's typical height: o4"
+    )
+    measured = {"o3": estimates["o3"]}
+    assert fallback_note(measured, ["o3"]) is None
 
 
 def test_without_vanishing_points_every_height_is_the_prior() -> None:

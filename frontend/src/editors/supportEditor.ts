@@ -8,6 +8,7 @@ import { classText, objectClassText } from "../state/classNames";
 import type { SceneSession } from "../state/sceneSession";
 import {
   defaultType,
+  isDoubtfulSupport,
   isStructural,
   type ShownSupport,
   type SupportType,
@@ -245,7 +246,9 @@ function objectRow(
     const pending = session.isPending(id);
     const text = statusText(support);
     if (status.textContent !== text) status.textContent = text;
-    const badge = `badge${support ? "" : " badge--warn"}${pending ? " badge--pending" : ""}`;
+    // A guess at under even odds is flagged like a missing supporter: it needs a look.
+    const doubtful = !support || (!pending && isDoubtfulSupport(support));
+    const badge = `badge${doubtful ? " badge--warn" : ""}${pending ? " badge--pending" : ""}`;
     if (status.className !== badge) status.className = badge;
     element.classList.toggle("is-unsupported", !support);
     element.classList.toggle("is-pending", pending);

@@ -194,3 +194,14 @@ export function describeEdit(edit: Edit): string {
     }
   }
 }
+
+/** Below this confidence the pipeline's supporter is more likely wrong than right: its arrow
+ * is drawn faint, so a reviewer does not take a 42% guess (a wall clock "on" a chair) for a
+ * settled support. */
+export const DOUBTFUL_SUPPORT = 0.5;
+
+/** Whether a stored support is the pipeline's guess at under even odds. */
+export const isDoubtfulSupport = (support: ShownSupport | null | undefined): boolean =>
+  support?.source === "auto" &&
+  typeof support.confidence === "number" &&
+  support.confidence < DOUBTFUL_SUPPORT;

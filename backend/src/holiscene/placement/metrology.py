@@ -276,6 +276,8 @@ def room_reference(
 
 
 HeightSource = Literal["measured", "lower_bound", "prior"]
+# The reason of a measurement refused as beyond three standard deviations of its class.
+OUTSIDE_PRIOR = "measured outside its class's range"
 
 
 @dataclass(frozen=True)
@@ -284,6 +286,8 @@ class HeightEstimate:
     bottom_altitude: float  # above the floor
     source: HeightSource
     reason: str | None = None
+    # What was measured when it was refused as outside the class's range (source "prior").
+    measured: float | None = None
 
     @property
     def top_altitude(self) -> float:
@@ -383,7 +387,7 @@ class HeightMeter:
                 # A negative or no value says the measurement failed, not that the object is
                 # tiny: shown as such, not as a number a reviewer would puzzle over.
                 return self._prior(prior, base, "no positive height measured")
-            return self._prior(prior, base, f"measured {height:.2f} m, outside the class prior")
+            return HeightEstimate(prior[0], base, "prior", OUTSIDE_PRIOR, float(height))
         return HeightEstimate(height, base, "measured")
 
     def _standing(

@@ -13,16 +13,14 @@ export interface PendingList {
 
 export function pendingList(session: SceneSession): PendingList {
   const items = el("ul");
-  const element = el(
-    "div",
-    { className: "pending-list", testid: "pending-edits" },
-    el("strong", { text: "Unsaved changes" }),
-    items,
-  );
+  const heading = el("strong", { text: "Unsaved changes" });
+  const element = el("div", { className: "pending-list", testid: "pending-edits" }, heading, items);
   return {
     element,
     update() {
       element.hidden = session.unsavedCount === 0;
+      // The list scrolls past a few lines: the heading says how many there are.
+      heading.textContent = `Unsaved changes (${session.unsavedCount})`;
       items.replaceChildren(
         ...session.pending.map((edit) =>
           el("li", { text: describeEdit(edit), attrs: { "data-child": edit.child } }),

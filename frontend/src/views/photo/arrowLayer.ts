@@ -1,11 +1,12 @@
 // Support arrows (red: from below, blue: from behind; dashed: not saved yet; dotted with a
-// glow: the model's suggestion replacing a guess) and anchors of structural supporters (the
+// glow: the model's suggestion replacing a guess; faint: the pipeline's guess at under even
+// odds, DOUBTFUL_SUPPORT) and anchors of structural supporters (the
 // labels and "?" flags are labelLayer.ts's). Each arrow carries its provenance (source,
 // author, time, confidence) as data attributes and in its tooltip.
 import type { SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
 import type { SuggestedSupport } from "../../state/sceneSession";
-import { isStructural, type ShownSupport } from "../../state/supportGraph";
+import { isDoubtfulSupport, isStructural, type ShownSupport } from "../../state/supportGraph";
 import { arrowShape, type Frame, type Point, strokeWidth, structuralAnchor } from "./arrowGeometry";
 import { drawingRect, type Rect } from "./cornerHandles";
 import { type LabelRequest, placeLabels } from "./labelPlacement";
@@ -88,6 +89,7 @@ function arrowFor(
   if (pending) classes.push("arrow--pending");
   if (suggested) classes.push("arrow--suggested");
   if (!suggested && support?.source === "auto") classes.push("arrow--auto");
+  if (!suggested && !pending && isDoubtfulSupport(support)) classes.push("arrow--doubtful");
   const dash = suggested
     ? `${width * 0.8} ${width * 1.6}`
     : pending

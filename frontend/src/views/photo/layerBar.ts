@@ -28,6 +28,7 @@ function legend(): HTMLElement {
     item("swatch--below", "supported from below"),
     item("swatch--behind", "from behind"),
     item("swatch--pending", "not saved"),
+    item("swatch--doubtful", "a guess under 50%"),
     item("swatch--suggested", "suggested by the model"),
   );
 }

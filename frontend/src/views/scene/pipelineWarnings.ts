@@ -3,7 +3,7 @@
 // first time this browser shows a scene's warnings; after that folded to one line that names
 // the stages, so the photo is not pushed down the page on every visit.
 import type { StageRun } from "@holiscene/schema";
-import { el } from "../../dom";
+import { button, el } from "../../dom";
 import { browserStorage } from "../../state/browserStorage";
 import { plural, type SceneSession } from "../../state/sceneSession";
 import { readableStage } from "../common/jobProgress";
@@ -31,6 +31,26 @@ export function pipelineWarnings(
         : "";
     return [{ stage: readableStage(run.name), text: run.note + since }];
   });
+}
+
+/** A warning's text cut at the ids of the scene's objects: each `id` part can become a link
+ * that selects its object ("masks: o3, o5" -> "masks: ", o3, ", ", o5). */
+export function textWithObjectIds(
+  text: string,
+  ids: ReadonlySet<string>,
+): ({ text: string } | { id: string })[] {
+  const parts: ({ text: string } | { id: string })[] = [];
+  let plain = "";
+  // Ids are word-like tokens (o12, d3, o4_1); anything else stays text.
+  for (const token of text.split(/([A-Za-z]\w*)/)) {
+    if (ids.has(token)) {
+      if (plain) parts.push({ text: plain });
+      plain = "";
+      parts.push({ id: token });
+    } else plain += token;
+  }
+  if (plain) parts.push({ text: plain });
+  return parts;
 }
 
 /** The panel (hidden while there is no warning) and how to stop updating it. */
@@ -64,13 +84,25 @@ export function pipelineWarningsPanel(session: SceneSession): {
     const storage = browserStorage();
     element.open = warnings.length > 0 && storage?.getItem(seenKey) !== seen;
     if (warnings.length > 0) storage?.setItem(seenKey, seen);
+    const ids = new Set(session.objects.map((o) => o.id));
+    // An object named in a warning is one click away: the link selects it on the photo.
+    const linked = (text: string) =>
+      textWithObjectIds(text, ids).map((part) =>
+        "id" in part
+          ? button(part.id, {
+              className: "pipeline-warning-object",
+              title: `Select ${part.id}`,
+              onClick: () => session.select(part.id),
+            })
+          : part.text,
+      );
     list.replaceChildren(
       ...warnings.map((w) =>
         el(
           "li",
           { testid: "pipeline-warning" },
           el("span", { className: "pipeline-warning-stage", text: w.stage }),
-          el("span", { text: w.text }),
+          el("span", {}, ...linked(w.text)),
         ),
       ),
     );

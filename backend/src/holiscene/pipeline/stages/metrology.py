@@ -4,7 +4,9 @@ See `holiscene.placement.metrology`: each object's height line (the longest vert
 its mask, by rays from the vertical vanishing point) is carried onto the room's height line
 and measured by cross ratio, from the floor up; an object supported from below starts at its
 supporter's top. Estimates outside three standard deviations of the class's height prior are
-replaced by the prior's mean (thesis Appendix B.2); the stage note lists those objects.
+replaced by the prior's mean (thesis Appendix B.2); the stage note lists those objects,
+grouped by why (on a crowded photo most chairs can fail the same way: one line per reason
+reads better than one per chair).
 """
 
 from __future__ import annotations
@@ -12,7 +14,13 @@ from __future__ import annotations
 import numpy as np
 from holiscene_schema import SupportRelation
 
-from ...placement.metrology import HeightEstimate, HeightMeter, height_prior, room_reference
+from ...placement.metrology import (
+    OUTSIDE_PRIOR,
+    HeightEstimate,
+    HeightMeter,
+    height_prior,
+    room_reference,
+)
 from ...placement.room import pinhole, projection_matrix, room_of
 from ...placement.support_order import supporters_first
 from ..base import SceneContext, Stage, required
@@ -66,19 +74,34 @@ class HeightsByMetrology(Stage):
         for obj in supporters_first(objects, support_of):
             estimates[obj.id] = meter.measure(obj.id)
             ctx.heights[obj.id] = round(estimates[obj.id].height, 4)
-        fallbacks = [
-            f"{obj_id} ({e.reason})" for obj_id, e in estimates.items() if e.source == "prior"
-        ]
-        bounds = [obj_id for obj_id, e in estimates.items() if e.source == "lower_bound"]
-        parts = []
-        if fallbacks:
-            parts.append(
-                f"{len(fallbacks)} given their class's typical height instead: "
-                + ", ".join(fallbacks)
-            )
-        if bounds:
-            parts.append(
-                "top hidden, so at least their class's typical height: " + ", ".join(bounds)
-            )
-        if parts:
-            ctx.notes[self.name] = "; ".join(parts)
+        note = fallback_note(estimates, [o.id for o in objects])
+        if note:
+            ctx.notes[self.name] = note
+
+
+def fallback_note(estimates: dict[str, HeightEstimate], order: list[str]) -> str | None:
+    """The objects not measured, grouped by reason, in the scene's order ("2 of 9 objects given
+    their class's typical height instead (measured outside its class's range: o1 0.11 m;
+    bottom hidden: o6)"), then those whose top is hidden; None when every object was measured.
+    """
+    by_reason: dict[str, list[str]] = {}
+    for obj_id in order:
+        estimate = estimates.get(obj_id)
+        if estimate is None or estimate.source != "prior":
+            continue
+        shown = obj_id
+        if estimate.reason == OUTSIDE_PRIOR and estimate.measured is not None:
+            shown = f"{obj_id} {estimate.measured:.2f} m"
+        by_reason.setdefault(estimate.reason or "not measured", []).append(shown)
+    bounds = [i for i in order if i in estimates and estimates[i].source == "lower_bound"]
+    parts = []
+    if by_reason:
+        fallen = sum(len(ids) for ids in by_reason.values())
+        groups = "; ".join(f"{reason}: {', '.join(ids)}" for reason, ids in by_reason.items())
+        parts.append(
+            f"{fallen} of {len(order)} objects given their class's typical height instead "
+            f"({groups})"
+        )
+    if bounds:
+        parts.append("top hidden, so at least their class's typical height: " + ", ".join(bounds))
+    return "; ".join(parts) or None

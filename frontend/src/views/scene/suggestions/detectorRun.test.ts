@@ -17,17 +17,17 @@ describe("foundText", () => {
         "(loading it took 1.5 s): click a box, then Accept or Reject.",
     );
     expect(foundText(3, 0, run({ loadMs: 10 }))).toBe(
-      "3 boxes found in 0.6 s by COCO PicoDet-S 416 (LCNet), converted, all labelled already.",
+      "All 3 boxes found are labelled already, in 0.6 s by COCO PicoDet-S 416 (LCNet), converted.",
     );
   });
 
   it("says when boxes rejected before are left out", () => {
     expect(foundText(4, 2, run({ loadMs: 10 }), 2)).toBe(
-      "2 objects suggested in 0.6 s by COCO PicoDet-S 416 (LCNet), converted " +
-        "(2 rejected before left out): click a box, then Accept or Reject.",
+      "2 objects suggested (2 rejected before left out) in 0.6 s by COCO PicoDet-S 416 " +
+        "(LCNet), converted: click a box, then Accept or Reject.",
     );
-    expect(foundText(3, 0, run({ loadMs: 10 }), 1)).toMatch(
-      /, all labelled or rejected already \(1 rejected before left out\)\.$/,
+    expect(foundText(1, 0, run({ loadMs: 10 }), 1)).toMatch(
+      /^The box found is labelled or rejected already \(1 rejected before left out\), in 0.6 s/,
     );
   });
 

@@ -67,12 +67,15 @@ export function foundText(found: number, open: number, run: DetectorRun, rejecte
     (run.loadMs > 100 ? ` (loading it took ${seconds(run.loadMs)})` : "");
   if (run.flat) return "The photo is one flat colour: there is nothing to detect in it.";
   if (found === 0) return `No objects found ${time}.`;
+  // What matters first: the status line shows one line, cut at its end (the rest in its title).
   const left = rejected > 0 ? ` (${rejected} rejected before left out)` : "";
   if (open === 0) {
-    const settled = rejected > 0 ? "all labelled or rejected already" : "all labelled already";
-    return `${plural(found, "box")} found ${time}, ${settled}${left}.`;
+    const settled = rejected > 0 ? "labelled or rejected already" : "labelled already";
+    const all =
+      found === 1 ? `The box found is ${settled}` : `All ${found} boxes found are ${settled}`;
+    return `${all}${left}, ${time}.`;
   }
-  return `${plural(open, "object")} suggested ${time}${left}: click a box, then Accept or Reject.`;
+  return `${plural(open, "object")} suggested${left} ${time}: click a box, then Accept or Reject.`;
 }
 
 /** "3 fainter boxes (below 30%)" */
