@@ -1,5 +1,6 @@
-// User story: an admin retrains the Relation Network from the page, watches the job, sees the
-// new model's curve, makes it active (the page asks first) and rolls
+// User story: an admin sees how many labelled scenes there are, retrains the Relation Network
+// from the page, watches the job, sees the new model's curve, makes it active (the page asks
+// first, with both models' figures) and rolls
 // back to the model that was active before. The page's list, curve and history follow.
 import type { ModelInfo } from "@holiscene/schema";
 import { type APIRequestContext, expect, test } from "@playwright/test";
@@ -32,6 +33,10 @@ test("an admin retrains, makes the new model active and rolls back", async ({ pa
   await page.goto("/#/models");
   await expect(page.getByTestId("model-list")).toBeVisible();
   await expect(page.getByTestId("models-admin-only")).toBeHidden(); // single-user mode: admin
+  // Before Retrain, the form says how many labelled scenes it would learn from.
+  await expect(page.getByTestId("retrain-readiness")).toContainText(
+    /\d+ labelled scenes \(scenes with supports set by a person\): a fifth of them is held out/,
+  );
   await page.getByTestId("retrain-epochs").fill("1");
   await page.getByTestId("retrain-synthetic").fill("20");
   await page.getByTestId("retrain-button").click();
@@ -67,10 +72,11 @@ test("an admin retrains, makes the new model active and rolls back", async ({ pa
     await expect(row).toHaveClass(/is-active/);
     if (trained.status === "rejected") {
       await expect(row).toContainText("rejected, made active by hand");
-      expect(asked.at(-1)).toContain("Make it active anyway?");
-    } else {
-      expect(asked.at(-1)).toContain(`Make v${trained.version} the active model?`);
+      expect(asked.at(-1)).toContain("did worse than the model it was compared with");
     }
+    // The question puts both models' figures side by side.
+    expect(asked.at(-1)).toContain(`Make v${trained.version} the active model?`);
+    expect(asked.at(-1)).toContain(`v${active.version} (active now): held-out accuracy`);
   }
   await expect(row).toHaveClass(/is-active/);
   await expect(page.getByTestId("model-history")).toContainText(`v${trained.version}`);

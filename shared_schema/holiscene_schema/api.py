@@ -467,6 +467,15 @@ class RetrainRequest(SchemaModel):
     )
 
 
+class RetrainReadiness(SchemaModel):
+    """Whether a kind of model can be retrained now: how many stored scenes it could learn
+    from and how many it needs (a fixed fifth of them is held out to judge the new model)."""
+
+    labelled_scenes: int = Field(ge=0, description="Stored scenes the retraining would use")
+    needed: int = Field(ge=1, description="Labelled scenes needed before it can start")
+    what: str = Field(description="What counts as a labelled scene for this kind")
+
+
 class PromoteRequest(SchemaModel):
     author: str = Field(default="admin", min_length=1, max_length=64)
     note: str | None = Field(default=None, max_length=500)

@@ -43,6 +43,7 @@ RemovedObject?: RemovedObject
 RestoreObject?: RestoreObject
 RestoreScene?: RestoreScene
 RestoreSupport?: RestoreSupport
+RetrainReadiness?: RetrainReadiness
 RetrainRequest?: RetrainRequest
 ReviewRequest?: ReviewRequest
 RevisionInfo?: RevisionInfo
@@ -991,6 +992,27 @@ export interface RemovedObject {
 bbox: [number, number, number, number]
 class: ("wall" | "floor" | "cabinet" | "bed" | "chair" | "sofa" | "table" | "door" | "window" | "bookshelf" | "picture" | "counter" | "blinds" | "desk" | "shelves" | "curtain" | "dresser" | "pillow" | "mirror" | "floor_mat" | "clothes" | "ceiling" | "books" | "refrigerator" | "television" | "paper" | "towel" | "shower_curtain" | "box" | "whiteboard" | "person" | "night_stand" | "toilet" | "sink" | "lamp" | "bathtub" | "bag" | "otherstructure" | "otherfurniture" | "otherprop")
 id: string
+}
+/**
+ * Whether a kind of model can be retrained now: how many stored scenes it could learn
+ * from and how many it needs (a fixed fifth of them is held out to judge the new model).
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "RetrainReadiness".
+ */
+export interface RetrainReadiness {
+/**
+ * Stored scenes the retraining would use
+ */
+labelled_scenes: number
+/**
+ * Labelled scenes needed before it can start
+ */
+needed: number
+/**
+ * What counts as a labelled scene for this kind
+ */
+what: string
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema

@@ -1,7 +1,14 @@
 // The model registry (admin): models, their files, retraining, promotion. Two kinds, each with
 // its own versions, active model and history: the Relation Network ("relation", the default)
 // and the object detector ("detector").
-import type { Job, ModelEvent, ModelInfo, PromoteRequest, RetrainRequest } from "@holiscene/schema";
+import type {
+  Job,
+  ModelEvent,
+  ModelInfo,
+  PromoteRequest,
+  RetrainReadiness,
+  RetrainRequest,
+} from "@holiscene/schema";
 import type { ModelKind } from "../router";
 import { BASE, jsonBody, request } from "./client";
 
@@ -23,6 +30,10 @@ export const modelsApi = {
   /** The newest retrain job of a kind, or null when there never was one. */
   latestRetrainJob: (signal?: AbortSignal, kind: ModelKind = "relation") =>
     request<Job | null>(ofKind("/models/retrain", kind), { signal }),
+
+  /** How many stored scenes a retraining would learn from, and how many it needs. */
+  retrainReadiness: (signal?: AbortSignal, kind: ModelKind = "relation") =>
+    request<RetrainReadiness>(ofKind("/models/retrain/readiness", kind), { signal }),
 
   startRetrain: (body: RetrainRequest, kind: ModelKind = "relation") =>
     request<Job>(ofKind("/models/retrain", kind), jsonBody(body)),

@@ -170,14 +170,20 @@ def boxed_scenes(scenes: SceneStore) -> list[BoxedScene]:
     return [item for item in found if item is not None]
 
 
+# What a labelled scene is for the detector, as the models page says it.
+BOXED_SCENES = (
+    "scenes with boxes a person confirmed (drawn, given with the photo, accepted suggestions, "
+    "or an accepted scene)"
+)
+
+
 def check_can_retrain_detector(scenes: SceneStore) -> int:
     """The number of scenes with confirmed boxes; NotEnoughLabelsError when too few."""
     count = len(boxed_scenes(scenes))
     if count < MIN_LABELLED_SCENES:
         raise NotEnoughLabelsError(
-            f"retraining the detector needs at least {MIN_LABELLED_SCENES} scenes with boxes "
-            f"a person confirmed (drawn, given with the photo, accepted suggestions, or an "
-            f"accepted scene), {count} found"
+            f"retraining the detector needs at least {MIN_LABELLED_SCENES} {BOXED_SCENES}, "
+            f"{count} found"
         )
     return count
 

@@ -147,6 +147,10 @@ def train_config(request: RetrainRequest, cache_dir: Path | None = None) -> Trai
     return dataclasses.replace(TrainConfig(), **changes)
 
 
+# What a labelled scene is for the Relation Network, as the models page says it.
+LABELLED_SCENES = "scenes with supports set by a person"
+
+
 def check_can_retrain(scenes: SceneStore) -> int:
     """The number of labelled scenes; NotEnoughLabelsError when there are too few."""
     count = len(labelled_scenes(scenes))

@@ -20,6 +20,7 @@ from holiscene_schema import (
     Job,
     JobKind,
     ModelKind,
+    RetrainReadiness,
     RetrainRequest,
     Scene,
     StageRun,
@@ -43,13 +44,23 @@ from ..store.users import UserStore
 from ..store.workflow import WorkflowStore
 from .dataset_import import DatasetImports
 from .detector_retraining import (
+    BOXED_SCENES,
     ROOMS_FOLDER,
     DetectorRetrainJob,
+    boxed_scenes,
     check_can_retrain_detector,
     detector_train_config,
 )
 from .reconstruction import Reconstruction, full_run_stages, imported_scene, reconstruct_scene
-from .relation_retraining import RetrainJob, TrainingJob, check_can_retrain, train_config
+from .relation_retraining import (
+    LABELLED_SCENES,
+    MIN_LABELLED_SCENES,
+    RetrainJob,
+    TrainingJob,
+    check_can_retrain,
+    labelled_scenes,
+    train_config,
+)
 
 log = logging.getLogger(__name__)
 
@@ -261,6 +272,15 @@ class Workbench:
                 "(it keeps a room set by hand)"
             )
         return self._queue(scene_id, current.revision, "placement", started_by)
+
+    def retrain_readiness(self, kind: ModelKind = "relation") -> RetrainReadiness:
+        """How many stored scenes a retraining of the kind would learn from, and how many it
+        needs: the models page says so before an admin presses Retrain."""
+        if kind == "detector":
+            count, what = len(boxed_scenes(self.scenes)), BOXED_SCENES
+        else:
+            count, what = len(labelled_scenes(self.scenes)), LABELLED_SCENES
+        return RetrainReadiness(labelled_scenes=count, needed=MIN_LABELLED_SCENES, what=what)
 
     def start_retrain(self, request: RetrainRequest, kind: ModelKind = "relation") -> Job:
         """Queue a retrain job of a kind of model (admin). NotEnoughLabelsError when too few

@@ -128,6 +128,22 @@ def test_retrain_refuses_without_enough_labelled_scenes(client: TestClient) -> N
     assert client.get("/api/models/retrain").json() is None, "no job was created"
 
 
+def test_readiness_counts_the_scenes_each_kind_would_learn_from(client: TestClient) -> None:
+    scenes = _workbench(client).scenes
+    relation = client.get("/api/models/retrain/readiness").json()
+    assert (relation["labelled_scenes"], relation["needed"]) == (0, 2)
+    store_labelled_scene(scenes, LABELLED_SEEDS[0])
+    store_unlabelled_scene(scenes, LABELLED_SEEDS[1])  # pipeline guesses are no labels
+    relation = client.get("/api/models/retrain/readiness").json()
+    assert (relation["labelled_scenes"], relation["needed"]) == (1, 2)
+    assert "supports set by a person" in relation["what"]
+    # The detector learns from boxes a person confirmed; supports set by one are not that.
+    detector = client.get("/api/models/retrain/readiness?kind=detector").json()
+    assert detector["needed"] == 2 and "boxes a person confirmed" in detector["what"]
+    assert detector["labelled_scenes"] == 0
+    assert client.get("/api/models/retrain/readiness?kind=other").status_code == 422
+
+
 def test_retrain_refuses_bad_options(client: TestClient) -> None:
     for body in [{"max_epochs": 0}, {"synthetic_scenes": -1}, {"max_epochs": "many"}, {"x": 1}]:
         response = client.post("/api/models/retrain", json=body)

@@ -6,6 +6,7 @@ import { button, el, formatTime } from "../../dom";
 import { getAuthor } from "../../state/author";
 import { hasRole } from "../../state/currentUser";
 import type { KindText } from "./kindText";
+import { heldoutText, percent, promoteQuestion } from "./modelFigures";
 
 const STATUS_TEXT: Record<ModelInfo["status"], string> = {
   default: "committed default",
@@ -13,27 +14,6 @@ const STATUS_TEXT: Record<ModelInfo["status"], string> = {
   candidate: "candidate",
   rejected: "rejected",
 };
-
-const percent = (value: number | null) =>
-  value === null || value < 0 ? "—" : `${(value * 100).toFixed(1)} %`;
-
-// A detector's held-out figures are its mAP@0.5 and recall; a Relation Network's its accuracy.
-const figures = (value: number, recall: number | null) =>
-  recall === null ? percent(value) : `${percent(value)} · ${percent(recall)}`;
-
-/** The held-out figures, the parent's beside them, and how many items they rest on (a
- * figure from a handful of objects decides little, and the admin should see that). */
-function heldoutText(model: ModelInfo, text: KindText): string {
-  if (model.heldout_accuracy === null) return "—";
-  const parent =
-    model.parent_version !== null && model.parent_heldout_accuracy !== null
-      ? ` (v${model.parent_version}: ${figures(model.parent_heldout_accuracy, model.parent_heldout_recall)})`
-      : "";
-  const items = model.heldout_items;
-  const [one, many] = text.heldoutItems;
-  const count = items == null ? "" : `, on ${items} ${items === 1 ? one : many}`;
-  return `${figures(model.heldout_accuracy, model.heldout_recall)}${parent}${count}`;
-}
 
 export interface ModelTableInputs {
   text: KindText;
@@ -59,6 +39,7 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
     attrs: { role: "status", "aria-live": "polite" },
   });
   const body = el("tbody");
+  let shown: ModelInfo[] = [];
   const columns = [
     "Version",
     "Created",
@@ -82,12 +63,8 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
 
   const promote = async (model: ModelInfo, promoteButton: HTMLButtonElement) => {
     // Every pipeline run and the page's suggestions change with the active model: asked first.
-    const question =
-      model.status === "rejected"
-        ? `v${model.version} did worse than the model it was compared with on the held-out ` +
-          `scenes (${heldoutText(model, text)}). Make it active anyway?`
-        : `Make v${model.version} the active model? Pipeline runs and suggestions use it from now on.`;
-    if (!window.confirm(question)) return;
+    const active = shown.find((m) => m.active);
+    if (!window.confirm(promoteQuestion(model, active, text))) return;
     promoteButton.disabled = true;
     notice.textContent = `Making v${model.version} active…`;
     try {
@@ -167,6 +144,7 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
   return {
     element,
     show(models) {
+      shown = models;
       body.replaceChildren(...models.map(modelRow));
       table.hidden = models.length === 0;
       status.textContent = models.length === 0 ? text.empty : "";

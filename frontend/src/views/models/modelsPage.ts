@@ -62,11 +62,13 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
 
   async function refresh(newest = false): Promise<void> {
     try {
-      const [models, events] = await Promise.all([
+      const [models, events, readiness] = await Promise.all([
         modelsApi.listModels(abort.signal, kind),
         modelsApi.listEvents(abort.signal, kind),
+        modelsApi.retrainReadiness(abort.signal, kind),
       ]);
       table.show(models);
+      form.showReadiness(readiness);
       history.show(events);
       // The model asked for, else the newest with a curve (the committed default has none).
       const withCurve = models.filter((m) => m.has_curve).sort((a, b) => b.version - a.version)[0];

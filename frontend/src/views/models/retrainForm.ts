@@ -1,6 +1,6 @@
 // The models page's retraining form: a new model of the kind trained on the server (a retrain
 // job), its progress and log followed live; the page reloads the list when it ends.
-import type { Job } from "@holiscene/schema";
+import type { Job, RetrainReadiness } from "@holiscene/schema";
 import { isFinished, pollJob } from "../../api/jobs";
 import { modelsApi } from "../../api/models";
 import { button, el, hiddenErrorAlert, labelledField } from "../../dom";
@@ -8,6 +8,7 @@ import type { ModelKind } from "../../router";
 import { getAuthor } from "../../state/author";
 import { jobProgress } from "../common/jobProgress";
 import type { KindText } from "./kindText";
+import { readinessText } from "./modelFigures";
 
 const POLL_MS = 1000;
 
@@ -38,6 +39,8 @@ export interface RetrainForm {
   resume(job: Job): void;
   /** The active model was changed by hand: a finished job's outcome line is history now. */
   activeChanged(): void;
+  /** Say how many labelled scenes there are; Retrain waits until there are enough. */
+  showReadiness(readiness: RetrainReadiness): void;
 }
 
 export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInputs): RetrainForm {
@@ -58,12 +61,15 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
     text: "Since this job ended, the active model was changed by hand: the list above and the history below say which one is active.",
     attrs: { hidden: true },
   });
+  const readiness = el("p", { className: "field-hint", testid: "retrain-readiness" });
   let shownJob: Job | null = null;
+  let enoughScenes = true; // until the count arrives: the server refuses with a message anyway
   const form = el(
     "form",
     { className: "card", testid: "retrain-form" },
     el("h2", { text: "Retrain" }),
     el("p", { className: "field-hint", text: text.retrainHint }),
+    readiness,
     el("div", { className: "field-grid" }, epochs.field, synthetic.field),
     el("div", { className: "form-actions" }, retrain),
     retrainError,
@@ -81,7 +87,7 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
     const atBottom = log.scrollTop + log.clientHeight >= log.scrollHeight - 4;
     log.textContent = job.log;
     if (atBottom) log.scrollTop = log.scrollHeight;
-    retrain.disabled = !isFinished(job);
+    retrain.disabled = !isFinished(job) || !enoughScenes;
   };
 
   const follow = async (job: Job) => {
@@ -127,6 +133,14 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
     },
     activeChanged() {
       if (shownJob && isFinished(shownJob)) since.hidden = false;
+    },
+    showReadiness(counted) {
+      enoughScenes = counted.labelled_scenes >= counted.needed;
+      readiness.textContent = readinessText(counted);
+      readiness.classList.toggle("is-warn", !enoughScenes);
+      const running = shownJob !== null && !isFinished(shownJob);
+      retrain.disabled = running || !enoughScenes;
+      retrain.title = enoughScenes ? "" : "Label more scenes first (the line above says how many)";
     },
   };
 }

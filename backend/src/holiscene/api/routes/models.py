@@ -22,6 +22,7 @@ from holiscene_schema import (
     ModelInfo,
     ModelKind,
     PromoteRequest,
+    RetrainReadiness,
     RetrainRequest,
 )
 
@@ -67,6 +68,13 @@ def latest_retrain_job(workbench: WorkbenchDep, kind: KindQuery = "relation") ->
     """The newest retrain job of a kind (so a page opened later can follow a running one),
     or null."""
     return workbench.jobs.latest_retrain(RETRAIN_JOB_KINDS[kind])
+
+
+@router.get("/retrain/readiness", response_model=RetrainReadiness)
+def retrain_readiness(workbench: WorkbenchDep, kind: KindQuery = "relation") -> RetrainReadiness:
+    """How many stored scenes a retraining of the kind would learn from, how many it needs,
+    and what counts as one."""
+    return workbench.retrain_readiness(kind)
 
 
 @router.post(

@@ -1,0 +1,68 @@
+// The question before a model is made active puts its figures beside the active model's.
+import type { ModelInfo } from "@holiscene/schema";
+import { describe, expect, it } from "vitest";
+import { KIND_TEXT } from "./kindText";
+import { promoteQuestion, readinessText } from "./modelFigures";
+
+const model = (over: Partial<ModelInfo>): ModelInfo =>
+  ({
+    id: "m",
+    version: 1,
+    status: "accepted",
+    active: false,
+    heldout_accuracy: null,
+    heldout_recall: null,
+    heldout_items: null,
+    heldout_scenes: 0,
+    parent_version: null,
+    parent_heldout_accuracy: null,
+    parent_heldout_recall: null,
+    validation_accuracy: null,
+    ...over,
+  }) as ModelInfo;
+
+describe("the question before a model is made active", () => {
+  const text = KIND_TEXT.relation;
+  const active = model({ id: "a", version: 1, active: true, validation_accuracy: 0.991 });
+  const retrained = model({
+    id: "b",
+    version: 2,
+    status: "candidate",
+    heldout_accuracy: 0.971,
+    heldout_items: 34,
+    heldout_scenes: 1,
+    parent_version: 1,
+    parent_heldout_accuracy: 0.971,
+    validation_accuracy: 0.396,
+  });
+
+  it("gives both models' figures and how many scenes the held-out one rests on", () => {
+    expect(promoteQuestion(retrained, active, text)).toBe(
+      "Make v2 the active model? Pipeline runs and suggestions use it from now on.\n\n" +
+        "v2: held-out accuracy 97.1 % (v1: 97.1 %), on 34 labelled objects (1 held-out scene); " +
+        "validation accuracy 39.6 %\n" +
+        "v1 (active now): held-out accuracy —; validation accuracy 99.1 %",
+    );
+  });
+
+  it("says first when the model lost its held-out test", () => {
+    const lost = { ...retrained, status: "rejected" } as ModelInfo;
+    expect(promoteQuestion(lost, active, text)).toMatch(
+      /^v2 did worse than the model it was compared with on the held-out scenes\. Make v2/,
+    );
+    expect(promoteQuestion(active, active, text)).not.toMatch(/active now/);
+  });
+});
+
+describe("what the retrain form says about the labelled scenes", () => {
+  it("counts them, and says how many are needed when they are too few", () => {
+    const what = "scenes with supports set by a person";
+    expect(readinessText({ labelled_scenes: 1, needed: 2, what })).toBe(
+      "1 labelled scene (scenes with supports set by a person): at least 2 are needed, " +
+        "one to learn from and one to judge by.",
+    );
+    expect(readinessText({ labelled_scenes: 5, needed: 2, what })).toMatch(
+      /^5 labelled scenes \(.*\): a fifth of them is held out/,
+    );
+  });
+});

@@ -1,0 +1,64 @@
+// A model's figures as the models page writes them: in its table and in the question asked
+// before it is made active (the admin decides on the numbers, side by side with the active
+// model's, and sees how few scenes a held-out figure may rest on).
+import type { ModelInfo, RetrainReadiness } from "@holiscene/schema";
+import type { KindText } from "./kindText";
+
+export const percent = (value: number | null) =>
+  value === null || value < 0 ? "—" : `${(value * 100).toFixed(1)} %`;
+
+// A detector's held-out figures are its mAP@0.5 and recall; a Relation Network's its accuracy.
+const figures = (value: number, recall: number | null) =>
+  recall === null ? percent(value) : `${percent(value)} · ${percent(recall)}`;
+
+/** The held-out figures, the parent's beside them, and how many items they rest on (a
+ * figure from a handful of objects decides little, and the admin should see that). */
+export function heldoutText(model: ModelInfo, text: KindText): string {
+  if (model.heldout_accuracy === null) return "—";
+  const parent =
+    model.parent_version !== null && model.parent_heldout_accuracy !== null
+      ? ` (v${model.parent_version}: ${figures(model.parent_heldout_accuracy, model.parent_heldout_recall)})`
+      : "";
+  const items = model.heldout_items;
+  const [one, many] = text.heldoutItems;
+  const count = items == null ? "" : `, on ${items} ${items === 1 ? one : many}`;
+  return `${figures(model.heldout_accuracy, model.heldout_recall)}${parent}${count}`;
+}
+
+/** One model's figures on one line: "held-out … (N scenes); validation …". */
+function figuresLine(model: ModelInfo, text: KindText): string {
+  const scenes = model.heldout_scenes;
+  const from = scenes > 0 ? ` (${scenes} held-out ${scenes === 1 ? "scene" : "scenes"})` : "";
+  return (
+    `${text.heldoutColumn.toLowerCase()} ${heldoutText(model, text)}${from}; ` +
+    `${text.validationColumn.toLowerCase()} ${percent(model.validation_accuracy)}`
+  );
+}
+
+/** What "Make active" asks: the model's figures beside the active model's. */
+export function promoteQuestion(
+  model: ModelInfo,
+  active: ModelInfo | undefined,
+  text: KindText,
+): string {
+  const lost =
+    model.status === "rejected"
+      ? `v${model.version} did worse than the model it was compared with on the held-out scenes. `
+      : "";
+  const lines = [
+    `${lost}Make v${model.version} the active model? Pipeline runs and suggestions use it from now on.`,
+    "",
+    `v${model.version}: ${figuresLine(model, text)}`,
+  ];
+  if (active && active.id !== model.id)
+    lines.push(`v${active.version} (active now): ${figuresLine(active, text)}`);
+  return lines.join("\n");
+}
+
+/** "3 labelled scenes (scenes with ...): enough" / "1 of the 2 needed" */
+export function readinessText({ labelled_scenes: count, needed, what }: RetrainReadiness): string {
+  const scenes = `${count} labelled ${count === 1 ? "scene" : "scenes"} (${what})`;
+  return count >= needed
+    ? `${scenes}: a fifth of them is held out to judge the new model.`
+    : `${scenes}: at least ${needed} are needed, one to learn from and one to judge by.`;
+}
