@@ -16,13 +16,31 @@ import "./supportEditing.css";
 /** Objects that hold others up but are never held up themselves. */
 export const isRoomPart = (object: SceneObject) => isStructural(object.class);
 
+/** The floor's tag is a short ground bar, not a word: a crowded photo has dozens of objects
+ * on the floor, and as many "floor" pills hid the photo (the legend names the bar). */
+const isGroundBar = (parent: string) => parent === "floor";
+
 /** Half the width and height of a structural supporter's label. */
 function labelHalf(parent: string, size: number): Point {
+  if (isGroundBar(parent)) return [size * 0.9, size * 0.22];
   return [(size * (parent.length * 0.62 + 1.2)) / 2, size * 0.75];
 }
 
 function anchorLabel(parent: string, at: Point, size: number): SVGGElement {
   const [halfWidth, halfHeight] = labelHalf(parent, size);
+  if (isGroundBar(parent))
+    return svgEl(
+      "g",
+      { class: `anchor anchor--${parent}` },
+      svgEl("title", {}, parent),
+      svgEl("rect", {
+        x: at[0] - halfWidth,
+        y: at[1] - halfHeight,
+        width: 2 * halfWidth,
+        height: 2 * halfHeight,
+        rx: halfHeight * 0.5,
+      }),
+    );
   return svgEl(
     "g",
     { class: `anchor anchor--${parent}` },
@@ -81,7 +99,8 @@ function arrowFor(
   const structural = isStructural(edge.parent) ? edge.parent : null;
   const from = structural ? anchor : centroids.get(edge.parent);
   if (!from) return null;
-  const shape = arrowShape(from, to, width, structural ? labelSize * 0.8 : width * 1.5);
+  const tagGap = structural && isGroundBar(structural) ? labelSize * 0.3 : labelSize * 0.8;
+  const shape = arrowShape(from, to, width, structural ? tagGap : width * 1.5);
   const support = edge.support;
   const suggested = edge.suggestion !== undefined;
   const pending = !suggested && support?.pending === true;

@@ -27,6 +27,7 @@ function legend(): HTMLElement {
     { className: "legend", attrs: { "aria-label": "Arrow colours" } },
     item("swatch--below", "supported from below"),
     item("swatch--behind", "from behind"),
+    item("swatch--floor", "floor"),
     item("swatch--pending", "not saved"),
     item("swatch--doubtful", "a guess under 50%"),
     item("swatch--suggested", "suggested by the model"),
