@@ -1,7 +1,7 @@
-// The box tool: drag on the photo where there is no object to draw a new box (then the class
-// picker opens, and the object is added with that class; the server cuts its mask); press on
-// an object to select it, drag it to move its box, or drag one of the selected box's 8 handles
-// to resize it (set_bbox on release). Boxes stay inside the photo. What was drawn stays on the
+// The box tool: drag on the photo to draw a new box, also over an object (then the class picker
+// opens, and the object is added with that class; the server cuts its mask); click an object to
+// select it, then drag inside its box to move it or drag one of its 8 handles to resize it
+// (set_bbox on release). Boxes stay inside the photo. What was drawn stays on the
 // photo until the server's revision replaces it.
 
 import { svgEl } from "../dom";
@@ -54,11 +54,11 @@ export function mountBoxTool(tools: PhotoTools): () => void {
     label: "Box",
     key: BOX_TOOL_KEY,
     description:
-      "Box: draw a new object's box (Shift: also over an object); drag an object or its handles to move or resize it",
+      "Box: drag to draw a new object's box (Shift: also inside the selected one); click an object to select it, then drag its inside or handles to move or resize it",
     cursor: "crosshair",
     edits: true,
     down(at, event) {
-      // Shift: always a new box (one inside another object's, a pillow on a bed).
+      // Shift: always a new box (one inside the selected object's, a pillow on a bed).
       const hit = event.shiftKey ? null : host.objectAt(event);
       const start = startPress(at, {
         selected: session.selectedObject,
@@ -90,8 +90,10 @@ export function mountBoxTool(tools: PhotoTools): () => void {
     up() {
       const done = press;
       press = null;
-      if (done?.kind === "draw" && isBigEnough(done.box)) void edits.addObject(done.box);
-      else if (done?.kind === "edit" && done.moved && done.box.some((v, i) => v !== done.from[i]))
+      if (done?.kind === "draw") {
+        if (isBigEnough(done.box)) void edits.addObject(done.box);
+        else if (done.pick !== null) session.select(done.pick); // a click on an object
+      } else if (done?.kind === "edit" && done.moved && done.box.some((v, i) => v !== done.from[i]))
         void edits.setBox(done.id, done.box, done.grip);
       draw();
     },

@@ -1,13 +1,22 @@
-// What a press of the box tool starts: resizing the selected box by a handle, moving an object's
-// box (the one under the pointer, or the selected one when pressed inside it), or drawing a new
-// box (always with Shift: one inside another object's, a pillow on a bed).
+// What a press of the box tool starts: resizing the selected box by a handle, moving the selected
+// box (pressed inside it), or drawing a new box (anywhere else, also over an object that is not
+// selected: a pillow on a bed; with Shift, inside the selected box too). A press on an object
+// that is not selected moves nothing: released without a drag, it selects that object. (Moving
+// whatever object was under the pointer moved beds that fill half the photo, saved at once,
+// when people meant to draw on them.)
 import type { SceneObject } from "@holiscene/schema";
 import { type Box, boxFromCorners, type Grip, gripAt } from "../boxGeometry";
 import type { ImagePoint } from "../photoTools";
 import { HANDLE_PX } from "./boxLayer";
 
 export type Press =
-  | { kind: "draw"; start: ImagePoint; box: Box }
+  | {
+      kind: "draw";
+      start: ImagePoint;
+      box: Box;
+      /** What a release without a drag selects: the object pressed on, or none. */
+      pick: string | null;
+    }
   | {
       kind: "edit";
       id: string;
@@ -41,13 +50,18 @@ export function startPress(
     const from = [...bbox] as Box;
     return { kind: "edit", id, grip: how, start: at, from, box: from, moved: false };
   };
-  // A handle of the selected box first; then the object under the pointer (a smaller one
-  // inside the selected box too); then the selected box's inside; else a new box.
-  if (selected && grip && grip !== "move" && !shift)
-    return { press: edit(selected.id, selected.bbox, grip) };
-  if (object) return { press: edit(object.id, object.bbox, "move"), select: object.id };
-  if (selected && grip === "move" && !shift)
-    return { press: edit(selected.id, selected.bbox, "move") };
+  // A handle of the selected box first; then its inside, unless another object is under the
+  // pointer there (a pillow on the selected bed is selected by a click, drawn by a drag); else
+  // a new box.
+  if (selected && grip && !shift) {
+    const onOther = object !== undefined && object.id !== selected.id;
+    if (grip !== "move" || !onOther) return { press: edit(selected.id, selected.bbox, grip) };
+  }
   const box = boxFromCorners(at, at, context.width, context.height);
-  return { press: { kind: "draw", start: at, box }, select: null };
+  const pick = object?.id ?? null;
+  // Pressed on nothing: the selection goes at once; on an object: chosen on release.
+  return {
+    press: { kind: "draw", start: at, box, pick },
+    select: pick === null ? null : undefined,
+  };
 }
