@@ -50,7 +50,7 @@ async function revisionSaved(page: Page, sceneId: string, revision: number) {
   return getScene(page.request, sceneId);
 }
 
-test("a class changed with the picker, and an object deleted, come back with undo", async ({
+test("a class changed with the picker, and an object deleted, come back with undo and from the history", async ({
   page,
   request,
 }) => {
@@ -153,4 +153,23 @@ test("a class changed with the picker, and an object deleted, come back with und
   console.log(`delete to redrawn ${gone.toFixed(0)} ms, undo to redrawn ${back.toFixed(0)} ms`);
   expect(gone).toBeLessThan(HOLD_MS / 2);
   expect(back).toBeLessThan(HOLD_MS / 2);
+
+  // Deleted again, and the page reloaded (its undo history gone): the revision history's diff
+  // of that deletion brings the one object back, supports and all, changing nothing else.
+  await clickObject(page, target);
+  await page.keyboard.press("Delete");
+  doc = await revisionSaved(page, sceneId, start + 6);
+  expect(objectOf(doc, target)).toBeUndefined();
+  await page.reload();
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await page.getByTestId("history-toggle").click();
+  await page.getByTestId(`revision-diff-button-${start + 6}`).click();
+  const diff = page.getByTestId(`revision-diff-${start + 6}`);
+  await expect(diff).toContainText(`objects removed: ${target}`);
+  await diff.getByTestId(`restore-object-${target}`).click();
+  doc = await revisionSaved(page, sceneId, start + 7);
+  expect(objectOf(doc, target)).toEqual(objectOf(before, target));
+  expect(supportsOf(doc, target)).toEqual(supportsOf(before, target));
+  expect(objectOf(doc, dresser.id)?.class).toBe("shelves"); // the later change stays
+  await expect(page.getByTestId(`mask-${target}`)).toHaveCount(1);
 });

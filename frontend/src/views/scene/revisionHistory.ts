@@ -57,12 +57,38 @@ export function mountRevisionHistory(
     try {
       const after = await to();
       const before = from !== null && from >= 1 ? await revision(from) : null;
-      const lines = diffLines(before, after);
+      const lines = diffLines(before, after, (id) =>
+        before !== null ? restoreLink(id, before.revision) : null,
+      );
       const none = mode === "since" && lines.length === 0;
       box.replaceChildren(...(none ? [el("li", { text: "nothing has changed since" })] : lines));
     } catch (error) {
       box.replaceChildren(el("li", { text: `Could not load the diff: ${String(error)}` }));
     }
+  };
+
+  /** One removed object back as revision `from` had it (restore_object: one new revision,
+   * undoable), without reverting everything else that changed since. */
+  const restoreLink = (id: string, from: number): HTMLElement | null => {
+    if (session.object(id)) return null; // back in the scene already
+    const link = button("restore", {
+      className: "link-button",
+      testid: `restore-object-${id}`,
+      title: `Bring ${id} back as revision ${from} had it; nothing else changes`,
+      disabled: !session.editable,
+    });
+    link.onclick = async () => {
+      link.disabled = true;
+      note.textContent = "";
+      try {
+        editor.remember(await revision(from)); // shown at once, before the server answers
+        await editor.apply([{ kind: "restore_object", id, from_revision: from }], `restore ${id}`);
+      } catch (error) {
+        note.textContent = `Could not restore ${id}: ${errorText(error)}`;
+        link.disabled = false;
+      }
+    };
+    return link;
   };
 
   const revert = async (info: RevisionInfo, revertButton: HTMLButtonElement) => {

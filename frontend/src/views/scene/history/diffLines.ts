@@ -6,8 +6,13 @@ import { el } from "../../../dom";
 import { describeChange, diffScenes } from "../../../state/revisionDiff";
 import { plural } from "../../../state/sceneSession";
 
-/** What `after` changed from `before` (null: `after` is the imported scene). */
-export function diffLines(before: SceneDocument | null, after: SceneDocument): HTMLLIElement[] {
+/** What `after` changed from `before` (null: `after` is the imported scene); `restoreLink`
+ * gives a removed object's "restore" link (null: none, e.g. it is back in the scene). */
+export function diffLines(
+  before: SceneDocument | null,
+  after: SceneDocument,
+  restoreLink: (id: string) => HTMLElement | null = () => null,
+): HTMLLIElement[] {
   const diff = before
     ? diffScenes(before.scene, after.scene)
     : {
@@ -30,7 +35,17 @@ export function diffLines(before: SceneDocument | null, after: SceneDocument): H
       ? [el("li", { text: `objects added: ${diff.objectsAdded.join(", ")}` })]
       : []),
     ...(diff.objectsRemoved.length > 0
-      ? [el("li", { text: `objects removed: ${diff.objectsRemoved.join(", ")}` })]
+      ? [
+          el(
+            "li",
+            { attrs: { "data-removed": diff.objectsRemoved.join(" ") } },
+            "objects removed: ",
+            ...diff.objectsRemoved.flatMap((id, i) => {
+              const link = restoreLink(id);
+              return [i > 0 ? ", " : "", id, ...(link ? [" ", link] : [])];
+            }),
+          ),
+        ]
       : []),
     ...drawn.map((c) =>
       el("li", {
