@@ -178,9 +178,10 @@ surface-model: install-python
 calibrate-scale: install-python
 	$(PY) scripts/calibrate_scale.py
 
-# The room-fit test vectors shared by the Python and TypeScript tests.
+# The room-fit and object-colour test vectors shared by the Python and TypeScript tests.
 vectors:
 	$(PY) -m holiscene.twin_vectors.room_fit
+	$(PY) -m holiscene.twin_vectors.object_colours
 
 # The Relation Network's vectors (preprocessing + the default model's logits) shared by the
 # backend and the browser; run after changing the default model or the preprocessing.

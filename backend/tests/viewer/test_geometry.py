@@ -5,7 +5,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from holiscene.geometry.boxes import box_corners
-from holiscene.viewer.colours import class_rgb
 from holiscene.viewer.geometry import (
     ARROW_OVERSHOOT,
     MIN_ARROW_LENGTH,
@@ -86,13 +85,3 @@ def test_arrows_that_cannot_be_placed_are_skipped_with_a_reason() -> None:
 def test_nearest_wall_point() -> None:
     assert nearest_wall_point(ROOM, np.array([4.5, 0.3, 0.2])) == pytest.approx([5.0, 0.3, 0.2])
     assert nearest_wall_point(ROOM, np.array([2.0, 0.0, -1.2])) == pytest.approx([2.0, 0.0, -1.5])
-
-
-def test_class_colours_are_the_web_apps() -> None:
-    # Values of frontend/src/views/classColors.ts classRgb() for these classes.
-    assert class_rgb("wall") == (218, 47, 47)
-    assert class_rgb("chair") == (47, 190, 218)
-    assert class_rgb("table") == (90, 218, 47)
-    assert class_rgb("lamp") == (218, 47, 60)
-    assert class_rgb("otherprop") == (218, 47, 153)
-    assert class_rgb("not-a-class") == (128, 128, 128)

@@ -12,7 +12,7 @@ import viser.transforms as vtf
 from holiscene.geometry.camera import PinholeCamera
 from holiscene.shapes import SUPPORTED_CLASSES
 from holiscene.viewer import SceneViewer, ViewerInput, load_scene_path
-from holiscene.viewer.colours import class_rgb
+from holiscene.viewer.colours import object_colours
 from holiscene.viewer.geometry import floor_height, object_corners
 from holiscene.viewer.meshes import fills_box, glb_object_meshes
 from holiscene.viewer.scene_viewer import (
@@ -35,13 +35,15 @@ def test_ground_truth_scene_has_every_node(synthetic_folder: Path, open_viewer: 
     assert data.photo is not None and data.photo.shape == (480, 640, 3)
     viewer = open_viewer(data)
 
-    # One mesh per object, named by id, coloured by class, rebuilt from its MeshRef and
-    # filling its box; furniture with a library model is more than a box.
+    # One mesh per object, named by id, coloured as the page colours its mask, rebuilt from
+    # its MeshRef and filling its box; furniture with a library model is more than a box.
     assert set(viewer.objects) == {o.id for o in scene.objects}
+    colours = object_colours([o.id for o in scene.objects])
+    assert len(set(colours.values())) == len(scene.objects)
     for obj in scene.objects:
         node = viewer.objects[obj.id]
         assert node.mesh.name == f"/objects/{obj.id}"
-        assert tuple(node.mesh.color) == class_rgb(obj.cls)
+        assert tuple(node.mesh.color) == colours[obj.id]
         assert node.source == "library"
         corners = object_corners(obj)
         assert corners is not None

@@ -1,7 +1,8 @@
-"""Class colours of the viewer: the web app's palette, so a chair has one colour everywhere.
+"""Colours of the viewer: the web app's palette, so an object looks the same in both.
 
-A port of `frontend/src/views/classColors.ts` (golden-angle hue steps over the NYU-40 label
-order, HSL saturation 0.7, lightness 0.52). Keep the two in step. The GLB's own colours
+Objects are coloured by object, as the scene page colours their masks by default: a port of
+`frontend/src/views/objectColors.ts` (`objectColours`), held to it by
+shared_schema/vectors/object_colours.json. The GLB's own colours
 (`export.glb.class_colour`) are a hash of the class name; the app repaints them with this
 palette, and so does the viewer.
 """
@@ -9,12 +10,11 @@ palette, and so does the viewer.
 from __future__ import annotations
 
 import math
-
-from holiscene_schema import NYU40_CLASSES
+import re
+from collections.abc import Sequence
 
 Rgb = tuple[int, int, int]
 
-UNKNOWN_CLASS_RGB: Rgb = (128, 128, 128)
 _GOLDEN_ANGLE = 137.508
 
 
@@ -33,12 +33,42 @@ def _hsl_to_rgb(h: float, s: float, lightness: float) -> Rgb:
     return channel(0), channel(8), channel(4)
 
 
-# Keyed by NYU-40 class name; index + 1 is the NYU-40 label id.
-CLASS_RGB: dict[str, Rgb] = {
-    cls: _hsl_to_rgb((index * _GOLDEN_ANGLE) % 360.0, 0.7, 0.52)
-    for index, cls in enumerate(NYU40_CLASSES)
-}
+# The per-object palette: 32 slots, consecutive ones far apart in hue, two lightnesses.
+_OBJECT_LIGHTNESS = (0.55, 0.38)
+OBJECT_PALETTE: tuple[Rgb, ...] = tuple(
+    _hsl_to_rgb((k * _GOLDEN_ANGLE) % 360.0, 0.8, _OBJECT_LIGHTNESS[k % 2]) for k in range(32)
+)
+_NUMBERED = re.compile(r"^(.*?)([0-9]+)$")  # ASCII digits, as JavaScript's \d
 
 
-def class_rgb(cls: str) -> Rgb:
-    return CLASS_RGB.get(cls, UNKNOWN_CLASS_RGB)
+def _id_hash(text: str) -> int:
+    """FNV-1a over the UTF-16 code units, as JavaScript's charCodeAt sees a string."""
+    units = text.encode("utf-16-le")
+    value = 0x811C9DC5
+    for i in range(0, len(units), 2):
+        value ^= units[i] | (units[i + 1] << 8)
+        value = (value * 0x01000193) & 0xFFFFFFFF
+    return value
+
+
+def _preferred_slot(object_id: str) -> int:
+    """Ids in a series ("o0", "o1", ...) take consecutive slots, far apart in hue."""
+    numbered = _NUMBERED.match(object_id)
+    if numbered is None:
+        return _id_hash(object_id) % len(OBJECT_PALETTE)
+    return (_id_hash(numbered.group(1)) + int(numbered.group(2))) % len(OBJECT_PALETTE)
+
+
+def object_colours(ids: Sequence[str]) -> dict[str, Rgb]:
+    """Each object's colour, in the scene's order: its id's slot, or the next free one."""
+    used: set[int] = set()
+    colours: dict[str, Rgb] = {}
+    for object_id in ids:
+        slot = _preferred_slot(object_id)
+        for _ in range(len(OBJECT_PALETTE)):
+            if slot not in used:
+                break
+            slot = (slot + 1) % len(OBJECT_PALETTE)
+        used.add(slot)
+        colours[object_id] = OBJECT_PALETTE[slot]
+    return colours

@@ -3,7 +3,7 @@
 Scene tree (names are stable, tests and reviewers can rely on them):
   /room/floor, /room/walls, /room/edges   the layout's cuboid: floor, translucent walls and
                                           ceiling facing inwards, and its 12 edges
-  /objects/<id>                           each placed object's mesh, coloured by class
+  /objects/<id>                           each placed object's mesh, coloured as its mask
   /labels/<id>                            "<id> <class>" above each placed object
   /supports/<child id>                    one arrow per support, supporter -> supported
   /camera/photo                           the camera frustum with the photo on it
@@ -33,7 +33,7 @@ from numpy.typing import NDArray
 from ..export.glb import room_meshes
 from ..geometry.camera import FloatArray, PinholeCamera
 from ..learning.completion.scene_points import DepthPointsError, scene_depth_points
-from .colours import class_rgb
+from .colours import object_colours
 from .geometry import (
     box_edge_segments,
     object_corners,
@@ -194,6 +194,8 @@ class SceneViewer:
     def _add_objects(self) -> None:
         plan = object_meshes(self.scene, self.data.glb, self.data.models_dir)
         self.notes.extend(plan.notes)
+        # As the scene page colours each object's mask: one object, one colour in both views.
+        colours = object_colours([o.id for o in self.scene.objects])
         for obj in self.scene.objects:
             mesh = plan.meshes.get(obj.id)
             corners = object_corners(obj)
@@ -203,7 +205,7 @@ class SceneViewer:
                 f"/objects/{obj.id}",
                 mesh.vertices,
                 mesh.faces,
-                color=class_rgb(obj.cls),
+                color=colours[obj.id],
                 side="double",
                 flat_shading=True,
             )

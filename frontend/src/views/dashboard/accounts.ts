@@ -104,10 +104,13 @@ function newUserForm(report: Report, onAdded: () => Promise<void>): HTMLFormElem
   const form = el(
     "form",
     { className: "user-form", testid: "new-user-form" },
-    labelledField("Name", name, el("span", { className: "field-hint", text: NAME_RULE })),
+    labelledField("Name", name),
     labelledField("Role", role),
     labelledField("Password", password),
     create,
+    // Under the row, not under the name: inside the field it pushed the name's input above
+    // the role's and the password's.
+    el("p", { className: "field-hint user-form-hint", text: NAME_RULE }),
   );
   form.addEventListener("submit", async (event) => {
     event.preventDefault();
