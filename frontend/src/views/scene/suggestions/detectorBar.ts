@@ -39,12 +39,16 @@ export interface DetectorBarActions {
 }
 
 export interface DetectorBar {
+  /** The status and actions, above the photo: hidden until the first detection. */
   element: HTMLElement;
+  /** "Detect objects", for the photo's tool row (a row of its own pushed the photo down). */
+  detectButton: HTMLButtonElement;
   show(state: DetectorBarState): void;
 }
 
 export function detectorBar(actions: DetectorBarActions): DetectorBar {
   const detectButton = button("Detect objects", {
+    className: "detector-detect",
     testid: "detect-objects",
     title: `Find objects in the photo with the object detector, in this browser (${DETECT_KEY})`,
     onClick: actions.detect,
@@ -120,7 +124,6 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
   const element = el(
     "div",
     { className: "detector-bar", testid: "detector-bar" },
-    detectButton,
     actionRow,
     el("div", { className: "detector-status-row" }, statusLine, fainterButton, rejectedButton),
   );
@@ -129,8 +132,10 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
   let used = false;
   return {
     element,
+    detectButton,
     show({ busy, status, failed, editable, open, confident, fainter, rejected, chosen }) {
-      used ||= busy || open > 0;
+      used ||= busy || open > 0 || status !== "";
+      element.hidden = !used;
       actionRow.classList.toggle("is-unused", !used);
       detectButton.disabled = busy;
       fainterButton.hidden = fainter === 0;
