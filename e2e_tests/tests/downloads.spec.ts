@@ -6,7 +6,7 @@ import path from "node:path";
 import type { ImportResult, Scene, SceneSummary } from "@holiscene/schema";
 import type { Download, Page } from "@playwright/test";
 import { expect, test } from "@playwright/test";
-import { getScene, seedScene, T3D_5 } from "../helpers/api";
+import { getScene, postEdits, seedScene, T3D_5 } from "../helpers/api";
 import { importZip } from "../helpers/datasetImport";
 import { openScene } from "../helpers/photo";
 import { screenshotPath } from "../helpers/screenshots";
@@ -101,6 +101,18 @@ test("the scene page downloads scene.json, scene.glb and COCO JSON", async ({ pa
     if (Array.isArray(annotation.segmentation)) throw new Error("a mask became a polygon");
     checkRle(annotation.segmentation, annotation.area);
   }
+
+  // An object removed after the pipeline made the 3D scene: the menu says the file is older.
+  const current = await getScene(page.request, doc.scene_id);
+  const gone = current.scene.objects?.[0]?.id ?? "o0";
+  await postEdits(page.request, current, "e2e", [{ kind: "remove_object", id: gone }]);
+  await page.reload();
+  await expect(page.getByTestId("scene-title")).toHaveText("t3d-5 downloads");
+  await page.getByTestId("download-button").click();
+  await expect(page.getByTestId("download-glb")).toContainText(
+    `made at revision ${doc.revision}; since then 1 removed`,
+  );
+  await page.keyboard.press("Escape");
 
   // Escape closes the menu; a scene the pipeline has not placed has no scene.glb to offer.
   await page.getByTestId("download-button").click();

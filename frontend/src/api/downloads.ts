@@ -12,17 +12,18 @@ export const downloadUrls = {
   glb: (sceneId: string) => `${sceneUrl(sceneId)}/scene.glb`,
 };
 
-/** Whether the scene has a 3D scene yet; asks for its first bytes only. */
-export async function hasGlb(sceneId: string, signal?: AbortSignal): Promise<boolean> {
+/** The revision whose pipeline or placement run made the scene's 3D scene (the server's
+ * X-Glb-Revision), or null when there is none yet; asks for its first bytes only. */
+export async function glbRevision(sceneId: string, signal?: AbortSignal): Promise<number | null> {
   // A range probe of a binary file, where 404 is an answer, not an error: a plain fetch.
   const response = await fetch(downloadUrls.glb(sceneId), {
     headers: { Range: "bytes=0-3" },
     signal,
   });
   void response.body?.cancel(); // the answer itself is all we wanted
-  if (response.status === 404) return false;
+  if (response.status === 404) return null;
   if (!response.ok) throw new Error(`scene.glb: ${response.status} ${response.statusText}`);
-  return true;
+  return Number(response.headers.get("X-Glb-Revision") ?? Number.NaN);
 }
 
 /** Download the scenes as one zip (a folder per scene). */

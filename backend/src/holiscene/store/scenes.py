@@ -256,12 +256,15 @@ class SceneStore:
             row = self._row(session, scene_id)
             return self.files.folder(scene_id) / row.image_file
 
-    def glb_path(self, scene_id: str) -> Path | None:
+    def glb_revision(self, scene_id: str) -> int | None:
+        """The revision whose pipeline (or placement) run made the scene's GLB; None: none.
+        Edits after it are not in the file."""
         with Session(self.engine) as session:
-            row = self._row(session, scene_id)
-            if row.glb_revision is None:
-                return None
-            return self.files.glb_path(scene_id, row.glb_revision)
+            return self._row(session, scene_id).glb_revision
+
+    def glb_path(self, scene_id: str) -> Path | None:
+        revision = self.glb_revision(scene_id)
+        return None if revision is None else self.files.glb_path(scene_id, revision)
 
     # -- writing -------------------------------------------------------------------------
 

@@ -115,6 +115,17 @@ def test_scene_glb_is_a_named_file_and_answers_a_range(client: TestClient, t3d5:
     plain = _import(client, t3d5, "plain")
     first = client.get(f"/api/scenes/{placed}/scene.glb", headers={"Range": "bytes=0-3"})
     assert first.status_code == 206 and first.content == b"glTF"
+    # Which revision's run made it: the pipeline's; an edit after it makes none.
+    made = client.get(f"/api/scenes/{placed}").json()["revision"]
+    assert first.headers["x-glb-revision"] == str(made)
+    doc = client.get(f"/api/scenes/{placed}").json()
+    child = doc["scene"]["objects"][0]["id"]
+    edit = {"kind": "set_support", "child": child, "parent": "floor", "type": "below"}
+    body = {"base_revision": made, "author": "ann", "edits": [edit]}
+    assert client.post(f"/api/scenes/{placed}/edits", json=body).status_code == 200
+    again = client.get(f"/api/scenes/{placed}/scene.glb", headers={"Range": "bytes=0-3"})
+    assert again.headers["x-glb-revision"] == str(made)
+    assert client.get(f"/api/scenes/{placed}").json()["revision"] == made + 1
     whole = client.get(f"/api/scenes/{placed}/scene.glb")
     assert 'filename="placed_room.glb"' in whole.headers["content-disposition"]
     assert whole.content[:4] == b"glTF" and len(whole.content) > 1000

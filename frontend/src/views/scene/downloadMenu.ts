@@ -1,8 +1,11 @@
 // The scene page's "Download" menu: the saved scene as scene.json, the 3D scene as scene.glb
 // (once the pipeline made one) and the photo's objects as COCO JSON.
-import { downloadUrls, hasGlb } from "../../api/downloads";
+import type { SceneDocument } from "@holiscene/schema";
+import { api } from "../../api/client";
+import { downloadUrls, glbRevision } from "../../api/downloads";
 import { el } from "../../dom";
 import "./downloadMenu.css";
+import { glbStaleness } from "./glbStaleness";
 
 function item(testid: string, href: string, label: string, hint: string): HTMLAnchorElement {
   return el(
@@ -15,11 +18,13 @@ function item(testid: string, href: string, label: string, hint: string): HTMLAn
 
 /**
  * `mayHaveGlb`: whether the revision shown can have a 3D scene; when it cannot, the menu says
- * so without asking the server (whose 404 the console would show as an error).
+ * so without asking the server (whose 404 the console would show as an error). `shown`: the
+ * revision on the page, against which the 3D scene's age is told.
  */
 export function downloadMenu(
   sceneId: string,
   mayHaveGlb: () => boolean,
+  shown: () => SceneDocument | null,
 ): { element: HTMLElement; dispose: () => void } {
   const glb = item(
     "download-glb",
@@ -32,6 +37,8 @@ export function downloadMenu(
     testid: "download-no-glb",
     text: "3D scene (scene.glb): none yet; the pipeline makes it",
   });
+  const glbHint = glb.querySelector(".download-hint") as HTMLElement;
+  const freshHint = glbHint.textContent ?? "";
   glb.hidden = noGlb.hidden = true;
   const list = el(
     "div",
@@ -68,13 +75,23 @@ export function downloadMenu(
       return;
     }
     probe = new AbortController();
-    hasGlb(sceneId, probe.signal)
-      .then((has) => {
-        glb.hidden = !has;
-        noGlb.hidden = has;
+    const signal = probe.signal;
+    const current = shown();
+    glbRevision(sceneId, signal)
+      .then(async (made) => {
+        glb.hidden = made === null;
+        noGlb.hidden = made !== null;
+        glbHint.textContent = freshHint;
+        glb.classList.remove("is-stale");
+        if (made === null || current === null || !(made < current.revision)) return;
+        const stale = glbStaleness(await api.getRevision(sceneId, made, signal), current);
+        if (stale) {
+          glbHint.textContent = stale;
+          glb.classList.add("is-stale");
+        }
       })
       .catch(() => {
-        glb.hidden = noGlb.hidden = true;
+        if (!signal.aborted) glb.hidden = noGlb.hidden = true;
       });
   });
   list.addEventListener("click", (event) => {

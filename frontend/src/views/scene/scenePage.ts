@@ -31,7 +31,11 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
   const content = el("div", { className: "scene-grid" });
   let shown: SceneSession | null = null; // the scene on the page, once loaded
   const viser = viserLink(sceneId);
-  const downloads = downloadMenu(sceneId, () => shown === null || mayHaveGlb(shown.doc));
+  const downloads = downloadMenu(
+    sceneId,
+    () => shown === null || mayHaveGlb(shown.doc),
+    () => shown?.doc ?? null,
+  );
   container.replaceChildren(
     el(
       "div",
