@@ -83,11 +83,6 @@ export function mountObjectSuggestions(
   });
   const bar = detectorBar(actions);
   photoBody.insertBefore(bar.element, photoBody.querySelector(".photo-box"));
-  // The button joins the photo's tools, after Select, Box, ... and the active tool's options
-  // (or heads the bar without them).
-  const tools = photoBody.querySelector('[data-testid="photo-tools"] .photo-tool-options');
-  if (tools) tools.after(bar.detectButton);
-  else bar.element.prepend(bar.detectButton);
 
   const draw = () => {
     const open = state.keepSelection();
@@ -199,6 +194,5 @@ export function mountObjectSuggestions(
     removeKeys();
     boxes.layer.remove();
     bar.element.remove();
-    bar.detectButton.remove();
   };
 }

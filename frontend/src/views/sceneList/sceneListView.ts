@@ -139,7 +139,7 @@ export function mountSceneList(container: HTMLElement): () => void {
           ? ""
           : state
             ? `No scene is ${stateLabel(state)}.`
-            : "No scenes yet: import a photo above.";
+            : "No scenes yet: import a photo below.";
       const running = scenes.some((s) => s.latest_job && !isFinished(s.latest_job));
       const wait = running ? REFRESH_WHILE_RUNNING_MS : REFRESH_IDLE_MS;
       timer = window.setTimeout(() => void refresh(true), wait);
@@ -151,8 +151,8 @@ export function mountSceneList(container: HTMLElement): () => void {
     el(
       "div",
       { className: "list-page" },
-      uploadForm(abort.signal, () => void refresh()),
-      datasetImportForm(abort.signal, () => void refresh()),
+      // The scenes first: the work a returning annotator or reviewer came for (below the two
+      // import forms it started under the fold at 1280x800); new photos and datasets after.
       el(
         "section",
         { className: "card" },
@@ -162,9 +162,12 @@ export function mountSceneList(container: HTMLElement): () => void {
           el("h2", { text: "Scenes" }),
           el("a", {
             className: "header-link",
-            text: "Relation Network models",
+            text: "Models",
             testid: "models-link",
-            attrs: { href: "#/models" },
+            attrs: {
+              href: "#/models",
+              title: "The Relation Network and the object detector: retrain, compare, roll back",
+            },
           }),
         ),
         el(
@@ -177,6 +180,8 @@ export function mountSceneList(container: HTMLElement): () => void {
         status,
         el("div", { className: "table-scroll" }, table),
       ),
+      uploadForm(abort.signal, () => void refresh()),
+      datasetImportForm(abort.signal, () => void refresh()),
     ),
   );
   filter.addEventListener("change", () => void refresh());

@@ -39,16 +39,12 @@ export interface DetectorBarActions {
 }
 
 export interface DetectorBar {
-  /** The status and actions, above the photo: hidden until the first detection. */
   element: HTMLElement;
-  /** "Detect objects", for the photo's tool row (a row of its own pushed the photo down). */
-  detectButton: HTMLButtonElement;
   show(state: DetectorBarState): void;
 }
 
 export function detectorBar(actions: DetectorBarActions): DetectorBar {
   const detectButton = button("Detect objects", {
-    className: "detector-detect",
     testid: "detect-objects",
     title: `Find objects in the photo with the object detector, in this browser (${DETECT_KEY})`,
     onClick: actions.detect,
@@ -121,21 +117,23 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
   // move under the person's pointer when a detection ends): the actions keep their place when
   // there is nothing to act on, and the status is one line below them (its whole text in its
   // title), unless it reports a failure.
+  // One line until the first detection: the button with the status beside it (the photo's
+  // tool row has no room for the button: the zoom controls appear there); the actions take a
+  // line of their own below from then on.
   const element = el(
     "div",
     { className: "detector-bar", testid: "detector-bar" },
-    actionRow,
+    detectButton,
     el("div", { className: "detector-status-row" }, statusLine, fainterButton, rejectedButton),
+    actionRow,
   );
   // Until the first detection, nothing can appear there: no room is kept (a band of blank
   // space above the photo otherwise).
   let used = false;
   return {
     element,
-    detectButton,
     show({ busy, status, failed, editable, open, confident, fainter, rejected, chosen }) {
-      used ||= busy || open > 0 || status !== "";
-      element.hidden = !used;
+      used ||= busy || open > 0;
       actionRow.classList.toggle("is-unused", !used);
       detectButton.disabled = busy;
       fainterButton.hidden = fainter === 0;
