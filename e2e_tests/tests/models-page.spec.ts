@@ -106,4 +106,10 @@ test("the detector list says which network each version is", async ({ page }) =>
   }
   const active = detectors.find((m) => m.active);
   expect(active?.name).toContain("PicoDet");
+  // A converted detector has no validation figure: its "—" says why.
+  const converted = detectors.find((m) => m.validation_accuracy === null);
+  if (!converted) throw new Error("no converted detector in the registry");
+  const validation = page.getByTestId(`model-row-${converted.version}`).locator("td").nth(3);
+  await expect(validation).toHaveText("—");
+  await expect(validation).toHaveAttribute("title", /^Not trained here/);
 });

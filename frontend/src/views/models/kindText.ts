@@ -10,6 +10,8 @@ export interface KindText {
   /** What the held-out figures count, one and many: labelled objects, confirmed boxes. */
   heldoutItems: [one: string, many: string];
   validationColumn: string;
+  /** Why a model has no validation figure (the tooltip of its "—"). */
+  noValidation: string;
   retrainHint: string;
   epochs: [label: string, placeholder: string];
   synthetic: [label: string, placeholder: string];
@@ -25,6 +27,7 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
     heldoutColumn: "Held-out accuracy",
     heldoutItems: ["labelled object", "labelled objects"],
     validationColumn: "Validation accuracy",
+    noValidation: "No validation figure was recorded with this model.",
     retrainHint:
       "Trains a new Relation Network on the synthetic scenes and on every scene whose supports " +
       "a person set. A fixed fifth of those scenes is held out: the new model becomes active " +
@@ -42,6 +45,10 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
     heldoutColumn: "Held-out mAP@0.5 · recall",
     heldoutItems: ["confirmed box", "confirmed boxes"],
     validationColumn: "Validation mAP@0.5",
+    noValidation:
+      "Not trained here: a pretrained detector converted to ONNX, with no validation rooms of " +
+      "this project. docs/benchmarks.md compares the detectors on real photos; a retrain " +
+      "compares on your held-out scenes.",
     retrainHint:
       "Fine-tunes a new detector on synthetic rooms and on every scene whose boxes a person " +
       "confirmed: drawn, given with the photo, accepted suggestions, or all of a scene a " +

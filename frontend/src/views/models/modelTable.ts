@@ -120,7 +120,10 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
         }),
       ),
       el("td", { text: heldoutText(model, text) }),
-      el("td", { text: percent(model.validation_accuracy) }),
+      el("td", {
+        text: percent(model.validation_accuracy),
+        attrs: { title: model.validation_accuracy === null ? text.noValidation : undefined },
+      }),
       el("td", {
         text:
           model.training_scenes + model.heldout_scenes > 0

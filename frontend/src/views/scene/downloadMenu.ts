@@ -67,8 +67,10 @@ export function downloadMenu(
   let probe: AbortController | null = null;
   // Asked on every opening: a pipeline run or "Re-place objects" may have made one since.
   element.addEventListener("toggle", () => {
-    probe?.abort();
+    // A check still running when the menu closes finishes unseen (aborting it left a
+    // net::ERR_ABORTED in the console on every quick close); a new opening asks again.
     if (!element.open) return;
+    probe?.abort();
     if (!mayHaveGlb()) {
       glb.hidden = true;
       noGlb.hidden = false;
