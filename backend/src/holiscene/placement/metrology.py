@@ -372,8 +372,10 @@ class HeightMeter:
             return self._hanging(lines, prior)
         return self._attached(obj_id, lines, parent, prior)
 
-    def _prior(self, prior: Prior, base: float, reason: str) -> HeightEstimate:
-        return HeightEstimate(prior[0], base, "prior", reason)
+    def _prior(
+        self, prior: Prior, base: float, reason: str, measured: float | None = None
+    ) -> HeightEstimate:
+        return HeightEstimate(prior[0], base, "prior", reason, measured)
 
     def _checked(
         self, height: float, base: float, prior: Prior, lower_bound: bool
@@ -387,7 +389,7 @@ class HeightMeter:
                 # A negative or no value says the measurement failed, not that the object is
                 # tiny: shown as such, not as a number a reviewer would puzzle over.
                 return self._prior(prior, base, "no positive height measured")
-            return HeightEstimate(prior[0], base, "prior", OUTSIDE_PRIOR, float(height))
+            return self._prior(prior, base, OUTSIDE_PRIOR, float(height))
         return HeightEstimate(height, base, "measured")
 
     def _standing(

@@ -256,15 +256,16 @@ class SceneStore:
             row = self._row(session, scene_id)
             return self.files.folder(scene_id) / row.image_file
 
-    def glb_revision(self, scene_id: str) -> int | None:
-        """The revision whose pipeline (or placement) run made the scene's GLB; None: none.
-        Edits after it are not in the file."""
+    def glb_file(self, scene_id: str) -> tuple[int, Path] | None:
+        """The scene's GLB and the revision whose pipeline (or placement) run made it (edits
+        after it are not in the file); None: none yet."""
         with Session(self.engine) as session:
-            return self._row(session, scene_id).glb_revision
+            revision = self._row(session, scene_id).glb_revision
+        return None if revision is None else (revision, self.files.glb_path(scene_id, revision))
 
     def glb_path(self, scene_id: str) -> Path | None:
-        revision = self.glb_revision(scene_id)
-        return None if revision is None else self.files.glb_path(scene_id, revision)
+        made = self.glb_file(scene_id)
+        return None if made is None else made[1]
 
     # -- writing -------------------------------------------------------------------------
 

@@ -1,20 +1,16 @@
 // Whether the downloadable scene.glb shows the scene as it is now: the file is what the last
 // pipeline or placement run made, so objects added, removed or redrawn since, or a room moved
-// since, are not in it. The Download menu says so beside the file.
+// since, are not in it. The Download menu says so beside the file, counted as the 3D panel's
+// notice counts them (scene3d/placementNotice.ts).
 import type { SceneDocument } from "@holiscene/schema";
 import { diffScenes } from "../../state/revisionDiff";
-import { plural } from "../../state/sceneSession";
+import { changesSincePlacement, describeChanges } from "../scene3d/placementNotice";
 
 /** What the GLB made at revision `made` lacks of `current` (null: nothing it shows changed). */
 export function glbStaleness(made: SceneDocument, current: SceneDocument): string | null {
-  const diff = diffScenes(made.scene, current.scene);
-  const redrawn = diff.objectsChanged.filter((c) => c.drawn.length > 0).length;
-  const parts = [
-    diff.objectsAdded.length > 0 && `${plural(diff.objectsAdded.length, "object")} added`,
-    diff.objectsRemoved.length > 0 && `${diff.objectsRemoved.length} removed`,
-    redrawn > 0 && `${redrawn} changed`,
-    diff.layoutChanged && "the room moved",
-  ].filter((part): part is string => typeof part === "string");
+  const objects = describeChanges(changesSincePlacement(made.scene.objects, current.scene.objects));
+  const moved = diffScenes(made.scene, current.scene).layoutChanged;
+  const parts = [objects, moved ? "the room moved" : ""].filter((part) => part !== "");
   if (parts.length === 0) return null;
   return (
     `made at revision ${made.revision}; since then ${parts.join(", ")}: ` +

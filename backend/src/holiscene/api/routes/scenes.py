@@ -233,20 +233,21 @@ def get_depth_points(
 # A revision's points never change (a revision is never rewritten and its depth file came
 # with the import), while each request would run the completion network on every object: the
 # last few answers are kept, by depth file (and its time, should it be replaced) and revision.
+_recent_depth_points: RecentValues[tuple[str, int, int], DepthPoints] = RecentValues(8)
+
+
 # The revision whose run made the GLB, on every scene.glb answer.
 GLB_REVISION_HEADER = "X-Glb-Revision"
-
-_recent_depth_points: RecentValues[tuple[str, int, int], DepthPoints] = RecentValues(8)
 
 
 @router.get("/{scene_id}/scene.glb", responses=_ERRORS)
 def get_glb(scene_id: str, workbench: WorkbenchDep) -> FileResponse:
     """The scene's 3D scene as the last pipeline or placement run made it; its header
     `X-Glb-Revision` names that revision (edits since are not in the file)."""
-    revision = workbench.scenes.glb_revision(scene_id)
-    path = None if revision is None else workbench.scenes.files.glb_path(scene_id, revision)
-    if path is None or not path.is_file():
+    made = workbench.scenes.glb_file(scene_id)
+    if made is None or not made[1].is_file():
         raise SceneNotFoundError(f"scene {scene_id} has no 3D scene yet: run the pipeline")
+    revision, path = made
     name = file_stem(workbench.scenes.summary(scene_id).name, scene_id)
     return FileResponse(
         path,

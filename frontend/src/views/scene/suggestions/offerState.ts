@@ -52,8 +52,7 @@ export class OfferState {
 
   /** How many of the shown boxes are left out only because they were rejected before. */
   rejectedHidden(): number {
-    const offers = this.offers.filter((o) => o.score >= this.minScore);
-    return openOffers(offers, this.objects()).length - this.open().length;
+    return this.openAbove(this.minScore, []).length - this.open().length;
   }
 
   /** Offer the rejected boxes again (a rejection was a mistake). */
@@ -96,8 +95,8 @@ export class OfferState {
     return open;
   }
 
-  private openAbove(score: number): Offer[] {
+  private openAbove(score: number, rejected = this.rejected): Offer[] {
     const offers = this.offers.filter((o) => o.score >= score);
-    return openOffers(offers, this.objects(), this.rejected);
+    return openOffers(offers, this.objects(), rejected);
   }
 }
