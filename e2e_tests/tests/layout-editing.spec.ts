@@ -397,7 +397,11 @@ test("the camera's height set by hand scales the room about the camera, undoes a
   const meta = page.getByTestId("scene-meta");
   await expect(meta).toContainText(`camera ${estimated.toFixed(2)} m high (estimated)`);
   await expect(meta).toHaveAttribute("title", /scale from .*about ±\d+%/);
+  // Editing adds a line under the layout buttons; the buttons themselves stay where they are.
+  const replaceBefore = await page.getByTestId("replace-objects").boundingBox();
   await page.getByTestId("layout-toggle").click();
+  await expect(page.getByTestId("camera-height-field")).toBeVisible();
+  expect(await page.getByTestId("replace-objects").boundingBox()).toEqual(replaceBefore);
   await expect(field).toHaveValue(estimated.toFixed(2));
   // Its help says where the pipeline's scale came from, and how sure it is.
   await expect(page.getByTestId("camera-height-field")).toHaveAttribute(

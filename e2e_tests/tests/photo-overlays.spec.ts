@@ -261,6 +261,17 @@ test("a real photo: labels apart, sources, 3D box confidences and mesh sources i
   }
   const unmeshed = doc.scene.objects?.find((o) => !o.mesh && o.class !== "floor");
   if (unmeshed) await expect(page.getByTestId(`object-mesh-${unmeshed.id}`)).toHaveCount(0);
+  // Little above the photo: the panel's heading shares the layout buttons' line, and the
+  // arrows' legend is under the photo, like a figure's caption.
+  const heading = await page.getByTestId("photo-panel").locator("h2").boundingBox();
+  const layoutButton = await page.getByTestId("layout-toggle").boundingBox();
+  const photo = await page.getByTestId("photo").boundingBox();
+  const legend = await page.getByTestId("arrow-legend").boundingBox();
+  if (!heading || !layoutButton || !photo || !legend)
+    throw new Error("a part of the photo panel is not shown");
+  expect(heading.y).toBeLessThan(layoutButton.y + layoutButton.height);
+  expect(heading.y + heading.height).toBeGreaterThan(layoutButton.y);
+  expect(legend.y).toBeGreaterThanOrEqual(photo.y + photo.height);
   await page.getByTestId("photo-panel").screenshot({
     path: screenshotPath("photo-real-labels.png"),
   });

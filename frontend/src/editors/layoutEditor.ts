@@ -110,18 +110,20 @@ function mountLayoutEditor(
 
   bar.classList.add("layout-bar");
   bar.dataset.testid = "layout-bar";
+  // The buttons keep their line; what editing adds (the camera's height, the room's figures)
+  // comes on a line of its own below them, so the buttons do not move when editing starts.
+  const details = el("div", { className: "layout-row" }, heightField.element, status);
   bar.replaceChildren(
     el(
       "div",
       { className: "layout-row" },
       toggle,
-      heightField.element,
-      status,
       el("span", { className: "spacer" }),
       reset,
       save,
       replace,
     ),
+    details,
     progress.element,
   );
 
@@ -139,6 +141,7 @@ function mountLayoutEditor(
     replace.disabled = !editable || running || saving || draft.dirty || !draft.hasStoredRoom;
     const { text, alert } = layoutStatus(draft, session.saveState, message);
     status.textContent = text;
+    details.hidden = heightField.element.hidden && text === "";
     status.classList.toggle("is-alert", alert);
     if (alert) status.setAttribute("role", "alert");
     else status.removeAttribute("role");

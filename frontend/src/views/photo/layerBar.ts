@@ -1,5 +1,6 @@
-// The row above the photo: a checkbox (and key) per overlay layer, the mask style controls
-// and the arrows' colour legend; for a photo with depth, a checkbox that shows the depth over it.
+// The row above the photo: a checkbox (and key) per overlay layer and the mask style controls;
+// for a photo with depth, a checkbox that shows the depth over it. The arrows' legend goes under
+// the photo, as a figure's caption (above it, its two lines pushed the photo down).
 import { el } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
 import { maskStyleControls } from "./maskStyle";
@@ -14,7 +15,7 @@ function toggle(label: string, testid: string, onChange: (on: boolean) => void, 
   return { input, label: el("label", { className: "toggle" }, input, label) };
 }
 
-function legend(): HTMLElement {
+export function arrowLegend(): HTMLElement {
   const item = (className: string, text: string) =>
     el(
       "span",
@@ -24,7 +25,7 @@ function legend(): HTMLElement {
     );
   return el(
     "div",
-    { className: "legend", attrs: { "aria-label": "Arrow colours" } },
+    { className: "legend", testid: "arrow-legend", attrs: { "aria-label": "Arrow colours" } },
     item("swatch--below", "supported from below"),
     item("swatch--behind", "from behind"),
     item("swatch--floor", "floor"),
@@ -77,7 +78,6 @@ export function layerBar(
     // Beside its toggle, not over the photo, where it would hide labels and masks.
     depth && depthKey?.element,
     styleControls.element,
-    legend(),
   );
   return {
     element,

@@ -1,5 +1,5 @@
 // The photo with its overlays: masks, support arrows, labels; hover and click pick objects.
-// Its parts: photoSvg (the photo and its layers), layerBar (layer toggles, mask style, legend),
+// Its parts: photoSvg (the photo and its layers), layerBar (layer toggles, mask style),
 // photoOverlays (what the layers show), photoZoom, depthKey (the depth overlay's colours), and
 // the editors' tools on the photo.
 import { el } from "../../dom";

@@ -15,6 +15,7 @@ import { getAuthor } from "../../state/author";
 import { startAutosave } from "../../state/autosave";
 import { ObjectEditor } from "../../state/objectEditor";
 import type { SceneSession } from "../../state/sceneSession";
+import { arrowLegend } from "../photo/layerBar";
 import { mountPhotoView } from "../photo/photoView";
 import { mountPlacementNotice } from "../scene3d/placementNotice";
 import { mountScene3d } from "../scene3d/scene3dView";
@@ -54,7 +55,8 @@ export function mountSceneWorkbench(
   const workflow = el("div");
   editor.body.append(workflow, saveBar, suggestions, table, history);
   const edgeInfo = el("div");
-  photo.element.append(edgeInfo);
+  // The legend last: the line about the selection belongs right under the photo.
+  photo.element.append(edgeInfo, arrowLegend());
   const banner = readOnlyBanner(session);
   const warnings = pipelineWarningsPanel(session);
   content.append(
