@@ -124,10 +124,17 @@ test("edits whose save failed survive a closed tab and are offered back", async 
   await expect(banner).toBeVisible();
   await expect(banner).toContainText("o3: on wall (behind)");
   await again.screenshot({ path: screenshotPath("recovery-offered.png") });
+  // Submitting now would strand the offered edit: it waits until it is restored or discarded.
+  await again.getByTestId("workflow-take").click();
+  const submit = again.getByTestId("workflow-submit");
+  await expect(submit).toBeVisible();
+  await expect(submit).toBeDisabled();
+  await expect(submit).toHaveAttribute("title", /Restore or discard the unsaved changes/);
   await again.keyboard.press("Shift+U");
   await expect(banner).toBeHidden();
   await expect(again.getByTestId("arrow-o3")).toHaveAttribute("data-parent", "wall");
   await autosaved(again);
+  await expect(submit).toBeEnabled();
   expect(supportOf(await getScene(request, seeded.scene_id), "o3")).toMatchObject({
     parent: "wall",
     type: "behind",

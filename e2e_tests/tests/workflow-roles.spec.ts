@@ -32,18 +32,24 @@ async function workflowOf(request: APIRequestContext, sceneId: string): Promise<
   return (await (await request.get(`/api/scenes/${sceneId}/workflow`)).json()) as SceneWorkflow;
 }
 
-/** Change one object's supporter in the editor and wait until it is saved. */
-async function correctASupporter(page: Page, request: APIRequestContext, sceneId: string) {
+/** Change one object's supporter in the editor (not saved yet). */
+async function correctASupporterUnsaved(page: Page, request: APIRequestContext, sceneId: string) {
   const doc = (await (await request.get(`/api/scenes/${sceneId}`)).json()) as SceneDocument;
   const supports = doc.scene.supports ?? [];
   const child = supports.find((s) => s.parent !== "floor" && s.source === "auto") ?? supports[0];
   if (!child) throw new Error(`scene ${sceneId} has no supports to correct`);
   const target = child.parent === "floor" ? "wall" : "floor";
   await page.getByTestId(`supporter-select-${child.child}`).selectOption(target);
+  return { child: child.child, target };
+}
+
+/** Change one object's supporter in the editor and wait until it is saved. */
+async function correctASupporter(page: Page, request: APIRequestContext, sceneId: string) {
+  const { child, target } = await correctASupporterUnsaved(page, request, sceneId);
   await page.keyboard.press("Control+s"); // edits also save by themselves after a pause
   await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
-  await expect(page.getByTestId(`supporter-select-${child.child}`)).toHaveValue(target);
-  return child.child;
+  await expect(page.getByTestId(`supporter-select-${child}`)).toHaveValue(target);
+  return child;
 }
 
 /**
@@ -201,7 +207,25 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   );
   await page.getByTestId("workflow-take").click();
   await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
-  await correctASupporter(page, admin, second.id);
+  // An admin sets the annotator's password (the same one, for the steps below), which ends
+  // their session: the next save is refused, they log in again over the page, their name
+  // filled in, and the edit is saved by itself after the login.
+  const reset = await admin.post(`/api/users/${ANNOTATOR.name}/password`, {
+    data: { password: ANNOTATOR.password },
+  });
+  expect(reset.status()).toBe(204);
+  const edited = await correctASupporterUnsaved(page, admin, second.id);
+  await page.keyboard.press("Control+s");
+  await expect(page.getByTestId("login-overlay-reason")).toContainText("password was changed");
+  await expect(page.getByTestId("login-name")).toHaveValue(ANNOTATOR.name);
+  await page.getByTestId("login-password").fill(ANNOTATOR.password);
+  await page.getByTestId("login-submit").click();
+  await expect(page.getByTestId("login-overlay")).toHaveCount(0);
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
+  const afterLogin = (await (await admin.get(`/api/scenes/${second.id}`)).json()) as SceneDocument;
+  expect(afterLogin.scene.supports?.find((s) => s.child === edited.child)?.parent).toBe(
+    edited.target,
+  );
   await page.locator("body").click({ position: { x: 5, y: 5 } }); // keys go to the page
   await page.keyboard.press("Shift+Enter");
   await expect(page.getByTestId("workflow-state")).toHaveText("submitted");

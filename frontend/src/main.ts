@@ -148,11 +148,15 @@ function loginOverPage(reason: string | null): void {
     inner,
   );
   document.body.append(overlay);
-  mountLoginPage(inner, (user) => {
-    overlay.remove();
-    setCurrentUser(user);
-    if (user.name !== before?.name) remount(); // someone else: show their view
-  });
+  mountLoginPage(
+    inner,
+    (user) => {
+      overlay.remove();
+      setCurrentUser(user);
+      if (user.name !== before?.name) remount(); // someone else: show their view
+    },
+    before?.name,
+  );
 }
 
 sessionEvents.onUnauthorized = (reason) => {

@@ -1,9 +1,11 @@
 // Autosave's timing on a stand-in session (the real one needs a server to save to): it saves
 // after the idle time, waits again after each edit, stops on a conflict, retries a failed save
 // but not a refused one, holds while asked to or while the scene is read only, and saves once
-// more when the page leaves.
+// more when the page leaves, and sends a save refused for an ended session once the person has
+// logged in again.
 import { afterEach, beforeEach, describe, expect, it, vi } from "vitest";
 import { startAutosave } from "./autosave";
+import { setCurrentUser } from "./currentUser";
 import type { Change, SaveState, SceneSession } from "./sceneSession";
 
 class StandIn {
@@ -91,6 +93,20 @@ describe("autosave", () => {
     vi.advanceTimersByTime(1);
     expect(session.saves).toBe(2);
     session.settle({ kind: "error", message: "not allowed", retry: false });
+    vi.advanceTimersByTime(60_000);
+    expect(session.saves).toBe(2);
+  });
+
+  it("sends a save refused because the session ended once the person has logged in again", () => {
+    session.edit();
+    vi.advanceTimersByTime(1000);
+    session.settle({ kind: "error", message: "log in first", retry: false });
+    vi.advanceTimersByTime(60_000);
+    expect(session.saves).toBe(1);
+    setCurrentUser({ name: "ann", role: "annotator", local_mode: false });
+    vi.advanceTimersByTime(1000);
+    expect(session.saves).toBe(2);
+    setCurrentUser(null); // logging out sends nothing
     vi.advanceTimersByTime(60_000);
     expect(session.saves).toBe(2);
   });

@@ -2,7 +2,9 @@
 // the wait), again when edits were made during a save, and once more when the page leaves.
 // A conflict stops it until the user merges or reloads; a save that failed on the way is
 // retried, one the server refused (e.g. not allowed) waits for the user's next edit, or for
-// the scene to be editable again. Nothing is sent while the scene is read only.
+// the scene to be editable again, or for the person to log in again (a save refused because
+// the session ended is sent once they have). Nothing is sent while the scene is read only.
+import { onCurrentUserChange } from "./currentUser";
 import type { SceneSession } from "./sceneSession";
 
 export interface AutosaveOptions {
@@ -69,9 +71,13 @@ export function startAutosave(session: SceneSession, options: AutosaveOptions): 
       if (state.retry) schedule(retry);
     } else if (state.kind === "dirty" || state.kind === "saved") schedule(delay);
   });
+  const stopHearingLogins = onCurrentUserChange((user) => {
+    if (user) schedule(delay);
+  });
   schedule(delay);
   return () => {
     unsubscribe();
+    stopHearingLogins();
     cancel();
     // Leaving the scene: try once more now; the draft in localStorage stays until it lands.
     if (canSave()) void session.save(options.author());

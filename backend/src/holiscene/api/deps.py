@@ -78,11 +78,15 @@ def current_user(request: Request, workbench: WorkbenchDep) -> Actor:
             return Actor(user.name, user.role)
     if local_mode(workbench):  # cross-site writes: refused before (request_origin.py)
         return Actor(LOCAL_USER, "admin", local=True)
-    raise HTTPException(
-        401,
-        "log in first (your session may have expired)" if token else "log in first",
-        headers={"WWW-Authenticate": "Bearer"},
-    )
+    raise HTTPException(401, login_needed(token), headers={"WWW-Authenticate": "Bearer"})
+
+
+def login_needed(token: str | None) -> str:
+    """Why a request without a working session is refused. A token that opens nothing was
+    closed: by logging out, or by a new password, which ends every session of its user."""
+    if token is None:
+        return "log in first"
+    return "log in first (your session has ended: you logged out, or your password was changed)"
 
 
 def require_role(role: Role) -> Callable[[Actor], Awaitable[Actor]]:

@@ -17,7 +17,7 @@ from starlette.types import ASGIApp, Receive, Scope, Send
 
 from ..store.users import SessionEndedError
 from .asgi_answer import send_json_error
-from .deps import local_mode, session_token
+from .deps import local_mode, login_needed, session_token
 
 
 class UploadLogin:
@@ -48,4 +48,4 @@ def _why_not_logged_in(request: Request) -> str | None:
             return str(ended)
     if local_mode(workbench):
         return None
-    return "log in first (your session may have expired)" if token else "log in first"
+    return login_needed(token)

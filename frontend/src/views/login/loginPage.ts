@@ -5,9 +5,11 @@ import { authApi } from "../../api/workflow";
 import { button, el, hiddenErrorAlert, labelledField } from "../../dom";
 import "../workflow/workflow.css";
 
+/** `knownName`: who was logged in when the session ended (the name is filled in for them). */
 export function mountLoginPage(
   container: HTMLElement,
   onLoggedIn: (user: CurrentUser) => void,
+  knownName?: string,
 ): () => void {
   const name = el("input", {
     testid: "login-name",
@@ -63,6 +65,9 @@ export function mountLoginPage(
     }
   });
   container.replaceChildren(el("div", { className: "login-page" }, form));
-  name.focus();
+  if (knownName) {
+    name.value = knownName;
+    password.focus();
+  } else name.focus();
   return () => {};
 }

@@ -10,6 +10,9 @@ export interface ActionState {
   flow: SceneWorkflow;
   /** Unsaved edits (submitting waits for them). */
   pending: number;
+  /** Edits an earlier visit left unsaved, neither restored nor discarded yet: submitting or
+   * giving the scene back would strand them, so both wait for that choice. */
+  recovered: boolean;
   /** An action is on its way. */
   busy: boolean;
   /** Takes: an annotator; reopens: the scene's own annotator. */
@@ -30,6 +33,7 @@ export function actionState(
   me: CurrentUser | null,
   pending: number,
   busy: boolean,
+  recovered = false,
 ): ActionState {
   const mine = flow.assignee === me?.name;
   const annotator = hasRole("annotator", me);
@@ -41,6 +45,7 @@ export function actionState(
   return {
     flow,
     pending,
+    recovered,
     busy,
     annotator,
     reviewer,
@@ -148,7 +153,7 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
   again.addEventListener("click", handlers.onSecondAnnotation);
 
   const show = (now: ActionState) => {
-    const { flow, pending, busy, mine } = now;
+    const { flow, pending, recovered, busy, mine } = now;
     const state = flow.state;
     take.hidden = !(
       (now.annotator &&
@@ -164,13 +169,18 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
       ? `Make this scene yours: ${flow.assignee}'s next save is refused`
       : "Take this scene for annotation";
     submit.hidden = !(state === "in_annotation" && mine);
-    submit.disabled = !now.canSubmit || pending > 0;
-    submit.title =
-      pending > 0 ? "Save your changes first" : "Submit this revision for review (Shift+Enter)";
+    const restoreFirst = "Restore or discard the unsaved changes from your last visit first";
+    submit.disabled = !now.canSubmit || pending > 0 || recovered;
+    submit.title = recovered
+      ? restoreFirst
+      : pending > 0
+        ? "Save your changes first"
+        : "Submit this revision for review (Shift+Enter)";
     release.hidden = !now.canRelease;
-    release.disabled = busy || pending > 0;
-    release.title =
-      pending > 0
+    release.disabled = busy || pending > 0 || recovered;
+    release.title = recovered
+      ? restoreFirst
+      : pending > 0
         ? "Save or discard your changes first"
         : "Put the scene back in the queue for another annotator (your saved changes stay)";
     accept.hidden = reject.hidden = !now.canReview;

@@ -102,7 +102,7 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
     const manual = (session.doc.scene.supports ?? []).filter((s) => s.source === "manual").length;
     const labelled = `${manual} of ${session.objects.length} objects have a supporter set by a person.`;
     status.show(flow, noteText({ flow, pending, me: me(), labelled }));
-    actions.show(actionState(flow, me(), pending, busy));
+    actions.show(actionState(flow, me(), pending, busy, session.recovered !== null));
   };
 
   const load = async (background = false) => {
@@ -151,7 +151,7 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
     if (change === "document" && session.doc.revision !== shownRevision) {
       shownRevision = session.doc.revision;
       loadLater(); // a save may have taken the scene
-    } else if (change === "edits") {
+    } else if (change === "edits" || change === "recovery") {
       render();
     } else if (change === "lock" && session.saveState.kind === "error") {
       void load(); // a save was refused: the scene's state may have changed meanwhile
