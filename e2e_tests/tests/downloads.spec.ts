@@ -113,6 +113,21 @@ test("the scene page downloads scene.json, scene.glb and COCO JSON", async ({ pa
     `made at revision ${doc.revision}; since then 1 removed`,
   );
   await page.keyboard.press("Escape");
+  // The 3D panel counts from the same revision after the reload, and submitting asks first:
+  // once submitted, nobody can re-place the objects.
+  await expect(page.getByTestId("placement-notice-text")).toContainText("(1 removed)");
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation"); // the edit took it
+  const submit = page.getByTestId("workflow-submit");
+  await expect(submit).toBeEnabled();
+  const question = new Promise<string>((resolve) =>
+    page.once("dialog", (dialog) => {
+      resolve(dialog.message());
+      void dialog.dismiss();
+    }),
+  );
+  await submit.click();
+  expect(await question).toContain("The 3D scene was made before these changes: 1 removed.");
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
 
   // Escape closes the menu; a scene the pipeline has not placed has no scene.glb to offer.
   await page.getByTestId("download-button").click();

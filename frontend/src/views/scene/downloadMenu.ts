@@ -1,9 +1,9 @@
 // The scene page's "Download" menu: the saved scene as scene.json, the 3D scene as scene.glb
 // (once the pipeline made one) and the photo's objects as COCO JSON.
-import type { SceneDocument } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { downloadUrls, glbRevision } from "../../api/downloads";
 import { el } from "../../dom";
+import type { SceneSession } from "../../state/sceneSession";
 import "./downloadMenu.css";
 import { glbStaleness } from "./glbStaleness";
 
@@ -19,12 +19,13 @@ function item(testid: string, href: string, label: string, hint: string): HTMLAn
 /**
  * `mayHaveGlb`: whether the revision shown can have a 3D scene; when it cannot, the menu says
  * so without asking the server (whose 404 the console would show as an error). `shown`: the
- * revision on the page, against which the 3D scene's age is told.
+ * scene on the page: its revision, against which the 3D scene's age is told, and whether it
+ * can be edited (what brings an old file up to date).
  */
 export function downloadMenu(
   sceneId: string,
   mayHaveGlb: () => boolean,
-  shown: () => SceneDocument | null,
+  shown: () => Pick<SceneSession, "doc" | "editable"> | null,
 ): { element: HTMLElement; dispose: () => void } {
   const glb = item(
     "download-glb",
@@ -78,7 +79,8 @@ export function downloadMenu(
     }
     probe = new AbortController();
     const signal = probe.signal;
-    const current = shown();
+    const page = shown();
+    const current = page?.doc ?? null;
     glbRevision(sceneId, signal)
       .then(async (made) => {
         glb.hidden = made === null;
@@ -86,7 +88,8 @@ export function downloadMenu(
         glbHint.textContent = freshHint;
         glb.classList.remove("is-stale");
         if (made === null || current === null || !(made < current.revision)) return;
-        const stale = glbStaleness(await api.getRevision(sceneId, made, signal), current);
+        const old = await api.getRevision(sceneId, made, signal);
+        const stale = glbStaleness(old, current, page?.editable);
         if (stale) {
           glbHint.textContent = stale;
           glb.classList.add("is-stale");

@@ -2,7 +2,7 @@
 import type { SceneDocument } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
 import { sceneDocument, sceneObject } from "../../testing/sceneDocuments";
-import { glbStaleness } from "./glbStaleness";
+import { glbLacks, glbStaleness } from "./glbStaleness";
 
 const at = (doc: SceneDocument, revision: number): SceneDocument => ({ ...doc, revision });
 
@@ -21,7 +21,17 @@ describe("the 3D scene file's age", () => {
     );
   });
 
+  it("names no remedy the page cannot offer: a submitted or accepted scene is not re-placed", () => {
+    const now = at(sceneDocument([bed]), 4);
+    expect(glbStaleness(made, now, false)).toBe(
+      "made at revision 2; since then 1 removed: it can be re-placed only while the scene is " +
+        "being annotated",
+    );
+    expect(glbLacks(made, now)).toBe("1 removed");
+  });
+
   it("says nothing when only supports changed (the file has no supports)", () => {
     expect(glbStaleness(made, at(sceneDocument([bed, chair]), 3))).toBeNull();
+    expect(glbLacks(made, at(sceneDocument([bed, chair]), 3))).toBe("");
   });
 });

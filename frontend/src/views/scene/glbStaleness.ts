@@ -1,19 +1,57 @@
-// Whether the downloadable scene.glb shows the scene as it is now: the file is what the last
+// Whether the scene's scene.glb shows the scene as it is now: the file is what the last
 // pipeline or placement run made, so objects added, removed or redrawn since, or a room moved
-// since, are not in it. The Download menu says so beside the file, counted as the 3D panel's
-// notice counts them (scene3d/placementNotice.ts).
+// since, are not in it. Told alike by the Download menu (beside the file), the 3D panel's
+// notice (which counts from the revision that made the file) and the workflow bar (before a
+// submit or an accept, after which nobody can re-place the objects).
 import type { SceneDocument } from "@holiscene/schema";
+import { api } from "../../api/client";
+import { glbRevision } from "../../api/downloads";
 import { diffScenes } from "../../state/revisionDiff";
-import { changesSincePlacement, describeChanges } from "../scene3d/placementNotice";
+import { changesSincePlacement, describeChanges } from "../scene3d/placementChanges";
+import { mayHaveGlb } from "../scene3d/viewportObjects";
 
-/** What the GLB made at revision `made` lacks of `current` (null: nothing it shows changed). */
-export function glbStaleness(made: SceneDocument, current: SceneDocument): string | null {
+/** What a GLB made at revision `made` lacks of `current` ("" when nothing it shows changed). */
+export function glbLacks(made: SceneDocument, current: SceneDocument): string {
   const objects = describeChanges(changesSincePlacement(made.scene.objects, current.scene.objects));
   const moved = diffScenes(made.scene, current.scene).layoutChanged;
-  const parts = [objects, moved ? "the room moved" : ""].filter((part) => part !== "");
-  if (parts.length === 0) return null;
-  return (
-    `made at revision ${made.revision}; since then ${parts.join(", ")}: ` +
-    `"Re-place objects" in the 3D panel brings it up to date`
-  );
+  return [objects, moved ? "the room moved" : ""].filter((part) => part !== "").join(", ");
+}
+
+/** The Download menu's line for an outdated file (null: it shows the scene as it is). */
+export function glbStaleness(
+  made: SceneDocument,
+  current: SceneDocument,
+  editable = true,
+): string | null {
+  const lacks = glbLacks(made, current);
+  if (lacks === "") return null;
+  const remedy = editable
+    ? `"Re-place objects" in the 3D panel brings it up to date`
+    : "it can be re-placed only while the scene is being annotated";
+  return `made at revision ${made.revision}; since then ${lacks}: ${remedy}`;
+}
+
+/**
+ * The revision that made the scene's scene.glb, when it is older than `current` (null when
+ * there is no file, or it was made at `current`).
+ */
+export async function glbSourceRevision(
+  sceneId: string,
+  current: SceneDocument,
+  signal?: AbortSignal,
+): Promise<SceneDocument | null> {
+  if (!mayHaveGlb(current)) return null;
+  const made = await glbRevision(sceneId, signal);
+  if (made === null || !(made < current.revision)) return null;
+  return api.getRevision(sceneId, made, signal);
+}
+
+/** What the scene's scene.glb lacks of `current` ("" when it is up to date, or there is none). */
+export async function glbOutOfDate(
+  sceneId: string,
+  current: SceneDocument,
+  signal?: AbortSignal,
+): Promise<string> {
+  const made = await glbSourceRevision(sceneId, current, signal);
+  return made ? glbLacks(made, current) : "";
 }

@@ -34,7 +34,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
   const downloads = downloadMenu(
     sceneId,
     () => shown === null || mayHaveGlb(shown.doc),
-    () => shown?.doc ?? null,
+    () => shown,
   );
   container.replaceChildren(
     el(

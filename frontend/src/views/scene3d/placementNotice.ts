@@ -3,68 +3,12 @@
 // as they are now. The notice says which and offers "Re-place objects" (the layout editor's
 // placement job, with its progress).
 import "./placementNotice.css";
-import type { SceneObject } from "@holiscene/schema";
 import { button, el } from "../../dom";
 import { replaceObjects } from "../../editors/replaceObjects";
-import { plural, type SceneSession } from "../../state/sceneSession";
-import { isStructural } from "../../state/supportGraph";
+import type { SceneSession } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
-
-export interface PlacementChanges {
-  added: string[];
-  removed: string[];
-  changed: string[];
-}
-
-/** What placement reads of an object (its 2D evidence). */
-const placementInput = (o: SceneObject) => JSON.stringify([o.class, o.bbox, o.mask ?? null]);
-
-/**
- * Whether `next` comes from a placement run after `previous`: an object of both has a new 3D
- * box (object edits never touch 3D boxes; an undone removal brings back the old one).
- */
-export function newlyPlaced(previous: readonly SceneObject[], next: readonly SceneObject[]) {
-  const before = new Map(previous.map((o) => [o.id, JSON.stringify(o.box_3d ?? null)]));
-  return next.some((o) => {
-    const old = before.get(o.id);
-    return old !== undefined && o.box_3d != null && old !== JSON.stringify(o.box_3d);
-  });
-}
-
-/**
- * The objects that differ between the ones the 3D scene was made from (`placed`) and the
- * current ones. An object a person added that has no 3D box yet counts as added even when
- * it was already there when the page opened (the notice comes back after a reload).
- */
-export function changesSincePlacement(
-  placed: readonly SceneObject[],
-  current: readonly SceneObject[],
-): PlacementChanges {
-  const movable = (objects: readonly SceneObject[]) =>
-    objects.filter((o) => !isStructural(o.class));
-  const before = new Map(movable(placed).map((o) => [o.id, o]));
-  const now = movable(current);
-  const nowIds = new Set(now.map((o) => o.id));
-  const added: string[] = [];
-  const changed: string[] = [];
-  for (const object of now) {
-    const old = before.get(object.id);
-    const unplaced = !object.box_3d && (object.set_by_person ?? []).includes("object");
-    if (!old || unplaced) added.push(object.id);
-    else if (placementInput(old) !== placementInput(object)) changed.push(object.id);
-  }
-  const removed = [...before.keys()].filter((id) => !nowIds.has(id));
-  return { added, removed, changed };
-}
-
-export function describeChanges({ added, removed, changed }: PlacementChanges): string {
-  const parts = [
-    added.length > 0 && `${plural(added.length, "object")} added`,
-    removed.length > 0 && `${removed.length} removed`,
-    changed.length > 0 && `${changed.length} changed`,
-  ].filter(Boolean);
-  return parts.join(", ");
-}
+import { glbSourceRevision } from "../scene/glbStaleness";
+import { changesSincePlacement, describeChanges, newlyPlaced } from "./placementChanges";
 
 /** The notice, put in `panel` before `body`. Returns the function that removes it. */
 export function mountPlacementNotice(
@@ -93,10 +37,12 @@ export function mountPlacementNotice(
   );
   panel.insertBefore(notice, body);
 
-  // The objects the 3D scene shows were placed from: the loaded revision's, until a revision
-  // with new 3D boxes (a placement or pipeline run) arrives.
-  let placed = session.objects;
-  let previous = session.objects;
+  // The objects the 3D scene shows were placed from: those of the revision that made the
+  // scene's scene.glb (asked for below; the loaded revision's until the answer), until a
+  // revision with new 3D boxes (a placement or pipeline run) arrives.
+  const loaded = session.objects;
+  let placed = loaded;
+  let previous = loaded;
   let running = false;
   let failure = "";
 
@@ -147,6 +93,14 @@ export function mountPlacementNotice(
     if (change === "document" || change === "lock") draw();
   });
   draw();
+  glbSourceRevision(session.sceneId, session.doc, abort.signal)
+    .then((made) => {
+      // Not when a placement has run meanwhile: its objects are the 3D scene's now.
+      if (made === null || placed !== loaded) return;
+      placed = made.scene.objects;
+      draw();
+    })
+    .catch(() => {}); // without the answer the notice counts from the loaded revision
   return () => {
     abort.abort();
     unsubscribe();

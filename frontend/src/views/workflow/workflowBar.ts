@@ -13,6 +13,7 @@ import { getCurrentUser } from "../../state/currentUser";
 import { plural, type SceneSession } from "../../state/sceneSession";
 import { withoutSupporter } from "../../state/supportGraph";
 import { everyWhileVisible } from "../common/everyWhileVisible";
+import { glbOutOfDate } from "../scene/glbStaleness";
 import { nextSceneControl } from "./nextScene";
 import { actionState, workflowActions } from "./workflowActions";
 import { workflowKeys } from "./workflowKeys";
@@ -34,6 +35,10 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
   const next = nextSceneControl(">");
   const error = hiddenErrorAlert("workflow-error");
   const revision = () => session.doc.revision;
+  // What scene.glb lacks of the scene ("" when nothing, or when the server cannot say: the
+  // question is a courtesy, not a gate).
+  const outOfDate3d = () =>
+    glbOutOfDate(session.sceneId, session.doc, abort.signal).catch(() => "");
   const actions = workflowActions({
     onTake: () => {
       const assignee = flow?.assignee;
@@ -42,23 +47,37 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
       if (assignee && !mine && !window.confirm(question)) return;
       void act(() => workflowApi.take(session.sceneId));
     },
-    onSubmit: () => {
-      // The page says to submit when every supporter is right: an object left without one is
-      // asked about (a reviewer would send the scene back for it).
-      const missing = withoutSupporter(session.objects, session.shown()).map((o) => o.id);
-      const question =
-        `${plural(missing.length, "object")} (${missing.join(", ")}) ${missing.length === 1 ? "has" : "have"} ` +
-        "no supporter. Submit for review anyway? The scene is locked until a reviewer decides.";
-      if (missing.length > 0 && !window.confirm(question)) return;
-      void act(() => workflowApi.submit(session.sceneId, revision()));
-    },
+    onSubmit: () =>
+      void (async () => {
+        // The page says to submit when every supporter is right: an object left without one
+        // is asked about (a reviewer would send the scene back for it).
+        const missing = withoutSupporter(session.objects, session.shown()).map((o) => o.id);
+        const question =
+          `${plural(missing.length, "object")} (${missing.join(", ")}) ${missing.length === 1 ? "has" : "have"} ` +
+          "no supporter. Submit for review anyway? The scene is locked until a reviewer decides.";
+        if (missing.length > 0 && !window.confirm(question)) return;
+        const lacks = await outOfDate3d();
+        const stale =
+          `The 3D scene was made before these changes: ${lacks}. "Re-place objects" in the 3D ` +
+          "panel brings it up to date; once the scene is submitted nobody can. Submit anyway?";
+        if (lacks !== "" && !window.confirm(stale)) return;
+        await act(() => workflowApi.submit(session.sceneId, revision()));
+      })(),
     onRelease: () => {
       const question =
         "Give this scene back? It waits in the queue for the next annotator; every saved revision stays in its history.";
       if (window.confirm(question))
         void act(() => workflowApi.release(session.sceneId, revision()));
     },
-    onAccept: () => void act(() => workflowApi.accept(session.sceneId, revision())),
+    onAccept: () =>
+      void (async () => {
+        const lacks = await outOfDate3d();
+        const stale =
+          `The 3D scene lacks the annotator's last changes (${lacks}), and an accepted scene ` +
+          "cannot be re-placed: rejecting it with a comment asks for that. Accept anyway?";
+        if (lacks !== "" && !window.confirm(stale)) return;
+        await act(() => workflowApi.accept(session.sceneId, revision()));
+      })(),
     onReject: (text) =>
       void act(async () => {
         await workflowApi.reject(session.sceneId, revision(), text);

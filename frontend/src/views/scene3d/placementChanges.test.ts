@@ -2,7 +2,7 @@
 // class, box or mask since the placement; and telling a placement's revision from an edit's.
 import type { SceneObject } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
-import { changesSincePlacement, describeChanges, newlyPlaced } from "./placementNotice";
+import { changesSincePlacement, describeChanges, newlyPlaced } from "./placementChanges";
 
 const box3d = (x: number) => ({ center: [x, 0, 2], size: [1, 1, 1], yaw_deg: 0 });
 
