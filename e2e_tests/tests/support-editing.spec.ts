@@ -7,6 +7,7 @@ import { getRevisions, getScene, seedScene, supportOf, T3D_5 } from "../helpers/
 import { canvasColours } from "../helpers/canvas";
 import {
   arrowOf,
+  arrowPoint,
   clickArrow,
   clickObject,
   dragArrowTo,
@@ -214,6 +215,16 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   await clickObject(page, "o0");
   await expect(arrow("o1")).toHaveAttribute("data-parent", "o0");
   await expect(arrow("o1")).toHaveClass(/is-selected/);
+  // An armed pick takes the object under the click even on that object's own arrow, which
+  // ends at its centre, where people click.
+  await clickArrow(page, "o2");
+  await expect(page.getByTestId("photo")).toHaveClass(/is-picking/);
+  const onBedsArrow = await arrowPoint(page, "o0", "head");
+  await page.mouse.click(onBedsArrow.x, onBedsArrow.y);
+  await expect(arrow("o2")).toHaveAttribute("data-parent", "o0");
+  await page.keyboard.press("Control+z");
+  await expect(arrow("o2")).toHaveAttribute("data-parent", guess("o2").parent);
+  await clickObject(page, "o1");
 
   // T flips below/behind; Shift+Delete removes the supporter; Ctrl+Z brings it back.
   const typeBefore = (await arrowOf(page, "o1"))?.type ?? "";

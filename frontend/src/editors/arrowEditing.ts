@@ -1,6 +1,6 @@
 // Editing supports with the mouse on the photo. Click an arrow (or an unsupported object's
 // "?" flag) to select its object and arm a pick: the next click on another object makes that
-// object the supporter. S arms a pick for an object selected otherwise (its label, the list,
+// object the supporter (inside its mask, on its own arrow too). S arms a pick for an object selected otherwise (its label, the list,
 // N). Or drag an arrow (from its head or anywhere on it) and drop it on the new supporter.
 // Clicking an object only selects it unless a pick is armed: an annotator who clicks from
 // object to object to look at them changes nothing. Clicking the selected object or the
@@ -56,21 +56,24 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
       return;
     }
     const arrow = arrowAt(event) ?? flagAt(event);
+    const object = picking.objectAt(event);
+    const selected = session.selected;
+    const armed = session.picking !== null && session.picking === selected;
+    // An object's own arrow ends at its centre, where people click to pick it: while a pick is
+    // armed, a click inside another object's mask picks that object, even on its own arrow.
+    if (armed && object && object !== selected && (arrow === null || arrow === object)) {
+      pickSupporter(selected, object);
+      return;
+    }
     if (arrow) {
       session.say(null);
       session.select(arrow);
       arm(arrow);
       return;
     }
-    const object = picking.objectAt(event);
-    const selected = session.selected;
-    if (session.picking !== null && session.picking === selected && object && object !== selected)
-      pickSupporter(selected, object);
-    else {
-      session.say(null);
-      session.select(object === selected ? null : object);
-      arm(null);
-    }
+    session.say(null);
+    session.select(object === selected ? null : object);
+    arm(null);
   };
 
   const drawDrag = (event: PointerEvent) => {
