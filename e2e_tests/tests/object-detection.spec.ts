@@ -120,6 +120,13 @@ test("a scene without objects gets the detector's suggestions to accept or rejec
   await expect(chair).toHaveCount(1);
   await expect(boxes).toHaveCount(count - 1);
   await expect(page.getByTestId("offer-rejected-suggestions")).toBeHidden();
+
+  // Deleting the accepted bed does not bring its box straight back as a suggestion.
+  await page.locator('tr[data-object="d1"]').click();
+  await page.keyboard.press("Delete");
+  await expect(page.locator('.masks [data-object="d1"]')).toHaveCount(0);
+  await expect(bed).toHaveCount(0);
+  await expect(page.getByTestId("offer-rejected-suggestions")).toBeVisible();
 });
 
 test("the detector's fainter boxes are offered when asked for, and find more of the photo's objects", async ({

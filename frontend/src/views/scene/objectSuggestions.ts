@@ -180,7 +180,12 @@ export function mountObjectSuggestions(
     editable: () => session.editable,
   });
 
+  let objectsBefore = session.objects;
   const unsubscribe = session.subscribe((change) => {
+    if (change === "document") {
+      state.rejectRemoved(objectsBefore, session.objects);
+      objectsBefore = session.objects;
+    }
     if (change === "document" || change === "lock") draw();
   });
   draw();

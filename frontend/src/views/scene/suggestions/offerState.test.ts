@@ -53,6 +53,28 @@ describe("offer state", () => {
     expect(state.open().map((o) => o.cls)).toEqual(["bed"]);
   });
 
+  it("does not offer back the box of an object a person deleted", () => {
+    const bed = { id: "o0", class: "bed", bbox: [101, 100, 400, 401] } as unknown as SceneObject;
+    const floor = { id: "floor", class: "floor", bbox: [0, 0, 640, 480] } as unknown as SceneObject;
+    let objects: SceneObject[] = [floor, bed];
+    const remembered: number[] = [];
+    const state = new OfferState(
+      () => objects,
+      [],
+      (rejected) => remembered.push(rejected.length),
+    );
+    state.reset(boxes, 0.3);
+    expect(state.open()).toEqual([]); // the bed is there
+    const before = objects;
+    objects = [floor];
+    state.rejectRemoved(before, objects);
+    expect(state.open()).toEqual([]);
+    expect(state.rejectedHidden()).toBe(1);
+    expect(remembered).toEqual([1]);
+    state.rejectRemoved(objects, objects); // nothing removed: nothing remembered
+    expect(remembered).toEqual([1]);
+  });
+
   it("leaves boxes rejected on an earlier run out of the next, until asked for again", () => {
     const remembered: string[][] = [];
     const state = new OfferState(

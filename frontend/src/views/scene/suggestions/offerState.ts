@@ -5,6 +5,7 @@
 // own threshold, at the cost of many wrong ones (docs/benchmarks.md, "Object detector").
 import type { SceneObject } from "@holiscene/schema";
 import type { DetectedBox } from "../../../inference/detectorTensor";
+import { isStructural } from "../../../state/supportGraph";
 import { type Offer, offersOf, openOffers } from "../detectionOffers";
 import type { RejectedOffer } from "./rejectedOffers";
 
@@ -83,6 +84,21 @@ export class OfferState {
 
   reject(chosen: readonly Offer[]): void {
     this.rejected = [...this.rejected, ...chosen.map(({ cls, bbox }) => ({ cls, bbox }))];
+    this.remember(this.rejected);
+  }
+
+  /**
+   * Objects gone from `before` to `after` count as rejected boxes: a person who deletes an
+   * object (the detector's, accepted or committed by the pipeline) does not want the same box
+   * offered back at once, nor on the next run.
+   */
+  rejectRemoved(before: readonly SceneObject[], after: readonly SceneObject[]): void {
+    const kept = new Set(after.map((o) => o.id));
+    const removed = before
+      .filter((o) => !kept.has(o.id) && !isStructural(o.class))
+      .map((o): RejectedOffer => ({ cls: o.class, bbox: [...o.bbox] as RejectedOffer["bbox"] }));
+    if (removed.length === 0) return;
+    this.rejected = [...this.rejected, ...removed];
     this.remember(this.rejected);
   }
 
