@@ -379,3 +379,25 @@ test("after an object edit the model scores again and the 3D panel offers Re-pla
   );
   expect(placed?.box_3d).toBeTruthy();
 });
+
+test("an object named in a warning is a link that selects it, and the link goes with the object", async ({
+  page,
+}) => {
+  const doc = await seedScene(page.request, path.join(REAL, "t3d-5"), "t3d-5 warning links");
+  await page.addInitScript(() => localStorage.setItem("holiscene.liveSuggestions", "off"));
+  await openScene(page, doc.scene_id);
+  const warnings = page.getByTestId("pipeline-warnings");
+  const link = warnings.locator(".pipeline-warning-object").first();
+  await expect(link).toBeVisible();
+  const id = (await link.textContent()) ?? "";
+  expect(id).toMatch(/^[a-z]\w*$/);
+  await link.click();
+  await expect(page.getByTestId(`object-row-${id}`)).toHaveClass(/is-selected/);
+  await page.locator("body").click({ position: { x: 5, y: 5 } }); // keys go to the page
+  await page.getByTestId(`object-row-${id}`).click();
+  await page.keyboard.press("Delete");
+  await expect(page.getByTestId(`object-row-${id}`)).toHaveCount(0);
+  // The warning still names it, as plain text: there is nothing left to select.
+  await expect(warnings.locator(".pipeline-warning-object", { hasText: id })).toHaveCount(0);
+  await expect(warnings).toContainText(id);
+});

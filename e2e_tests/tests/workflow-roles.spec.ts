@@ -70,6 +70,9 @@ async function expectReadOnly(page: Page, sceneId: string, title: string): Promi
   await expect(page.getByTestId("undo-button")).toBeDisabled();
   await expect(page.getByTestId("save-button")).toBeDisabled();
   await expect(page.getByTestId("run-pipeline")).toBeDisabled();
+  // The line under the photo offers no key that would change anything.
+  await expect(page.getByTestId("edge-info-hint")).toContainText(/read only/i);
+  await expect(page.getByTestId("edge-info-hint")).not.toContainText("Shift+A");
 
   const before = (await (await page.request.get(`/api/scenes/${sceneId}`)).json()) as SceneDocument;
   const child = (before.scene.supports ?? []).find((s) => s.parent !== "floor")?.child;

@@ -26,11 +26,17 @@ export function mountEdgeInfo(container: HTMLElement, session: SceneSession): ()
     const child = session.selected;
     const left = unresolved(session).length;
     const remaining =
-      left === 0 ? "every edge checked" : `${left} still to check (Shift+A accepts them as shown)`;
+      left === 0
+        ? "every edge checked"
+        : session.editable
+          ? `${left} still to check (Shift+A accepts them as shown)`
+          : `${left} not checked by anyone`;
     if (!child) {
       edge.textContent = "";
       provenance.textContent = "";
-      hint.textContent = `Click an arrow to select it · ${remaining} · ? lists every key`;
+      hint.textContent = session.editable
+        ? `Click an arrow to select it · ${remaining} · ? lists every key`
+        : `Read only · click an arrow to see who set it · ${remaining} · ? lists every key`;
     } else {
       const object = session.object(child);
       const shown = session.displayed(child);

@@ -61,6 +61,7 @@ export function pipelineWarningsPanel(session: SceneSession): {
   const title = el("summary", { testid: "pipeline-warnings-title" });
   const seenKey = `holiscene.warningsSeen.${session.sceneId}`;
   let shown: string | null = null; // the warnings listed now
+  let shownIds = ""; // the objects they could link to
   const list = el("ul", { className: "pipeline-warnings-list" });
   const element = el(
     "details",
@@ -79,12 +80,19 @@ export function pipelineWarningsPanel(session: SceneSession): {
     const stagesNamed = [...new Set(warnings.map((w) => w.stage))].join(", ");
     title.textContent = `${plural(warnings.length, "pipeline warning")}: ${stagesNamed}`;
     const seen = JSON.stringify(warnings);
-    if (seen === shown) return; // the same warnings: leave the panel as the person set it
-    shown = seen;
-    const storage = browserStorage();
-    element.open = warnings.length > 0 && storage?.getItem(seenKey) !== seen;
-    if (warnings.length > 0) storage?.setItem(seenKey, seen);
     const ids = new Set(session.objects.map((o) => o.id));
+    const idsNow = [...ids].join(" ");
+    // Drawn again when an object comes or goes (a removed one's link goes with it), but
+    // opened only for new warnings: the same ones leave the panel as the person set it.
+    if (seen === shown && idsNow === shownIds) return;
+    const news = seen !== shown;
+    shown = seen;
+    shownIds = idsNow;
+    if (news) {
+      const storage = browserStorage();
+      element.open = warnings.length > 0 && storage?.getItem(seenKey) !== seen;
+      if (warnings.length > 0) storage?.setItem(seenKey, seen);
+    }
     // An object named in a warning is one click away: the link selects it on the photo.
     const linked = (text: string) =>
       textWithObjectIds(text, ids).map((part) =>
