@@ -4,6 +4,8 @@ import type { UserInfo } from "@holiscene/schema";
 import { ApiError } from "../../api/errors";
 import { type Role, usersApi } from "../../api/workflow";
 import { button, el, formatTime, labelledField } from "../../dom";
+import { getCurrentUser, setCurrentUser } from "../../state/currentUser";
+import { noticeForNextLogin } from "../login/loginPage";
 
 const ROLES: readonly Role[] = ["annotator", "reviewer", "admin"];
 const NAME_RULE = "lower-case letters, digits, _ . - (starting with a letter or digit)";
@@ -87,14 +89,25 @@ function newUserForm(report: Report, onAdded: () => Promise<void>): HTMLFormElem
       title: NAME_RULE,
     },
   });
+  // In single-user mode the first account must be an admin (the server refuses another).
+  const first = getCurrentUser()?.local_mode === true;
   const role = el(
     "select",
     { testid: "new-user-role" },
-    ...ROLES.map((r) => el("option", { text: r, attrs: { value: r } })),
+    ...ROLES.map((r) =>
+      el("option", { text: r, attrs: { value: r, selected: first && r === "admin" } }),
+    ),
   );
   const password = el("input", {
     testid: "new-user-password",
-    attrs: { type: "password", required: true, minlength: 10, autocomplete: "new-password" },
+    attrs: {
+      type: "password",
+      required: true,
+      minlength: 10,
+      autocomplete: "new-password",
+      placeholder: "10 characters or more",
+      title: "At least 10 characters, not a common password",
+    },
   });
   const create = button("Add account", {
     className: "primary",
@@ -110,7 +123,12 @@ function newUserForm(report: Report, onAdded: () => Promise<void>): HTMLFormElem
     create,
     // Under the row, not under the name: inside the field it pushed the name's input above
     // the role's and the password's.
-    el("p", { className: "field-hint user-form-hint", text: NAME_RULE }),
+    el("p", {
+      className: "field-hint user-form-hint",
+      text: first
+        ? `${NAME_RULE} The first account must be an admin; once it exists, everyone logs in.`
+        : NAME_RULE,
+    }),
   );
   form.addEventListener("submit", async (event) => {
     event.preventDefault();
@@ -123,6 +141,16 @@ function newUserForm(report: Report, onAdded: () => Promise<void>): HTMLFormElem
         password: password.value,
       });
       form.reset();
+      if (first) {
+        // The server has accounts now: everyone logs in, this page too.
+        noticeForNextLogin(
+          `${user.name} is the first account: from now on everyone logs in, you too.`,
+          user.name,
+        );
+        setCurrentUser(null);
+        window.location.hash = "#/login";
+        return;
+      }
       report.say(`Added ${user.name} (${user.role}).`);
       await onAdded();
     } catch (err) {

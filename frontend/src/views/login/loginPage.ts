@@ -5,6 +5,13 @@ import { authApi } from "../../api/workflow";
 import { button, el, hiddenErrorAlert, labelledField } from "../../dom";
 import "../workflow/workflow.css";
 
+/** Why the next login page is shown, and whose name to fill in (said once, then forgotten). */
+let nextNotice: { text: string; name: string } | null = null;
+
+export function noticeForNextLogin(text: string, name: string): void {
+  nextNotice = { text, name };
+}
+
 /** `knownName`: who was logged in when the session ended (the name is filled in for them). */
 export function mountLoginPage(
   container: HTMLElement,
@@ -64,9 +71,18 @@ export function mountLoginPage(
       submit.disabled = false;
     }
   });
+  const notice = nextNotice;
+  nextNotice = null;
+  if (notice) {
+    form.insertBefore(
+      el("p", { className: "alert alert--info", testid: "login-notice", text: notice.text }),
+      form.querySelector("h1")?.nextSibling ?? null,
+    );
+  }
   container.replaceChildren(el("div", { className: "login-page" }, form));
-  if (knownName) {
-    name.value = knownName;
+  const fill = knownName ?? notice?.name;
+  if (fill) {
+    name.value = fill;
     password.focus();
   } else name.focus();
   return () => {};
