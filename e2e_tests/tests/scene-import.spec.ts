@@ -13,8 +13,13 @@ test("imports a photo through the form and opens the scene", async ({ page }) =>
   await page.getByTestId("upload-image").setInputFiles(path.join(T3D_5, "img.jpg"));
   await page.getByTestId("upload-cam_k").setInputFiles(path.join(T3D_5, "cam_K.txt"));
   await page.getByTestId("upload-detections").setInputFiles(path.join(T3D_5, "detections.json"));
-  await page.getByTestId("upload-name").fill("t3d-5 upload");
+  // A dataset folder's photo is called img.jpg, like every other: the scene needs a name.
+  const name = page.getByTestId("upload-name");
+  await expect(name).toHaveAttribute("required", "");
+  await expect(name).toHaveAttribute("placeholder", /name the scene/);
+  await name.fill("t3d-5 upload");
   await submitUploadAndWait(page);
+  await expect(name).not.toHaveAttribute("required", "");
   await expect(page.getByTestId("scene-list")).toContainText("t3d-5 upload");
   const screenshots = path.resolve(import.meta.dirname, "../screenshots");
   mkdirSync(screenshots, { recursive: true });

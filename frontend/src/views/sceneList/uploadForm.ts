@@ -6,6 +6,9 @@ import { pollJob } from "../../api/jobs";
 import { button, el, failureAlert, labelledField } from "../../dom";
 import { jobProgress } from "../common/jobProgress";
 
+/** Photo names that say nothing of the scene (each dataset folder holds one such photo). */
+const GENERIC_PHOTO_NAMES = new Set(["img", "image", "rgb", "photo", "color", "colour", "im"]);
+
 function fileField(label: string, name: string, accept: string, hint: string, required = false) {
   const input = el("input", {
     testid: `upload-${name}`,
@@ -40,6 +43,16 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
   const name = el("input", {
     testid: "upload-name",
     attrs: { type: "text", name: "name", placeholder: "defaults to the file name", maxlength: 200 },
+  });
+  // Dataset folders name every photo alike (img.jpg, rgb.png): such a name would make a list
+  // of scenes all called "img", so the person names the scene instead.
+  image.input.addEventListener("change", () => {
+    const stem = (image.input.files?.[0]?.name ?? "").replace(/\.[^.]*$/, "");
+    const generic = GENERIC_PHOTO_NAMES.has(stem.toLowerCase());
+    name.required = generic;
+    name.placeholder = generic
+      ? `name the scene ("${stem}" is every dataset folder's photo)`
+      : "defaults to the file name";
   });
   const submit = button("Import and run pipeline", {
     className: "primary",
@@ -82,6 +95,7 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
       });
       const scene = imported.scene;
       form.reset();
+      image.input.dispatchEvent(new Event("change")); // the name is optional again
       onImported(scene);
       const link = el("a", {
         text: `Open ${scene.name}`,
