@@ -273,6 +273,11 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   // The annotator gets the rejected scene back first, sees the comment, fixes and resubmits.
   await logIn(page, ANNOTATOR.name, ANNOTATOR.password);
   await expect(page.getByTestId(`scene-state-${first.id}`)).toHaveText("rejected");
+  // "Mine to do" lists it alone: the accepted one is done, the others are not theirs.
+  await page.getByTestId("state-filter").selectOption("mine");
+  await expect(page.locator("[data-testid^='scene-state-']")).toHaveCount(1);
+  await expect(page.getByTestId(`scene-state-${first.id}`)).toHaveText("rejected");
+  await page.getByTestId("state-filter").selectOption("");
   await page.getByTestId("next-scene").click();
   await expect(page).toHaveURL(new RegExp(`#/scenes/${first.id}$`));
   await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");

@@ -8,7 +8,9 @@ import { el, formatTime } from "../../dom";
 import { describeJob } from "../common/jobProgress";
 import { nextSceneControl } from "../workflow/nextScene";
 import "../workflow/workflow.css";
+import { getCurrentUser } from "../../state/currentUser";
 import { datasetImportForm } from "./datasetImport";
+import { MINE, myWork } from "./myWork";
 import { SceneSelection } from "./sceneSelection";
 import { uploadForm } from "./uploadForm";
 
@@ -110,6 +112,10 @@ export function mountSceneList(container: HTMLElement): () => void {
     "select",
     { testid: "state-filter", attrs: { "aria-label": "Show scenes in state" } },
     el("option", { text: "All states", attrs: { value: "" } }),
+    el("option", {
+      text: "Mine to do",
+      attrs: { value: MINE, title: "Scenes you annotate, those sent back to you first" },
+    }),
     ...SCENE_STATES.map((state) =>
       el("option", { text: stateLabel(state), attrs: { value: state } }),
     ),
@@ -126,8 +132,10 @@ export function mountSceneList(container: HTMLElement): () => void {
       return;
     }
     try {
-      const state = (filter.value || null) as SceneState | null;
-      const scenes = await workflowApi.listScenes(state, abort.signal, background);
+      const mine = filter.value === MINE;
+      const state = (mine ? null : filter.value || null) as SceneState | null;
+      const listed = await workflowApi.listScenes(state, abort.signal, background);
+      const scenes = mine ? myWork(listed, getCurrentUser()?.name ?? null) : listed;
       const now = JSON.stringify(scenes);
       // Unchanged rows are left alone: a checkbox or link under the pointer stays put.
       if (now !== shown) body.replaceChildren(...scenes.map((scene) => sceneRow(scene, selection)));
@@ -137,9 +145,11 @@ export function mountSceneList(container: HTMLElement): () => void {
       status.textContent =
         scenes.length > 0
           ? ""
-          : state
-            ? `No scene is ${stateLabel(state)}.`
-            : "No scenes yet: import a photo below.";
+          : mine
+            ? `Nothing to do: no scene is yours to annotate or fix. "Next scene" hands you one.`
+            : state
+              ? `No scene is ${stateLabel(state)}.`
+              : "No scenes yet: import a photo below.";
       const running = scenes.some((s) => s.latest_job && !isFinished(s.latest_job));
       const wait = running ? REFRESH_WHILE_RUNNING_MS : REFRESH_IDLE_MS;
       timer = window.setTimeout(() => void refresh(true), wait);
