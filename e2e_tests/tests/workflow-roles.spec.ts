@@ -158,6 +158,20 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId("accounts-message")).toHaveText(`${REVIEWER.name} is disabled.`);
   await page.getByTestId(`enable-account-${REVIEWER.name}`).click();
   await expect(page.getByTestId(`account-status-${REVIEWER.name}`)).toHaveText("active");
+  // Making someone an admin asks first: declined, the role stays.
+  page.once("dialog", (dialog) => void dialog.dismiss());
+  await page.getByTestId(`role-select-${REVIEWER.name}`).selectOption("admin");
+  await expect(page.getByTestId(`role-select-${REVIEWER.name}`)).toHaveValue("reviewer");
+  // A new password is typed into a password field in the row (the same one, for what follows).
+  await page.getByTestId(`reset-password-${REVIEWER.name}`).click();
+  const newPassword = page.getByTestId(`new-password-${REVIEWER.name}`);
+  await expect(newPassword).toHaveAttribute("type", "password");
+  await newPassword.fill(REVIEWER.password);
+  await page.getByTestId(`set-password-${REVIEWER.name}`).click();
+  await expect(page.getByTestId("accounts-message")).toHaveText(
+    `New password set for ${REVIEWER.name}; their sessions ended.`,
+  );
+  await expect(newPassword).toBeHidden();
   // A weak password is refused with the server's reason.
   await page.getByTestId("new-user-name").fill("weak");
   await page.getByTestId("new-user-password").fill("aaaaaaaaaaaa");

@@ -24,6 +24,11 @@ function userRow(user: UserInfo, report: Report, onChange: () => void): HTMLTabl
     ...ROLES.map((r) => el("option", { text: r, attrs: { value: r, selected: r === user.role } })),
   );
   role.addEventListener("change", async () => {
+    const question = `Make ${user.name} an admin? Admins manage accounts, retrain and promote models, and may take over any scene.`;
+    if (role.value === "admin" && !window.confirm(question)) {
+      role.value = user.role;
+      return;
+    }
     try {
       await usersApi.setRole(user.name, role.value as Role);
       report.say(`${user.name} is now ${role.value}.`);
@@ -34,11 +39,38 @@ function userRow(user: UserInfo, report: Report, onChange: () => void): HTMLTabl
     }
   });
   const reset = button("Reset password…", { testid: `reset-password-${user.name}` });
-  reset.addEventListener("click", async () => {
-    const password = window.prompt(`New password for ${user.name} (at least 10 characters)`);
-    if (!password) return;
+  // A password field in the row, not the browser's prompt (which shows what is typed).
+  const newPassword = el("input", {
+    testid: `new-password-${user.name}`,
+    attrs: {
+      type: "password",
+      required: true,
+      minlength: 10,
+      autocomplete: "new-password",
+      placeholder: "10 characters or more",
+      "aria-label": `New password for ${user.name}`,
+    },
+  });
+  const resetForm = el(
+    "form",
+    { className: "password-reset", testid: `password-reset-${user.name}` },
+    newPassword,
+    button("Set", { className: "primary", type: "submit", testid: `set-password-${user.name}` }),
+    button("Cancel", { onClick: () => showReset(false) }),
+  );
+  const showReset = (open: boolean) => {
+    resetForm.hidden = !open;
+    reset.hidden = open;
+    newPassword.value = "";
+    if (open) newPassword.focus();
+  };
+  resetForm.hidden = true;
+  reset.addEventListener("click", () => showReset(true));
+  resetForm.addEventListener("submit", async (event) => {
+    event.preventDefault();
     try {
-      await usersApi.resetPassword(user.name, password);
+      await usersApi.resetPassword(user.name, newPassword.value);
+      showReset(false);
       report.say(`New password set for ${user.name}; their sessions ended.`);
     } catch (err) {
       report.fail(err);
@@ -71,7 +103,7 @@ function userRow(user: UserInfo, report: Report, onChange: () => void): HTMLTabl
     el("td", {}, role),
     el("td", { text: formatTime(user.created_at) }),
     el("td", { text: status, testid: `account-status-${user.name}` }),
-    el("td", { className: "account-actions" }, reset, access),
+    el("td", { className: "account-actions" }, reset, resetForm, access),
   );
 }
 
@@ -195,6 +227,8 @@ export function accountsSection(signal: AbortSignal, onChange: () => void): HTML
     "section",
     { className: "card", testid: "accounts" },
     el("h2", { text: "Accounts" }),
+    // Above the table: what an action in a row did is read where the row is.
+    message,
     el(
       "table",
       { className: "data-table", testid: "accounts-table" },
@@ -213,6 +247,5 @@ export function accountsSection(signal: AbortSignal, onChange: () => void): HTML
     ),
     el("h3", { text: "New account" }),
     form,
-    message,
   );
 }
