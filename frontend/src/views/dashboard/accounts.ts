@@ -16,6 +16,21 @@ interface Report {
   fail(error: unknown): void;
 }
 
+/** A field for a new password, saying the server's rule before it refuses one. */
+function newPasswordInput(testid: string): HTMLInputElement {
+  return el("input", {
+    testid,
+    attrs: {
+      type: "password",
+      required: true,
+      minlength: 10,
+      autocomplete: "new-password",
+      placeholder: "10 characters or more",
+      title: "At least 10 characters, not a common password",
+    },
+  });
+}
+
 /** An account's row: its role (a select that changes it), "Reset password…" and Disable. */
 function userRow(user: UserInfo, report: Report, onChange: () => void): HTMLTableRowElement {
   const role = el(
@@ -40,17 +55,8 @@ function userRow(user: UserInfo, report: Report, onChange: () => void): HTMLTabl
   });
   const reset = button("Reset password…", { testid: `reset-password-${user.name}` });
   // A password field in the row, not the browser's prompt (which shows what is typed).
-  const newPassword = el("input", {
-    testid: `new-password-${user.name}`,
-    attrs: {
-      type: "password",
-      required: true,
-      minlength: 10,
-      autocomplete: "new-password",
-      placeholder: "10 characters or more",
-      "aria-label": `New password for ${user.name}`,
-    },
-  });
+  const newPassword = newPasswordInput(`new-password-${user.name}`);
+  newPassword.setAttribute("aria-label", `New password for ${user.name}`);
   const resetForm = el(
     "form",
     { className: "password-reset", testid: `password-reset-${user.name}` },
@@ -130,17 +136,7 @@ function newUserForm(report: Report, onAdded: () => Promise<void>): HTMLFormElem
       el("option", { text: r, attrs: { value: r, selected: first && r === "admin" } }),
     ),
   );
-  const password = el("input", {
-    testid: "new-user-password",
-    attrs: {
-      type: "password",
-      required: true,
-      minlength: 10,
-      autocomplete: "new-password",
-      placeholder: "10 characters or more",
-      title: "At least 10 characters, not a common password",
-    },
-  });
+  const password = newPasswordInput("new-user-password");
   const create = button("Add account", {
     className: "primary",
     testid: "new-user-submit",
