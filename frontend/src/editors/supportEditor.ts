@@ -239,6 +239,9 @@ function objectRow(
     // hover too), and each write would make the browser restyle the row.
     supporter.value = support?.parent ?? NONE;
     type.value = support?.type ?? defaultType(NONE);
+    // The narrow menu cuts a long supporter short ("o6 · cou"): the pointer reads it whole.
+    const supporterText = supporter.selectedOptions[0]?.text ?? "";
+    if (supporter.title !== supporterText) supporter.title = supporterText;
     setDisabled(supporter, !session.editable);
     setDisabled(type, !support || !session.editable);
     if (cls instanceof HTMLButtonElement) setDisabled(cls, !session.editable);
