@@ -272,6 +272,13 @@ test("a real photo: labels apart, sources, 3D box confidences and mesh sources i
   expect(heading.y).toBeLessThan(layoutButton.y + layoutButton.height);
   expect(heading.y + heading.height).toBeGreaterThan(layoutButton.y);
   expect(legend.y).toBeGreaterThanOrEqual(photo.y + photo.height);
+  // Scrolled down the photo, its tools stay in view at the top of the window.
+  await page.evaluate(() => window.scrollBy(0, 400));
+  await expect
+    .poll(async () => (await page.getByTestId("photo-tools").boundingBox())?.y ?? -1)
+    .toBeLessThanOrEqual(1);
+  expect((await page.getByTestId("photo-tools").boundingBox())?.y).toBeGreaterThanOrEqual(0);
+  await page.evaluate(() => window.scrollTo(0, 0));
   await page.getByTestId("photo-panel").screenshot({
     path: screenshotPath("photo-real-labels.png"),
   });

@@ -32,7 +32,7 @@ export function mountPhotoView(
   const m = frame.margin;
   const key = layers.depth ? depthKey(session.sceneId) : null;
   const layersBar = layerBar(layers, key ?? undefined);
-  const toolbar = el("div", { className: "photo-toolbar", testid: "photo-tools" });
+  const toolbar = el("div", { className: "photo-toolbar photo-tool-row", testid: "photo-tools" });
   container.replaceChildren(
     toolbar,
     layersBar.element,

@@ -67,11 +67,12 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     const session = new SceneSession(doc);
     shown = session;
     title.textContent = doc.scene.name;
+    title.title = doc.scene.name;
     document.title = `${doc.scene.name} · HoliScene`; // the tab names the scene, not its id
     const updateMeta = () => {
       const { text, title: note } = sceneMeta(session.doc);
       meta.textContent = text;
-      meta.title = note;
+      meta.title = `${text}\n${note}`; // whole, where the header cuts it short
     };
     updateMeta();
     viser.showRevision(doc.revision);
