@@ -1,14 +1,20 @@
 // The save bar's conflict message: someone else saved the scene after it was loaded. Lists
 // their revisions and offers to merge (save mine on top) or reload (theirs, mine re-applied).
 import { button, el } from "../../dom";
+import { getAuthor } from "../../state/author";
 import { plural, type SaveState } from "../../state/sceneSession";
 
 type Conflict = Extract<SaveState, { kind: "conflict" }>;
 
-function conflictText(state: Conflict, pending: number): string {
+/** `me`: the author this page saves as (their own revisions in another tab are named so). */
+export function conflictText(state: Conflict, pending: number, me = getAuthor()): string {
   const latest =
     state.currentRevision === null ? "" : ` (the latest is revision ${state.currentRevision})`;
-  const who = [...new Set(state.theirs.map((r) => r.author))].join(", ") || "Someone else";
+  // The same person in another tab or window is told so: their own name read as a stranger's.
+  const authors = [...new Set(state.theirs.map((r) => r.author))].map((author) =>
+    author === me ? "You (in another tab or window)" : author,
+  );
+  const who = authors.join(", ") || "Someone else";
   return (
     `${who} saved this scene after you loaded revision ${state.baseRevision}${latest}. ` +
     `Your ${plural(pending, "change")} ${pending === 1 ? "was" : "were"} not saved and ` +
