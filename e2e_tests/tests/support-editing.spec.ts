@@ -224,7 +224,17 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   await expect(arrow("o2")).toHaveAttribute("data-parent", "o0");
   await page.keyboard.press("Control+z");
   await expect(arrow("o2")).toHaveAttribute("data-parent", guess("o2").parent);
+  // A supporter from below that stands beside its object on the photo is questioned.
   await clickObject(page, "o1");
+  await page.keyboard.press("s");
+  await clickObject(page, "o3");
+  await expect(arrow("o1")).toHaveAttribute("data-parent", "o3");
+  await expect(page.getByTestId("edge-info-doubt")).toHaveText(
+    "o3 is beside o1 on the photo, not under it: is it the right supporter?",
+  );
+  await page.keyboard.press("Control+z");
+  await expect(page.getByTestId("edge-info-doubt")).toBeHidden();
+  await expect(page.getByTestId("object-row-o1")).toHaveClass(/is-selected/);
 
   // T flips below/behind; Shift+Delete removes the supporter; Ctrl+Z brings it back.
   const typeBefore = (await arrowOf(page, "o1"))?.type ?? "";

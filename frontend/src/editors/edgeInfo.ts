@@ -3,6 +3,7 @@
 import { el } from "../dom";
 import { classText } from "../state/classNames";
 import type { SceneSession } from "../state/sceneSession";
+import { implausibleBelow } from "../state/supportGraph";
 import { provenanceText } from "../views/photo/arrowLayer";
 import { unresolved } from "./supportActions";
 
@@ -13,13 +14,22 @@ export function mountEdgeInfo(container: HTMLElement, session: SceneSession): ()
     testid: "edge-info-provenance",
   });
   const hint = el("span", { className: "edge-info-hint", testid: "edge-info-hint" });
+  const doubt = el("span", { className: "edge-info-message", testid: "edge-info-doubt" });
   const message = el("span", {
     className: "edge-info-message",
     testid: "edit-message",
     attrs: { role: "status" },
   });
   container.replaceChildren(
-    el("div", { className: "edge-info", testid: "edge-info" }, edge, provenance, hint, message),
+    el(
+      "div",
+      { className: "edge-info", testid: "edge-info" },
+      edge,
+      provenance,
+      doubt,
+      hint,
+      message,
+    ),
   );
 
   const update = () => {
@@ -31,6 +41,14 @@ export function mountEdgeInfo(container: HTMLElement, session: SceneSession): ()
         : session.editable
           ? `${left} still to check (Shift+A accepts them as shown)`
           : `${left} not checked by anyone`;
+    const shownSupport = child ? session.displayed(child) : null;
+    const object = child ? session.object(child) : undefined;
+    doubt.textContent =
+      (object &&
+        shownSupport &&
+        implausibleBelow(object, session.object(shownSupport.parent), shownSupport.type)) ||
+      "";
+    doubt.hidden = doubt.textContent === "";
     if (!child) {
       edge.textContent = "";
       provenance.textContent = "";
@@ -38,8 +56,7 @@ export function mountEdgeInfo(container: HTMLElement, session: SceneSession): ()
         ? `Click an arrow to select it · ${remaining} · ? lists every key`
         : `Read only · click an arrow to see who set it · ${remaining} · ? lists every key`;
     } else {
-      const object = session.object(child);
-      const shown = session.displayed(child);
+      const shown = shownSupport;
       const name = `${child}${object ? ` (${classText(object.class)})` : ""}`;
       // A suggestion for an object without a supporter is not one yet: the list says "none".
       edge.textContent = !shown

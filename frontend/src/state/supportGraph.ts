@@ -205,3 +205,20 @@ export const isDoubtfulSupport = (support: ShownSupport | null | undefined): boo
   support?.source === "auto" &&
   typeof support.confidence === "number" &&
   support.confidence < DOUBTFUL_SUPPORT;
+
+/**
+ * Why a supporter from below looks wrong on the photo (null: nothing to say): one object holds
+ * up another from below only where it is under it, so the two boxes share some of their width.
+ * A person who picked the wrong object on a crowded photo learns it here rather than in 3D.
+ */
+export function implausibleBelow(
+  child: Pick<SceneObject, "id" | "bbox">,
+  parent: Pick<SceneObject, "id" | "bbox"> | undefined,
+  type: SupportType,
+): string | null {
+  if (!parent || type !== "below") return null;
+  const [cx1, , cx2] = child.bbox;
+  const [px1, , px2] = parent.bbox;
+  if (Math.min(cx2, px2) > Math.max(cx1, px1)) return null;
+  return `${parent.id} is beside ${child.id} on the photo, not under it: is it the right supporter?`;
+}
