@@ -44,9 +44,10 @@ export interface DetectorBar {
 }
 
 export function detectorBar(actions: DetectorBarActions): DetectorBar {
+  const detectTitle = `Find objects in the photo with the object detector, in this browser (${DETECT_KEY})`;
   const detectButton = button("Detect objects", {
     testid: "detect-objects",
-    title: `Find objects in the photo with the object detector, in this browser (${DETECT_KEY})`,
+    title: detectTitle,
     onClick: actions.detect,
   });
   const statusLine = el("span", {
@@ -136,6 +137,10 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
       used ||= busy || open > 0;
       actionRow.classList.toggle("is-unused", !used);
       detectButton.disabled = busy;
+      // A reviewer may look at what the detector finds; adding it is the annotator's.
+      detectButton.title = editable
+        ? detectTitle
+        : `${detectTitle}: to look at only, the scene is read only`;
       fainterButton.hidden = fainter === 0;
       fainterButton.disabled = busy;
       fainterButton.textContent = `Show ${fainter} fainter`;
