@@ -184,7 +184,9 @@ def test_admin_manages_accounts(accounts: Accounts) -> None:
     new = "quartz-meadow-82-lynx"
     reset = client.post("/api/users/bob/password", json={"password": new}, headers=ada)
     assert reset.status_code == 204
-    assert client.get("/api/auth/me", headers=accounts.headers("bob")).status_code == 401
+    ended = client.get("/api/auth/me", headers=accounts.headers("bob"))
+    assert ended.status_code == 401
+    assert "your password was changed" in ended.json()["detail"]  # why the page asks again
     bad = client.post("/api/auth/login", json={"name": "bob", "password": PASSWORD})
     assert bad.status_code == 401
     accounts.login("bob", new)
