@@ -41,6 +41,7 @@ function iou(a: number[], b: number[]): number {
 
 test("a scene without objects gets the detector's suggestions to accept or reject", async ({
   page,
+  browser,
 }) => {
   const sceneId = await importWithoutObjects(page.request, "im3d-2 detector suggestions", IM3D_2);
   await page.goto(`/#/scenes/${sceneId}`);
@@ -127,6 +128,19 @@ test("a scene without objects gets the detector's suggestions to accept or rejec
   await expect(page.locator('.masks [data-object="d1"]')).toHaveCount(0);
   await expect(bed).toHaveCount(0);
   await expect(page.getByTestId("offer-rejected-suggestions")).toBeVisible();
+
+  // The scene itself keeps what people removed: another browser does not offer it back.
+  const other = await browser.newPage();
+  await other.goto(new URL(`/#/scenes/${sceneId}`, page.url()).href); // a new context: no base URL
+  await expect(other.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await other.getByTestId("detect-objects").click();
+  await expect(other.getByTestId("detector-status")).toContainText("rejected before left out", {
+    timeout: 60_000,
+  });
+  await expect(other.locator('[data-testid="detector-suggestion"][data-class="bed"]')).toHaveCount(
+    0,
+  );
+  await other.close();
 });
 
 test("the detector's fainter boxes are offered when asked for, and find more of the photo's objects", async ({

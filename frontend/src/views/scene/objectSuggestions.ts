@@ -48,6 +48,7 @@ export function mountObjectSuggestions(
     () => session.objects,
     loadRejected(session.sceneId),
     (rejected) => saveRejected(session.sceneId, rejected),
+    () => (session.doc.scene.removed_by_person ?? []).map((o) => ({ cls: o.class, bbox: o.bbox })),
   );
   let busy: Busy = null;
   let status = "";
@@ -180,12 +181,7 @@ export function mountObjectSuggestions(
     editable: () => session.editable,
   });
 
-  let objectsBefore = session.objects;
   const unsubscribe = session.subscribe((change) => {
-    if (change === "document") {
-      state.rejectRemoved(objectsBefore, session.objects);
-      objectsBefore = session.objects;
-    }
     if (change === "document" || change === "lock") draw();
   });
   draw();

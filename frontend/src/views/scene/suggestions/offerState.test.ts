@@ -3,6 +3,7 @@ import type { SceneObject } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
 import type { DetectedBox } from "../../../inference/detectorTensor";
 import { OfferState } from "./offerState";
+import type { RejectedOffer } from "./rejectedOffers";
 
 const box = (cls: string, bbox: [number, number, number, number], score: number): DetectedBox => ({
   cls,
@@ -53,26 +54,24 @@ describe("offer state", () => {
     expect(state.open().map((o) => o.cls)).toEqual(["bed"]);
   });
 
-  it("does not offer back the box of an object a person deleted", () => {
-    const bed = { id: "o0", class: "bed", bbox: [101, 100, 400, 401] } as unknown as SceneObject;
-    const floor = { id: "floor", class: "floor", bbox: [0, 0, 640, 480] } as unknown as SceneObject;
-    let objects: SceneObject[] = [floor, bed];
-    const remembered: number[] = [];
+  it("does not offer the boxes of objects people removed, until the rejected ones are asked for", () => {
+    const removed: RejectedOffer[] = [{ cls: "bed", bbox: [101, 100, 400, 401] }];
     const state = new OfferState(
-      () => objects,
+      () => [],
       [],
-      (rejected) => remembered.push(rejected.length),
+      () => {},
+      () => removed,
     );
     state.reset(boxes, 0.3);
-    expect(state.open()).toEqual([]); // the bed is there
-    const before = objects;
-    objects = [floor];
-    state.rejectRemoved(before, objects);
     expect(state.open()).toEqual([]);
     expect(state.rejectedHidden()).toBe(1);
-    expect(remembered).toEqual([1]);
-    state.rejectRemoved(objects, objects); // nothing removed: nothing remembered
-    expect(remembered).toEqual([1]);
+    state.forgetRejected();
+    expect(state.open().map((o) => o.cls)).toEqual(["bed"]);
+    removed.push({ cls: "lamp", bbox: [10, 10, 60, 80] }); // removed after asking: left out
+    state.showFainter();
+    expect(state.open().map((o) => o.cls)).toEqual(["bed", "picture"]);
+    state.reset(boxes, 0.3); // a new run leaves them all out again
+    expect(state.open()).toEqual([]);
   });
 
   it("leaves boxes rejected on an earlier run out of the next, until asked for again", () => {

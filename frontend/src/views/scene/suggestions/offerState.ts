@@ -5,9 +5,10 @@
 // own threshold, at the cost of many wrong ones (docs/benchmarks.md, "Object detector").
 import type { SceneObject } from "@holiscene/schema";
 import type { DetectedBox } from "../../../inference/detectorTensor";
-import { isStructural } from "../../../state/supportGraph";
 import { type Offer, offersOf, openOffers } from "../detectionOffers";
 import type { RejectedOffer } from "./rejectedOffers";
+
+const removedKey = ({ cls, bbox }: RejectedOffer) => JSON.stringify([cls, bbox]);
 
 export class OfferState {
   /** This run's boxes down to the faintest kept, best first. */
@@ -19,14 +20,21 @@ export class OfferState {
   /** The selected offer's key. */
   selected: string | null = null;
 
+  /** The removed objects' boxes "Offer rejected again" brought back (until the next run); an
+   * object removed after that stays out. */
+  private removedShown = new Set<string>();
+
   /**
-   * `objects` gives the scene's objects now; `rejected`, the boxes rejected before (on any run:
-   * they stay rejected), and `remember` hears every change to them.
+   * `objects` gives the scene's objects now; `rejected`, the boxes rejected before in this
+   * browser (on any run: they stay rejected), and `remember` hears every change to them;
+   * `removed`, the objects people deleted from the scene (stored with it, so no browser offers
+   * them back).
    */
   constructor(
     private readonly objects: () => readonly SceneObject[],
     private rejected: readonly RejectedOffer[] = [],
     private readonly remember: (rejected: readonly RejectedOffer[]) => void = () => {},
+    private readonly removed: () => readonly RejectedOffer[] = () => [],
   ) {}
 
   /** How many boxes the run offered (open or not), the fainter ones once shown. */
@@ -56,9 +64,10 @@ export class OfferState {
     return this.openAbove(this.minScore, []).length - this.open().length;
   }
 
-  /** Offer the rejected boxes again (a rejection was a mistake). */
+  /** Offer the rejected boxes again (a rejection was a mistake), and removed objects' too. */
   forgetRejected(): void {
     this.rejected = [];
+    this.removedShown = new Set(this.removed().map(removedKey));
     this.remember(this.rejected);
   }
 
@@ -77,6 +86,7 @@ export class OfferState {
    */
   reset(boxes: readonly DetectedBox[], threshold = 0): void {
     this.offers = offersOf(boxes);
+    this.removedShown.clear();
     this.minScore = threshold;
     this.threshold = threshold;
     this.selected = this.open()[0]?.key ?? null;
@@ -87,19 +97,10 @@ export class OfferState {
     this.remember(this.rejected);
   }
 
-  /**
-   * Objects gone from `before` to `after` count as rejected boxes: a person who deletes an
-   * object (the detector's, accepted or committed by the pipeline) does not want the same box
-   * offered back at once, nor on the next run.
-   */
-  rejectRemoved(before: readonly SceneObject[], after: readonly SceneObject[]): void {
-    const kept = new Set(after.map((o) => o.id));
-    const removed = before
-      .filter((o) => !kept.has(o.id) && !isStructural(o.class))
-      .map((o): RejectedOffer => ({ cls: o.class, bbox: [...o.bbox] as RejectedOffer["bbox"] }));
-    if (removed.length === 0) return;
-    this.rejected = [...this.rejected, ...removed];
-    this.remember(this.rejected);
+  /** The boxes not offered: rejected here, or of objects people removed (unless asked for). */
+  private leftOut(): readonly RejectedOffer[] {
+    const removed = this.removed().filter((o) => !this.removedShown.has(removedKey(o)));
+    return [...this.rejected, ...removed];
   }
 
   /** The selection moves to the first open offer when its own is gone; returns the open ones. */
@@ -111,7 +112,7 @@ export class OfferState {
     return open;
   }
 
-  private openAbove(score: number, rejected = this.rejected): Offer[] {
+  private openAbove(score: number, rejected = this.leftOut()): Offer[] {
     const offers = this.offers.filter((o) => o.score >= score);
     return openOffers(offers, this.objects(), rejected);
   }
