@@ -232,6 +232,9 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   await expect(page.getByTestId("edge-info-doubt")).toHaveText(
     "o3 is beside o1 on the photo, not under it: is it the right supporter?",
   );
+  // The object list flags it too (set there, the line under the photo may be out of view).
+  await expect(page.getByTestId("support-status-o1")).toHaveClass(/badge--warn/);
+  await expect(page.getByTestId("support-status-o1")).toHaveAttribute("title", /beside o1/);
   await page.keyboard.press("Control+z");
   await expect(page.getByTestId("edge-info-doubt")).toBeHidden();
   await expect(page.getByTestId("object-row-o1")).toHaveClass(/is-selected/);

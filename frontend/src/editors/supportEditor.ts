@@ -8,6 +8,7 @@ import { classText, objectClassText } from "../state/classNames";
 import type { SceneSession } from "../state/sceneSession";
 import {
   defaultType,
+  implausibleBelow,
   isDoubtfulSupport,
   isStructural,
   type ShownSupport,
@@ -249,10 +250,15 @@ function objectRow(
     const pending = session.isPending(id);
     const text = statusText(support);
     if (status.textContent !== text) status.textContent = text;
-    // A guess at under even odds is flagged like a missing supporter: it needs a look.
-    const doubtful = !support || (!pending && isDoubtfulSupport(support));
+    // A guess at under even odds is flagged like a missing supporter: it needs a look; so is a
+    // supporter from below that stands beside the object on the photo (set here or there).
+    const beside =
+      support && implausibleBelow(object, session.object(support.parent), support.type);
+    const doubtful = !support || Boolean(beside) || (!pending && isDoubtfulSupport(support));
     const badge = `badge${doubtful ? " badge--warn" : ""}${pending ? " badge--pending" : ""}`;
     if (status.className !== badge) status.className = badge;
+    const why = beside || "";
+    if (status.title !== why) status.title = why;
     element.classList.toggle("is-unsupported", !support);
     element.classList.toggle("is-pending", pending);
     if (element.dataset.unsupported !== String(!support))
