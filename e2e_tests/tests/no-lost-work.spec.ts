@@ -130,6 +130,7 @@ test("edits whose save failed survive a closed tab and are offered back", async 
   await expect(submit).toBeVisible();
   await expect(submit).toBeDisabled();
   await expect(submit).toHaveAttribute("title", /Restore or discard the unsaved changes/);
+  await expect(again.getByTestId("workflow-note")).toContainText("Restore or discard");
   await again.keyboard.press("Shift+U");
   await expect(banner).toBeHidden();
   await expect(again.getByTestId("arrow-o3")).toHaveAttribute("data-parent", "wall");

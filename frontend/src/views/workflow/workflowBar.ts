@@ -120,8 +120,9 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
     const pending = session.unsavedCount;
     const manual = (session.doc.scene.supports ?? []).filter((s) => s.source === "manual").length;
     const labelled = `${manual} of ${session.objects.length} objects have a supporter set by a person.`;
-    status.show(flow, noteText({ flow, pending, me: me(), labelled }));
-    actions.show(actionState(flow, me(), pending, busy, session.recovered !== null));
+    const recovered = session.recovered !== null;
+    status.show(flow, noteText({ flow, pending, recovered, me: me(), labelled }));
+    actions.show(actionState(flow, me(), pending, busy, recovered));
   };
 
   const load = async (background = false) => {

@@ -30,12 +30,14 @@ export interface NoteInputs {
   flow: SceneWorkflow;
   /** Unsaved edits. */
   pending: number;
+  /** Edits an earlier visit left unsaved are offered, neither restored nor discarded yet. */
+  recovered?: boolean;
   me: CurrentUser | null;
   /** How many objects have a supporter a person set, as a sentence. */
   labelled: string;
 }
 
-export function noteText({ flow, pending, me, labelled }: NoteInputs): string {
+export function noteText({ flow, pending, recovered, me, labelled }: NoteInputs): string {
   const name = me?.name;
   switch (flow.state) {
     case "new":
@@ -44,6 +46,8 @@ export function noteText({ flow, pending, me, labelled }: NoteInputs): string {
       return "The pipeline's guesses, not checked by anyone yet. Editing takes the scene.";
     case "in_annotation":
       if (flow.assignee !== name) return `${flow.assignee ?? "Someone"} is annotating this scene.`;
+      if (recovered)
+        return "Restore or discard the unsaved changes from your last visit (above), then submit.";
       return pending > 0
         ? "Save your changes, then submit the scene for review."
         : `When every supporter is right, submit the scene for review. ${labelled}`;
