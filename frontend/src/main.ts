@@ -191,7 +191,9 @@ window.addEventListener("hashchange", () => {
   }
   shownHash = window.location.hash;
   remount();
-  app.focus({ preventScroll: true });
+  // Keyboard focus starts on the new page, unless the page put it somewhere (the login's
+  // password field when the name is known).
+  if (!app.contains(document.activeElement)) app.focus({ preventScroll: true });
   window.scrollTo(0, 0);
 });
 

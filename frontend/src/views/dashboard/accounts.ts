@@ -65,6 +65,7 @@ function userRow(user: UserInfo, report: Report, onChange: () => void): HTMLTabl
     button("Cancel", { onClick: () => showReset(false) }),
   );
   const showReset = (open: boolean) => {
+    if (open) report.say(""); // the last message was about another action
     resetForm.hidden = !open;
     reset.hidden = open;
     newPassword.value = "";

@@ -44,15 +44,17 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
     testid: "upload-name",
     attrs: { type: "text", name: "name", placeholder: "defaults to the file name", maxlength: 200 },
   });
+  const nameHint = el("span", { className: "field-hint", testid: "upload-name-hint" });
   // Dataset folders name every photo alike (img.jpg, rgb.png): such a name would make a list
   // of scenes all called "img", so the person names the scene instead.
   image.input.addEventListener("change", () => {
     const stem = (image.input.files?.[0]?.name ?? "").replace(/\.[^.]*$/, "");
     const generic = GENERIC_PHOTO_NAMES.has(stem.toLowerCase());
     name.required = generic;
-    name.placeholder = generic
-      ? `name the scene ("${stem}" is every dataset folder's photo)`
-      : "defaults to the file name";
+    name.placeholder = generic ? "name the scene" : "defaults to the file name";
+    nameHint.textContent = generic
+      ? `Required: "${stem}" is what every dataset folder calls its photo.`
+      : "";
   });
   const submit = button("Import and run pipeline", {
     className: "primary",
@@ -72,7 +74,7 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
       detections.field,
       classMap.field,
       depth.field,
-      labelledField("Name", name),
+      labelledField("Name", name, nameHint),
     ),
     el("div", { className: "form-actions" }, submit),
     result,
