@@ -195,6 +195,19 @@ describe("the model's suggestions", () => {
   });
 });
 
+describe("an armed supporter pick", () => {
+  it("is spent by any support edit, as by a picked supporter", () => {
+    const session = sessionOn(doc([auto("o0", "floor"), auto("o1", "o0")]), new MemoryStorage());
+    session.select("o1");
+    session.setPicking("o1");
+    session.edit("o1 on floor", [
+      { kind: "set_support", child: "o1", parent: "floor", type: "below" },
+    ]);
+    expect(session.picking).toBeNull();
+    expect(session.selected).toBe("o1");
+  });
+});
+
 describe("plural", () => {
   it("counts nouns, with -es where English wants it", () => {
     expect(plural(1, "box")).toBe("1 box");

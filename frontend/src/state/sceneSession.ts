@@ -293,6 +293,9 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
       this.say(lockText(lock));
       return;
     }
+    // A supporter set any way (a click, F/W/C, A, R, the list) spends an armed pick: the next
+    // click selects again, as after a picked supporter.
+    if (edits.length > 0 || reject.length > 0) this.setPicking(null);
     const before = new Map<string, ObjectState>();
     const touch = (child: string) => {
       if (!before.has(child)) before.set(child, this.stateOf(child));

@@ -101,10 +101,20 @@ export function mountObjectSuggestions(
     });
   };
 
+  // What the last run found, said again when the scene changes under it (an object deleted
+  // makes its box a rejected one), unless something else has been said since.
+  let lastRun: Awaited<ReturnType<typeof runDetector>> | null = null;
+  let showingFound = false;
   const say = (text: string, error = false) => {
     status = text;
     failed = error;
+    showingFound = false;
     draw();
+  };
+  const sayFound = () => {
+    if (!lastRun) return;
+    say(foundText(state.found, shown().length, lastRun, state.rejectedHidden()));
+    showingFound = true;
   };
 
   const detect = async () => {
@@ -120,7 +130,8 @@ export function mountObjectSuggestions(
       state.reset(run.seen, SCORE_THRESHOLD);
       classHints.set(session.sceneId, run.seen);
       busy = null;
-      say(foundText(state.found, shown().length, run, state.rejectedHidden()));
+      lastRun = run;
+      sayFound();
     } catch (error) {
       if (disposed) return;
       busy = null;
@@ -182,7 +193,8 @@ export function mountObjectSuggestions(
   });
 
   const unsubscribe = session.subscribe((change) => {
-    if (change === "document" || change === "lock") draw();
+    if (change === "document" && showingFound && busy === null) sayFound();
+    else if (change === "document" || change === "lock") draw();
   });
   draw();
   // A scene without objects: look for some at once (unless it cannot be edited).
