@@ -1,7 +1,8 @@
 // Editing supports with the mouse on the photo. Click an arrow (or an unsupported object's
 // "?" flag) to select its object and arm a pick: the next click on another object makes that
-// object the supporter (inside its mask, on its own arrow too). S arms a pick for an object selected otherwise (its label, the list,
-// N). Or drag an arrow (from its head or anywhere on it) and drop it on the new supporter.
+// object the supporter (inside its mask, on its own arrow too). S arms a pick for an object
+// selected otherwise (its label, the list, N). Or drag an arrow (from its head or anywhere on
+// it) and drop it on the new supporter.
 // Clicking an object only selects it unless a pick is armed: an annotator who clicks from
 // object to object to look at them changes nothing. Clicking the selected object or the
 // background clears the selection. While the scene is read only, clicks only select.

@@ -41,13 +41,10 @@ export function mountEdgeInfo(container: HTMLElement, session: SceneSession): ()
         : session.editable
           ? `${left} still to check (Shift+A accepts them as shown)`
           : `${left} not checked by anyone`;
-    const shownSupport = child ? session.displayed(child) : null;
+    const shown = child ? session.displayed(child) : null;
     const object = child ? session.object(child) : undefined;
     doubt.textContent =
-      (object &&
-        shownSupport &&
-        implausibleBelow(object, session.object(shownSupport.parent), shownSupport.type)) ||
-      "";
+      (object && shown && implausibleBelow(object, session.object(shown.parent), shown.type)) || "";
     doubt.hidden = doubt.textContent === "";
     if (!child) {
       edge.textContent = "";
@@ -56,7 +53,6 @@ export function mountEdgeInfo(container: HTMLElement, session: SceneSession): ()
         ? `Click an arrow to select it · ${remaining} · ? lists every key`
         : `Read only · click an arrow to see who set it · ${remaining} · ? lists every key`;
     } else {
-      const shown = shownSupport;
       const name = `${child}${object ? ` (${classText(object.class)})` : ""}`;
       // A suggestion for an object without a supporter is not one yet: the list says "none".
       edge.textContent = !shown

@@ -114,13 +114,11 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
     acceptAllButton,
     rejectAllButton,
   );
-  // The bar keeps its height whatever the detector says or finds (the photo below it must not
-  // move under the person's pointer when a detection ends): the actions keep their place when
-  // there is nothing to act on, and the status is one line below them (its whole text in its
-  // title), unless it reports a failure.
-  // One line until the first detection: the button with the status beside it (the photo's
-  // tool row has no room for the button: the zoom controls appear there); the actions take a
-  // line of their own below from then on.
+  // One line until the first detection: the button with the status beside it, one line (its
+  // whole text in its title) unless it reports a failure; the photo's tool row has no room for
+  // the button (the zoom controls appear there). From then on the actions keep a line of their
+  // own below, even with nothing to act on, so the photo does not move under the pointer when
+  // a detection ends.
   const element = el(
     "div",
     { className: "detector-bar", testid: "detector-bar" },
