@@ -122,6 +122,11 @@ def add_learned_3d_training_command(
         "--workers", type=int, default=BoxRefinerTraining.workers, help="processes making the rooms"
     )
     refiner.add_argument("--seed", type=int, default=0)
+    refiner.add_argument(
+        "--room-cache",
+        type=Path,
+        help="keep the rooms made in this folder and reuse those already there",
+    )
     refiner.set_defaults(
         handler=lambda args: _report(_train_box_refiner(_run_from(BoxRefinerTraining, args)))
     )

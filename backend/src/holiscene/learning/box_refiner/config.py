@@ -18,4 +18,5 @@ class BoxRefinerTraining:
     members: int = 5  # networks in the ensemble, trained from seeds seed, seed + 1, ...
     workers: int = 2
     seed: int = 0
+    room_cache: Path | None = None  # rooms kept between runs (data.RoomCache)
     curves: list[list[dict[str, float]]] = field(default_factory=list)  # per member

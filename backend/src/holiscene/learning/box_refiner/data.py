@@ -4,7 +4,10 @@ No PyTorch here: worker processes make the rooms."""
 
 from __future__ import annotations
 
+import hashlib
+import json
 import multiprocessing
+import pickle
 import tempfile
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
@@ -122,12 +125,66 @@ def _pipeline_room(seed: int, classes: tuple[str, ...]) -> RoomSample:
     return room_sample(estimate, truth, classes, seed)
 
 
+class RoomCache:
+    """Room samples kept on disk, one file per seed, so a longer run makes only the rooms an
+    earlier one did not. The folder is tied to what shapes a sample (the classes, the features
+    and the stages run): a cache made by another version is refused, not mixed in. A change to
+    a stage's code does not show in that key: clear the folder after one."""
+
+    def __init__(self, folder: Path, classes: Sequence[str]) -> None:
+        self.folder = folder
+        key = json.dumps([list(classes), feature_names(classes), list(STAGES_BEFORE_REFINER)])
+        self.key = hashlib.sha256(key.encode()).hexdigest()[:16]
+        folder.mkdir(parents=True, exist_ok=True)
+        key_file = folder / "key.txt"
+        if not key_file.exists():
+            key_file.write_text(self.key + "\n")
+        elif key_file.read_text().strip() != self.key:
+            raise ValueError(
+                f"{folder} holds rooms made for other classes, features or stages: "
+                "give another folder or empty this one"
+            )
+
+    def _path(self, seed: int) -> Path:
+        return self.folder / f"{seed}.pkl"
+
+    def get(self, seed: int) -> RoomSample | None:
+        path = self._path(seed)
+        if not path.exists():
+            return None
+        sample: RoomSample = pickle.loads(path.read_bytes())
+        return sample
+
+    def put(self, sample: RoomSample) -> None:
+        # Written aside and renamed, so a run stopped mid-write leaves no half file behind.
+        tmp = self._path(sample.seed).with_suffix(".tmp")
+        tmp.write_bytes(pickle.dumps(sample))
+        tmp.replace(self._path(sample.seed))
+
+
 def make_rooms(
-    seeds: Iterable[int], classes: Sequence[str], workers: int
+    seeds: Iterable[int], classes: Sequence[str], workers: int, cache: RoomCache | None = None
 ) -> Iterator[RoomSample | str]:
-    """Room samples in seed order, made by `workers` processes; a room the pipeline failed on
-    comes as the message saying why."""
-    jobs = [(seed, tuple(classes)) for seed in seeds]
+    """Room samples in seed order, made by `workers` processes (or read from `cache`, where
+    the new ones are kept); a room the pipeline failed on comes as the message saying why."""
+    seeds = list(seeds)
+    cached = {seed: cache.get(seed) for seed in seeds} if cache else {}
+    jobs = [(seed, tuple(classes)) for seed in seeds if cached.get(seed) is None]
+    made = _made_rooms(jobs, workers)
+    for seed in seeds:
+        known = cached.get(seed)
+        if known is not None:
+            yield known
+            continue
+        room = next(made)
+        if cache is not None and isinstance(room, RoomSample):
+            cache.put(room)
+        yield room
+
+
+def _made_rooms(
+    jobs: list[tuple[int, tuple[str, ...]]], workers: int
+) -> Iterator[RoomSample | str]:
     if workers <= 1:
         yield from map(_make_room, jobs)
         return

@@ -27,7 +27,7 @@ from ...shapes import SIZE_RANGES
 from ..export import keep_if_faithful
 from .confidence import FOUND_IOU, confidence_features, fit_confidence
 from .config import BoxRefinerTraining
-from .data import RoomSample, make_rooms
+from .data import RoomCache, RoomSample, make_rooms
 from .features import PAIR_FEATURES, TARGETS, feature_names, refined
 from .net import OUTPUT_PARTS, BoxRefinerEnsemble, BoxRefinerNet
 
@@ -100,10 +100,15 @@ def laplace_loss(output: torch.Tensor, target: torch.Tensor) -> torch.Tensor:
 
 
 def _gather(
-    seeds: range, classes: list[str], workers: int, label: str, failures: list[str]
+    seeds: range,
+    classes: list[str],
+    run: BoxRefinerTraining,
+    label: str,
+    failures: list[str],
 ) -> list[RoomSample]:
     rooms: list[RoomSample] = []
-    made = make_rooms(seeds, classes, workers)
+    cache = RoomCache(run.room_cache, classes) if run.room_cache else None
+    made = make_rooms(seeds, classes, run.workers, cache)
     for room in tqdm(made, total=len(seeds), desc=label, unit="room", file=sys.stderr):
         if isinstance(room, str):
             failures.append(room)
@@ -249,9 +254,9 @@ def train_box_refiner(run: BoxRefinerTraining) -> dict[str, Any]:
     if set(seeds) & set(validation_seeds):
         raise ValueError("the training and validation seeds overlap")
     failures: list[str] = []
-    made = _gather(seeds, classes, run.workers, "training rooms", failures)
+    made = _gather(seeds, classes, run, "training rooms", failures)
     rooms = [r for r in made if r.truths]
-    validation = _gather(validation_seeds, classes, run.workers, "validation rooms", failures)
+    validation = _gather(validation_seeds, classes, run, "validation rooms", failures)
     if not rooms:
         raise ValueError("no training room has a placed object")
     data = _normalise(rooms)
