@@ -35,7 +35,7 @@ test("an admin retrains, makes the new model active and rolls back", async ({ pa
   await expect(page.getByTestId("models-admin-only")).toBeHidden(); // single-user mode: admin
   // Before Retrain, the form says how many labelled scenes it would learn from.
   await expect(page.getByTestId("retrain-readiness")).toContainText(
-    /\d+ labelled scenes \(scenes with supports set by a person\): a fifth of them is held out/,
+    /\d+ labelled scenes \(scenes with supports set by a person, rejected ones left out\): \d+ of them (is|are) held out/,
   );
   await page.getByTestId("retrain-epochs").fill("1");
   await page.getByTestId("retrain-synthetic").fill("20");

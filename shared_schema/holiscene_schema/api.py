@@ -469,9 +469,12 @@ class RetrainRequest(SchemaModel):
 
 class RetrainReadiness(SchemaModel):
     """Whether a kind of model can be retrained now: how many stored scenes it could learn
-    from and how many it needs (a fixed fifth of them is held out to judge the new model)."""
+    from, how many of them it would hold out to judge the new model, and how many it needs."""
 
     labelled_scenes: int = Field(ge=0, description="Stored scenes the retraining would use")
+    heldout_scenes: int = Field(
+        ge=0, description="Of those, the scenes held out to judge the new model, never trained on"
+    )
     needed: int = Field(ge=1, description="Labelled scenes needed before it can start")
     what: str = Field(description="What counts as a labelled scene for this kind")
 

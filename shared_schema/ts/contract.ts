@@ -995,12 +995,16 @@ id: string
 }
 /**
  * Whether a kind of model can be retrained now: how many stored scenes it could learn
- * from and how many it needs (a fixed fifth of them is held out to judge the new model).
+ * from, how many of them it would hold out to judge the new model, and how many it needs.
  * 
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "RetrainReadiness".
  */
 export interface RetrainReadiness {
+/**
+ * Of those, the scenes held out to judge the new model, never trained on
+ */
+heldout_scenes: number
 /**
  * Stored scenes the retraining would use
  */

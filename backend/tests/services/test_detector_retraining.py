@@ -219,6 +219,12 @@ def test_confirmed_boxes(settings: Settings, never_detecting: Path) -> None:
             session.commit()
         [reviewed] = boxed_scenes(scenes)
         assert len(reviewed.boxes) == len(objects) + 2 and not reviewed.unconfirmed
+
+        # A reviewer who rejects the scene says its labels are wrong: none of them count.
+        with Session(workbench.engine) as session:
+            session.execute(update(SceneRow).values(state="rejected"))
+            session.commit()
+        assert not boxed_scenes(scenes)
     finally:
         workbench.close()
 

@@ -165,15 +165,20 @@ def boxed_scene(scenes: SceneStore, summary: SceneSummary) -> BoxedScene | None:
 
 
 def boxed_scenes(scenes: SceneStore) -> list[BoxedScene]:
-    """Every stored scene with at least one confirmed box."""
-    found = (boxed_scene(scenes, summary) for summary in scenes.list_summaries())
+    """Every stored scene with at least one confirmed box, but for rejected scenes (a reviewer
+    said their labels are wrong)."""
+    found = (
+        boxed_scene(scenes, summary)
+        for summary in scenes.list_summaries()
+        if summary.state != "rejected"
+    )
     return [item for item in found if item is not None]
 
 
 # What a labelled scene is for the detector, as the models page says it.
 BOXED_SCENES = (
     "scenes with boxes a person confirmed (drawn, given with the photo, accepted suggestions, "
-    "or an accepted scene)"
+    "or an accepted scene; rejected scenes left out)"
 )
 
 

@@ -76,9 +76,12 @@ def people_labelled(scene_id: str, revision: int, scene: Scene) -> LabelledScene
 
 
 def labelled_scenes(scenes: SceneStore) -> list[LabelledScene]:
-    """Scenes whose current revision has supports set by a person."""
+    """Scenes whose current revision has supports set by a person, but for rejected ones: a
+    reviewer said their labels are wrong, and they wait for the annotator's fix."""
     found = []
     for summary in scenes.list_summaries():
+        if summary.state == "rejected":
+            continue
         doc = scenes.document(summary.id)
         item = people_labelled(summary.id, doc.revision, doc.scene)
         if item is not None:
@@ -148,7 +151,7 @@ def train_config(request: RetrainRequest, cache_dir: Path | None = None) -> Trai
 
 
 # What a labelled scene is for the Relation Network, as the models page says it.
-LABELLED_SCENES = "scenes with supports set by a person"
+LABELLED_SCENES = "scenes with supports set by a person, rejected ones left out"
 
 
 def check_can_retrain(scenes: SceneStore) -> int:
@@ -156,8 +159,8 @@ def check_can_retrain(scenes: SceneStore) -> int:
     count = len(labelled_scenes(scenes))
     if count < MIN_LABELLED_SCENES:
         raise NotEnoughLabelsError(
-            f"retraining needs at least {MIN_LABELLED_SCENES} labelled scenes (scenes with "
-            f"supports set by a person), {count} found: correct the supports of more scenes"
+            f"retraining needs at least {MIN_LABELLED_SCENES} labelled scenes ({LABELLED_SCENES}), "
+            f"{count} found: correct the supports of more scenes"
         )
     return count
 

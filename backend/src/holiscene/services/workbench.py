@@ -58,6 +58,7 @@ from .relation_retraining import (
     RetrainJob,
     TrainingJob,
     check_can_retrain,
+    heldout_split,
     labelled_scenes,
     train_config,
 )
@@ -277,10 +278,15 @@ class Workbench:
         """How many stored scenes a retraining of the kind would learn from, and how many it
         needs: the models page says so before an admin presses Retrain."""
         if kind == "detector":
-            count, what = len(boxed_scenes(self.scenes)), BOXED_SCENES
+            ids, what = [s.scene_id for s in boxed_scenes(self.scenes)], BOXED_SCENES
         else:
-            count, what = len(labelled_scenes(self.scenes)), LABELLED_SCENES
-        return RetrainReadiness(labelled_scenes=count, needed=MIN_LABELLED_SCENES, what=what)
+            ids, what = [s.scene_id for s in labelled_scenes(self.scenes)], LABELLED_SCENES
+        return RetrainReadiness(
+            labelled_scenes=len(ids),
+            heldout_scenes=len(heldout_split(ids)[1]),
+            needed=MIN_LABELLED_SCENES,
+            what=what,
+        )
 
     def start_retrain(self, request: RetrainRequest, kind: ModelKind = "relation") -> Job:
         """Queue a retrain job of a kind of model (admin). NotEnoughLabelsError when too few

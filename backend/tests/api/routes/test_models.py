@@ -13,6 +13,9 @@ from holiscene.core.settings import Settings
 from holiscene.services.workbench import Workbench
 from holiscene.store import model_registry as registry_module
 from holiscene.store.model_registry import Registration
+from holiscene.store.tables import SceneRow
+from sqlalchemy import update
+from sqlalchemy.orm import Session
 
 from ...conftest import wait_for_job
 from ...model_helpers import (
@@ -135,8 +138,21 @@ def test_readiness_counts_the_scenes_each_kind_would_learn_from(client: TestClie
     store_labelled_scene(scenes, LABELLED_SEEDS[0])
     store_unlabelled_scene(scenes, LABELLED_SEEDS[1])  # pipeline guesses are no labels
     relation = client.get("/api/models/retrain/readiness").json()
-    assert (relation["labelled_scenes"], relation["needed"]) == (1, 2)
+    assert (relation["labelled_scenes"], relation["heldout_scenes"], relation["needed"]) == (
+        1,
+        0,
+        2,
+    )
     assert "supports set by a person" in relation["what"]
+    # With two scenes one is held out (not a fifth of two): the page says how many.
+    second = store_labelled_scene(scenes, LABELLED_SEEDS[1])
+    relation = client.get("/api/models/retrain/readiness").json()
+    assert (relation["labelled_scenes"], relation["heldout_scenes"]) == (2, 1)
+    # A scene a reviewer rejected is no label until it is fixed.
+    with Session(_workbench(client).engine) as session:
+        session.execute(update(SceneRow).where(SceneRow.id == second).values(state="rejected"))
+        session.commit()
+    assert client.get("/api/models/retrain/readiness").json()["labelled_scenes"] == 1
     # The detector learns from boxes a person confirmed; supports set by one are not that.
     detector = client.get("/api/models/retrain/readiness?kind=detector").json()
     assert detector["needed"] == 2 and "boxes a person confirmed" in detector["what"]

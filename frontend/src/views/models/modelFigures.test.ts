@@ -57,12 +57,15 @@ describe("the question before a model is made active", () => {
 describe("what the retrain form says about the labelled scenes", () => {
   it("counts them, and says how many are needed when they are too few", () => {
     const what = "scenes with supports set by a person";
-    expect(readinessText({ labelled_scenes: 1, needed: 2, what })).toBe(
+    expect(readinessText({ labelled_scenes: 1, heldout_scenes: 0, needed: 2, what })).toBe(
       "1 labelled scene (scenes with supports set by a person): at least 2 are needed, " +
         "one to learn from and one to judge by.",
     );
-    expect(readinessText({ labelled_scenes: 5, needed: 2, what })).toMatch(
-      /^5 labelled scenes \(.*\): a fifth of them is held out/,
+    expect(readinessText({ labelled_scenes: 2, heldout_scenes: 1, needed: 2, what })).toMatch(
+      /^2 labelled scenes \(.*\): 1 of them is held out to judge the new model/,
+    );
+    expect(readinessText({ labelled_scenes: 12, heldout_scenes: 3, needed: 2, what })).toMatch(
+      /: 3 of them are held out/,
     );
   });
 });

@@ -56,9 +56,13 @@ export function promoteQuestion(
 }
 
 /** "3 labelled scenes (scenes with ...): enough" / "1 of the 2 needed" */
-export function readinessText({ labelled_scenes: count, needed, what }: RetrainReadiness): string {
+export function readinessText(readiness: RetrainReadiness): string {
+  const { labelled_scenes: count, heldout_scenes: heldout, needed, what } = readiness;
   const scenes = `${count} labelled ${count === 1 ? "scene" : "scenes"} (${what})`;
-  return count >= needed
-    ? `${scenes}: a fifth of them is held out to judge the new model.`
-    : `${scenes}: at least ${needed} are needed, one to learn from and one to judge by.`;
+  if (count < needed) {
+    return `${scenes}: at least ${needed} are needed, one to learn from and one to judge by.`;
+  }
+  // The held-out share is a fifth only with many scenes: with few, one is held out.
+  const held = heldout === 1 ? "1 of them is" : `${heldout} of them are`;
+  return `${scenes}: ${held} held out to judge the new model, never trained on.`;
 }
