@@ -1,7 +1,7 @@
 // User story: someone with a labelled dataset (here a COCO export of three photos) imports it
 // from the scene list as one .zip, follows the import and reads what came of each photo: a
 // photo whose labels are broken is named with the reason and the others are imported; the
-// repaired zip then adds only that photo, the others being skipped as imported before.
+// repaired zip then adds only that photo, the others being skipped as already stored.
 import { execFileSync } from "node:child_process";
 import path from "node:path";
 import { expect, test } from "@playwright/test";
@@ -51,7 +51,7 @@ test("a COCO zip imports from the scene list, naming the photo that did not", as
   await importZip(page, zips.broken);
   const summary = page.getByTestId("dataset-import-summary");
   await expect(summary).toContainText(
-    "broken.zip: 2 photos imported, 0 skipped as imported before, 1 not imported.",
+    "broken.zip: 2 photos imported, 0 skipped as already stored, 1 not imported.",
   );
   const errors = page.getByTestId("dataset-import-errors").locator("li");
   await expect(errors).toHaveCount(1);
@@ -65,7 +65,7 @@ test("a COCO zip imports from the scene list, naming the photo that did not", as
 
   await importZip(page, zips.coco);
   await expect(summary).toContainText(
-    "coco.zip: 1 photo imported, 2 skipped as imported before, 0 not imported.",
+    "coco.zip: 1 photo imported, 2 skipped as already stored, 0 not imported.",
   );
   await expect(page.getByTestId("dataset-import-errors")).toHaveCount(0);
   await expect(list).toContainText("im3d-2");
@@ -73,7 +73,7 @@ test("a COCO zip imports from the scene list, naming the photo that did not", as
   for (const name of ["im3d-1", "im3d-2", "t3d-5"]) {
     await expect(list.locator("tbody tr", { hasText: name })).toHaveCount(1);
   }
-  await page.getByText("Imported before (2)").click();
+  await page.getByText("Already stored (2)").click();
   await form.screenshot({ path: screenshotPath("dataset-import-again.png") });
 
   await page.getByTestId("dataset-import-new").getByRole("link", { name: "im3d-2.jpg" }).click();
@@ -114,7 +114,7 @@ test("a SUN RGB-D outline of two clicks is left out with a note beside its photo
   await importZip(page, path.join(dir, "sun.zip"));
   const summary = page.getByTestId("dataset-import-summary");
   await expect(summary).toContainText(
-    "sun.zip: 1 photo imported (1 with notes), 0 skipped as imported before",
+    "sun.zip: 1 photo imported (1 with notes), 0 skipped as already stored",
   );
   const photo = page.getByTestId("dataset-import-new").locator("li");
   await expect(photo).toContainText("SUNRGBD/kv1/NYU0042");

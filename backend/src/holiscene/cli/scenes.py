@@ -106,9 +106,7 @@ def _import(args: argparse.Namespace) -> int:
                         print(f"error: {source.label}: {exc}", file=sys.stderr)
                         failures += 1
                         continue
-                    failed, scene_id = _import_one(
-                        workbench, number, source.label, inputs, source.name, args
-                    )
+                    failed, scene_id = _import_one(workbench, number, source, inputs, args)
                     failures += failed
                     scene_ids.append(scene_id)
             except InputError as exc:  # a .zip that does not unpack or holds nothing to import
@@ -147,15 +145,18 @@ def _sources(path: Path, workbench: Workbench) -> Iterator[PhotoSource]:
 def _import_one(
     workbench: Workbench,
     number: int,
-    label: str,
+    source: PhotoSource,
     inputs: InputFiles,
-    name: str,
     args: argparse.Namespace,
 ) -> tuple[int, str]:
     """Import one photo, printing a line of progress: 1 when its pipeline failed, and its
     scene. The same files imported before are skipped (an interrupted import resumes where it
-    stopped). With --run-pipeline or --no-pipeline the photo is only stored."""
-    earlier = None if args.again else workbench.scenes.imported_from(inputs)
+    stopped), as is a scene downloaded from this store and not changed since. With
+    --run-pipeline or --no-pipeline the photo is only stored."""
+    from ..services.dataset_import import stored_before
+
+    label, name = source.label, source.name
+    earlier = None if args.again else stored_before(workbench.scenes, inputs, source)
     if earlier is not None:
         print(f"[{number}] {label}: imported before as scene {earlier.id}, skipped")
         return 0, earlier.id

@@ -17,15 +17,17 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import IO, TYPE_CHECKING
 
-from holiscene_schema import ImportJob
+from holiscene_schema import ImportJob, SceneSummary
 
 from ..core.errors import user_facing_error
-from ..inputs import InputError
+from ..export.archive import scene_json
+from ..inputs import InputError, InputFiles
 from ..inputs.archive import ArchiveLimits, unpack_zip
 from ..inputs.datasets.items import confined_to
 from ..inputs.datasets.uploaded import PhotoSource, UploadContents, upload_contents
 from ..store.import_jobs import ImportJobStore
 from ..store.jobs import JobQueueFullError
+from ..store.scenes import SceneNotFoundError, SceneStore
 
 if TYPE_CHECKING:
     from .workbench import Workbench
@@ -105,7 +107,7 @@ class DatasetImports:
         except InputError as exc:
             self.jobs.photo_failed(job.id, label, _shown(str(exc), folder))
             return
-        earlier = self.workbench.scenes.imported_from(inputs)
+        earlier = stored_before(self.workbench.scenes, inputs, source)
         if earlier is not None:
             self.jobs.photo_done(job.id, "skipped", label, earlier.id)
             return
@@ -134,6 +136,29 @@ class DatasetImports:
 
     def close(self) -> None:
         self._executor.shutdown(wait=True, cancel_futures=True)
+
+
+def stored_before(
+    scenes: SceneStore, inputs: InputFiles, source: PhotoSource
+) -> SceneSummary | None:
+    """The scene this photo was stored as before, or None: the scene these very files were
+    imported as, or the scene a folder of the app's download zip was written from when the
+    folder's photo and scene.json are still as downloaded (uploading a download again adds no
+    copy of it; a scene edited after download comes in as a new scene)."""
+    earlier = scenes.imported_from(inputs)
+    downloaded = source.downloaded_from
+    if earlier is not None or downloaded is None:
+        return earlier
+    try:
+        document = scenes.document(downloaded.scene_id, downloaded.revision)
+        photo = scenes.image_path(downloaded.scene_id).read_bytes()
+    except (SceneNotFoundError, OSError):  # another store's scene, or deleted since
+        return None
+    if photo != inputs.photo.data or downloaded.scene_file.read_bytes() != scene_json(
+        document.scene
+    ):
+        return None
+    return scenes.summary(downloaded.scene_id)
 
 
 def _shown(text: str, folder: Path) -> str:

@@ -1,12 +1,14 @@
 """The scene list's "Download selected" zip imports back through "Import a dataset": the
 bytes POST /api/scenes/archive gives, posted to POST /api/imports, make scenes with the same
-classes, boxes (1 px), masks (IoU > 0.99), supports and room layout; the same zip again adds
-nothing; and a pipeline run on the imported scene keeps a layout a person set. Unzipped, the
-download is a folder `holiscene import` takes as it is."""
+classes, boxes (1 px), masks (IoU > 0.99), supports and room layout in another store; the
+same zip again adds nothing, nor does it in the store it came from unless edited since; and
+a pipeline run on the imported scene keeps a layout a person set. Unzipped, the download is
+a folder `holiscene import` takes as it is."""
 
 from __future__ import annotations
 
 import io
+import json
 import zipfile
 from pathlib import Path
 from typing import Any
@@ -14,6 +16,7 @@ from typing import Any
 import numpy as np
 import pytest
 from fastapi.testclient import TestClient
+from holiscene.api.app import create_app
 from holiscene.cli import main
 from holiscene.cli.export import scene_store
 from holiscene.core.settings import Settings
@@ -74,8 +77,23 @@ def _assert_same_labels(back: dict[str, Any], before: dict[str, Any]) -> None:
     assert back["camera"] == before["camera"]
 
 
+def _with_scene_file_changed(archive: bytes, folder_prefix: str, name: str) -> bytes:
+    """The zip with the scene.json of the folder starting with `folder_prefix` renamed to
+    `name`: a download edited before it is uploaded again."""
+    out = io.BytesIO()
+    with zipfile.ZipFile(io.BytesIO(archive)) as source, zipfile.ZipFile(out, "w") as target:
+        for info in source.infolist():
+            data = source.read(info)
+            if info.filename.startswith(folder_prefix) and info.filename.endswith("/scene.json"):
+                scene = json.loads(data)
+                scene["name"] = name
+                data = json.dumps(scene).encode()
+            target.writestr(info, data)
+    return out.getvalue()
+
+
 def test_the_download_imports_back_to_the_same_scenes(
-    client: TestClient, t3d5: Path, real_photos: Path
+    client: TestClient, t3d5: Path, real_photos: Path, tmp_path: Path
 ) -> None:
     placed = upload(client, t3d5, name="bedroom", run_pipeline="true")
     assert wait_for_job(client, placed["job"]["id"], 60)["status"] == "succeeded"
@@ -86,26 +104,40 @@ def test_the_download_imports_back_to_the_same_scenes(
 
     response = client.post("/api/scenes/archive", json={"scene_ids": [placed_id, plain_id]})
     assert response.status_code == 200, response.text
-    job = _imported(client, response.content)
-    assert job["status"] == "succeeded" and job["errors"] == [], job
-    assert job["format"] == "input folders"
-    assert len(job["imported"]) == 2
-    new_ids = [item["scene_id"] for item in job["imported"]]
-    assert not {placed_id, plain_id} & set(new_ids)
-    for new_id, before in zip(new_ids, [edited, plain], strict=True):
-        back = _document(client, new_id)["scene"]
-        _assert_same_labels(back, before)
-        assert back["name"] == before["name"], "named as before, not after the folder"
 
-    again = _imported(client, response.content)
-    assert again["imported"] == [] and len(again["skipped"]) == 2, again
-    assert [item["scene_id"] for item in again["skipped"]] == new_ids
+    # Into the store it came from, unchanged: no copies, the scenes it was written from.
+    home = _imported(client, response.content)
+    assert home["imported"] == [] and home["errors"] == [], home
+    assert [item["scene_id"] for item in home["skipped"]] == [placed_id, plain_id]
+    # Edited after download, a scene comes in as a new one.
+    renamed = _with_scene_file_changed(response.content, "plain-", "plain, edited")
+    changed = _imported(client, renamed)
+    assert [item["scene_id"] for item in changed["skipped"]] == [placed_id]
+    (copy,) = changed["imported"]
+    assert _document(client, copy["scene_id"])["scene"]["name"] == "plain, edited"
 
-    # The layout a person set stays through a pipeline run on the imported scene.
-    rerun = client.post(f"/api/scenes/{new_ids[0]}/pipeline-jobs")
-    assert rerun.status_code == 202, rerun.text
-    assert wait_for_job(client, rerun.json()["id"], 60)["status"] == "succeeded"
-    assert _document(client, new_ids[0])["scene"]["layout"] == edited["layout"]
+    # Into another store: new scenes with the same labels; the same zip again adds nothing.
+    other = Settings(data_dir=tmp_path / "other", web_dir=tmp_path / "no-web")
+    with TestClient(create_app(other)) as elsewhere:
+        job = _imported(elsewhere, response.content)
+        assert job["status"] == "succeeded" and job["errors"] == [], job
+        assert job["format"] == "input folders"
+        assert len(job["imported"]) == 2
+        new_ids = [item["scene_id"] for item in job["imported"]]
+        for new_id, before in zip(new_ids, [edited, plain], strict=True):
+            back = _document(elsewhere, new_id)["scene"]
+            _assert_same_labels(back, before)
+            assert back["name"] == before["name"], "named as before, not after the folder"
+
+        again = _imported(elsewhere, response.content)
+        assert again["imported"] == [] and len(again["skipped"]) == 2, again
+        assert [item["scene_id"] for item in again["skipped"]] == new_ids
+
+        # The layout a person set stays through a pipeline run on the imported scene.
+        rerun = elsewhere.post(f"/api/scenes/{new_ids[0]}/pipeline-jobs")
+        assert rerun.status_code == 202, rerun.text
+        assert wait_for_job(elsewhere, rerun.json()["id"], 60)["status"] == "succeeded"
+        assert _document(elsewhere, new_ids[0])["scene"]["layout"] == edited["layout"]
 
 
 def test_holiscene_import_takes_the_download(

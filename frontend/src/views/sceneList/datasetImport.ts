@@ -1,6 +1,6 @@
 // "Import a dataset": a .zip of a COCO or LabelMe dataset, SUN RGB-D image folders or input
 // folders, imported by the server in the background; shows how far it got and, at the end,
-// what was imported (with what its labels lost), skipped as imported before, and each photo's
+// what was imported (with what its labels lost), skipped as already stored, and each photo's
 // error.
 import type { ImportedPhoto, ImportJob, PhotoError } from "@holiscene/schema";
 import { importsApi, pollImport } from "../../api/imports";
@@ -58,7 +58,7 @@ function summary(job: ImportJob): HTMLElement {
   const noted = job.imported.filter((photo) => photo.notes.length > 0).length;
   const counts = [
     `${plural(job.imported.length, "photo")} imported${noted ? ` (${noted} with notes)` : ""}`,
-    `${job.skipped.length} skipped as imported before`,
+    `${job.skipped.length} skipped as already stored`,
     `${job.errors.length} not imported`,
   ].join(", ");
   const head =
@@ -91,7 +91,7 @@ function summary(job: ImportJob): HTMLElement {
       el(
         "details",
         {},
-        el("summary", { text: `Imported before (${job.skipped.length})` }),
+        el("summary", { text: `Already stored (${job.skipped.length})` }),
         sceneLinks(job.skipped, "dataset-import-skipped"),
       ),
     );
@@ -137,8 +137,9 @@ export function datasetImportForm(signal: AbortSignal, onScenes: () => void): HT
       "A .zip of a COCO or LabelMe dataset (the JSON with its images), SUN RGB-D image " +
         "folders, or input folders (img.jpg with cam_K.txt, detections.json…), as ",
       el("code", { text: "holiscene export" }),
-      " writes them. A photo imported before with the very same files is skipped; the same " +
-        "photo with other labels (a scene downloaded and edited) comes in as a new scene. " +
+      " writes them. A photo imported before with the very same files is skipped, as is a " +
+        "scene downloaded from here and not changed since; a downloaded scene edited before " +
+        "upload comes in as a new scene. " +
         "NYU Depth v2's .mat is too large " +
         "to upload: import it on the server with ",
       el("code", { text: "holiscene import" }),

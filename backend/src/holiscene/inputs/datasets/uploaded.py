@@ -13,7 +13,15 @@ from functools import partial
 from pathlib import Path
 
 from ..validation import InputError, InputFiles, read_input_folder
-from . import PHOTO_NAMES, _coco_files, _labelme_candidates, dataset_items, is_dataset
+from . import (
+    ARCHIVE_INDEX,
+    PHOTO_NAMES,
+    _coco_files,
+    _labelme_candidates,
+    dataset_items,
+    is_archive_index,
+    is_dataset,
+)
 from .coco import is_coco
 from .items import DatasetItem, load_json
 from .nyu import nyu_files
@@ -27,6 +35,17 @@ NYU_REFUSAL = (
 
 
 @dataclass(frozen=True)
+class DownloadedFrom:
+    """The stored scene and revision a folder of the app's download zip was written from (as
+    its index.json says), and the folder's scene.json: an upload of it unchanged is no new
+    scene (services/dataset_import.py, stored_before)."""
+
+    scene_id: str
+    revision: int
+    scene_file: Path
+
+
+@dataclass(frozen=True)
 class PhotoSource:
     """One photo to import: `label` names it for the user, `name` is the scene's name, and
     `read` gives its checked inputs or raises InputError (that photo's error)."""
@@ -34,6 +53,7 @@ class PhotoSource:
     label: str
     name: str
     read: Callable[[], InputFiles]
+    downloaded_from: DownloadedFrom | None = None
 
 
 def photo_sources(path: Path) -> Iterator[PhotoSource]:
@@ -46,7 +66,24 @@ def photo_sources(path: Path) -> Iterator[PhotoSource]:
         for part in parts:  # a folder of input folders (an export, the app's download zip)
             yield from photo_sources(part)
     else:
-        yield PhotoSource(str(path), _folder_scene_name(path), partial(read_input_folder, path))
+        yield PhotoSource(
+            str(path),
+            _folder_scene_name(path),
+            partial(read_input_folder, path),
+            _downloaded_from(path),
+        )
+
+
+def _downloaded_from(folder: Path) -> DownloadedFrom | None:
+    """Where a folder of the app's download zip came from, by the index.json beside it."""
+    index = folder.parent / ARCHIVE_INDEX
+    if not (folder / "scene.json").is_file() or not is_archive_index(index):
+        return None
+    for entry in load_json(index)["scenes"]:
+        scene_id, revision = entry.get("scene_id"), entry.get("revision")
+        if entry["folder"] == folder.name and isinstance(scene_id, str) and type(revision) is int:
+            return DownloadedFrom(scene_id, revision, folder / "scene.json")
+    return None
 
 
 def _folder_scene_name(folder: Path) -> str:
