@@ -5,7 +5,7 @@
 // server (every request is recorded from the correction until the arrow changed).
 import type { Request } from "@playwright/test";
 import { expect, test } from "@playwright/test";
-import { getScene, supportOf } from "../helpers/api";
+import { getScene, postEdits, supportOf } from "../helpers/api";
 import {
   arrowOf,
   clickArrow,
@@ -101,4 +101,45 @@ test("a correction re-scores the other predictions in the browser, without the s
   const doc = await getScene(request, seeded.scene_id);
   expect(supportOf(doc, b)).toMatchObject({ parent: a, source: "manual", author: "e2e-live" });
   expect(supportOf(doc, a)).toMatchObject({ parent: suggestion?.parent, source: "manual" });
+});
+
+test("a person's label the model is sure is something else is flagged, not changed", async ({
+  page,
+  request,
+}) => {
+  const [synthetic] = synthesize(11, 1);
+  if (!synthetic) throw new Error("no synthetic scene");
+  const seeded = await importSynthetic(request, synthetic, "synthetic doubted label");
+  await openScene(page, seeded.scene_id);
+  await waitForModel(page);
+  await expect(page.locator(".badge--doubt")).toHaveCount(0);
+  // An object the model places confidently (80% or more), on something other than the ceiling.
+  const sure = await page.getByTestId(/^support-suggestion-/).evaluateAll((badges) =>
+    badges
+      .map((b) => ({
+        id: (b.getAttribute("data-testid") ?? "").replace("support-suggestion-", ""),
+        text: b.textContent ?? "",
+      }))
+      .filter((b) => Number(/(\d+)%$/.exec(b.text)?.[1] ?? 0) >= 80 && !b.text.includes("ceiling")),
+  );
+  const target = sure[0];
+  if (!target) throw new Error("the model is sure of no object in this scene");
+
+  // A person hangs it from the ceiling (a slip), and the page is opened again.
+  const doc = await getScene(request, seeded.scene_id);
+  await postEdits(request, doc, "e2e-doubt", [
+    { kind: "set_support", child: target.id, parent: "ceiling", type: "behind" },
+  ]);
+  await page.reload();
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await waitForModel(page);
+  const badge = page.getByTestId(`support-suggestion-${target.id}`);
+  await expect(badge).toHaveClass(/badge--doubt/);
+  await expect(badge).toHaveAttribute("title", /sure of .* not the label set by a person/);
+  await expect(page.getByTestId("suggestion-status")).toContainText(
+    "the model disagrees with 1 label set by a person",
+  );
+  const stored = await getScene(request, seeded.scene_id);
+  expect(supportOf(stored, target.id)?.parent).toBe("ceiling");
+  await page.getByTestId("object-table").screenshot({ path: screenshotPath("doubted-label.png") });
 });

@@ -1,27 +1,43 @@
 // The model's answer beside each object in the support editor's table: a badge with the most
-// probable supporter and type, the next answers in its tooltip.
+// probable supporter and type, the next answers in its tooltip. Where a person's label
+// contradicts a confident answer (labelDoubts.ts) the badge turns orange and says so.
 import { el } from "../dom";
 import type { SceneScores, SupportSuggestion } from "./supportModel";
 
 const percent = (p: number) => `${Math.round(p * 100)}%`;
 const answer = (s: SupportSuggestion) => `${s.supporter} · ${s.type} ${percent(s.probability)}`;
 
-/** Put the badges into `table`'s object rows (`tr[data-object]`), unless they are there. */
-export function showSuggestionBadges(table: HTMLElement, scores: SceneScores | null): void {
+/** Put the badges into `table`'s object rows (`tr[data-object]`), unless they are there
+ * already with the same doubts. */
+export function showSuggestionBadges(
+  table: HTMLElement,
+  scores: SceneScores | null,
+  doubted: ReadonlyMap<string, SupportSuggestion> = new Map(),
+): void {
   const ranked = scores?.ranked ?? [];
   const shown = table.querySelectorAll(".badge--suggestion");
-  if (shown.length === ranked.length && [...shown].every((b) => b.isConnected)) return;
+  const doubts = [...doubted.keys()].sort().join(" ");
+  const same = shown.length === ranked.length && [...shown].every((b) => b.isConnected);
+  if (same && table.dataset.doubted === doubts) return;
+  table.dataset.doubted = doubts;
   for (const badge of shown) badge.remove();
   for (const s of ranked) {
     const best = s.ranked[0];
     const cell = table.querySelector(`tr[data-object="${CSS.escape(s.id)}"] th`);
     if (!best || !cell) continue;
+    const doubt = doubted.has(s.id);
+    const alternatives = s.ranked.slice(0, 3).map(answer).join("\n");
     cell.append(
       el("span", {
-        className: "badge badge--suggestion",
+        className: doubt ? "badge badge--suggestion badge--doubt" : "badge badge--suggestion",
         testid: `support-suggestion-${s.id}`,
         text: `model: ${answer(best)}`,
-        attrs: { title: s.ranked.slice(0, 3).map(answer).join("\n") },
+        attrs: {
+          title: doubt
+            ? `The model is ${percent(best.probability)} sure of ${best.supporter} · ` +
+              `${best.type}, not the label set by a person: check it.\n${alternatives}`
+            : alternatives,
+        },
       }),
     );
   }

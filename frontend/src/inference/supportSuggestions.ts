@@ -9,6 +9,7 @@ import { deferred } from "../afterPaint";
 import { api } from "../api/client";
 import { button, el } from "../dom";
 import { plural, type SceneSession } from "../state/sceneSession";
+import { doubtedLabels } from "./labelDoubts";
 import type { PixelImage } from "./preprocess";
 import { makeSuggester } from "./suggester";
 import { showSuggestionBadges } from "./suggestionBadges";
@@ -103,16 +104,22 @@ export function mountSupportSuggestions(
   let photo: Promise<PixelImage> | null = null;
   let run = 0;
 
-  const render = () => showSuggestionBadges(table, scores);
+  const render = () => showSuggestionBadges(table, scores, doubtedLabels(session.shown(), scores));
 
   const describe = (ms: number) => {
     const count = scores?.ids.length ?? 0;
     const suggested = session.suggestions().size;
+    const doubted = doubtedLabels(session.shown(), scores).size;
     status.textContent =
       `${plural(count, "object")} scored in ${Math.round(ms)} ms` +
-      (live.checked
+      // Read only (a reviewer), nothing is suggested: saying "no changes" would mislead.
+      (live.checked && session.editable
         ? ` · live: ${suggested === 0 ? "no changes suggested" : `${suggested} suggested`}`
+        : "") +
+      (doubted > 0
+        ? ` · the model disagrees with ${plural(doubted, "label")} set by a person (orange)`
         : "");
+    status.classList.toggle("has-doubts", doubted > 0);
   };
   let scoredMs = 0;
   /** The objects changed since the scores shown: a new scoring is due (the status says so). */
