@@ -247,6 +247,13 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
 
   // Eraser, zoomed in and in a narrower window: a stroke across the middle takes those pixels
   // out (drag checks that the live mask still lies over the photo).
+  // At 1100 px the header still keeps the scene's name whole (it once lost its last letters
+  // to a fraction of a pixel while the figures beside it had room to give) and fits the page.
+  await page.setViewportSize({ width: 1100, height: 1000 });
+  const title = page.getByTestId("scene-title");
+  expect(await title.evaluate((h) => h.scrollWidth <= h.clientWidth)).toBe(true);
+  const header = page.locator(".scene-header");
+  expect(await header.evaluate((h) => h.scrollWidth <= h.clientWidth)).toBe(true);
   await page.setViewportSize({ width: 1280, height: 1000 });
   await page.keyboard.press("+");
   await page.keyboard.press("Shift+P");
