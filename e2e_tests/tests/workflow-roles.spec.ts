@@ -151,6 +151,13 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
     await expect(page.getByTestId("accounts-message")).toHaveText(`Added ${user.name} (${role}).`);
     await expect(page.getByTestId(`account-${user.name}`)).toBeVisible();
   }
+  // The only admin cannot be demoted or disabled: its row says so instead of asking first.
+  await expect(page.getByTestId(`disable-account-${ADMIN.name}`)).toBeDisabled();
+  await expect(page.getByTestId(`role-select-${ADMIN.name}`)).toBeDisabled();
+  await expect(page.getByTestId(`role-select-${ADMIN.name}`)).toHaveAttribute(
+    "title",
+    `${ADMIN.name} is the only admin: make another account admin first`,
+  );
   // Disabling an account asks first; enabling it again does not.
   page.once("dialog", (dialog) => void dialog.accept());
   await page.getByTestId(`disable-account-${REVIEWER.name}`).click();
@@ -179,6 +186,11 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId("accounts-message")).toContainText("different characters");
   await expect(page.getByTestId("account-weak")).toHaveCount(0);
   await shot(page, "accounts");
+  // A name the browser refuses (its own bubble) clears that older answer.
+  await page.getByTestId("new-user-name").fill("Not Allowed");
+  await page.getByTestId("new-user-submit").click();
+  await expect(page.getByTestId("accounts-message")).toHaveText("");
+  await page.getByTestId("new-user-name").fill("");
   await logOut(page);
 
   // The annotator takes the next scene twice, corrects a supporter in each and submits.

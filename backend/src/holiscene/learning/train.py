@@ -268,10 +268,16 @@ def plot_curve(
 
     fig, loss_axis = plt.subplots(figsize=(6, 3.5), dpi=100)
     epochs = [c["epoch"] for c in curve]
-    # Dots as well as lines: a short retrain's one or two epochs would draw no line at all.
-    marker = "o" if len(epochs) <= 20 else None
+    # Marks as well as lines: a short retrain's one or two epochs would draw no line at all.
+    # Two shapes, the loss's larger: with one epoch both points may sit at the same height.
+    few = len(epochs) <= 20
     loss_axis.plot(
-        epochs, [c["train_loss"] for c in curve], color="tab:red", marker=marker, label="train loss"
+        epochs,
+        [c["train_loss"] for c in curve],
+        color="tab:red",
+        marker="s" if few else None,
+        markersize=7,
+        label="train loss",
     )
     loss_axis.set_xlabel("epoch")
 
@@ -281,7 +287,8 @@ def plot_curve(
         epochs,
         [c["validation_accuracy"] for c in curve],
         color="tab:blue",
-        marker=marker,
+        marker="o" if few else None,
+        markersize=4,
         label="validation",
     )
     accuracy_axis.set_ylabel(accuracy_label, color="tab:blue")
@@ -293,6 +300,9 @@ def plot_curve(
         loss_axis.set_xticks(epochs)
     else:
         loss_axis.xaxis.set_major_locator(MaxNLocator(integer=True))
+    # One legend for the two axes' lines.
+    lines = loss_axis.get_lines() + accuracy_axis.get_lines()
+    accuracy_axis.legend(lines, [str(line.get_label()) for line in lines], loc="best")
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)

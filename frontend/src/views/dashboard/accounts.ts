@@ -31,14 +31,36 @@ function newPasswordInput(testid: string): HTMLInputElement {
   });
 }
 
-/** An account's row: its role (a select that changes it), "Reset password…" and Disable. */
-function userRow(user: UserInfo, report: Report, onChange: () => void): HTMLTableRowElement {
+/** Why the server would refuse to demote or disable `user` (the last enabled admin), or
+ * null: the row says so up front instead of asking first and failing after. */
+export function lastAdminReason(user: UserInfo, users: readonly UserInfo[]): string | null {
+  const admins = users.filter((u) => u.role === "admin" && !u.disabled);
+  if (user.disabled || user.role !== "admin" || admins.length !== 1) return null;
+  return `${user.name} is the only admin: make another account admin first`;
+}
+
+/** An account's row: its role (a select that changes it), "Reset password…" and Disable;
+ * `lastAdmin` says why the role and Disable are locked (see lastAdminReason). */
+function userRow(
+  user: UserInfo,
+  lastAdmin: string | null,
+  report: Report,
+  onChange: () => void,
+): HTMLTableRowElement {
   const role = el(
     "select",
-    { testid: `role-select-${user.name}`, attrs: { "aria-label": `Role of ${user.name}` } },
+    {
+      testid: `role-select-${user.name}`,
+      attrs: {
+        "aria-label": `Role of ${user.name}`,
+        disabled: lastAdmin !== null,
+        title: lastAdmin ?? undefined,
+      },
+    },
     ...ROLES.map((r) => el("option", { text: r, attrs: { value: r, selected: r === user.role } })),
   );
   role.addEventListener("change", async () => {
+    report.say(""); // the last message was about another action
     const question = `Make ${user.name} an admin? Admins manage accounts, retrain and promote models, and may take over any scene.`;
     if (role.value === "admin" && !window.confirm(question)) {
       role.value = user.role;
@@ -85,12 +107,20 @@ function userRow(user: UserInfo, report: Report, onChange: () => void): HTMLTabl
   });
   const access = button(user.disabled ? "Enable" : "Disable…", {
     testid: `${user.disabled ? "enable" : "disable"}-account-${user.name}`,
-    title: user.disabled
-      ? "Let this account log in again"
-      : "Stop this account logging in and end its sessions (its work stays)",
+    disabled: lastAdmin !== null,
+    title:
+      lastAdmin ??
+      (user.disabled
+        ? "Let this account log in again"
+        : "Stop this account logging in and end its sessions (its work stays)"),
   });
   access.addEventListener("click", async () => {
-    const question = `Disable ${user.name}? They are logged out and cannot log in until enabled again; their scenes and labels stay.`;
+    report.say("");
+    const question =
+      user.name === getCurrentUser()?.name
+        ? "Disable your own account? You are logged out at once and cannot log in until " +
+          "another admin enables it; your scenes and labels stay."
+        : `Disable ${user.name}? They are logged out and cannot log in until enabled again; their scenes and labels stay.`;
     if (!user.disabled && !window.confirm(question)) return;
     try {
       await usersApi.setDisabled(user.name, !user.disabled);
@@ -159,6 +189,9 @@ function newUserForm(report: Report, onAdded: () => Promise<void>): HTMLFormElem
         : NAME_RULE,
     }),
   );
+  // The browser refusing a field (its own bubble) is an answer too: an older message would
+  // sit beside it as if it were about this. ("invalid" does not bubble: caught on the way.)
+  form.addEventListener("invalid", () => report.say(""), true);
   form.addEventListener("submit", async (event) => {
     event.preventDefault();
     report.say(""); // the last answer is about another request
@@ -210,7 +243,9 @@ export function accountsSection(signal: AbortSignal, onChange: () => void): HTML
         void load(); // a disabled account's row reads so
         onChange();
       };
-      body.replaceChildren(...users.map((user) => userRow(user, report, changed)));
+      body.replaceChildren(
+        ...users.map((user) => userRow(user, lastAdminReason(user, users), report, changed)),
+      );
     } catch (err) {
       if (!signal.aborted) report.fail(err);
     }

@@ -38,7 +38,8 @@ describe("the question before a model is made active", () => {
 
   it("gives both models' figures and how many scenes the held-out one rests on", () => {
     expect(promoteQuestion(retrained, active, text)).toBe(
-      "Make v2 the active model? Pipeline runs and suggestions use it from now on.\n\n" +
+      "Warning: its validation figure is 59.5 points below the active model's. " +
+        "Make v2 the active model? Pipeline runs and suggestions use it from now on.\n\n" +
         "v2: held-out accuracy 97.1 % (v1: 97.1 %), on 34 labelled objects (1 held-out scene); " +
         "validation accuracy 39.6 %\n" +
         "v1 (active now): held-out accuracy —; validation accuracy 99.1 %",
@@ -48,9 +49,18 @@ describe("the question before a model is made active", () => {
   it("says first when the model lost its held-out test", () => {
     const lost = { ...retrained, status: "rejected" } as ModelInfo;
     expect(promoteQuestion(lost, active, text)).toMatch(
-      /^v2 did worse than the model it was compared with on the held-out scenes\. Make v2/,
+      /^v2 did worse than the model it was compared with on the held-out scenes\. Warning: /,
     );
-    expect(promoteQuestion(active, active, text)).not.toMatch(/active now/);
+    expect(promoteQuestion(active, active, text)).not.toMatch(/active now|Warning/);
+  });
+
+  it("warns when the held-out figure rests on a handful of items, not when it does not", () => {
+    const close = { ...retrained, validation_accuracy: 0.98 } as ModelInfo;
+    expect(promoteQuestion(close, active, text)).toMatch(/^Make v2 the active model\?/);
+    const thin = { ...close, heldout_items: 1 } as ModelInfo;
+    expect(promoteQuestion(thin, active, text)).toMatch(
+      /^Its held-out figure rests on 1 item only: too few to tell two models apart\. Make v2/,
+    );
   });
 });
 

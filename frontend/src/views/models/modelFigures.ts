@@ -46,13 +46,39 @@ export function promoteQuestion(
       ? `v${model.version} did worse than the model it was compared with on the held-out scenes. `
       : "";
   const lines = [
-    `${lost}Make v${model.version} the active model? Pipeline runs and suggestions use it from now on.`,
+    `${lost}${cautions(model, active).join(" ")}` +
+      `Make v${model.version} the active model? Pipeline runs and suggestions use it from now on.`,
     "",
     `v${model.version}: ${figuresLine(model, text)}`,
   ];
   if (active && active.id !== model.id)
     lines.push(`v${active.version} (active now): ${figuresLine(active, text)}`);
   return lines.join("\n");
+}
+
+/** Held-out figures on fewer items than this decide little (one item is a whole share). */
+export const FEW_HELDOUT_ITEMS = 20;
+/** A validation figure this much below the active model's is a warning of its own. */
+export const WORSE_VALIDATION = 0.05;
+
+/** Warnings before making `model` active: much worse on validation than the active model,
+ * or a held-out figure that rests on a handful of items. */
+function cautions(model: ModelInfo, active: ModelInfo | undefined): string[] {
+  const out: string[] = [];
+  const mine = model.validation_accuracy;
+  const theirs = active && active.id !== model.id ? active.validation_accuracy : null;
+  if (mine !== null && theirs !== null && theirs - mine >= WORSE_VALIDATION) {
+    const points = ((theirs - mine) * 100).toFixed(1);
+    out.push(`Warning: its validation figure is ${points} points below the active model's.`);
+  }
+  const items = model.heldout_items;
+  if (model.heldout_accuracy !== null && items != null && items < FEW_HELDOUT_ITEMS) {
+    out.push(
+      `Its held-out figure rests on ${items} ${items === 1 ? "item" : "items"} only: ` +
+        "too few to tell two models apart.",
+    );
+  }
+  return out.map((line) => `${line} `);
 }
 
 /** "3 labelled scenes (scenes with ...): enough" / "1 of the 2 needed" */

@@ -90,6 +90,8 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
     const curve = button("Curve", {
       testid: `curve-${model.version}`,
       disabled: !model.has_curve,
+      // A greyed button should say why: shipped and converted models were not trained here.
+      title: model.has_curve ? undefined : "No training curve: this model was not trained here",
       onClick: () => onCurve(model),
     });
     return el(
@@ -119,7 +121,18 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
               : STATUS_TEXT[model.status],
         }),
       ),
-      el("td", { text: heldoutText(model, text) }),
+      el("td", {
+        text: heldoutText(model, text),
+        // A model never judged on held-out scenes of its own still has figures beside the
+        // models retrained from it ("(v1: …)" on their rows): say where they are.
+        attrs: {
+          title:
+            model.heldout_accuracy === null
+              ? "Not measured on held-out scenes when it was registered; a model retrained " +
+                "from it shows this model's figure beside its own"
+              : undefined,
+        },
+      }),
       el("td", {
         text: percent(model.validation_accuracy),
         attrs: { title: model.validation_accuracy === null ? text.noValidation : undefined },
