@@ -271,27 +271,17 @@ def plot_curve(
     # Marks as well as lines: a short retrain's one or two epochs would draw no line at all.
     # Two shapes, the loss's larger: with one epoch both points may sit at the same height.
     few = len(epochs) <= 20
-    loss_axis.plot(
-        epochs,
-        [c["train_loss"] for c in curve],
-        color="tab:red",
-        marker="s" if few else None,
-        markersize=7,
-        label="train loss",
-    )
-    loss_axis.set_xlabel("epoch")
-
-    loss_axis.set_ylabel(loss_label, color="tab:red")
     accuracy_axis = loss_axis.twinx()
-    accuracy_axis.plot(
-        epochs,
-        [c["validation_accuracy"] for c in curve],
-        color="tab:blue",
-        marker="o" if few else None,
-        markersize=4,
-        label="validation",
+    series = (
+        (loss_axis, "train_loss", "tab:red", "s", 7, "train loss", loss_label),
+        (accuracy_axis, "validation_accuracy", "tab:blue", "o", 4, "validation", accuracy_label),
     )
-    accuracy_axis.set_ylabel(accuracy_label, color="tab:blue")
+    for axis, key, colour, mark, size, label, axis_label in series:
+        values = [c[key] for c in curve]
+        marker = mark if few else None
+        axis.plot(epochs, values, color=colour, marker=marker, markersize=size, label=label)
+        axis.set_ylabel(axis_label, color=colour)
+    loss_axis.set_xlabel("epoch")
     accuracy_axis.set_ylim(0, 1)
     # Epochs are whole. The locator falls back to fractions when fewer than two whole numbers
     # are in view (one epoch: 0.945-1.05), so a short run gets its epochs as the ticks.
