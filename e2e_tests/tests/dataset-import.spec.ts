@@ -62,6 +62,9 @@ test("a COCO zip imports from the scene list, naming the photo that did not", as
   await expect(list).toContainText("t3d-5");
   await expect(list).not.toContainText("im3d-2");
   await form.screenshot({ path: screenshotPath("dataset-import-broken.png") });
+  // The form is ready for the next zip: the file cleared, "run the pipeline" left as chosen.
+  await expect(page.getByTestId("dataset-import-file")).toHaveValue("");
+  await expect(page.getByTestId("dataset-import-pipeline")).not.toBeChecked();
 
   await importZip(page, zips.coco);
   await expect(summary).toContainText(

@@ -182,7 +182,7 @@ export function datasetImportForm(signal: AbortSignal, onScenes: () => void): HT
       const finished = await pollImport(started, show, signal);
       progress.hidden = true;
       result.replaceChildren(summary(finished));
-      form.reset();
+      archive.value = ""; // the zip is done with; the choice of running the pipeline stays
       onScenes();
     } catch (error) {
       if (signal.aborted) return;
