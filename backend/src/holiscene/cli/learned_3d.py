@@ -119,7 +119,10 @@ def add_learned_3d_training_command(
         "--members", type=int, default=BoxRefinerTraining.members, help="networks in the ensemble"
     )
     refiner.add_argument(
-        "--workers", type=int, default=BoxRefinerTraining.workers, help="processes making the rooms"
+        "--workers",
+        type=int,
+        default=BoxRefinerTraining.workers,
+        help="processes making the rooms and training the members",
     )
     refiner.add_argument("--seed", type=int, default=0)
     refiner.add_argument(

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import copy
 import json
+import multiprocessing
 import sys
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -135,17 +136,19 @@ def _normalise(rooms: list[RoomSample]) -> Normalised:
     return Normalised(mean, std, scenes)
 
 
+Curve = list[dict[str, float]]
+
+
 def train_member(
     data: Normalised, validation: list[RoomSample], run: BoxRefinerTraining, member: int
-) -> BoxRefinerNet:
-    """One network from seed `run.seed + member`, at its best validation epoch; its curve goes
-    to `run.curves`."""
+) -> tuple[BoxRefinerNet, Curve]:
+    """One network from seed `run.seed + member`, at its best validation epoch, and its
+    curve."""
     torch.manual_seed(run.seed + member)
     net = BoxRefinerNet(int(data.mean.shape[0]))
     optimiser = torch.optim.AdamW(net.parameters(), lr=1e-3, weight_decay=0.01)
     schedule = torch.optim.lr_scheduler.CosineAnnealingLR(optimiser, run.epochs)
-    curve: list[dict[str, float]] = []
-    run.curves.append(curve)
+    curve: Curve = []
     best: tuple[float, dict[str, torch.Tensor]] = (-1.0, {})
     label = f"member {member + 1}/{run.members}"
     for epoch in range(1, run.epochs + 1):
@@ -165,7 +168,36 @@ def train_member(
         if share > best[0]:
             best = (share, copy.deepcopy(net.state_dict()))
     net.load_state_dict(best[1])
-    return net
+    return net, curve
+
+
+def _member_in_process(
+    data: Normalised, validation: list[RoomSample], run: BoxRefinerTraining, member: int
+) -> tuple[dict[str, torch.Tensor], Curve]:
+    torch.set_num_threads(1)
+    net, curve = train_member(data, validation, run, member)
+    return net.state_dict(), curve
+
+
+def train_members(
+    data: Normalised, validation: list[RoomSample], run: BoxRefinerTraining
+) -> list[BoxRefinerNet]:
+    """The ensemble's members, `run.workers` at a time (each on one thread: the same networks
+    as one after the other, as each member's seed fixes its own randomness); their curves go
+    to `run.curves`."""
+    jobs = [(data, validation, run, member) for member in range(run.members)]
+    if run.workers <= 1 or run.members <= 1:
+        trained = [train_member(*job) for job in jobs]
+    else:
+        with multiprocessing.get_context("spawn").Pool(min(run.workers, run.members)) as pool:
+            states = pool.starmap(_member_in_process, jobs)
+        trained = []
+        for state, curve in states:
+            net = BoxRefinerNet(int(data.mean.shape[0]))
+            net.load_state_dict(state)
+            trained.append((net, curve))
+    run.curves.extend(curve for _, curve in trained)
+    return [net for net, _ in trained]
 
 
 def export_onnx(net: BoxRefinerEnsemble, path: Path, features: int) -> float:
@@ -260,7 +292,7 @@ def train_box_refiner(run: BoxRefinerTraining) -> dict[str, Any]:
     if not rooms:
         raise ValueError("no training room has a placed object")
     data = _normalise(rooms)
-    members = [train_member(data, validation, run, k) for k in range(run.members)]
+    members = train_members(data, validation, run)
     ensemble = BoxRefinerEnsemble(members)
     pipeline_share = pipeline_found_share(validation)
     # The ensemble's validation boxes, refined once for its share and the confidence's fit.
