@@ -30,7 +30,8 @@ test("an admin retrains, makes the new model active and rolls back", async ({ pa
   const active = before.find((m) => m.active);
   if (!active) throw new Error("no active Relation Network");
 
-  await page.goto("/#/models");
+  await page.goto("/#/dashboard");
+  await page.getByTestId("models-link").click(); // in the header, on every page
   await expect(page.getByTestId("model-list")).toBeVisible();
   await expect(page.getByTestId("models-admin-only")).toBeHidden(); // single-user mode: admin
   // Before Retrain, the form says how many labelled scenes it would learn from.

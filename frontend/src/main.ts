@@ -75,6 +75,9 @@ function renderUserArea(user: CurrentUser | null): void {
   const logout = button("Log out", { testid: "logout", onClick: () => void logOut() });
   userArea?.replaceChildren(
     el("a", { text: "Dashboard", testid: "dashboard-link", attrs: { href: "#/dashboard" } }),
+    // Every role may look at the models (admins retrain and roll back there): one click away
+    // from any page, not only from the scene list.
+    el("a", { text: "Models", testid: "models-link", attrs: { href: "#/models" } }),
     el(
       "span",
       {
