@@ -48,6 +48,7 @@ class ArchivedScene:
     glb: Path | None
     ground_truth: Path | None = None  # gt.json, for a scene imported with ground truth
     depth: Path | None = None  # depth.png, for a scene with depth
+    state: str | None = None  # the workflow state when downloaded (index.json says it)
 
 
 def archived_scene(scenes: SceneStore, scene_id: str) -> ArchivedScene:
@@ -64,6 +65,7 @@ def archived_scene(scenes: SceneStore, scene_id: str) -> ArchivedScene:
         glb=glb if glb is not None and glb.is_file() else None,
         ground_truth=truth if truth.is_file() else None,
         depth=depth if document.scene.depth is not None and depth.is_file() else None,
+        state=scenes.summary(scene_id).state,
     )
 
 
@@ -74,7 +76,7 @@ def coco_description(scene_id: str, revision: int, scene: Scene) -> str:
 def scenes_zip(scenes: list[ArchivedScene]) -> bytes:
     """The zip: `<name>-<id>/scene.json`, `coco.json`, the photo, `scene.glb` when the
     scene has one, and the input folder's label files; `index.json` lists the folders with
-    their scene id and revision."""
+    their scene id, revision and workflow state."""
     buffer = io.BytesIO()
     index: list[dict[str, Any]] = []
     with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_DEFLATED) as archive:
@@ -95,6 +97,7 @@ def scenes_zip(scenes: list[ArchivedScene]) -> bytes:
                     "scene_id": item.scene_id,
                     "revision": item.revision,
                     "has_glb": item.glb is not None,
+                    "state": item.state,
                 }
             )
         archive.writestr(ARCHIVE_INDEX, json.dumps({"scenes": index}, indent=1) + "\n")

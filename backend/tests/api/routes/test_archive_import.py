@@ -20,8 +20,12 @@ from holiscene.api.app import create_app
 from holiscene.cli import main
 from holiscene.cli.export import scene_store
 from holiscene.core.settings import Settings
+from holiscene.inputs.datasets.uploaded import REJECTED_NOTE
 from holiscene.segmentation.rle import decode_mask
+from holiscene.store.tables import SceneRow
 from holiscene_schema import Mask
+from sqlalchemy import update
+from sqlalchemy.orm import Session
 
 from ...conftest import upload, wait_for_job
 from .test_dataset_import import _imported
@@ -101,9 +105,16 @@ def test_the_download_imports_back_to_the_same_scenes(
     edited = _edited(client, placed_id)["scene"]
     plain_id = upload(client, real_photos / "im3d-8", name="plain")["scene"]["id"]
     plain = _document(client, plain_id)["scene"]
+    # A reviewer rejected the plain one: the zip says so, and so does its import elsewhere.
+    workbench = client.app.state.workbench  # type: ignore[attr-defined]
+    with Session(workbench.engine) as session:
+        session.execute(update(SceneRow).where(SceneRow.id == plain_id).values(state="rejected"))
+        session.commit()
 
     response = client.post("/api/scenes/archive", json={"scene_ids": [placed_id, plain_id]})
     assert response.status_code == 200, response.text
+    index = json.loads(zipfile.ZipFile(io.BytesIO(response.content)).read("index.json"))
+    assert [entry["state"] for entry in index["scenes"]] == ["in_annotation", "rejected"]
 
     # Into the store it came from, unchanged: no copies, the scenes it was written from.
     home = _imported(client, response.content)
@@ -128,6 +139,7 @@ def test_the_download_imports_back_to_the_same_scenes(
             back = _document(elsewhere, new_id)["scene"]
             _assert_same_labels(back, before)
             assert back["name"] == before["name"], "named as before, not after the folder"
+        assert [REJECTED_NOTE in item["notes"] for item in job["imported"]] == [False, True]
 
         again = _imported(elsewhere, response.content)
         assert again["imported"] == [] and len(again["skipped"]) == 2, again

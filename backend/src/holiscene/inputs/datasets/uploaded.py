@@ -6,6 +6,7 @@ content, with the readers `holiscene import` uses."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
@@ -43,6 +44,12 @@ class DownloadedFrom:
     scene_id: str
     revision: int
     scene_file: Path
+    state: str | None = None  # the workflow state it had there
+
+
+# A scene a reviewer had rejected carries that into the store it is imported to: its labels
+# were said to be wrong (the note stays with the scene, as every import note does).
+REJECTED_NOTE = "downloaded while rejected by a reviewer: its labels were said to be wrong"
 
 
 @dataclass(frozen=True)
@@ -66,12 +73,17 @@ def photo_sources(path: Path) -> Iterator[PhotoSource]:
         for part in parts:  # a folder of input folders (an export, the app's download zip)
             yield from photo_sources(part)
     else:
+        downloaded = _downloaded_from(path)
         yield PhotoSource(
-            str(path),
-            _folder_scene_name(path),
-            partial(read_input_folder, path),
-            _downloaded_from(path),
+            str(path), _folder_scene_name(path), partial(_read_folder, path, downloaded), downloaded
         )
+
+
+def _read_folder(folder: Path, downloaded: DownloadedFrom | None) -> InputFiles:
+    inputs = read_input_folder(folder)
+    if downloaded is not None and downloaded.state == "rejected":
+        return dataclasses.replace(inputs, notes=(*inputs.notes, REJECTED_NOTE))
+    return inputs
 
 
 def _downloaded_from(folder: Path) -> DownloadedFrom | None:
@@ -80,9 +92,10 @@ def _downloaded_from(folder: Path) -> DownloadedFrom | None:
     if not (folder / "scene.json").is_file() or not is_archive_index(index):
         return None
     for entry in load_json(index)["scenes"]:
-        scene_id, revision = entry.get("scene_id"), entry.get("revision")
+        scene_id, revision, state = entry.get("scene_id"), entry.get("revision"), entry.get("state")
         if entry["folder"] == folder.name and isinstance(scene_id, str) and type(revision) is int:
-            return DownloadedFrom(scene_id, revision, folder / "scene.json")
+            shown = state if isinstance(state, str) else None
+            return DownloadedFrom(scene_id, revision, folder / "scene.json", shown)
     return None
 
 
