@@ -17,6 +17,7 @@ import {
   slowAutosave,
 } from "../helpers/photo";
 import { screenshotPath } from "../helpers/screenshots";
+import { importSynthetic, synthesize } from "../helpers/synthetic";
 
 // These tests watch unsaved state and save by hand; no-lost-work.spec.ts covers autosave.
 test.beforeEach(async ({ page }) => {
@@ -340,4 +341,58 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   expect(supportOf(doc, "o3")).toMatchObject({ parent: "o2", source: "manual" });
   expect(supportOf(doc, "o0")).toMatchObject({ parent: o0?.parent, type: o0?.type });
   for (const s of doc.scene.supports ?? []) expect(s.time).toBeTruthy();
+});
+
+test("arrows leave their supporter's centre to it, and picking the supporter it has edits nothing", async ({
+  page,
+  request,
+}) => {
+  const [synthetic] = synthesize(15, 1); // a crowded room: shelves that hold up many things
+  if (!synthetic) throw new Error("no synthetic scene");
+  const seeded = await importSynthetic(request, synthetic, "synthetic crowded clicks");
+  const supports = seeded.scene.supports ?? [];
+  const held = (id: string) => supports.filter((s) => s.parent === id).length;
+  const ids = (seeded.scene.objects ?? []).map((o) => o.id);
+  const supporter = ids.sort((a, b) => held(b) - held(a))[0];
+  if (!supporter || held(supporter) < 2) throw new Error("no object holds up two others");
+  await openScene(page, seeded.scene_id);
+
+  // Its children's arrows all begin at its centre, where people click to select it: none of
+  // those arrows takes a click there (an object in front may, as its mask is on top; so may
+  // an arrow to a child whose own centre is close by, which ends there).
+  const underCentre = await page.evaluate((id) => {
+    const arrows = [...document.querySelectorAll<SVGGElement>(`.arrow[data-parent="${id}"]`)];
+    const ends = arrows.map((arrow) => {
+      const tail = arrow.querySelector<SVGCircleElement>(".arrow-tail");
+      const d = arrow.querySelector(".arrow-head")?.getAttribute("d") ?? "";
+      const head = /^M ([\d.-]+) ([\d.-]+)/.exec(d);
+      const matrix = tail?.getScreenCTM();
+      if (!tail || !head || !matrix) return null;
+      const from = new DOMPoint(tail.cx.baseVal.value, tail.cy.baseVal.value);
+      const start = from.matrixTransform(matrix);
+      const end = new DOMPoint(Number(head[1]), Number(head[2])).matrixTransform(matrix);
+      const short = Math.hypot(end.x - start.x, end.y - start.y) < 60;
+      return { child: arrow.dataset.child, start, short };
+    });
+    const shortOnes = new Set(ends.filter((e) => e?.short).map((e) => e?.child));
+    return ends.flatMap((e) => {
+      if (!e || e.short) return [];
+      const hit = document.elementFromPoint(e.start.x, e.start.y)?.closest<SVGGElement>(".arrow");
+      const theirs = hit?.dataset.parent === id && !shortOnes.has(hit.dataset.child);
+      return [theirs ? `arrow of ${hit?.dataset.child}` : "not its arrows"];
+    });
+  }, supporter);
+  expect(underCentre.length).toBeGreaterThanOrEqual(2);
+  expect(new Set(underCentre)).toEqual(new Set(["not its arrows"]));
+
+  // A child's arrow selected, a click on the supporter it has already changes nothing.
+  const child = supports.find((s) => s.parent === supporter)?.child ?? "";
+  await clickArrow(page, child);
+  await expect(page.getByTestId(`arrow-${child}`)).toHaveClass(/is-selected/);
+  await clickObject(page, supporter);
+  await expect(page.getByTestId("edit-message")).toContainText(
+    `${child} is on ${supporter} already`,
+  );
+  await expect(page.getByTestId(`arrow-${child}`)).toHaveAttribute("data-pending", "false");
+  await expect(page.getByTestId("save-status")).toContainText("no unsaved changes");
 });

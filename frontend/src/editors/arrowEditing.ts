@@ -47,7 +47,14 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     session.setPicking(child !== null && session.editable ? child : null);
 
   const pickSupporter = (child: string, parent: string) => {
-    session.say(setSupporter(session, child, parent));
+    const current = session.displayed(child);
+    // Picking the supporter it has is no edit: a click meant to look at that object must
+    // not turn the pipeline's guess into a person's label (A confirms a guess on purpose).
+    session.say(
+      current?.parent === parent
+        ? `${child} is on ${parent} already${current.suggested || current.support?.source === "auto" ? ": A accepts that guess" : ""}.`
+        : setSupporter(session, child, parent),
+    );
     arm(null); // picked: the next click selects again
   };
 

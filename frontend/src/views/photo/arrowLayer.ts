@@ -100,7 +100,14 @@ function arrowFor(
   const from = structural ? anchor : centroids.get(edge.parent);
   if (!from) return null;
   const tagGap = structural && isGroundBar(structural) ? labelSize * 0.3 : labelSize * 0.8;
-  const shape = arrowShape(from, to, width, structural ? tagGap : width * 1.5);
+  const gap = structural ? tagGap : width * 1.5;
+  const shape = arrowShape(from, to, width, gap);
+  // The hit area starts well clear of the supporter's centre, where several arrows begin and
+  // people click to select the supporter itself (short arrows keep most of theirs).
+  const length = Math.hypot(to[0] - from[0], to[1] - from[1]);
+  const hit = structural
+    ? shape
+    : arrowShape(from, to, width, Math.max(gap, Math.min(width * 7, length * 0.4)));
   const support = edge.support;
   const suggested = edge.suggestion !== undefined;
   const pending = !suggested && support?.pending === true;
@@ -138,7 +145,7 @@ function arrowFor(
       `${edge.parent} holds up ${object.id} from ${edge.type}: ${provenanceText(support, edge.suggestion)}` +
         (suggested && support ? ` (was ${support.parent}, ${support.type})` : ""),
     ),
-    svgEl("path", { class: "arrow-hit", d: shape.shaft, "stroke-width": width * 6 }),
+    svgEl("path", { class: "arrow-hit", d: hit.shaft, "stroke-width": width * 6 }),
     svgEl("path", { class: "arrow-halo", d: shape.shaft, "stroke-width": width * 2.2 }),
     svgEl("path", {
       class: "arrow-shaft",
