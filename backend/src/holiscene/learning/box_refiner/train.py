@@ -171,30 +171,40 @@ def train_member(
     return net, curve
 
 
-def _member_in_process(
-    data: Normalised, validation: list[RoomSample], run: BoxRefinerTraining, member: int
-) -> tuple[dict[str, torch.Tensor], Curve]:
+# A member process's training data, set once per process by its pool's initializer.
+_WORKER_DATA: dict[str, Any] = {}
+
+
+def _start_member_process(rooms: list[RoomSample], validation: list[RoomSample]) -> None:
+    # The rooms come as numpy (tensors would travel as one shared file each: thousands), and
+    # are normalised here as in the parent, to the same figures.
     torch.set_num_threads(1)
-    net, curve = train_member(data, validation, run, member)
-    return net.state_dict(), curve
+    _WORKER_DATA["data"] = _normalise(rooms)
+    _WORKER_DATA["validation"] = validation
+
+
+def _member_in_process(run: BoxRefinerTraining, member: int) -> tuple[dict[str, Any], Curve]:
+    net, curve = train_member(_WORKER_DATA["data"], _WORKER_DATA["validation"], run, member)
+    return {name: value.numpy() for name, value in net.state_dict().items()}, curve
 
 
 def train_members(
-    data: Normalised, validation: list[RoomSample], run: BoxRefinerTraining
+    rooms: list[RoomSample], data: Normalised, validation: list[RoomSample], run: BoxRefinerTraining
 ) -> list[BoxRefinerNet]:
-    """The ensemble's members, `run.workers` at a time (each on one thread: the same networks
-    as one after the other, as each member's seed fixes its own randomness); their curves go
-    to `run.curves`."""
-    jobs = [(data, validation, run, member) for member in range(run.members)]
+    """The ensemble's members trained on `rooms` (normalised as `data`), `run.workers` at a
+    time (each on one thread: the same networks as one after the other, as each member's
+    seed fixes its own randomness); their curves go to `run.curves`."""
     if run.workers <= 1 or run.members <= 1:
-        trained = [train_member(*job) for job in jobs]
+        trained = [train_member(data, validation, run, k) for k in range(run.members)]
     else:
-        with multiprocessing.get_context("spawn").Pool(min(run.workers, run.members)) as pool:
-            states = pool.starmap(_member_in_process, jobs)
+        context = multiprocessing.get_context("spawn")
+        workers = min(run.workers, run.members)
+        with context.Pool(workers, _start_member_process, (rooms, validation)) as pool:
+            states = pool.starmap(_member_in_process, [(run, k) for k in range(run.members)])
         trained = []
         for state, curve in states:
             net = BoxRefinerNet(int(data.mean.shape[0]))
-            net.load_state_dict(state)
+            net.load_state_dict({name: torch.from_numpy(value) for name, value in state.items()})
             trained.append((net, curve))
     run.curves.extend(curve for _, curve in trained)
     return [net for net, _ in trained]
@@ -292,7 +302,7 @@ def train_box_refiner(run: BoxRefinerTraining) -> dict[str, Any]:
     if not rooms:
         raise ValueError("no training room has a placed object")
     data = _normalise(rooms)
-    members = train_members(data, validation, run)
+    members = train_members(rooms, data, validation, run)
     ensemble = BoxRefinerEnsemble(members)
     pipeline_share = pipeline_found_share(validation)
     # The ensemble's validation boxes, refined once for its share and the confidence's fit.
