@@ -256,8 +256,18 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
     edited.target,
   );
   await page.locator("body").click({ position: { x: 5, y: 5 } }); // keys go to the page
+  // One keystroke would lock the scene: it asks first (declined, nothing happens).
+  page.once("dialog", (dialog) => void dialog.dismiss());
+  await page.keyboard.press("Shift+Enter");
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+  const asked: string[] = [];
+  page.once("dialog", (dialog) => {
+    asked.push(dialog.message());
+    void dialog.accept();
+  });
   await page.keyboard.press("Shift+Enter");
   await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
+  expect(asked[0]).toMatch(/Submit/);
   // Nothing is left to take.
   await page.goto("/#/");
   await page.getByTestId("next-scene").click();
@@ -292,6 +302,7 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await openScene(page, second.id);
   await expect(page.getByTestId("workflow-accept")).toBeVisible();
   await page.locator("body").click({ position: { x: 5, y: 5 } });
+  page.once("dialog", (dialog) => void dialog.accept()); // asked first, as the keystroke is final
   await page.keyboard.press("Shift+Enter"); // accept
   await expect(page.getByTestId("workflow-state")).toHaveText("accepted");
   await logOut(page);

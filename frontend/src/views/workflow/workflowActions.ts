@@ -68,9 +68,10 @@ export function actionState(
 
 export interface ActionHandlers {
   onTake(): void;
-  onSubmit(): void;
+  /** `byKey`: one keystroke, so it is asked about even when nothing else is. */
+  onSubmit(byKey?: boolean): void;
   onRelease(): void;
-  onAccept(): void;
+  onAccept(byKey?: boolean): void;
   /** The reviewer sends the comment (trimmed; never empty). */
   onReject(comment: string): void;
   /** "Send" with no comment. */
@@ -86,6 +87,9 @@ export interface WorkflowActions {
   reject: HTMLButtonElement;
   /** Open the reject box, its comment focused. */
   openReject(): void;
+  /** Submit (or accept) from the keyboard: as the button, asked first. */
+  submitByKey(): void;
+  acceptByKey(): void;
   /** Close the reject box and clear its comment (after a rejection went through). */
   rejected(): void;
   show(state: ActionState): void;
@@ -134,9 +138,9 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
     rejectText.focus();
   };
   take.addEventListener("click", handlers.onTake);
-  submit.addEventListener("click", handlers.onSubmit);
+  submit.addEventListener("click", () => handlers.onSubmit());
   release.addEventListener("click", handlers.onRelease);
-  accept.addEventListener("click", handlers.onAccept);
+  accept.addEventListener("click", () => handlers.onAccept());
   reject.addEventListener("click", openReject);
   rejectCancel.addEventListener("click", () => {
     rejectBox.hidden = true;
@@ -202,6 +206,8 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
       again,
     ),
     rejectBox,
+    submitByKey: () => handlers.onSubmit(true),
+    acceptByKey: () => handlers.onAccept(true),
     submit,
     accept,
     reject,

@@ -47,7 +47,7 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
       if (assignee && !mine && !window.confirm(question)) return;
       void act(() => workflowApi.take(session.sceneId));
     },
-    onSubmit: () =>
+    onSubmit: (byKey = false) =>
       void (async () => {
         // The page says to submit when every supporter is right: an object left without one
         // is asked about (a reviewer would send the scene back for it).
@@ -61,6 +61,9 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
           `The 3D scene was made before these changes: ${lacks}. "Re-place objects" in the 3D ` +
           "panel brings it up to date; once the scene is submitted nobody can. Submit anyway?";
         if (lacks !== "" && !window.confirm(stale)) return;
+        const plain =
+          "Submit this scene for review? It is read only until a reviewer accepts it or sends it back.";
+        if (byKey && missing.length === 0 && lacks === "" && !window.confirm(plain)) return;
         await act(() => workflowApi.submit(session.sceneId, revision()));
       })(),
     onRelease: () => {
@@ -69,13 +72,15 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
       if (window.confirm(question))
         void act(() => workflowApi.release(session.sceneId, revision()));
     },
-    onAccept: () =>
+    onAccept: (byKey = false) =>
       void (async () => {
         const lacks = await outOfDate3d();
         const stale =
           `The 3D scene lacks the annotator's last changes (${lacks}), and an accepted scene ` +
           "cannot be re-placed: rejecting it with a comment asks for that. Accept anyway?";
         if (lacks !== "" && !window.confirm(stale)) return;
+        const plain = "Accept this scene? Its labels become final.";
+        if (byKey && lacks === "" && !window.confirm(plain)) return;
         await act(() => workflowApi.accept(session.sceneId, revision()));
       })(),
     onReject: (text) =>

@@ -1,5 +1,6 @@
 // The workflow bar's keys: Shift+Enter does the main step (submit, or accept for a reviewer),
-// Shift+X opens the rejection box. Each works only while its button is offered.
+// Shift+X opens the rejection box. Each works only while its button is offered; a keystroke
+// that locks the scene is asked about first (the button's own questions, or a plain one).
 import { registerShortcut } from "../../shortcuts";
 import type { WorkflowActions } from "./workflowActions";
 
@@ -11,14 +12,14 @@ export function workflowKeys(actions: WorkflowActions): () => void {
       keys: "Shift+Enter",
       description: "Submit the scene for review",
       scope: "Workflow",
-      run: () => submit.click(),
+      run: actions.submitByKey,
       enabled: () => !submit.hidden && !submit.disabled,
     }),
     registerShortcut({
       keys: "Shift+Enter",
       description: "Accept the submitted scene (reviewers)",
       scope: "Workflow",
-      run: () => accept.click(),
+      run: actions.acceptByKey,
       enabled: () => !accept.hidden && !accept.disabled,
     }),
     registerShortcut({

@@ -47,7 +47,7 @@ export function noteText({ flow, pending, recovered, me, labelled }: NoteInputs)
     case "in_annotation":
       if (flow.assignee !== name) return `${flow.assignee ?? "Someone"} is annotating this scene.`;
       if (recovered)
-        return "Restore or discard the unsaved changes from your last visit (above), then submit.";
+        return "Restore or discard the unsaved changes from your last visit (below), then submit.";
       return pending > 0
         ? "Save your changes, then submit the scene for review."
         : `When every supporter is right, submit the scene for review. ${labelled}`;
