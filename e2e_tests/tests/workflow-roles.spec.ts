@@ -256,18 +256,18 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
     edited.target,
   );
   await page.locator("body").click({ position: { x: 5, y: 5 } }); // keys go to the page
-  // One keystroke would lock the scene: it asks first (declined, nothing happens).
-  page.once("dialog", (dialog) => void dialog.dismiss());
+  // One keystroke would lock the scene: it asks first (declined, nothing happens). The
+  // question comes after a request, so each one is awaited before the next key.
+  const declined = page.waitForEvent("dialog");
   await page.keyboard.press("Shift+Enter");
+  await (await declined).dismiss();
   await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
-  const asked: string[] = [];
-  page.once("dialog", (dialog) => {
-    asked.push(dialog.message());
-    void dialog.accept();
-  });
+  const accepted = page.waitForEvent("dialog");
   await page.keyboard.press("Shift+Enter");
+  const question = await accepted;
+  expect(question.message()).toMatch(/Submit/);
+  await question.accept();
   await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
-  expect(asked[0]).toMatch(/Submit/);
   // Nothing is left to take.
   await page.goto("/#/");
   await page.getByTestId("next-scene").click();
