@@ -57,6 +57,7 @@ from .relation_retraining import (
     heldout_split,
     heldout_verdict,
     jsonable,
+    scenes_to_learn_from,
 )
 
 # Synthetic rooms for the detector: seeds no benchmark or other training uses (as
@@ -165,13 +166,8 @@ def boxed_scene(scenes: SceneStore, summary: SceneSummary) -> BoxedScene | None:
 
 
 def boxed_scenes(scenes: SceneStore) -> list[BoxedScene]:
-    """Every stored scene with at least one confirmed box, but for rejected scenes (a reviewer
-    said their labels are wrong)."""
-    found = (
-        boxed_scene(scenes, summary)
-        for summary in scenes.list_summaries()
-        if summary.state != "rejected"
-    )
+    """Every scene to learn from (`scenes_to_learn_from`) with at least one confirmed box."""
+    found = (boxed_scene(scenes, summary) for summary in scenes_to_learn_from(scenes))
     return [item for item in found if item is not None]
 
 

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from holiscene_schema import ModelInfo, ModelStatus, RetrainRequest, Scene
+from holiscene_schema import ModelInfo, ModelStatus, RetrainRequest, Scene, SceneSummary
 
 from ..core.errors import DomainError, user_facing_error
 from ..inputs import load_photo
@@ -75,13 +75,17 @@ def people_labelled(scene_id: str, revision: int, scene: Scene) -> LabelledScene
     return LabelledScene(scene_id, revision, scene.model_copy(update={"supports": manual}))
 
 
+def scenes_to_learn_from(scenes: SceneStore) -> list[SceneSummary]:
+    """The stored scenes a retraining of any kind may read labels from: all but the rejected
+    ones (a reviewer said their labels are wrong; they count again once fixed and resubmitted)."""
+    return [summary for summary in scenes.list_summaries() if summary.state != "rejected"]
+
+
 def labelled_scenes(scenes: SceneStore) -> list[LabelledScene]:
-    """Scenes whose current revision has supports set by a person, but for rejected ones: a
-    reviewer said their labels are wrong, and they wait for the annotator's fix."""
+    """Scenes to learn from (`scenes_to_learn_from`) whose current revision has supports set
+    by a person."""
     found = []
-    for summary in scenes.list_summaries():
-        if summary.state == "rejected":
-            continue
+    for summary in scenes_to_learn_from(scenes):
         doc = scenes.document(summary.id)
         item = people_labelled(summary.id, doc.revision, doc.scene)
         if item is not None:

@@ -10,7 +10,7 @@ import dataclasses
 import json
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
-from functools import partial
+from functools import lru_cache, partial
 from pathlib import Path
 
 from ..validation import InputError, InputFiles, read_input_folder
@@ -88,15 +88,27 @@ def _read_folder(folder: Path, downloaded: DownloadedFrom | None) -> InputFiles:
 
 def _downloaded_from(folder: Path) -> DownloadedFrom | None:
     """Where a folder of the app's download zip came from, by the index.json beside it."""
-    index = folder.parent / ARCHIVE_INDEX
-    if not (folder / "scene.json").is_file() or not is_archive_index(index):
+    if not (folder / "scene.json").is_file():
         return None
+    return _archive_entries(folder.parent).get(folder.name)
+
+
+@lru_cache(maxsize=4)
+def _archive_entries(root: Path) -> dict[str, DownloadedFrom]:
+    """Folder name -> where it came from, for the download zip unpacked at `root` (empty when
+    `root` holds no index.json). Read once per zip, not once per folder: an unpacked upload's
+    folder has a name of its own and does not change while it is imported."""
+    index = root / ARCHIVE_INDEX
+    if not is_archive_index(index):
+        return {}
+    entries = {}
     for entry in load_json(index)["scenes"]:
         scene_id, revision, state = entry.get("scene_id"), entry.get("revision"), entry.get("state")
-        if entry["folder"] == folder.name and isinstance(scene_id, str) and type(revision) is int:
+        if isinstance(scene_id, str) and type(revision) is int:
             shown = state if isinstance(state, str) else None
-            return DownloadedFrom(scene_id, revision, folder / "scene.json", shown)
-    return None
+            scene_file = root / entry["folder"] / "scene.json"
+            entries[entry["folder"]] = DownloadedFrom(scene_id, revision, scene_file, shown)
+    return entries
 
 
 def _folder_scene_name(folder: Path) -> str:
