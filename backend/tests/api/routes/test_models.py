@@ -138,11 +138,8 @@ def test_readiness_counts_the_scenes_each_kind_would_learn_from(client: TestClie
     store_labelled_scene(scenes, LABELLED_SEEDS[0])
     store_unlabelled_scene(scenes, LABELLED_SEEDS[1])  # pipeline guesses are no labels
     relation = client.get("/api/models/retrain/readiness").json()
-    assert (relation["labelled_scenes"], relation["heldout_scenes"], relation["needed"]) == (
-        1,
-        0,
-        2,
-    )
+    # (Whether one scene alone would be held out depends on its random id: not asserted.)
+    assert (relation["labelled_scenes"], relation["needed"]) == (1, 2)
     assert "supports set by a person" in relation["what"]
     # With two scenes one is held out (not a fifth of two): the page says how many.
     second = store_labelled_scene(scenes, LABELLED_SEEDS[1])
