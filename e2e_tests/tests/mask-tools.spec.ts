@@ -142,9 +142,17 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   await setAuthor(page, "e2e-painter");
 
   // A mask tool with nothing selected says what to do.
+  const photoTop = async () => (await page.getByTestId("photo-image").boundingBox())?.y;
+  const selectTop = await photoTop();
   await page.keyboard.press("P");
   await expect(page.getByTestId("photo-tool-brush")).toHaveAttribute("aria-pressed", "true");
   await expect(page.getByTestId("mask-tool-status")).toHaveText(/Select an object first/);
+  // Neither the tool nor its message moves the photo under the pointer.
+  expect(await photoTop()).toBe(selectTop);
+  for (const tool of ["box", "eraser", "polygon", "refine"]) {
+    await page.getByTestId(`photo-tool-${tool}`).click();
+    expect(await photoTop(), tool).toBe(selectTop);
+  }
   await page.keyboard.press("V");
   await clickObject(page, id);
   await page.keyboard.press("P");

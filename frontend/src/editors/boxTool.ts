@@ -9,7 +9,7 @@ import { BoxEdits } from "./boxes/boxEdits";
 import { drawBoxLayer, HANDLE_PX } from "./boxes/boxLayer";
 import { type Press, startPress } from "./boxes/boxPress";
 import { boxFromCorners, dragBox, type Grip, gripAt, isBigEnough } from "./boxGeometry";
-import type { PhotoTool, PhotoTools } from "./photoTools";
+import { type PhotoTool, type PhotoTools, toolHint } from "./photoTools";
 
 export const BOX_TOOL_KEY = "B";
 const DRAG_PX = 4; // screen pixels before a press on an object becomes a move
@@ -57,6 +57,10 @@ export function mountBoxTool(tools: PhotoTools): () => void {
       "Box: drag to draw a new object's box (Shift: also inside the selected one); click an object to select it, then drag its inside or handles to move or resize it",
     cursor: "crosshair",
     edits: true,
+    options: () =>
+      toolHint(
+        "Drag to draw a new object's box (Shift: inside the selected one); drag a selected box's inside or handles to move or resize it.",
+      ),
     down(at, event) {
       // Shift: always a new box (one inside the selected object's, a pillow on a bed).
       const hit = event.shiftKey ? null : host.objectAt(event);

@@ -74,11 +74,18 @@ export interface PhotoTools {
 export const SELECT_TOOL_KEY = "V";
 const SCOPE = "Photo tools";
 
+/** A tool's one-line hint under the toolbar (what a press on the photo does). */
+export function toolHint(text: string): HTMLElement {
+  return el("span", { className: "tool-hint", text });
+}
+
 const selectTool: PhotoTool = {
   id: "select",
   label: "Select",
   key: SELECT_TOOL_KEY,
   description: "Select: click objects and arrows, drag arrows to a new supporter",
+  options: () =>
+    toolHint("Click an object or an arrow to select it; drag an arrow's head to a new supporter."),
 };
 
 /** The toolbar goes into `toolbar`; pointer events of `host.svg` go to the active tool. */
@@ -93,6 +100,27 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
   });
   const optionsBox = el("span", { className: "photo-tool-options", testid: "photo-tool-options" });
   toolbar.append(buttonRow, optionsBox);
+  // The options take the height of the tallest tool's options at this width: changing tool
+  // (a key while the pointer is on the photo) must not move the photo under the pointer.
+  let measuredWidth = -1;
+  const reserveOptionsHeight = () => {
+    measuredWidth = optionsBox.getBoundingClientRect().width;
+    optionsBox.style.minHeight = "";
+    let tallest = 0;
+    for (const tool of tools) {
+      optionsBox.replaceChildren(...[tool.options?.() ?? null].filter((n) => n !== null));
+      tallest = Math.max(tallest, optionsBox.getBoundingClientRect().height);
+    }
+    optionsBox.style.minHeight = tallest > 0 ? `${Math.ceil(tallest)}px` : "";
+    show();
+  };
+  const resizing =
+    typeof ResizeObserver === "undefined"
+      ? null
+      : new ResizeObserver(() => {
+          if (optionsBox.getBoundingClientRect().width !== measuredWidth) reserveOptionsHeight();
+        });
+  resizing?.observe(optionsBox);
   const state: ToolState = { active: selectTool, pressed: null };
 
   const usable = (tool: PhotoTool) => !tool.edits || host.session.editable;
@@ -155,7 +183,7 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
       if (state.active === tool) activate(selectTool.id);
     };
     removers.set(tool.id, remove);
-    show();
+    reserveOptionsHeight();
     return remove;
   };
 
@@ -210,6 +238,7 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
       removeEscape();
       for (const remove of [...removers.values()]) remove();
       listening.abort();
+      resizing?.disconnect();
       buttonRow.remove();
       optionsBox.remove();
     },

@@ -7,7 +7,7 @@ import type { SceneSession } from "../../state/sceneSession";
 import { LiveLayer } from "../liveLayer";
 import { MaskRaster, type PixelRect } from "../maskPainting";
 import { MaskPreview } from "../maskPreview";
-import type { ImagePoint, PhotoToolHost } from "../photoTools";
+import { type ImagePoint, type PhotoToolHost, toolHint } from "../photoTools";
 import { BrushSize } from "./brushSize";
 
 const NEED_OBJECT = "Select an object first (click it on the photo or in the list).";
@@ -35,10 +35,13 @@ export class MaskDrawing {
     this.live = new LiveLayer(host.svg);
     this.preview = new MaskPreview(host.svg, this.live);
     this.brush.onChange(() => this.placeCursor(this.cursorAt));
+    // The status keeps one line (the photo must not move); a click shows a long one whole.
+    this.status.addEventListener("click", () => this.status.classList.toggle("is-expanded"));
   }
 
   /** Say something in the tools' status line (an error in red). */
   say(text: string, error = false): void {
+    if (this.status.textContent !== text) this.status.classList.remove("is-expanded");
     this.status.textContent = text;
     this.status.title = text; // the line may cut it short
     this.status.classList.toggle("is-error", error);
@@ -118,13 +121,18 @@ export class MaskDrawing {
   }
 
   /** A tool's options on the toolbar: the hint, the status line and maybe the brush size. */
+  /** The tool's options: the brush size (if it has one) and its hint, then the status line. */
   options(hint: string, withSize: boolean): () => HTMLElement {
     return () =>
       el(
         "span",
         { className: "mask-tool-options" },
-        withSize ? this.brush.element : null,
-        el("span", { className: "mask-tool-hint", text: hint }),
+        el(
+          "span",
+          { className: "mask-tool-controls" },
+          withSize ? this.brush.element : null,
+          toolHint(hint),
+        ),
         this.status,
       );
   }
