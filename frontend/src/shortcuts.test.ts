@@ -67,4 +67,54 @@ describe("registry", () => {
     expect(listShortcuts().at(-1)?.enabled).toBe(true);
     remove();
   });
+
+  it("lists one of two registrations of a key in a scope: the one a press runs", () => {
+    let submitting = false;
+    let accepting = false;
+    const removers = [
+      registerShortcut({
+        keys: "Shift+Enter",
+        description: "Submit",
+        scope: "Flow",
+        run: () => {},
+        enabled: () => submitting,
+      }),
+      registerShortcut({
+        keys: "Shift+Enter",
+        description: "Accept",
+        scope: "Flow",
+        run: () => {},
+        enabled: () => accepting,
+      }),
+      // Another scope's key of the same name is its own row.
+      registerShortcut({ keys: "Shift+Enter", description: "Other", scope: "Else", run: () => {} }),
+    ];
+    const rows = () =>
+      listShortcuts()
+        .filter((s) => s.keys[0] === "Shift+Enter")
+        .map((s) => `${s.description}:${s.enabled}`);
+    expect(rows()).toEqual(["Submit:false", "Other:true"]);
+    accepting = true;
+    expect(rows()).toEqual(["Accept:true", "Other:true"]);
+    submitting = true;
+    expect(rows()).toEqual(["Accept:true", "Other:true"]);
+    accepting = false;
+    expect(rows()).toEqual(["Submit:true", "Other:true"]);
+    for (const remove of removers) remove();
+  });
+
+  it("leaves out keys that are never this person's", () => {
+    let reviewer = false;
+    const remove = registerShortcut({
+      keys: "Shift+X",
+      description: "Reject",
+      scope: "Test",
+      run: () => {},
+      listed: () => reviewer,
+    });
+    expect(listShortcuts().some((s) => s.description === "Reject")).toBe(false);
+    reviewer = true;
+    expect(listShortcuts().some((s) => s.description === "Reject")).toBe(true);
+    remove();
+  });
 });

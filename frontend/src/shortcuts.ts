@@ -12,6 +12,9 @@ export interface ShortcutSpec {
   run: (event: KeyboardEvent) => void;
   /** When it returns false the key is left alone (e.g. nothing selected). */
   enabled?: () => boolean;
+  /** Whether the help lists it at all: false for a key that is never this person's (a
+   *  reviewer's key shown to an annotator). */
+  listed?: () => boolean;
 }
 
 export interface Shortcut {
@@ -113,12 +116,24 @@ export function registerShortcut(spec: ShortcutSpec): () => void {
   };
 }
 
-/** Every registered shortcut, in the order they were registered, and whether it is on now. */
+/**
+ * The shortcuts for the help, in the order they were registered, and whether each is on now.
+ * Of two registrations of the same keys in one scope (Shift+Enter: submit, or accept), only
+ * the one a press would run is listed, or the first when neither is on.
+ */
 export function listShortcuts(): Shortcut[] {
-  return entries.map(({ keys, description, scope, spec }) => ({
-    keys,
-    description,
-    scope,
-    enabled: spec.enabled?.() ?? true,
-  }));
+  const listed = entries
+    .filter(({ spec }) => spec.listed?.() ?? true)
+    .map(({ keys, description, scope, spec }) => ({
+      keys,
+      description,
+      scope,
+      enabled: spec.enabled?.() ?? true,
+    }));
+  const sameKeys = (a: Shortcut, b: Shortcut) =>
+    a.scope === b.scope && a.keys.join(" ") === b.keys.join(" ");
+  return listed.filter((shortcut) => {
+    const twins = listed.filter((other) => sameKeys(shortcut, other));
+    return (twins.findLast((twin) => twin.enabled) ?? twins[0]) === shortcut;
+  });
 }

@@ -93,6 +93,8 @@ export interface WorkflowActions {
   /** Close the reject box and clear its comment (after a rejection went through). */
   rejected(): void;
   show(state: ActionState): void;
+  /** Whether the person shown is a reviewer (their keys are listed in the help). */
+  forReviewer(): boolean;
 }
 
 export function workflowActions(handlers: ActionHandlers): WorkflowActions {
@@ -156,7 +158,9 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
   });
   again.addEventListener("click", handlers.onSecondAnnotation);
 
+  let reviewer = false;
   const show = (now: ActionState) => {
+    reviewer = now.reviewer;
     const { flow, pending, recovered, busy, mine } = now;
     const state = flow.state;
     take.hidden = !(
@@ -217,5 +221,6 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
       rejectBox.hidden = true;
     },
     show,
+    forReviewer: () => reviewer,
   };
 }

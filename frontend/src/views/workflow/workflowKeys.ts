@@ -21,6 +21,7 @@ export function workflowKeys(actions: WorkflowActions): () => void {
       scope: "Workflow",
       run: actions.acceptByKey,
       enabled: () => !accept.hidden && !accept.disabled,
+      listed: actions.forReviewer,
     }),
     registerShortcut({
       keys: "Shift+X",
@@ -28,6 +29,7 @@ export function workflowKeys(actions: WorkflowActions): () => void {
       scope: "Workflow",
       run: actions.openReject,
       enabled: () => !reject.hidden && !reject.disabled,
+      listed: actions.forReviewer,
     }),
   ];
   return () => {
