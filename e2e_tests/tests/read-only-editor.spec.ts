@@ -50,6 +50,14 @@ test("a save refused by the workflow lock keeps the edit, shows why, and is save
   await expect(select).toHaveValue(target);
   await expect(select).toBeDisabled();
   await expect(page.getByTestId("layout-toggle")).toBeDisabled();
+  // Greyed controls say why they are off, not what they would do.
+  for (const testid of ["layout-toggle", "layout-reset", "replace-objects", "photo-tool-brush"]) {
+    await expect(page.getByTestId(testid)).toHaveAttribute(
+      "title",
+      /^Not available now\. Submitted for review/,
+    );
+  }
+  await expect(page.getByTestId("photo-tool-select")).toHaveAttribute("title", /^Select:/);
   const kept = await page.evaluate((key) => localStorage.getItem(key), `holiscene.draft.${id}`);
   expect(JSON.parse(kept ?? "{}").edits).toEqual([
     expect.objectContaining({ child: support.child, parent: target }),
@@ -70,6 +78,8 @@ test("a save refused by the workflow lock keeps the edit, shows why, and is save
   await page.getByTestId("recovery-restore").click();
   await expect(select).toHaveValue(target);
   await expect(select).toBeEnabled();
+  await expect(page.getByTestId("photo-tool-brush")).toHaveAttribute("title", /^Brush:/);
+  await expect(page.getByTestId("layout-toggle")).toHaveAttribute("title", /^Drag the room's/);
   await page.locator("body").click({ position: { x: 5, y: 5 } });
   await page.keyboard.press("Control+s");
   await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved");

@@ -10,6 +10,7 @@ import { button, el } from "../dom";
 import type { Point2 } from "../geometry/camera";
 import { registerShortcut } from "../shortcuts";
 import { getAuthor } from "../state/author";
+import { titleUnlessLocked } from "../state/editLock";
 import { LayoutDraft } from "../state/layoutDraft";
 import type { SceneSession } from "../state/sceneSession";
 import { jobProgress } from "../views/common/jobProgress";
@@ -98,6 +99,8 @@ function mountLayoutEditor(
     title: "Place the objects again in the saved room (a placement job)",
     onClick: () => void replace3d(),
   });
+  // What each button does; on a read-only scene, why it is off instead.
+  const titles = new Map([toggle, save, reset, replace].map((b) => [b, b.title]));
   const heightField = cameraHeightField(draft, (problem) => {
     message = problem === null ? null : { text: problem, alert: true };
     draw();
@@ -131,6 +134,7 @@ function mountLayoutEditor(
     const running = job !== null && !isFinished(job);
     const saving = session.saveState.kind === "saving";
     const editable = session.editable;
+    for (const [control, title] of titles) control.title = titleUnlessLocked(title, session.lock);
     toggle.disabled = !draft.available || !editable;
     toggle.setAttribute("aria-pressed", String(draft.editing));
     heightField.update(editable, saving, session.doc.scene.layout?.note);

@@ -6,6 +6,7 @@
 // with `tools.add(tool)` (the box tool, the mask tools), drawing in `host.overlay`.
 import { button, el, svgEl } from "../dom";
 import { registerShortcut } from "../shortcuts";
+import { titleUnlessLocked } from "../state/editLock";
 import type { ObjectEditor } from "../state/objectEditor";
 import type { SceneSession } from "../state/sceneSession";
 import { routePointer, type ToolState } from "./tools/pointerRouting";
@@ -131,6 +132,10 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
       button.setAttribute("aria-pressed", String(id === state.active.id));
       button.classList.toggle("is-active", id === state.active.id);
       button.disabled = tool ? !usable(tool) : true;
+      if (tool) {
+        const title = `${tool.description} (${tool.key})`;
+        button.title = tool.edits ? titleUnlessLocked(title, host.session.lock) : title;
+      }
     }
     host.svg.dataset.tool = state.active.id;
     host.svg.style.cursor = state.active.cursor ?? "";

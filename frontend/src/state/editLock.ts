@@ -52,3 +52,8 @@ export function editLock(
 export function lockText(lock: EditLock): string {
   return lock.reason ? `${lock.title}: ${lock.reason}` : lock.title;
 }
+
+/** A control's tooltip: what it does, or, on a read-only scene, why it is off. */
+export function titleUnlessLocked(title: string, lock: EditLock | null): string {
+  return lock ? `Not available now. ${lockText(lock)}` : title;
+}
