@@ -343,7 +343,7 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   for (const s of doc.scene.supports ?? []) expect(s.time).toBeTruthy();
 });
 
-test("arrows leave their supporter's centre to it, and picking the supporter it has edits nothing", async ({
+test("a supporter's arrows start apart, under each child, clear of its centre, and picking the supporter it has edits nothing", async ({
   page,
   request,
 }) => {
@@ -357,33 +357,33 @@ test("arrows leave their supporter's centre to it, and picking the supporter it 
   if (!supporter || held(supporter) < 2) throw new Error("no object holds up two others");
   await openScene(page, seeded.scene_id);
 
-  // Its children's arrows all begin at its centre, where people click to select it: none of
-  // those arrows takes a click there (an object in front may, as its mask is on top; so may
-  // an arrow to a child whose own centre is close by, which ends there).
-  const underCentre = await page.evaluate((id) => {
+  // Its children's arrows begin on it under each child, not all at its centre (they fanned out
+  // of it, too close to tell apart or click).
+  const tails = await page.evaluate(
+    (id) =>
+      [...document.querySelectorAll<SVGGElement>(`.arrow[data-parent="${id}"][data-type="below"]`)]
+        .map((arrow) => arrow.querySelector<SVGCircleElement>(".arrow-tail"))
+        .map((tail) => `${tail?.cx.baseVal.value.toFixed(0)},${tail?.cy.baseVal.value.toFixed(0)}`),
+    supporter,
+  );
+  expect(tails.length).toBeGreaterThanOrEqual(2);
+  expect(new Set(tails).size).toBe(tails.length);
+  // Where an arrow begins takes no click on it: people click there to select the supporter
+  // (an object in front may take it, its mask being on top; so may another arrow passing).
+  const atTails = await page.evaluate((id) => {
     const arrows = [...document.querySelectorAll<SVGGElement>(`.arrow[data-parent="${id}"]`)];
-    const ends = arrows.map((arrow) => {
+    return arrows.flatMap((arrow) => {
       const tail = arrow.querySelector<SVGCircleElement>(".arrow-tail");
-      const d = arrow.querySelector(".arrow-head")?.getAttribute("d") ?? "";
-      const head = /^M ([\d.-]+) ([\d.-]+)/.exec(d);
       const matrix = tail?.getScreenCTM();
-      if (!tail || !head || !matrix) return null;
+      if (!tail || !matrix) return [];
       const from = new DOMPoint(tail.cx.baseVal.value, tail.cy.baseVal.value);
-      const start = from.matrixTransform(matrix);
-      const end = new DOMPoint(Number(head[1]), Number(head[2])).matrixTransform(matrix);
-      const short = Math.hypot(end.x - start.x, end.y - start.y) < 60;
-      return { child: arrow.dataset.child, start, short };
-    });
-    const shortOnes = new Set(ends.filter((e) => e?.short).map((e) => e?.child));
-    return ends.flatMap((e) => {
-      if (!e || e.short) return [];
-      const hit = document.elementFromPoint(e.start.x, e.start.y)?.closest<SVGGElement>(".arrow");
-      const theirs = hit?.dataset.parent === id && !shortOnes.has(hit.dataset.child);
-      return [theirs ? `arrow of ${hit?.dataset.child}` : "not its arrows"];
+      const at = from.matrixTransform(matrix);
+      const hit = document.elementFromPoint(at.x, at.y)?.closest<SVGGElement>(".arrow");
+      return [hit === arrow ? `its own arrow, ${arrow.dataset.child}` : "not its own arrow"];
     });
   }, supporter);
-  expect(underCentre.length).toBeGreaterThanOrEqual(2);
-  expect(new Set(underCentre)).toEqual(new Set(["not its arrows"]));
+  expect(atTails.length).toBeGreaterThanOrEqual(2);
+  expect(new Set(atTails)).toEqual(new Set(["not its own arrow"]));
 
   // A child's arrow selected, a click on the supporter it has already changes nothing.
   const child = supports.find((s) => s.parent === supporter)?.child ?? "";

@@ -84,3 +84,63 @@ export function arrowShape(from: Point, to: Point, width: number, startGap = 0):
     head: `M ${fmt(to)} L ${fmt(wing(1))} L ${fmt(wing(-1))} Z`,
   };
 }
+
+/** An object supporter as the arrows see it: its box and, if it has one, its mask's pixels. */
+export interface SupporterShape {
+  bbox: readonly [number, number, number, number];
+  /** The mask's window (origin, size) and its pixels, one byte each, row by row. */
+  mask: {
+    origin: readonly [number, number];
+    size: readonly [number, number];
+    bits: Uint8Array;
+  } | null;
+  centroid: Point;
+}
+
+/**
+ * Where the arrow from an object supporter to a child starts. From below: the supporter's pixel
+ * under the child's middle nearest the child's bottom (a book's shelf board, a lamp's table
+ * top), so the arrows of a shelf's children start apart instead of fanning out of its centre.
+ * From behind, or with no supporter pixel in that column below the child's centre, its centre. The start is kept at
+ * least `minLength` from the child's centre (pushed straight down from it if they meet).
+ */
+export function arrowFoot(
+  type: string,
+  childBox: readonly [number, number, number, number],
+  childCentre: Point,
+  supporter: SupporterShape,
+  minLength: number,
+): Point {
+  const foot = type === "below" ? footBelow(childBox, childCentre, supporter) : null;
+  if (!foot) return supporter.centroid;
+  const dx = foot[0] - childCentre[0];
+  const dy = foot[1] - childCentre[1];
+  const length = Math.hypot(dx, dy);
+  if (length >= minLength) return foot;
+  if (length < 1e-6) return [childCentre[0], childCentre[1] + minLength];
+  return [childCentre[0] + (dx / length) * minLength, childCentre[1] + (dy / length) * minLength];
+}
+
+function footBelow(
+  childBox: readonly [number, number, number, number],
+  childCentre: Point,
+  { bbox, mask }: SupporterShape,
+): Point | null {
+  const [sx1, , sx2] = bbox;
+  if (sx2 <= sx1) return null;
+  const x = Math.min(sx2 - 0.5, Math.max(sx1 + 0.5, childCentre[0]));
+  const bottom = childBox[3];
+  if (!mask) return [x, Math.min(bbox[3], Math.max(bbox[1], bottom, childCentre[1]))];
+  const [ox, oy] = mask.origin;
+  const [width, height] = mask.size;
+  const column = Math.floor(x) - ox;
+  if (column < 0 || column >= width) return null;
+  // Only pixels below the child's centre: an arrow from below points up.
+  let best: number | null = null;
+  for (let row = Math.max(0, Math.ceil(childCentre[1] - oy - 0.5)); row < height; row++) {
+    if (!mask.bits[row * width + column]) continue;
+    const y = oy + row + 0.5;
+    if (best === null || Math.abs(y - bottom) < Math.abs(best - bottom)) best = y;
+  }
+  return best === null ? null : [x, best];
+}

@@ -7,7 +7,15 @@ import type { SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
 import type { SuggestedSupport } from "../../state/sceneSession";
 import { isDoubtfulSupport, isStructural, type ShownSupport } from "../../state/supportGraph";
-import { arrowShape, type Frame, type Point, strokeWidth, structuralAnchor } from "./arrowGeometry";
+import {
+  arrowFoot,
+  arrowShape,
+  type Frame,
+  type Point,
+  type SupporterShape,
+  strokeWidth,
+  structuralAnchor,
+} from "./arrowGeometry";
 import { drawingRect, type Rect } from "./cornerHandles";
 import { type LabelRequest, placeLabels } from "./labelPlacement";
 import type { Region } from "./maskRaster";
@@ -87,23 +95,26 @@ interface ArrowEdge {
 function arrowFor(
   edge: ArrowEdge,
   object: SceneObject,
-  centroids: ReadonlyMap<string, Point>,
+  supporters: ReadonlyMap<string, SupporterShape>,
   frame: Frame,
   anchor: Point | undefined,
   scale: number,
 ): SVGGElement | null {
-  const to = centroids.get(object.id);
+  const to = supporters.get(object.id)?.centroid;
   if (!to) return null;
   const width = strokeWidth(frame) * scale;
   const labelSize = width * 5;
   const structural = isStructural(edge.parent) ? edge.parent : null;
-  const from = structural ? anchor : centroids.get(edge.parent);
+  const supporter = supporters.get(edge.parent);
+  const from = structural
+    ? anchor
+    : supporter && arrowFoot(edge.type, object.bbox, to, supporter, width * 8);
   if (!from) return null;
   const tagGap = structural && isGroundBar(structural) ? labelSize * 0.3 : labelSize * 0.8;
   const gap = structural ? tagGap : width * 1.5;
   const shape = arrowShape(from, to, width, gap);
-  // The hit area starts well clear of the supporter's centre, where several arrows begin and
-  // people click to select the supporter itself (short arrows keep most of theirs).
+  // The hit area starts well clear of the arrow's start, on the supporter, where people click
+  // to select the supporter itself (short arrows keep most of theirs).
   const length = Math.hypot(to[0] - from[0], to[1] - from[1]);
   const hit = structural
     ? shape
@@ -217,8 +228,13 @@ export function renderArrows(
   suggestions: ReadonlyMap<string, SuggestedSupport> = new Map(),
   scale = 1,
 ): Rect[] {
-  const centroids = new Map<string, Point>(
-    [...regions].map(([id, region]) => [id, region.centroid]),
+  const supporters = new Map<string, SupporterShape>(
+    objects.flatMap((object) => {
+      const region = regions.get(object.id);
+      if (!region) return [];
+      const mask = object.mask && region.bits ? { ...object.mask, bits: region.bits } : null;
+      return [[object.id, { bbox: object.bbox, mask, centroid: region.centroid }]];
+    }),
   );
   const edges = objects.flatMap((object) => {
     if (isRoomPart(object)) return [];
@@ -235,7 +251,7 @@ export function renderArrows(
   const size = strokeWidth(frame) * scale * 5; // as arrowFor's tags
   const clusters = sharedTags(
     edges.flatMap(({ object, edge }) => {
-      const to = centroids.get(object.id);
+      const to = supporters.get(object.id)?.centroid;
       if (!to || !isStructural(edge.parent)) return [];
       const half = labelHalf(edge.parent, size);
       const at = structuralAnchor(edge.parent, object, to, frame, half);
@@ -257,7 +273,7 @@ export function renderArrows(
     for (const member of membersOf.get(id) ?? []) anchorAt.set(member, centre);
   }
   const arrows = edges.flatMap(({ object, edge }) => {
-    const arrow = arrowFor(edge, object, centroids, frame, anchorAt.get(object.id), scale);
+    const arrow = arrowFor(edge, object, supporters, frame, anchorAt.get(object.id), scale);
     return arrow ? [arrow] : [];
   });
   group.replaceChildren(...arrows);
