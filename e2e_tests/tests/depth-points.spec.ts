@@ -84,6 +84,13 @@ test("the 3D view shows each object's depth points inside the room", async ({ pa
 test("the depth overlay on the photo has a key from near to far", async ({ page }) => {
   mkdirSync(screenshots, { recursive: true });
   await importWithDepth(page, "room with a depth key");
+  // The header's figures say where the scale came from, whole, at a common laptop width.
+  await page.setViewportSize({ width: 1280, height: 900 });
+  const meta = page.getByTestId("scene-meta");
+  await expect(meta).toContainText("(measured from the depth)");
+  expect(await meta.evaluate((e) => e.scrollHeight <= e.clientHeight + 1)).toBe(true);
+  expect(await meta.evaluate((e) => e.scrollWidth <= e.clientWidth + 1)).toBe(true);
+  await page.setViewportSize({ width: 1440, height: 1000 });
   const key = page.getByTestId("depth-key");
   await expect(key).toBeHidden();
   await page.getByTestId("toggle-depth").check();
