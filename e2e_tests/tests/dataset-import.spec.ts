@@ -79,7 +79,9 @@ test("a COCO zip imports from the scene list, naming the photo that did not", as
   await page.getByText("Already stored (2)").click();
   await form.screenshot({ path: screenshotPath("dataset-import-again.png") });
 
-  await page.getByTestId("dataset-import-new").getByRole("link", { name: "im3d-2.jpg" }).click();
+  const imported = page.getByTestId("dataset-import-new");
+  await expect(imported).toContainText("from im3d-2.jpg");
+  await imported.getByRole("link", { name: "im3d-2", exact: true }).click();
   await expect(page.getByTestId("scene-title")).toHaveText("im3d-2");
 });
 

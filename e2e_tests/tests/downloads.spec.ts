@@ -209,6 +209,11 @@ test("the list downloads the selected scenes as one zip", async ({ page }) => {
   await expect(links).toHaveCount(2);
   const targets = await links.evaluateAll((found) => found.map((a) => a.getAttribute("href")));
   expect(targets.sort()).toEqual(index.scenes.map((entry) => `#/scenes/${entry.scene_id}`).sort());
+  // Named as the scenes are, the zip's folders beside them.
+  expect((await links.allTextContents()).sort()).toEqual(["zip not placed", "zip placed"]);
+  await expect(page.getByTestId("dataset-import-skipped")).toContainText(
+    `from ${unplacedEntry?.folder}`,
+  );
 
   // "Select all" ticks every listed scene; unticking it clears them.
   await page.getByTestId("select-all-scenes").check();

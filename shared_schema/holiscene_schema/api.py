@@ -312,6 +312,11 @@ class ImportResult(SchemaModel):
 class ImportedPhoto(SchemaModel):
     name: str = Field(description="The photo's name in the upload (a file or folder)")
     scene_id: str = Field(description="Its scene: made now, or imported before (skipped)")
+    scene_name: str | None = Field(
+        default=None,
+        description="That scene's name (a scene stored before may be named otherwise than the "
+        "photo in this upload)",
+    )
     notes: list[str] = Field(
         default_factory=list,
         description="What was left out of the labels given with it (e.g. a support row of an "

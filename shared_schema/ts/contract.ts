@@ -639,6 +639,10 @@ notes: string[]
  * Its scene: made now, or imported before (skipped)
  */
 scene_id: string
+/**
+ * That scene's name (a scene stored before may be named otherwise than the photo in this upload)
+ */
+scene_name: (string | null)
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema

@@ -109,13 +109,13 @@ class DatasetImports:
             return
         earlier = stored_before(self.workbench.scenes, inputs, source)
         if earlier is not None:
-            self.jobs.photo_done(job.id, "skipped", label, earlier.id)
+            self.jobs.photo_done(job.id, "skipped", label, earlier)
             return
         author = job.started_by or "import"
         stored = self.workbench.import_scene(inputs, source.name, author, run_pipeline=False)
         if job.run_pipeline:
             self._queue_pipeline(stored.scene.id, author)
-        self.jobs.photo_done(job.id, "imported", label, stored.scene.id, inputs.notes)
+        self.jobs.photo_done(job.id, "imported", label, stored.scene, inputs.notes)
 
     def _queue_pipeline(self, scene_id: str, author: str) -> None:
         """Queue the scene's pipeline, waiting while the queue is full (the server's

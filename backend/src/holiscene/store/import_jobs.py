@@ -8,7 +8,7 @@ import uuid
 from collections.abc import Sequence
 from typing import Any, Literal
 
-from holiscene_schema import ImportedPhoto, ImportJob, PhotoError
+from holiscene_schema import ImportedPhoto, ImportJob, PhotoError, SceneSummary
 from sqlalchemy import Engine
 from sqlalchemy.orm import Session
 
@@ -61,11 +61,16 @@ class ImportJobStore:
         self._set(job_id, status="running")
 
     def photo_done(
-        self, job_id: str, outcome: Outcome, name: str, scene_id: str, notes: Sequence[str] = ()
+        self,
+        job_id: str,
+        outcome: Outcome,
+        name: str,
+        scene: SceneSummary,
+        notes: Sequence[str] = (),
     ) -> None:
         """One photo stored as a scene (with notes on what its labels lost), or skipped as
         imported before as that scene."""
-        entry: dict[str, Any] = {"name": name, "scene_id": scene_id}
+        entry: dict[str, Any] = {"name": name, "scene_id": scene.id, "scene_name": scene.name}
         if notes:
             entry["notes"] = list(notes)
         self._append(job_id, outcome, entry)

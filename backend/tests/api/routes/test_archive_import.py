@@ -120,12 +120,15 @@ def test_the_download_imports_back_to_the_same_scenes(
     home = _imported(client, response.content)
     assert home["imported"] == [] and home["errors"] == [], home
     assert [item["scene_id"] for item in home["skipped"]] == [placed_id, plain_id]
+    # Each names the scene it is, whatever the folder in the zip is called.
+    assert [item["scene_name"] for item in home["skipped"]] == ["bedroom", "plain"]
     # Edited after download, a scene comes in as a new one.
     renamed = _with_scene_file_changed(response.content, "plain-", "plain, edited")
     changed = _imported(client, renamed)
     assert [item["scene_id"] for item in changed["skipped"]] == [placed_id]
     (copy,) = changed["imported"]
     assert _document(client, copy["scene_id"])["scene"]["name"] == "plain, edited"
+    assert copy["scene_name"] == "plain, edited"
 
     # Into another store: new scenes with the same labels; the same zip again adds nothing.
     other = Settings(data_dir=tmp_path / "other", web_dir=tmp_path / "no-web")

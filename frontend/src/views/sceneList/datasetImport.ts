@@ -28,9 +28,14 @@ function sceneLinks(photos: ImportedPhoto[], testid: string): HTMLElement {
         "li",
         {},
         el("a", {
-          text: photo.name,
+          text: photo.scene_name ?? photo.name,
           attrs: { href: `#/scenes/${encodeURIComponent(photo.scene_id)}` },
         }),
+        // The scene's name, and the photo's in the upload where they differ (a download's
+        // folder, a file name).
+        photo.scene_name && photo.scene_name !== photo.name
+          ? el("span", { className: "import-source", text: `from ${photo.name}` })
+          : null,
         // What its labels lost on the way in (a support row of an unknown type...).
         ...photo.notes.map((note) => el("span", { className: "import-note", text: note })),
       ),
