@@ -66,6 +66,17 @@ test("a scene without objects gets the detector's suggestions to accept or rejec
     page.getByTestId("detector-suggestion-tag").first().locator(".detector-label"),
   ).toHaveText(/^\w+ \d+%$/);
   await page.screenshot({ path: screenshotPath("object-suggestions.png") });
+  // Scrolled down the page, the bar stays in view just under the photo's tools.
+  await page.mouse.wheel(0, 400);
+  await expect
+    .poll(async () => {
+      const tools = await page.getByTestId("photo-tools").boundingBox();
+      const bar = await page.getByTestId("detector-bar").boundingBox();
+      return tools && bar ? Math.abs(bar.y - (tools.y + tools.height)) : null;
+    })
+    .toBeLessThan(1);
+  await expect(page.getByTestId("accept-all-suggestions")).toBeInViewport();
+  await page.mouse.wheel(0, -400);
 
   // Accept the bed: click its box, then Accept. The edit is the contract's add_object.
   const bed = page.locator('[data-testid="detector-suggestion"][data-class="bed"]');

@@ -81,6 +81,14 @@ export function mountPhotoView(
   });
   toolbar.append(zoom.controls);
   const stopEditBar = mountObjectEditBar(toolbar, objectEditor);
+  // The sticky tool row's height, for what sticks under it (the detector's bar).
+  const toolHeight =
+    typeof ResizeObserver === "undefined"
+      ? null
+      : new ResizeObserver(() =>
+          container.style.setProperty("--photo-tools-height", `${toolbar.offsetHeight}px`),
+        );
+  toolHeight?.observe(toolbar);
   // Arrows and labels keep their size on the screen when the photo is zoomed (placed again).
   const stopZoomLabels = zoom.onChange(() => overlays.setZoom(zoom.zoom));
 
@@ -101,6 +109,7 @@ export function mountPhotoView(
       zoom.dispose();
       stopZoomLabels();
       stopEditBar();
+      toolHeight?.disconnect();
       unsubscribe();
       stopStyle();
       stopEditing();

@@ -151,6 +151,9 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
       statusLine.classList.toggle("alert--error", failed);
       statusLine.setAttribute("role", failed ? "alert" : "status");
       actionRow.hidden = open === 0;
+      // While boxes are open the bar stays in view under the photo's tools: Accept and Reject
+      // are at hand while working low on a tall photo.
+      element.classList.toggle("is-offering", open > 0);
       const picked = chosen ? `Selected: ${offerLabel(chosen)}` : "No box selected";
       // Looking at the detector's boxes is fine on a read-only scene; adding them is not.
       selection.textContent = editable ? picked : `${picked} · view only: the scene is read only`;
