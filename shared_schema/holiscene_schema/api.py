@@ -284,7 +284,12 @@ class SceneSummary(SchemaModel):
     name: str
     revision: int
     created_at: datetime
-    updated_at: datetime
+    updated_at: datetime = Field(description="When its latest revision was stored")
+    last_activity_at: datetime | None = Field(
+        default=None,
+        description="The later of its latest revision and its latest workflow step (taken, "
+        "submitted, accepted...): what the scene list shows as Updated",
+    )
     width: int
     height: int
     object_count: int

@@ -707,6 +707,10 @@ assignee: (string | null)
 created_at: string
 height: number
 id: string
+/**
+ * The later of its latest revision and its latest workflow step (taken, submitted, accepted...): what the scene list shows as Updated
+ */
+last_activity_at: (string | null)
 latest_job: (Job | null)
 name: string
 object_count: number
@@ -716,6 +720,9 @@ state: ("new" | "predicted" | "in_annotation" | "submitted" | "accepted" | "reje
  * Mean over the objects of 1 - confidence of their supporter (1 without one, 0 when a person set it); 1 for a scene without objects; 'Next scene' picks the highest
  */
 uncertainty: (number | null)
+/**
+ * When its latest revision was stored
+ */
 updated_at: string
 width: number
 }

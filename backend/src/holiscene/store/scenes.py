@@ -11,6 +11,7 @@ import enum
 import json
 import uuid
 from collections.abc import Callable, Sequence
+from datetime import datetime
 from pathlib import Path
 from typing import Any
 
@@ -32,11 +33,13 @@ from sqlalchemy import (
     Connection,
     Engine,
     Integer,
+    ScalarSelect,
     Select,
     Text,
     Update,
     bindparam,
     cast,
+    func,
     select,
     update,
 )
@@ -61,7 +64,7 @@ from .clock import as_utc, utcnow
 from .files import GROUND_TRUTH_FILE, SceneFiles
 from .revision_writes import WorkflowMove, add_revision, revision_values, write_at_once
 from .scene_events import SceneHead, as_state, pipeline_committed, record_event
-from .tables import SCENE_NAME_LENGTH, RevisionRow, SceneRow
+from .tables import SCENE_NAME_LENGTH, RevisionRow, SceneEventRow, SceneRow
 
 _EDITS = TypeAdapter(list[Edit])
 # Runs inside a revision's write transaction, after the scene row moved to the new revision
@@ -147,6 +150,15 @@ class SceneChangedError(RevisionConflictError):
         self.base_revision = base_revision
 
 
+def _last_event_at() -> ScalarSelect[datetime]:
+    """The time of a scene's latest workflow event, as a column of a query on SceneRow."""
+    return (
+        select(func.max(SceneEventRow.at))
+        .where(SceneEventRow.scene_id == SceneRow.id)
+        .scalar_subquery()
+    )
+
+
 class SceneStore:
     def __init__(self, engine: Engine, files: SceneFiles) -> None:
         self.engine = engine
@@ -156,15 +168,17 @@ class SceneStore:
     # -- reading -------------------------------------------------------------------------
 
     def list_summaries(self, state: SceneState | None = None) -> list[SceneSummary]:
-        query = select(SceneRow).order_by(SceneRow.created_at.desc())
+        query = select(SceneRow, _last_event_at()).order_by(SceneRow.created_at.desc())
         if state is not None:
             query = query.where(SceneRow.state == state)
         with Session(self.engine) as session:
-            return [self._summary(row) for row in session.scalars(query).all()]
+            return [self._summary(row, None, last) for row, last in session.execute(query).all()]
 
     def summary(self, scene_id: str, latest_job: Job | None = None) -> SceneSummary:
         with Session(self.engine) as session:
-            return self._summary(self._row(session, scene_id), latest_job)
+            row = self._row(session, scene_id)
+            last = session.scalar(select(_last_event_at()).where(SceneRow.id == scene_id))
+            return self._summary(row, latest_job, last)
 
     def document(self, scene_id: str, revision: int | None = None) -> SceneDocument:
         """A revision (the current one when None)."""
@@ -671,13 +685,17 @@ class SceneStore:
         return row
 
     @staticmethod
-    def _summary(row: SceneRow, latest_job: Job | None = None) -> SceneSummary:
+    def _summary(
+        row: SceneRow, latest_job: Job | None = None, last_event_at: datetime | None = None
+    ) -> SceneSummary:
+        updated = as_utc(row.updated_at)
         return SceneSummary(
             id=row.id,
             name=row.name,
             revision=row.current_revision,
             created_at=as_utc(row.created_at),
-            updated_at=as_utc(row.updated_at),
+            updated_at=updated,
+            last_activity_at=max(updated, as_utc(last_event_at)) if last_event_at else updated,
             width=row.width,
             height=row.height,
             object_count=row.object_count,

@@ -3,6 +3,7 @@ nothing, "Next scene" by uncertainty, second annotations, agreement and the dash
 
 from __future__ import annotations
 
+from datetime import datetime
 from typing import Any
 
 import pytest
@@ -147,6 +148,11 @@ def test_a_scene_goes_through_every_state(api: Api, accounts: Accounts) -> None:
     ]
     assert flow["events"][4]["comment"] == comment
     assert all(e["assignee"] == "ann" for e in flow["events"][2:])
+    # The list's "Updated" is the latest step (the acceptance), not the latest revision only.
+    summary = next(s for s in api.get("bob", "/api/scenes") if s["id"] == scene_id)
+    accepted_at = datetime.fromisoformat(flow["events"][-1]["at"])
+    assert datetime.fromisoformat(summary["last_activity_at"]) == accepted_at
+    assert datetime.fromisoformat(summary["updated_at"]) < accepted_at
 
 
 def test_a_scene_taken_by_mistake_is_given_back_with_its_edits(

@@ -63,7 +63,11 @@ function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowE
     el("td", { className: "narrow-hidden", text: `${scene.width}×${scene.height}` }),
     el("td", { text: String(scene.object_count) }),
     el("td", { className: "narrow-hidden", text: String(scene.revision) }),
-    el("td", { text: formatTime(scene.updated_at) }),
+    el("td", {
+      text: formatTime(scene.last_activity_at ?? scene.updated_at),
+      testid: `scene-updated-${scene.id}`,
+      attrs: { title: "Its latest revision or workflow step (taken, submitted, accepted...)" },
+    }),
     el("td", {
       className: job?.status === "failed" ? "is-failed" : "",
       text: job ? describeJob(job) : "—",
