@@ -44,8 +44,16 @@ describe("arrowFoot", () => {
   });
 
   it("never starts a from-below arrow above its child's centre", () => {
-    // Under the child's centre the column has no board: the supporter's centre it is.
+    // Nothing of the shelf below this child at all: the supporter's centre it is.
     expect(arrowFoot("below", [14, 82, 22, 86], [18, 84], shelf(), 4)).toEqual([30, 60]);
+  });
+
+  it("takes the supporter's pixel nearest under the child where its own column shows none", () => {
+    // A shelf whose bottom board shows only from x 10 to 19, under a child at x 30.
+    const board = shelf();
+    board.mask?.bits.fill(0);
+    board.mask?.bits.fill(1, 70 * 40, 70 * 40 + 10);
+    expect(arrowFoot("below", [26, 62, 34, 79], [30, 71], board, 4)).toEqual([19.5, 80.5]);
   });
 
   it("uses the box's top or bottom edge without a mask", () => {

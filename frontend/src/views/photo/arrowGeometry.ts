@@ -133,14 +133,33 @@ function footBelow(
   if (!mask) return [x, Math.min(bbox[3], Math.max(bbox[1], bottom, childCentre[1]))];
   const [ox, oy] = mask.origin;
   const [width, height] = mask.size;
-  const column = Math.floor(x) - ox;
-  if (column < 0 || column >= width) return null;
   // Only pixels below the child's centre: an arrow from below points up.
-  let best: number | null = null;
-  for (let row = Math.max(0, Math.ceil(childCentre[1] - oy - 0.5)); row < height; row++) {
-    if (!mask.bits[row * width + column]) continue;
-    const y = oy + row + 0.5;
-    if (best === null || Math.abs(y - bottom) < Math.abs(best - bottom)) best = y;
+  const firstRow = Math.max(0, Math.ceil(childCentre[1] - oy - 0.5));
+  const column = Math.floor(x) - ox;
+  if (column >= 0 && column < width) {
+    let best: number | null = null;
+    for (let row = firstRow; row < height; row++) {
+      if (!mask.bits[row * width + column]) continue;
+      const y = oy + row + 0.5;
+      if (best === null || Math.abs(y - bottom) < Math.abs(best - bottom)) best = y;
+    }
+    if (best !== null) return [x, best];
   }
-  return best === null ? null : [x, best];
+  // Nothing of the supporter shows under the child's middle (the child covers it down to the
+  // supporter's edge): its pixel nearest the child's bottom middle, still below the centre.
+  let nearest: Point | null = null;
+  let nearestDistance = Number.POSITIVE_INFINITY;
+  for (let row = firstRow; row < height; row++) {
+    const y = oy + row + 0.5;
+    for (let col = 0; col < width; col++) {
+      if (!mask.bits[row * width + col]) continue;
+      const px = ox + col + 0.5;
+      const distance = (px - childCentre[0]) ** 2 + (y - bottom) ** 2;
+      if (distance < nearestDistance) {
+        nearestDistance = distance;
+        nearest = [px, y];
+      }
+    }
+  }
+  return nearest;
 }

@@ -89,27 +89,22 @@ interface ArrowEdge {
 }
 
 /**
- * `anchor`: where a structural supporter's tag is (placed apart from the other tags);
+ * `from`: where a structural supporter's tag is (placed apart from the other tags), or where
+ * the arrow leaves an object supporter (`arrowFeet`);
  * `scale`: of the arrow's width and its tag (1 / the photo's zoom keeps their screen size).
  */
 function arrowFor(
   edge: ArrowEdge,
   object: SceneObject,
-  supporters: ReadonlyMap<string, SupporterShape>,
+  to: Point | undefined,
   frame: Frame,
-  anchor: Point | undefined,
+  from: Point | undefined,
   scale: number,
 ): SVGGElement | null {
-  const to = supporters.get(object.id)?.centroid;
-  if (!to) return null;
+  if (!to || !from) return null;
   const width = strokeWidth(frame) * scale;
   const labelSize = width * 5;
   const structural = isStructural(edge.parent) ? edge.parent : null;
-  const supporter = supporters.get(edge.parent);
-  const from = structural
-    ? anchor
-    : supporter && arrowFoot(edge.type, object.bbox, to, supporter, width * 8);
-  if (!from) return null;
   const tagGap = structural && isGroundBar(structural) ? labelSize * 0.3 : labelSize * 0.8;
   const gap = structural ? tagGap : width * 1.5;
   const shape = arrowShape(from, to, width, gap);
@@ -172,6 +167,39 @@ function arrowFor(
       svgEl("circle", { class: "arrow-tail", cx: from[0], cy: from[1], r: width * 1.5 }),
     );
   return group;
+}
+
+/**
+ * Where each arrow from an object supporter starts (arrowFoot). Two children of one supporter
+ * one above the other on the photo (a lamp and its shade on a table) would start at the same
+ * point and run on one line: each later one is moved aside, alternately right and left, so
+ * both arrows show and take clicks.
+ */
+export function arrowFeet(
+  edges: readonly { object: SceneObject; edge: { parent: string; type: string } }[],
+  supporters: ReadonlyMap<string, SupporterShape>,
+  width: number,
+): Map<string, Point> {
+  const feet = new Map<string, Point>();
+  const placed = new Map<string, Point[]>();
+  const apart = width * 4;
+  for (const { object, edge } of edges) {
+    const to = supporters.get(object.id)?.centroid;
+    const supporter = supporters.get(edge.parent);
+    if (!to || !supporter || isStructural(edge.parent)) continue;
+    const foot = arrowFoot(edge.type, object.bbox, to, supporter, width * 8);
+    const others = placed.get(edge.parent) ?? [];
+    const clash = (x: number) =>
+      others.some((o) => Math.abs(o[0] - x) < apart && Math.abs(o[1] - foot[1]) < apart);
+    let x = foot[0];
+    for (let step = 1; clash(x) && step <= 8; step++) {
+      x = foot[0] + (step % 2 === 1 ? 1 : -1) * Math.ceil(step / 2) * apart;
+    }
+    const at: Point = [x, foot[1]];
+    feet.set(object.id, at);
+    placed.set(edge.parent, [...others, at]);
+  }
+  return feet;
 }
 
 interface TagRequest {
@@ -266,6 +294,7 @@ export function renderArrows(
     height: 2 * hh,
   }));
   const anchors = placeLabels(requests, drawingRect(frame), [], size * 0.1);
+  const feet = arrowFeet(edges, supporters, strokeWidth(frame) * scale);
   const membersOf = new Map(clusters.map((c) => [c.ids[0] as string, c.ids]));
   const anchorAt = new Map<string, Point>();
   for (const { id, rect } of anchors) {
@@ -273,7 +302,9 @@ export function renderArrows(
     for (const member of membersOf.get(id) ?? []) anchorAt.set(member, centre);
   }
   const arrows = edges.flatMap(({ object, edge }) => {
-    const arrow = arrowFor(edge, object, supporters, frame, anchorAt.get(object.id), scale);
+    const to = supporters.get(object.id)?.centroid;
+    const from = isStructural(edge.parent) ? anchorAt.get(object.id) : feet.get(object.id);
+    const arrow = arrowFor(edge, object, to, frame, from, scale);
     return arrow ? [arrow] : [];
   });
   group.replaceChildren(...arrows);
