@@ -58,6 +58,8 @@ test("a save refused by the workflow lock keeps the edit, shows why, and is save
     );
   }
   await expect(page.getByTestId("photo-tool-select")).toHaveAttribute("title", /^Select:/);
+  // Its hint offers no edit it cannot make.
+  await expect(page.getByTestId("photo-tool-options")).toHaveText(/see where its labels came/);
   const kept = await page.evaluate((key) => localStorage.getItem(key), `holiscene.draft.${id}`);
   expect(JSON.parse(kept ?? "{}").edits).toEqual([
     expect.objectContaining({ child: support.child, parent: target }),
@@ -79,6 +81,7 @@ test("a save refused by the workflow lock keeps the edit, shows why, and is save
   await expect(select).toHaveValue(target);
   await expect(select).toBeEnabled();
   await expect(page.getByTestId("photo-tool-brush")).toHaveAttribute("title", /^Brush:/);
+  await expect(page.getByTestId("photo-tool-options")).toHaveText(/drag an arrow's head/);
   await expect(page.getByTestId("layout-toggle")).toHaveAttribute("title", /^Drag the room's/);
   await page.locator("body").click({ position: { x: 5, y: 5 } });
   await page.keyboard.press("Control+s");

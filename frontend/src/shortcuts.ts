@@ -119,7 +119,7 @@ export function registerShortcut(spec: ShortcutSpec): () => void {
 /**
  * The shortcuts for the help, in the order they were registered, and whether each is on now.
  * Of two registrations of the same keys in one scope (Shift+Enter: submit, or accept), only
- * the one a press would run is listed, or the first when neither is on.
+ * the one a press would run is listed; when neither is on, both are (greyed).
  */
 export function listShortcuts(): Shortcut[] {
   const listed = entries
@@ -133,7 +133,7 @@ export function listShortcuts(): Shortcut[] {
   const sameKeys = (a: Shortcut, b: Shortcut) =>
     a.scope === b.scope && a.keys.join(" ") === b.keys.join(" ");
   return listed.filter((shortcut) => {
-    const twins = listed.filter((other) => sameKeys(shortcut, other));
-    return (twins.findLast((twin) => twin.enabled) ?? twins[0]) === shortcut;
+    const running = listed.findLast((other) => sameKeys(shortcut, other) && other.enabled);
+    return running === undefined || running === shortcut;
   });
 }

@@ -80,14 +80,21 @@ export function toolHint(text: string): HTMLElement {
   return el("span", { className: "tool-hint", text });
 }
 
-const selectTool: PhotoTool = {
-  id: "select",
-  label: "Select",
-  key: SELECT_TOOL_KEY,
-  description: "Select: click objects and arrows, drag arrows to a new supporter",
-  options: () =>
-    toolHint("Click an object or an arrow to select it; drag an arrow's head to a new supporter."),
-};
+/** Select: the photo's own clicks and arrow drags (see the module's comment). */
+function selectTool(session: SceneSession): PhotoTool {
+  return {
+    id: "select",
+    label: "Select",
+    key: SELECT_TOOL_KEY,
+    description: "Select: click objects and arrows, drag arrows to a new supporter",
+    options: () =>
+      toolHint(
+        session.editable
+          ? "Click an object or an arrow to select it; drag an arrow's head to a new supporter."
+          : "Click an object or an arrow to select it and see where its labels came from.",
+      ),
+  };
+}
 
 /** The toolbar goes into `toolbar`; pointer events of `host.svg` go to the active tool. */
 export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): PhotoTools {
@@ -99,6 +106,7 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
     className: "photo-tools",
     attrs: { role: "toolbar", "aria-label": "Photo tools" },
   });
+  const select = selectTool(host.session);
   const optionsBox = el("span", { className: "photo-tool-options", testid: "photo-tool-options" });
   toolbar.append(buttonRow, optionsBox);
   // The options take the height of the tallest tool's options at this width: changing tool
@@ -122,7 +130,7 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
           if (optionsBox.getBoundingClientRect().width !== measuredWidth) reserveOptionsHeight();
         });
   resizing?.observe(optionsBox);
-  const state: ToolState = { active: selectTool, pressed: null };
+  const state: ToolState = { active: select, pressed: null };
 
   const usable = (tool: PhotoTool) => !tool.edits || host.session.editable;
 
@@ -185,7 +193,7 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
       removers.delete(tool.id);
       const index = tools.indexOf(tool);
       if (index >= 0) tools.splice(index, 1);
-      if (state.active === tool) activate(selectTool.id);
+      if (state.active === tool) activate(select.id);
     };
     removers.set(tool.id, remove);
     reserveOptionsHeight();
@@ -194,21 +202,21 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
 
   // One signal takes every listener off again in dispose().
   const listening = new AbortController();
-  routePointer(host, state, selectTool, listening.signal);
+  routePointer(host, state, select, listening.signal);
 
-  add(selectTool);
+  add(select);
   const escapeSpec = {
     keys: "Escape",
     description: "Drop what the photo tool has half drawn, else go back to Select",
     scope: SCOPE,
-    run: () => (state.active.drafting?.() ? state.active.cancel?.() : activate(selectTool.id)),
-    enabled: () => state.active !== selectTool,
+    run: () => (state.active.drafting?.() ? state.active.cancel?.() : activate(select.id)),
+    enabled: () => state.active !== select,
   };
   let removeEscape = registerShortcut(escapeSpec);
   // The newest enabled registration of a key wins: taking a tool registers Escape again, so
   // it beats the page's "clear the selection" (mounted later) while a tool is in use.
   listeners.add((tool) => {
-    if (tool === selectTool) return;
+    if (tool === select) return;
     removeEscape();
     removeEscape = registerShortcut(escapeSpec);
   });
@@ -219,9 +227,9 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
     const taken = takenByLock;
     if (!usable(state.active)) {
       const active = state.active;
-      activate(selectTool.id);
+      activate(select.id);
       takenByLock = active;
-    } else if (taken && state.active === selectTool && tools.includes(taken) && usable(taken)) {
+    } else if (taken && state.active === select && tools.includes(taken) && usable(taken)) {
       activate(taken.id);
     } else show();
   });
