@@ -4,7 +4,7 @@ import type { SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { isFinished } from "../../api/jobs";
 import { SCENE_STATES, type SceneState, stateLabel, workflowApi } from "../../api/workflow";
-import { el, formatTime } from "../../dom";
+import { el, formatShortTime, formatTime } from "../../dom";
 import { getCurrentUser } from "../../state/currentUser";
 import { describeJob } from "../common/jobProgress";
 import { nextSceneControl } from "../workflow/nextScene";
@@ -23,6 +23,7 @@ const NARROW_HIDDEN = new Set(["Size", "Revision"]);
 function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowElement {
   const href = `#/scenes/${encodeURIComponent(scene.id)}`;
   const job = scene.latest_job;
+  const updated = scene.last_activity_at ?? scene.updated_at;
   return el(
     "tr",
     { testid: `scene-row-${scene.id}` },
@@ -64,9 +65,12 @@ function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowE
     el("td", { text: String(scene.object_count) }),
     el("td", { className: "narrow-hidden", text: String(scene.revision) }),
     el("td", {
-      text: formatTime(scene.last_activity_at ?? scene.updated_at),
+      className: "scene-updated",
+      text: formatShortTime(updated),
       testid: `scene-updated-${scene.id}`,
-      attrs: { title: "Its latest revision or workflow step (taken, submitted, accepted...)" },
+      attrs: {
+        title: `${formatTime(updated)}: its latest revision or workflow step (taken, submitted, accepted...)`,
+      },
     }),
     el("td", {
       className: job?.status === "failed" ? "is-failed" : "",
