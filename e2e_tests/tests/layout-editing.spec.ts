@@ -238,6 +238,15 @@ test("layout editing on a synthetic room: live 3D room, save, re-place objects",
   await expect(bar).toHaveAttribute("data-editing", "true");
   await page.locator("body").press("e");
   await expect(bar).toHaveAttribute("data-editing", "false");
+  // Corners and a photo tool do not share the photo: editing the layout puts the Brush down,
+  // and taking the Box tool up ends the layout editing.
+  await page.getByTestId("photo-tool-brush").click();
+  await page.locator("body").press("e");
+  await expect(bar).toHaveAttribute("data-editing", "true");
+  await expect(page.getByTestId("photo-tool-select")).toHaveAttribute("aria-pressed", "true");
+  await page.getByTestId("photo-tool-box").click();
+  await expect(bar).toHaveAttribute("data-editing", "false");
+  await page.getByTestId("photo-tool-select").click();
   await page.locator("body").press("?");
   await expect(page.getByTestId("shortcut-help")).toContainText("Edit the room layout");
   await page.getByTestId("shortcut-help-close").click();

@@ -73,6 +73,7 @@ export interface PhotoTools {
 }
 
 export const SELECT_TOOL_KEY = "V";
+export const SELECT_TOOL_ID = "select";
 const SCOPE = "Photo tools";
 
 /** A tool's one-line hint under the toolbar (what a press on the photo does). */
@@ -83,7 +84,7 @@ export function toolHint(text: string): HTMLElement {
 /** Select: the photo's own clicks and arrow drags (see the module's comment). */
 function selectTool(session: SceneSession): PhotoTool {
   return {
-    id: "select",
+    id: SELECT_TOOL_ID,
     label: "Select",
     key: SELECT_TOOL_KEY,
     description: "Select: click objects and arrows, drag arrows to a new supporter",

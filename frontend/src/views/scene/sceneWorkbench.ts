@@ -7,6 +7,7 @@ import { mountEdgeInfo } from "../../editors/edgeInfo";
 import { mountLayoutEditing } from "../../editors/layoutEditor";
 import { mountMaskTools } from "../../editors/maskTools";
 import { changeClass, mountObjectShortcuts } from "../../editors/objectShortcuts";
+import { SELECT_TOOL_ID } from "../../editors/photoTools";
 import { mountSaveBar } from "../../editors/saveBar";
 import { mountSupportEditor } from "../../editors/supportEditor";
 import { mountSupportShortcuts } from "../../editors/supportShortcuts";
@@ -74,7 +75,17 @@ export function mountSceneWorkbench(
     mountObjectSuggestions(photo.body, session, objectEditor),
   );
   const layout = mountLayoutEditing(photo.element, photo.body, session);
+  // Room corners and a photo tool would both take the photo's presses: editing the layout
+  // puts the tool down (back to Select), and taking up a tool ends the layout editing.
+  const stopLayoutTakesSelect = layout.draft.subscribe((change) => {
+    if (change === "mode" && layout.draft.editing) photoView.tools.activate(SELECT_TOOL_ID);
+  });
+  const stopToolEndsLayout = photoView.tools.onChange((tool) => {
+    if (tool.id !== SELECT_TOOL_ID && layout.draft.editing) layout.draft.setEditing(false);
+  });
   disposers.push(
+    stopLayoutTakesSelect,
+    stopToolEndsLayout,
     layout.dispose,
     mountEdgeInfo(edgeInfo, session),
     mountSupportShortcuts(session),
