@@ -58,8 +58,11 @@ test("a save refused by the workflow lock keeps the edit, shows why, and is save
     );
   }
   await expect(page.getByTestId("photo-tool-select")).toHaveAttribute("title", /^Select:/);
-  // Its hint offers no edit it cannot make.
+  // Its hint offers no edit it cannot make; an editing tool's key says why nothing happens.
   await expect(page.getByTestId("photo-tool-options")).toHaveText(/see where its labels came/);
+  await page.locator("body").click({ position: { x: 5, y: 5 } });
+  await page.keyboard.press("p");
+  await expect(page.getByTestId("edit-message")).toContainText("Brush: Submitted for review");
   const kept = await page.evaluate((key) => localStorage.getItem(key), `holiscene.draft.${id}`);
   expect(JSON.parse(kept ?? "{}").edits).toEqual([
     expect.objectContaining({ child: support.child, parent: target }),

@@ -1,6 +1,12 @@
 // Key names: what a registration says and what a key press gives must meet.
 import { describe, expect, it } from "vitest";
-import { eventKeys, listShortcuts, normalizeKeys, registerShortcut } from "./shortcuts";
+import {
+  eventKeys,
+  handleShortcutKey,
+  listShortcuts,
+  normalizeKeys,
+  registerShortcut,
+} from "./shortcuts";
 
 const press = (key: string, mods: { ctrl?: boolean; shift?: boolean; alt?: boolean } = {}) => ({
   key,
@@ -100,6 +106,42 @@ describe("registry", () => {
     expect(rows()).toEqual(["Accept:true", "Other:true"]);
     accepting = false;
     expect(rows()).toEqual(["Submit:true", "Other:true"]);
+    for (const remove of removers) remove();
+  });
+
+  it("says why when a key that is off is pressed, unless another registration takes it", () => {
+    const said: string[] = [];
+    let other = false;
+    const removers = [
+      registerShortcut({
+        keys: "Shift+K",
+        description: "Knife",
+        scope: "Test",
+        run: () => said.push("ran"),
+        enabled: () => false,
+        whenOff: () => said.push("read only"),
+      }),
+      registerShortcut({
+        keys: "Shift+K",
+        description: "Other",
+        scope: "Else",
+        run: () => said.push("other ran"),
+        enabled: () => other,
+      }),
+    ];
+    const keyDown = () =>
+      handleShortcutKey({
+        ...press("K", { shift: true }),
+        target: null,
+        isComposing: false,
+        defaultPrevented: false,
+        preventDefault: () => {},
+      } as unknown as KeyboardEvent);
+    keyDown();
+    expect(said).toEqual(["read only"]);
+    other = true;
+    keyDown();
+    expect(said).toEqual(["read only", "other ran"]);
     for (const remove of removers) remove();
   });
 

@@ -15,6 +15,9 @@ export interface ShortcutSpec {
   /** Whether the help lists it at all: false for a key that is never this person's (a
    *  reviewer's key shown to an annotator). */
   listed?: () => boolean;
+  /** Runs instead of `run` when the key is pressed while off and nothing else takes it: says
+   *  why nothing happens (an editing tool's key on a read-only scene). */
+  whenOff?: (event: KeyboardEvent) => void;
 }
 
 export interface Shortcut {
@@ -72,7 +75,8 @@ export function eventKeys(
 /** Typing in a text field, or choosing in a list, keeps its keys (modified keys aside). */
 function typingTarget(event: KeyboardEvent): boolean {
   const target = event.target;
-  if (!(target instanceof HTMLElement)) return false;
+  // No DOM (unit tests): nothing is being typed in.
+  if (typeof HTMLElement === "undefined" || !(target instanceof HTMLElement)) return false;
   if (target.isContentEditable || target instanceof HTMLTextAreaElement) return true;
   if (target instanceof HTMLInputElement) {
     return !["checkbox", "radio", "button", "submit", "reset", "range", "color"].includes(
@@ -88,16 +92,25 @@ function typingTarget(event: KeyboardEvent): boolean {
   return false;
 }
 
-function onKeyDown(event: KeyboardEvent): void {
+/** What a key press on the page does (the window's keydown listener). */
+export function handleShortcutKey(event: KeyboardEvent): void {
   if (event.defaultPrevented || event.isComposing || typingTarget(event)) return;
   const name = eventKeys(event);
+  let off: ShortcutSpec | null = null;
   for (let i = entries.length - 1; i >= 0; i--) {
     const entry = entries[i];
     if (!entry?.keys.includes(name)) continue;
-    if (entry.spec.enabled && !entry.spec.enabled()) continue;
+    if (entry.spec.enabled && !entry.spec.enabled()) {
+      off ??= entry.spec.whenOff ? entry.spec : null;
+      continue;
+    }
     event.preventDefault();
     entry.spec.run(event);
     return;
+  }
+  if (off?.whenOff) {
+    event.preventDefault();
+    off.whenOff(event);
   }
 }
 
@@ -107,7 +120,7 @@ export function registerShortcut(spec: ShortcutSpec): () => void {
   const entry: Entry = { keys, description: spec.description, scope: spec.scope, spec };
   entries.push(entry);
   if (!listening && typeof window !== "undefined") {
-    window.addEventListener("keydown", onKeyDown);
+    window.addEventListener("keydown", handleShortcutKey);
     listening = true;
   }
   return () => {

@@ -6,7 +6,7 @@
 // with `tools.add(tool)` (the box tool, the mask tools), drawing in `host.overlay`.
 import { button, el, svgEl } from "../dom";
 import { registerShortcut } from "../shortcuts";
-import { titleUnlessLocked } from "../state/editLock";
+import { lockText, titleUnlessLocked } from "../state/editLock";
 import type { ObjectEditor } from "../state/objectEditor";
 import type { SceneSession } from "../state/sceneSession";
 import { routePointer, type ToolState } from "./tools/pointerRouting";
@@ -186,6 +186,10 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
       scope: SCOPE,
       run: () => activate(tool.id),
       enabled: () => usable(tool),
+      whenOff: () => {
+        const lock = host.session.lock;
+        if (lock) host.session.say(`${tool.label}: ${lockText(lock)}`);
+      },
     });
     const remove = () => {
       removeKey();
