@@ -19,7 +19,7 @@ def test_all_scales_every_default_and_names_the_folders_as_the_committed_models(
     assert refiner.out == tmp_path / "box_refiner_model"
     assert (scene.rooms, scene.validation_rooms, scene.time_budget) == (240, 20, 120.0)
     assert (meshes.views, meshes.validation_views, meshes.time_budget) == (1600, 40, 150.0)
-    assert (refiner.rooms, refiner.epochs, refiner.members) == (800, 3, 2)
+    assert (refiner.rooms, refiner.epochs, refiner.members) == (1200, 3, 2)
     assert {scene.seed, meshes.seed, refiner.seed} == {3}
     # At full scale each run is its own command's default.
     full = plan_all(tmp_path, tmp_path / "cache", 1.0, seed=0)
@@ -27,7 +27,7 @@ def test_all_scales_every_default_and_names_the_folders_as_the_committed_models(
         2400,
         tmp_path / "cache",
         16000,
-        8000,
+        12000,
     )
     # The committed models live in the folders the runs are named after.
     learning = Path(__file__).parents[2] / "src" / "holiscene" / "learning"

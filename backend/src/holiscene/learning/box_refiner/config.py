@@ -10,7 +10,7 @@ from pathlib import Path
 @dataclass
 class BoxRefinerTraining:
     out: Path
-    rooms: int = 8000
+    rooms: int = 12000
     first_seed: int = 610000  # training rooms: first_seed, first_seed + 1, ...
     validation_rooms: int = 200
     validation_seed: int = 960000
