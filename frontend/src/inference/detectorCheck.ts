@@ -3,7 +3,7 @@
 // through `window.holisceneDetector` to check the browser against the shared vectors
 // (shared_schema/vectors/detector_model.json) and to measure detection; a person can open it
 // to see whether the browser runs the detector and how fast.
-import { button, el } from "../dom";
+import { mountCheckPage } from "./checkPage";
 import { activeDetector, type DetectorInfo, type DetectorModel, detectorModel } from "./detector";
 import { type DetectedBox, decodeDetections, detectorInput } from "./detectorTensor";
 import type { PixelImage } from "./preprocess";
@@ -147,31 +147,16 @@ declare global {
 window.holisceneDetector = check;
 
 // For a person: load the active detector on request and say how long it took.
-const status = el("p", { testid: "detector-check-status", text: "No detector loaded yet." });
-const loadButton = button("Load the active detector", {
-  testid: "detector-check-load",
-  onClick: () => {
-    loadButton.disabled = true;
-    status.textContent = "Loading…";
+mountCheckPage({
+  id: "detector-check",
+  title: "Object detector in the browser",
+  about: "onnxruntime-web (WebAssembly, one thread) on the app's object detector.",
+  what: "detector",
+  load: () =>
     check
       .load()
-      .then(({ info, loadMs }) => {
-        status.textContent = `${info.name} (${info.id}): session ready in ${Math.round(loadMs)} ms.`;
-      })
-      .catch((error: unknown) => {
-        const message = error instanceof Error ? error.message : String(error);
-        status.textContent = `Could not load the detector: ${message}`;
-      })
-      .finally(() => {
-        loadButton.disabled = false;
-      });
-  },
+      .then(
+        ({ info, loadMs }) =>
+          `${info.name} (${info.id}): session ready in ${Math.round(loadMs)} ms.`,
+      ),
 });
-document
-  .querySelector("#app")
-  ?.replaceChildren(
-    el("h1", { text: "Object detector in the browser" }),
-    el("p", { text: "onnxruntime-web (WebAssembly, one thread) on the app's object detector." }),
-    loadButton,
-    status,
-  );

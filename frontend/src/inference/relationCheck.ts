@@ -4,7 +4,7 @@
 // browser against the shared vectors and to measure support scoring; a person can open it to
 // see whether the browser runs the model and how fast.
 import type { SceneObject } from "@holiscene/schema";
-import { button, el } from "../dom";
+import { mountCheckPage } from "./checkPage";
 import { modelObjects, type PixelImage, sceneInputs } from "./preprocess";
 import {
   activeModelUrl,
@@ -122,31 +122,11 @@ declare global {
 window.holisceneRelation = check;
 
 // For a person: load the active model on request and say how long it took.
-const status = el("p", { testid: "relation-check-status", text: "No model loaded yet." });
-const loadButton = button("Load the active model", {
-  testid: "relation-check-load",
-  onClick: () => {
-    loadButton.disabled = true;
-    status.textContent = "Loading…";
-    check
-      .load()
-      .then(({ url, loadMs }) => {
-        status.textContent = `${url}: session ready in ${Math.round(loadMs)} ms.`;
-      })
-      .catch((error: unknown) => {
-        const message = error instanceof Error ? error.message : String(error);
-        status.textContent = `Could not load the model: ${message}`;
-      })
-      .finally(() => {
-        loadButton.disabled = false;
-      });
-  },
+mountCheckPage({
+  id: "relation-check",
+  title: "Relation Network in the browser",
+  about: "onnxruntime-web (WebAssembly, one thread) on the app's support model.",
+  what: "model",
+  load: () =>
+    check.load().then(({ url, loadMs }) => `${url}: session ready in ${Math.round(loadMs)} ms.`),
 });
-document
-  .querySelector("#app")
-  ?.replaceChildren(
-    el("h1", { text: "Relation Network in the browser" }),
-    el("p", { text: "onnxruntime-web (WebAssembly, one thread) on the app's support model." }),
-    loadButton,
-    status,
-  );
