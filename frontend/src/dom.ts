@@ -133,14 +133,12 @@ export function placeChildren(parent: Element, nodes: readonly Element[]): void 
 }
 
 /** Format an ISO time as a short local date and time. */
-export function formatTime(iso: string): string {
+export function formatTime(iso: string, options?: Intl.DateTimeFormatOptions): string {
   const date = new Date(iso);
-  return Number.isNaN(date.getTime()) ? iso : date.toLocaleString();
+  return Number.isNaN(date.getTime()) ? iso : date.toLocaleString(undefined, options);
 }
 
 /** A time for a table column: the month named (no day/month ambiguity), to the minute. */
 export function formatShortTime(iso: string): string {
-  const date = new Date(iso);
-  if (Number.isNaN(date.getTime())) return iso;
-  return date.toLocaleString(undefined, { dateStyle: "medium", timeStyle: "short" });
+  return formatTime(iso, { dateStyle: "medium", timeStyle: "short" });
 }

@@ -6,6 +6,7 @@ import {
   listShortcuts,
   normalizeKeys,
   registerShortcut,
+  type ShortcutSpec,
 } from "./shortcuts";
 
 const press = (key: string, mods: { ctrl?: boolean; shift?: boolean; alt?: boolean } = {}) => ({
@@ -39,6 +40,10 @@ describe("key names", () => {
   });
 });
 
+/** Register a key that does nothing unless `more` says otherwise. */
+const key = (keys: string, description: string, scope: string, more: Partial<ShortcutSpec> = {}) =>
+  registerShortcut({ keys, description, scope, run: () => {}, ...more });
+
 describe("registry", () => {
   it("lists what is registered until it is removed", () => {
     const before = listShortcuts().length;
@@ -61,13 +66,7 @@ describe("registry", () => {
 
   it("says which keys are off now (the help overlay greys them)", () => {
     let editable = false;
-    const remove = registerShortcut({
-      keys: "F",
-      description: "Floor",
-      scope: "Test",
-      run: () => {},
-      enabled: () => editable,
-    });
+    const remove = key("F", "Floor", "Test", { enabled: () => editable });
     expect(listShortcuts().at(-1)?.enabled).toBe(false);
     editable = true;
     expect(listShortcuts().at(-1)?.enabled).toBe(true);
@@ -78,22 +77,10 @@ describe("registry", () => {
     let submitting = false;
     let accepting = false;
     const removers = [
-      registerShortcut({
-        keys: "Shift+Enter",
-        description: "Submit",
-        scope: "Flow",
-        run: () => {},
-        enabled: () => submitting,
-      }),
-      registerShortcut({
-        keys: "Shift+Enter",
-        description: "Accept",
-        scope: "Flow",
-        run: () => {},
-        enabled: () => accepting,
-      }),
+      key("Shift+Enter", "Submit", "Flow", { enabled: () => submitting }),
+      key("Shift+Enter", "Accept", "Flow", { enabled: () => accepting }),
       // Another scope's key of the same name is its own row.
-      registerShortcut({ keys: "Shift+Enter", description: "Other", scope: "Else", run: () => {} }),
+      key("Shift+Enter", "Other", "Else"),
     ];
     const rows = () =>
       listShortcuts()
@@ -113,21 +100,12 @@ describe("registry", () => {
     const said: string[] = [];
     let other = false;
     const removers = [
-      registerShortcut({
-        keys: "Shift+K",
-        description: "Knife",
-        scope: "Test",
+      key("Shift+K", "Knife", "Test", {
         run: () => said.push("ran"),
         enabled: () => false,
         whenOff: () => said.push("read only"),
       }),
-      registerShortcut({
-        keys: "Shift+K",
-        description: "Other",
-        scope: "Else",
-        run: () => said.push("other ran"),
-        enabled: () => other,
-      }),
+      key("Shift+K", "Other", "Else", { run: () => said.push("other ran"), enabled: () => other }),
     ];
     const keyDown = () =>
       handleShortcutKey({
@@ -147,13 +125,7 @@ describe("registry", () => {
 
   it("leaves out keys that are never this person's", () => {
     let reviewer = false;
-    const remove = registerShortcut({
-      keys: "Shift+X",
-      description: "Reject",
-      scope: "Test",
-      run: () => {},
-      listed: () => reviewer,
-    });
+    const remove = key("Shift+X", "Reject", "Test", { listed: () => reviewer });
     expect(listShortcuts().some((s) => s.description === "Reject")).toBe(false);
     reviewer = true;
     expect(listShortcuts().some((s) => s.description === "Reject")).toBe(true);

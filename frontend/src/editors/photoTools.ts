@@ -76,6 +76,9 @@ export const SELECT_TOOL_KEY = "V";
 export const SELECT_TOOL_ID = "select";
 const SCOPE = "Photo tools";
 
+/** A tool button's tooltip: what it does, and its key. */
+const toolTitle = (tool: PhotoTool) => `${tool.description} (${tool.key})`;
+
 /** A tool's one-line hint under the toolbar (what a press on the photo does). */
 export function toolHint(text: string): HTMLElement {
   return el("span", { className: "tool-hint", text });
@@ -124,11 +127,21 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
     optionsBox.style.minHeight = tallest > 0 ? `${Math.ceil(tallest)}px` : "";
     show();
   };
+  // Tools are added one after another while the page mounts: one measure after the last.
+  let measureQueued = false;
+  const queueMeasure = () => {
+    if (measureQueued) return;
+    measureQueued = true;
+    queueMicrotask(() => {
+      measureQueued = false;
+      reserveOptionsHeight();
+    });
+  };
   const resizing =
     typeof ResizeObserver === "undefined"
       ? null
       : new ResizeObserver(() => {
-          if (optionsBox.getBoundingClientRect().width !== measuredWidth) reserveOptionsHeight();
+          if (optionsBox.getBoundingClientRect().width !== measuredWidth) queueMeasure();
         });
   resizing?.observe(optionsBox);
   const state: ToolState = { active: select, pressed: null };
@@ -141,10 +154,8 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
       button.setAttribute("aria-pressed", String(id === state.active.id));
       button.classList.toggle("is-active", id === state.active.id);
       button.disabled = tool ? !usable(tool) : true;
-      if (tool) {
-        const title = `${tool.description} (${tool.key})`;
-        button.title = tool.edits ? titleUnlessLocked(title, host.session.lock) : title;
-      }
+      if (tool)
+        button.title = titleUnlessLocked(toolTitle(tool), tool.edits ? host.session.lock : null);
     }
     host.svg.dataset.tool = state.active.id;
     host.svg.style.cursor = state.active.cursor ?? "";
@@ -174,7 +185,7 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
     tools.push(tool);
     const toolButton = button(tool.label, {
       testid: `photo-tool-${tool.id}`,
-      title: `${tool.description} (${tool.key})`,
+      title: toolTitle(tool),
       attrs: { "aria-pressed": "false" },
       onClick: () => activate(tool.id),
     });
@@ -201,7 +212,8 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
       if (state.active === tool) activate(select.id);
     };
     removers.set(tool.id, remove);
-    reserveOptionsHeight();
+    show();
+    queueMeasure();
     return remove;
   };
 

@@ -175,10 +175,12 @@ class SceneStore:
             return [self._summary(row, None, last) for row, last in session.execute(query).all()]
 
     def summary(self, scene_id: str, latest_job: Job | None = None) -> SceneSummary:
+        query = select(SceneRow, _last_event_at()).where(SceneRow.id == scene_id)
         with Session(self.engine) as session:
-            row = self._row(session, scene_id)
-            last = session.scalar(select(_last_event_at()).where(SceneRow.id == scene_id))
-            return self._summary(row, latest_job, last)
+            found = session.execute(query).first()
+            if found is None:
+                raise SceneNotFoundError(f"no scene {scene_id!r}")
+            return self._summary(found[0], latest_job, found[1])
 
     def document(self, scene_id: str, revision: int | None = None) -> SceneDocument:
         """A revision (the current one when None)."""
