@@ -3,7 +3,7 @@ test chooses, stored with a tiny photo (no pipeline run needed)."""
 
 from __future__ import annotations
 
-from functools import cache
+import itertools
 
 import cv2
 import numpy as np
@@ -16,9 +16,15 @@ OBJECTS = (("o0", "table"), ("o1", "lamp"), ("o2", "books"), ("o3", "chair"), ("
 Support = tuple[str, str, str]  # child, parent, type
 
 
-@cache
-def _png() -> bytes:
-    ok, data = cv2.imencode(".png", np.full((48, 64, 3), 200, np.uint8))
+# Each stored scene gets a photo of its own (a number in its first pixels): scenes of one photo
+# share a side of the held-out split, and these stand for scenes of different photos.
+_photo_numbers = itertools.count()
+
+
+def _png(number: int) -> bytes:
+    pixels = np.full((48, 64, 3), 200, np.uint8)
+    pixels[0, :4, 0] = list(number.to_bytes(4, "big"))
+    ok, data = cv2.imencode(".png", pixels)
     assert ok
     return bytes(data.tobytes())
 
@@ -71,7 +77,7 @@ def store_predicted_scene(
 ) -> str:
     """Import a scene (state new) and store a pipeline result on it (state predicted), by
     the store's own code paths; `with_objects=False`: the pipeline found no objects."""
-    photo = load_photo(_png())
+    photo = load_photo(_png(next(_photo_numbers)))
     imported = make_scene([]).model_copy(update={"name": name, "supports": []})
     scene_id = scenes.create(InputFiles(photo=photo, K=None, detections=None), imported, "test").id
     predicted = make_scene(supports if supports is not None else PREDICTED, confidences)

@@ -18,7 +18,7 @@ from holiscene.services.detector_retraining import (
     boxed_scenes,
     without_unconfirmed,
 )
-from holiscene.services.relation_retraining import heldout_split
+from holiscene.services.heldout import heldout_split
 from holiscene.services.workbench import Workbench
 from holiscene.store import model_registry as registry_module
 from holiscene.store.model_registry import active_model_dir
@@ -97,7 +97,7 @@ def test_retrain_keeps_a_tied_detector_as_a_candidate_to_promote_and_roll_back(
         assert new.kind == "detector" and new.active
         assert new.heldout_accuracy is not None and new.validation_accuracy is not None
         # The split is decided by a hash of the (random) scene ids: 1 or 2 of the 3 are held out.
-        trained_ids, heldout_ids = heldout_split(scene_ids)
+        trained_ids, heldout_ids = heldout_split(scene_ids, workbench.scenes.split_keys(scene_ids))
         assert (new.training_scenes, new.heldout_scenes) == (len(trained_ids), len(heldout_ids))
         assert new.training_scenes >= 1 and new.heldout_scenes >= 1
         assert new.heldout_items is not None and new.heldout_items >= new.heldout_scenes

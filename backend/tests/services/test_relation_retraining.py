@@ -14,11 +14,7 @@ from fastapi.testclient import TestClient
 from holiscene.api.app import create_app
 from holiscene.core.settings import Settings
 from holiscene.learning.training_api import TrainConfig
-from holiscene.services.relation_retraining import (
-    heldout_split,
-    heldout_verdict,
-    labelled_scenes,
-)
+from holiscene.services.relation_retraining import heldout_verdict, labelled_scenes
 from holiscene.services.workbench import Workbench
 from holiscene.store import model_registry as registry_module
 from holiscene.store.model_registry import Registration, active_model_dir
@@ -60,21 +56,6 @@ def _run(workbench: Workbench, config: TrainConfig, author: str = "admin") -> Jo
     retrain.config = config
     retrain.run()
     return workbench.jobs.get(job.id)
-
-
-def test_heldout_split_is_fixed_by_scene_id() -> None:
-    ids = [f"scene{i:02d}" for i in range(30)]
-    train, held = heldout_split(ids)
-    assert sorted(train + held) == sorted(ids) and not set(train) & set(held)
-    assert 2 <= len(held) <= 12  # about a fifth
-    assert heldout_split(list(reversed(ids)))[1] == list(reversed(held))
-    # Adding scenes never moves a scene to the other side.
-    more_train, more_held = heldout_split([*ids, *(f"new{i}" for i in range(20))])
-    assert set(held) <= set(more_held) and set(train) <= set(more_train)
-    for pair in (["a", "b"], ["x1", "x2"]):
-        train, held = heldout_split(pair)
-        assert len(train) == 1 and len(held) == 1
-    assert heldout_split(["only"]) == (["only"], [])
 
 
 def test_a_new_model_is_made_active_only_when_it_does_better_on_the_held_out_scenes() -> None:

@@ -49,6 +49,8 @@ class ArchivedScene:
     ground_truth: Path | None = None  # gt.json, for a scene imported with ground truth
     depth: Path | None = None  # depth.png, for a scene with depth
     state: str | None = None  # the workflow state when downloaded (index.json says it)
+    # Where the held-out split puts it (SceneStore.split_keys); None: its own id.
+    split_key: str | None = None
 
 
 def archived_scene(scenes: SceneStore, scene_id: str) -> ArchivedScene:
@@ -66,6 +68,7 @@ def archived_scene(scenes: SceneStore, scene_id: str) -> ArchivedScene:
         ground_truth=truth if truth.is_file() else None,
         depth=depth if document.scene.depth is not None and depth.is_file() else None,
         state=scenes.summary(scene_id).state,
+        split_key=scenes.split_keys([scene_id]).get(scene_id),
     )
 
 

@@ -84,7 +84,8 @@ def write_relation_training(chosen: list[ArchivedScene], out: Path) -> None:
     current revisions; scenes without supports set by a person are listed as left out."""
     from tqdm import tqdm
 
-    from ..services.relation_retraining import heldout_split, labelled_sample, people_labelled
+    from ..services.heldout import heldout_split
+    from ..services.relation_retraining import labelled_sample, people_labelled
 
     kept: list[tuple[LabelledScene, SupportSample]] = []
     left_out: list[dict[str, Any]] = []
@@ -100,7 +101,8 @@ def write_relation_training(chosen: list[ArchivedScene], out: Path) -> None:
         raise ExportRefusedError(
             f"none of the {len(chosen)} scene(s) has supports set by a person: nothing to train on"
         )
-    _, heldout_ids = heldout_split([labelled.scene_id for labelled, _ in kept])
+    keys = {item.scene_id: item.split_key or item.scene_id for item in chosen}
+    _, heldout_ids = heldout_split([labelled.scene_id for labelled, _ in kept], keys)
     heldout = np.array([labelled.scene_id in heldout_ids for labelled, _ in kept])
     write_atomic(out / PAIRS_FILE, _arrays([s for _, s in kept], heldout))
     write_atomic(out / LABELS_FILE, _label_lines(kept))

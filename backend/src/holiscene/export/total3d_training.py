@@ -350,7 +350,7 @@ def portable_pickle(value: Any) -> bytes:
 def write_total3d_training(chosen: list[ArchivedScene], out: Path) -> str | None:
     """DIR as the module's description lays it out; ExportRefusedError (nothing written) when
     no scene can be a sample. Returns which scenes were left out and why."""
-    from ..services.relation_retraining import heldout_split  # the retraining's own split
+    from ..services.heldout import heldout_split  # the retraining's own split
 
     geometries: list[SceneGeometry] = []
     skipped: dict[str, str] = {}
@@ -364,7 +364,8 @@ def write_total3d_training(chosen: list[ArchivedScene], out: Path) -> str | None
         reasons = "; ".join(f"{scene_id}: {why}" for scene_id, why in skipped.items())
         raise ExportRefusedError(f"no scene can be a Total3D training sample ({reasons})")
     priors = averages(geometries)
-    _, held_out = heldout_split([g.item.scene_id for g in geometries])
+    keys = {g.item.scene_id: g.item.split_key or g.item.scene_id for g in geometries}
+    _, held_out = heldout_split([g.item.scene_id for g in geometries], keys)
     splits: dict[str, list[str]] = {"train": [], "test": []}
     index = []
     (out / SAMPLES_DIR).mkdir(exist_ok=True)

@@ -1,7 +1,7 @@
 """Retraining the object detector from the boxes people confirmed (an admin's background job).
 
 As the Relation Network's retraining (relation_retraining.py) does: gather the stored scenes with
-confirmed boxes, hold the same fixed fifth of them out (heldout_split, decided by scene id),
+confirmed boxes, hold the same fixed fifth of them out (heldout_split, decided by photo),
 fine-tune a new detector head on synthetic rooms plus the other stored scenes
 (learning.detector.train, PyTorch, imported only inside the job), score the new detector and
 the active one on the held-out scenes (mAP@0.5 and recall at IoU 0.5), register the new one
@@ -47,6 +47,7 @@ from ..learning.detector.data import BoxedPhoto
 from ..learning.detector.runtime import Detector, box_iou
 from ..store.model_registry import Registration
 from ..store.scenes import SceneStore
+from .heldout import heldout_split
 from .relation_retraining import (
     GATHER_END,
     MIN_LABELLED_SCENES,
@@ -54,7 +55,6 @@ from .relation_retraining import (
     NotEnoughLabelsError,
     TrainingJob,
     Verdict,
-    heldout_split,
     heldout_verdict,
     jsonable,
     scenes_to_learn_from,
@@ -303,7 +303,8 @@ class DetectorRetrainJob(TrainingJob):
                 f"retraining the detector needs at least {MIN_LABELLED_SCENES} scenes with "
                 f"confirmed boxes, {len(items)} found"
             )
-        train_ids, heldout_ids = heldout_split([item.scene_id for item in items])
+        ids = [item.scene_id for item in items]
+        train_ids, heldout_ids = heldout_split(ids, self.scenes.split_keys(ids))
         by_id = {item.scene_id: item for item in items}
         train, heldout = [by_id[i] for i in train_ids], [by_id[i] for i in heldout_ids]
         self._log(

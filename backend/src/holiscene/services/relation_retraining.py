@@ -13,7 +13,6 @@ after training and evaluation finished.
 from __future__ import annotations
 
 import dataclasses
-import hashlib
 import logging
 import re
 import shutil
@@ -33,10 +32,10 @@ from ..learning.training_api import TrainConfig
 from ..store.jobs import JobStore
 from ..store.model_registry import ModelStore, Registration
 from ..store.scenes import SceneStore
+from .heldout import heldout_split
 
 log = logging.getLogger(__name__)
 
-HELDOUT_FRACTION = 0.2
 MIN_LABELLED_SCENES = 2  # one to learn from, one to judge by
 # "<what> <done>/<total>": a counter line of the training log.
 _COUNTER = re.compile(r"^(.*?)\s*\d+\s*/\s*\d+\s*$")
@@ -116,30 +115,6 @@ def stored_samples(
         if sample is not None:
             samples.append(sample)
     return samples
-
-
-def _hash_fraction(scene_id: str) -> float:
-    digest = hashlib.sha256(scene_id.encode()).digest()
-    return int.from_bytes(digest[:8], "big") / 2**64
-
-
-def heldout_split(
-    scene_ids: Sequence[str], fraction: float = HELDOUT_FRACTION
-) -> tuple[list[str], list[str]]:
-    """(training ids, held-out ids), decided by a hash of each scene's id.
-
-    The split depends on the id alone, so a scene stays on its side in every retrain and no
-    model is ever judged on a scene an earlier model was trained on. With two or more scenes,
-    at least one is held out and at least one is trained on."""
-    ordered = sorted(scene_ids, key=_hash_fraction)
-    held = [s for s in ordered if _hash_fraction(s) < fraction]
-    if len(ordered) >= 2:
-        if not held:
-            held = ordered[:1]
-        elif len(held) == len(ordered):
-            held = held[:-1]
-    held_set = set(held)
-    return [s for s in scene_ids if s not in held_set], [s for s in scene_ids if s in held_set]
 
 
 def train_config(request: RetrainRequest, cache_dir: Path | None = None) -> TrainConfig:
@@ -251,7 +226,8 @@ class RetrainJob(TrainingJob):
                 f"retraining needs at least {MIN_LABELLED_SCENES} labelled scenes, "
                 f"{len(labelled)} found"
             )
-        train_ids, heldout_ids = heldout_split([s.scene_id for s in labelled])
+        ids = [s.scene_id for s in labelled]
+        train_ids, heldout_ids = heldout_split(ids, self.scenes.split_keys(ids))
         by_id = {s.scene_id: s for s in labelled}
         train = self._samples([by_id[i] for i in train_ids])
         heldout = self._samples([by_id[i] for i in heldout_ids])

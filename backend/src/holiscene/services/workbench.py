@@ -51,6 +51,7 @@ from .detector_retraining import (
     check_can_retrain_detector,
     detector_train_config,
 )
+from .heldout import heldout_split
 from .reconstruction import Reconstruction, full_run_stages, imported_scene, reconstruct_scene
 from .relation_retraining import (
     LABELLED_SCENES,
@@ -58,7 +59,6 @@ from .relation_retraining import (
     RetrainJob,
     TrainingJob,
     check_can_retrain,
-    heldout_split,
     labelled_scenes,
     train_config,
 )
@@ -283,7 +283,7 @@ class Workbench:
             ids, what = [s.scene_id for s in labelled_scenes(self.scenes)], LABELLED_SCENES
         return RetrainReadiness(
             labelled_scenes=len(ids),
-            heldout_scenes=len(heldout_split(ids)[1]),
+            heldout_scenes=len(heldout_split(ids, self.scenes.split_keys(ids))[1]),
             needed=MIN_LABELLED_SCENES,
             what=what,
         )

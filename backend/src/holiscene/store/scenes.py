@@ -8,6 +8,7 @@ writers on the same base exactly one wins and the other gets a RevisionConflictE
 from __future__ import annotations
 
 import enum
+import hashlib
 import json
 import uuid
 from collections.abc import Callable, Sequence
@@ -272,6 +273,42 @@ class SceneStore:
             row = self._row(session, scene_id)
             return self.files.folder(scene_id) / row.image_file
 
+    def split_keys(self, scene_ids: Sequence[str]) -> dict[str, str]:
+        """For each scene, the id of the first scene stored with the same photo (itself when
+        none came before): the held-out split decides by it, so a scene imported again after
+        an edit lands on the side of the scene it came from. Scenes without a recorded photo
+        digest (stored before migration 0011) get one from their file first."""
+        self._record_missing_photo_digests()
+        wanted = set(scene_ids)
+        with Session(self.engine) as session:
+            rows = session.execute(
+                select(SceneRow.id, SceneRow.photo_digest, SceneRow.created_at)
+            ).all()
+        first: dict[str | None, tuple[datetime, str]] = {}
+        for scene_id, digest, created in rows:
+            if digest not in first or (as_utc(created), scene_id) < first[digest]:
+                first[digest] = (as_utc(created), scene_id)
+        return {
+            scene_id: first[digest][1] if digest is not None else scene_id
+            for scene_id, digest, _ in rows
+            if scene_id in wanted
+        }
+
+    def _record_missing_photo_digests(self) -> None:
+        with Session(self.engine) as session:
+            missing = session.execute(
+                select(SceneRow.id, SceneRow.image_file).where(SceneRow.photo_digest.is_(None))
+            ).all()
+        for scene_id, image_file in missing:
+            path = self.files.folder(scene_id) / image_file
+            if not path.is_file():  # a scene whose files are gone keeps its own id as key
+                continue
+            digest = hashlib.sha256(path.read_bytes()).hexdigest()
+            with Session(self.engine) as session, session.begin():
+                session.execute(
+                    update(SceneRow).where(SceneRow.id == scene_id).values(photo_digest=digest)
+                )
+
     def glb_file(self, scene_id: str) -> tuple[int, Path] | None:
         """The scene's GLB and the revision whose pipeline (or placement) run made it (edits
         after it are not in the file); None: none yet."""
@@ -333,6 +370,7 @@ class SceneStore:
                 annotation_round=1,
                 uncertainty=scene_uncertainty(scene),
                 source_digest=inputs.digest,
+                photo_digest=hashlib.sha256(inputs.photo.data).hexdigest(),
             )
             session.add(row)
             session.flush()

@@ -53,6 +53,9 @@ class SceneRow(Base):
     # What it was imported from (InputFiles.digest, migration 0008): a second import of the
     # same photo and labels is skipped. None for scenes imported before.
     source_digest: Mapped[str | None] = mapped_column(String(64), nullable=True, index=True)
+    # SHA-256 of the photo's file (migration 0011): scenes of one photo share a side of the
+    # held-out split. Filled from the file, when first needed, for scenes stored before.
+    photo_digest: Mapped[str | None] = mapped_column(String(64), nullable=True, index=True)
 
 
 class RevisionRow(Base):
