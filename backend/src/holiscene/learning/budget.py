@@ -1,7 +1,8 @@
 """What the networks trained for a wall-clock budget share (shape completion, the mesh network):
-collecting random samples until there are enough, the training loop with its learning rate
-annealed over the budget and a validation check at regular intervals, the curve's picture, and
-a one-thread onnxruntime session for run time.
+collecting random samples until there are enough, random batches of them, the training loop
+with its learning rate annealed over the budget and a validation check at regular intervals,
+the ONNX export checked against PyTorch, the run's files (metrics, metadata, the curve's
+picture), and a one-thread onnxruntime session for run time.
 
 PyTorch and matplotlib are imported inside the functions that need them, so the run-time
 helpers stay importable without the training extra.
@@ -13,9 +14,9 @@ import json
 import math
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar
 
 import numpy as np
 
@@ -24,6 +25,18 @@ if TYPE_CHECKING:
     import torch
 
 Sample = TypeVar("Sample")
+
+ONNX_TOLERANCE = 1e-3  # largest difference from PyTorch an exported model may show
+
+
+class BudgetRun(Protocol):
+    """The settings every network trained for a budget has, and its validation curve."""
+
+    out: Path
+    seed: int
+    time_budget: float
+    batch: int
+    curve: list[dict[str, float]]
 
 
 def collect_samples(
@@ -51,6 +64,22 @@ def collect_samples(
 def stack_fields(rows: list[Any], names: Any) -> dict[str, np.ndarray]:
     """Dataclass rows stacked into one array per field name."""
     return {name: np.stack([np.asarray(getattr(r, name)) for r in rows]) for name in names}
+
+
+def as_tensors(arrays: Mapping[str, np.ndarray]) -> dict[str, torch.Tensor]:
+    """The arrays as tensors sharing their memory."""
+    import torch
+
+    return {name: torch.from_numpy(value) for name, value in arrays.items()}
+
+
+def random_batch(data: dict[str, torch.Tensor], size: int) -> dict[str, torch.Tensor]:
+    """`size` samples drawn with replacement: the same rows of every tensor in `data`."""
+    import torch
+
+    count = next(iter(data.values())).shape[0]
+    index = torch.randint(count, (size,))
+    return {name: value[index] for name, value in data.items()}
 
 
 def train_for_budget(
@@ -110,6 +139,70 @@ def plot_curve(
     figure.tight_layout()
     figure.savefig(path, dpi=90)
     plt.close(figure)
+
+
+def export_checked_onnx(
+    net: torch.nn.Module,
+    example: tuple[torch.Tensor, ...],
+    path: Path,
+    input_names: list[str],
+    output_names: list[str],
+    dynamic_axes: dict[str, dict[int, str]],
+    checked: list[str] | None = None,
+) -> float:
+    """Writes `net` to `path` as ONNX and runs it in onnxruntime on `example`; returns the
+    largest difference from PyTorch over the `checked` outputs (all when None), and raises
+    when it is above ONNX_TOLERANCE."""
+    import onnxruntime as ort
+    import torch
+
+    net.eval()
+    torch.onnx.export(
+        net,
+        example,
+        str(path),
+        input_names=input_names,
+        output_names=output_names,
+        dynamic_axes=dynamic_axes,
+        opset_version=17,
+        dynamo=False,
+    )
+    with torch.no_grad():
+        outputs = net(*example)
+    if isinstance(outputs, torch.Tensor):
+        outputs = (outputs,)
+    expected = dict(zip(output_names, outputs, strict=True))
+    checked = output_names if checked is None else checked
+    session = ort.InferenceSession(str(path), providers=["CPUExecutionProvider"])
+    feeds = {name: value.numpy() for name, value in zip(input_names, example, strict=True)}
+    got = session.run(checked, feeds)
+    difference = max(
+        float(np.abs(value - expected[name].numpy()).max())
+        for name, value in zip(checked, got, strict=True)
+    )
+    if difference > ONNX_TOLERANCE:
+        raise RuntimeError(f"the ONNX model differs from PyTorch by {difference}")
+    return difference
+
+
+def write_run_files(
+    run: BudgetRun,
+    metrics: dict[str, Any],
+    metadata: dict[str, Any],
+    lines: dict[str, str],
+    ylabel: str,
+) -> None:
+    """metrics.json, metadata.json (`metadata` followed by the run's seed, budget, batch and
+    curve) and curve.png (see plot_curve for `lines` and `ylabel`) in `run.out`."""
+    settings = {
+        "seed": run.seed,
+        "time_budget_s": run.time_budget,
+        "batch": run.batch,
+        "curve": run.curve,
+    }
+    (run.out / "metrics.json").write_text(json.dumps(metrics, indent=1) + "\n")
+    (run.out / "metadata.json").write_text(json.dumps({**metadata, **settings}, indent=1) + "\n")
+    plot_curve(run.curve, run.out / "curve.png", lines, ylabel)
 
 
 def single_thread_session(model_file: Path) -> ort.InferenceSession:
