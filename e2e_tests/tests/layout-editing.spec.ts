@@ -401,16 +401,21 @@ test("the camera's height set by hand scales the room about the camera, undoes a
   await openScene(page, doc.scene_id);
   const bar = page.getByTestId("layout-bar");
   const field = page.getByTestId("camera-height");
-  await expect(page.getByTestId("camera-height-field")).toBeHidden();
+  // Shown before editing (the saved room's figures beside it), to read only.
+  await expect(page.getByTestId("camera-height-field")).toBeVisible();
+  await expect(field).toBeDisabled();
+  await expect(page.getByTestId("layout-status")).toContainText(/^The room [\d.]+ × [\d.]+ m/);
   const estimated = doc.scene.camera?.height_m ?? Number.NaN;
   const meta = page.getByTestId("scene-meta");
   await expect(meta).toContainText(`camera ${estimated.toFixed(2)} m high (estimated)`);
   await expect(meta).toHaveAttribute("title", /scale from .*about ±\d+%/);
-  // Editing adds a line under the layout buttons; the buttons themselves stay where they are.
+  // Editing moves neither the layout buttons nor the photo below them.
   const replaceBefore = await page.getByTestId("replace-objects").boundingBox();
+  const photoBefore = await page.getByTestId("photo").boundingBox();
   await page.getByTestId("layout-toggle").click();
-  await expect(page.getByTestId("camera-height-field")).toBeVisible();
+  await expect(field).toBeEnabled();
   expect(await page.getByTestId("replace-objects").boundingBox()).toEqual(replaceBefore);
+  expect(await page.getByTestId("photo").boundingBox()).toEqual(photoBefore);
   await expect(field).toHaveValue(estimated.toFixed(2));
   // Its help says where the pipeline's scale came from, and how sure it is.
   await expect(page.getByTestId("camera-height-field")).toHaveAttribute(

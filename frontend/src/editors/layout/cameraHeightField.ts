@@ -1,5 +1,6 @@
 // The layout bar's camera height: the scale of the whole room, which no photo tells but an
-// annotator may know. Shown while editing the layout.
+// annotator may know. Shown whenever there is a room, and typed into while editing the layout
+// (shown before too, so starting to edit adds no line above the photo).
 import { el } from "../../dom";
 import { CAMERA_HEIGHT_RANGE_M, type LayoutDraft } from "../../state/layoutDraft";
 
@@ -48,9 +49,10 @@ export function cameraHeightField(
   return {
     element,
     update(editable, saving, layoutNote) {
-      element.hidden = !draft.editing;
-      element.title = layoutNote ? `${HEIGHT_HELP}\nThe saved layout: ${layoutNote}` : HEIGHT_HELP;
-      input.disabled = !editable || saving;
+      element.hidden = !draft.editing && !draft.available;
+      const help = draft.editing ? HEIGHT_HELP : `${HEIGHT_HELP}. Edit the layout to change it.`;
+      element.title = layoutNote ? `${help}\nThe saved layout: ${layoutNote}` : help;
+      input.disabled = !editable || saving || !draft.editing;
       if (document.activeElement !== input) input.value = draft.cameraHeight.toFixed(2);
     },
   };

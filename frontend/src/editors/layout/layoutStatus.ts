@@ -67,10 +67,13 @@ export function layoutStatus(
       alert: false,
     };
   }
-  if (!draft.editing || !live) return { text: "", alert: false };
+  if (!live) return { text: "", alert: false };
   const [depth, height, width] = live.room.size.map((s) => s.toFixed(2));
   const camera = `camera ${draft.cameraHeight.toFixed(2)} m high, pitch ${live.pitchDeg.toFixed(1)}°, roll ${live.rollDeg.toFixed(1)}°`;
   const room = `room ${depth} × ${width} m, ${height} m high; ${camera}`;
+  // The saved room's figures before editing too: the line is there already when editing
+  // starts, so the photo below does not move.
+  if (!draft.editing) return { text: `The ${room}.`, alert: false };
   if (draft.starting) {
     return {
       text: `A room to start from: drag its yellow corners onto the photo's room corners (saved once one moves). ${room}`,
