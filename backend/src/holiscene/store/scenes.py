@@ -160,6 +160,11 @@ def _last_event_at() -> ScalarSelect[datetime]:
     )
 
 
+def _chunks(values: list[str], size: int = 500) -> list[list[str]]:
+    """`values` in pieces small enough for one IN (...) of every database."""
+    return [values[i : i + size] for i in range(0, len(values), size)]
+
+
 class SceneStore:
     def __init__(self, engine: Engine, files: SceneFiles) -> None:
         self.engine = engine
@@ -279,19 +284,27 @@ class SceneStore:
         an edit lands on the side of the scene it came from. Scenes without a recorded photo
         digest (stored before migration 0011) get one from their file first."""
         self._record_missing_photo_digests()
-        wanted = set(scene_ids)
+        digests: dict[str, str | None] = {}
+        first: dict[str, tuple[datetime, str]] = {}
         with Session(self.engine) as session:
-            rows = session.execute(
-                select(SceneRow.id, SceneRow.photo_digest, SceneRow.created_at)
-            ).all()
-        first: dict[str | None, tuple[datetime, str]] = {}
-        for scene_id, digest, created in rows:
-            if digest not in first or (as_utc(created), scene_id) < first[digest]:
-                first[digest] = (as_utc(created), scene_id)
+            for chunk in _chunks(list(dict.fromkeys(scene_ids))):
+                rows = session.execute(
+                    select(SceneRow.id, SceneRow.photo_digest).where(SceneRow.id.in_(chunk))
+                )
+                digests.update({scene_id: digest for scene_id, digest in rows})
+            for chunk in _chunks(sorted({d for d in digests.values() if d is not None})):
+                same_photo = session.execute(
+                    select(SceneRow.id, SceneRow.photo_digest, SceneRow.created_at).where(
+                        SceneRow.photo_digest.in_(chunk)
+                    )
+                )
+                for scene_id, digest, created in same_photo:
+                    candidate = (as_utc(created), scene_id)
+                    if digest is not None and (digest not in first or candidate < first[digest]):
+                        first[digest] = candidate
         return {
             scene_id: first[digest][1] if digest is not None else scene_id
-            for scene_id, digest, _ in rows
-            if scene_id in wanted
+            for scene_id, digest in digests.items()
         }
 
     def _record_missing_photo_digests(self) -> None:
