@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import dataclasses
 import json
 import sys
 from collections.abc import Callable, Iterator
@@ -89,6 +90,12 @@ def add_detector_training_command(
         action="store_true",
         help="fine-tune the head's own copy of the backbone's stride-32 blocks too "
         "(the COCO model's outputs stay as they are)",
+    )
+    detector.add_argument(
+        "--deep-blocks-learning-rate",
+        type=float,
+        default=None,
+        help="--tune-deep-blocks: their learning rate as a share of the head's (default 0.1)",
     )
     detector.add_argument(
         "--retexture",
@@ -186,6 +193,10 @@ def _train_detector(args: argparse.Namespace) -> int:
             retexture=args.retexture,
             cushion_rows=args.cushion_rows,
         )
+        if args.deep_blocks_learning_rate is not None:
+            config = dataclasses.replace(
+                config, deep_blocks_learning_rate=args.deep_blocks_learning_rate
+            )
         train = synthetic_photos(
             range(DETECTOR_TRAIN_SEED, DETECTOR_TRAIN_SEED + args.scenes),
             cache,
