@@ -48,7 +48,7 @@ ANSWERS: list[tuple[Exception, int, object]] = [
     (
         RetrainRunningError("j1"),
         409,
-        "a retrain job is already running (j1); wait for it to finish",
+        "a retrain job is already running (job j1); wait for it to finish",
     ),
     (SceneJobRunningError("j2"), 409, str(SceneJobRunningError("j2"))),
     (WorkflowError("cannot submit"), 409, "cannot submit"),

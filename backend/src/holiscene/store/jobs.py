@@ -37,9 +37,22 @@ class RetrainRunningError(DomainError):
 
     status = 409
 
-    def __init__(self, job_id: str) -> None:
-        super().__init__(f"a retrain job is already running ({job_id}); wait for it to finish")
+    def __init__(self, job_id: str, what: str = "a retrain job") -> None:
+        super().__init__(f"{what} is already running (job {job_id}); wait for it to finish")
         self.job_id = job_id
+
+
+_RETRAINED = {"retrain": "the Relation Network", "detector_retrain": "the object detector"}
+
+
+def _running_retrain(row: JobRow) -> RetrainRunningError:
+    """The refusal, naming what the running job retrains, who started it and how far it is
+    (an admin on the other model's tab sees it nowhere else)."""
+    what = f"a retrain of {_RETRAINED.get(row.kind, row.kind)}"
+    if row.started_by:
+        what += f" started by {row.started_by}"
+    progress = f"{round(100 * row.progress)}%" if row.status == "running" else "queued"
+    return RetrainRunningError(row.id, f"{what} ({progress})")
 
 
 # Jobs on one scene; at most one of them waits or runs per scene (migration 0007).
@@ -148,12 +161,12 @@ class JobStore:
             raise ValueError(f"{kind!r} is not a retrain job kind")
         with Session(self.engine) as session:
             running = session.scalar(
-                select(JobRow.id).where(
+                select(JobRow).where(
                     JobRow.kind.in_(RETRAIN_KINDS), JobRow.status.in_(["queued", "running"])
                 )
             )
             if running is not None:
-                raise RetrainRunningError(running)
+                raise _running_retrain(running)
             row = self._new(
                 JobRow(scene_id=None, kind=kind, base_revision=None, started_by=started_by)
             )

@@ -169,14 +169,17 @@ def test_only_one_retrain_job_at_a_time(client: TestClient) -> None:
     workbench = _workbench(client)
     for seed in LABELLED_SEEDS[:2]:
         store_labelled_scene(workbench.scenes, seed)
-    running = workbench.jobs.create_retrain()  # queued: as if another admin just started one
+    # Queued: as if another admin just started one.
+    running = workbench.jobs.create_retrain("detector_retrain", started_by="alice")
     response = client.post("/api/models/retrain", json={"max_epochs": 1})
     assert response.status_code == 409
-    assert running.id in response.json()["detail"]
-    latest = client.get("/api/models/retrain").json()
-    assert (latest["id"], latest["kind"], latest["scene_id"]) == (running.id, "retrain", None)
+    # An admin on the Relation Network's tab learns what runs, whose it is and how far it is.
+    assert response.json()["detail"] == (
+        f"a retrain of the object detector started by alice (queued) is already running "
+        f"(job {running.id}); wait for it to finish"
+    )
     job = client.get(f"/api/jobs/{running.id}").json()
-    assert (job["kind"], job["status"], job["log"]) == ("retrain", "queued", "")
+    assert (job["kind"], job["status"], job["log"]) == ("detector_retrain", "queued", "")
     workbench.jobs.fail(running.id, "test over")
 
 

@@ -38,3 +38,17 @@ def test_the_export_measure_is_the_largest_partner_difference_or_infinite() -> N
     moved = rows.copy()
     moved[0, 3] += 5.0  # far from the cut (the last row's score): no excuse
     assert measure(moved, rows) == math.inf
+
+
+def test_a_peak_of_a_flat_heatmap_may_be_on_one_side_only() -> None:
+    """Two neighbouring cells of one class and score: whether both are peaks is decided in
+    the last bits, so a row with a same-class, same-score twin may have no partner."""
+    expected = np.array(
+        [[0, 0, 10, 10, 0.5, 1], [40, 40, 90, 90, 0.2, 4], [5, 5, 9, 9, 0.1, 1]],
+        dtype=np.float64,
+    )
+    twin = [44, 40, 94, 92, 0.2 + 1e-6, 4]  # the next cell on, of the same score
+    actual = np.array([expected[0], twin, expected[1]], dtype=np.float64)
+    assert unmatched_rows(actual, expected, RAW_TOL) == []
+    other_class = np.array([expected[0], [*twin[:5], 3], expected[1]], dtype=np.float64)
+    assert unmatched_rows(other_class, expected, RAW_TOL) == ["actual row 1"]
