@@ -12,6 +12,8 @@ import { type APIRequestContext, expect } from "@playwright/test";
 
 /** A real photo with its intrinsics and 2D detections (see ../shared/data/real). */
 export const T3D_5 = path.resolve(import.meta.dirname, "../../../shared/data/real/t3d-5");
+/** Another real photo: scenes of one photo share a side of the retraining's held-out split. */
+export const T3D_1 = path.resolve(import.meta.dirname, "../../../shared/data/real/t3d-1");
 
 function filePart(dir: string, name: string, mimeType: string) {
   return { name, mimeType, buffer: readFileSync(path.join(dir, name)) };

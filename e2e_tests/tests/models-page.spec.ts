@@ -4,7 +4,7 @@
 // back to the model that was active before. The page's list, curve and history follow.
 import type { ModelInfo } from "@holiscene/schema";
 import { type APIRequestContext, expect, test } from "@playwright/test";
-import { postEdits, seedScene, T3D_5 } from "../helpers/api";
+import { postEdits, seedScene, T3D_1, T3D_5 } from "../helpers/api";
 import { screenshotPath } from "../helpers/screenshots";
 
 async function models(request: APIRequestContext): Promise<ModelInfo[]> {
@@ -13,9 +13,10 @@ async function models(request: APIRequestContext): Promise<ModelInfo[]> {
   return (await response.json()) as ModelInfo[];
 }
 
-/** A scene of t3d-5 whose first object's supporter a person set: labelled for retraining. */
-async function labelledScene(request: APIRequestContext, name: string): Promise<void> {
-  const doc = await seedScene(request, T3D_5, name);
+/** A scene whose first object's supporter a person set: labelled for retraining. Two photos:
+ * scenes of one photo are all trained on or all held out. */
+async function labelledScene(request: APIRequestContext, name: string, dir: string): Promise<void> {
+  const doc = await seedScene(request, dir, name);
   const child = doc.scene.objects?.[0]?.id ?? "o0";
   await postEdits(request, doc, "e2e-admin", [
     { kind: "set_support", child, parent: "floor", type: "below" },
@@ -24,8 +25,8 @@ async function labelledScene(request: APIRequestContext, name: string): Promise<
 
 test("an admin retrains, makes the new model active and rolls back", async ({ page }) => {
   test.setTimeout(300_000);
-  await labelledScene(page.request, "labelled for retraining 1");
-  await labelledScene(page.request, "labelled for retraining 2");
+  await labelledScene(page.request, "labelled for retraining 1", T3D_5);
+  await labelledScene(page.request, "labelled for retraining 2", T3D_1);
   const before = await models(page.request);
   const active = before.find((m) => m.active);
   if (!active) throw new Error("no active Relation Network");
@@ -54,7 +55,7 @@ test("an admin retrains, makes the new model active and rolls back", async ({ pa
   await expect(row).toContainText(`on ${trained.heldout_items} labelled object`);
   // The card shows the curve the admin waited for, not the active model's.
   await expect(page.locator(".card h2", { hasText: "Training curve of" })).toHaveText(
-    `Training curve of v${trained.version}`,
+    `Training curve of v${trained.version} (${trained.active ? "active" : trained.status})`,
   );
   await page.screenshot({ path: screenshotPath("models-retrained.png"), fullPage: true });
 

@@ -57,6 +57,8 @@ from .relation_retraining import (
     Verdict,
     heldout_verdict,
     jsonable,
+    percent,
+    require_two_photos,
     scenes_to_learn_from,
 )
 
@@ -173,20 +175,21 @@ def boxed_scenes(scenes: SceneStore) -> list[BoxedScene]:
 
 # What a labelled scene is for the detector, as the models page says it.
 BOXED_SCENES = (
-    "scenes with boxes a person confirmed (drawn, given with the photo, accepted suggestions, "
-    "or an accepted scene; rejected scenes left out)"
+    "scenes with boxes a person confirmed: drawn, given with the photo, accepted suggestions, "
+    "or an accepted scene; rejected scenes left out"
 )
 
 
 def check_can_retrain_detector(scenes: SceneStore) -> int:
     """The number of scenes with confirmed boxes; NotEnoughLabelsError when too few."""
-    count = len(boxed_scenes(scenes))
-    if count < MIN_LABELLED_SCENES:
+    ids = [item.scene_id for item in boxed_scenes(scenes)]
+    if len(ids) < MIN_LABELLED_SCENES:
         raise NotEnoughLabelsError(
             f"retraining the detector needs at least {MIN_LABELLED_SCENES} {BOXED_SCENES}, "
-            f"{count} found"
+            f"{len(ids)} found"
         )
-    return count
+    require_two_photos(scenes, ids, "scenes with confirmed boxes")
+    return len(ids)
 
 
 def boxed_photo(scenes: SceneStore, item: BoxedScene) -> BoxedPhoto:
@@ -205,7 +208,7 @@ class DetectorScore:
     truth_boxes: int
 
     def text(self) -> str:
-        return f"mAP@0.5 {self.map:.3f}, recall {self.recall:.3f}"
+        return f"mAP@0.5 {percent(self.map)}, recall {percent(self.recall)}"
 
 
 def without_unconfirmed(

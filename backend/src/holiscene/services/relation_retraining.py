@@ -43,6 +43,11 @@ _COUNTER = re.compile(r"^(.*?)\s*\d+\s*/\s*\d+\s*$")
 GATHER_END, TRAIN_END = 0.05, 0.9
 
 
+def percent(share: float) -> str:
+    """A share as the models page writes it ("97.1 %"): the job's result line says the same."""
+    return f"{100 * share:.1f} %"
+
+
 class NotEnoughLabelsError(DomainError, ValueError):
     """Retraining needs labelled scenes to learn from and to judge the new model by."""
 
@@ -135,13 +140,24 @@ LABELLED_SCENES = "scenes with supports set by a person, rejected ones left out"
 
 def check_can_retrain(scenes: SceneStore) -> int:
     """The number of labelled scenes; NotEnoughLabelsError when there are too few."""
-    count = len(labelled_scenes(scenes))
-    if count < MIN_LABELLED_SCENES:
+    ids = [s.scene_id for s in labelled_scenes(scenes)]
+    if len(ids) < MIN_LABELLED_SCENES:
         raise NotEnoughLabelsError(
             f"retraining needs at least {MIN_LABELLED_SCENES} labelled scenes ({LABELLED_SCENES}), "
-            f"{count} found: correct the supports of more scenes"
+            f"{len(ids)} found: correct the supports of more scenes"
         )
-    return count
+    require_two_photos(scenes, ids, "labelled scenes")
+    return len(ids)
+
+
+def require_two_photos(scenes: SceneStore, scene_ids: Sequence[str], what: str) -> None:
+    """NotEnoughLabelsError when the scenes are all of one photo: scenes of one photo share a
+    side of the held-out split (heldout.py), so none could judge a model that learned it."""
+    if len(set(scenes.split_keys(scene_ids).values())) < MIN_LABELLED_SCENES:
+        raise NotEnoughLabelsError(
+            f"the {len(scene_ids)} {what} are all of one photo, and a model is never judged on "
+            "a photo it learned from: label a scene of another photo"
+        )
 
 
 @dataclass(kw_only=True)
@@ -244,16 +260,16 @@ class RetrainJob(TrainingJob):
         self._step("training", GATHER_END)
         result = self._train(train, work_dir / "model")
         self._check_stop()
-        self._log(f"trained: validation accuracy {result.validation_accuracy:.3f}")
+        self._log(f"trained: validation accuracy {percent(result.validation_accuracy)}")
 
         self._step("evaluating on the held-out scenes", TRAIN_END)
         new_accuracy = _accuracy(result.model_dir, heldout)
-        self._log(f"new model: held-out accuracy {new_accuracy:.3f}")
+        self._log(f"new model: held-out accuracy {percent(new_accuracy)}")
         parent_accuracy: float | None = None
         if parent is not None:
             try:
                 parent_accuracy = _accuracy(self.models.folder(parent.id), heldout)
-                self._log(f"active model v{parent.version}: {parent_accuracy:.3f}")
+                self._log(f"active model v{parent.version}: {percent(parent_accuracy)}")
             except Exception as exc:  # a broken active model must not block a working one
                 self._log(f"the active model v{parent.version} could not be evaluated: {exc}")
         self._check_stop()
@@ -340,15 +356,19 @@ def _outcome(
     info: ModelInfo, accuracy: float, parent: ModelInfo | None, parent_accuracy: float | None
 ) -> str:
     against = (
-        f"v{parent.version}'s {parent_accuracy:.3f}"
+        f"v{parent.version}'s {percent(parent_accuracy)}"
         if parent is not None and parent_accuracy is not None
         else "no comparable active model"
     )
     if info.active:
-        return f"v{info.version} is active: held-out accuracy {accuracy:.3f} against {against}"
+        return f"v{info.version} is active: held-out accuracy {percent(accuracy)} against {against}"
     if info.status == "candidate":
-        return f"v{info.version} kept as a candidate ({info.note}): {accuracy:.3f} vs {against}"
-    return f"v{info.version} rejected: held-out accuracy {accuracy:.3f} is worse than {against}"
+        return (
+            f"v{info.version} kept as a candidate ({info.note}): {percent(accuracy)} vs {against}"
+        )
+    return (
+        f"v{info.version} rejected: held-out accuracy {percent(accuracy)} is worse than {against}"
+    )
 
 
 @dataclass(frozen=True)

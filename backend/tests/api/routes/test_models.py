@@ -131,6 +131,22 @@ def test_retrain_refuses_without_enough_labelled_scenes(client: TestClient) -> N
     assert client.get("/api/models/retrain").json() is None, "no job was created"
 
 
+def test_retrain_refuses_labelled_scenes_all_of_one_photo(client: TestClient) -> None:
+    """Scenes of one photo share a side of the held-out split: none could judge the model."""
+    scenes = _workbench(client).scenes
+    store_labelled_scene(scenes, LABELLED_SEEDS[0])
+    store_labelled_scene(scenes, LABELLED_SEEDS[0])  # imported again, say after an edit
+    readiness = client.get("/api/models/retrain/readiness").json()
+    assert (readiness["labelled_scenes"], readiness["heldout_scenes"]) == (2, 0)
+    response = client.post("/api/models/retrain", json={"max_epochs": 1})
+    assert response.status_code == 422
+    assert response.json()["detail"] == (
+        "the 2 labelled scenes are all of one photo, and a model is never judged on a photo "
+        "it learned from: label a scene of another photo"
+    )
+    assert client.get("/api/models/retrain").json() is None, "no job was created"
+
+
 def test_readiness_counts_the_scenes_each_kind_would_learn_from(client: TestClient) -> None:
     scenes = _workbench(client).scenes
     relation = client.get("/api/models/retrain/readiness").json()

@@ -31,7 +31,9 @@ export function curveCard(): CurveCard {
       element.hidden = !model;
       if (!model) return;
       shownId = model.id;
-      title.textContent = `Training curve of v${model.version}`;
+      // Its standing too: the curve shown may be of a candidate or a rejected model.
+      const standing = model.active ? "active" : model.status;
+      title.textContent = `Training curve of v${model.version} (${standing})`;
       image.hidden = !model.has_curve;
       empty.hidden = model.has_curve;
       if (model.has_curve) {

@@ -46,6 +46,17 @@ describe("the question before a model is made active", () => {
     );
   });
 
+  it("puts two warnings one space apart, and writes a detector's mAP as a column does", () => {
+    const both = { ...retrained, heldout_items: 10 } as ModelInfo;
+    expect(promoteQuestion(both, active, text)).toMatch(
+      /below the active model's\. Its held-out figure rests on 10 items only: too few to tell two models apart\. Make v2/,
+    );
+    const detector = { ...retrained, heldout_recall: 0.5 } as ModelInfo;
+    expect(promoteQuestion(detector, active, KIND_TEXT.detector)).toContain(
+      "v2: held-out mAP@0.5 · recall 97.1 % · 50.0 %",
+    );
+  });
+
   it("says first when the model lost its held-out test", () => {
     const lost = { ...retrained, status: "rejected" } as ModelInfo;
     expect(promoteQuestion(lost, active, text)).toMatch(
@@ -70,6 +81,9 @@ describe("what the retrain form says about the labelled scenes", () => {
     expect(readinessText({ labelled_scenes: 1, heldout_scenes: 0, needed: 2, what })).toBe(
       "1 labelled scene (scenes with supports set by a person): at least 2 are needed, " +
         "one to learn from and one to judge by.",
+    );
+    expect(readinessText({ labelled_scenes: 3, heldout_scenes: 0, needed: 2, what })).toMatch(
+      /: all of one photo, .*label a scene of another photo\.$/,
     );
     expect(readinessText({ labelled_scenes: 2, heldout_scenes: 1, needed: 2, what })).toMatch(
       /^2 labelled scenes \(.*\): 1 of them is held out to judge the new model/,

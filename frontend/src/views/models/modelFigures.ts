@@ -25,13 +25,16 @@ export function heldoutText(model: ModelInfo, text: KindText): string {
   return `${figures(model.heldout_accuracy, model.heldout_recall)}${parent}${count}`;
 }
 
+/** A column's title inside a sentence: its first letter small, the rest as written (mAP). */
+const inSentence = (title: string) => title.charAt(0).toLowerCase() + title.slice(1);
+
 /** One model's figures on one line: "held-out … (N scenes); validation …". */
 function figuresLine(model: ModelInfo, text: KindText): string {
   const scenes = model.heldout_scenes;
   const from = scenes > 0 ? ` (${scenes} held-out ${scenes === 1 ? "scene" : "scenes"})` : "";
   return (
-    `${text.heldoutColumn.toLowerCase()} ${heldoutText(model, text)}${from}; ` +
-    `${text.validationColumn.toLowerCase()} ${percent(model.validation_accuracy)}`
+    `${inSentence(text.heldoutColumn)} ${heldoutText(model, text)}${from}; ` +
+    `${inSentence(text.validationColumn)} ${percent(model.validation_accuracy)}`
   );
 }
 
@@ -46,7 +49,7 @@ export function promoteQuestion(
       ? `v${model.version} did worse than the model it was compared with on the held-out scenes. `
       : "";
   const lines = [
-    `${lost}${cautions(model, active).join(" ")}` +
+    `${lost}${cautions(model, active).join("")}` +
       `Make v${model.version} the active model? Pipeline runs and suggestions use it from now on.`,
     "",
     `v${model.version}: ${figuresLine(model, text)}`,
@@ -87,6 +90,10 @@ export function readinessText(readiness: RetrainReadiness): string {
   const scenes = `${count} labelled ${count === 1 ? "scene" : "scenes"} (${what})`;
   if (count < needed) {
     return `${scenes}: at least ${needed} are needed, one to learn from and one to judge by.`;
+  }
+  // Scenes of one photo share a side of the held-out split: all of one photo, none is.
+  if (heldout === 0) {
+    return `${scenes}: all of one photo, and a model is never judged on a photo it learned from; label a scene of another photo.`;
   }
   // The held-out share is a fifth only with many scenes: with few, one is held out.
   const held = heldout === 1 ? "1 of them is" : `${heldout} of them are`;

@@ -70,10 +70,13 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
       table.show(models);
       form.showReadiness(readiness);
       history.show(events);
-      // The model asked for, else the newest with a curve (the committed default has none).
+      // The model asked for, else the active one when it has a curve, else the newest with a
+      // curve (the committed default has none); after a retrain, the new model.
+      const active = models.find((m) => m.active);
       const withCurve = models.filter((m) => m.has_curve).sort((a, b) => b.version - a.version)[0];
-      const asked = newest ? undefined : models.find((m) => m.id === curve.shownId);
-      curve.show(asked ?? withCurve ?? models.find((m) => m.active) ?? models[0]);
+      const asked = newest ? withCurve : models.find((m) => m.id === curve.shownId);
+      const activeCurve = active?.has_curve ? active : undefined;
+      curve.show(asked ?? activeCurve ?? withCurve ?? active ?? models[0]);
     } catch (error) {
       if (!abort.signal.aborted) table.showError(`Could not load the models: ${String(error)}`);
     }

@@ -135,7 +135,7 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
       if (shownJob && isFinished(shownJob)) since.hidden = false;
     },
     showReadiness(counted) {
-      enoughScenes = counted.labelled_scenes >= counted.needed;
+      enoughScenes = counted.labelled_scenes >= counted.needed && counted.heldout_scenes > 0;
       readiness.textContent = readinessText(counted);
       readiness.classList.toggle("is-warn", !enoughScenes);
       const running = shownJob !== null && !isFinished(shownJob);
