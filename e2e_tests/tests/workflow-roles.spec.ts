@@ -310,8 +310,13 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   // The annotator gets the rejected scene back first, sees the comment, fixes and resubmits.
   await logIn(page, ANNOTATOR.name, ANNOTATOR.password);
   await expect(page.getByTestId(`scene-state-${first.id}`)).toHaveText("rejected");
-  // "Mine to do" lists it alone: the accepted one is done, the others are not theirs.
-  await page.getByTestId("state-filter").selectOption("mine");
+  // Said above the list, with the way to it: "Mine to do" lists it alone (the accepted one is
+  // done, the others are not theirs).
+  await expect(page.getByTestId("sent-back-notice")).toContainText(
+    `1 scene was sent back to you by a reviewer: ${first.name}.`,
+  );
+  await page.getByTestId("show-sent-back").click();
+  await expect(page.getByTestId("state-filter")).toHaveValue("mine");
   await expect(page.locator("[data-testid^='scene-state-']")).toHaveCount(1);
   await expect(page.getByTestId(`scene-state-${first.id}`)).toHaveText("rejected");
   await page.getByTestId("state-filter").selectOption("");

@@ -1,10 +1,10 @@
 // "Mine to do" lists what the person holds, what was sent back to them first.
 import type { SceneSummary } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
-import { myWork } from "./myWork";
+import { myWork, sentBack, sentBackText } from "./myWork";
 
 const scene = (id: string, state: SceneSummary["state"], assignee: string | null) =>
-  ({ id, state, assignee }) as SceneSummary;
+  ({ id, name: `scene ${id}`, state, assignee }) as SceneSummary;
 
 describe("mine to do", () => {
   const scenes = [
@@ -24,5 +24,18 @@ describe("mine to do", () => {
   it("is empty for someone holding nothing, or nobody", () => {
     expect(myWork(scenes, "eve")).toEqual([]);
     expect(myWork(scenes, null)).toEqual([]);
+  });
+
+  it("names the scenes sent back to the person, a few of them", () => {
+    expect(sentBack(scenes, "ann").map((s) => s.id)).toEqual(["c", "g"]);
+    expect(sentBack(scenes, null)).toEqual([]);
+    expect(sentBackText(sentBack(scenes, "ann"))).toBe(
+      "2 scenes were sent back to you by a reviewer: scene c, scene g.",
+    );
+    const many = ["p", "q", "r", "s", "t"].map((id) => scene(id, "rejected", "ann"));
+    expect(sentBackText(many.slice(0, 1))).toBe(
+      "1 scene was sent back to you by a reviewer: scene p.",
+    );
+    expect(sentBackText(many)).toMatch(/: scene p, scene q, scene r and 2 more\.$/);
   });
 });

@@ -10,8 +10,18 @@ export function myWork(scenes: readonly SceneSummary[], me: string | null): Scen
   const held = scenes.filter(
     (s) => s.assignee === me && (s.state === "in_annotation" || s.state === "rejected"),
   );
-  return [
-    ...held.filter((s) => s.state === "rejected"),
-    ...held.filter((s) => s.state !== "rejected"),
-  ];
+  return [...sentBack(held, me), ...held.filter((s) => s.state !== "rejected")];
+}
+
+/** The scenes a reviewer sent back to `me` to fix: the list says so above every filter. */
+export function sentBack(scenes: readonly SceneSummary[], me: string | null): SceneSummary[] {
+  return me === null ? [] : scenes.filter((s) => s.assignee === me && s.state === "rejected");
+}
+
+/** "2 scenes were sent back to you: a, b." (names cut after a few). */
+export function sentBackText(scenes: readonly SceneSummary[]): string {
+  const names = scenes.slice(0, 3).map((s) => s.name);
+  const more = scenes.length > 3 ? ` and ${scenes.length - 3} more` : "";
+  const count = scenes.length === 1 ? "1 scene was" : `${scenes.length} scenes were`;
+  return `${count} sent back to you by a reviewer: ${names.join(", ")}${more}.`;
 }

@@ -4,13 +4,13 @@ import type { SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { isFinished } from "../../api/jobs";
 import { SCENE_STATES, type SceneState, stateLabel, workflowApi } from "../../api/workflow";
-import { el, formatShortTime, formatTime } from "../../dom";
+import { button, el, formatShortTime, formatTime } from "../../dom";
 import { getCurrentUser } from "../../state/currentUser";
 import { describeJob } from "../common/jobProgress";
 import { nextSceneControl } from "../workflow/nextScene";
 import "../workflow/workflow.css";
 import { datasetImportForm } from "./datasetImport";
-import { MINE, myWork } from "./myWork";
+import { MINE, myWork, sentBack, sentBackText } from "./myWork";
 import { SceneSelection } from "./sceneSelection";
 import { uploadForm } from "./uploadForm";
 
@@ -129,6 +129,25 @@ export function mountSceneList(container: HTMLElement): () => void {
     ),
   );
   const next = nextSceneControl("N");
+  // Scenes a reviewer sent back wait on their annotator: said above the list, whatever its
+  // order, with the way to them ("Mine to do" lists them first).
+  const sentBackLine = el("span", { testid: "sent-back-text" });
+  const showMine = button("Show mine to do", {
+    className: "link-button",
+    testid: "show-sent-back",
+    onClick: () => {
+      filter.value = MINE;
+      void refresh();
+    },
+  });
+  const sentBackNotice = el(
+    "p",
+    { className: "sent-back-notice", testid: "sent-back-notice", attrs: { role: "status" } },
+    sentBackLine,
+    " ",
+    showMine,
+  );
+  sentBackNotice.hidden = true;
   let timer = 0;
   let shown = "";
   // `background`: the timed refresh (faster while a job runs), which is not activity
@@ -143,7 +162,13 @@ export function mountSceneList(container: HTMLElement): () => void {
       const mine = filter.value === MINE;
       const state = (mine ? null : filter.value || null) as SceneState | null;
       const listed = await workflowApi.listScenes(state, abort.signal, background);
-      const scenes = mine ? myWork(listed, getCurrentUser()?.name ?? null) : listed;
+      const me = getCurrentUser()?.name ?? null;
+      const scenes = mine ? myWork(listed, me) : listed;
+      // Known only when the list holds every state (a state filter lists one).
+      const back = state === null ? sentBack(listed, me) : [];
+      sentBackNotice.hidden = back.length === 0;
+      sentBackLine.textContent = sentBackText(back);
+      showMine.hidden = mine;
       const now = JSON.stringify(scenes);
       // Unchanged rows are left alone: a checkbox or link under the pointer stays put.
       if (now !== shown) body.replaceChildren(...scenes.map((scene) => sceneRow(scene, selection)));
@@ -195,6 +220,7 @@ export function mountSceneList(container: HTMLElement): () => void {
           next.element,
           selection.element,
         ),
+        sentBackNotice,
         status,
         el("div", { className: "table-scroll" }, table),
       ),
