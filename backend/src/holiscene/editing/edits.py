@@ -249,32 +249,57 @@ def _restored_support(edit: RestoreSupport, earlier: Scene | None) -> SupportRel
     return next((s for s in earlier.supports if s.child == edit.child), None)
 
 
-def describe_edits(edits: Sequence[Edit]) -> str:
-    parts = []
-    for edit in edits:
-        if isinstance(edit, SetSupport):
-            parts.append(f"{edit.child} supported by {edit.parent} ({edit.type})")
-        elif isinstance(edit, SetLayout):
-            parts.append(describe_set_layout(edit))
-        elif isinstance(edit, RestoreSupport):
-            parts.append(f"{edit.child} support as in revision {edit.from_revision}")
-        elif isinstance(edit, AddObject):
-            parts.append(f"{edit.id} added ({edit.cls}, {edit.source})")
-        elif isinstance(edit, RemoveObject):
-            parts.append(f"{edit.id} removed")
-        elif isinstance(edit, SetClass):
-            parts.append(f"{edit.id} is a {edit.cls}")
-        elif isinstance(edit, SetBbox):
-            parts.append(f"{edit.id} box set")
-        elif isinstance(edit, SetMask):
-            parts.append(f"{edit.id} mask drawn")
-        elif isinstance(edit, RestoreObject):
-            parts.append(f"{edit.id} as in revision {edit.from_revision}")
-        elif isinstance(edit, RestoreScene):
-            parts.append(f"the scene as in revision {edit.from_revision}")
-        else:
-            parts.append(f"{edit.child} support removed")
+# Objects named in a revision's summary for the supporters confirmed as guessed.
+CONFIRMED_NAMED = 6
+
+
+def describe_edits(edits: Sequence[Edit], before: Scene | None = None) -> str:
+    """The revision's one-line summary. A supporter set to what `before` (the revision edited)
+    already had is a guess confirmed: counted at the end, so the changes a reviewer must look
+    at come first and are not lost among a whole scene's confirmations."""
+    held: set[tuple[str, str, str]] = (
+        {(s.child, s.parent, s.type) for s in before.supports} if before else set()
+    )
+    confirmed = [e.child for e in edits if isinstance(e, SetSupport) and _confirms(e, held)]
+    parts = [_describe_edit(e) for e in edits if not _confirms(e, held)]
+    if confirmed:
+        named = ", ".join(confirmed[:CONFIRMED_NAMED])
+        more = (
+            f" and {len(confirmed) - CONFIRMED_NAMED} more"
+            if len(confirmed) > CONFIRMED_NAMED
+            else ""
+        )
+        guesses = "supporter" if len(confirmed) == 1 else "supporters"
+        parts.append(f"{len(confirmed)} {guesses} confirmed as they were ({named}{more})")
     return "; ".join(parts)
+
+
+def _confirms(edit: Edit, held: set[tuple[str, str, str]]) -> bool:
+    return isinstance(edit, SetSupport) and (edit.child, edit.parent, edit.type) in held
+
+
+def _describe_edit(edit: Edit) -> str:
+    if isinstance(edit, SetSupport):
+        return f"{edit.child} supported by {edit.parent} ({edit.type})"
+    if isinstance(edit, SetLayout):
+        return describe_set_layout(edit)
+    if isinstance(edit, RestoreSupport):
+        return f"{edit.child} support as in revision {edit.from_revision}"
+    if isinstance(edit, AddObject):
+        return f"{edit.id} added ({edit.cls}, {edit.source})"
+    if isinstance(edit, RemoveObject):
+        return f"{edit.id} removed"
+    if isinstance(edit, SetClass):
+        return f"{edit.id} is a {edit.cls}"
+    if isinstance(edit, SetBbox):
+        return f"{edit.id} box set"
+    if isinstance(edit, SetMask):
+        return f"{edit.id} mask drawn"
+    if isinstance(edit, RestoreObject):
+        return f"{edit.id} as in revision {edit.from_revision}"
+    if isinstance(edit, RestoreScene):
+        return f"the scene as in revision {edit.from_revision}"
+    return f"{edit.child} support removed"
 
 
 def keep_manual_supports(result: Scene, current: Scene) -> Scene:

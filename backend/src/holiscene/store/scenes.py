@@ -416,7 +416,7 @@ class SceneStore:
         row before anything else) or `hook` raise. Nothing is written on error."""
         base = self.document_for_write(scene_id, request.base_revision, check)
         edited = self.edited(scene_id, base.scene, request)
-        return self.commit_edits(scene_id, request, edited, hook)
+        return self.commit_edits(scene_id, request, edited, hook, before=base.scene)
 
     def edited(self, scene_id: str, base: Scene, request: EditRequest) -> Scene:
         """`base` with the request's edits (InvalidEditError on a bad edit); nothing written."""
@@ -432,8 +432,10 @@ class SceneStore:
         hook: RevisionHook | None = None,
         unchanged: SceneStatus | None = None,
         move: WorkflowMove | None = None,
+        before: Scene | None = None,
     ) -> SceneDocument:
-        """Store `edited` (the request's edits on its base revision) as the next revision.
+        """Store `edited` (the request's edits on its base revision, `before`: its summary
+        tells a guess confirmed from a change) as the next revision.
         `unchanged`: the workflow status the scene must still have, for a write without a hook
         (else SceneRowChangedError, nothing written); `move`: the workflow move the rules
         allow from it, written with the revision. A restore of a whole earlier revision also
@@ -449,7 +451,7 @@ class SceneStore:
             edited,
             author=request.author,
             kind="edit",
-            summary=describe_edits(request.edits),
+            summary=describe_edits(request.edits, before),
             edits=request.edits,
             glb_revision=glb,
             hook=hook,

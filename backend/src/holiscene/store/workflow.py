@@ -144,12 +144,12 @@ class WorkflowStore:
             status, move = seen[0]
             try:
                 return self.scenes.commit_edits(
-                    scene_id, request, edited, unchanged=status, move=move
+                    scene_id, request, edited, unchanged=status, move=move, before=base.scene
                 )
             except SceneRowChangedError:
                 pass  # submitted, rejected or taken meanwhile: the rules once more, in a
                 # transaction that says who took it
-        return self.scenes.commit_edits(scene_id, request, edited, hook=take)
+        return self.scenes.commit_edits(scene_id, request, edited, hook=take, before=base.scene)
 
     def take(self, scene_id: str, actor: Actor) -> SceneSummary:
         """Take a scene for annotation without editing it yet (an admin: also take it over)."""
