@@ -33,7 +33,9 @@ export function objectMesh({ mesh }: Pick<SceneObject, "mesh">): MeshText | null
       return {
         kind: "completion",
         text: "mesh: from depth",
-        title: "Completed by the shape-completion network from the object's depth points",
+        title:
+          "Completed by the shape-completion network from the object's depth points: a " +
+          "surface meshed from points, so it is rough and has holes where the depth saw little",
       };
     case "learned":
       return {

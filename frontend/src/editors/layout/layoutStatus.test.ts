@@ -15,5 +15,7 @@ describe("doubts about a dragged room", () => {
     ]);
     expect(roomDoubts([0.9, 2.5, 4], 1.4)).toEqual(["a room 0.90 m across"]);
     expect(roomDoubts([5, 7.2, 5], 1.4)).toEqual(["a ceiling 7.20 m high"]);
+    // The pipeline's room on a showroom photo whose far corner sat on a window's edge.
+    expect(roomDoubts([15.97, 2.75, 6.21], 1.24)).toEqual(["a room 15.97 m long"]);
   });
 });

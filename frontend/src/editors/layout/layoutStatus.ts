@@ -11,6 +11,8 @@ export interface StatusLine {
 /** Ceilings people live under, and the narrowest room side, in metres. */
 const CEILING_M: readonly [number, number] = [2.0, 5.0];
 const NARROWEST_M = 1.2;
+/** Longer than this, a room is a hall or a corner dropped on a far line (a window's edge). */
+const LONGEST_M = 12;
 /** The least headroom above the camera (a photo is taken at eye or chest height). */
 const HEADROOM_M = 0.3;
 
@@ -32,6 +34,9 @@ export function roomDoubts(size: readonly number[], cameraHeight: number): strin
   }
   if (Math.min(depth, width) < NARROWEST_M) {
     doubts.push(`a room ${Math.min(depth, width).toFixed(2)} m across`);
+  }
+  if (Math.max(depth, width) > LONGEST_M) {
+    doubts.push(`a room ${Math.max(depth, width).toFixed(2)} m long`);
   }
   return doubts;
 }
@@ -71,16 +76,19 @@ export function layoutStatus(
   const [depth, height, width] = live.room.size.map((s) => s.toFixed(2));
   const camera = `camera ${draft.cameraHeight.toFixed(2)} m high, pitch ${live.pitchDeg.toFixed(1)}°, roll ${live.rollDeg.toFixed(1)}°`;
   const room = `room ${depth} × ${width} m, ${height} m high; ${camera}`;
-  // The saved room's figures before editing too: the line is there already when editing
-  // starts, so the photo below does not move.
-  if (!draft.editing) return { text: `The ${room}.`, alert: false };
+  const doubts = roomDoubts(live.room.size, draft.cameraHeight);
+  // The saved room's figures before editing too (the line is there already when editing
+  // starts, so the photo below does not move), with what a reviewer should doubt in them.
+  if (!draft.editing) {
+    const check = doubts.length ? ` Check its corners: this gives ${doubts.join(", ")}.` : "";
+    return { text: `The ${room}.${check}`, alert: false };
+  }
   if (draft.starting) {
     return {
       text: `A room to start from: drag its yellow corners onto the photo's room corners (saved once one moves). ${room}`,
       alert: false,
     };
   }
-  const doubts = roomDoubts(live.room.size, draft.cameraHeight);
   const doubt = doubts.length
     ? ` Is a corner on the wrong line? This gives ${doubts.join(", ")}.`
     : "";

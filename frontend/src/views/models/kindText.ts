@@ -22,7 +22,7 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
     switchLabel: "Relation Network",
     title: "Relation Network models",
     usedBy:
-      "The pipeline and the browser use the active model. Any model can be made active again.",
+      "The pipeline and the browser use the active model. An admin can make any model active again.",
     empty: "No Relation Network model is registered yet: retrain to make one.",
     heldoutColumn: "Held-out accuracy",
     heldoutItems: ["labelled object", "labelled objects"],
@@ -40,7 +40,7 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
     switchLabel: "Object detector",
     title: "Object detector models",
     usedBy:
-      "The pipeline finds objects with the active detector. Any detector can be made active again.",
+      "The pipeline finds objects with the active detector. An admin can make any detector active again.",
     empty: "No object detector is registered yet: retrain to make one.",
     heldoutColumn: "Held-out mAP@0.5 · recall",
     heldoutItems: ["confirmed box", "confirmed boxes"],
