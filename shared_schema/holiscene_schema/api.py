@@ -325,7 +325,8 @@ class ImportedPhoto(SchemaModel):
     notes: list[str] = Field(
         default_factory=list,
         description="What was left out of the labels given with it (e.g. a support row of an "
-        "unknown type), while the photo and the rest were imported",
+        "unknown type), while the photo and the rest were imported; or that the same photo "
+        "was stored before as another scene",
     )
 
 

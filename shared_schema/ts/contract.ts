@@ -632,7 +632,7 @@ export interface ImportedPhoto {
  */
 name: string
 /**
- * What was left out of the labels given with it (e.g. a support row of an unknown type), while the photo and the rest were imported
+ * What was left out of the labels given with it (e.g. a support row of an unknown type), while the photo and the rest were imported; or that the same photo was stored before as another scene
  */
 notes: string[]
 /**

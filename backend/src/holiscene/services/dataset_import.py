@@ -111,11 +111,15 @@ class DatasetImports:
         if earlier is not None:
             self.jobs.photo_done(job.id, "skipped", label, earlier)
             return
+        # Another labelling of a photo stored before: kept, and said (it also shares that
+        # scene's side of the held-out split).
+        twin = self.workbench.scenes.first_with_photo(inputs.photo.data)
+        also = () if twin is None else (f"the same photo as scene {twin.name}, stored before",)
         author = job.started_by or "import"
         stored = self.workbench.import_scene(inputs, source.name, author, run_pipeline=False)
         if job.run_pipeline:
             self._queue_pipeline(stored.scene.id, author)
-        self.jobs.photo_done(job.id, "imported", label, stored.scene, inputs.notes)
+        self.jobs.photo_done(job.id, "imported", label, stored.scene, (*inputs.notes, *also))
 
     def _queue_pipeline(self, scene_id: str, author: str) -> None:
         """Queue the scene's pipeline, waiting while the queue is full (the server's

@@ -273,6 +273,18 @@ class SceneStore:
             ).first()
             return self._summary(row) if row is not None else None
 
+    def first_with_photo(self, photo: bytes) -> SceneSummary | None:
+        """The first scene stored with this very photo file, whatever its labels, or None."""
+        self._record_missing_photo_digests()
+        with Session(self.engine) as session:
+            row = session.scalars(
+                select(SceneRow)
+                .where(SceneRow.photo_digest == hashlib.sha256(photo).hexdigest())
+                .order_by(SceneRow.created_at, SceneRow.id)
+                .limit(1)
+            ).first()
+            return self._summary(row) if row is not None else None
+
     def image_path(self, scene_id: str) -> Path:
         with Session(self.engine) as session:
             row = self._row(session, scene_id)

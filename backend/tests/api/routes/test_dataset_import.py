@@ -174,6 +174,23 @@ def test_the_same_zip_twice_adds_nothing(client: TestClient, tmp_path: Path) -> 
     assert len(client.get("/api/scenes").json()) == 2
 
 
+def test_a_photo_stored_before_with_other_labels_is_a_new_scene_with_a_note(
+    client: TestClient, tmp_path: Path
+) -> None:
+    first = _imported(client, _zip_folder(_coco_dataset(tmp_path / "coco")))
+    coco = _coco_dataset(tmp_path / "relabelled")
+    data = json.loads((coco / "annotations.json").read_text())
+    data["annotations"][0]["bbox"] = [12, 20, 28, 30]  # a box drawn again
+    (coco / "annotations.json").write_text(json.dumps(data))
+    second = _imported(client, _zip_folder(coco))
+    assert [p["name"] for p in second["imported"]] == ["a.png"]
+    assert [p["name"] for p in second["skipped"]] == ["b.png"]  # the very same labels
+    (relabelled,) = second["imported"]
+    assert relabelled["scene_id"] != first["imported"][0]["scene_id"]
+    assert relabelled["notes"] == ["the same photo as scene a, stored before"]
+    assert first["imported"][0]["notes"] == []
+
+
 def test_a_zip_of_input_folders_queues_their_pipeline(client: TestClient, tmp_path: Path) -> None:
     for name in ("kitchen", "hall"):
         (tmp_path / "rooms" / name).mkdir(parents=True)
