@@ -115,3 +115,26 @@ test("the detector list says which network each version is", async ({ page }) =>
   await expect(validation).toHaveText("—");
   await expect(validation).toHaveAttribute("title", /^Not trained here/);
 });
+
+test("an admin cancels a long retrain: it stops, says who cancelled it, and registers nothing", async ({
+  page,
+}) => {
+  test.setTimeout(120_000);
+  await labelledScene(page.request, "labelled before a cancel 1", T3D_5);
+  await labelledScene(page.request, "labelled before a cancel 2", T3D_1);
+  const before = await models(page.request);
+  await page.goto("/#/models");
+  await page.getByTestId("retrain-epochs").fill("500");
+  await page.getByTestId("retrain-synthetic").fill("5000");
+  await page.getByTestId("retrain-button").click();
+  const cancel = page.getByTestId("retrain-cancel");
+  await expect(cancel).toBeVisible();
+  page.once("dialog", (dialog) => void dialog.accept()); // asked first
+  await cancel.click();
+  const progress = page.getByTestId("retrain-progress");
+  await expect(progress).toHaveAttribute("data-status", "failed", { timeout: 60_000 });
+  await expect(progress).toContainText("cancelled by");
+  await expect(cancel).toBeHidden();
+  await expect(page.getByTestId("retrain-button")).toBeEnabled();
+  expect((await models(page.request)).map((m) => m.id)).toEqual(before.map((m) => m.id));
+});

@@ -38,6 +38,10 @@ export const modelsApi = {
   startRetrain: (body: RetrainRequest, kind: ModelKind = "relation") =>
     request<Job>(ofKind("/models/retrain", kind), jsonBody(body)),
 
+  /** Stop a queued or running retrain job at its next step; it registers nothing. */
+  cancelRetrain: (jobId: string) =>
+    request<Job>(`/models/retrain/${encodeURIComponent(jobId)}/cancel`, { method: "POST" }),
+
   /** Make a model the active one of its kind (a rollback when it is older). */
   promote: (modelId: string, body: PromoteRequest) =>
     request<ModelInfo>(`${modelUrl(modelId)}/promote`, jsonBody(body)),

@@ -12,7 +12,10 @@ from holiscene_schema.relation_model import INPUT_NAMES, OPSET, OUTPUT_NAME
 
 from .samples import SupportSample
 
-EXPORT_TOLERANCE = 1e-5
+# On the logits, which a long-trained net drives to tens: float32 in another order of operations
+# differs by some 1e-5 there (a 30-epoch retrain on 1500 scenes ended at 1.9e-5 and was thrown
+# away), while a wrong export differs by far more.
+EXPORT_TOLERANCE = 1e-4
 
 
 def export_onnx(net: torch.nn.Module, example: SupportSample, path: Path) -> float:

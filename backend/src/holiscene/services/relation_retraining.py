@@ -173,6 +173,8 @@ class TrainingJob:
     work_root: Path  # <data_dir>/training
     author: str
     stop: threading.Event = dataclasses.field(default_factory=threading.Event)
+    # An admin's cancel of this job (the server's stop is `stop`): who asked, once asked.
+    cancelled_by: str | None = dataclasses.field(default=None, init=False)
     _started: float = dataclasses.field(default_factory=time.monotonic, init=False)
     _last_counter: str | None = dataclasses.field(default=None, init=False)
 
@@ -221,7 +223,13 @@ class TrainingJob:
         elapsed = time.monotonic() - self._started
         self.jobs.append_log(self.job_id, f"[{elapsed:6.1f} s] {line}", replace_last=replace)
 
+    def cancel(self, by: str) -> None:
+        """Stop at the next progress report (a step or an epoch); nothing is registered."""
+        self.cancelled_by = by
+
     def _check_stop(self) -> None:
+        if self.cancelled_by is not None:
+            raise RetrainStopped(f"cancelled by {self.cancelled_by}")
         if self.stop.is_set():
             raise RetrainStopped("the server stopped while this job ran")
 

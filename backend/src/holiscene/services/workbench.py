@@ -37,7 +37,7 @@ from ..learning.training_api import METRICS_FILE
 from ..pipeline import PLACEMENT_STAGES
 from ..store import model_registry
 from ..store.files import SceneFiles
-from ..store.jobs import BATCH_ORPHANED, JobStore
+from ..store.jobs import BATCH_ORPHANED, JobNotFoundError, JobStore, RetrainFinishedError
 from ..store.model_registry import KIND_FOLDERS, ModelNotFoundError, ModelStore, Registration
 from ..store.scenes import SceneChangedError, SceneStore
 from ..store.users import UserStore
@@ -127,6 +127,8 @@ class Workbench:
         # Retraining gets its own single worker: a run takes minutes and must not hold up
         # imports queued behind it; one at a time (RetrainRunningError otherwise).
         self._training = ThreadPoolExecutor(max_workers=1, thread_name_prefix="retrain")
+        # The retrain jobs queued or running in this process, by job id: an admin may cancel.
+        self._retrains: dict[str, TrainingJob] = {}
         self._retrain_lock = threading.Lock()
         # The queue bound's count and the insert after it, one request at a time.
         self._queue_lock = threading.Lock()
@@ -310,8 +312,30 @@ class Workbench:
                 f"synthetic_scenes={retrain.config.synthetic_scenes}"
             )
         self.jobs.append_log(job.id, f"queued by {request.author}: {options}")
-        self._training.submit(retrain.run)
+        self._retrains[job.id] = retrain
+        self._training.submit(self._run_retrain, retrain)
         return self.jobs.get(job.id)
+
+    def _run_retrain(self, retrain: TrainingJob) -> None:
+        try:
+            retrain.run()
+        finally:
+            self._retrains.pop(retrain.job_id, None)
+
+    def cancel_retrain(self, job_id: str, by: str) -> Job:
+        """Cancel a queued or running retrain job (admin): it ends failed, at its next step or
+        epoch, and registers nothing. RetrainFinishedError when it has ended already."""
+        job = self.jobs.get(job_id)  # JobNotFoundError for an unknown id
+        if job.kind not in RETRAIN_JOB_KINDS.values():
+            raise JobNotFoundError(f"no retrain job {job_id!r}")
+        retrain = self._retrains.get(job_id)
+        if job.status in ("succeeded", "failed") or retrain is None:
+            raise RetrainFinishedError(
+                f"the retrain job {job_id} is not running: nothing to cancel"
+            )
+        retrain.cancel(by)
+        self.jobs.append_log(job_id, f"cancel asked by {by}: stopping at the next step")
+        return self.jobs.get(job_id)
 
     def retrain_job(self, job_id: str, request: RetrainRequest) -> RetrainJob:
         return RetrainJob(

@@ -32,6 +32,12 @@ BATCH_ORPHANED = "the batch that ran this scene was killed before it was done; a
 RETRAIN_KINDS: tuple[JobKind, ...] = ("retrain", "detector_retrain")
 
 
+class RetrainFinishedError(DomainError):
+    """A cancel of a retrain job that has ended (or that another server process runs)."""
+
+    status = 409
+
+
 class RetrainRunningError(DomainError):
     """Only one retrain job at a time (of any model kind): training uses the whole machine."""
 

@@ -206,6 +206,26 @@ def committed_client(settings: Settings) -> Iterator[TestClient]:
         yield test_client
 
 
+def test_an_admin_cancels_a_retrain_and_nothing_is_registered(client: TestClient) -> None:
+    workbench = _workbench(client)
+    for seed in LABELLED_SEEDS[:2]:
+        store_labelled_scene(workbench.scenes, seed)
+    before = client.get("/api/models").json()
+    body = {"max_epochs": 500, "synthetic_scenes": 5000}  # far longer than the test waits
+    job = client.post("/api/models/retrain", json=body).json()
+    cancelled = client.post(f"/api/models/retrain/{job['id']}/cancel")
+    assert cancelled.status_code == 200, cancelled.text
+    assert "cancel asked by local" in cancelled.json()["log"]
+    finished = wait_for_job(client, job["id"], timeout=60)
+    assert finished["status"] == "failed"
+    assert finished["error"] == "cancelled by local; no model was registered from this job"
+    assert client.get("/api/models").json() == before
+    # Ended: nothing to cancel; not a retrain job, or none at all: 404.
+    again = client.post(f"/api/models/retrain/{job['id']}/cancel")
+    assert again.status_code == 409 and "not running" in again.json()["detail"]
+    assert client.post("/api/models/retrain/nope/cancel").status_code == 404
+
+
 def test_pipeline_jobs_keep_their_shape(committed_client: TestClient) -> None:
     client = committed_client
     scenes = _workbench(client).scenes

@@ -51,6 +51,12 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
     testid: "retrain-button",
     type: "submit",
   });
+  const cancel = button("Cancel retrain", {
+    testid: "retrain-cancel",
+    title: "Stop this retrain at its next step or epoch; no model is registered from it",
+    onClick: () => void cancelShown(),
+  });
+  cancel.hidden = true;
   const retrainError = hiddenErrorAlert("retrain-error");
   const progress = jobProgress("retrain-progress");
   progress.element.hidden = true;
@@ -71,7 +77,7 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
     el("p", { className: "field-hint", text: text.retrainHint }),
     readiness,
     el("div", { className: "field-grid" }, epochs.field, synthetic.field),
-    el("div", { className: "form-actions" }, retrain),
+    el("div", { className: "form-actions" }, retrain, cancel),
     retrainError,
     progress.element,
     since,
@@ -88,6 +94,21 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
     log.textContent = job.log;
     if (atBottom) log.scrollTop = log.scrollHeight;
     retrain.disabled = !isFinished(job) || !enoughScenes;
+    cancel.hidden = isFinished(job);
+  };
+
+  const cancelShown = async () => {
+    const job = shownJob;
+    if (!job || !window.confirm("Cancel this retrain? Nothing of it is registered.")) return;
+    cancel.disabled = true;
+    try {
+      showJob(await modelsApi.cancelRetrain(job.id));
+    } catch (error) {
+      retrainError.hidden = false;
+      retrainError.textContent = `Could not cancel: ${String(error instanceof Error ? error.message : error)}`;
+    } finally {
+      cancel.disabled = false;
+    }
   };
 
   const follow = async (job: Job) => {

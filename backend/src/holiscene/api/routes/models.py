@@ -98,6 +98,17 @@ def start_retrain(
     return workbench.start_retrain(request, kind)
 
 
+@router.post(
+    "/retrain/{job_id}/cancel",
+    response_model=Job,
+    responses={404: {"model": ErrorMessage}, 409: {"model": ErrorMessage}},
+)
+def cancel_retrain(job_id: str, workbench: WorkbenchDep, user: AdminDep) -> Job:
+    """Cancel a queued or running retrain job: it stops at its next step or epoch, ends failed
+    ("cancelled by ...") and registers nothing. 409 once it has ended."""
+    return workbench.cancel_retrain(job_id, user.name)
+
+
 @router.get("/{model_id}", response_model=ModelInfo, responses=_404)
 def get_model(model_id: str, workbench: WorkbenchDep) -> ModelInfo:
     return workbench.registry_of(model_id).get(model_id)
