@@ -25,6 +25,7 @@ NEEDS: dict[tuple[str, str], str] = {
     ("POST", "/api/scenes/{scene_id}/second-annotation"): "reviewer",
     ("GET", "/api/scenes/next-review"): "reviewer",
     ("POST", "/api/models/retrain"): "admin",
+    ("POST", "/api/models/retrain/{job_id}/cancel"): "admin",
     ("POST", "/api/models/{model_id}/promote"): "admin",
     ("GET", "/api/users"): "admin",
     ("POST", "/api/users"): "admin",
