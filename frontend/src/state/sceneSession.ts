@@ -132,6 +132,8 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
   private permission: EditPermission | null = null;
   /** The server refused a save (409, not a stale revision) in this workflow state. */
   private refusal: { message: string; workflow: string } | null = null;
+  /** "Run pipeline again" is running: the scene stays in view, read only, until its result. */
+  private rerunning = false;
   private shownLock = "";
   private readonly listeners = new Set<(change: Change) => void>();
   /** Where unsaved work outlives the page (localStorage): drafts, a failed object action. */
@@ -186,7 +188,19 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
   get lock(): EditLock | null {
     const lock = editLock(this.workflow?.state, this.permission);
     if (lock) return lock;
+    if (this.rerunning) {
+      return {
+        title: "Pipeline running — read only",
+        reason: "the pipeline runs again on this scene; its result replaces what is shown",
+      };
+    }
     return this.refusal && { title: "Read only", reason: this.refusal.message };
+  }
+
+  /** The page started (true) or gave up (false) a pipeline run of this scene. */
+  setRerunning(running: boolean): void {
+    this.rerunning = running;
+    this.lockChanged();
   }
 
   get editable(): boolean {

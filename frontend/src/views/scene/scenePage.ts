@@ -121,12 +121,14 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
 
   const runPipeline = async () => {
     rerun.disabled = true;
+    // The scene stays in view, read only, while the pipeline runs again (the progress bar
+    // names the stage); its result replaces it.
+    shown?.setRerunning(true);
     try {
-      disposeContent();
-      message.textContent = "Running the pipeline…";
       await waitForJob(await api.startPipeline(sceneId));
       await load();
     } catch (error) {
+      shown?.setRerunning(false);
       fail(error);
     }
   };

@@ -1,0 +1,31 @@
+// User story: an admin runs the pipeline again on a scene. The scene stays on the page, read
+// only and saying why, while the job runs (the progress bar names its stage), and the new
+// revision replaces it when the job ends.
+import { expect, test } from "@playwright/test";
+import { seedScene, T3D_5 } from "../helpers/api";
+import { openScene } from "../helpers/photo";
+
+test("running the pipeline again keeps the scene in view, read only, until the result", async ({
+  page,
+}) => {
+  const doc = await seedScene(page.request, T3D_5, "run again");
+  await openScene(page, doc.scene_id);
+  // The job's answers come a second late, so the run is not over before the page is looked at.
+  await page.route("**/api/jobs/*", async (route) => {
+    await new Promise((resolve) => setTimeout(resolve, 1000));
+    await route.continue();
+  });
+  await page.getByTestId("run-pipeline").click();
+  await expect(page.getByTestId("read-only-banner")).toContainText("Pipeline running — read only");
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await expect(page.getByTestId("object-table")).toBeVisible();
+  await expect(page.locator("[data-testid^='supporter-select-']").first()).toBeDisabled();
+  await expect(page.getByTestId("run-pipeline")).toBeDisabled();
+  // The result: the next revision, editable again.
+  await expect(page.getByTestId("scene-meta")).toContainText(`revision ${doc.revision + 1}`, {
+    timeout: 60_000,
+  });
+  await expect(page.getByTestId("read-only-banner")).toBeHidden();
+  await expect(page.locator("[data-testid^='supporter-select-']").first()).toBeEnabled();
+  await expect(page.getByTestId("run-pipeline")).toBeEnabled();
+});
