@@ -36,11 +36,12 @@ def heldout_split(
 
     ordered = sorted({key_of(s) for s in scene_ids}, key=_hash_fraction)
     held = [k for k in ordered if _hash_fraction(k) < fraction]
-    if len(ordered) >= 2:
-        if not held:
-            held = ordered[:1]
-        elif len(held) == len(ordered):
-            held = held[:-1]
+    if len(ordered) < 2:
+        held = []  # one photo: held out, nothing would be left to learn from
+    elif not held:
+        held = ordered[:1]
+    elif len(held) == len(ordered):
+        held = held[:-1]
     held_set = set(held)
     return (
         [s for s in scene_ids if key_of(s) not in held_set],
