@@ -83,7 +83,7 @@ def _chosen_scenes(
 ) -> list[ArchivedScene]:
     """The scenes asked for (each once, in the order given; default: all), only those in
     `state` when one is given."""
-    from ..export.archive import archived_scene
+    from ..export.archive import archived_scenes
 
     state_of = {s.id: s.state for s in scenes.list_summaries()}
     ids = list(dict.fromkeys(scene_ids)) if scene_ids else list(state_of)
@@ -96,4 +96,4 @@ def _chosen_scenes(
             raise CliError(f"no scene{' of those given' if scene_ids else ''} is {state}")
     if not ids:
         raise CliError("the store holds no scenes")
-    return [archived_scene(scenes, scene_id) for scene_id in ids]
+    return archived_scenes(scenes, ids)

@@ -9,6 +9,7 @@ import io
 import json
 import re
 import zipfile
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -53,7 +54,9 @@ class ArchivedScene:
     split_key: str | None = None
 
 
-def archived_scene(scenes: SceneStore, scene_id: str) -> ArchivedScene:
+def archived_scene(
+    scenes: SceneStore, scene_id: str, split_key: str | None = None
+) -> ArchivedScene:
     """A stored scene's current revision and its files (SceneNotFoundError for an unknown id)."""
     document = scenes.document(scene_id)
     glb = scenes.glb_path(scene_id)
@@ -68,8 +71,20 @@ def archived_scene(scenes: SceneStore, scene_id: str) -> ArchivedScene:
         ground_truth=truth if truth.is_file() else None,
         depth=depth if document.scene.depth is not None and depth.is_file() else None,
         state=scenes.summary(scene_id).state,
-        split_key=scenes.split_keys([scene_id]).get(scene_id),
+        split_key=split_key,
     )
+
+
+def archived_scenes(scenes: SceneStore, scene_ids: list[str]) -> list[ArchivedScene]:
+    """The scenes with their held-out split keys, read for all of them at once (the training
+    exports hold out what a retrain would)."""
+    keys = scenes.split_keys(scene_ids)
+    return [archived_scene(scenes, i, keys.get(i)) for i in scene_ids]
+
+
+def split_keys_of(items: Sequence[ArchivedScene]) -> dict[str, str]:
+    """The held-out split keys the items carry, for heldout_split."""
+    return {item.scene_id: item.split_key for item in items if item.split_key is not None}
 
 
 def coco_description(scene_id: str, revision: int, scene: Scene) -> str:

@@ -26,7 +26,7 @@ from holiscene_schema.relation_model import (
 )
 
 from ..core.atomic_files import write_atomic
-from .archive import ArchivedScene
+from .archive import ArchivedScene, split_keys_of
 from .errors import ExportRefusedError
 
 if TYPE_CHECKING:
@@ -101,8 +101,9 @@ def write_relation_training(chosen: list[ArchivedScene], out: Path) -> None:
         raise ExportRefusedError(
             f"none of the {len(chosen)} scene(s) has supports set by a person: nothing to train on"
         )
-    keys = {item.scene_id: item.split_key or item.scene_id for item in chosen}
-    _, heldout_ids = heldout_split([labelled.scene_id for labelled, _ in kept], keys)
+    _, heldout_ids = heldout_split(
+        [labelled.scene_id for labelled, _ in kept], split_keys_of(chosen)
+    )
     heldout = np.array([labelled.scene_id in heldout_ids for labelled, _ in kept])
     write_atomic(out / PAIRS_FILE, _arrays([s for _, s in kept], heldout))
     write_atomic(out / LABELS_FILE, _label_lines(kept))

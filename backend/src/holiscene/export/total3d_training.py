@@ -39,7 +39,7 @@ from ..core.atomic_files import write_atomic
 from ..geometry.camera import PinholeCamera
 from ..inputs.depth import depth_from_png
 from ..segmentation.rle import decode_mask
-from .archive import ArchivedScene
+from .archive import ArchivedScene, split_keys_of
 from .errors import ExportRefusedError
 from .total3d import box_frame
 
@@ -364,8 +364,8 @@ def write_total3d_training(chosen: list[ArchivedScene], out: Path) -> str | None
         reasons = "; ".join(f"{scene_id}: {why}" for scene_id, why in skipped.items())
         raise ExportRefusedError(f"no scene can be a Total3D training sample ({reasons})")
     priors = averages(geometries)
-    keys = {g.item.scene_id: g.item.split_key or g.item.scene_id for g in geometries}
-    _, held_out = heldout_split([g.item.scene_id for g in geometries], keys)
+    items = [g.item for g in geometries]
+    _, held_out = heldout_split([i.scene_id for i in items], split_keys_of(items))
     splits: dict[str, list[str]] = {"train": [], "test": []}
     index = []
     (out / SAMPLES_DIR).mkdir(exist_ok=True)

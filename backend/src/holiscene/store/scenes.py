@@ -160,6 +160,11 @@ def _last_event_at() -> ScalarSelect[datetime]:
     )
 
 
+def photo_digest(photo: bytes) -> str:
+    """A photo file's fingerprint (SHA-256, hex): scenes.photo_digest, migration 0011."""
+    return hashlib.sha256(photo).hexdigest()
+
+
 def _chunks(values: list[str], size: int = 500) -> list[list[str]]:
     """`values` in pieces small enough for one IN (...) of every database."""
     return [values[i : i + size] for i in range(0, len(values), size)]
@@ -170,6 +175,7 @@ class SceneStore:
         self.engine = engine
         self.reads = without_transaction(engine)
         self.files = files
+        self._photo_digests_complete = False
 
     # -- reading -------------------------------------------------------------------------
 
@@ -279,7 +285,7 @@ class SceneStore:
         with Session(self.engine) as session:
             row = session.scalars(
                 select(SceneRow)
-                .where(SceneRow.photo_digest == hashlib.sha256(photo).hexdigest())
+                .where(SceneRow.photo_digest == photo_digest(photo))
                 .order_by(SceneRow.created_at, SceneRow.id)
                 .limit(1)
             ).first()
@@ -320,6 +326,10 @@ class SceneStore:
         }
 
     def _record_missing_photo_digests(self) -> None:
+        # Every scene stored since migration 0011 has its digest: once the older ones are
+        # filled, this store never looks again (not a query per split or import).
+        if self._photo_digests_complete:
+            return
         with Session(self.engine) as session:
             missing = session.execute(
                 select(SceneRow.id, SceneRow.image_file).where(SceneRow.photo_digest.is_(None))
@@ -328,11 +338,12 @@ class SceneStore:
             path = self.files.folder(scene_id) / image_file
             if not path.is_file():  # a scene whose files are gone keeps its own id as key
                 continue
-            digest = hashlib.sha256(path.read_bytes()).hexdigest()
+            digest = photo_digest(path.read_bytes())
             with Session(self.engine) as session, session.begin():
                 session.execute(
                     update(SceneRow).where(SceneRow.id == scene_id).values(photo_digest=digest)
                 )
+        self._photo_digests_complete = True
 
     def glb_file(self, scene_id: str) -> tuple[int, Path] | None:
         """The scene's GLB and the revision whose pipeline (or placement) run made it (edits
@@ -395,7 +406,7 @@ class SceneStore:
                 annotation_round=1,
                 uncertainty=scene_uncertainty(scene),
                 source_digest=inputs.digest,
-                photo_digest=hashlib.sha256(inputs.photo.data).hexdigest(),
+                photo_digest=photo_digest(inputs.photo.data),
             )
             session.add(row)
             session.flush()
