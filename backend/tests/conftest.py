@@ -12,6 +12,7 @@ from fastapi.testclient import TestClient
 from holiscene.api.app import create_app
 from holiscene.core.settings import REPO_ROOT, Settings
 from holiscene.synth.generate import synthesize_to
+from holiscene_schema import FINISHED_JOB_STATUSES
 
 # SQLite, and PostgreSQL for tests marked both_databases (see databases.py).
 from .databases import database_url, postgres_server, pytest_configure, pytest_generate_tests
@@ -74,7 +75,7 @@ def wait_for_job(client: TestClient, job_id: str, timeout: float = 30.0) -> dict
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         job = client.get(f"/api/jobs/{job_id}").json()
-        if job["status"] in ("succeeded", "failed"):
+        if job["status"] in FINISHED_JOB_STATUSES:
             return job  # type: ignore[no-any-return]
         time.sleep(0.05)
     raise AssertionError(f"job {job_id} did not finish in {timeout} s")

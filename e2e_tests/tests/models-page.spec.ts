@@ -132,8 +132,9 @@ test("an admin cancels a long retrain: it stops, says who cancelled it, and regi
   page.once("dialog", (dialog) => void dialog.accept()); // asked first
   await cancel.click();
   const progress = page.getByTestId("retrain-progress");
-  await expect(progress).toHaveAttribute("data-status", "failed", { timeout: 60_000 });
-  await expect(progress).toContainText("cancelled by");
+  await expect(progress).toHaveAttribute("data-status", "cancelled", { timeout: 60_000 });
+  await expect(progress).toContainText("Retraining cancelled by");
+  await expect(progress).not.toHaveClass(/is-failed/);
   await expect(cancel).toBeHidden();
   await expect(page.getByTestId("retrain-button")).toBeEnabled();
   expect((await models(page.request)).map((m) => m.id)).toEqual(before.map((m) => m.id));

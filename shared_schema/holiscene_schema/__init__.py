@@ -1,6 +1,7 @@
 """HoliScene's contract: the scene and every message between the app and the server."""
 
 from .api import (
+    FINISHED_JOB_STATUSES,
     MAX_REVISION,
     AddObject,
     Conflict,
@@ -105,6 +106,7 @@ from .support_graph import STRUCTURAL_SUPPORTERS, support_graph_problems
 
 __all__ = [
     "BOX_CORNER_SIGNS",
+    "FINISHED_JOB_STATUSES",
     "MAX_REVISION",
     "NYU40_CLASSES",
     "STRUCTURAL_CLASSES",

@@ -237,7 +237,10 @@ class RevisionInfo(SchemaModel):
     edits: list[Edit] | None = None
 
 
-JobStatus = Literal["queued", "running", "succeeded", "failed"]
+# cancelled: stopped on an admin's request (retrain jobs); its message ("cancelled by adam; ...")
+# says by whom.
+JobStatus = Literal["queued", "running", "succeeded", "failed", "cancelled"]
+FINISHED_JOB_STATUSES: tuple[JobStatus, ...] = ("succeeded", "failed", "cancelled")
 # placement: the placement stages only, on a scene's stored camera, layout, masks and supports;
 # retrain: retraining the Relation Network; detector_retrain: retraining the object detector.
 JobKind = Literal["pipeline", "placement", "retrain", "detector_retrain"]

@@ -602,7 +602,7 @@ run_pipeline: boolean
  */
 skipped: ImportedPhoto[]
 started_by: (string | null)
-status: ("queued" | "running" | "succeeded" | "failed")
+status: ("queued" | "running" | "succeeded" | "failed" | "cancelled")
 /**
  * Photos (and unreadable files) found in the zip
  */
@@ -689,7 +689,7 @@ stage: (string | null)
  * Who asked for the job: an account's name, or 'import' (unknown for jobs from before this was recorded)
  */
 started_by: (string | null)
-status: ("queued" | "running" | "succeeded" | "failed")
+status: ("queued" | "running" | "succeeded" | "failed" | "cancelled")
 }
 /**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema

@@ -1,10 +1,9 @@
 // Datasets uploaded as a .zip (POST /api/imports), imported by the server in the background.
 import type { ImportJob } from "@holiscene/schema";
 import { inBackground, request } from "./client";
-import { sleep } from "./jobs";
+import { isFinished, sleep } from "./jobs";
 
-export const importFinished = (job: ImportJob) =>
-  job.status === "succeeded" || job.status === "failed";
+export const importFinished = (job: ImportJob) => isFinished(job);
 
 export const importsApi = {
   /** Upload the zip; the server unpacks and recognises it before answering (4xx if not). */

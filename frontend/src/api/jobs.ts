@@ -2,7 +2,9 @@
 import type { Job } from "@holiscene/schema";
 import { api } from "./client";
 
-export const isFinished = (job: Job) => job.status === "succeeded" || job.status === "failed";
+/** Ended one way or another: the job will not change again. */
+export const isFinished = (job: Pick<Job, "status">) =>
+  job.status === "succeeded" || job.status === "failed" || job.status === "cancelled";
 
 export interface PollOptions {
   onUpdate?: (job: Job) => void;

@@ -185,7 +185,11 @@ class TrainingJob:
             self._run(work_dir)
         except RetrainStopped as exc:
             self._log(f"stopped: {exc}")
-            self.jobs.fail(self.job_id, f"{exc}; no model was registered from this job")
+            outcome = f"{exc}; no model was registered from this job"
+            if self.cancelled_by is not None:
+                self.jobs.cancelled(self.job_id, outcome)
+            else:
+                self.jobs.fail(self.job_id, outcome)
         except Exception as exc:
             log.exception("retrain job %s failed", self.job_id)
             self._log(f"failed: {user_facing_error(exc)}")

@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from holiscene_schema import (
+    FINISHED_JOB_STATUSES,
     ImportResult,
     Job,
     JobKind,
@@ -329,7 +330,7 @@ class Workbench:
         if job.kind not in RETRAIN_JOB_KINDS.values():
             raise JobNotFoundError(f"no retrain job {job_id!r}")
         retrain = self._retrains.get(job_id)
-        if job.status in ("succeeded", "failed") or retrain is None:
+        if job.status in FINISHED_JOB_STATUSES or retrain is None:
             raise RetrainFinishedError(
                 f"the retrain job {job_id} is not running: nothing to cancel"
             )

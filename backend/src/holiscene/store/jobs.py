@@ -262,6 +262,10 @@ class JobStore:
             finished_at=utcnow(),
         )
 
+    def cancelled(self, job_id: str, message: str) -> None:
+        """The job stopped because someone asked; not a failure, so not shown as one."""
+        self._set(job_id, status="cancelled", stage=None, message=message, finished_at=utcnow())
+
     def fail(self, job_id: str, error: str) -> None:
         fail_job(self.engine, JobRow, job_id, error)
 

@@ -20,6 +20,7 @@ from fastapi.testclient import TestClient
 from holiscene.api.app import create_app
 from holiscene.api.upload_login import UploadLogin
 from holiscene.core.settings import Settings
+from holiscene_schema import FINISHED_JOB_STATUSES
 
 from ...inputs.datasets.files import coco_file, labelme_file, photo_bytes, shape
 from ...inputs.datasets.sunrgbd_files import write_sun_folder
@@ -67,7 +68,7 @@ def _finished_as(client: TestClient, job_id: str, headers: dict[str, str]) -> di
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline:
         job: dict[str, Any] = client.get(f"/api/imports/{job_id}", headers=headers).json()
-        if job["status"] in ("succeeded", "failed"):
+        if job["status"] in FINISHED_JOB_STATUSES:
             return job
         time.sleep(0.05)
     raise AssertionError(f"import {job_id} did not finish: {job}")

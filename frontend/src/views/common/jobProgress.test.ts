@@ -39,4 +39,10 @@ describe("job texts", () => {
     const failed: Job = { ...job("masks_grabcut"), status: "failed", error: "no memory" };
     expect(describeJob(failed)).toBe("Pipeline failed in masks grabcut: no memory");
   });
+
+  it("says a cancelled retrain was cancelled, not that it failed", () => {
+    const message = "cancelled by adam; no model was registered from this job";
+    const cancelled: Job = { ...job(null), kind: "retrain", status: "cancelled", message };
+    expect(describeJob(cancelled)).toBe(`Retraining ${message}`);
+  });
 });

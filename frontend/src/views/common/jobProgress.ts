@@ -40,6 +40,9 @@ export function describeJob(job: Job): string {
         : `${what} finished (revision ${job.result_revision ?? "?"})`;
     case "failed":
       return `${what} failed${stage ? ` in ${stage}` : ""}: ${job.error ?? "unknown error"}`;
+    case "cancelled":
+      // The message says it all ("cancelled by adam; no model was registered ...").
+      return `${what} ${job.message ?? "cancelled"}`;
   }
 }
 
@@ -65,6 +68,7 @@ export function jobProgress(testid = "job-progress"): JobProgress {
       text.textContent = describeJob(job);
       element.dataset.status = job.status;
       element.classList.toggle("is-failed", job.status === "failed");
+      element.classList.toggle("is-cancelled", job.status === "cancelled");
     },
   };
 }
