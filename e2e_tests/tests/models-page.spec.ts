@@ -138,4 +138,16 @@ test("an admin cancels a long retrain: it stops, says who cancelled it, and regi
   await expect(cancel).toBeHidden();
   await expect(page.getByTestId("retrain-button")).toBeEnabled();
   expect((await models(page.request)).map((m) => m.id)).toEqual(before.map((m) => m.id));
+
+  // Another retrain started elsewhere: the page's refusal replaces the cancelled job's line,
+  // which would read as this attempt's outcome.
+  const elsewhere = await page.request.post("/api/models/retrain?kind=relation", {
+    data: { max_epochs: 500, synthetic_scenes: 5000 },
+  });
+  expect(elsewhere.status()).toBe(202);
+  await page.getByTestId("retrain-button").click();
+  await expect(page.getByTestId("retrain-error")).toContainText("Retraining did not start");
+  await expect(progress).toBeHidden();
+  const { id } = (await elsewhere.json()) as { id: string };
+  expect((await page.request.post(`/api/models/retrain/${id}/cancel`)).status()).toBe(200);
 });

@@ -143,6 +143,8 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
       retrain.disabled = false;
       retrainError.hidden = false;
       retrainError.textContent = `Retraining did not start: ${String(error instanceof Error ? error.message : error)}`;
+      // An earlier job's outcome under this refusal would read as this attempt's.
+      for (const old of [progress.element, log, since]) old.hidden = true;
     }
   });
 
