@@ -280,8 +280,10 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId("scene-list").locator("tbody tr")).toHaveCount(2);
   await expect(page.getByTestId(`scene-assignee-${first.id}`)).toHaveText(ANNOTATOR.name);
   await shot(page, "list-reviewer");
-  // "Next to review" opens the submitted scene waiting longest, and takes nothing.
-  await page.getByTestId("next-review").click();
+  // "Next to review" (its key on the list: R) opens the submitted scene waiting longest, and
+  // takes nothing.
+  await expect(page.getByTestId("next-review")).toHaveAttribute("title", /\(R\)$/);
+  await page.keyboard.press("R");
   await expect(page).toHaveURL(new RegExp(`#/scenes/${first.id}$`));
   await expect(page.getByTestId("object-table")).toBeVisible({ timeout: 60_000 });
   await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
@@ -299,7 +301,10 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId("review-comment-text")).toHaveText(comment);
   await shot(page, "rejected");
 
-  await openScene(page, second.id);
+  // From the scene page, Shift+Right opens the next one waiting: the second.
+  await page.locator("body").click({ position: { x: 5, y: 5 } });
+  await page.keyboard.press("Shift+ArrowRight");
+  await expect(page).toHaveURL(new RegExp(`#/scenes/${second.id}$`));
   await expect(page.getByTestId("workflow-accept")).toBeVisible();
   await page.locator("body").click({ position: { x: 5, y: 5 } });
   page.once("dialog", (dialog) => void dialog.accept()); // asked first, as the keystroke is final

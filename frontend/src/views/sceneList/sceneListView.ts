@@ -128,7 +128,7 @@ export function mountSceneList(container: HTMLElement): () => void {
       el("option", { text: stateLabel(state), attrs: { value: state } }),
     ),
   );
-  const next = nextSceneControl("N");
+  const next = nextSceneControl({ take: "N", review: "R" });
   // Scenes a reviewer sent back wait on their annotator: said above the list, whatever its
   // order, with the way to them ("Mine to do" lists them first).
   const sentBackLine = el("span", { testid: "sent-back-text" });

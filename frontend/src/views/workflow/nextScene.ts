@@ -2,7 +2,8 @@
 // scene the pipeline is least sure of) and open it. A button and a key: N on the scene list;
 // ">" on the scene page, where N already selects the next object. A reviewer also gets "Next
 // to review", which opens the scene waiting longest for review without taking anything, so
-// a reviewer who means to review never becomes a scene's annotator by mistake.
+// a reviewer who means to review never becomes a scene's annotator by mistake; its key is R
+// on the list and Shift+Right on the scene page (R rejects a support edge there).
 import type { SceneSummary } from "@holiscene/schema";
 import { ApiError } from "../../api/errors";
 import { workflowApi } from "../../api/workflow";
@@ -10,8 +11,18 @@ import { button, el } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
 import { hasRole } from "../../state/currentUser";
 
-/** The buttons and their message line; `key` works while they are mounted. */
-export function nextSceneControl(key: string): { element: HTMLElement; dispose: () => void } {
+export interface NextSceneKeys {
+  /** Take the next scene to annotate. */
+  take: string;
+  /** Open the next scene waiting for review (reviewers). */
+  review: string;
+}
+
+/** The buttons and their message line; the keys work while they are mounted. */
+export function nextSceneControl(keys: NextSceneKeys): {
+  element: HTMLElement;
+  dispose: () => void;
+} {
   const message = el("span", {
     className: "next-scene-message",
     testid: "next-scene-message",
@@ -21,12 +32,12 @@ export function nextSceneControl(key: string): { element: HTMLElement; dispose: 
   const nextButton = button("Next scene", {
     className: reviewer ? "" : "primary",
     testid: "next-scene",
-    title: `Take the next scene to annotate: it becomes yours (${key})`,
+    title: `Take the next scene to annotate: it becomes yours (${keys.take})`,
   });
   const reviewButton = button("Next to review", {
     className: "primary",
     testid: "next-review",
-    title: "Open the scene waiting longest for review (nothing is assigned to you)",
+    title: `Open the scene waiting longest for review; nothing is assigned to you (${keys.review})`,
   });
   const open = (fetch: () => Promise<SceneSummary>, failed: string) => async () => {
     nextButton.disabled = reviewButton.disabled = true;
@@ -43,19 +54,31 @@ export function nextSceneControl(key: string): { element: HTMLElement; dispose: 
   };
   const go = open(() => workflowApi.next(), "Could not take a scene");
   nextButton.addEventListener("click", () => void go());
-  reviewButton.addEventListener(
-    "click",
-    () => void open(() => workflowApi.nextToReview(), "Could not find a scene to review")(),
-  );
-  const removeKey = registerShortcut({
-    keys: key,
+  const goReview = open(() => workflowApi.nextToReview(), "Could not find a scene to review");
+  reviewButton.addEventListener("click", () => void goReview());
+  const removeTakeKey = registerShortcut({
+    keys: keys.take,
     description: "Take the next scene to annotate (the most uncertain first)",
     scope: "Workflow",
     run: () => void go(),
     enabled: () => hasRole("annotator") && !nextButton.disabled,
   });
+  const removeReviewKey = registerShortcut({
+    keys: keys.review,
+    description: "Open the next scene waiting for review (the one waiting longest)",
+    scope: "Workflow",
+    run: () => void goReview(),
+    enabled: () => hasRole("reviewer") && !reviewButton.disabled,
+    listed: () => hasRole("reviewer"),
+  });
   reviewButton.hidden = !reviewer;
   const element = el("span", { className: "next-scene" }, reviewButton, nextButton, message);
   element.hidden = !hasRole("annotator");
-  return { element, dispose: removeKey };
+  return {
+    element,
+    dispose: () => {
+      removeTakeKey();
+      removeReviewKey();
+    },
+  };
 }

@@ -32,7 +32,7 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
   let busy = false;
 
   const status = workflowStatus();
-  const next = nextSceneControl(">");
+  const next = nextSceneControl({ take: ">", review: "Shift+ArrowRight" });
   const error = hiddenErrorAlert("workflow-error");
   const revision = () => session.doc.revision;
   // What scene.glb lacks of the scene ("" when nothing, or when the server cannot say: the
