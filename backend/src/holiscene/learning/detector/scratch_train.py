@@ -163,7 +163,7 @@ def _fit(
         say(
             min(1.0, done),
             f"epoch {epoch}: loss {curve[-1]['train_loss']:.3f}, validation mAP@0.5 "
-            f"{score:.3f} (best {best:.3f}), {seconds / 60:.1f} min",
+            f"{100 * score:.1f} (best {100 * best:.1f}), {seconds / 60:.1f} min",
         )
         if done >= 1.0:
             break
