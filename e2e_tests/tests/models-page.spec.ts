@@ -148,6 +148,13 @@ test("an admin cancels a long retrain: it stops, says who cancelled it, and regi
   await page.getByTestId("retrain-button").click();
   await expect(page.getByTestId("retrain-error")).toContainText("Retraining did not start");
   await expect(progress).toBeHidden();
+  // The detector's tab says which retrain its own waits for, until that one ends.
+  await page.getByTestId("model-kind-detector").click();
+  const readiness = page.getByTestId("retrain-readiness");
+  await expect(readiness).toContainText("Waiting: a retrain of the Relation Network started by");
+  await expect(page.getByTestId("retrain-button")).toBeDisabled();
+  await page.screenshot({ path: screenshotPath("models-waiting-for-other.png"), fullPage: true });
   const { id } = (await elsewhere.json()) as { id: string };
   expect((await page.request.post(`/api/models/retrain/${id}/cancel`)).status()).toBe(200);
+  await expect(readiness).not.toContainText("Waiting", { timeout: 20_000 });
 });

@@ -491,6 +491,11 @@ class RetrainReadiness(SchemaModel):
     )
     needed: int = Field(ge=1, description="Labelled scenes needed before it can start")
     what: str = Field(description="What counts as a labelled scene for this kind")
+    other_retrain: str | None = Field(
+        default=None,
+        description="A retrain of another kind of model, queued or running: one runs at a time, "
+        "so this kind's waits for it ('a retrain of the Relation Network started by adam (40%)')",
+    )
 
 
 class PromoteRequest(SchemaModel):

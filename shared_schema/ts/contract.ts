@@ -1025,6 +1025,10 @@ labelled_scenes: number
  */
 needed: number
 /**
+ * A retrain of another kind of model, queued or running: one runs at a time, so this kind's waits for it ('a retrain of the Relation Network started by adam (40%)')
+ */
+other_retrain: (string | null)
+/**
  * What counts as a labelled scene for this kind
  */
 what: string

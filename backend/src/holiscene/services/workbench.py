@@ -289,6 +289,7 @@ class Workbench:
             heldout_scenes=len(heldout_split(ids, self.scenes.split_keys(ids))[1]),
             needed=MIN_LABELLED_SCENES,
             what=what,
+            other_retrain=self.jobs.other_retrain(RETRAIN_JOB_KINDS[kind]),
         )
 
     def start_retrain(self, request: RetrainRequest, kind: ModelKind = "relation") -> Job:

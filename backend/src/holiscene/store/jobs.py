@@ -51,14 +51,19 @@ class RetrainRunningError(DomainError):
 _RETRAINED = {"retrain": "the Relation Network", "detector_retrain": "the object detector"}
 
 
-def _running_retrain(row: JobRow) -> RetrainRunningError:
-    """The refusal, naming what the running job retrains, who started it and how far it is
-    (an admin on the other model's tab sees it nowhere else)."""
+def _retrain_text(row: JobRow) -> str:
+    """What a queued or running retrain job retrains, who started it and how far it is."""
     what = f"a retrain of {_RETRAINED.get(row.kind, row.kind)}"
     if row.started_by:
         what += f" started by {row.started_by}"
     progress = f"{round(100 * row.progress)}%" if row.status == "running" else "queued"
-    return RetrainRunningError(row.id, f"{what} ({progress})")
+    return f"{what} ({progress})"
+
+
+def _running_retrain(row: JobRow) -> RetrainRunningError:
+    """The refusal, naming the running job (an admin on the other model's tab would not
+    know of it otherwise)."""
+    return RetrainRunningError(row.id, _retrain_text(row))
 
 
 # Jobs on one scene; at most one of them waits or runs per scene (migration 0007).
@@ -215,6 +220,18 @@ class JobStore:
         with Session(self.engine) as session:
             row = session.scalars(query.limit(1)).first()
             return _job(row) if row is not None else None
+
+    def other_retrain(self, kind: str) -> str | None:
+        """The queued or running retrain job of another kind than `kind`, described; one
+        retrain runs at a time, so the models page says why this kind's must wait."""
+        query = select(JobRow).where(
+            JobRow.kind.in_(RETRAIN_KINDS),
+            JobRow.kind != kind,
+            JobRow.status.in_(["queued", "running"]),
+        )
+        with Session(self.engine) as session:
+            row = session.scalars(query.limit(1)).first()
+            return _retrain_text(row) if row is not None else None
 
     def unfinished(self, kind: str) -> list[Job]:
         query = select(JobRow).where(JobRow.kind == kind, JobRow.status.in_(["queued", "running"]))

@@ -213,6 +213,11 @@ def test_an_admin_cancels_a_retrain_and_nothing_is_registered(client: TestClient
     before = client.get("/api/models").json()
     body = {"max_epochs": 500, "synthetic_scenes": 5000}  # far longer than the test waits
     job = client.post("/api/models/retrain", json=body).json()
+    # The detector's tab says which retrain its own waits for; the relation tab does not.
+    waiting = client.get("/api/models/retrain/readiness?kind=detector").json()
+    assert waiting["other_retrain"].startswith("a retrain of the Relation Network started by")
+    own = client.get("/api/models/retrain/readiness?kind=relation").json()
+    assert own["other_retrain"] is None
     cancelled = client.post(f"/api/models/retrain/{job['id']}/cancel")
     assert cancelled.status_code == 200, cancelled.text
     assert "cancel asked by local" in cancelled.json()["log"]
@@ -220,6 +225,8 @@ def test_an_admin_cancels_a_retrain_and_nothing_is_registered(client: TestClient
     assert finished["status"] == "cancelled"
     assert finished["message"] == "cancelled by local; no model was registered from this job"
     assert finished["error"] is None
+    readiness = client.get("/api/models/retrain/readiness?kind=detector").json()
+    assert readiness["other_retrain"] is None
     assert client.get("/api/models").json() == before
     # Ended: nothing to cancel; not a retrain job, or none at all: 404.
     again = client.post(f"/api/models/retrain/{job['id']}/cancel")

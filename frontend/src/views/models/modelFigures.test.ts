@@ -76,20 +76,33 @@ describe("the question before a model is made active", () => {
 });
 
 describe("what the retrain form says about the labelled scenes", () => {
+  const what = "scenes with supports set by a person";
+  const counted = (labelled: number, heldout: number, other: string | null = null) => ({
+    labelled_scenes: labelled,
+    heldout_scenes: heldout,
+    needed: 2,
+    what,
+    other_retrain: other,
+  });
+
   it("counts them, and says how many are needed when they are too few", () => {
-    const what = "scenes with supports set by a person";
-    expect(readinessText({ labelled_scenes: 1, heldout_scenes: 0, needed: 2, what })).toBe(
+    expect(readinessText(counted(1, 0))).toBe(
       "1 labelled scene (scenes with supports set by a person): at least 2 are needed, " +
         "one to learn from and one to judge by.",
     );
-    expect(readinessText({ labelled_scenes: 3, heldout_scenes: 0, needed: 2, what })).toMatch(
+    expect(readinessText(counted(3, 0))).toMatch(
       /: all of one photo, .*label a scene of another photo\.$/,
     );
-    expect(readinessText({ labelled_scenes: 2, heldout_scenes: 1, needed: 2, what })).toMatch(
+    expect(readinessText(counted(2, 1))).toMatch(
       /^2 labelled scenes \(.*\): 1 of them is held out to judge the new model/,
     );
-    expect(readinessText({ labelled_scenes: 12, heldout_scenes: 3, needed: 2, what })).toMatch(
-      /: 3 of them are held out/,
+    expect(readinessText(counted(12, 3))).toMatch(/: 3 of them are held out/);
+  });
+
+  it("says which retrain of another kind this one waits for", () => {
+    const other = "a retrain of the Relation Network started by adam (40%)";
+    expect(readinessText(counted(2, 1, other))).toMatch(
+      /held out to judge the new model, never trained on\. Waiting: a retrain of the Relation Network started by adam \(40%\) is running, and one retrain runs at a time\.$/,
     );
   });
 });

@@ -86,6 +86,14 @@ function cautions(model: ModelInfo, active: ModelInfo | undefined): string[] {
 
 /** "3 labelled scenes (scenes with ...): enough" / "1 of the 2 needed" */
 export function readinessText(readiness: RetrainReadiness): string {
+  const counted = labelledText(readiness);
+  // One retrain runs at a time (it takes the whole machine): say which one this waits for.
+  return readiness.other_retrain
+    ? `${counted} Waiting: ${readiness.other_retrain} is running, and one retrain runs at a time.`
+    : counted;
+}
+
+function labelledText(readiness: RetrainReadiness): string {
   const { labelled_scenes: count, heldout_scenes: heldout, needed, what } = readiness;
   const scenes = `${count} labelled ${count === 1 ? "scene" : "scenes"} (${what})`;
   if (count < needed) {

@@ -3,6 +3,7 @@
 // model of the kind, its training curve, the history of the active model, retraining (with
 // live progress and log) and roll-back. Retraining and changing the active model are for
 // admins (the server checks).
+import { sleep } from "../../api/jobs";
 import { modelsApi } from "../../api/models";
 import { el } from "../../dom";
 import type { ModelKind } from "../../router";
@@ -17,6 +18,7 @@ import { retrainForm } from "./retrainForm";
 // (retrainForm) and the history (modelHistory); this page lays them out and loads them.
 
 const KINDS: ModelKind[] = ["relation", "detector"];
+const OTHER_RETRAIN_POLL_MS = 3000;
 
 /** Links to each kind's page; the current one marked. */
 function kindSwitch(current: ModelKind): HTMLElement {
@@ -60,6 +62,26 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
   });
   adminsOnly.hidden = admin;
 
+  // While another kind's retrain runs, this kind's Retrain waits: the readiness line is read
+  // again until it ends, so the button comes back without a reload.
+  let followingOther = false;
+  async function followOtherRetrain(): Promise<void> {
+    if (followingOther) return;
+    followingOther = true;
+    try {
+      for (;;) {
+        await sleep(OTHER_RETRAIN_POLL_MS, abort.signal);
+        const readiness = await modelsApi.retrainReadiness(abort.signal, kind);
+        form.showReadiness(readiness);
+        if (!readiness.other_retrain) return;
+      }
+    } catch {
+      // The page went (aborted), or the server is away: the next visit reads it again.
+    } finally {
+      followingOther = false;
+    }
+  }
+
   async function refresh(newest = false): Promise<void> {
     try {
       const [models, events, readiness] = await Promise.all([
@@ -69,6 +91,7 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
       ]);
       table.show(models);
       form.showReadiness(readiness);
+      if (readiness.other_retrain) void followOtherRetrain();
       history.show(events);
       // The model asked for, else the active one when it has a curve, else the newest with a
       // curve (the committed default has none); after a retrain, the new model.

@@ -159,11 +159,16 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
     },
     showReadiness(counted) {
       enoughScenes = counted.labelled_scenes >= counted.needed && counted.heldout_scenes > 0;
+      const otherRunning = Boolean(counted.other_retrain);
       readiness.textContent = readinessText(counted);
-      readiness.classList.toggle("is-warn", !enoughScenes);
+      readiness.classList.toggle("is-warn", !enoughScenes || otherRunning);
       const running = shownJob !== null && !isFinished(shownJob);
-      retrain.disabled = running || !enoughScenes;
-      retrain.title = enoughScenes ? "" : "Label more scenes first (the line above says how many)";
+      retrain.disabled = running || !enoughScenes || otherRunning;
+      retrain.title = !enoughScenes
+        ? "Label more scenes first (the line above says how many)"
+        : otherRunning
+          ? "Another retrain is running (the line above says which); this one can start when it ends"
+          : "";
     },
   };
 }
