@@ -265,7 +265,7 @@ def plot_curve(
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from matplotlib.ticker import MaxNLocator
+    from matplotlib.ticker import MaxNLocator, PercentFormatter
 
     fig, loss_axis = plt.subplots(figsize=(6, 3.5), dpi=100)
     epochs = [c["epoch"] for c in curve]
@@ -284,6 +284,8 @@ def plot_curve(
         axis.set_ylabel(axis_label, color=colour)
     loss_axis.set_xlabel("epoch")
     accuracy_axis.set_ylim(0, 1)
+    # In percent, as the models page and the training log give the figures.
+    accuracy_axis.yaxis.set_major_formatter(PercentFormatter(xmax=1))
     # Epochs are whole. The locator falls back to fractions when fewer than two whole numbers
     # are in view (one epoch: 0.945-1.05), so a short run gets its epochs as the ticks.
     if 0 < len(epochs) < 5:  # an untrained model's curve is empty
