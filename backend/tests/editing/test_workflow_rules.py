@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 from holiscene.editing.workflow_rules import (
+    WARNING_DOUBT,
     Actor,
     SceneStatus,
     WorkflowError,
@@ -15,6 +16,7 @@ from holiscene.editing.workflow_rules import (
     support_agreement,
     take_for_annotation,
 )
+from holiscene_schema import StageRun
 
 from ..stored_scenes import PREDICTED, make_scene
 
@@ -76,6 +78,23 @@ def test_an_object_only_the_detector_vouches_for_is_doubtful_by_its_score() -> N
         }
     )
     assert scene_uncertainty(settled) == pytest.approx((0.7 + 0.5 + 1.0) / 4)
+
+
+def test_each_stage_warning_raises_the_doubt_of_a_scene_its_supports_are_sure_of() -> None:
+    sure = make_scene(PREDICTED, {"o0": 1.0, "o1": 1.0, "o2": 1.0, "o3": 1.0})
+    assert scene_uncertainty(sure) == 0.0
+    stages = [
+        StageRun(name="masks_grabcut", seconds=0.1, note="2 boxes left", warning=True),
+        StageRun(name="placement", seconds=0.1, note="placed", warning=False),
+        StageRun(name="heights_by_metrology", seconds=0.1, note="1 height", warning=True),
+    ]
+    warned = sure.model_copy(update={"stages": stages})
+    assert scene_uncertainty(warned) == pytest.approx(1 - (1 - WARNING_DOUBT) ** 2)
+    # On top of the supports' doubt, as a share of what is still trusted.
+    unsure = make_scene(PREDICTED[:3], {"o0": 0.9, "o1": 0.3, "o2": None})
+    mean = (0.1 + 0.7 + 0.5 + 1.0) / 4
+    both = unsure.model_copy(update={"stages": stages[:1]})
+    assert scene_uncertainty(both) == pytest.approx(1 - (1 - mean) * (1 - WARNING_DOUBT))
 
 
 def test_a_scene_without_objects_to_support_is_the_most_uncertain() -> None:

@@ -96,6 +96,10 @@ def test_gt_json_is_the_ground_truth_scene(folder: Path) -> None:
             "'confidence' must be a number from 0 to 1",
         ),
         (
+            [{"child": 1, "parent": "wall", "type": "behind", "source": "auto", "author": "adam"}],
+            "source 'auto' (the pipeline's guess) with an author",
+        ),
+        (
             [
                 {"child": 1, "parent": 2, "type": "below"},
                 {"child": 2, "parent": 1, "type": "below"},

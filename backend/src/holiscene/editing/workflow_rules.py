@@ -234,15 +234,22 @@ def _needing_supporter(scene: Scene) -> list[SceneObject]:
 
 
 def scene_uncertainty(scene: Scene) -> float:
-    """Mean over the objects that need a supporter of how unsure they are (`_object_doubt`).
+    """Mean over the objects that need a supporter of how unsure they are (`_object_doubt`),
+    raised by each stage that warned (WARNING_DOUBT apiece: masks left as boxes, heights out
+    of range...): the Relation Network is often sure of itself where the scene is not.
     1 for a scene with no such objects: nothing in it is known yet (its objects are still to
     be found), so it comes first for annotation."""
     objects = _needing_supporter(scene)
     if not objects:
         return 1.0
     supports = {s.child: s for s in scene.supports}
-    total = sum(_object_doubt(o, supports.get(o.id)) for o in objects)
-    return round(total / len(objects), 6)
+    mean = sum(_object_doubt(o, supports.get(o.id)) for o in objects) / len(objects)
+    warnings = sum(1 for stage in scene.stages if stage.warning)
+    return round(1.0 - (1.0 - mean) * (1.0 - WARNING_DOUBT) ** warnings, 6)
+
+
+# How much a stage's warning adds to a scene's doubt, as a share of what is still trusted.
+WARNING_DOUBT = 0.1
 
 
 def _object_doubt(obj: SceneObject, support: SupportRelation | None) -> float:

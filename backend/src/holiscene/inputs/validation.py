@@ -364,6 +364,13 @@ def _support_from_item(where: str, item: Any, box_count: int) -> SupportRelation
     if item["type"] not in ("below", "behind"):
         raise InputError(f"{where}: type {item['type']!r} is neither 'below' nor 'behind'")
     source = item.get("source", "manual")
+    if source == "auto" and "author" in item:
+        # A guess edited by hand (its parent changed, an author added) would import as the
+        # pipeline's, and a pipeline run would replace it: say which one it is.
+        raise InputError(
+            f"{where}: source 'auto' (the pipeline's guess) with an author: a person's label "
+            "has no source 'auto', remove one of the two"
+        )
     if source == "auto":  # a pipeline's guess (as an export writes one) stays a guess
         confidence = item.get("confidence")
         if confidence is not None and not (

@@ -241,6 +241,8 @@ class Workbench:
     ) -> ImportResult:
         if run_pipeline:  # a full queue refuses the import before its scene is stored
             self.jobs.check_queue_room(self.settings.max_queued_jobs)
+        # Names tell scenes apart in lists and notices: a taken one gets a number ("im3d-2 2").
+        name = self.scenes.unused_name(name)
         summary = self.scenes.create(inputs, imported_scene(inputs, name), author)
         job = self.start_pipeline(summary.id, author) if run_pipeline else None
         return ImportResult(scene=summary.model_copy(update={"latest_job": job}), job=job)
@@ -421,7 +423,11 @@ class Workbench:
             )
             # The stages this job ran (the revision keeps the earlier ones' notes too), and
             # who asked: the history reads "re-placed objects", not a whole pipeline run.
-            ran = [s.name for s in result.scene.stages if s.name != "scene_from_revision"]
+            ran = [
+                s.name.replace("_", " ")  # read by people in the history: "boxes by refiner"
+                for s in result.scene.stages
+                if s.name != "scene_from_revision"
+            ]
             revision = self.scenes.commit_placement_result(
                 job.scene_id,
                 job.base_revision,

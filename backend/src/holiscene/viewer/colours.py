@@ -35,9 +35,27 @@ def _hsl_to_rgb(h: float, s: float, lightness: float) -> Rgb:
 
 # The per-object palette: 32 slots, consecutive ones far apart in hue, two lightnesses.
 _OBJECT_LIGHTNESS = (0.55, 0.38)
+_SLOTS = 32
+
+
+def _slot_hue(k: int) -> float:
+    return (k * _GOLDEN_ANGLE) % 360.0
+
+
 OBJECT_PALETTE: tuple[Rgb, ...] = tuple(
-    _hsl_to_rgb((k * _GOLDEN_ANGLE) % 360.0, 0.8, _OBJECT_LIGHTNESS[k % 2]) for k in range(32)
+    _hsl_to_rgb(_slot_hue(k), 0.8, _OBJECT_LIGHTNESS[k % 2]) for k in range(_SLOTS)
 )
+# Two colours nearer in hue read as one (a darker red is still red).
+_NEAR_HUE = 25.0
+
+
+def _hue_distance(a: int, b: int) -> float:
+    d = abs(_slot_hue(a) - _slot_hue(b))
+    return min(d, 360.0 - d)
+
+
+def _nearest_given(k: int, given: set[int]) -> float:
+    return min((_hue_distance(k, g) for g in given), default=360.0)
 _NUMBERED = re.compile(r"^(.*?)([0-9]+)$")  # ASCII digits, as JavaScript's \d
 
 
@@ -60,15 +78,18 @@ def _preferred_slot(object_id: str) -> int:
 
 
 def object_colours(ids: Sequence[str]) -> dict[str, Rgb]:
-    """Each object's colour, in the scene's order: its id's slot, or the next free one."""
+    """Each object's colour, in the scene's order: its id's slot, unless an earlier object has
+    that slot or one of a near hue; then the free slot farthest in hue from every slot given
+    (the lowest of equals). Past 32 objects, slots are shared."""
     used: set[int] = set()
     colours: dict[str, Rgb] = {}
     for object_id in ids:
         slot = _preferred_slot(object_id)
-        for _ in range(len(OBJECT_PALETTE)):
-            if slot not in used:
-                break
-            slot = (slot + 1) % len(OBJECT_PALETTE)
+        if slot in used or _nearest_given(slot, used) < _NEAR_HUE:
+            best = -1.0
+            for k in range(_SLOTS):
+                if k not in used and _nearest_given(k, used) > best:
+                    best, slot = _nearest_given(k, used), k
         used.add(slot)
         colours[object_id] = OBJECT_PALETTE[slot]
     return colours

@@ -125,7 +125,7 @@ async def import_scene(
     # A name from the file name is cut to fit (only a typed name is the user's to shorten).
     from_file = (image.filename or "photo").rsplit(".", 1)[0].strip()[:SCENE_NAME_LENGTH]
     typed = (name or "").strip()
-    scene_name = typed or workbench.scenes.unused_name(from_file or "photo")
+    scene_name = typed or from_file or "photo"  # numbered by the store when taken
     return workbench.import_scene(inputs, scene_name, author_of(user, author), run_pipeline)
 
 
