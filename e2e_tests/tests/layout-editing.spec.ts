@@ -333,6 +333,43 @@ async function dragOffPhotoCorner(page: Page, doc: SceneDocument): Promise<void>
   expect(await cornerAt(page, index)).toEqual(corner);
 }
 
+test("a corner dropped where no box room reaches: a dashed line and a note, the photo held still", async ({
+  page,
+  request,
+}) => {
+  const doc = await seedFolder(request, T3D_5, "t3d-5 corner out of reach");
+  await slowAutosave(page);
+  await openScene(page, doc.scene_id);
+  await page.getByTestId("layout-toggle").click();
+  const handle = page
+    .locator('[data-testid^="layout-handle-"][data-pinned="true"][data-clamped="false"]')
+    .first();
+  const index = Number(await handle.getAttribute("data-corner"));
+  const from = await handleCentre(page, index);
+  const photoTop = () => page.getByTestId("photo").evaluate((n) => n.getBoundingClientRect().top);
+  const top = await photoTop();
+  // Straight down the wall's edge and a little aside: the room cannot follow (the camera's
+  // height and the other corners hold it).
+  await page.mouse.move(from.x, from.y);
+  await page.mouse.down();
+  for (let step = 1; step <= STEPS; step++) {
+    await page.mouse.move(from.x + (20 * step) / STEPS, from.y + (120 * step) / STEPS);
+    await nextFrames(page);
+  }
+  const status = page.getByTestId("layout-status");
+  await expect(status).toContainText("A box room cannot put its");
+  // The longer line does not push the photo down under the pointer while dragging.
+  expect(await photoTop()).toBe(top);
+  await page.mouse.up();
+  const miss = page.getByTestId("layout-miss");
+  await expect(miss).toHaveAttribute("data-corner", String(index));
+  expect(await miss.getAttribute("d")).toMatch(/^M [\d.]+ [\d.]+ L [\d.]+ [\d.]+$/);
+  await page.getByTestId("photo-panel").screenshot({ path: screenshotPath("layout-miss.png") });
+  // Reset: nothing missed, no line.
+  await page.getByTestId("layout-reset").click();
+  await expect(miss).toHaveAttribute("d", "");
+});
+
 test("layout undo after an autosave: the drag is saved back, and a reload shows the room as it was", async ({
   page,
   request,

@@ -157,7 +157,7 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   await clickObject(page, id);
   await page.keyboard.press("P");
   await expect(page.getByTestId("mask-tool-status")).toHaveText(
-    new RegExp(`Mask of ${target.class} ${id}`),
+    new RegExp(`Mask of ${target.class.replaceAll("_", " ")} ${id}`),
   );
   // [ and ] size the brush.
   await expect(page.getByTestId("brush-size-value")).toHaveText("16 px");

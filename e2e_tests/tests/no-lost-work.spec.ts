@@ -114,6 +114,13 @@ test("edits whose save failed survive a closed tab and are offered back", async 
     seeded.scene_id,
   );
   expect(draft).toContain('"child":"o3"');
+  // Closing the tab with the edit unsaved: the browser asks first; staying keeps the page.
+  const asked = page.waitForEvent("dialog");
+  await page.close({ runBeforeUnload: true });
+  const leave = await asked;
+  expect(leave.type()).toBe("beforeunload");
+  await leave.dismiss();
+  await expect(page.getByTestId("arrow-o3")).toHaveAttribute("data-parent", "wall");
   await page.close(); // the tab is gone, the edit never reached the server
   expect(supportOf(await getScene(request, seeded.scene_id), "o3")?.parent).not.toBe("wall");
 

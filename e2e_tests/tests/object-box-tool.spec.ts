@@ -32,8 +32,15 @@ test("boxes drawn on an empty photo become objects with masks and supporters", a
   await page.mouse.move(b.x, b.y, { steps: 5 });
   await expect(page.getByTestId("box-tool-drawing")).toHaveCount(1);
   await page.mouse.up();
-  // The picker opens beside the box: type part of the name.
+  // The picker opens beside the box. Enter on a blank field picks nothing (the first line
+  // would be a guess nobody chose): it says how to choose.
   await expect(page.getByTestId("class-picker")).toBeVisible();
+  await page.getByTestId("class-picker-input").fill("  ");
+  await page.keyboard.press("Enter");
+  await expect(page.getByTestId("class-picker")).toBeVisible();
+  await expect(page.getByTestId("class-picker-hint")).toHaveText(/^Type a class/);
+  await expect(page.locator('.masks [data-object="d1"]')).toHaveCount(0);
+  // Type part of the name.
   await page.getByTestId("class-picker-input").fill("be");
   await page.screenshot({ path: screenshotPath("box-tool-class-picker.png") });
   // 1 picks the first line.

@@ -126,6 +126,10 @@ test("a crowded scene's labels do not overlap; mask colouring and opacity are re
     expect(text.left).toBeGreaterThanOrEqual(tag.left - 0.5);
     expect(text.right).toBeLessThanOrEqual(tag.right + 0.5);
   });
+  // A tag shows the id only; hovering it names the class.
+  const firstTag = page.locator(".object-label").first();
+  const tagId = await firstTag.getAttribute("data-object");
+  await expect(firstTag.locator("title")).toHaveText(new RegExp(`^${tagId}: [a-z]`));
   // The pile is dense: some labels had to move off their objects, with a leader line.
   expect(before.leaders).toBeGreaterThan(0);
   const leaderIds = await page

@@ -4,7 +4,7 @@
 // Once a reviewer sends the scene back, the next visit offers the kept correction, which is
 // then saved: no work is lost. Local single-user mode (the one person may review too).
 import type { SceneDocument } from "@holiscene/schema";
-import { expect, type Page, test } from "@playwright/test";
+import { type Dialog, expect, type Page, test } from "@playwright/test";
 import { getScene, seedScene, T3D_5 } from "../helpers/api";
 import { chooseTool } from "../helpers/objects";
 import { openScene, slowAutosave } from "../helpers/photo";
@@ -114,15 +114,29 @@ test("a save refused by the workflow lock keeps the edit, shows why, and is save
   expect(workflow.state).toBe("in_annotation");
 });
 
-/** Submit the scene from the workflow bar, then send it back with a comment (one person reviews). */
-async function submitAndSendBack(page: Page, comment: string, between?: () => Promise<void>) {
+/** Submit the scene from the workflow bar, then send it back with a comment (one person
+ * reviews). A question before submitting (none of the supporters set by a person) is
+ * answered yes; returns what it asked ("" when nothing). */
+async function submitAndSendBack(
+  page: Page,
+  comment: string,
+  between?: () => Promise<void>,
+): Promise<string> {
+  let asked = "";
+  const answer = (dialog: Dialog) => {
+    asked = dialog.message();
+    void dialog.accept();
+  };
+  page.once("dialog", answer);
   await page.getByTestId("workflow-submit").click();
   await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
+  page.off("dialog", answer);
   await between?.();
   await page.getByTestId("workflow-reject").click();
   await page.getByTestId("reject-comment").fill(comment);
   await page.getByTestId("reject-send").click();
   await expect(page.getByTestId("workflow-state")).toHaveText("rejected");
+  return asked;
 }
 
 test("the editing tool a lock took away comes back when the scene is editable again", async ({
@@ -137,10 +151,12 @@ test("the editing tool a lock took away comes back when the scene is editable ag
 
   // Submitted, it is read only: the Box tool gives way to Select and cannot be chosen. Sent
   // back (here by the same person, who reviews too), the Box tool is in hand again.
-  await submitAndSendBack(page, "Check the lamp's box.", async () => {
+  const asked = await submitAndSendBack(page, "Check the lamp's box.", async () => {
     await expect(page.getByTestId("photo-tool-select")).toHaveAttribute("aria-pressed", "true");
     await expect(page.getByTestId("photo-tool-box")).toBeDisabled();
   });
+  // Nobody set a supporter here: submitting asked first.
+  expect(asked).toMatch(/^None of the \d+ objects has a supporter set by a person/);
   await expect(page.getByTestId("photo-tool-box")).toHaveAttribute("aria-pressed", "true");
 
   // A tool chosen while locked is the person's choice: the next unlock leaves it.

@@ -5,6 +5,7 @@
 import { expect, test } from "@playwright/test";
 import { getRevisions, getScene, seedScene, supportOf, T3D_5 } from "../helpers/api";
 import { canvasColours } from "../helpers/canvas";
+import { screenPoint } from "../helpers/objects";
 import {
   arrowOf,
   arrowPoint,
@@ -262,6 +263,16 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   await dragArrowTo(page, "o3", "o2");
   await expect(arrow("o3")).toHaveAttribute("data-parent", "o2");
   await expect(arrow("o3")).toHaveClass(/is-selected/);
+  // Dropped where there is no object (the margin beyond the photo): nothing changes, and the
+  // page says how to choose the floor, a wall or the ceiling.
+  const head = await arrowPoint(page, "o3", "head");
+  const nowhere = await screenPoint(page, -20, -20);
+  await page.mouse.move(head.x, head.y);
+  await page.mouse.down();
+  await page.mouse.move(nowhere.x, nowhere.y, { steps: 6 });
+  await page.mouse.up();
+  await expect(page.getByTestId("edit-message")).toContainText("Dropped on no object");
+  await expect(arrow("o3")).toHaveAttribute("data-parent", "o2");
 
   // R rejects a guess: it goes, and the model's next answer (if it has one) is suggested.
   await expect(page.getByTestId("suggestion-status")).toContainText(/objects? scored in/, {

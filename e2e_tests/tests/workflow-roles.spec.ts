@@ -348,8 +348,15 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   // The reviewer accepts it; the dashboard shows the counts.
   await logIn(page, REVIEWER.name, REVIEWER.password);
   await openScene(page, first.id);
+  // Accepting is final: a click asks first too, saying how much a person checked.
+  let asked = "";
+  page.once("dialog", (dialog) => {
+    asked = dialog.message();
+    void dialog.accept();
+  });
   await page.getByTestId("workflow-accept").click();
   await expect(page.getByTestId("workflow-state")).toHaveText("accepted");
+  expect(asked).toMatch(/^Accept this scene\? .* objects have a supporter set by a person\.$/);
   await page.getByTestId("dashboard-link").click();
   await expect(page.getByTestId("state-count-accepted")).toHaveText("2");
   for (const state of ["new", "predicted", "in_annotation", "submitted", "rejected"]) {

@@ -138,7 +138,17 @@ export function formatTime(iso: string, options?: Intl.DateTimeFormatOptions): s
   return Number.isNaN(date.getTime()) ? iso : date.toLocaleString(undefined, options);
 }
 
-/** A time for a table column: the month named (no day/month ambiguity), to the minute. */
-export function formatShortTime(iso: string): string {
-  return formatTime(iso, { dateStyle: "medium", timeStyle: "short" });
+/** A time for a table column: the month named (no day/month ambiguity), to the minute; the
+ * year only when it is not this one (the column stays narrow). */
+export function formatShortTime(iso: string, now: Date = new Date()): string {
+  const date = new Date(iso);
+  if (Number.isNaN(date.getTime())) return iso;
+  const thisYear = date.getFullYear() === now.getFullYear();
+  return formatTime(iso, {
+    month: "short",
+    day: "numeric",
+    ...(thisYear ? {} : { year: "numeric" }),
+    hour: "numeric",
+    minute: "2-digit",
+  });
 }

@@ -141,6 +141,12 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     const target = picking.objectAt(event);
     session.select(done.child);
     if (target && target !== done.child) pickSupporter(done.child, target);
+    // Walls, floor and ceiling have no mask to drop on: say how to choose them.
+    else if (!target)
+      session.say(
+        `Dropped on no object: ${done.child} keeps its supporter. For the floor, a wall or ` +
+          "the ceiling press F, W or C (it stays selected).",
+      );
   };
   const onDown = (event: PointerEvent) => {
     const child = event.button === 0 && session.editable ? arrowAt(event) : null;

@@ -144,6 +144,12 @@ function mountLayoutEditor(
     // The placement job runs on the saved layout: save (or reset) the moved corners first.
     replace.disabled = !editable || running || saving || draft.dirty || !draft.hasStoredRoom;
     const { text, alert } = layoutStatus(draft, session.saveState, message);
+    // While a corner is dragged the line keeps its height (a longer text is cut until the
+    // drop): the photo under the pointer must not move.
+    if (!draft.dragging) status.style.height = "";
+    else if (!status.style.height)
+      status.style.height = `${status.getBoundingClientRect().height}px`;
+    status.classList.toggle("is-held", draft.dragging);
     status.textContent = text;
     details.hidden = heightField.element.hidden && text === "";
     status.classList.toggle("is-alert", alert);

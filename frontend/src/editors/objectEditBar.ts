@@ -5,6 +5,9 @@
 import { button, el } from "../dom";
 import type { ObjectEditor } from "../state/objectEditor";
 
+/** How long the line says what an action did. */
+const DONE_MESSAGE_MS = 8000;
+
 export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor): () => void {
   const status = el("span", {
     className: "object-edit-status",
@@ -41,9 +44,19 @@ export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor)
   );
   container.append(bar);
 
+  // What an action did ("Add d1 (bag): saved.") goes after a while: left up, it reads as news
+  // beside later actions of other tools. Errors stay until the next action.
+  let fading = 0;
   const update = () => {
     const state = editor.status;
+    window.clearTimeout(fading);
     status.textContent = state.kind === "busy" ? `Saving: ${state.label}…` : (state.message ?? "");
+    if (state.kind === "idle" && !state.error && status.textContent !== "") {
+      const shown = status.textContent;
+      fading = window.setTimeout(() => {
+        if (status.textContent === shown) status.textContent = status.title = "";
+      }, DONE_MESSAGE_MS);
+    }
     if (status.title !== status.textContent) status.classList.remove("is-expanded");
     status.title = status.textContent;
     status.classList.toggle("is-error", state.kind === "idle" && state.error);
@@ -58,6 +71,7 @@ export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor)
   update();
   const unsubscribe = editor.subscribe(update);
   return () => {
+    window.clearTimeout(fading);
     unsubscribe();
     bar.remove();
   };

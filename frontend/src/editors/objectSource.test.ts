@@ -10,7 +10,7 @@ describe("object source", () => {
     expect(detected.title).toContain("score 87%");
     expect(
       objectSource({ source: "manual", score: null, set_by_person: ["object"] }),
-    ).toMatchObject({ kind: "person", text: "person" });
+    ).toMatchObject({ kind: "person", text: "by hand" });
   });
 
   it("says when a person accepted or changed a detected object", () => {

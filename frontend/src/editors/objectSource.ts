@@ -3,7 +3,7 @@
 import type { SceneObject } from "@holiscene/schema";
 
 export interface SourceText {
-  /** Short, for the badge: "given", "detector 87%", "person", "detector 61% · edited". */
+  /** Short, for the badge: "given", "detector 87%", "by hand", "detector 61% · edited". */
   text: string;
   /** Longer, for the tooltip. */
   title: string;
@@ -36,7 +36,8 @@ export function objectSource({ source, score, set_by_person }: SourceFields): So
           editedTitle,
       };
     case "manual":
-      return { kind: "person", text: "person", title: "Added by a person" };
+      // "by hand", not "person": person is also a class the detector offers.
+      return { kind: "person", text: "by hand", title: "Drawn by a person" };
     default:
       return {
         kind: "unknown",

@@ -73,6 +73,19 @@ export interface LayoutState {
   cameraHeightM: number | null;
 }
 
+/** How far the fitted room may pass from a corner put by hand before the page says so, as a
+ * share of the photo's diagonal: a box room cannot reach every point a corner is dropped on. */
+export const MISS_SHARE = 0.025;
+
+/** A corner put by hand that the fitted room passes far from: it goes to `fitted` when saved. */
+export interface CornerMiss {
+  index: number;
+  name: string;
+  corner: Point2;
+  fitted: Point2;
+  px: number;
+}
+
 /** A corner handle: where the corner is, and whether the fit uses it (pinned) or places it. */
 export interface CornerHandle {
   index: number;
@@ -255,6 +268,26 @@ export class LayoutDraft {
       const point = pinned ? corner : (placed[index] ?? null);
       return point ? [{ index, point, pinned }] : [];
     });
+  }
+
+  /** The corner put by hand that the fitted room misses most, beyond MISS_SHARE, or null. */
+  miss(): CornerMiss | null {
+    const K = this.doc.scene.camera?.K;
+    const live = this.live;
+    if (!K || !live || this.error !== null) return null;
+    const fitted = projectRoomCorners(K, live.pitchDeg, live.rollDeg, live.corners3d);
+    const { width, height } = this.doc.scene.image;
+    let worst: CornerMiss | null = null;
+    let limit = MISS_SHARE * Math.hypot(width, height);
+    for (const [index, corner] of this.corners.entries()) {
+      const at = fitted[index];
+      if (!this.used[index] || !corner || !at) continue;
+      const px = Math.hypot(corner[0] - at[0], corner[1] - at[1]);
+      if (px <= limit) continue;
+      limit = px;
+      worst = { index, name: cornerName(index), corner, fitted: at, px };
+    }
+    return worst;
   }
 
   subscribe(listener: (change: LayoutChange) => void): () => void {

@@ -32,6 +32,22 @@ describe("object colours", () => {
     expect(closest(objectColours(ids(10, "d")))).toBeGreaterThan(40);
   });
 
+  it("gives the detector's d1, d2 ... hues apart from the pipeline's o0, o1 ... beside them", () => {
+    const hue = ([r, g, b]: Rgb) => {
+      const max = Math.max(r, g, b);
+      const span = max - Math.min(r, g, b);
+      const h = max === r ? (g - b) / span : max === g ? 2 + (b - r) / span : 4 + (r - g) / span;
+      return (h * 60 + 360) % 360;
+    };
+    const colours = [...objectColours([...ids(6), ...ids(4, "d").slice(1)]).values()];
+    colours.forEach((a, i) => {
+      for (const b of colours.slice(i + 1)) {
+        const d = Math.abs(hue(a) - hue(b));
+        expect(Math.min(d, 360 - d)).toBeGreaterThan(20);
+      }
+    });
+  });
+
   it("keeps the colours of existing objects when one is added or the page reloads", () => {
     const before = objectColours(ids(12));
     const after = objectColours([...ids(12), { id: "new_box" }]);

@@ -6,11 +6,31 @@ import { classRgb, hslToRgb, type Rgb } from "./classColors";
 
 const GOLDEN_ANGLE = 137.508;
 const LIGHTNESS = [0.55, 0.38];
+const SLOTS = 32;
+
+/** Slot k's hue: consecutive slots far apart. */
+const slotHue = (k: number) => (k * GOLDEN_ANGLE) % 360;
 
 /** Palette slot k: consecutive slots far apart in hue; mid lightness reads over any photo. */
-const PALETTE: readonly Rgb[] = Array.from({ length: 32 }, (_, k) =>
-  hslToRgb((k * GOLDEN_ANGLE) % 360, 0.8, LIGHTNESS[k % LIGHTNESS.length] ?? 0.5),
+const PALETTE: readonly Rgb[] = Array.from({ length: SLOTS }, (_, k) =>
+  hslToRgb(slotHue(k), 0.8, LIGHTNESS[k % LIGHTNESS.length] ?? 0.5),
 );
+
+/** Two colours nearer in hue read as one (a darker red is still red): a slot this near a
+ * colour given already gives way. */
+const NEAR_HUE = 25;
+
+function hueDistance(a: number, b: number): number {
+  const d = Math.abs(slotHue(a) - slotHue(b));
+  return Math.min(d, 360 - d);
+}
+
+/** The least hue distance from slot k to the slots given (360 when none is). */
+function nearestGiven(k: number, given: ReadonlySet<number>): number {
+  let nearest = 360;
+  for (const g of given) nearest = Math.min(nearest, hueDistance(k, g));
+  return nearest;
+}
 
 /** FNV-1a over the id's characters: a spread-out number for any id. */
 function idHash(id: string): number {
@@ -33,16 +53,24 @@ function preferredSlot(id: string): number {
 }
 
 /**
- * Each object's colour, in document order: its id's slot of the palette, or the next free
- * one when an earlier object has it (new objects come last, so they never move others).
+ * Each object's colour, in document order: its id's slot of the palette, unless an earlier
+ * object has that slot or one of a near hue (the detector's d2 beside the pipeline's o2);
+ * then the free slot farthest in hue from every slot given (the lowest of equals). New
+ * objects come last, so they never move others. Past 32 objects, slots are shared.
  */
 export function objectColours(objects: readonly Pick<SceneObject, "id">[]): Map<string, Rgb> {
   const used = new Set<number>();
   const colours = new Map<string, Rgb>();
   for (const { id } of objects) {
     let slot = preferredSlot(id);
-    for (let tries = 0; used.has(slot) && tries < PALETTE.length; tries++) {
-      slot = (slot + 1) % PALETTE.length;
+    if (used.has(slot) || nearestGiven(slot, used) < NEAR_HUE) {
+      let best = -1;
+      for (let k = 0; k < SLOTS; k++) {
+        if (!used.has(k) && nearestGiven(k, used) > best) {
+          best = nearestGiven(k, used);
+          slot = k;
+        }
+      }
     }
     used.add(slot);
     colours.set(id, PALETTE[slot] as Rgb);

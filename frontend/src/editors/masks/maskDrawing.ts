@@ -3,6 +3,7 @@
 // drawn mask as one set_mask edit (objectEditor.apply: one revision, undoable).
 import type { SceneObject } from "@holiscene/schema";
 import { el } from "../../dom";
+import { classText } from "../../state/classNames";
 import type { SceneSession } from "../../state/sceneSession";
 import { LiveLayer } from "../liveLayer";
 import { MaskRaster, type PixelRect } from "../maskPainting";
@@ -62,7 +63,7 @@ export class MaskDrawing {
   /** Say whose mask the tools draw on (or that one must be selected). */
   readonly describeTarget = (): void => {
     const object = this.session.selectedObject;
-    this.say(object ? `Mask of ${object.class} ${object.id}` : NEED_OBJECT, !object);
+    this.say(object ? `Mask of ${classText(object.class)} ${object.id}` : NEED_OBJECT, !object);
   };
 
   /** What the object's mask is now, as a raster over the photo (its box when it has none). */
@@ -101,7 +102,8 @@ export class MaskDrawing {
       // A stroke over pixels the mask already had (or never had): no revision for nothing,
       // whoever made the mask (GrabCut's stays GrabCut's).
       preview.hide();
-      this.say(`${label}: the mask is unchanged.`);
+      // The label is written for the middle of a sentence ("Undo eraser o0's mask").
+      this.say(`${label.charAt(0).toUpperCase()}${label.slice(1)}: the mask is unchanged.`);
       return;
     }
     this.pending = { objectId, raster };

@@ -2,7 +2,7 @@
 // pipeline is running (nothing runs it until a batch does).
 import type { Job } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
-import { describeJob, waitingText } from "./jobProgress";
+import { describeJob, jobColumnText, waitingText } from "./jobProgress";
 
 const job = (stage: string | null): Job => ({
   id: "j1",
@@ -38,6 +38,16 @@ describe("job texts", () => {
     expect(describeJob(running)).toBe("Running layout from lines · 42%");
     const failed: Job = { ...job("masks_grabcut"), status: "failed", error: "no memory" };
     expect(describeJob(failed)).toBe("Pipeline failed in masks grabcut: no memory");
+  });
+
+  it("says a job in a word or two for the scene list's column", () => {
+    expect(jobColumnText(job(null))).toBe("queued");
+    expect(jobColumnText({ ...job("masks"), status: "running", progress: 0.4 })).toBe(
+      "running 40%",
+    );
+    const done: Job = { ...job(null), status: "succeeded", result_revision: 2 };
+    expect(jobColumnText(done)).toBe("done (revision 2)");
+    expect(jobColumnText({ ...job(null), status: "failed", error: "x" })).toBe("failed");
   });
 
   it("says a cancelled retrain was cancelled, not that it failed", () => {

@@ -46,6 +46,22 @@ export function describeJob(job: Job): string {
   }
 }
 
+/** A job in a table column, in a word or two; describeJob says it whole (the cell's title). */
+export function jobColumnText(job: Job): string {
+  switch (job.status) {
+    case "queued":
+      return job.stage === BATCH_STAGE ? "queued in a batch" : "queued";
+    case "running":
+      return `running ${Math.round(job.progress * 100)}%`;
+    case "succeeded":
+      return job.result_revision == null ? "done" : `done (revision ${job.result_revision})`;
+    case "failed":
+      return "failed";
+    case "cancelled":
+      return "cancelled";
+  }
+}
+
 export interface JobProgress {
   element: HTMLElement;
   update(job: Job): void;

@@ -52,7 +52,7 @@ export function mountLoginPage(
     el("div", { className: "form-actions" }, submit),
     el("p", {
       className: "field-hint",
-      text: "Accounts are made by an admin (or with `holiscene users add`).",
+      text: "No account yet? Ask an admin to make one for you.",
     }),
   );
   form.addEventListener("submit", async (event) => {

@@ -2,7 +2,7 @@
 import type { ModelInfo } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
 import { KIND_TEXT } from "./kindText";
-import { promoteQuestion, readinessText } from "./modelFigures";
+import { heldoutText, promoteQuestion, readinessText } from "./modelFigures";
 
 const model = (over: Partial<ModelInfo>): ModelInfo =>
   ({
@@ -72,6 +72,32 @@ describe("the question before a model is made active", () => {
     expect(promoteQuestion(thin, active, text)).toMatch(
       /^Its held-out figure rests on 1 item only: too few to tell two models apart\. Make v2/,
     );
+  });
+});
+
+describe("the held-out column of a model never judged on held-out scenes of its own", () => {
+  const text = KIND_TEXT.relation;
+  const shipped = model({ id: "a", version: 1, active: true });
+  const compared = (version: number, figure: number) =>
+    model({
+      id: `r${version}`,
+      version,
+      heldout_accuracy: 0.4,
+      parent_id: "a",
+      parent_version: 1,
+      parent_heldout_accuracy: figure,
+    });
+
+  it("gives its figure from the newest comparison with a model retrained from it", () => {
+    const others = [shipped, compared(2, 0.8), compared(3, 1.0)];
+    expect(heldoutText(shipped, text, others)).toBe("100.0 % on v3's held-out scenes");
+    expect(promoteQuestion(compared(2, 0.8), shipped, text, others)).toContain(
+      "v1 (active now): held-out accuracy 100.0 % on v3's held-out scenes",
+    );
+  });
+
+  it("says nothing it does not know", () => {
+    expect(heldoutText(shipped, text, [shipped])).toBe("—");
   });
 });
 

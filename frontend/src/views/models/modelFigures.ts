@@ -11,10 +11,29 @@ export const percent = (value: number | null) =>
 const figures = (value: number, recall: number | null) =>
   recall === null ? percent(value) : `${percent(value)} · ${percent(recall)}`;
 
+/** The newest model compared with `model` on its own held-out scenes (it has `model`'s
+ * figure there), or undefined. */
+function newestComparison(model: ModelInfo, others: readonly ModelInfo[]): ModelInfo | undefined {
+  return others
+    .filter((m) => m.parent_id === model.id && m.parent_heldout_accuracy !== null)
+    .sort((a, b) => b.version - a.version)[0];
+}
+
 /** The held-out figures, the parent's beside them, and how many items they rest on (a
- * figure from a handful of objects decides little, and the admin should see that). */
-export function heldoutText(model: ModelInfo, text: KindText): string {
-  if (model.heldout_accuracy === null) return "—";
+ * figure from a handful of objects decides little, and the admin should see that). A model
+ * never judged on held-out scenes of its own (a shipped one) gives the figure of the newest
+ * comparison with a model retrained from it, on that model's held-out scenes. */
+export function heldoutText(
+  model: ModelInfo,
+  text: KindText,
+  others: readonly ModelInfo[] = [],
+): string {
+  if (model.heldout_accuracy === null) {
+    const child = newestComparison(model, others);
+    return child?.parent_heldout_accuracy == null
+      ? "—"
+      : `${figures(child.parent_heldout_accuracy, child.parent_heldout_recall)} on v${child.version}'s held-out scenes`;
+  }
   const parent =
     model.parent_version !== null && model.parent_heldout_accuracy !== null
       ? ` (v${model.parent_version}: ${figures(model.parent_heldout_accuracy, model.parent_heldout_recall)})`
@@ -29,11 +48,11 @@ export function heldoutText(model: ModelInfo, text: KindText): string {
 const inSentence = (title: string) => title.charAt(0).toLowerCase() + title.slice(1);
 
 /** One model's figures on one line: "held-out … (N scenes); validation …". */
-function figuresLine(model: ModelInfo, text: KindText): string {
+function figuresLine(model: ModelInfo, text: KindText, others: readonly ModelInfo[]): string {
   const scenes = model.heldout_scenes;
   const from = scenes > 0 ? ` (${scenes} held-out ${scenes === 1 ? "scene" : "scenes"})` : "";
   return (
-    `${inSentence(text.heldoutColumn)} ${heldoutText(model, text)}${from}; ` +
+    `${inSentence(text.heldoutColumn)} ${heldoutText(model, text, others)}${from}; ` +
     `${inSentence(text.validationColumn)} ${percent(model.validation_accuracy)}`
   );
 }
@@ -43,6 +62,7 @@ export function promoteQuestion(
   model: ModelInfo,
   active: ModelInfo | undefined,
   text: KindText,
+  others: readonly ModelInfo[] = [],
 ): string {
   const lost =
     model.status === "rejected"
@@ -52,10 +72,10 @@ export function promoteQuestion(
     `${lost}${cautions(model, active).join("")}` +
       `Make v${model.version} the active model? Pipeline runs and suggestions use it from now on.`,
     "",
-    `v${model.version}: ${figuresLine(model, text)}`,
+    `v${model.version}: ${figuresLine(model, text, others)}`,
   ];
   if (active && active.id !== model.id)
-    lines.push(`v${active.version} (active now): ${figuresLine(active, text)}`);
+    lines.push(`v${active.version} (active now): ${figuresLine(active, text, others)}`);
   return lines.join("\n");
 }
 

@@ -64,7 +64,7 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
   const promote = async (model: ModelInfo, promoteButton: HTMLButtonElement) => {
     // Every pipeline run and the page's suggestions change with the active model: asked first.
     const active = shown.find((m) => m.active);
-    if (!window.confirm(promoteQuestion(model, active, text))) return;
+    if (!window.confirm(promoteQuestion(model, active, text, shown))) return;
     promoteButton.disabled = true;
     notice.textContent = `Making v${model.version} active…`;
     try {
@@ -122,14 +122,14 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
         }),
       ),
       el("td", {
-        text: heldoutText(model, text),
-        // A model never judged on held-out scenes of its own still has figures beside the
-        // models retrained from it ("(v1: …)" on their rows): say where they are.
+        text: heldoutText(model, text, shown),
+        // A model never judged on held-out scenes of its own has figures only from the
+        // comparisons with models retrained from it: say so.
         attrs: {
           title:
             model.heldout_accuracy === null
               ? "Not measured on held-out scenes when it was registered; a model retrained " +
-                "from it shows this model's figure beside its own"
+                "from it was compared with it on that model's held-out scenes"
               : undefined,
         },
       }),

@@ -44,7 +44,14 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
   const curve = curveCard();
   const history = modelHistory();
   // A finished retrain shows the new model's curve: it is what the admin waited for.
-  const form = retrainForm({ kind, text, signal: abort.signal, onFinished: () => refresh(true) });
+  // A retrain that registered a model shows its curve; one cancelled or failed leaves the
+  // curve the admin was reading.
+  const form = retrainForm({
+    kind,
+    text,
+    signal: abort.signal,
+    onFinished: (job) => refresh(job.status === "succeeded"),
+  });
   const table = modelTable({
     text,
     onCurve: curve.show,

@@ -30,7 +30,7 @@ export interface RetrainFormInputs {
   /** Stops following the job when the page goes. */
   signal: AbortSignal;
   /** A job ended: the page loads the models again. */
-  onFinished(): Promise<void>;
+  onFinished(job: Job): Promise<void>;
 }
 
 export interface RetrainForm {
@@ -115,7 +115,7 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
     try {
       const final = await pollJob(job, { onUpdate: showJob, signal, intervalMs: POLL_MS });
       showJob(final);
-      await onFinished();
+      await onFinished(final);
     } catch (error) {
       if (!signal.aborted) {
         retrain.disabled = false;

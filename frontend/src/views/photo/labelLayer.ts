@@ -4,6 +4,7 @@
 // Labels keep clear of the flags and of the centroids, where the support arrows end.
 import type { SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
+import { objectClassText } from "../../state/classNames";
 import { type ShownSupport, withoutSupporter } from "../../state/supportGraph";
 import { type Rgb, rgbCss } from "../classColors";
 import { type Frame, strokeWidth } from "./arrowGeometry";
@@ -50,12 +51,17 @@ function tag(
 ): SVGGElement {
   const height = rect.bottom - rect.top;
   const textWidth = object.id.length * CHAR_EM * size;
-  const group = svgEl("g", {
-    class: "object-label",
-    "data-testid": `label-${object.id}`,
-    "data-object": object.id,
-    "data-leader": String(anchor !== null),
-  });
+  const group = svgEl(
+    "g",
+    {
+      class: "object-label",
+      "data-testid": `label-${object.id}`,
+      "data-object": object.id,
+      "data-leader": String(anchor !== null),
+    },
+    // The tag is short (the id) so a crowded photo stays readable; hovering names the class.
+    svgEl("title", {}, `${object.id}: ${objectClassText(object)}`),
+  );
   if (anchor) {
     const [ex, ey] = clampToRect(anchor, rect);
     group.append(

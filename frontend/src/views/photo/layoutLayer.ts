@@ -36,10 +36,18 @@ export function mountLayoutLayer(
     "stroke-width": width,
   });
   const handles = svgEl("g", { class: "layout-handles" });
+  // From a corner put where the room cannot reach to where the room puts it (the bar says so).
+  const miss = svgEl("path", {
+    class: "layout-miss",
+    "data-testid": "layout-miss",
+    "stroke-width": width,
+    "stroke-dasharray": `${width * 3} ${width * 2}`,
+  });
   const layer = svgEl(
     "g",
     { class: "layout-layer", "data-testid": "layout-layer" },
     edges,
+    miss,
     handles,
   );
   svg.append(layer);
@@ -63,6 +71,9 @@ export function mountLayoutLayer(
     const segments =
       live && K ? projectBoxEdges(K, live.pitchDeg, live.rollDeg, live.corners3d) : [];
     edges.setAttribute("d", segments.map(([a, b]) => `M ${fmt(a)} L ${fmt(b)}`).join(" "));
+    const missed = draft.miss();
+    miss.setAttribute("d", missed ? `M ${fmt(missed.corner)} L ${fmt(missed.fitted)}` : "");
+    miss.dataset.corner = missed ? String(missed.index) : "";
     layer.classList.toggle("is-invalid", draft.error !== null);
   };
   const style: HandleStyle = { frame, strokeWidth: width, radius, clampedRadius };

@@ -2,6 +2,8 @@
 // (classRanking.ts): the classes the detector saw at the box first (classHints.ts, with its
 // score), then the most used. Typing filters; ↑/↓ move; Enter or a click picks;
 // 1-9 pick the n-th line (class names have no digits); Esc or a click elsewhere cancels.
+// With nothing typed nothing is highlighted until ↑/↓: Enter on a blank field would otherwise
+// save the first line, often a faint detector guess, without the person choosing it.
 // Picks are counted in this browser (with the scene's own objects) to order the list.
 import type { SceneObject } from "@holiscene/schema";
 import { el } from "../../dom";
@@ -52,6 +54,9 @@ export interface PickerOptions {
 
 let closeOpen: (() => void) | null = null;
 
+const NONE = -1;
+const HINT = "↑↓ move · Enter or 1–9 pick · Esc cancel";
+
 /** Open the picker; resolves to the name picked (a class or an alias), or null if cancelled. */
 export function pickClass(options: PickerOptions): Promise<string | null> {
   closeOpen?.(); // one at a time: the one open is cancelled
@@ -75,10 +80,7 @@ export function pickClass(options: PickerOptions): Promise<string | null> {
     testid: "class-picker-list",
     attrs: { role: "listbox", id: "class-picker-list" },
   });
-  const hint = el("p", {
-    className: "class-picker-hint",
-    text: "↑↓ move · Enter or 1–9 pick · Esc cancel",
-  });
+  const hint = el("p", { className: "class-picker-hint", testid: "class-picker-hint", text: HINT });
   const box = el(
     "div",
     {
@@ -92,7 +94,7 @@ export function pickClass(options: PickerOptions): Promise<string | null> {
     hint,
   );
   let shown: ClassOption[] = [];
-  let active = 0;
+  let active = NONE; // the highlighted line; NONE until something is typed or ↑/↓ pressed
   const likely = options.likely ?? [];
   const detectorNote = (cls: string) => {
     const hint = likely.find((l) => l.cls === cls);
@@ -113,7 +115,7 @@ export function pickClass(options: PickerOptions): Promise<string | null> {
         ...shown.filter((o) => o.name !== current),
       ];
     }
-    active = Math.min(active, Math.max(0, shown.length - 1));
+    active = Math.min(active, shown.length - 1);
     list.replaceChildren(
       ...shown.map((option, i) =>
         optionItem(option, i, i === active, finish, detectorNote(option.cls)),
@@ -146,17 +148,20 @@ export function pickClass(options: PickerOptions): Promise<string | null> {
   closeOpen = cancel;
 
   input.addEventListener("input", () => {
-    active = 0;
+    active = input.value.trim() ? 0 : NONE;
+    hint.textContent = HINT;
     draw();
   });
   input.addEventListener("keydown", (event) => {
     if (event.key === "ArrowDown" || event.key === "ArrowUp") {
       const step = event.key === "ArrowDown" ? 1 : -1;
-      active = (active + step + shown.length) % Math.max(1, shown.length);
+      const from = active === NONE ? (step > 0 ? -1 : 0) : active;
+      active = (from + step + shown.length) % Math.max(1, shown.length);
       draw();
     } else if (event.key === "Enter") {
       const option = shown[active];
       if (option) finish(option.name);
+      else hint.textContent = "Type a class, or pick a line: ↑↓ then Enter, or 1–9";
     } else if (event.key === "Escape") {
       finish(null);
     } else if (/^[1-9]$/.test(event.key) && !event.ctrlKey && !event.altKey) {

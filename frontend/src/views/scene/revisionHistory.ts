@@ -8,6 +8,7 @@ import { api } from "../../api/client";
 import { errorText } from "../../api/errors";
 import { button, el, formatTime } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
+import { titleUnlessLocked } from "../../state/editLock";
 import type { ObjectEditor } from "../../state/objectEditor";
 import type { SceneSession } from "../../state/sceneSession";
 import { diffLines } from "./history/diffLines";
@@ -128,7 +129,11 @@ export function mountRevisionHistory(
     const revertButton = button("Revert to this", {
       className: "link-button",
       testid: `revision-revert-${info.number}`,
-      title: "Put the whole scene back as it was in this revision (objects, supports, room)",
+      // Off on a read-only scene: the title says why.
+      title: titleUnlessLocked(
+        "Put the whole scene back as it was in this revision (objects, supports, room)",
+        session.lock,
+      ),
     });
     revertButton.onclick = () => void revert(info, revertButton);
     revertButton.disabled = !session.editable;

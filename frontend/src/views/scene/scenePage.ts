@@ -1,10 +1,12 @@
 // The scene page: waits for a running pipeline job, then shows the photo with overlays, the
 // 3D scene and the support editor, all on one SceneSession (sceneWorkbench.ts).
-import type { Job, SceneDocument } from "@holiscene/schema";
+import type { Job, SceneDocument, SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { ApiError } from "../../api/errors";
 import { isFinished, pollJob } from "../../api/jobs";
 import { button, el } from "../../dom";
+import { warnBeforeLeaving } from "../../editors/saving/leaveWarning";
+import { titleUnlessLocked } from "../../state/editLock";
 import { SceneSession } from "../../state/sceneSession";
 import { jobProgress, waitingText } from "../common/jobProgress";
 import { mayHaveGlb } from "../scene3d/viewportObjects";
@@ -13,11 +15,13 @@ import { sceneMeta } from "./sceneMeta";
 import { mountSceneWorkbench } from "./sceneWorkbench";
 import { viserLink } from "./viserLink";
 
-/** The scene's latest pipeline job, from the scene list (null when there is none). */
-async function latestJob(sceneId: string, signal: AbortSignal): Promise<Job | null> {
+/** The scene's line of the scene list: its name and latest job (null when it is not there). */
+async function sceneSummary(sceneId: string, signal: AbortSignal): Promise<SceneSummary | null> {
   const scenes = await api.listScenes(signal);
-  return scenes.find((s) => s.id === sceneId)?.latest_job ?? null;
+  return scenes.find((s) => s.id === sceneId) ?? null;
 }
+
+const RERUN_TITLE = "Run the whole pipeline again on this photo; the labels people set are kept";
 
 export function mountScenePage(container: HTMLElement, sceneId: string): () => void {
   const abort = new AbortController();
@@ -77,16 +81,22 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     updateMeta();
     viser.showRevision(doc.revision);
     mountSceneWorkbench(content, session, disposers);
+    disposers.push(warnBeforeLeaving(session));
     disposers.push(
       session.subscribe((change) => {
         if (change === "document") {
           updateMeta();
           viser.showRevision(session.doc.revision);
         }
-        if (change === "lock") rerun.disabled = !session.editable;
+        if (change === "lock") showRerun();
       }),
     );
-    rerun.disabled = !session.editable;
+    // Off on a read-only scene: the title says why (submitted, accepted, another's...).
+    const showRerun = () => {
+      rerun.disabled = !session.editable;
+      rerun.title = titleUnlessLocked(RERUN_TITLE, session.lock);
+    };
+    showRerun();
     rerun.onclick = () => {
       const unsaved = session.unsavedCount;
       if (unsaved > 0 && !window.confirm(`Discard ${unsaved} unsaved change(s) and re-run?`))
@@ -105,7 +115,9 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
   const load = async () => {
     rerun.disabled = true;
     message.textContent = "Loading…";
-    const job = await latestJob(sceneId, abort.signal);
+    const summary = await sceneSummary(sceneId, abort.signal);
+    if (summary) title.textContent = summary.name; // named while its pipeline job runs
+    const job = summary?.latest_job ?? null;
     if (job && !isFinished(job)) {
       message.textContent = waitingText(job);
       await waitForJob(job);

@@ -6,7 +6,7 @@ import { isFinished } from "../../api/jobs";
 import { SCENE_STATES, type SceneState, stateLabel, workflowApi } from "../../api/workflow";
 import { button, el, formatShortTime, formatTime } from "../../dom";
 import { getCurrentUser } from "../../state/currentUser";
-import { describeJob } from "../common/jobProgress";
+import { describeJob, jobColumnText } from "../common/jobProgress";
 import { nextSceneControl } from "../workflow/nextScene";
 import "../workflow/workflow.css";
 import { datasetImportForm } from "./datasetImport";
@@ -59,7 +59,11 @@ function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowE
     el("td", {
       className: "num",
       text: scene.uncertainty === null ? "—" : scene.uncertainty.toFixed(2),
-      attrs: { title: "Mean doubt of the pipeline's supporters (1 - confidence)" },
+      attrs: {
+        title:
+          "How unsure the pipeline is: the mean doubt of its supporters (1 - confidence), " +
+          "raised by each pipeline warning",
+      },
     }),
     el("td", { className: "narrow-hidden", text: `${scene.width}×${scene.height}` }),
     el("td", { text: String(scene.object_count) }),
@@ -74,7 +78,9 @@ function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowE
     }),
     el("td", {
       className: job?.status === "failed" ? "is-failed" : "",
-      text: job ? describeJob(job) : "—",
+      // Short in the column (it is the last, cut first on a narrow screen); whole on hover.
+      text: job ? jobColumnText(job) : "—",
+      attrs: { title: job ? describeJob(job) : undefined },
     }),
   );
 }

@@ -71,7 +71,8 @@ export interface ActionHandlers {
   /** `byKey`: one keystroke, so it is asked about even when nothing else is. */
   onSubmit(byKey?: boolean): void;
   onRelease(): void;
-  onAccept(byKey?: boolean): void;
+  /** Always asked first: an accepted scene is final. */
+  onAccept(): void;
   /** The reviewer sends the comment (trimmed; never empty). */
   onReject(comment: string): void;
   /** "Send" with no comment. */
@@ -211,7 +212,7 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
     ),
     rejectBox,
     submitByKey: () => handlers.onSubmit(true),
-    acceptByKey: () => handlers.onAccept(true),
+    acceptByKey: () => handlers.onAccept(),
     submit,
     accept,
     reject,

@@ -35,6 +35,10 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
   const next = nextSceneControl({ take: ">", review: "Shift+ArrowRight" });
   const error = hiddenErrorAlert("workflow-error");
   const revision = () => session.doc.revision;
+  const personLabels = () =>
+    (session.doc.scene.supports ?? []).filter((s) => s.source === "manual").length;
+  const labelledText = () =>
+    `${personLabels()} of ${session.objects.length} objects have a supporter set by a person.`;
   // What scene.glb lacks of the scene ("" when nothing, or when the server cannot say: the
   // question is a courtesy, not a gate).
   const outOfDate3d = () =>
@@ -61,6 +65,12 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
           `The 3D scene was made before these changes: ${lacks}. "Re-place objects" in the 3D ` +
           "panel brings it up to date; once the scene is submitted nobody can. Submit anyway?";
         if (lacks !== "" && !window.confirm(stale)) return;
+        // Nothing checked: every supporter is still the pipeline's guess.
+        const unchecked =
+          `None of the ${session.objects.length} objects has a supporter set by a person: ` +
+          "each is the pipeline's guess, unchecked. Submit for review anyway?";
+        if (personLabels() === 0 && session.objects.length > 0 && !window.confirm(unchecked))
+          return;
         const plain =
           "Submit this scene for review? It is read only until a reviewer accepts it or sends it back.";
         if (byKey && missing.length === 0 && lacks === "" && !window.confirm(plain)) return;
@@ -72,15 +82,16 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
       if (window.confirm(question))
         void act(() => workflowApi.release(session.sceneId, revision()));
     },
-    onAccept: (byKey = false) =>
+    onAccept: () =>
       void (async () => {
         const lacks = await outOfDate3d();
         const stale =
           `The 3D scene lacks the annotator's last changes (${lacks}), and an accepted scene ` +
           "cannot be re-placed: rejecting it with a comment asks for that. Accept anyway?";
         if (lacks !== "" && !window.confirm(stale)) return;
-        const plain = "Accept this scene? Its labels become final.";
-        if (byKey && lacks === "" && !window.confirm(plain)) return;
+        // Asked by click too: an accepted scene can no longer be edited by anyone.
+        const plain = `Accept this scene? Its labels become final. ${labelledText()}`;
+        if (lacks === "" && !window.confirm(plain)) return;
         await act(() => workflowApi.accept(session.sceneId, revision()));
       })(),
     onReject: (text) =>
@@ -123,9 +134,8 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
     if (!flow) return;
     container.dataset.state = flow.state;
     const pending = session.unsavedCount;
-    const manual = (session.doc.scene.supports ?? []).filter((s) => s.source === "manual").length;
-    const labelled = `${manual} of ${session.objects.length} objects have a supporter set by a person.`;
     const recovered = session.recovered !== null;
+    const labelled = labelledText();
     status.show(flow, noteText({ flow, pending, recovered, me: me(), labelled }));
     actions.show(actionState(flow, me(), pending, busy, recovered));
   };

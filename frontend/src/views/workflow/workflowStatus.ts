@@ -41,9 +41,11 @@ export function noteText({ flow, pending, recovered, me, labelled }: NoteInputs)
   const name = me?.name;
   switch (flow.state) {
     case "new":
-      return "The pipeline has not finished on this scene yet.";
+      // Imported without a pipeline run, or its run failed: the page waits while one runs.
+      return `The pipeline has not run on this scene: "Run pipeline again" makes its guesses. ${labelled}`;
     case "predicted":
-      return "The pipeline's guesses, not checked by anyone yet. Editing takes the scene.";
+      // Labels imported with the photo are people's, so "nobody checked it" would be wrong.
+      return `Not reviewed here yet. ${labelled} Editing takes the scene.`;
     case "in_annotation":
       if (flow.assignee !== name) return `${flow.assignee ?? "Someone"} is annotating this scene.`;
       if (recovered)

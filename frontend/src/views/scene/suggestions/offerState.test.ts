@@ -42,6 +42,20 @@ describe("offer state", () => {
     expect(state.confident().map((o) => o.cls)).toEqual(["bed"]);
   });
 
+  it("moves the selection on to a box at the threshold, never to a fainter one", () => {
+    const state = new OfferState(() => []);
+    state.reset([...boxes, box("chair", [420, 300, 480, 400], 0.5)], 0.3);
+    state.showFainter();
+    state.selected = state.open().find((o) => o.cls === "lamp")?.key ?? null;
+    state.reject(state.open().filter((o) => o.cls === "lamp"));
+    state.keepSelection();
+    expect(state.selectedOffer()?.cls).toBe("bed"); // the best one at the threshold
+    state.reject(state.open().filter((o) => o.cls !== "picture"));
+    state.keepSelection();
+    expect(state.open().map((o) => o.cls)).toEqual(["picture"]);
+    expect(state.selectedOffer()).toBeNull(); // only a faint one left: chosen by a click
+  });
+
   it("does not count fainter boxes over the scene's objects or rejected ones", () => {
     const lamp = { id: "o1", class: "lamp", bbox: [10, 12, 60, 80] } as unknown as SceneObject;
     const state = new OfferState(() => [lamp]);

@@ -103,11 +103,15 @@ export class OfferState {
     return [...this.rejected, ...removed];
   }
 
-  /** The selection moves to the first open offer when its own is gone; returns the open ones. */
+  /**
+   * The selection moves to the best open offer at the detector's threshold when its own is
+   * gone (accepted or rejected); returns the open ones. Never to a fainter one: most of those
+   * are wrong, and a second press of Accept would add it unchosen.
+   */
   keepSelection(): Offer[] {
     const open = this.open();
     if (this.selected && !open.some((o) => o.key === this.selected)) {
-      this.selected = open[0]?.key ?? null;
+      this.selected = open.find((o) => o.score >= this.threshold)?.key ?? null;
     }
     return open;
   }
