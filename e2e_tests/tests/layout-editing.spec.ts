@@ -356,11 +356,14 @@ test("a corner dropped where no box room reaches: a dashed line and a note, the 
     await page.mouse.move(from.x + (20 * step) / STEPS, from.y + (120 * step) / STEPS);
     await nextFrames(page);
   }
-  const status = page.getByTestId("layout-status");
-  await expect(status).toContainText("A box room cannot put its");
-  // The longer line does not push the photo down under the pointer while dragging.
+  // Said on the photo at the line's end; the bar above does not grow and push the photo down
+  // under the pointer.
+  const label = page.getByTestId("layout-miss-label");
+  await expect(label).toContainText("corner goes here when saved");
+  await expect(label.locator("title")).toContainText("A box room cannot reach the");
   expect(await photoTop()).toBe(top);
   await page.mouse.up();
+  expect(await photoTop()).toBe(top);
   const miss = page.getByTestId("layout-miss");
   await expect(miss).toHaveAttribute("data-corner", String(index));
   expect(await miss.getAttribute("d")).toMatch(/^M [\d.]+ [\d.]+ L [\d.]+ [\d.]+$/);
@@ -368,6 +371,7 @@ test("a corner dropped where no box room reaches: a dashed line and a note, the 
   // Reset: nothing missed, no line.
   await page.getByTestId("layout-reset").click();
   await expect(miss).toHaveAttribute("d", "");
+  await expect(label).toHaveText("");
 });
 
 test("layout undo after an autosave: the drag is saved back, and a reload shows the room as it was", async ({

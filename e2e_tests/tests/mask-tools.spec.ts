@@ -400,6 +400,17 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   object = objectIn(await cutAway, id);
   expect(maskHas(object.mask, notObject)).toBe(false);
   await expect(page.getByTestId("refine-strokes")).toHaveAttribute("data-background", "1");
+  // Undo takes the cut back, and its strokes go with it (the next stroke would cut them in
+  // again); redo brings the cut mask back.
+  await page.keyboard.press("Control+z");
+  await expect(page.getByTestId("refine-strokes")).toHaveCount(0);
+  await page.keyboard.press("Control+Shift+z");
+  const refinedMask = object.mask;
+  await expect
+    .poll(async () => objectIn(await getScene(request, seeded.scene_id), id).mask, {
+      timeout: 20_000,
+    })
+    .toEqual(refinedMask);
 
   // The shortcut help lists the new keys.
   await page.keyboard.press("?");

@@ -77,7 +77,14 @@ function renderUserArea(user: CurrentUser | null): void {
     el("a", { text: "Dashboard", testid: "dashboard-link", attrs: { href: "#/dashboard" } }),
     // Every role may look at the models (admins retrain and roll back there): one click away
     // from any page, not only from the scene list.
-    el("a", { text: "Models", testid: "models-link", attrs: { href: "#/models" } }),
+    el("a", {
+      text: "Models",
+      testid: "models-link",
+      attrs: {
+        href: "#/models",
+        title: "The Relation Network and the object detector: retrain, compare, roll back",
+      },
+    }),
     el(
       "span",
       {

@@ -2,6 +2,7 @@
 // in the 3D view can tell the furniture library's fit from the mesh network's deformed template
 // or a mesh completed from depth points (MeshRef.library). Objects without a mesh show nothing.
 import type { SceneObject } from "@holiscene/schema";
+import { classText } from "../state/classNames";
 
 export interface MeshText {
   /** Short, for the badge: "mesh: learned". */
@@ -19,7 +20,7 @@ export function objectMesh({ mesh }: Pick<SceneObject, "mesh">): MeshText | null
         kind: "builtin",
         text: "mesh: library",
         title:
-          `A ${mesh.class} from the built-in furniture library` +
+          `A ${classText(mesh.class)} from the built-in furniture library` +
           (mesh.seed === null ? "" : ` (variant ${mesh.seed})`) +
           ", chosen to fit the mask and stretched to the 3D box",
       };
@@ -41,7 +42,7 @@ export function objectMesh({ mesh }: Pick<SceneObject, "mesh">): MeshText | null
       return {
         kind: "learned",
         text: "mesh: learned",
-        title: `The ${mesh.class} template deformed by the mesh network to match the mask`,
+        title: `The ${classText(mesh.class)} template deformed by the mesh network to match the mask`,
       };
   }
 }

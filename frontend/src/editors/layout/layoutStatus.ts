@@ -92,16 +92,8 @@ export function layoutStatus(
   const doubt = doubts.length
     ? ` Is a corner on the wrong line? This gives ${doubts.join(", ")}.`
     : "";
-  const missed = draft.miss();
-  const miss = missed
-    ? ` A box room cannot put its ${missed.name} there: the nearest it can is ` +
-      `${Math.round(missed.px)} px away (the dashed line), where the corner goes when saved.`
-    : "";
   return {
-    text:
-      (draft.dirty ? `Moved (not saved): ${room}` : `Drag the yellow corners. ${room}`) +
-      doubt +
-      miss,
-    alert: doubts.length > 0 || missed !== null,
+    text: (draft.dirty ? `Moved (not saved): ${room}` : `Drag the yellow corners. ${room}`) + doubt,
+    alert: doubts.length > 0,
   };
 }

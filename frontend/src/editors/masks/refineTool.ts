@@ -30,6 +30,8 @@ export function refineTool(drawing: MaskDrawing): PhotoTool {
   let refineStroke: DrawnStroke | null = null;
   let refineRequest = 0;
   let strokeSheet: Sheet | null = null;
+  /** The mask the strokes cut last (saved, or on its way). */
+  let produced: MaskRaster | null = null;
 
   /** Paint the refine stroke's segment from its point `from` on (all of it from 0). */
   const drawStroke = (stroke: DrawnStroke, from: number) => {
@@ -63,6 +65,7 @@ export function refineTool(drawing: MaskDrawing): PhotoTool {
       drawing.say(
         `Refined in ${total} ms (the cut ${Math.round(answer.milliseconds)} ms); saving…`,
       );
+      produced = raster;
       await drawing.save(objectId, raster, `refine ${objectId}'s mask`);
     } catch (error) {
       if (ticket === refineRequest) {
@@ -74,9 +77,19 @@ export function refineTool(drawing: MaskDrawing): PhotoTool {
   const clearRefine = () => {
     refine = null;
     refineStroke = null;
+    produced = null;
     live.remove(strokeSheet);
     strokeSheet = null;
   };
+
+  // The strokes belong to the mask they cut. When the object's mask becomes another one (Undo,
+  // another tool, someone else's revision), they go: the next stroke would cut them in again.
+  session.subscribe((change) => {
+    if (change !== "document" || !refine || !produced || refineStroke) return;
+    const object = session.object(refine.objectId);
+    const now = object?.mask ? MaskRaster.fromMask(object.mask, photo) : null;
+    if (!now || !now.samePixels(produced)) clearRefine();
+  });
 
   return {
     id: "refine",

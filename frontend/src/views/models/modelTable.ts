@@ -9,7 +9,7 @@ import type { KindText } from "./kindText";
 import { heldoutText, percent, promoteQuestion } from "./modelFigures";
 
 const STATUS_TEXT: Record<ModelInfo["status"], string> = {
-  default: "committed default",
+  default: "shipped with the app",
   accepted: "accepted",
   candidate: "candidate",
   rejected: "rejected",

@@ -43,11 +43,20 @@ export function mountLayoutLayer(
     "stroke-width": width,
     "stroke-dasharray": `${width * 3} ${width * 2}`,
   });
+  // Said on the photo, at the line's end, not in the bar above it: a longer bar line would
+  // move the photo under the pointer, and the autosave's message would replace it.
+  const missLabel = svgEl("text", {
+    class: "layout-miss-label",
+    "data-testid": "layout-miss-label",
+    "font-size": width * 5,
+    "stroke-width": width * 1.2,
+  });
   const layer = svgEl(
     "g",
     { class: "layout-layer", "data-testid": "layout-layer" },
     edges,
     miss,
+    missLabel,
     handles,
   );
   svg.append(layer);
@@ -74,6 +83,24 @@ export function mountLayoutLayer(
     const missed = draft.miss();
     miss.setAttribute("d", missed ? `M ${fmt(missed.corner)} L ${fmt(missed.fitted)}` : "");
     miss.dataset.corner = missed ? String(missed.index) : "";
+    missLabel.textContent = missed ? "corner goes here when saved" : "";
+    if (missed) {
+      missLabel.append(
+        svgEl(
+          "title",
+          {},
+          `A box room cannot reach the ${missed.name} where it was put: the nearest it can ` +
+            `is ${Math.round(missed.px)} px away, at the end of the dashed line`,
+        ),
+      );
+      // Beside the line's end, on the side away from the handle, inside the drawing.
+      const [x, y] = missed.fitted;
+      const below = missed.corner[1] < y;
+      const left = x > (area.left + area.right) / 2;
+      missLabel.setAttribute("x", (x + (left ? -1 : 1) * width * 3).toFixed(1));
+      missLabel.setAttribute("y", (y + (below ? 1 : -1) * width * 6).toFixed(1));
+      missLabel.setAttribute("text-anchor", left ? "end" : "start");
+    }
     layer.classList.toggle("is-invalid", draft.error !== null);
   };
   const style: HandleStyle = { frame, strokeWidth: width, radius, clampedRadius };

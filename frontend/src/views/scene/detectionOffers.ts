@@ -97,8 +97,9 @@ export function addObjectEdit(offer: Offer, id: string): AddObjectEdit {
   };
 }
 
-/** A score as people read it: "42%". */
-export const percentText = (score: number) => `${Math.round(score * 100)}%`;
+/** A score as people read it: "42%"; rounded down, so a box below the threshold (29.6%)
+ * never reads as at it ("30%"). */
+export const percentText = (score: number) => `${Math.floor(score * 100 + 1e-9)}%`;
 
 /** "chair 87%" */
 export const offerLabel = (offer: Offer) => `${offer.cls} ${percentText(offer.score)}`;

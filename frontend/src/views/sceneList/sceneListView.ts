@@ -205,20 +205,7 @@ export function mountSceneList(container: HTMLElement): () => void {
       el(
         "section",
         { className: "card" },
-        el(
-          "div",
-          { className: "card-header" },
-          el("h2", { text: "Scenes" }),
-          el("a", {
-            className: "header-link",
-            text: "Models",
-            testid: "models-link",
-            attrs: {
-              href: "#/models",
-              title: "The Relation Network and the object detector: retrain, compare, roll back",
-            },
-          }),
-        ),
+        el("div", { className: "card-header" }, el("h2", { text: "Scenes" })),
         el(
           "div",
           { className: "list-filters" },

@@ -53,27 +53,32 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
     },
     onSubmit: (byKey = false) =>
       void (async () => {
-        // The page says to submit when every supporter is right: an object left without one
-        // is asked about (a reviewer would send the scene back for it).
+        // What a reviewer would send the scene back for, asked about in one question: objects
+        // without a supporter, a 3D scene older than the labels, nothing checked by a person.
+        const concerns: string[] = [];
         const missing = withoutSupporter(session.objects, session.shown()).map((o) => o.id);
-        const question =
-          `${plural(missing.length, "object")} (${missing.join(", ")}) ${missing.length === 1 ? "has" : "have"} ` +
-          "no supporter. Submit for review anyway? The scene is locked until a reviewer decides.";
-        if (missing.length > 0 && !window.confirm(question)) return;
+        if (missing.length > 0)
+          concerns.push(
+            `${plural(missing.length, "object")} (${missing.join(", ")}) ${missing.length === 1 ? "has" : "have"} no supporter.`,
+          );
         const lacks = await outOfDate3d();
-        const stale =
-          `The 3D scene was made before these changes: ${lacks}. "Re-place objects" in the 3D ` +
-          "panel brings it up to date; once the scene is submitted nobody can. Submit anyway?";
-        if (lacks !== "" && !window.confirm(stale)) return;
-        // Nothing checked: every supporter is still the pipeline's guess.
-        const unchecked =
-          `None of the ${session.objects.length} objects has a supporter set by a person: ` +
-          "each is the pipeline's guess, unchecked. Submit for review anyway?";
-        if (personLabels() === 0 && session.objects.length > 0 && !window.confirm(unchecked))
-          return;
-        const plain =
-          "Submit this scene for review? It is read only until a reviewer accepts it or sends it back.";
-        if (byKey && missing.length === 0 && lacks === "" && !window.confirm(plain)) return;
+        if (lacks !== "")
+          concerns.push(
+            `The 3D scene was made before these changes: ${lacks}. "Re-place objects" in the ` +
+              "3D panel brings it up to date; once the scene is submitted nobody can.",
+          );
+        if (personLabels() === 0 && session.objects.length > 0)
+          concerns.push(
+            `None of the ${session.objects.length} objects has a supporter set by a person: ` +
+              "each is the pipeline's guess, unchecked.",
+          );
+        const locked = "It is read only until a reviewer accepts it or sends it back.";
+        const question =
+          concerns.length > 0
+            ? `${concerns.map((c) => `• ${c}`).join("\n")}\n\nSubmit for review anyway? ${locked}`
+            : `Submit this scene for review? ${locked}`;
+        // A click with nothing to say submits; a keystroke always asks (one key is final).
+        if ((concerns.length > 0 || byKey) && !window.confirm(question)) return;
         await act(() => workflowApi.submit(session.sceneId, revision()));
       })(),
     onRelease: () => {

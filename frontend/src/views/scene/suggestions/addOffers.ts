@@ -1,6 +1,8 @@
 // Accepting suggested boxes: they become objects in one add_object request (one undoable
 // action; after a conflict the object editor sends it again on the latest revision), and the
 // server answers with the new revision, their masks cut.
+
+import { classText } from "../../../state/classNames";
 import type { ObjectEditor } from "../../../state/objectEditor";
 import { plural } from "../../../state/sceneSession";
 import { addObjectEdit, type Offer, offerLabel } from "../detectionOffers";
@@ -18,7 +20,8 @@ const NAMED_AT_MOST = 4;
 
 /** "d3 (chair), d4 (lamp)", or for many "61 objects (54 chair, 5 sofa, 2 otherprop)". */
 export function addedObjectsText(added: readonly { id: string; class: string }[]): string {
-  if (added.length <= NAMED_AT_MOST) return added.map((a) => `${a.id} (${a.class})`).join(", ");
+  if (added.length <= NAMED_AT_MOST)
+    return added.map((a) => `${a.id} (${classText(a.class)})`).join(", ");
   const perClass = new Map<string, number>();
   for (const a of added) perClass.set(a.class, (perClass.get(a.class) ?? 0) + 1);
   const counts = [...perClass]

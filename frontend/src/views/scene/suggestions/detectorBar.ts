@@ -161,8 +161,9 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
       const why = editable ? "" : " (the scene is read only)";
       acceptButton.disabled = busy || !editable || chosen === null;
       acceptAllButton.disabled = busy || !editable || confident === 0;
-      rejectButton.disabled = busy || chosen === null;
-      rejectAllButton.disabled = busy;
+      // Rejections are remembered for the scene (in this browser): also the editor's to make.
+      rejectButton.disabled = busy || !editable || chosen === null;
+      rejectAllButton.disabled = busy || !editable;
       acceptButton.title = `Add the selected box as an object (${ACCEPT_KEY})${why}`;
       acceptAllButton.title =
         `Add every box at ${percentText(SCORE_THRESHOLD)} or more as an object ` +

@@ -7,7 +7,7 @@ import { SCORE_THRESHOLD } from "../../../inference/detectorTensor";
 import { type Frame, strokeWidth } from "../../photo/arrowGeometry";
 import type { Rect } from "../../photo/cornerHandles";
 import { drawnLabelTags } from "../../photo/labelLayer";
-import { type Offer, offerLabel } from "../detectionOffers";
+import { type Offer, offerLabel, percentText } from "../detectionOffers";
 import { placeTags } from "./offerLabelPlacement";
 
 /** The tag's font size and box for a label of this text. */
@@ -41,7 +41,7 @@ function offerBox(
       "data-testid": "detector-suggestion",
       "data-key": offer.key,
       "data-class": offer.cls,
-      "data-score": String(Math.round(offer.score * 100)),
+      "data-score": percentText(offer.score).slice(0, -1),
       "data-bbox": offer.bbox.map((v) => v.toFixed(1)).join(","),
     },
     svgEl("title", {}, title),

@@ -49,7 +49,7 @@ export function suggestionKeys(keys: SuggestionKeyInputs): () => void {
       description: "Reject the selected suggested box",
       scope: SCOPE,
       run: keys.rejectSelected,
-      enabled: () => hasOffers() && idle(),
+      enabled: () => hasOffers() && idle() && editable(),
     }),
   ];
   return () => {
