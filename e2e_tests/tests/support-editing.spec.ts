@@ -272,6 +272,7 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   await page.mouse.move(nowhere.x, nowhere.y, { steps: 6 });
   await page.mouse.up();
   await expect(page.getByTestId("edit-message")).toContainText("Dropped on no object");
+  await expect(page.getByTestId("drop-hint")).toContainText("F floor, W wall, C ceiling");
   await expect(arrow("o3")).toHaveAttribute("data-parent", "o2");
 
   // R rejects a guess: it goes, and the model's next answer (if it has one) is suggested.

@@ -26,6 +26,7 @@ export interface PhotoPicking {
 }
 
 const DRAG_PX = 6; // screen pixels before a press on an arrow becomes a drag
+const DROP_HINT_MS = 3000; // how long the hint at a drop on no object stays
 
 const arrowAt = (event: Event): string | null =>
   (event.target as Element | null)?.closest<SVGGElement>(".arrow[data-child]")?.dataset.child ??
@@ -141,12 +142,41 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     const target = picking.objectAt(event);
     session.select(done.child);
     if (target && target !== done.child) pickSupporter(done.child, target);
-    // Walls, floor and ceiling have no mask to drop on: say how to choose them.
-    else if (!target)
+    // Walls, floor and ceiling have no mask to drop on: say how to choose them, in the line
+    // under the photo and where the pointer is (that line may be below the window).
+    else if (!target) {
       session.say(
         `Dropped on no object: ${done.child} keeps its supporter. For the floor, a wall or ` +
           "the ceiling press F, W or C (it stays selected).",
       );
+      const at = picking.toImage(event);
+      if (at) showDropHint(at);
+    }
+  };
+
+  let hintTimer = 0;
+  const showDropHint = ([x, y]: readonly [number, number]) => {
+    const width = picking.strokeWidth();
+    const box = svg.viewBox.baseVal;
+    const right = x > box.x + box.width / 2;
+    const low = y > box.y + box.height / 2; // above the point there, below it near the top
+    dragLayer.replaceChildren(
+      svgEl(
+        "text",
+        {
+          class: "drop-hint",
+          "data-testid": "drop-hint",
+          x: x + (right ? -1 : 1) * width * 3,
+          y: low ? y - width * 3 : y + width * 8,
+          "font-size": width * 5,
+          "stroke-width": width * 1.2,
+          "text-anchor": right ? "end" : "start",
+        },
+        "No object here: F floor, W wall, C ceiling",
+      ),
+    );
+    window.clearTimeout(hintTimer);
+    hintTimer = window.setTimeout(() => dragLayer.replaceChildren(), DROP_HINT_MS);
   };
   const onDown = (event: PointerEvent) => {
     const child = event.button === 0 && session.editable ? arrowAt(event) : null;
@@ -179,6 +209,7 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     },
   });
   return () => {
+    window.clearTimeout(hintTimer);
     unsubscribe();
     removeKey();
     svg.removeEventListener("click", onClick);

@@ -1,5 +1,5 @@
-// The lines of a revision's diff in the history: each support changed, objects added,
-// removed or changed (class, box, mask; 3D boxes and shapes in one line), and whether the room
+// The lines of a revision's diff in the history: objects added and removed, each support
+// changed, objects changed (class, box, mask; 3D boxes and shapes in one line), and whether the room
 // layout or camera moved.
 import type { SceneDocument } from "@holiscene/schema";
 import { el } from "../../../dom";
@@ -24,13 +24,10 @@ export function diffLines(
       };
   const drawn = diff.objectsChanged.filter((c) => c.drawn.length > 0);
   const placed = diff.objectsChanged.filter((c) => c.placed.length > 0).map((c) => c.id);
+  // Objects added and removed first: a supporter set on an object added in the same span
+  // reads as a change to an object that was there, unless the line says it is new.
+  const added = new Set(diff.objectsAdded);
   const lines = [
-    ...diff.supports.map((c) =>
-      el("li", {
-        text: describeChange(c),
-        attrs: { "data-child": c.child, "data-kind": c.kind },
-      }),
-    ),
     ...(diff.objectsAdded.length > 0
       ? [el("li", { text: `objects added: ${diff.objectsAdded.join(", ")}` })]
       : []),
@@ -47,6 +44,12 @@ export function diffLines(
           ),
         ]
       : []),
+    ...diff.supports.map((c) =>
+      el("li", {
+        text: `${added.has(c.child) ? "(new) " : ""}${describeChange(c)}`,
+        attrs: { "data-child": c.child, "data-kind": c.kind },
+      }),
+    ),
     ...drawn.map((c) =>
       el("li", {
         text: `${c.id}: ${c.drawn.join(", ")}`,
