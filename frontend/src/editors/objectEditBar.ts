@@ -5,8 +5,10 @@
 import { button, el } from "../dom";
 import type { ObjectEditor } from "../state/objectEditor";
 
-/** How long the line says what an action did. */
+/** How long the line says what an action did; only a plain "…: saved." goes (a note with
+ * something to do, a mask left as a box, stays until the next action). */
 const DONE_MESSAGE_MS = 8000;
+const DONE_ONLY = /: saved\.$/;
 
 export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor): () => void {
   const status = el("span", {
@@ -51,7 +53,7 @@ export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor)
     const state = editor.status;
     window.clearTimeout(fading);
     status.textContent = state.kind === "busy" ? `Saving: ${state.label}…` : (state.message ?? "");
-    if (state.kind === "idle" && !state.error && status.textContent !== "") {
+    if (state.kind === "idle" && !state.error && DONE_ONLY.test(status.textContent)) {
       const shown = status.textContent;
       fading = window.setTimeout(() => {
         if (status.textContent === shown) status.textContent = status.title = "";

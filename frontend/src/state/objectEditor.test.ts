@@ -510,9 +510,11 @@ describe("new objects the server could not cut out", () => {
   it("are named, with how to fix their masks", () => {
     const doc = documentOf(3, [withMask("d1", "box"), withMask("d2", "grabcut")]);
     expect(uncutNote([add("d1"), add("d2")], doc)).toBe(
-      " The automatic cut could not separate d1 from its surroundings: the mask is the whole " +
-        "box (Brush, Eraser or Refine fix it).",
+      " But d1's mask is its whole box: fix with Brush, Eraser or Refine (the automatic cut " +
+        "could not separate it).",
     );
+    const both = documentOf(3, [withMask("d1", "box"), withMask("d2", "box")]);
+    expect(uncutNote([add("d1"), add("d2")], both)).toMatch(/^ But the masks of d1, d2 are their/);
   });
 
   it("say nothing when every new object was cut, or its mask was given", () => {

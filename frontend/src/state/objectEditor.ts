@@ -58,10 +58,10 @@ export function uncutNote(edits: readonly ObjectEdit[], doc: SceneDocument): str
   );
   if (uncut.length === 0) return "";
   const ids = uncut.map((o) => o.id).join(", ");
-  return (
-    ` The automatic cut could not separate ${ids} from ${uncut.length === 1 ? "its" : "their"} ` +
-    "surroundings: the mask is the whole box (Brush, Eraser or Refine fix it)."
-  );
+  // What to do first: the status line shows its start, the rest on a click or hover.
+  const whose = uncut.length === 1 ? `${ids}'s mask is its` : `the masks of ${ids} are their`;
+  const them = uncut.length === 1 ? "it" : "them";
+  return ` But ${whose} whole box: fix with Brush, Eraser or Refine (the automatic cut could not separate ${them}).`;
 }
 
 /** What the editor is doing: nothing (with what the last action did), or saving an action. */

@@ -82,17 +82,26 @@ def label_files(
     """The input folder's files besides the photo, by name: detections.json and supports.json
     of the scene, cam_K.txt when `K` is given, the ground truth (gt.json) when the scene was
     imported with one, and its depth (depth.png) when it has one."""
-    scene = item.scene
+    files = scene_label_files(item.scene, class_name, K)
+    if item.ground_truth is not None:
+        files["gt.json"] = item.ground_truth.read_bytes()
+    if item.depth is not None:
+        files[DEPTH_FILE] = item.depth.read_bytes()
+    return files
+
+
+def scene_label_files(
+    scene: Scene, class_name: Callable[[str], str] = str, K: Any = None
+) -> dict[str, bytes]:
+    """The label files written from the scene itself: detections.json, supports.json, and
+    cam_K.txt when `K` is given. An import reads these, not scene.json, so an upload of a
+    download counts as unchanged only while they are as written here."""
     files = {
         "detections.json": (json.dumps(detections_items(scene, class_name)) + "\n").encode(),
         "supports.json": (json.dumps(supports_items(scene)) + "\n").encode(),
     }
     if K is not None:
         files["cam_K.txt"] = intrinsics_text(K).encode()
-    if item.ground_truth is not None:
-        files["gt.json"] = item.ground_truth.read_bytes()
-    if item.depth is not None:
-        files[DEPTH_FILE] = item.depth.read_bytes()
     return files
 
 

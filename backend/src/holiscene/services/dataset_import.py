@@ -21,6 +21,7 @@ from holiscene_schema import ImportJob, SceneSummary
 
 from ..core.errors import user_facing_error
 from ..export.archive import scene_json
+from ..export.input_folder import given_intrinsics, scene_label_files
 from ..inputs import InputError, InputFiles
 from ..inputs.archive import ArchiveLimits, unpack_zip
 from ..inputs.datasets.items import confined_to
@@ -162,6 +163,14 @@ def stored_before(
         document.scene
     ):
         return None
+    # The labels an import reads: detections.json, supports.json, cam_K.txt (an edit there,
+    # scene.json untouched, was skipped as "already stored" and lost).
+    folder = downloaded.scene_file.parent
+    written = scene_label_files(document.scene, K=given_intrinsics(document.scene))
+    for name, data in written.items():
+        file = folder / name
+        if not file.is_file() or file.read_bytes() != data:
+            return None
     return scenes.summary(downloaded.scene_id)
 
 

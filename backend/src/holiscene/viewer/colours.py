@@ -56,6 +56,8 @@ def _hue_distance(a: int, b: int) -> float:
 
 def _nearest_given(k: int, given: set[int]) -> float:
     return min((_hue_distance(k, g) for g in given), default=360.0)
+
+
 _NUMBERED = re.compile(r"^(.*?)([0-9]+)$")  # ASCII digits, as JavaScript's \d
 
 

@@ -81,6 +81,23 @@ def _assert_same_labels(back: dict[str, Any], before: dict[str, Any]) -> None:
     assert back["camera"] == before["camera"]
 
 
+def _with_last_box_dropped(archive: bytes, folder_prefix: str) -> bytes:
+    """The zip with the last box of one folder's detections.json taken out (and its supports
+    with it): labels edited in the files an import reads, scene.json as downloaded."""
+    out = io.BytesIO()
+    with zipfile.ZipFile(io.BytesIO(archive)) as source, zipfile.ZipFile(out, "w") as target:
+        for info in source.infolist():
+            if info.filename.startswith(folder_prefix) and info.filename.endswith("/supports.json"):
+                continue
+            data = source.read(info)
+            if info.filename.startswith(folder_prefix) and info.filename.endswith(
+                "/detections.json"
+            ):
+                data = json.dumps(json.loads(data)[:-1]).encode()
+            target.writestr(info, data)
+    return out.getvalue()
+
+
 def _with_scene_file_changed(archive: bytes, folder_prefix: str, name: str) -> bytes:
     """The zip with the scene.json of the folder starting with `folder_prefix` renamed to
     `name`: a download edited before it is uploaded again."""
@@ -129,6 +146,13 @@ def test_the_download_imports_back_to_the_same_scenes(
     (copy,) = changed["imported"]
     assert _document(client, copy["scene_id"])["scene"]["name"] == "plain, edited"
     assert copy["scene_name"] == "plain, edited"
+    # So does one whose boxes were edited (an import reads detections.json, not scene.json).
+    fewer = _imported(client, _with_last_box_dropped(response.content, "bedroom-"))
+    # (the plain folder's files are those the copy above was imported from: that copy)
+    assert [item["scene_id"] for item in fewer["skipped"]] == [copy["scene_id"]]
+    (boxes_edited,) = fewer["imported"]
+    objects = _document(client, boxes_edited["scene_id"])["scene"]["objects"]
+    assert len(objects) == len(_document(client, placed_id)["scene"]["objects"]) - 1
 
     # Into another store: new scenes with the same labels; the same zip again adds nothing.
     other = Settings(data_dir=tmp_path / "other", web_dir=tmp_path / "no-web")

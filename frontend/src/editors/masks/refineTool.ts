@@ -88,7 +88,7 @@ export function refineTool(drawing: MaskDrawing): PhotoTool {
     if (change !== "document" || !refine || !produced || refineStroke) return;
     const object = session.object(refine.objectId);
     const now = object?.mask ? MaskRaster.fromMask(object.mask, photo) : null;
-    if (!now || !now.samePixels(produced)) clearRefine();
+    if (!now?.samePixels(produced)) clearRefine();
   });
 
   return {
