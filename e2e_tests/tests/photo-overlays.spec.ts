@@ -163,6 +163,7 @@ test("a crowded scene's labels do not overlap; mask colouring and opacity are re
 
   // By object (the default): every mask its own colour, the object list's swatch the same.
   await expect(page.getByTestId("mask-colouring")).toHaveValue("object");
+  await expect(page.getByTestId("class-legend")).toBeHidden(); // by class only
   const byObject = new Set(before.masks.map((m) => m.colour));
   expect(byObject.size).toBe(objects.length);
   const first = before.masks[0];
@@ -211,6 +212,10 @@ test("a crowded scene's labels do not overlap; mask colouring and opacity are re
   const byClass = await readOverlays(page);
   const classes = new Set(objects.map((o) => o.class));
   expect(new Set(byClass.masks.map((m) => m.colour)).size).toBe(classes.size);
+  // Coloured by class, the legend under the photo names each class the scene holds.
+  const legend = page.getByTestId("class-legend");
+  await expect(legend).toBeVisible();
+  await expect(legend.locator(".legend-item")).toHaveCount(classes.size);
   await expect.poll(firstMaskOpacity).toBeCloseTo(0.8, 2);
 
   await page.reload();

@@ -16,6 +16,7 @@ import { getAuthor } from "../../state/author";
 import { startAutosave } from "../../state/autosave";
 import { ObjectEditor } from "../../state/objectEditor";
 import type { SceneSession } from "../../state/sceneSession";
+import { classLegend } from "../photo/classLegend";
 import { arrowLegend } from "../photo/layerBar";
 import { mountPhotoView } from "../photo/photoView";
 import { mountPlacementNotice } from "../scene3d/placementNotice";
@@ -56,8 +57,10 @@ export function mountSceneWorkbench(
   const workflow = el("div");
   editor.body.append(workflow, saveBar, suggestions, table, history);
   const edgeInfo = el("div");
-  // The legend last: the line about the selection belongs right under the photo.
-  photo.element.append(edgeInfo, arrowLegend());
+  // The legends last: the line about the selection belongs right under the photo.
+  const classes = classLegend(session);
+  disposers.push(classes.dispose);
+  photo.element.append(edgeInfo, arrowLegend(), classes.element);
   const banner = readOnlyBanner(session);
   const warnings = pipelineWarningsPanel(session);
   content.append(
