@@ -1,7 +1,8 @@
 """Migrations on databases written by earlier versions: 0003 on scenes stored before accounts
 and states existed, 0004 on accounts and sessions stored before idle timeouts and disabling,
 0005 on scenes without objects stored as the least uncertain, 0007 on scenes with several
-jobs waiting, 0010 on scenes with objects the detector made."""
+jobs waiting, 0010 on scenes with objects the detector made, 0012 on scenes with pipeline
+warnings."""
 
 from __future__ import annotations
 
@@ -13,7 +14,8 @@ from alembic import command
 from alembic.config import Config
 from holiscene.core.db import MIGRATIONS_DIR, make_engine
 from holiscene.core.settings import Settings
-from holiscene_schema import Scene
+from holiscene.editing.workflow_rules import scene_uncertainty
+from holiscene_schema import Scene, StageRun
 from sqlalchemy import Engine, inspect, text
 from sqlalchemy.exc import IntegrityError
 
@@ -145,6 +147,35 @@ def test_scenes_with_detected_objects_get_their_doubt(engine: Engine) -> None:
     assert _uncertainties(engine) == {"given": 0.85, "detected": pytest.approx(0.925)}
     _migrate(engine, "0009", step=command.downgrade)
     assert _uncertainties(engine) == {"given": 0.85, "detected": pytest.approx(0.85)}
+
+
+def test_scenes_with_pipeline_warnings_get_their_doubt(engine: Engine) -> None:
+    _migrate(engine, "0011")
+    sure = make_scene(
+        [
+            ("o0", "floor", "below"),
+            ("o1", "floor", "below"),
+            ("o2", "floor", "below"),
+            ("o3", "floor", "below"),
+        ],
+        dict.fromkeys(("o0", "o1", "o2", "o3"), 1.0),
+    )
+    warned = sure.model_copy(
+        update={
+            "stages": [
+                StageRun(name="masks_grabcut", seconds=0.1, note="2 boxes left", warning=True),
+                StageRun(name="heights_by_metrology", seconds=0.1, note="1", warning=True),
+                StageRun(name="placement", seconds=0.1, note="placed", warning=False),
+            ]
+        }
+    )
+    _store_scenes(engine, {"sure": (sure, 0.0), "warned": (warned, 0.0)})
+    _migrate(engine, "head")
+    # Two warnings: 1 - (1 - 0) * 0.9 ** 2, as the live rule gives it.
+    assert _uncertainties(engine) == {"sure": 0.0, "warned": pytest.approx(0.19)}
+    assert scene_uncertainty(warned) == pytest.approx(0.19)
+    _migrate(engine, "0011", step=command.downgrade)
+    assert _uncertainties(engine) == {"sure": 0.0, "warned": pytest.approx(0.0)}
 
 
 def _store_scenes(engine: Engine, stored: dict[str, tuple[Scene, float]]) -> None:

@@ -5,11 +5,10 @@ Revision ID: 0005
 Revises: 0004
 """
 
-import json
 from typing import Any
 
-import sqlalchemy as sa
 from alembic import op
+from holiscene.store.migration_scenes import current_scenes, set_uncertainty
 
 revision = "0005"
 down_revision = "0004"
@@ -26,19 +25,9 @@ def _without_objects(scene: dict[str, Any]) -> bool:
 
 def _set_uncertainty_of_scenes_without_objects(value: float) -> None:
     bind = op.get_bind()
-    rows = bind.execute(
-        sa.text(
-            "SELECT s.id, r.scene FROM scenes s JOIN revisions r "
-            "ON r.scene_id = s.id AND r.number = s.current_revision"
-        )
-    ).all()
-    for scene_id, scene in rows:
-        data = json.loads(scene) if isinstance(scene, str) else scene
+    for scene_id, data in current_scenes(bind):
         if _without_objects(data):
-            bind.execute(
-                sa.text("UPDATE scenes SET uncertainty = :u WHERE id = :id"),
-                {"u": value, "id": scene_id},
-            )
+            set_uncertainty(bind, scene_id, value)
 
 
 def upgrade() -> None:

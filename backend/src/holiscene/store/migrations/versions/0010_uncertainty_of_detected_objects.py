@@ -5,11 +5,10 @@ Revision ID: 0010
 Revises: 0009
 """
 
-import json
 from typing import Any
 
-import sqlalchemy as sa
 from alembic import op
+from holiscene.store.migration_scenes import current_scenes, set_uncertainty
 
 revision = "0010"
 down_revision = "0009"
@@ -46,20 +45,10 @@ def _uncertainty(scene: dict[str, Any], detected: bool) -> float:
 
 def _set_uncertainties(detected: bool) -> None:
     bind = op.get_bind()
-    rows = bind.execute(
-        sa.text(
-            "SELECT s.id, r.scene FROM scenes s JOIN revisions r "
-            "ON r.scene_id = s.id AND r.number = s.current_revision"
-        )
-    ).all()
-    for scene_id, scene in rows:
-        data = json.loads(scene) if isinstance(scene, str) else scene
+    for scene_id, data in current_scenes(bind):
         if not any(o.get("source") == "detector" for o in data.get("objects", [])):
             continue  # the rules agree on it: leave it as stored
-        bind.execute(
-            sa.text("UPDATE scenes SET uncertainty = :u WHERE id = :id"),
-            {"u": _uncertainty(data, detected), "id": scene_id},
-        )
+        set_uncertainty(bind, scene_id, _uncertainty(data, detected))
 
 
 def upgrade() -> None:
