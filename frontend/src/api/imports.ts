@@ -3,8 +3,6 @@ import type { ImportJob } from "@holiscene/schema";
 import { inBackground, request } from "./client";
 import { isFinished, sleep } from "./jobs";
 
-export const importFinished = (job: ImportJob) => isFinished(job);
-
 export const importsApi = {
   /** Upload the zip; the server unpacks and recognises it before answering (4xx if not). */
   start(archive: File, runPipeline: boolean): Promise<ImportJob> {
@@ -28,7 +26,7 @@ export async function pollImport(
 ): Promise<ImportJob> {
   let current = job;
   onUpdate(current);
-  while (!importFinished(current)) {
+  while (!isFinished(current)) {
     await sleep(intervalMs, signal);
     current = await importsApi.get(current.id, signal);
     onUpdate(current);

@@ -66,8 +66,9 @@ export function objectColours(objects: readonly Pick<SceneObject, "id">[]): Map<
     if (used.has(slot) || nearestGiven(slot, used) < NEAR_HUE) {
       let best = -1;
       for (let k = 0; k < SLOTS; k++) {
-        if (!used.has(k) && nearestGiven(k, used) > best) {
-          best = nearestGiven(k, used);
+        const distance = used.has(k) ? -1 : nearestGiven(k, used);
+        if (distance > best) {
+          best = distance;
           slot = k;
         }
       }

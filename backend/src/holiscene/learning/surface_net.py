@@ -25,7 +25,7 @@ from ..geometry.surface_labels import INPUT_SIZE, MAP_SIZE, SURFACE_CLASSES, nor
 from .export import keep_if_faithful
 from .surface_data import SurfaceSet, surface_set
 from .train import plot_curve, run_record
-from .training_api import CURVE_FILE, METRICS_FILE, MODEL_FILE, TrainProgress
+from .training_api import CURVE_FILE, METRICS_FILE, MODEL_FILE, TrainProgress, percent
 
 INPUT_NAME, OUTPUT_NAME = "image", "surface_logits"
 OPSET = 18
@@ -181,7 +181,7 @@ def train_surface_model(
         say(
             0.3 + 0.65 * epoch / config.epochs,
             f"epoch {epoch}: loss {curve[-1]['train_loss']:.3f}, "
-            f"validation pixel accuracy {100 * accuracy:.1f} % (best {100 * best:.1f} %)",
+            f"validation pixel accuracy {percent(accuracy)} (best {percent(best)})",
         )
     net.load_state_dict(best_state)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -199,5 +199,5 @@ def train_surface_model(
     }
     (out_dir / METRICS_FILE).write_text(json.dumps(metrics, indent=1) + "\n")
     plot_curve(curve, out_dir / CURVE_FILE, "validation pixel accuracy", "train loss per pixel")
-    say(1.0, f"done: validation pixel accuracy {100 * best:.1f} % at epoch {best_epoch}")
+    say(1.0, f"done: validation pixel accuracy {percent(best)} at epoch {best_epoch}")
     return metrics

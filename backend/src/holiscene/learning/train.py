@@ -36,6 +36,7 @@ from .training_api import (
     TrainConfig,
     TrainProgress,
     TrainResult,
+    percent,
 )
 
 BATCH_SCENES = 8  # scenes per optimiser step (each scene is one forward pass)
@@ -157,7 +158,7 @@ def train_relation_model(
     }
     (out_dir / DATA_FILE).write_text(json.dumps(data, indent=1) + "\n")
     plot_curve(fit.curve, out_dir / CURVE_FILE)
-    say(1.0, f"done: validation accuracy {100 * fit.best_accuracy:.1f} % at epoch {fit.best_epoch}")
+    say(1.0, f"done: validation accuracy {percent(fit.best_accuracy)} at epoch {fit.best_epoch}")
     return TrainResult(out_dir, fit.best_accuracy, metrics)
 
 
@@ -196,8 +197,8 @@ def _fit(
         say(
             0.25 + 0.7 * epoch / config.max_epochs,
             f"epoch {epoch}: loss {train_loss:.3f}, "
-            f"validation accuracy {100 * validation_accuracy:.1f} % "
-            f"(best {100 * fit.best_accuracy:.1f} %)",
+            f"validation accuracy {percent(validation_accuracy)} "
+            f"(best {percent(fit.best_accuracy)})",
         )
         if epoch - fit.best_epoch >= config.patience:
             fit.stopped = "early_stopping"

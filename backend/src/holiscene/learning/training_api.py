@@ -15,6 +15,13 @@ Architecture = Literal["support_net", "thesis_rn"]
 # progress(fraction done in [0, 1], one line for the job log)
 TrainProgress = Callable[[float, str], None]
 
+
+def percent(share: float) -> str:
+    """A share as the training log, the job's result line and the models page write it:
+    "97.1 %"."""
+    return f"{100 * share:.1f} %"
+
+
 # The files a trained model directory holds.
 MODEL_FILE = "model.onnx"
 METRICS_FILE = "metrics.json"

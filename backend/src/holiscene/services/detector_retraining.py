@@ -45,6 +45,7 @@ from ..evaluation.detection_2d import MAP_SCORE_THRESHOLD, DetectionEvaluation, 
 from ..inputs import load_photo
 from ..learning.detector.data import BoxedPhoto
 from ..learning.detector.runtime import Detector, box_iou
+from ..learning.training_api import percent
 from ..store.model_registry import Registration
 from ..store.scenes import SceneStore
 from .heldout import heldout_split
@@ -57,7 +58,6 @@ from .relation_retraining import (
     Verdict,
     heldout_verdict,
     jsonable,
-    percent,
     require_two_photos,
     scenes_to_learn_from,
 )

@@ -28,7 +28,7 @@ from holiscene_schema import ModelInfo, ModelStatus, RetrainRequest, Scene, Scen
 from ..core.errors import DomainError, user_facing_error
 from ..inputs import load_photo
 from ..learning.samples import SupportSample, sample_from_scene
-from ..learning.training_api import TrainConfig
+from ..learning.training_api import TrainConfig, percent
 from ..store.jobs import JobStore
 from ..store.model_registry import ModelStore, Registration
 from ..store.scenes import SceneStore
@@ -41,11 +41,6 @@ MIN_LABELLED_SCENES = 2  # one to learn from, one to judge by
 _COUNTER = re.compile(r"^(.*?)\s*\d+\s*/\s*\d+\s*$")
 # Share of the job's progress bar each step takes (training is nearly all of it).
 GATHER_END, TRAIN_END = 0.05, 0.9
-
-
-def percent(share: float) -> str:
-    """A share as the models page writes it ("97.1 %"): the job's result line says the same."""
-    return f"{100 * share:.1f} %"
 
 
 class NotEnoughLabelsError(DomainError, ValueError):

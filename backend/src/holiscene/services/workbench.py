@@ -327,8 +327,8 @@ class Workbench:
             self._retrains.pop(retrain.job_id, None)
 
     def cancel_retrain(self, job_id: str, by: str) -> Job:
-        """Cancel a queued or running retrain job (admin): it ends failed, at its next step or
-        epoch, and registers nothing. RetrainFinishedError when it has ended already."""
+        """Cancel a queued or running retrain job (admin): it ends cancelled, at its next step
+        or epoch, and registers nothing. RetrainFinishedError when it has ended already."""
         job = self.jobs.get(job_id)  # JobNotFoundError for an unknown id
         if job.kind not in RETRAIN_JOB_KINDS.values():
             raise JobNotFoundError(f"no retrain job {job_id!r}")

@@ -60,12 +60,6 @@ def _retrain_text(row: JobRow) -> str:
     return f"{what} ({progress})"
 
 
-def _running_retrain(row: JobRow) -> RetrainRunningError:
-    """The refusal, naming the running job (an admin on the other model's tab would not
-    know of it otherwise)."""
-    return RetrainRunningError(row.id, _retrain_text(row))
-
-
 # Jobs on one scene; at most one of them waits or runs per scene (migration 0007).
 SCENE_JOB_KINDS: tuple[JobKind, ...] = ("pipeline", "placement")
 _WAITING = ("queued", "running")
@@ -177,7 +171,8 @@ class JobStore:
                 )
             )
             if running is not None:
-                raise _running_retrain(running)
+                # Named: an admin on the other model's tab would not know of it otherwise.
+                raise RetrainRunningError(running.id, _retrain_text(running))
             row = self._new(
                 JobRow(scene_id=None, kind=kind, base_revision=None, started_by=started_by)
             )

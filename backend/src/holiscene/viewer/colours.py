@@ -90,8 +90,9 @@ def object_colours(ids: Sequence[str]) -> dict[str, Rgb]:
         if slot in used or _nearest_given(slot, used) < _NEAR_HUE:
             best = -1.0
             for k in range(_SLOTS):
-                if k not in used and _nearest_given(k, used) > best:
-                    best, slot = _nearest_given(k, used), k
+                distance = _nearest_given(k, used) if k not in used else -1.0
+                if distance > best:
+                    best, slot = distance, k
         used.add(slot)
         colours[object_id] = OBJECT_PALETTE[slot]
     return colours

@@ -104,8 +104,8 @@ def start_retrain(
     responses={404: {"model": ErrorMessage}, 409: {"model": ErrorMessage}},
 )
 def cancel_retrain(job_id: str, workbench: WorkbenchDep, user: AdminDep) -> Job:
-    """Cancel a queued or running retrain job: it stops at its next step or epoch, ends failed
-    ("cancelled by ...") and registers nothing. 409 once it has ended."""
+    """Cancel a queued or running retrain job: it stops at its next step or epoch, ends with
+    status cancelled ("cancelled by ...") and registers nothing. 409 once it has ended."""
     return workbench.cancel_retrain(job_id, user.name)
 
 
