@@ -6,7 +6,7 @@ import type { Mask, SceneDocument, SceneObject } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getRevisions, getScene, seedScene, T3D_5 } from "../helpers/api";
 import { screenPoint } from "../helpers/objects";
-import { clickObject, openScene, setAuthor } from "../helpers/photo";
+import { clickObject, objectPoint, openScene, setAuthor } from "../helpers/photo";
 import { screenshotPath } from "../helpers/screenshots";
 
 type Xy = [number, number];
@@ -154,11 +154,19 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
     expect(await photoTop(), tool).toBe(selectTop);
   }
   await page.keyboard.press("V");
+  // A point of another object's mask, found by hovering it (the Select tool highlights it).
+  const other = objects[1] && { id: objects[1].id, at: await objectPoint(page, objects[1].id) };
   await clickObject(page, id);
   await page.keyboard.press("P");
   await expect(page.getByTestId("mask-tool-status")).toHaveText(
     new RegExp(`Mask of ${target.class.replaceAll("_", " ")} ${id}`),
   );
+  // Passing over another object while drawing does not highlight it (that dims this mask).
+  if (other) {
+    await page.mouse.move(other.at.x, other.at.y);
+    await expect(page.getByTestId(`mask-${other.id}`)).not.toHaveClass(/is-hovered/);
+    await expect(page.getByTestId("photo")).not.toHaveClass(/has-hover/);
+  }
   // [ and ] size the brush.
   await expect(page.getByTestId("brush-size-value")).toHaveText("16 px");
   await page.keyboard.press("]");

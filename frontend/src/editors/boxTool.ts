@@ -59,7 +59,7 @@ export function mountBoxTool(tools: PhotoTools): () => void {
     edits: true,
     options: () =>
       toolHint(
-        "Drag to draw a new object's box (Shift: inside the selected one); drag a selected box's inside or handles to move or resize it.",
+        "Drag to draw a box (Shift: inside the selected one); drag the selected box or a handle to move or resize it.",
       ),
     down(at, event) {
       // Shift: always a new box (one inside the selected object's, a pillow on a bed).

@@ -28,6 +28,9 @@ export interface PhotoTool {
   cursor?: string;
   /** Whether it changes the scene (off while the scene is read only). */
   edits?: boolean;
+  /** Whether it draws on the selected object (a mask tool): while one is selected, hovering
+   *  others does not highlight them, which would dim the mask being drawn. */
+  drawsOnSelected?: boolean;
   down?(at: ImagePoint, event: PointerEvent): void;
   /** Every pointer move over the photo while active (pressed or not: e.g. a brush outline). */
   move?(at: ImagePoint, event: PointerEvent): void;

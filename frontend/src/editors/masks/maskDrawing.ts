@@ -122,8 +122,8 @@ export class MaskDrawing {
     this.live.showCursor(at, this.brush.radius);
   }
 
-  /** A tool's options on the toolbar: the hint, the status line and maybe the brush size. */
-  /** The tool's options: the brush size (if it has one) and its hint, then the status line. */
+  /** The tool's options: the brush size (if it has one) and the status line, then the hint.
+   *  Two lines at most at a laptop's width: the sticky toolbar covers the photo's top. */
   options(hint: string, withSize: boolean): () => HTMLElement {
     return () =>
       el(
@@ -133,9 +133,9 @@ export class MaskDrawing {
           "span",
           { className: "mask-tool-controls" },
           withSize ? this.brush.element : null,
-          toolHint(hint),
+          this.status,
         ),
-        this.status,
+        toolHint(hint),
       );
   }
 }

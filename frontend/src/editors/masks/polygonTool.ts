@@ -94,6 +94,7 @@ export function polygonTool(drawing: MaskDrawing): PolygonTool {
     description: "Polygon: click points around a part to add it to the mask (Shift: take it out)",
     cursor: "crosshair",
     edits: true,
+    drawsOnSelected: true,
     activate: drawing.describeTarget,
     drafting: () => polygon !== null,
     down(at, event) {

@@ -99,6 +99,7 @@ export function refineTool(drawing: MaskDrawing): PhotoTool {
       "Refine: paint over the object (Alt: over what is not it) and the mask is cut again from the strokes",
     cursor: "crosshair",
     edits: true,
+    drawsOnSelected: true,
     activate: drawing.describeTarget,
     down(at, event) {
       const object = drawing.pick(event);

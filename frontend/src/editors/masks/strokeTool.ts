@@ -29,6 +29,7 @@ export function strokeTool(drawing: MaskDrawing, spec: StrokeToolSpec): PhotoToo
     description,
     cursor: "crosshair",
     edits: true,
+    drawsOnSelected: true,
     activate: drawing.describeTarget,
     down(at, event) {
       const object = drawing.pick(event);

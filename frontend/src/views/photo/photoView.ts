@@ -51,8 +51,6 @@ export function mountPhotoView(
     const arrow = (event.target as Element).closest<SVGGElement>("[data-child]");
     return arrow?.dataset.child ?? maskAt(event);
   };
-  svg.addEventListener("mousemove", (event) => session.hover(objectAt(event)));
-  svg.addEventListener("mouseleave", () => session.hover(null));
   const stopEditing = mountArrowEditing(
     {
       svg,
@@ -80,6 +78,10 @@ export function mountPhotoView(
     onView: (listener) => zoom.onChange(listener),
   });
   toolbar.append(zoom.controls);
+  const hovering = (event: MouseEvent) =>
+    tools.active.drawsOnSelected && session.selectedObject ? null : objectAt(event);
+  svg.addEventListener("mousemove", (event) => session.hover(hovering(event)));
+  svg.addEventListener("mouseleave", () => session.hover(null));
   const stopEditBar = mountObjectEditBar(toolbar, objectEditor);
   // The sticky tool row's height, for what sticks under it (the detector's bar).
   const toolHeight =
