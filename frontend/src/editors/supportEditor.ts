@@ -16,9 +16,9 @@ import {
   withoutSupporter,
   wouldCycle,
 } from "../state/supportGraph";
-import { rgbCss } from "../views/classColors";
 import { maskColours } from "../views/objectColors";
 import { maskStyle } from "../views/photo/maskStyle";
+import { rgbCss } from "../views/rgb";
 import { boxConfidence } from "./boxConfidence";
 import { objectMesh } from "./objectMesh";
 import { objectSource } from "./objectSource";

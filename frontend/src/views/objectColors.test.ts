@@ -1,8 +1,8 @@
 // Object colours: every object of a crowded scene its own colour, the same after objects are
 // added, and class colouring gives objects of one class one colour.
 import { describe, expect, it } from "vitest";
-import { classRgb, type Rgb } from "./classColors";
-import { maskColours, objectColours } from "./objectColors";
+import { classColours, maskColours, objectColours } from "./objectColors";
+import type { Rgb } from "./rgb";
 
 const distance = (a: Rgb, b: Rgb) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 
@@ -14,6 +14,13 @@ function closest(colours: Map<string, Rgb>): number {
   });
   return min;
 }
+
+const hue = ([r, g, b]: Rgb) => {
+  const max = Math.max(r, g, b);
+  const span = max - Math.min(r, g, b);
+  const h = max === r ? (g - b) / span : max === g ? 2 + (b - r) / span : 4 + (r - g) / span;
+  return (h * 60 + 360) % 360;
+};
 
 const ids = (n: number, prefix = "o") =>
   Array.from({ length: n }, (_, i) => ({ id: `${prefix}${i}` }));
@@ -33,12 +40,6 @@ describe("object colours", () => {
   });
 
   it("gives the detector's d1, d2 ... hues apart from the pipeline's o0, o1 ... beside them", () => {
-    const hue = ([r, g, b]: Rgb) => {
-      const max = Math.max(r, g, b);
-      const span = max - Math.min(r, g, b);
-      const h = max === r ? (g - b) / span : max === g ? 2 + (b - r) / span : 4 + (r - g) / span;
-      return (h * 60 + 360) % 360;
-    };
     const colours = [...objectColours([...ids(6), ...ids(4, "d").slice(1)]).values()];
     colours.forEach((a, i) => {
       for (const b of colours.slice(i + 1)) {
@@ -62,9 +63,28 @@ describe("object colours", () => {
       { id: "c", class: "table" as const },
     ];
     const byClass = maskColours(objects, "class");
-    expect(byClass.get("a")).toEqual(classRgb("chair"));
+    expect(byClass.get("a")).toEqual(classColours(["chair"]).get("chair"));
     expect(byClass.get("b")).toEqual(byClass.get("a"));
+    expect(byClass.get("c")).not.toEqual(byClass.get("a"));
     const byObject = maskColours(objects, "object");
     expect(byObject.get("b")).not.toEqual(byObject.get("a"));
+  });
+
+  it("gives the classes of a scene hues apart, each its own colour where none is near", () => {
+    // Books, bookshelf and shelves (one green each before) and sofa beside picture.
+    const crowded = ["books", "bookshelf", "shelves", "sofa", "picture", "chair", "table", "lamp"];
+    const colours = classColours(crowded);
+    const hues = [...colours.values()].map(hue);
+    hues.forEach((a, i) => {
+      for (const b of hues.slice(i + 1)) {
+        const d = Math.abs(a - b);
+        expect(Math.min(d, 360 - d)).toBeGreaterThan(20);
+      }
+    });
+    // The most common class keeps the colour it has alone; the order given does not matter.
+    expect(colours.get("chair")).toEqual(classColours(["chair"]).get("chair"));
+    expect(classColours([...crowded].reverse())).toEqual(colours);
+    // A class from outside the vocabulary still gets a colour of its own.
+    expect(classColours(["chair", "hammock"]).get("hammock")).not.toEqual(colours.get("chair"));
   });
 });

@@ -1,8 +1,10 @@
-// One colour per object: different for every object of a scene (up to the palette's size) and
-// stable (from the object's id, so it keeps its colour across revisions and reloads, and
-// objects added later do not change the colours of those already there).
-import type { SceneObject } from "@holiscene/schema";
-import { classRgb, hslToRgb, type Rgb } from "./classColors";
+// The masks' colours. By object (the default): one colour per object, different for every
+// object of a scene (up to the palette's size) and stable (from the object's id, so it keeps
+// its colour across revisions and reloads, and objects added later do not change the colours
+// of those already there). By class: one colour per class, its own in every scene unless
+// another class of the scene has a colour too near it.
+import { NYU40_CLASSES, type SceneObject } from "@holiscene/schema";
+import { hslToRgb, type Rgb } from "./rgb";
 
 const GOLDEN_ANGLE = 137.508;
 const LIGHTNESS = [0.55, 0.38];
@@ -53,16 +55,19 @@ function preferredSlot(id: string): number {
 }
 
 /**
- * Each object's colour, in document order: its id's slot of the palette, unless an earlier
- * object has that slot or one of a near hue (the detector's d2 beside the pipeline's o2);
- * then the free slot farthest in hue from every slot given (the lowest of equals). New
- * objects come last, so they never move others. Past 32 objects, slots are shared.
+ * A palette slot for each key, in the order given: its preferred slot, unless an earlier key
+ * has that slot or one of a near hue (the detector's d2 beside the pipeline's o2); then the
+ * free slot farthest in hue from every slot given (the lowest of equals). Keys coming later
+ * never move earlier ones. Past 32 keys, slots are shared.
  */
-export function objectColours(objects: readonly Pick<SceneObject, "id">[]): Map<string, Rgb> {
+function distinctSlots(
+  keys: readonly string[],
+  preferred: (key: string) => number,
+): Map<string, number> {
   const used = new Set<number>();
-  const colours = new Map<string, Rgb>();
-  for (const { id } of objects) {
-    let slot = preferredSlot(id);
+  const slots = new Map<string, number>();
+  for (const key of keys) {
+    let slot = preferred(key);
     if (used.has(slot) || nearestGiven(slot, used) < NEAR_HUE) {
       let best = -1;
       for (let k = 0; k < SLOTS; k++) {
@@ -74,9 +79,44 @@ export function objectColours(objects: readonly Pick<SceneObject, "id">[]): Map<
       }
     }
     used.add(slot);
-    colours.set(id, PALETTE[slot] as Rgb);
+    slots.set(key, slot);
   }
-  return colours;
+  return slots;
+}
+
+const paletteColours = (slots: Map<string, number>): Map<string, Rgb> =>
+  new Map([...slots].map(([key, slot]) => [key, PALETTE[slot] as Rgb]));
+
+/** Each object's colour, in document order (new objects come last, so they never move others). */
+export function objectColours(objects: readonly Pick<SceneObject, "id">[]): Map<string, Rgb> {
+  return paletteColours(
+    distinctSlots(
+      objects.map((o) => o.id),
+      preferredSlot,
+    ),
+  );
+}
+
+const classIndex = (cls: string) => (NYU40_CLASSES as readonly string[]).indexOf(cls);
+
+/**
+ * The colour of each class of a scene. A class prefers the slot of its NYU-40 number, so it
+ * looks the same from scene to scene; the classes choose in that order (NYU-40 lists the most
+ * common first), so where two are too near in hue (books beside a bookshelf) the later gives way. A class outside the
+ * vocabulary (as imported) comes after them, by name.
+ */
+export function classColours(classes: Iterable<string>): Map<string, Rgb> {
+  const order = (cls: string) => {
+    const index = classIndex(cls);
+    return index < 0 ? NYU40_CLASSES.length : index;
+  };
+  const unique = [...new Set(classes)].sort((a, b) => order(a) - order(b) || a.localeCompare(b));
+  return paletteColours(
+    distinctSlots(unique, (cls) => {
+      const index = classIndex(cls);
+      return (index < 0 ? idHash(cls) : index) % SLOTS;
+    }),
+  );
 }
 
 export type Colouring = "object" | "class";
@@ -87,5 +127,6 @@ export function maskColours(
   colouring: Colouring,
 ): Map<string, Rgb> {
   if (colouring === "object") return objectColours(objects);
-  return new Map(objects.map((o) => [o.id, classRgb(o.class)]));
+  const byClass = classColours(objects.map((o) => o.class));
+  return new Map(objects.map((o) => [o.id, byClass.get(o.class) as Rgb]));
 }

@@ -3,7 +3,8 @@
 import { el } from "../../dom";
 import { classText } from "../../state/classNames";
 import type { SceneSession } from "../../state/sceneSession";
-import { classCss } from "../classColors";
+import { classColours } from "../objectColors";
+import { rgbCss } from "../rgb";
 import { type MaskStyleSetting, maskStyle } from "./maskStyle";
 
 /** The legend (hidden while colouring by object) and how to stop updating it. */
@@ -24,12 +25,16 @@ export function classLegend(
     for (const object of session.objects)
       counts.set(object.class, (counts.get(object.class) ?? 0) + 1);
     const classes = [...counts.keys()].sort((a, b) => classText(a).localeCompare(classText(b)));
+    const colours = classColours(classes);
     element.replaceChildren(
       ...classes.map((cls) =>
         el(
           "span",
           { className: "legend-item", attrs: { "data-class": cls } },
-          el("span", { className: "swatch", attrs: { style: `background: ${classCss(cls)}` } }),
+          el("span", {
+            className: "swatch",
+            attrs: { style: `background: ${rgbCss(colours.get(cls) ?? [128, 128, 128])}` },
+          }),
           `${classText(cls)} (${counts.get(cls)})`,
         ),
       ),

@@ -6,7 +6,7 @@ import type { SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
 import { objectClassText } from "../../state/classNames";
 import { type ShownSupport, withoutSupporter } from "../../state/supportGraph";
-import { type Rgb, rgbCss } from "../classColors";
+import { type Rgb, rgbCss } from "../rgb";
 import { type Frame, strokeWidth } from "./arrowGeometry";
 import { clampToRect, drawingRect, type Rect } from "./cornerHandles";
 import { type LabelRequest, placeLabels } from "./labelPlacement";

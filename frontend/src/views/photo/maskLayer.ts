@@ -4,7 +4,7 @@
 // colour changed.
 import type { SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
-import { type Rgb, rgbCss } from "../classColors";
+import { type Rgb, rgbCss } from "../rgb";
 import { maskPathData, type Region } from "./maskRaster";
 
 export const GREY: Rgb = [128, 128, 128];

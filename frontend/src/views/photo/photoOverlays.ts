@@ -4,8 +4,8 @@
 import type { SceneObject } from "@holiscene/schema";
 import { placeChildren } from "../../dom";
 import type { SceneSession } from "../../state/sceneSession";
-import type { Rgb } from "../classColors";
 import { maskColours } from "../objectColors";
+import type { Rgb } from "../rgb";
 import { type Frame, strokeWidth } from "./arrowGeometry";
 import { renderArrows } from "./arrowLayer";
 import { drawnLabelTags, renderLabels } from "./labelLayer";

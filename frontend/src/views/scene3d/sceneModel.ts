@@ -6,7 +6,8 @@
 import type { SceneObject } from "@holiscene/schema";
 import * as THREE from "three";
 import { GLTFLoader } from "three/examples/jsm/loaders/GLTFLoader.js";
-import { classHex, type Rgb, rgbHex } from "../classColors";
+import { classColours } from "../objectColors";
+import { type Rgb, rgbHex } from "../rgb";
 import { BakedGeometry, type BakedPart, solidWinding } from "./bakedMesh";
 
 const FLOOR_COLOUR = 0xb9b4aa;
@@ -70,7 +71,7 @@ export class SceneModel {
         const given = id === null ? undefined : colours.get(id);
         const colour =
           cls !== undefined
-            ? new THREE.Color(given ? rgbHex(given) : classHex(cls))
+            ? new THREE.Color(rgbHex(given ?? classColours([cls]).get(cls) ?? [128, 128, 128]))
             : (own ?? new THREE.Color(FLOOR_COLOUR));
         const winding = solidWinding(node.geometry, node.matrixWorld);
         const baked = winding === 0 ? "others" : "solids";
