@@ -7,6 +7,7 @@
 import type { SceneDocument, SupportRelation } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getRevisions, getScene, postEdits, seedScene, supportOf, T3D_5 } from "../helpers/api";
+import { draftKeys, keptDraft } from "../helpers/drafts";
 import { arrowOf, clickArrow, clickObject, openScene, setAuthor } from "../helpers/photo";
 import { screenshotPath } from "../helpers/screenshots";
 
@@ -109,10 +110,7 @@ test("edits whose save failed survive a closed tab and are offered back", async 
   await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "error", {
     timeout: 20_000,
   });
-  const draft = await page.evaluate(
-    (id) => localStorage.getItem(`holiscene.draft.${id}`),
-    seeded.scene_id,
-  );
+  const draft = await keptDraft(page, seeded.scene_id);
   expect(draft).toContain('"child":"o3"');
   // Closing the tab with the edit unsaved: the browser asks first; staying keeps the page.
   const asked = page.waitForEvent("dialog");
@@ -149,11 +147,7 @@ test("edits whose save failed survive a closed tab and are offered back", async 
     source: "manual",
     author: "e2e-crash",
   });
-  const left = await again.evaluate(
-    (id) => Object.keys(localStorage).filter((k) => k.startsWith(`holiscene.draft.${id}`)),
-    seeded.scene_id,
-  );
-  expect(left).toEqual([]);
+  expect(await draftKeys(again, seeded.scene_id)).toEqual([]);
 });
 
 test("the history shows what each revision changed and reverts to any of them", async ({

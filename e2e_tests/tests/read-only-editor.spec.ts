@@ -6,6 +6,7 @@
 import type { SceneDocument } from "@holiscene/schema";
 import { type Dialog, expect, type Page, test } from "@playwright/test";
 import { getScene, seedScene, T3D_5 } from "../helpers/api";
+import { keptDraft } from "../helpers/drafts";
 import { chooseTool } from "../helpers/objects";
 import { openScene, slowAutosave } from "../helpers/photo";
 import { seedFolder, synthesize } from "../helpers/scene3d";
@@ -63,8 +64,8 @@ test("a save refused by the workflow lock keeps the edit, shows why, and is save
   await page.locator("body").click({ position: { x: 5, y: 5 } });
   await page.keyboard.press("p");
   await expect(page.getByTestId("edit-message")).toContainText("Brush: Submitted for review");
-  const kept = await page.evaluate((key) => localStorage.getItem(key), `holiscene.draft.${id}`);
-  expect(JSON.parse(kept ?? "{}").edits).toEqual([
+  const kept = await keptDraft(page, id);
+  expect(JSON.parse(kept || "{}").edits).toEqual([
     expect.objectContaining({ child: support.child, parent: target }),
   ]);
   expect((await getScene(request, id)).revision).toBe(doc.revision);

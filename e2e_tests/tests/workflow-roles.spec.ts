@@ -7,7 +7,13 @@
 // until the reviewer sends it back. Runs on its own server, where login is required.
 import path from "node:path";
 import type { SceneDocument, SceneWorkflow } from "@holiscene/schema";
-import { type APIRequestContext, expect, type Page, test } from "@playwright/test";
+import {
+  type APIRequestContext,
+  expect,
+  type Page,
+  type PlaywrightWorkerArgs,
+  test,
+} from "@playwright/test";
 import { clickObject } from "../helpers/photo";
 import { screenshotPath } from "../helpers/screenshots";
 import {
@@ -96,6 +102,12 @@ async function expectReadOnly(page: Page, sceneId: string, title: string): Promi
   expect(after.revision).toBe(before.revision);
 }
 
+/** Makes API request contexts (for apiAs). */
+const requestContexts =
+  (playwright: PlaywrightWorkerArgs["playwright"]) =>
+  (options: { baseURL: string; extraHTTPHeaders?: Record<string, string> }) =>
+    playwright.request.newContext(options);
+
 async function openScene(page: Page, sceneId: string): Promise<void> {
   await page.goto(`/#/scenes/${sceneId}`);
   // The scene page loads the photo, the 3D scene and the model: slow on a busy machine.
@@ -107,8 +119,7 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   page,
   playwright,
 }) => {
-  const newContext = (options: { baseURL: string; extraHTTPHeaders?: Record<string, string> }) =>
-    playwright.request.newContext(options);
+  const newContext = requestContexts(playwright);
   const admin = await apiAs(newContext, ADMIN);
 
   // Nothing is reachable without logging in on this server.
@@ -415,5 +426,64 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId("state-count-submitted")).toHaveText("1", { timeout: 20_000 });
   await expect(page.getByTestId("state-count-in_annotation")).toHaveText("0");
   await annotator.dispose();
+  await admin.dispose();
+});
+
+test("logging out saves the last edit first; unsaved edits stay with their author in a shared browser", async ({
+  page,
+  playwright,
+}) => {
+  const newContext = requestContexts(playwright);
+  const admin = await apiAs(newContext, ADMIN);
+  const author = { name: "olga", password: "willow-anchor-48-dune" };
+  const made = await admin.post("/api/users", { data: { ...author, role: "annotator" } });
+  expect(made.status(), await made.text()).toBe(201);
+  const sceneId = await importFolder(admin, synthesize(14), "img.png", "shared browser room");
+
+  await page.goto("/");
+  await logIn(page, author.name, author.password);
+  await openScene(page, sceneId);
+  await page.getByTestId("workflow-take").click();
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+  // An edit, and at once Log out: it is saved under her session before it ends.
+  const first = await correctASupporterUnsaved(page, admin, sceneId);
+  await logOut(page);
+  const saved = (await (await admin.get(`/api/scenes/${sceneId}`)).json()) as SceneDocument;
+  expect(saved.scene.supports?.find((s) => s.child === first.child)).toMatchObject({
+    parent: first.target,
+    author: author.name,
+  });
+
+  // An edit the server never gets (every save fails) stays in this browser as her draft.
+  await logIn(page, author.name, author.password);
+  await page.route("**/api/scenes/*/edits", (route) => route.abort("failed"));
+  await openScene(page, sceneId);
+  const second = await correctASupporterUnsaved(page, admin, sceneId);
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "error", {
+    timeout: 20_000,
+  });
+  await logOut(page);
+  await page.unroute("**/api/scenes/*/edits");
+
+  // The admin logs in on the same browser: Olga's unsaved edit is not offered to him.
+  await logIn(page, ADMIN.name, ADMIN.password);
+  await openScene(page, sceneId);
+  await expect(page.getByTestId("recovery-banner")).toBeHidden();
+  await expect(page.getByTestId("save-status")).not.toHaveAttribute("data-state", "dirty");
+  await logOut(page);
+
+  // Back as Olga: it is offered to her, and restoring it saves it under her name.
+  await logIn(page, author.name, author.password);
+  await openScene(page, sceneId);
+  const banner = page.getByTestId("recovery-banner");
+  await expect(banner).toBeVisible();
+  await expect(banner).toContainText(second.child);
+  await page.keyboard.press("Shift+U");
+  await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
+  const restored = (await (await admin.get(`/api/scenes/${sceneId}`)).json()) as SceneDocument;
+  expect(restored.scene.supports?.find((s) => s.child === second.child)).toMatchObject({
+    parent: second.target,
+    author: author.name,
+  });
   await admin.dispose();
 });

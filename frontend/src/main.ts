@@ -8,6 +8,7 @@ import { button, el } from "./dom";
 import { confirmLeave, parseRoute } from "./router";
 import { bindAuthorInput, setAuthorFallback } from "./state/author";
 import { getCurrentUser, onCurrentUserChange, setCurrentUser } from "./state/currentUser";
+import { savesLanded } from "./state/savesInFlight";
 import { mountDashboardPage } from "./views/dashboard/dashboardPage";
 import { mountShortcutHelp } from "./views/help/shortcutHelp";
 import { mountLoginPage } from "./views/login/loginPage";
@@ -122,6 +123,11 @@ function loggedIn(user: CurrentUser): void {
 
 async function logOut(): Promise<void> {
   if (!confirmLeave()) return;
+  // Leave the page first: it sends its last edits, which must land while the session holds
+  // (what does not land stays in this person's drafts for their next visit).
+  dispose();
+  dispose = () => {};
+  await savesLanded();
   try {
     await authApi.logout();
   } finally {

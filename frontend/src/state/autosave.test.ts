@@ -2,7 +2,7 @@
 // after the idle time, waits again after each edit, stops on a conflict, retries a failed save
 // but not a refused one, holds while asked to or while the scene is read only, and saves once
 // more when the page leaves, and sends a save refused for an ended session once the person has
-// logged in again.
+// logged in again (never under someone else's session).
 import { afterEach, beforeEach, describe, expect, it, vi } from "vitest";
 import { startAutosave } from "./autosave";
 import { setCurrentUser } from "./currentUser";
@@ -13,6 +13,8 @@ class StandIn {
   saveState: SaveState = { kind: "clean" };
   holdAutosave = false;
   editable = true;
+  /** Whose edits (null: drafts stored before they had owners). */
+  drafts = { owner: null as string | null };
   get savable() {
     return this.pending.length > 0;
   }
@@ -109,6 +111,23 @@ describe("autosave", () => {
     setCurrentUser(null); // logging out sends nothing
     vi.advanceTimersByTime(60_000);
     expect(session.saves).toBe(2);
+  });
+
+  it("never saves one person's edits under another's session", () => {
+    session.drafts.owner = "ann";
+    setCurrentUser({ name: "ann", role: "annotator", local_mode: false });
+    session.edit();
+    vi.advanceTimersByTime(1000);
+    expect(session.saves).toBe(1);
+    session.settle({ kind: "error", message: "log in first", retry: false });
+    // Bob logs in over Ann's page: her edits wait for her, neither sent now nor on leaving.
+    setCurrentUser({ name: "bob", role: "admin", local_mode: false });
+    session.edit();
+    vi.advanceTimersByTime(60_000);
+    stop();
+    stop = () => {};
+    expect(session.saves).toBe(1);
+    setCurrentUser(null);
   });
 
   it("sends nothing while the scene is read only, and saves the kept edits once it is not", () => {

@@ -4,7 +4,7 @@
 // retried, one the server refused (e.g. not allowed) waits for the user's next edit, or for
 // the scene to be editable again, or for the person to log in again (a save refused because
 // the session ended is sent once they have). Nothing is sent while the scene is read only.
-import { onCurrentUserChange } from "./currentUser";
+import { getCurrentUser, onCurrentUserChange } from "./currentUser";
 import type { SceneSession } from "./sceneSession";
 
 export interface AutosaveOptions {
@@ -43,9 +43,14 @@ export function startAutosave(session: SceneSession, options: AutosaveOptions): 
     if (timer !== null) clearTimeout(timer);
     timer = null;
   };
+  // Only under the session of the person whose edits these are: someone else logging in
+  // over the page (or after a log-out) must not save them under their name.
+  const ownerSignedIn = () =>
+    session.drafts.owner === null || getCurrentUser()?.name === session.drafts.owner;
   const canSave = () => {
     const state = session.saveState.kind;
     return (
+      ownerSignedIn() &&
       session.savable &&
       session.editable &&
       !session.holdAutosave &&

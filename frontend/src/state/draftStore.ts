@@ -1,9 +1,11 @@
 // Unsaved edits kept in localStorage until the server confirms them, so a closed tab or a
 // crash loses nothing: the next visit to the scene offers them back. An object action the
 // server did not take (object edits are not drafts: each is saved at once) is kept beside them
-// until it is saved or the person drops it.
+// until it is saved or the person drops it. Each person's drafts are their own: whoever logs
+// in next in the same browser is not offered them (nor could save them under their name).
 
 import { browserStorage } from "./browserStorage";
+import { getCurrentUser } from "./currentUser";
 import type { LayoutState } from "./layoutDraft";
 import type { ObjectEdit } from "./objectEditor";
 import type { Edit } from "./supportGraph";
@@ -33,9 +35,18 @@ export interface FailedObjectAction {
 /** Whether a draft holds anything unsaved. */
 const hasChanges = (draft: Draft) => draft.edits.length > 0 || !!draft.layout;
 
-const key = (sceneId: string) => `holiscene.draft.${sceneId}`;
-const recoveredKey = (sceneId: string) => `holiscene.draft.${sceneId}.recovered`;
-const failedKey = (sceneId: string) => `holiscene.draft.${sceneId}.failedObjectAction`;
+/** Where a scene's drafts are kept: per person (null: as stored before drafts had owners). */
+function keysOf(owner: string | null, sceneId: string) {
+  const base =
+    owner === null
+      ? `holiscene.draft.${sceneId}`
+      : `holiscene.drafts/${encodeURIComponent(owner)}/${sceneId}`;
+  return {
+    draft: base,
+    recovered: `${base}.recovered`,
+    failed: `${base}.failedObjectAction`,
+  };
+}
 
 function isDraft(value: unknown): value is Draft {
   if (!value || typeof value !== "object") return false;
@@ -85,7 +96,20 @@ function isLayoutState(value: unknown): value is LayoutState {
 }
 
 export class DraftStore {
-  constructor(private readonly storage: Storage | null = browserStorage()) {}
+  /** `owner`: whose drafts these are (the signed-in person when the scene was opened). */
+  constructor(
+    private readonly storage: Storage | null = browserStorage(),
+    readonly owner: string | null = getCurrentUser()?.name ?? null,
+  ) {}
+
+  private keys(sceneId: string) {
+    return keysOf(this.owner, sceneId);
+  }
+
+  /** The keys of drafts stored before they had owners: read once, by whoever comes first. */
+  private legacyKeys(sceneId: string) {
+    return this.owner === null ? null : keysOf(null, sceneId);
+  }
 
   /** The value stored under `name` if it is one (null: none, or not one). */
   private readAs<T>(name: string, valid: (value: unknown) => value is T): T | null {
@@ -118,11 +142,11 @@ export class DraftStore {
 
   /** Keep the scene's unsaved edits (none: forget them). */
   save(draft: Draft): void {
-    this.write(key(draft.sceneId), draft);
+    this.write(this.keys(draft.sceneId).draft, draft);
   }
 
   load(sceneId: string): Draft | null {
-    return this.read(key(sceneId));
+    return this.read(this.keys(sceneId).draft);
   }
 
   /**
@@ -130,26 +154,39 @@ export class DraftStore {
    * (so the new visit's own edits cannot overwrite them before they decide).
    */
   takeForRecovery(sceneId: string): Draft | null {
-    const earlier = this.read(recoveredKey(sceneId));
-    const latest = this.read(key(sceneId));
-    const merged = mergeDrafts(earlier, latest);
-    this.write(recoveredKey(sceneId), merged);
-    this.write(key(sceneId), null);
+    const keys = this.keys(sceneId);
+    const legacy = this.legacyKeys(sceneId);
+    let merged: Draft | null = null;
+    for (const name of [legacy?.recovered, legacy?.draft, keys.recovered, keys.draft])
+      if (name) merged = mergeDrafts(merged, this.read(name));
+    this.write(keys.recovered, merged);
+    this.write(keys.draft, null);
+    if (legacy) {
+      this.write(legacy.recovered, null);
+      this.write(legacy.draft, null);
+    }
     return merged;
   }
 
   /** The user restored or discarded the set-aside edits. */
   clearRecovered(sceneId: string): void {
-    this.write(recoveredKey(sceneId), null);
+    this.write(this.keys(sceneId).recovered, null);
   }
 
   /** Keep the scene's failed object action (null: it was saved or dropped). */
   saveFailedAction(sceneId: string, action: FailedObjectAction | null): void {
-    this.store(failedKey(sceneId), action);
+    this.store(this.keys(sceneId).failed, action);
   }
 
   loadFailedAction(sceneId: string): FailedObjectAction | null {
-    return this.readAs(failedKey(sceneId), isFailedObjectAction);
+    const own = this.readAs(this.keys(sceneId).failed, isFailedObjectAction);
+    const legacy = this.legacyKeys(sceneId);
+    if (own || !legacy) return own;
+    // One kept before actions had owners becomes this person's.
+    const kept = this.readAs(legacy.failed, isFailedObjectAction);
+    if (kept) this.saveFailedAction(sceneId, kept);
+    this.store(legacy.failed, null);
+    return kept;
   }
 }
 

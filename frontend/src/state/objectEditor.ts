@@ -28,6 +28,7 @@ import { getAuthor } from "./author";
 import { HistoryKeeper } from "./editHistory";
 import { lockText } from "./editLock";
 import { predictDocument } from "./objectPrediction";
+import { trackSave } from "./savesInFlight";
 import type { SceneSession } from "./sceneSession";
 import type { Undoable } from "./undoOrder";
 
@@ -427,6 +428,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     };
     const next = this.queue.then(run, run);
     this.queue = next.catch(() => undefined);
+    trackSave(next);
     return next;
   }
 

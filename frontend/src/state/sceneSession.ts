@@ -17,6 +17,7 @@ import { type Draft, DraftStore } from "./draftStore";
 import { type HistoryChange, HistoryKeeper } from "./editHistory";
 import { type EditLock, type EditPermission, editLock, lockText } from "./editLock";
 import type { LayoutDraft, LayoutState } from "./layoutDraft";
+import { trackSave } from "./savesInFlight";
 import {
   describeEdit,
   type Edit,
@@ -459,7 +460,13 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
    * Send the unsaved edits (and the room layout's), based on the loaded revision. They are
    * kept unless saved.
    */
-  async save(author: string): Promise<void> {
+  save(author: string): Promise<void> {
+    const sending = this.send(author);
+    trackSave(sending);
+    return sending;
+  }
+
+  private async send(author: string): Promise<void> {
     if (this.saveState.kind === "saving" || !this.editable) return;
     const sent = this.pending;
     const layoutEdit = this.layout?.edit() ?? null;
