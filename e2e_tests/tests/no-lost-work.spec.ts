@@ -282,6 +282,7 @@ test("two people edit one scene: the second gets a conflict, merges or reloads, 
   await expect(alice.getByTestId("arrow-o2")).toHaveAttribute("data-pending", "true");
   await alice.waitForTimeout(3000); // longer than the autosave delay: held for her review
   await expect(alice.getByTestId("save-status")).toHaveAttribute("data-state", "dirty");
+  await expect(alice.getByTestId("save-status")).toContainText("review, then Save (Ctrl+S)");
   await alice.keyboard.press("Control+s");
   await autosaved(alice);
   doc = await getScene(request, seeded.scene_id);

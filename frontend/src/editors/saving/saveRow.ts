@@ -1,14 +1,33 @@
 // The save bar's first line: the save status, Undo / Redo (of the last action, whichever
 // history it is in, see state/undoOrder.ts), Discard and Save.
 import { button, el } from "../../dom";
+import { autosaveDelay } from "../../state/autosave";
 import { plural, type SaveState, type SceneSession } from "../../state/sceneSession";
 import { latestRedo, latestUndo, type Undoable } from "../../state/undoOrder";
+
+/** How unsaved edits will be saved: by themselves, or only when the person says so (after a
+ * conflict's "Reload: review first", with autosave turned off in this browser, or never while
+ * no room fits the moved corners). */
+export type SavingMode = "auto" | "held" | "off" | "unfit";
+
+export function savingMode(session: SceneSession): SavingMode {
+  if (!session.savable) return "unfit";
+  if (session.holdAutosave) return "held";
+  return autosaveDelay() === 0 ? "off" : "auto";
+}
+
+const DIRTY_TAIL: Record<SavingMode, string> = {
+  auto: "autosaving",
+  held: "held after the reload: review, then Save (Ctrl+S)",
+  off: "autosave is off here: Save (Ctrl+S)",
+  unfit: "not saved while no room fits the moved corners",
+};
 
 export function statusText(
   state: SaveState,
   pending: number,
   revision: number,
-  savable: boolean,
+  mode: SavingMode,
   objectAction: string | null,
   objectFailed: string | null = null,
 ): string {
@@ -19,7 +38,7 @@ export function statusText(
     if (objectFailed !== null) return `Not saved: ${objectFailed} (above the photo)`;
   }
   const failedToo = objectFailed === null ? "" : ` · not saved: ${objectFailed}`;
-  return supportStatus(state, pending, revision, savable) + failedToo;
+  return supportStatus(state, pending, revision, mode) + failedToo;
 }
 
 /** The support and layout edits' part of the status. */
@@ -27,16 +46,13 @@ function supportStatus(
   state: SaveState,
   pending: number,
   revision: number,
-  savable: boolean,
+  mode: SavingMode,
 ): string {
   switch (state.kind) {
     case "clean":
       return `Revision ${revision} · no unsaved changes`;
     case "dirty":
-      return (
-        `${plural(pending, "unsaved change")} on revision ${revision} · ` +
-        (savable ? "autosaving" : "not saved while no room fits the moved corners")
-      );
+      return `${plural(pending, "unsaved change")} on revision ${revision} · ${DIRTY_TAIL[mode]}`;
     case "saving":
       return "Saving…";
     case "saved":
@@ -117,7 +133,7 @@ export function saveRow({
       state,
       unsaved,
       session.doc.revision,
-      session.savable,
+      savingMode(session),
       action,
       failed,
     );

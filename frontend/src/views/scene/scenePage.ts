@@ -6,7 +6,9 @@ import { ApiError } from "../../api/errors";
 import { isFinished, pollJob } from "../../api/jobs";
 import { button, el } from "../../dom";
 import { warnBeforeLeaving } from "../../editors/saving/leaveWarning";
+import { getAuthor } from "../../state/author";
 import { titleUnlessLocked } from "../../state/editLock";
+import { saveDone } from "../../state/objectEditor";
 import { SceneSession } from "../../state/sceneSession";
 import { jobProgress, waitingText } from "../common/jobProgress";
 import { mayHaveGlb } from "../scene3d/viewportObjects";
@@ -97,10 +99,29 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
       rerun.title = titleUnlessLocked(RERUN_TITLE, session.lock);
     };
     showRerun();
-    rerun.onclick = () => {
-      const unsaved = session.unsavedCount;
-      if (unsaved > 0 && !window.confirm(`Discard ${unsaved} unsaved change(s) and re-run?`))
-        return;
+    // The re-run keeps what people set, so unsaved edits are saved first, not dropped; if
+    // they cannot be (a conflict, the server away), nothing runs and the save bar says why.
+    rerun.onclick = async () => {
+      if (session.unsavedCount > 0 || session.saveState.kind === "saving") {
+        rerun.disabled = true;
+        await saveDone(session); // an autosave on its way
+        if (session.unsavedCount > 0) await session.save(getAuthor());
+        rerun.disabled = !session.editable;
+        if (session.unsavedCount > 0) {
+          message.replaceChildren(
+            el("p", {
+              className: "alert alert--error",
+              testid: "rerun-refused",
+              attrs: { role: "alert" },
+              text:
+                "The pipeline was not run: your unsaved changes could not be saved first " +
+                "(the save bar under Support relations says why).",
+            }),
+          );
+          return;
+        }
+      }
+      message.replaceChildren();
       void runPipeline();
     };
   };
