@@ -151,6 +151,8 @@ async function dragAndSave(page: Page, doc: SceneDocument, label: string): Promi
   expect(revisions.at(-1)?.edits?.[0]?.kind).toBe("set_layout");
   await expect(page.getByTestId("scene-meta")).toContainText(`revision ${saved.revision}`);
   await expect(bar).toHaveAttribute("data-dirty", "false");
+  // The objects in 3D were placed in the old room: the 3D panel says so until re-placed.
+  await expect(page.getByTestId("placement-notice-text")).toContainText("the room moved");
   return saved;
 }
 
@@ -180,6 +182,7 @@ async function replaceObjects(page: Page, saved: SceneDocument, label: string): 
     (o, i) => JSON.stringify(o.box_3d) !== JSON.stringify(saved.scene.objects?.[i]?.box_3d),
   );
   expect(moved.length).toBeGreaterThan(0);
+  await expect(page.getByTestId("placement-notice")).toBeHidden();
   await nextFrames(page);
   await page.screenshot({ path: screenshotPath(`${label}-replaced.png`), fullPage: true });
 }

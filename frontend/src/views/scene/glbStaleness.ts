@@ -3,17 +3,17 @@
 // since, are not in it. Told alike by the Download menu (beside the file), the 3D panel's
 // notice (which counts from the revision that made the file) and the workflow bar (before a
 // submit or an accept, after which nobody can re-place the objects).
-import type { SceneDocument } from "@holiscene/schema";
+import type { Scene, SceneDocument } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { glbRevision } from "../../api/downloads";
 import { diffScenes } from "../../state/revisionDiff";
 import { changesSincePlacement, describeChanges } from "../scene3d/placementChanges";
 import { mayHaveGlb } from "../scene3d/viewportObjects";
 
-/** What a GLB made at revision `made` lacks of `current` ("" when nothing it shows changed). */
-export function glbLacks(made: SceneDocument, current: SceneDocument): string {
-  const objects = describeChanges(changesSincePlacement(made.scene.objects, current.scene.objects));
-  const moved = diffScenes(made.scene, current.scene).layoutChanged;
+/** What a GLB made from scene `made` lacks of `current` ("" when nothing it shows changed). */
+export function glbLacks(made: Scene, current: Scene): string {
+  const objects = describeChanges(changesSincePlacement(made.objects, current.objects));
+  const moved = diffScenes(made, current).layoutChanged;
   return [objects, moved ? "the room moved" : ""].filter((part) => part !== "").join(", ");
 }
 
@@ -23,7 +23,7 @@ export function glbStaleness(
   current: SceneDocument,
   editable = true,
 ): string | null {
-  const lacks = glbLacks(made, current);
+  const lacks = glbLacks(made.scene, current.scene);
   if (lacks === "") return null;
   const remedy = editable
     ? `"Re-place objects" in the 3D panel brings it up to date`
@@ -53,5 +53,5 @@ export async function glbOutOfDate(
   signal?: AbortSignal,
 ): Promise<string> {
   const made = await glbSourceRevision(sceneId, current, signal);
-  return made ? glbLacks(made, current) : "";
+  return made ? glbLacks(made.scene, current.scene) : "";
 }

@@ -1,14 +1,14 @@
-// The 3D panel's notice after object edits: the 3D scene was made by the last placement (or
-// pipeline) run, so objects added, removed or changed since (class, box, mask) are not in it
-// as they are now. The notice says which and offers "Re-place objects" (the layout editor's
-// placement job, with its progress).
+// The 3D panel's notice after edits: the 3D scene was made by the last placement (or
+// pipeline) run, so objects added, removed or changed since (class, box, mask), or a room
+// layout set since, are not in it as they are now. The notice says what and offers
+// "Re-place objects" (the layout editor's placement job, with its progress).
 import "./placementNotice.css";
 import { button, el } from "../../dom";
 import { replaceObjects } from "../../editors/replaceObjects";
 import type { SceneSession } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
-import { glbSourceRevision } from "../scene/glbStaleness";
-import { changesSincePlacement, describeChanges, newlyPlaced } from "./placementChanges";
+import { glbLacks, glbSourceRevision } from "../scene/glbStaleness";
+import { changesSincePlacement, newlyPlaced } from "./placementChanges";
 
 /** The notice, put in `panel` before `body`. Returns the function that removes it. */
 export function mountPlacementNotice(
@@ -37,25 +37,25 @@ export function mountPlacementNotice(
   );
   panel.insertBefore(notice, body);
 
-  // The objects the 3D scene shows were placed from: those of the revision that made the
-  // scene's scene.glb (asked for below; the loaded revision's until the answer), until a
-  // revision with new 3D boxes (a placement or pipeline run) arrives.
-  const loaded = session.objects;
+  // The scene the 3D view was placed from: the revision that made the scene's scene.glb
+  // (asked for below; the loaded revision until the answer), until a revision with new 3D
+  // boxes (a placement or pipeline run) arrives.
+  const loaded = session.doc.scene;
   let placed = loaded;
-  let previous = loaded;
+  let previous = loaded.objects;
   let running = false;
   let failure = "";
 
   const draw = () => {
     const hasRoom = session.doc.scene.layout?.corners_3d != null;
-    const changes = changesSincePlacement(placed, session.objects);
-    const summary = describeChanges(changes);
+    const changes = changesSincePlacement(placed.objects, session.objects);
+    const summary = glbLacks(placed, session.doc.scene);
     notice.hidden = !hasRoom || (summary === "" && !running && failure === "");
     text.textContent = failure
       ? `Could not re-place the objects: ${failure}`
       : running
         ? "Placing the objects in the room again…"
-        : `Objects changed since the 3D scene was made (${summary}):`;
+        : `Changed since the 3D scene was made (${summary}):`;
     replaceButton.disabled = running || !session.editable;
     replaceButton.hidden = running || summary === "";
     notice.dataset.changed = [...changes.added, ...changes.changed, ...changes.removed].join(" ");
@@ -73,7 +73,7 @@ export function mountPlacementNotice(
       });
       if (job.status === "failed") failure = job.error ?? "the placement job failed";
       else {
-        placed = session.objects;
+        placed = session.doc.scene;
         progress.element.hidden = true;
       }
     } catch (error) {
@@ -87,7 +87,7 @@ export function mountPlacementNotice(
 
   const unsubscribe = session.subscribe((change) => {
     if (change === "document") {
-      if (newlyPlaced(previous, session.objects)) placed = session.objects;
+      if (newlyPlaced(previous, session.objects)) placed = session.doc.scene;
       previous = session.objects;
     }
     if (change === "document" || change === "lock") draw();
@@ -97,7 +97,7 @@ export function mountPlacementNotice(
     .then((made) => {
       // Not when a placement has run meanwhile: its objects are the 3D scene's now.
       if (made === null || placed !== loaded) return;
-      placed = made.scene.objects;
+      placed = made.scene;
       draw();
     })
     .catch(() => {}); // without the answer the notice counts from the loaded revision
