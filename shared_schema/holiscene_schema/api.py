@@ -440,6 +440,12 @@ class ModelInfo(SchemaModel):
     metrics: dict[str, Any] = Field(default_factory=dict, description="The model's metrics.json")
 
 
+# A held-out figure on fewer labelled items than this decides little (one item can be a whole
+# share): a retrain better on so few is kept as a candidate, not made active by itself, and
+# the models page warns before anyone makes such a model active by hand.
+FEW_HELDOUT_ITEMS = 20
+
+
 class ModelEvent(SchemaModel):
     """One change of the active model: who made which model active, when."""
 

@@ -14,6 +14,7 @@ from pydantic import BaseModel, TypeAdapter
 from pydantic.json_schema import models_json_schema
 
 from .api import (
+    FEW_HELDOUT_ITEMS,
     Conflict,
     CurrentUser,
     Dashboard,
@@ -134,6 +135,7 @@ def render_schemas() -> dict[str, str]:
             "support_types": ["below", "behind"],
             "relation_model": relation_model_contract(),
             "detector_model": detector_contract(),
+            "retraining": {"few_heldout_items": FEW_HELDOUT_ITEMS},
         }
     )
     return out

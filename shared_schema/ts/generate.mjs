@@ -53,6 +53,7 @@ const vocabularyTs = [
   `export const SUPPORT_TYPES = ${JSON.stringify(vocabulary.support_types)} as const;`,
   `export const RELATION_MODEL = ${JSON.stringify(vocabulary.relation_model)} as const;`,
   `export const DETECTOR_MODEL = ${JSON.stringify(vocabulary.detector_model)} as const;`,
+  `export const RETRAINING = ${JSON.stringify(vocabulary.retraining)} as const;`,
   "",
 ].join("\n");
 

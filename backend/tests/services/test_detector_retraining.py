@@ -45,10 +45,13 @@ def _workbench(settings: Settings, default_detector: Path) -> Workbench:
 
 
 def _run(workbench: Workbench, config: DetectorRetrainConfig, author: str = "admin") -> Job:
-    """One detector retrain job, run to its end in this thread."""
+    """One detector retrain job, run to its end in this thread (a better detector made active
+    by itself whatever the number of held-out boxes)."""
     job = workbench.jobs.create_retrain("detector_retrain")
     retrain = workbench.retrain_detector_job(job.id, RetrainRequest(author=author))
+    assert retrain.promote_min_items == workbench.settings.promote_min_heldout_items
     retrain.config = config
+    retrain.promote_min_items = 1
     retrain.run()
     return workbench.jobs.get(job.id)
 

@@ -20,6 +20,7 @@ from holiscene.store import model_registry as registry_module
 from holiscene.store.model_registry import Registration, active_model_dir
 from holiscene.store.tables import ModelRow
 from holiscene_schema import Job, RetrainRequest
+from holiscene_schema.api import FEW_HELDOUT_ITEMS
 from sqlalchemy.orm import Session
 
 from ..conftest import wait_for_job
@@ -49,23 +50,36 @@ def workbench(settings: Settings, no_default_model: None) -> Iterator[Workbench]
     workbench.close()
 
 
-def _run(workbench: Workbench, config: TrainConfig, author: str = "admin") -> Job:
-    """One retrain job, run to its end in this thread."""
+def _run(
+    workbench: Workbench, config: TrainConfig, author: str = "admin", promote_min_items: int = 1
+) -> Job:
+    """One retrain job, run to its end in this thread (a better model made active by itself
+    whatever the number of held-out objects, unless `promote_min_items` says otherwise)."""
     job = workbench.jobs.create_retrain()
     retrain = workbench.retrain_job(job.id, RetrainRequest(author=author))
+    assert retrain.promote_min_items == workbench.settings.promote_min_heldout_items
     retrain.config = config
+    retrain.promote_min_items = promote_min_items
     retrain.run()
     return workbench.jobs.get(job.id)
 
 
 def test_a_new_model_is_made_active_only_when_it_does_better_on_the_held_out_scenes() -> None:
-    assert heldout_verdict([0.5, 0.2], None, None).status == "accepted"  # nothing to compare
-    assert heldout_verdict([0.5, 0.2], [0.4, 0.9], 1).promote  # the first score decides
-    assert heldout_verdict([0.5, 0.3], [0.5, 0.2], 1).promote  # the next breaks its tie
-    assert heldout_verdict([0.4, 0.9], [0.5, 0.2], 1).status == "rejected"
-    tie = heldout_verdict([0.5, 0.2], [0.5 + 1e-12, 0.2], 3)
+    enough = FEW_HELDOUT_ITEMS
+    assert heldout_verdict([0.5, 0.2], None, None, 4).status == "accepted"  # nothing to compare
+    assert heldout_verdict([0.5, 0.2], [0.4, 0.9], 1, enough).promote  # the first score decides
+    assert heldout_verdict([0.5, 0.3], [0.5, 0.2], 1, enough).promote  # the next breaks its tie
+    assert heldout_verdict([0.4, 0.9], [0.5, 0.2], 1, enough).status == "rejected"
+    tie = heldout_verdict([0.5, 0.2], [0.5 + 1e-12, 0.2], 3, enough)
     assert (tie.status, tie.promote) == ("candidate", False)
     assert tie.note == "the same held-out scores as v3, which stays active"
+    # Better on a handful of items only: kept as a candidate, the active model stays.
+    few = heldout_verdict([0.75, 0.2], [0.5, 0.2], 2, 4)
+    assert (few.status, few.promote) == ("candidate", False)
+    assert few.note == (
+        "better on 4 held-out items only, too few to tell it from v2, which stays active"
+    )
+    assert heldout_verdict([0.25, 0.2], [0.5, 0.2], 2, 4).status == "rejected"
 
 
 def test_only_supports_set_by_people_are_labels(workbench: Workbench) -> None:
@@ -88,15 +102,26 @@ def test_retrain_promotes_a_better_model_and_refuses_a_worse_one(workbench: Work
         action="seed",
     )
 
-    # A trained one beats it on the held-out scenes: registered and made active.
+    # A trained one beats it, but on fewer held-out objects than an automatic switch needs:
+    # kept as a candidate, the active model stays.
+    few_job = _run(workbench, TINY, author="alice", promote_min_items=10_000)
+    few = workbench.models.get(few_job.result_model_id or "")
+    assert (few.version, few.status, few.active) == (2, "candidate", False), few_job.log
+    assert few.note == (
+        f"better on {few.heldout_items} held-out items only, too few to tell it from v1, "
+        "which stays active"
+    )
+    assert workbench.models.active().id == bad.id
+
+    # On enough held-out objects it is registered and made active.
     good_job = _run(workbench, TINY, author="alice")
     assert good_job.status == "succeeded", good_job.error
     good = workbench.models.get(good_job.result_model_id or "")
-    assert (good.version, good.status, good.active, good.parent_id) == (2, "accepted", True, bad.id)
+    assert (good.version, good.status, good.active, good.parent_id) == (3, "accepted", True, bad.id)
     assert good.heldout_accuracy is not None and good.parent_heldout_accuracy is not None
     assert good.parent_heldout_accuracy == 0.0
     assert good.heldout_accuracy > 0.5, good_job.log
-    assert good_job.message and good_job.message.startswith("v2 is active")
+    assert good_job.message and good_job.message.startswith("v3 is active")
     assert "epoch 8" in good_job.log and "held-out accuracy" in good_job.log
     assert good_job.progress == 1.0
     assert active_model_dir(workbench.settings) == workbench.models.folder(good.id)
@@ -105,7 +130,7 @@ def test_retrain_promotes_a_better_model_and_refuses_a_worse_one(workbench: Work
     worse_job = _run(workbench, UNTRAINED)
     assert worse_job.status == "succeeded", worse_job.error
     worse = workbench.models.get(worse_job.result_model_id or "")
-    assert (worse.version, worse.status, worse.active) == (3, "rejected", False)
+    assert (worse.version, worse.status, worse.active) == (4, "rejected", False)
     assert worse.parent_heldout_accuracy == good.heldout_accuracy
     assert worse.heldout_accuracy is not None and worse.heldout_accuracy < good.heldout_accuracy
     assert worse.parent_id == good.id
@@ -129,7 +154,7 @@ def test_retrain_promotes_a_better_model_and_refuses_a_worse_one(workbench: Work
     assert sorted(seen["labelled_scenes"]) == sorted(good_data["training_scenes"])
     events = workbench.models.events()
     assert [(e.action, e.actor, e.model_version) for e in events] == [
-        ("promote", "alice", 2),
+        ("promote", "alice", 3),
         ("seed", "system", 1),
     ]
     assert not any(workbench.training_dir.iterdir()), "training folders are removed"

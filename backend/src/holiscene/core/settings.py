@@ -5,6 +5,7 @@ from __future__ import annotations
 from datetime import timedelta
 from pathlib import Path
 
+from holiscene_schema.api import FEW_HELDOUT_ITEMS
 from pydantic import Field
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
@@ -38,6 +39,10 @@ class Settings(BaseSettings):
     # Pipeline and placement jobs queued or running at once, on all scenes (503 beyond): one
     # worker runs them, so a longer queue only means longer waits.
     max_queued_jobs: int = Field(default=20, gt=0)
+    # A retrained model better on the held-out scenes is made active by itself only when
+    # those scenes hold at least this many labelled items (objects, or boxes for the
+    # detector); on fewer it waits as a candidate for an admin to make active.
+    promote_min_heldout_items: int = Field(default=FEW_HELDOUT_ITEMS, ge=1)
     # A login session ends after this long without a request (each request moves it on).
     session_idle_hours: float = Field(default=8.0, gt=0)
 

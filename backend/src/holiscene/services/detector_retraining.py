@@ -284,6 +284,8 @@ class DetectorRetrainJob(TrainingJob):
             [new_score.map, new_score.recall],
             None if parent_score is None else [parent_score.map, parent_score.recall],
             parent.version if parent else None,
+            sum(len(item.boxes) for item in heldout_items),
+            self.promote_min_items,
         )
         registration = self._registration(
             parent, new_score, parent_score, verdict, validation_map, train_items, heldout_items

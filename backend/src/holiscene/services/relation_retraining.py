@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from holiscene_schema import ModelInfo, ModelStatus, RetrainRequest, Scene, SceneSummary
+from holiscene_schema.api import FEW_HELDOUT_ITEMS
 
 from ..core.errors import DomainError, user_facing_error
 from ..inputs import load_photo
@@ -167,6 +168,8 @@ class TrainingJob:
     models: ModelStore  # the registry of the kind being retrained
     work_root: Path  # <data_dir>/training
     author: str
+    # Held-out items a better model needs to be made active by itself (heldout_verdict).
+    promote_min_items: int = FEW_HELDOUT_ITEMS
     stop: threading.Event = dataclasses.field(default_factory=threading.Event)
     # An admin's cancel of this job (the server's stop is `stop`): who asked, once asked.
     cancelled_by: str | None = dataclasses.field(default=None, init=False)
@@ -285,6 +288,8 @@ class RetrainJob(TrainingJob):
             [new_accuracy],
             None if parent_accuracy is None else [parent_accuracy],
             parent.version if parent else None,
+            sum(s.labelled for s in heldout),
+            self.promote_min_items,
         )
         info = self._register(
             result.model_dir,
@@ -391,15 +396,27 @@ class Verdict:
 
 
 def heldout_verdict(
-    new: Sequence[float], active: Sequence[float] | None, active_version: int | None
+    new: Sequence[float],
+    active: Sequence[float] | None,
+    active_version: int | None,
+    items: int,
+    enough_items: int = FEW_HELDOUT_ITEMS,
 ) -> Verdict:
     """The new model against the active one on the same held-out scenes, score by score (the
-    first decides, the next break its ties). Better: made active. Exactly as good: the scenes
-    cannot tell the two apart, so the active model stays and the new one is a candidate, to
-    make active by hand. Worse: rejected (kept, to inspect)."""
+    first decides, the next break its ties). Better: made active, unless the held-out scenes
+    hold fewer than `enough_items` items to score, too few to tell two models apart: then a
+    candidate, to make active by hand. Exactly as good: the scenes cannot tell the two apart,
+    so the active model stays and the new one is a candidate. Worse: rejected (kept, to
+    inspect)."""
     if active is None:
         return Verdict("accepted")
     mine, theirs = [round(x, 9) for x in new], [round(x, 9) for x in active]
+    if mine > theirs and items < enough_items:
+        return Verdict(
+            "candidate",
+            f"better on {items} held-out {'item' if items == 1 else 'items'} only, too few "
+            f"to tell it from v{active_version}, which stays active",
+        )
     if mine > theirs:
         return Verdict("accepted")
     if mine == theirs:

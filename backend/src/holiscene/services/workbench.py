@@ -350,6 +350,7 @@ class Workbench:
             work_root=self.training_dir,
             config=train_config(request),
             author=request.author,
+            promote_min_items=self.settings.promote_min_heldout_items,
             stop=self._stop,
         )
 
@@ -362,6 +363,7 @@ class Workbench:
             work_root=self.training_dir,
             config=detector_train_config(request, self.settings.data_dir / ROOMS_FOLDER),
             author=request.author,
+            promote_min_items=self.settings.promote_min_heldout_items,
             stop=self._stop,
         )
 

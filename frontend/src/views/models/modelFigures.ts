@@ -1,7 +1,7 @@
 // A model's figures as the models page writes them: in its table and in the question asked
 // before it is made active (the admin decides on the numbers, side by side with the active
 // model's, and sees how few scenes a held-out figure may rest on).
-import type { ModelInfo, RetrainReadiness } from "@holiscene/schema";
+import { type ModelInfo, RETRAINING, type RetrainReadiness } from "@holiscene/schema";
 import type { KindText } from "./kindText";
 
 export const percent = (value: number | null) =>
@@ -80,7 +80,7 @@ export function promoteQuestion(
 }
 
 /** Held-out figures on fewer items than this decide little (one item is a whole share). */
-export const FEW_HELDOUT_ITEMS = 20;
+export const FEW_HELDOUT_ITEMS = RETRAINING.few_heldout_items;
 /** A validation figure this much below the active model's is a warning of its own. */
 export const WORSE_VALIDATION = 0.05;
 
