@@ -52,6 +52,8 @@ class ArchivedScene:
     state: str | None = None  # the workflow state when downloaded (index.json says it)
     # Where the held-out split puts it (SceneStore.split_keys); None: its own id.
     split_key: str | None = None
+    # The revision whose pipeline or placement run made the GLB (edits after it are not in it).
+    glb_revision: int | None = None
 
 
 def archived_scene(
@@ -59,7 +61,8 @@ def archived_scene(
 ) -> ArchivedScene:
     """A stored scene's current revision and its files (SceneNotFoundError for an unknown id)."""
     document = scenes.document(scene_id)
-    glb = scenes.glb_path(scene_id)
+    made = scenes.glb_file(scene_id)
+    glb = made[1] if made is not None and made[1].is_file() else None
     truth = scenes.files.ground_truth_path(scene_id)
     depth = scenes.files.folder(scene_id) / DEPTH_FILE
     return ArchivedScene(
@@ -67,7 +70,8 @@ def archived_scene(
         revision=document.revision,
         scene=document.scene,
         photo=scenes.image_path(scene_id),
-        glb=glb if glb is not None and glb.is_file() else None,
+        glb=glb,
+        glb_revision=made[0] if glb is not None and made is not None else None,
         ground_truth=truth if truth.is_file() else None,
         depth=depth if document.scene.depth is not None and depth.is_file() else None,
         state=scenes.summary(scene_id).state,
@@ -87,6 +91,19 @@ def split_keys_of(items: Sequence[ArchivedScene]) -> dict[str, str]:
     return {item.scene_id: item.split_key for item in items if item.split_key is not None}
 
 
+def glb_staleness(item: ArchivedScene) -> str | None:
+    """What the item's scene.glb lacks, when it was made before the revision exported."""
+    made = item.glb_revision
+    if item.glb is None or made is None or made >= item.revision:
+        return None
+    later = (
+        f"revision {item.revision}"
+        if made + 1 == item.revision
+        else (f"revisions {made + 1}-{item.revision}")
+    )
+    return f"scene.glb was made at revision {made}: the edits of {later} are not in it"
+
+
 def coco_description(scene_id: str, revision: int, scene: Scene) -> str:
     return f"HoliScene scene {scene.name} ({scene_id}, revision {revision})"
 
@@ -94,7 +111,8 @@ def coco_description(scene_id: str, revision: int, scene: Scene) -> str:
 def scenes_zip(scenes: list[ArchivedScene]) -> bytes:
     """The zip: `<name>-<id>/scene.json`, `coco.json`, the photo, `scene.glb` when the
     scene has one, and the input folder's label files; `index.json` lists the folders with
-    their scene id, revision and workflow state."""
+    their scene id, revision, workflow state and the revision that made their scene.glb (with
+    a note when edits came after it)."""
     buffer = io.BytesIO()
     index: list[dict[str, Any]] = []
     with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_DEFLATED) as archive:
@@ -109,14 +127,16 @@ def scenes_zip(scenes: list[ArchivedScene]) -> bytes:
             archive.write(item.photo, f"{folder}/{item.scene.image.file}", zipfile.ZIP_STORED)
             if item.glb is not None:
                 archive.write(item.glb, f"{folder}/scene.glb", zipfile.ZIP_STORED)
-            index.append(
-                {
-                    "folder": folder,
-                    "scene_id": item.scene_id,
-                    "revision": item.revision,
-                    "has_glb": item.glb is not None,
-                    "state": item.state,
-                }
-            )
+            entry: dict[str, Any] = {
+                "folder": folder,
+                "scene_id": item.scene_id,
+                "revision": item.revision,
+                "has_glb": item.glb is not None,
+                "glb_revision": item.glb_revision,
+                "state": item.state,
+            }
+            if (stale := glb_staleness(item)) is not None:
+                entry["glb_note"] = stale
+            index.append(entry)
         archive.writestr(ARCHIVE_INDEX, json.dumps({"scenes": index}, indent=1) + "\n")
     return buffer.getvalue()

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..core.atomic_files import write_atomic
-from .archive import ArchivedScene, file_stem, scene_json
+from .archive import ArchivedScene, file_stem, glb_staleness, scene_json
 from .coco import coco_dataset
 from .input_folder import given_intrinsics, write_labels
 from .nyu_supports import write_nyu_supports
@@ -52,11 +52,13 @@ def write_coco(chosen: list[ArchivedScene], out: Path) -> None:
     write_atomic(out / COCO_FILE, (json.dumps(document) + "\n").encode())
 
 
-def write_scene_folders(chosen: list[ArchivedScene], out: Path) -> None:
+def write_scene_folders(chosen: list[ArchivedScene], out: Path) -> str | None:
     """DIR/<scene name>/: scene.json, the photo, and scene.glb when the scene has one; and
     detections.json, supports.json, cam_K.txt (for intrinsics given with the photo), gt.json
     (for a scene imported with ground truth) and depth.png, so the folder is an input folder
-    that imports back to the same objects, supports, room layout and ground truth."""
+    that imports back to the same objects, supports, room layout and ground truth. The note
+    names the folders whose scene.glb is older than their scene.json."""
+    stale: list[str] = []
     for item, stem in zip(chosen, unique_stems(chosen), strict=True):
         folder = out / stem
         folder.mkdir(exist_ok=True)
@@ -65,6 +67,9 @@ def write_scene_folders(chosen: list[ArchivedScene], out: Path) -> None:
         shutil.copyfile(item.photo, folder / item.scene.image.file)
         if item.glb is not None:
             shutil.copyfile(item.glb, folder / "scene.glb")
+        if (note := glb_staleness(item)) is not None:
+            stale.append(f"{stem}: {note}")
+    return "; ".join(stale) if stale else None
 
 
 @dataclass(frozen=True)

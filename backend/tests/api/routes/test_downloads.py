@@ -81,6 +81,9 @@ def test_the_archive_has_a_folder_per_scene_with_its_files(
     index = json.loads(archive.read("index.json"))["scenes"]
     assert [s["scene_id"] for s in index] == [placed, plain]
     assert [s["has_glb"] for s in index] == [True, False]
+    # The GLB is the pipeline run's, made at the scene's revision: nothing to note.
+    assert [s["glb_revision"] for s in index] == [_document(client, placed)["revision"], None]
+    assert "glb_note" not in index[0]
     for entry in index:
         folder, scene_id = entry["folder"], entry["scene_id"]
         doc = _document(client, scene_id)
@@ -131,3 +134,17 @@ def test_scene_glb_is_a_named_file_and_answers_a_range(client: TestClient, t3d5:
     assert whole.content[:4] == b"glTF" and len(whole.content) > 1000
     missing = client.get(f"/api/scenes/{plain}/scene.glb", headers={"Range": "bytes=0-3"})
     assert missing.status_code == 404
+
+
+def test_the_archive_says_when_a_scene_glb_is_older_than_the_scene(
+    client: TestClient, t3d5: Path
+) -> None:
+    placed = _import(client, t3d5, "edited after placement", run_pipeline=True)
+    made = _document(client, placed)["revision"]
+    _add_object(client, placed)
+    response = client.post("/api/scenes/archive", json={"scene_ids": [placed]})
+    [entry] = json.loads(zipfile.ZipFile(io.BytesIO(response.content)).read("index.json"))["scenes"]
+    assert (entry["revision"], entry["glb_revision"]) == (made + 1, made)
+    assert entry["glb_note"] == (
+        f"scene.glb was made at revision {made}: the edits of revision {made + 1} are not in it"
+    )
