@@ -105,7 +105,10 @@ function summary(job: ImportJob): HTMLElement {
 }
 
 /** The dataset import card; `onScenes` runs whenever new scenes were stored. */
-export function datasetImportForm(signal: AbortSignal, onScenes: () => void): HTMLFormElement {
+export function datasetImportForm(
+  signal: AbortSignal,
+  onScenes: () => Promise<void>,
+): HTMLFormElement {
   const archive = el("input", {
     testid: "dataset-import-file",
     attrs: { type: "file", name: "archive", accept: ".zip,application/zip", required: true },
@@ -169,7 +172,7 @@ export function datasetImportForm(signal: AbortSignal, onScenes: () => void): HT
     text.textContent = progressText(job);
     if (job.imported.length > scenesSeen) {
       scenesSeen = job.imported.length;
-      onScenes();
+      void onScenes();
     }
   };
 
@@ -188,7 +191,9 @@ export function datasetImportForm(signal: AbortSignal, onScenes: () => void): HT
       progress.hidden = true;
       result.replaceChildren(summary(finished));
       archive.value = ""; // the zip is done with; the choice of running the pipeline stays
-      onScenes();
+      await onScenes();
+      // The new rows above pushed the form down: the summary stays where the person looks.
+      result.scrollIntoView({ block: "nearest" });
     } catch (error) {
       if (signal.aborted) return;
       progress.hidden = true;

@@ -85,6 +85,19 @@ function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowE
   );
 }
 
+/** A button that brings `form` into view and puts the keyboard on its first field. */
+function jumpTo(text: string, testid: string, form: HTMLFormElement): HTMLButtonElement {
+  return button(`${text} ↓`, {
+    className: "list-jump",
+    testid,
+    title: `Go to the ${text} form below the list`,
+    onClick: () => {
+      form.scrollIntoView({ block: "start", behavior: "smooth" });
+      form.querySelector<HTMLElement>("input, select, button")?.focus({ preventScroll: true });
+    },
+  });
+}
+
 export function mountSceneList(container: HTMLElement): () => void {
   const abort = new AbortController();
   const body = el("tbody");
@@ -196,6 +209,8 @@ export function mountSceneList(container: HTMLElement): () => void {
       if (!abort.signal.aborted) status.textContent = `Could not load scenes: ${String(error)}`;
     }
   };
+  const upload = uploadForm(abort.signal, () => refresh());
+  const datasetImport = datasetImportForm(abort.signal, () => refresh());
   container.replaceChildren(
     el(
       "div",
@@ -205,7 +220,18 @@ export function mountSceneList(container: HTMLElement): () => void {
       el(
         "section",
         { className: "card" },
-        el("div", { className: "card-header" }, el("h2", { text: "Scenes" })),
+        el(
+          "div",
+          { className: "card-header" },
+          el("h2", { text: "Scenes" }),
+          // The import forms are under the list, which runs long: one click away from its top.
+          el(
+            "span",
+            { className: "list-jumps" },
+            jumpTo("New scene", "jump-new-scene", upload),
+            jumpTo("Import a dataset", "jump-dataset-import", datasetImport),
+          ),
+        ),
         el(
           "div",
           { className: "list-filters" },
@@ -217,8 +243,8 @@ export function mountSceneList(container: HTMLElement): () => void {
         status,
         el("div", { className: "table-scroll" }, table),
       ),
-      uploadForm(abort.signal, () => void refresh()),
-      datasetImportForm(abort.signal, () => void refresh()),
+      upload,
+      datasetImport,
     ),
   );
   filter.addEventListener("change", () => void refresh());

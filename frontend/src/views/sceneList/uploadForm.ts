@@ -14,12 +14,32 @@ function fileField(label: string, name: string, accept: string, hint: string, re
     testid: `upload-${name}`,
     attrs: { type: "file", name, accept, required },
   });
-  const field = labelledField(label, input, el("span", { className: "field-hint", text: hint }));
-  return { input, field };
+  const hintLine = el("span", { className: "field-hint", text: hint });
+  if (required) return { input, field: labelledField(label, input, hintLine) };
+  // An optional file chosen by mistake (a wrong depth) can be taken off again: a file input
+  // alone only swaps one file for another.
+  const remove = button("Remove", {
+    className: "file-remove",
+    testid: `upload-${name}-remove`,
+    title: `Import without a ${label.toLowerCase()} file`,
+    hidden: true,
+    onClick: () => {
+      input.value = "";
+      input.dispatchEvent(new Event("change"));
+    },
+  });
+  input.addEventListener("change", () => {
+    remove.hidden = !input.files?.length;
+  });
+  const row = el("span", { className: "file-row" }, input, remove);
+  return { input, field: labelledField(label, row, hintLine) };
 }
 
 /** The upload form; `onImported` runs when a scene is created and again when its job ends. */
-export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary) => void) {
+export function uploadForm(
+  signal: AbortSignal,
+  onImported: (scene: SceneSummary) => Promise<void>,
+) {
   const image = fileField("Photo", "image", "image/*", "JPEG or PNG of an indoor scene", true);
   const camK = fileField("Intrinsics", "cam_k", ".txt,text/plain", "optional cam_K.txt (3×3)");
   const detections = fileField(
@@ -97,8 +117,12 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
       });
       const scene = imported.scene;
       form.reset();
-      image.input.dispatchEvent(new Event("change")); // the name is optional again
-      onImported(scene);
+      // The name is optional again; no Remove stays beside an emptied file field.
+      for (const field of [image, camK, detections, classMap, depth])
+        field.input.dispatchEvent(new Event("change"));
+      await onImported(scene);
+      // The new row above pushed the form down: its result stays where the person looks.
+      result.scrollIntoView({ block: "nearest" });
       const link = el("a", {
         text: `Open ${scene.name}`,
         testid: "upload-open",
@@ -108,7 +132,7 @@ export function uploadForm(signal: AbortSignal, onImported: (scene: SceneSummary
       result.replaceChildren(el("p", {}, `Imported ${scene.name}. `, link), progress.element);
       if (imported.job) {
         await pollJob(imported.job, { signal, onUpdate: progress.update });
-        onImported(scene);
+        void onImported(scene);
       } else {
         progress.element.remove();
       }
