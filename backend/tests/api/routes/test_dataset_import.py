@@ -207,6 +207,22 @@ def test_a_zip_of_input_folders_queues_their_pipeline(client: TestClient, tmp_pa
     assert all(s["latest_job"]["kind"] == "pipeline" for s in scenes)
 
 
+def test_a_zip_of_plain_photos_makes_a_scene_of_each(client: TestClient, tmp_path: Path) -> None:
+    (tmp_path / "snapshots").mkdir()
+    for seed, name in enumerate(("kitchen.jpg", "Bedroom.PNG")):
+        (tmp_path / "snapshots" / name).write_bytes(photo_bytes(seed))
+    (tmp_path / "snapshots" / "readme.txt").write_text("taken on Monday")
+    answer = client.post(
+        "/api/imports",
+        files={"archive": ("snaps.zip", _zip_folder(tmp_path / "snapshots"), "application/zip")},
+    )
+    job = _finished(client, answer.json()["id"])
+    assert (job["format"], job["total"], job["errors"]) == ("photos", 2, [])
+    assert sorted(p["name"] for p in job["imported"]) == ["Bedroom.PNG", "kitchen.jpg"]
+    scenes = client.get("/api/scenes").json()
+    assert sorted(s["name"] for s in scenes) == ["Bedroom", "kitchen"]
+
+
 @pytest.mark.parametrize(
     ("entries", "link", "status", "words"),
     [
@@ -214,6 +230,7 @@ def test_a_zip_of_input_folders_queues_their_pipeline(client: TestClient, tmp_pa
         ({"/etc/evil.json": b"{}"}, None, 422, "outside its folder"),
         ({"a/img.png": b"x"}, "a/detections.json", 422, "symbolic link"),
         ({"notes.txt": b"hello"}, None, 422, "holds no COCO"),
+        ({"a/notes.txt": b"hello", "b/img.txt": b"x"}, None, 422, "or photo (.jpg, .png)"),
     ],
 )
 def test_unsafe_or_empty_zips_are_refused_with_nothing_stored(

@@ -1,8 +1,9 @@
 """Photos to import one at a time: those of a path given to `holiscene import`
 (photo_sources), and what an unpacked upload holds (upload_contents): an input folder, a
-COCO, LabelMe or SUN RGB-D dataset, or a folder of input folders (as `holiscene export
---format scene` and the app's "Download selected" zip hold them). The format is told by the
-content, with the readers `holiscene import` uses."""
+COCO, LabelMe or SUN RGB-D dataset, a folder of input folders (as `holiscene export
+--format scene` and the app's "Download selected" zip hold them), or plain photos (a
+folder of snapshots: each a scene named after its file, without labels). The format is
+told by the content, with the readers `holiscene import` uses."""
 
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ from dataclasses import dataclass
 from functools import lru_cache, partial
 from pathlib import Path
 
-from ..validation import InputError, InputFiles, read_input_folder
+from ..validation import InputError, InputFiles, load_photo, read_input_folder
 from . import (
     ARCHIVE_INDEX,
     PHOTO_NAMES,
@@ -63,20 +64,39 @@ class PhotoSource:
     downloaded_from: DownloadedFrom | None = None
 
 
+# A photo on its own, outside an input folder: a scene without labels, named after the file.
+PLAIN_PHOTO_SUFFIXES = (".jpg", ".jpeg", ".png")
+
+
 def photo_sources(path: Path) -> Iterator[PhotoSource]:
-    """The photos of an input folder or a dataset file or folder, read one at a time (a
-    dataset of a thousand photos is never in memory)."""
-    if is_dataset(path):
+    """The photos of an input folder, a dataset file or folder, a photo file or a folder of
+    them, read one at a time (a dataset of a thousand photos is never in memory)."""
+    if _is_plain_photo(path):
+        yield PhotoSource(str(path), path.stem, partial(_read_plain_photo, path))
+    elif is_dataset(path):
         for item in dataset_items(path):
             yield PhotoSource(item.name, Path(item.name).stem, partial(_item_inputs, item))
     elif path.is_dir() and not _is_input_folder(path) and (parts := _importable_parts(path)):
-        for part in parts:  # a folder of input folders (an export, the app's download zip)
+        # A folder of input folders (an export, the app's download zip) or of photos.
+        for part in parts:
             yield from photo_sources(part)
     else:
         downloaded = _downloaded_from(path)
         yield PhotoSource(
             str(path), _folder_scene_name(path), partial(_read_folder, path, downloaded), downloaded
         )
+
+
+def _is_plain_photo(path: Path) -> bool:
+    return (
+        path.is_file()
+        and path.suffix.lower() in PLAIN_PHOTO_SUFFIXES
+        and not path.name.startswith(".")
+    )
+
+
+def _read_plain_photo(path: Path) -> InputFiles:
+    return InputFiles(photo=load_photo(path.read_bytes()), K=None, detections=None)
 
 
 def _read_folder(folder: Path, downloaded: DownloadedFrom | None) -> InputFiles:
@@ -157,16 +177,17 @@ def upload_contents(folder: Path) -> UploadContents:
     parts = _importable_parts(root)
     if not parts:
         raise InputError(
-            "the zip holds no COCO or LabelMe dataset, SUN RGB-D image folder or input folder "
-            "(img.jpg or img.png with its files)"
+            "the zip holds no COCO or LabelMe dataset, SUN RGB-D image folder, input folder "
+            "(img.jpg or img.png with its files) or photo (.jpg, .png) at its top"
         )
     formats = sorted({_format(p) for p in parts})
     return UploadContents(", ".join(formats), sum(_count(p) for p in parts), tuple(parts))
 
 
 def _importable_parts(root: Path) -> list[Path]:
-    """The input folders and datasets directly inside `root`."""
-    return [d for d in _subfolders(root) if _is_input_folder(d) or is_dataset(d)]
+    """The input folders and datasets directly inside `root`, then the photos lying there."""
+    folders = [d for d in _subfolders(root) if _is_input_folder(d) or is_dataset(d)]
+    return folders + sorted(p for p in root.iterdir() if _is_plain_photo(p))
 
 
 def _subfolders(root: Path) -> list[Path]:
@@ -178,6 +199,8 @@ def _is_input_folder(folder: Path) -> bool:
 
 
 def _format(path: Path) -> str:
+    if _is_plain_photo(path):
+        return "photos"
     if _is_input_folder(path):
         return "input folders"
     if _coco_files(path):
@@ -190,7 +213,7 @@ def _format(path: Path) -> str:
 def _count(path: Path) -> int:
     """How many photos (or items that will report an error) reading `path` gives; cheap:
     no photo is read."""
-    if _is_input_folder(path):
+    if _is_plain_photo(path) or _is_input_folder(path):
         return 1
     files = _coco_files(path) or _labelme_candidates(path)
     if not files:
