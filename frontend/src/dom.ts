@@ -133,7 +133,18 @@ export function placeChildren(parent: Element, nodes: readonly Element[]): void 
 }
 
 /** Format an ISO time as a short local date and time. */
-export function formatTime(iso: string, options?: Intl.DateTimeFormatOptions): string {
+/** A time as every page shows it: the month named (no day/month ambiguity), to the second
+ * (revisions can follow each other within a minute). */
+const FULL_TIME: Intl.DateTimeFormatOptions = {
+  year: "numeric",
+  month: "short",
+  day: "numeric",
+  hour: "numeric",
+  minute: "2-digit",
+  second: "2-digit",
+};
+
+export function formatTime(iso: string, options: Intl.DateTimeFormatOptions = FULL_TIME): string {
   const date = new Date(iso);
   return Number.isNaN(date.getTime()) ? iso : date.toLocaleString(undefined, options);
 }

@@ -119,7 +119,7 @@ def test_selecting_an_object_highlights_it(synthetic_folder: Path, open_viewer: 
     assert f"**{child}**" in details
     assert f"| supporter | {support.parent} (" in details
     assert f"| type | {support.type} |" in details
-    assert "| confidence | 1.00 |" in details
+    assert "| confidence | 100% |" in details
     assert "| source | manual (synthetic) |" in details
     assert "| 3D box confidence | - |" in details  # ground truth: no model judged its box
 
@@ -180,7 +180,10 @@ def test_details_name_the_stage_that_made_a_glb_mesh(
     ]
     scene = data.scene.model_copy(update={"objects": objects})
     viewer = open_viewer(ViewerInput(scene, data.photo, data.glb, data.origin))
-    expected = {"learned": "mesh network", "completion": "shape completion"}
+    expected = {
+        "learned": "learned (the mesh network's template)",
+        "completion": "from depth (shape completion)",
+    }
     for obj_id, library in made_by.items():
         viewer.select(obj_id)
         assert f"| mesh | {expected[library]} (from scene.glb) |" in viewer.details.content

@@ -13,6 +13,7 @@ import type {
 import { STRUCTURAL_SUPPORTERS } from "@holiscene/schema";
 import { api } from "../api/client";
 import { ApiError, ConflictError, errorText } from "../api/errors";
+import { formatTime } from "../dom";
 import { type Draft, DraftStore } from "./draftStore";
 import { type HistoryChange, HistoryKeeper } from "./editHistory";
 import { type EditLock, type EditPermission, editLock, lockText } from "./editLock";
@@ -638,7 +639,7 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
       if (!this.layout.dirty) lines.push("The room layout is already saved.");
     }
     const count = usable.length + (layoutChange && this.layout?.dirty ? 1 : 0);
-    const when = new Date(draft.savedAt).toLocaleString(); // as the banner offering them said
+    const when = formatTime(draft.savedAt); // as the banner offering them said
     lines.unshift(`Restored ${plural(count, "unsaved change")} from ${when}.`);
     this.recovered = null;
     this.drafts.clearRecovered(this.sceneId);

@@ -18,8 +18,8 @@ TrainProgress = Callable[[float, str], None]
 
 def percent(share: float) -> str:
     """A share as the training log, the job's result line and the models page write it:
-    "97.1 %"."""
-    return f"{100 * share:.1f} %"
+    "97.1%"."""
+    return f"{100 * share:.1f}%"
 
 
 # The files a trained model directory holds.

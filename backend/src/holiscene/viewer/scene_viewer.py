@@ -85,12 +85,13 @@ def _photo_for_frustum(photo: NDArray[np.uint8]) -> NDArray[np.uint8]:
     return small
 
 
-# What made a mesh the viewer shows from scene.glb (MeshRef.library), for the object's details.
+# What made a mesh the viewer shows from scene.glb (MeshRef.library), for the object's details:
+# the web page's badge word ("mesh: learned"), then what it means.
 MESH_MAKERS = {
-    "builtin": "furniture library",
-    "user": "user model",
-    "completion": "shape completion",
-    "learned": "mesh network",
+    "builtin": "library (the furniture library's fit)",
+    "user": "file (a user's model)",
+    "completion": "from depth (shape completion)",
+    "learned": "learned (the mesh network's template)",
 }
 
 
@@ -103,6 +104,12 @@ def _mesh_text(obj: SceneObject, source: MeshSource) -> str:
 
 def _fmt(value: float | None, digits: int = 2) -> str:
     return "-" if value is None else f"{value:.{digits}f}"
+
+
+def _percent(share: float | None) -> str:
+    """A score or confidence as the web page writes it: whole percent, rounded down (so 99.6%
+    never reads as a sure 100%)."""
+    return "-" if share is None else f"{math.floor(100 * share + 1e-9)}%"
 
 
 class SceneViewer:
@@ -404,10 +411,10 @@ class SceneViewer:
             rows += [
                 ("supporter", self._supporter_text(support.parent)),
                 ("type", support.type),
-                ("confidence", _fmt(support.confidence)),
+                ("confidence", _percent(support.confidence)),
                 ("source", support.source + (f" ({support.author})" if support.author else "")),
             ]
-        rows.append(("detection score", _fmt(obj.score)))
+        rows.append(("detection score", _percent(obj.score)))
         node = self.objects.get(obj_id)
         if node is None:
             rows.append(("3D", "no 3D box"))
@@ -416,7 +423,7 @@ class SceneViewer:
             if obj.box_3d is not None:
                 size = " × ".join(f"{s:.2f}" for s in obj.box_3d.size)
                 rows.append(("box size (d × h × w)", f"{size} m"))
-                rows.append(("3D box confidence", _fmt(obj.box_3d_confidence)))
+                rows.append(("3D box confidence", _percent(obj.box_3d_confidence)))
         if obj_id in self._arrow_skipped:
             rows.append(("arrow", f"not drawn: {self._arrow_skipped[obj_id]}"))
         if obj.note:
@@ -434,7 +441,7 @@ class SceneViewer:
             else:
                 rows.append(
                     f"| {obj.id} | {obj.cls} | {support.parent} | {support.type} | "
-                    f"{_fmt(support.confidence)} |"
+                    f"{_percent(support.confidence)} |"
                 )
         header = "| object | class | supporter | type | conf. |\n|---|---|---|---|---|"
         return header + "\n" + "\n".join(rows) if rows else "No objects."

@@ -1,6 +1,6 @@
 // The save bar's banner for edits a previous visit left unsaved (kept in this browser):
 // restore them, or discard them.
-import { button, el } from "../../dom";
+import { button, el, formatTime } from "../../dom";
 import { plural, type SceneSession } from "../../state/sceneSession";
 import { describeEdit } from "../../state/supportGraph";
 import { LAYOUT_CHANGE } from "./pendingList";
@@ -44,7 +44,7 @@ export function recoveryBanner(session: SceneSession): RecoveryBanner {
       ];
       text.textContent =
         `${plural(changes.length, "unsaved change")} from your last visit ` +
-        `(${new Date(recovered.savedAt).toLocaleString()}, on revision ${recovered.baseRevision}) ` +
+        `(${formatTime(recovered.savedAt)}, on revision ${recovered.baseRevision}) ` +
         `never reached the server: ${changes.join("; ")}.`;
     },
   };

@@ -10,7 +10,7 @@ import { accountsSection } from "./accounts";
 
 const DASHBOARD_CHECK_MS = 10_000;
 
-const percent = (share: number) => `${(100 * share).toFixed(1)} %`;
+const percent = (share: number) => `${(100 * share).toFixed(1)}%`;
 
 function table(testid: string, headers: string[], numeric: number[], rows: HTMLElement[]) {
   return el(

@@ -40,9 +40,9 @@ describe("the question before a model is made active", () => {
     expect(promoteQuestion(retrained, active, text)).toBe(
       "Warning: its validation figure is 59.5 points below the active model's. " +
         "Make v2 the active model? Pipeline runs and suggestions use it from now on.\n\n" +
-        "v2: held-out accuracy 97.1 % (v1: 97.1 %), on 34 labelled objects (1 held-out scene); " +
-        "validation accuracy 39.6 %\n" +
-        "v1 (active now): held-out accuracy —; validation accuracy 99.1 %",
+        "v2: held-out accuracy 97.1% (v1: 97.1%), on 34 labelled objects (1 held-out scene); " +
+        "validation accuracy 39.6%\n" +
+        "v1 (active now): held-out accuracy —; validation accuracy 99.1%",
     );
   });
 
@@ -53,7 +53,7 @@ describe("the question before a model is made active", () => {
     );
     const detector = { ...retrained, heldout_recall: 0.5 } as ModelInfo;
     expect(promoteQuestion(detector, active, KIND_TEXT.detector)).toContain(
-      "v2: held-out mAP@0.5 · recall 97.1 % · 50.0 %",
+      "v2: held-out mAP@0.5 · recall 97.1% · 50.0%",
     );
   });
 
@@ -90,9 +90,9 @@ describe("the held-out column of a model never judged on held-out scenes of its 
 
   it("gives its figure from the newest comparison with a model retrained from it", () => {
     const others = [shipped, compared(2, 0.8), compared(3, 1.0)];
-    expect(heldoutText(shipped, text, others)).toBe("100.0 % on v3's held-out scenes");
+    expect(heldoutText(shipped, text, others)).toBe("100.0% on v3's held-out scenes");
     expect(promoteQuestion(compared(2, 0.8), shipped, text, others)).toContain(
-      "v1 (active now): held-out accuracy 100.0 % on v3's held-out scenes",
+      "v1 (active now): held-out accuracy 100.0% on v3's held-out scenes",
     );
   });
 

@@ -5,7 +5,7 @@ import { type ModelInfo, RETRAINING, type RetrainReadiness } from "@holiscene/sc
 import type { KindText } from "./kindText";
 
 export const percent = (value: number | null) =>
-  value === null || value < 0 ? "—" : `${(value * 100).toFixed(1)} %`;
+  value === null || value < 0 ? "—" : `${(value * 100).toFixed(1)}%`;
 
 // A detector's held-out figures are its mAP@0.5 and recall; a Relation Network's its accuracy.
 const figures = (value: number, recall: number | null) =>

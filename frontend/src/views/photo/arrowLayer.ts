@@ -4,7 +4,7 @@
 // labels and "?" flags are labelLayer.ts's). Each arrow carries its provenance (source,
 // author, time, confidence) as data attributes and in its tooltip.
 import type { SceneObject } from "@holiscene/schema";
-import { svgEl } from "../../dom";
+import { formatTime, svgEl } from "../../dom";
 import type { SuggestedSupport } from "../../state/sceneSession";
 import { isDoubtfulSupport, isStructural, type ShownSupport } from "../../state/supportGraph";
 import {
@@ -73,7 +73,7 @@ export function provenanceText(
   }
   if (!support) return "no supporter";
   if (support.pending && support.source === "manual") return "your edit, not saved yet";
-  const when = support.time ? ` · ${new Date(support.time).toLocaleString()}` : "";
+  const when = support.time ? ` · ${formatTime(support.time)}` : "";
   const unsaved = support.pending ? " (restored, not saved yet)" : "";
   if (support.source === "manual")
     return `manual · ${support.author ?? "unknown"}${when}${unsaved}`;

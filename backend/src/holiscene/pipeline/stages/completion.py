@@ -1,6 +1,7 @@
 """Completed shapes from depth (thesis Ch. 6, SK-PCN): after `shapes_fit`, every object whose
 mask holds enough depth points inside its 3D box gets the mesh the completion network makes
-of them (`learning.completion`), in place of the library model; the others keep theirs.
+of them (`learning.completion`), in place of the earlier mesh (the library's or the mesh
+network's); the others keep theirs.
 
 Runs only when the photo came with depth (`Stage.needs_depth`).
 """
@@ -49,7 +50,9 @@ class ShapeCompletion(Stage):
         ctx.object_meshes = meshes
         ctx.reports[self.name] = f"{len(done)} of {len(done) + len(too_few)} objects completed"
         if too_few:
+            # Those keep the mesh an earlier stage gave them: the library's or the mesh
+            # network's (the object list's badge says which).
             ctx.notes[self.name] = (
-                f"library models kept for {', '.join(too_few)} "
+                f"not completed from depth, their earlier meshes kept: {', '.join(too_few)} "
                 f"(fewer than {MIN_OBSERVED_POINTS} depth points in the box)"
             )
