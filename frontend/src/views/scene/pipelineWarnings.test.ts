@@ -51,10 +51,14 @@ describe("pipeline warnings", () => {
       { id: "o5" },
       { text: ", " },
       { id: "o4_1" },
-      { text: " and o9 (" },
+      { text: " and " },
+      { removed: "o9" },
+      { text: " (" },
       { id: "o3" },
       { text: ")" },
     ]);
     expect(textWithObjectIds("no objects", ids)).toEqual([{ text: "no objects" }]);
+    // Words that only look alike stay text.
+    expect(textWithObjectIds("door ok2 o3x", ids)).toEqual([{ text: "door ok2 o3x" }]);
   });
 });

@@ -33,20 +33,25 @@ export function pipelineWarnings(
   });
 }
 
+/** How the pipeline and the detector name objects (o12, d3, o4_1): a token of a warning that
+ * looks like one but is not in the scene names an object removed since the run. */
+const OBJECT_ID = /^[od]\d+(_\d+)?$/;
+
+type WarningPart = { text: string } | { id: string } | { removed: string };
+
 /** A warning's text cut at the ids of the scene's objects: each `id` part can become a link
- * that selects its object ("masks: o3, o5" -> "masks: ", o3, ", ", o5). */
-export function textWithObjectIds(
-  text: string,
-  ids: ReadonlySet<string>,
-): ({ text: string } | { id: string })[] {
-  const parts: ({ text: string } | { id: string })[] = [];
+ * that selects its object ("masks: o3, o5" -> "masks: ", o3, ", ", o5); an id no longer in
+ * the scene is a `removed` part. */
+export function textWithObjectIds(text: string, ids: ReadonlySet<string>): WarningPart[] {
+  const parts: WarningPart[] = [];
   let plain = "";
-  // Ids are word-like tokens (o12, d3, o4_1); anything else stays text.
+  // Ids are word-like tokens; anything else stays text.
   for (const token of text.split(/([A-Za-z]\w*)/)) {
-    if (ids.has(token)) {
+    const part = ids.has(token) ? { id: token } : OBJECT_ID.test(token) ? { removed: token } : null;
+    if (part) {
       if (plain) parts.push({ text: plain });
       plain = "";
-      parts.push({ id: token });
+      parts.push(part);
     } else plain += token;
   }
   if (plain) parts.push({ text: plain });
@@ -102,7 +107,13 @@ export function pipelineWarningsPanel(session: SceneSession): {
               title: `Select ${part.id}`,
               onClick: () => session.select(part.id),
             })
-          : part.text,
+          : "removed" in part
+            ? el("del", {
+                className: "pipeline-warning-removed",
+                text: part.removed,
+                attrs: { title: `${part.removed} was removed since the pipeline ran` },
+              })
+            : part.text,
       );
     list.replaceChildren(
       ...warnings.map((w) =>
