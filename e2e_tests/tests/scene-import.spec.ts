@@ -4,7 +4,7 @@ import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import path from "node:path";
 import type { ImportResult, Job, SceneSummary } from "@holiscene/schema";
 import { expect, test } from "@playwright/test";
-import { seedScene, T3D_5, waitForJob } from "../helpers/api";
+import { getScene, seedScene, T3D_5, waitForJob } from "../helpers/api";
 import { submitUploadAndWait } from "../helpers/photo";
 
 test("imports a photo through the form and opens the scene", async ({ page }) => {
@@ -21,6 +21,17 @@ test("imports a photo through the form and opens the scene", async ({ page }) =>
   await submitUploadAndWait(page);
   await expect(name).not.toHaveAttribute("required", "");
   await expect(page.getByTestId("scene-list")).toContainText("t3d-5 upload");
+  // "Pipeline finished" comes with the count of the run's warnings, as the scene stores them.
+  const scenes = (await (await page.request.get("/api/scenes")).json()) as SceneSummary[];
+  const uploaded = scenes.find((s) => s.name === "t3d-5 upload");
+  if (!uploaded) throw new Error("the upload made no scene");
+  const stored = await getScene(page.request, uploaded.id);
+  const warned = stored.scene.stages.filter((s) => s.warning && s.note).length;
+  if (warned > 0)
+    await expect(page.getByTestId("upload-warnings")).toContainText(
+      `${warned} pipeline warning${warned === 1 ? "" : "s"}`,
+    );
+  else await expect(page.getByTestId("upload-warnings")).toHaveCount(0);
   const screenshots = path.resolve(import.meta.dirname, "../screenshots");
   mkdirSync(screenshots, { recursive: true });
   await page.screenshot({ path: path.join(screenshots, "scene-list.png"), fullPage: true });

@@ -4,7 +4,9 @@ import type { SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { pollJob } from "../../api/jobs";
 import { button, el, failureAlert, labelledField } from "../../dom";
+import { plural } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
+import { pipelineWarnings } from "../scene/pipelineWarnings";
 
 /** Photo names that say nothing of the scene (each dataset folder holds one such photo). */
 const GENERIC_PHOTO_NAMES = new Set(["img", "image", "rgb", "photo", "color", "colour", "im"]);
@@ -131,8 +133,25 @@ export function uploadForm(
       const progress = jobProgress("upload-job-progress");
       result.replaceChildren(el("p", {}, `Imported ${scene.name}. `, link), progress.element);
       if (imported.job) {
-        await pollJob(imported.job, { signal, onUpdate: progress.update });
+        const finished = await pollJob(imported.job, { signal, onUpdate: progress.update });
         void onImported(scene);
+        // "Pipeline finished" alone reads as all well on a photo the pipeline could do
+        // little with (an all-black one): its warnings are named here, not only on the page.
+        if (finished.status === "succeeded") {
+          const doc = await api.getScene(scene.id, signal);
+          const warnings = pipelineWarnings(doc.scene.stages);
+          if (warnings.length > 0)
+            result.append(
+              el("p", {
+                className: "alert alert--warn",
+                testid: "upload-warnings",
+                text:
+                  `${plural(warnings.length, "pipeline warning")} (` +
+                  `${[...new Set(warnings.map((w) => w.stage))].join(", ")}): ` +
+                  "open the scene to see what to check.",
+              }),
+            );
+        }
       } else {
         progress.element.remove();
       }
