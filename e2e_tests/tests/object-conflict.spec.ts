@@ -90,7 +90,7 @@ test("two people editing objects at once: the second is told, and nothing is los
   await expect(bob.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
   await expect(failure).toBeVisible();
   await expect(failureText).toContainText(`${o1} is no longer in the scene`);
-  await expect(failureText).toContainText("Kept from your last visit.");
+  await expect(failureText).toContainText("Not saved on your last visit");
   await expect(failureText).toContainText("dresser");
   await expect(bob.getByTestId("object-edit-retry")).toBeVisible();
   await bob.screenshot({ path: screenshotPath("object-edit-failure-kept.png") });

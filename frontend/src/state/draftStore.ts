@@ -30,6 +30,8 @@ export interface FailedObjectAction {
   edits: ObjectEdit[];
   /** ISO time it failed. */
   failedAt: string;
+  /** The revision it was made on: a Retry tells whether others changed its objects since. */
+  madeOn?: number;
 }
 
 /** Whether a draft holds anything unsaved. */

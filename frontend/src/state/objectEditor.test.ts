@@ -2,8 +2,9 @@
 // does): each action is one revision, undo and redo restore the revision before or after it,
 // a new action forgets what was undone, a failed action is kept until retried or dropped; and
 // how an action is re-applied on a newer revision after a conflict.
-import type { SceneDocument, SceneObject } from "@holiscene/schema";
+import type { RevisionInfo, SceneDocument, SceneObject } from "@holiscene/schema";
 import { beforeEach, describe, expect, it, vi } from "vitest";
+import { api } from "../api/client";
 import { ApiError } from "../api/errors";
 import { MemoryStorage } from "../testing/memoryStorage";
 import { sceneDocument, sceneObject, sessionOn } from "../testing/sceneDocuments";
@@ -374,10 +375,11 @@ describe("a failed object action outlives the page", () => {
     await visit().apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
 
     const next = visit(); // the tab was closed
-    expect(next.failure).toEqual({
-      label: "o1 → sofa",
-      message: "server down (Kept from your last visit.)",
-    });
+    expect(next.failure?.label).toBe("o1 → sofa");
+    // Said as then: the server may answer now.
+    expect(next.failure?.message).toMatch(
+      /^Not saved on your last visit \(.+\): server down\. Retry sends it now\.$/,
+    );
     server.refuseNext = "still down";
     expect(await next.retry()).toBe(false);
     expect(kept()).toMatchObject({ label: "o1 → sofa", message: "still down" });
@@ -401,6 +403,36 @@ describe("a failed object action outlives the page", () => {
     expect(kept()).toBeNull();
     expect(visit().failure).toBeNull();
     expect(server.latest.scene.objects?.[0]?.class).toBe("sofa");
+  });
+
+  it("a retry says first when someone else changed its object since, then puts it on top", async () => {
+    server.refuseNext = "server down";
+    await visit().apply([{ kind: "set_class", id: "o1", class: "sofa" }], "o1 → sofa");
+    // Bob makes o1 a table; the next visit loads his revision.
+    await server.post("s1", 1, "bob", [{ kind: "set_class", id: "o1", class: "table" }]);
+    const listRevisions = vi
+      .spyOn(api, "listRevisions")
+      .mockResolvedValue([{ number: 2, author: "bob" }] as RevisionInfo[]);
+    const getRevision = vi
+      .spyOn(api, "getRevision")
+      .mockResolvedValue(server.revisions[0] as SceneDocument);
+    try {
+      const next = visit();
+      const sent = server.requests.length;
+      expect(await next.retry()).toBe(false);
+      expect(server.requests.length).toBe(sent); // nothing sent over Bob's table
+      expect(next.failure?.message).toBe(
+        "bob changed o1 since you made this change. Retry again to put yours on top of " +
+          "theirs, or Discard to keep theirs.",
+      );
+      expect(classes(next.session)).toEqual({ o1: "table" });
+      expect(await next.retry()).toBe(true);
+      expect(classes(next.session)).toEqual({ o1: "sofa" });
+      expect(kept()).toBeNull();
+    } finally {
+      listRevisions.mockRestore();
+      getRevision.mockRestore();
+    }
   });
 
   it("a stored action that is not one is ignored", () => {

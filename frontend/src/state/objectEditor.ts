@@ -23,6 +23,7 @@ import type {
 } from "@holiscene/schema";
 import { api } from "../api/client";
 import { ApiError, ConflictError, errorText } from "../api/errors";
+import { formatTime } from "../dom";
 import { freshIds } from "../views/scene/detectionOffers";
 import { getAuthor } from "./author";
 import { HistoryKeeper } from "./editHistory";
@@ -262,6 +263,11 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   private retryFailed: (() => Promise<boolean>) | null = null;
   /** The failed action's edits (null: none failed, or it was an undo or redo). */
   private failedEdits: ObjectEdit[] | null = null;
+  /** The revision the failed action was made on (null: not known, kept before this was). */
+  private failedMadeOn: number | null = null;
+  /** The person was told someone changed the failed action's objects since: the next Retry
+   * puts theirs on top. */
+  private overwriteTold = false;
   /** Ids of new objects in actions not saved yet. */
   private readonly reserved = new Set<string>();
   /** Revisions this page had loaded, by number (an undo shows the one it restores at once). */
@@ -275,7 +281,14 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     super();
     const kept = session.drafts.loadFailedAction(session.sceneId);
     if (kept) {
-      this.failure = { label: kept.label, message: `${kept.message} (Kept from your last visit.)` };
+      // Why it failed then, said as then: the server may well answer now.
+      const when = formatTime(kept.failedAt);
+      this.failure = {
+        label: kept.label,
+        message: `Not saved on your last visit (${when}): ${kept.message}. Retry sends it now.`,
+      };
+      this.failedEdits = [...kept.edits];
+      this.failedMadeOn = kept.madeOn ?? null;
       this.retryFailed = () => this.apply(kept.edits, kept.label);
     }
   }
@@ -376,12 +389,32 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     });
   }
 
-  /** Send the failed action again (on the latest revision); true once saved. */
+  /**
+   * Send the failed action again (on the latest revision); true once saved. If someone else
+   * changed its objects since it was made, the first Retry only says so (putting it on top
+   * would silently replace their change); the next one sends it.
+   */
   async retry(): Promise<boolean> {
     const failed = this.failure;
     const again = this.retryFailed;
     const edits = this.failedEdits;
+    const madeOn = this.failedMadeOn;
     if (!failed || !again) return false;
+    if (edits && madeOn !== null && !this.overwriteTold) {
+      const since = await this.changedByOthers(edits, madeOn);
+      if (since) {
+        this.overwriteTold = true;
+        this.cancelRetry();
+        this.failure = {
+          label: failed.label,
+          message:
+            `${since.who} changed ${touchedText(since.ids)} since you made this change. ` +
+            "Retry again to put yours on top of theirs, or Discard to keep theirs.",
+        };
+        this.changed();
+        return false;
+      }
+    }
     this.setFailure(null, null);
     // Stored until saved: a tab closed while it is being sent loses nothing.
     const saved = await again();
@@ -390,8 +423,33 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     if (!saved && this.failure === null) {
       this.setFailure({ label: failed.label, message: failed.message }, again);
       this.failedEdits = edits;
+      this.failedMadeOn = madeOn;
     }
     return saved;
+  }
+
+  /** The objects of `edits` that others changed since revision `madeOn`, and who (null: none,
+   * or it cannot be told). */
+  private async changedByOthers(
+    edits: readonly ObjectEdit[],
+    madeOn: number,
+  ): Promise<{ ids: string[]; who: string } | null> {
+    const session = this.session;
+    if (session.doc.revision <= madeOn) return null;
+    try {
+      const me = (this.options.author ?? getAuthor)();
+      const revisions = await api.listRevisions(session.sceneId);
+      const latest = session.doc.revision;
+      const others = revisions.filter(
+        (r) => r.number > madeOn && r.number <= latest && r.author !== me,
+      );
+      if (others.length === 0) return null;
+      const made = this.seen.get(madeOn) ?? (await api.getRevision(session.sceneId, madeOn));
+      const ids = objectsChanged(touchedIds(edits), made, session.doc);
+      return ids.length > 0 ? { ids, who: authorsSince(others, madeOn, latest) } : null;
+    } catch {
+      return null; // unknown: sent as before (a conflict on the way is still caught)
+    }
   }
 
   /** Drop the failed action (the person chose to). */
@@ -403,7 +461,11 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   }
 
   private setFailure(failure: FailedAction | null, retry: (() => Promise<boolean>) | null): void {
-    if (failure === null) this.failedEdits = null;
+    if (failure === null) {
+      this.failedEdits = null;
+      this.failedMadeOn = null;
+      this.overwriteTold = false;
+    }
     this.cancelRetry();
     this.failure = failure;
     this.retryFailed = retry;
@@ -411,7 +473,9 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   }
 
   /** Keep the failed action in the scene's drafts (null: forget it). */
-  private keepFailed(action: { label: string; message: string; edits: ObjectEdit[] } | null): void {
+  private keepFailed(
+    action: { label: string; message: string; edits: ObjectEdit[]; madeOn?: number } | null,
+  ): void {
     const kept = action && { ...action, failedAt: new Date().toISOString() };
     this.session.drafts.saveFailedAction(this.session.sceneId, kept);
   }
@@ -443,6 +507,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     isAction: boolean,
   ): Promise<Sent | null> {
     const session = this.session;
+    const madeOn = session.doc.revision; // what the person saw when they made it
     const lock = session.lock;
     if (lock) {
       this.setStatus({ kind: "idle", message: lockText(lock), error: true });
@@ -505,6 +570,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
           edits,
           retry,
           isAction,
+          madeOn,
         );
         return null;
       }
@@ -516,7 +582,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
       return this.adopt(label, latest, rebased.edits, await this.post(latest, rebased.edits), note);
     } catch (error) {
       if (shown) session.adopt(shown); // not saved: back to what the server has
-      this.fail(label, errorText(error), edits, retry, isAction, failedOnTheWay(error));
+      this.fail(label, errorText(error), edits, retry, isAction, madeOn, failedOnTheWay(error));
       return null;
     }
   }
@@ -560,6 +626,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     edits: readonly ObjectEdit[],
     retry: () => Promise<boolean>,
     isAction: boolean,
+    madeOn: number,
     onTheWay = false,
   ): void {
     const earlier = this.failure;
@@ -570,10 +637,12 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
       }
       const both = [...this.failedEdits, ...edits];
       const together = `${earlier.label}, then ${label}`;
-      this.setFailed(together, message, both, () => this.apply(both, together), true, onTheWay);
+      const first = Math.min(this.failedMadeOn ?? madeOn, madeOn);
+      const again = () => this.apply(both, together);
+      this.setFailed(together, message, both, again, true, first, onTheWay);
       return;
     }
-    this.setFailed(label, message, edits, retry, isAction, onTheWay);
+    this.setFailed(label, message, edits, retry, isAction, madeOn, onTheWay);
   }
 
   private setFailed(
@@ -582,11 +651,13 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     edits: readonly ObjectEdit[],
     retry: () => Promise<boolean>,
     isAction: boolean,
+    madeOn: number,
     onTheWay: boolean,
   ): void {
-    this.keepFailed({ label, message, edits: [...edits] });
+    this.keepFailed({ label, message, edits: [...edits], madeOn });
     this.failure = onTheWay ? { label, message, retrying: true } : { label, message };
     this.failedEdits = isAction ? [...edits] : null;
+    this.failedMadeOn = madeOn;
     this.retryFailed = retry;
     this.cancelRetry();
     if (onTheWay) {
