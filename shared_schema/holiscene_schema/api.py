@@ -309,6 +309,12 @@ class SceneSummary(SchemaModel):
         "one, 0 when a person set it); 1 for a scene without objects; 'Next scene' picks the "
         "highest",
     )
+    archived_at: datetime | None = Field(
+        default=None,
+        description="When an admin archived it: out of the list, 'Next scene', reviews, "
+        "retraining and batch runs, and read only, until restored",
+    )
+    archived_by: str | None = None
     latest_job: Job | None = None
 
 
@@ -618,6 +624,10 @@ class SceneWorkflow(EditPermission):
         "submitted again",
     )
     events: list[WorkflowEvent] = Field(description="Oldest first")
+    archived_by: str | None = Field(
+        default=None,
+        description="The admin who archived the scene: no workflow step until restored",
+    )
 
 
 class ReleaseRequest(SchemaModel):

@@ -701,6 +701,11 @@ export interface SceneSummary {
  */
 annotation_round: number
 /**
+ * When an admin archived it: out of the list, 'Next scene', reviews, retraining and batch runs, and read only, until restored
+ */
+archived_at: (string | null)
+archived_by: (string | null)
+/**
  * The annotator working on it
  */
 assignee: (string | null)
@@ -1210,6 +1215,10 @@ updated_at: string
  */
 export interface SceneWorkflow {
 annotation_round: number
+/**
+ * The admin who archived the scene: no workflow step until restored
+ */
+archived_by: (string | null)
 assignee: (string | null)
 /**
  * The user asking may change this scene's supports and room layout now

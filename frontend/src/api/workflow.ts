@@ -57,13 +57,34 @@ export const usersApi = {
     request<UserInfo>(`${userUrl(name)}/${disabled ? "disable" : "enable"}`, { method: "POST" }),
 };
 
+/** Which scenes a list holds: those in use (the default), the archived ones, or both. */
+export type ArchivedScope = "exclude" | "only" | "include";
+
 export const workflowApi = {
   /** `background`: the page refreshes the list by itself (not activity, see BACKGROUND_HEADER). */
-  listScenes: (state: SceneState | null, signal?: AbortSignal, background = false) =>
-    request<SceneSummary[]>(
-      state ? `/scenes?state=${state}` : "/scenes",
+  listScenes: (
+    state: SceneState | null,
+    signal?: AbortSignal,
+    background = false,
+    archived: ArchivedScope = "exclude",
+  ) => {
+    const query = new URLSearchParams();
+    if (state) query.set("state", state);
+    if (archived !== "exclude") query.set("archived", archived);
+    const search = query.size > 0 ? `?${query}` : "";
+    return request<SceneSummary[]>(
+      `/scenes${search}`,
       background ? inBackground({ signal }) : { signal },
-    ),
+    );
+  },
+
+  /** Archive a scene (admin): out of the lists and "Next scene", read only, kept whole. */
+  archive: (sceneId: string) =>
+    request<SceneSummary>(`${sceneUrl(sceneId)}/archive`, { method: "POST" }),
+
+  /** Bring an archived scene back (admin). */
+  unarchive: (sceneId: string) =>
+    request<SceneSummary>(`${sceneUrl(sceneId)}/unarchive`, { method: "POST" }),
 
   /** Take the next scene to annotate (404 when none is waiting). */
   next: () => request<SceneSummary>("/scenes/next", { method: "POST" }),

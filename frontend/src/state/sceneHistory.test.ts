@@ -37,6 +37,7 @@ function workflow(
     state,
     assignee: "ann",
     annotation_round: 1,
+    archived_by: null,
     events: [],
     review_comment: null,
     revision: 3,

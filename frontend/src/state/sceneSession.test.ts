@@ -182,6 +182,7 @@ describe("the model's suggestions", () => {
       state: "submitted",
       assignee: "ann",
       annotation_round: 1,
+      archived_by: null,
       events: [],
       review_comment: null,
       revision: 2,

@@ -94,7 +94,7 @@ def batch_scenes(
     if not todo:
         print("nothing to run")
         return 0
-    names = {s.id: s.name for s in workbench.scenes.list_summaries()}
+    names = {s.id: s.name for s in workbench.scenes.list_summaries(archived=None)}
     with (
         ray_runtime(address, workers) as at_once,
         tqdm(total=len(todo), desc="batch", unit="photo", file=sys.stderr) as bar,

@@ -85,7 +85,7 @@ def _chosen_scenes(
     `state` when one is given."""
     from ..export.archive import archived_scenes
 
-    state_of = {s.id: s.state for s in scenes.list_summaries()}
+    state_of = {s.id: s.state for s in scenes.list_summaries(archived=None)}
     ids = list(dict.fromkeys(scene_ids)) if scene_ids else list(state_of)
     unknown = [i for i in ids if i not in state_of]
     if unknown:

@@ -71,7 +71,7 @@ def _demo(args: argparse.Namespace) -> int:
     settings = settings_from(args)
     workbench = Workbench(settings)
     try:
-        if workbench.scenes.list_summaries():
+        if workbench.scenes.list_summaries(archived=None):
             print("the database already holds scenes; no demo scenes loaded")
             return 0
         synthetic_dir = settings.data_dir / "demo-inputs"

@@ -66,6 +66,7 @@ class SceneStatus:
     state: SceneState
     assignee: str | None
     annotation_round: int
+    archived_by: str | None = None  # archived (by this admin): nobody edits it until restored
 
 
 @dataclass(frozen=True)
@@ -93,6 +94,8 @@ def take_for_annotation(
     who wants a change rejects the scene with a comment (its annotator fixes it; an admin
     may take it over), and an accepted scene changes only through a second annotation."""
     state, assignee = status.state, status.assignee
+    if status.archived_by is not None:
+        raise WorkflowError(archived_text(status.archived_by))
     if state == "submitted":
         by = assignee or "someone"
         if has_role(actor.role, "reviewer") and actor.name != assignee:
@@ -200,8 +203,16 @@ def second_annotation(status: SceneStatus) -> Transition:
     return Transition("second_annotation", "predicted", None)
 
 
+def archived_text(by: str) -> str:
+    """Why an archived scene is refused (edits, takes, jobs)."""
+    return f"the scene was archived by {by}: an admin restores it before anyone works on it"
+
+
 def check_pipeline_allowed(status: SceneStatus) -> None:
-    """Re-running the pipeline would change what a reviewer is judging or has accepted."""
+    """Re-running the pipeline would change what a reviewer is judging or has accepted; an
+    archived scene is left as it is."""
+    if status.archived_by is not None:
+        raise WorkflowError(archived_text(status.archived_by))
     if status.state in ("submitted", "accepted"):
         raise WorkflowError(
             f"the scene is {describe(status.state)}: the pipeline cannot re-run on it now"

@@ -37,11 +37,16 @@ class SceneHead(Protocol):
     def annotation_round(self) -> int: ...
     @property
     def current_revision(self) -> int: ...
+    @property
+    def archived_by(self) -> str | None: ...
 
 
 def status_of(row: SceneHead) -> SceneStatus:
     return SceneStatus(
-        state=as_state(row.state), assignee=row.assignee, annotation_round=row.annotation_round
+        state=as_state(row.state),
+        assignee=row.assignee,
+        annotation_round=row.annotation_round,
+        archived_by=row.archived_by,
     )
 
 

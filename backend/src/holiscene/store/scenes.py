@@ -85,6 +85,7 @@ def _revision_query(joined: ColumnElement[bool]) -> Select[*tuple[Any, ...]]:
             SceneRow.assignee,
             SceneRow.annotation_round,
             SceneRow.current_revision,
+            SceneRow.archived_by,
             RevisionRow.number,
             RevisionRow.created_at,
             # As text: pydantic reads JSON text in half the time it takes to check the dict
@@ -179,10 +180,18 @@ class SceneStore:
 
     # -- reading -------------------------------------------------------------------------
 
-    def list_summaries(self, state: SceneState | None = None) -> list[SceneSummary]:
+    def list_summaries(
+        self, state: SceneState | None = None, archived: bool | None = False
+    ) -> list[SceneSummary]:
+        """The scenes, newest first: in use (`archived` False, the default: what lists,
+        retraining and batch runs work on), archived only (True) or all (None)."""
         query = select(SceneRow, _last_event_at()).order_by(SceneRow.created_at.desc())
         if state is not None:
             query = query.where(SceneRow.state == state)
+        if archived is not None:
+            query = query.where(
+                SceneRow.archived_at.is_not(None) if archived else SceneRow.archived_at.is_(None)
+            )
         with Session(self.engine) as session:
             return [self._summary(row, None, last) for row, last in session.execute(query).all()]
 
@@ -290,6 +299,15 @@ class SceneStore:
                 .limit(1)
             ).first()
             return self._summary(row) if row is not None else None
+
+    def set_archived(self, scene_id: str, by: str | None) -> SceneSummary:
+        """Archive the scene (by an admin), or restore it (`by` None); every revision stays."""
+        with Session(self.engine) as session:
+            row = self._row(session, scene_id)
+            row.archived_at = utcnow() if by is not None else None
+            row.archived_by = by
+            session.commit()
+        return self.summary(scene_id)
 
     def image_path(self, scene_id: str) -> Path:
         with Session(self.engine) as session:
@@ -781,5 +799,7 @@ class SceneStore:
             assignee=row.assignee,
             annotation_round=row.annotation_round,
             uncertainty=row.uncertainty,
+            archived_at=as_utc(row.archived_at) if row.archived_at is not None else None,
+            archived_by=row.archived_by,
             latest_job=latest_job,
         )

@@ -56,6 +56,10 @@ class SceneRow(Base):
     # SHA-256 of the photo's file (migration 0011): scenes of one photo share a side of the
     # held-out split. Filled from the file, when first needed, for scenes stored before.
     photo_digest: Mapped[str | None] = mapped_column(String(64), nullable=True, index=True)
+    # Archived by an admin (migration 0013): out of the lists and "Next scene", read only,
+    # every revision kept; None while in use.
+    archived_at: Mapped[datetime | None] = mapped_column(DateTime(timezone=True), nullable=True)
+    archived_by: Mapped[str | None] = mapped_column(String(64), nullable=True)
 
 
 class RevisionRow(Base):

@@ -47,6 +47,10 @@ from .tables import SceneEventRow, SceneRow
 _ACTIONS = get_args(WorkflowAction)
 
 
+# Scenes not archived: what "Next scene", reviews and the dashboard's counts look at.
+_IN_USE = SceneRow.archived_at.is_(None)
+
+
 class NoSceneWaitingError(NotFoundError):
     """Next scene found nothing to annotate (HTTP 404 with the message)."""
 
@@ -81,6 +85,7 @@ class WorkflowStore:
                 revision=row.current_revision,
                 review_comment=_open_rejection(events),
                 events=events,
+                archived_by=row.archived_by,
             )
 
     def edit_refusal(self, scene_id: str, actor: Actor, revision: int | None = None) -> str | None:
@@ -202,7 +207,7 @@ class WorkflowStore:
         """The scene waiting longest for review that the reviewer did not annotate (any, in
         single-user mode). Nothing changes: reviewing needs no claim, and a scene opened but
         not judged stays for the next reviewer."""
-        query = select(SceneRow).where(SceneRow.state == "submitted")
+        query = select(SceneRow).where(SceneRow.state == "submitted", _IN_USE)
         if not actor.local:
             query = query.where(SceneRow.assignee.is_distinct_from(actor.name))
         with Session(self.engine) as session:
@@ -213,11 +218,13 @@ class WorkflowStore:
 
     @staticmethod
     def _next_candidates(session: Session, actor: Actor) -> list[SceneRow]:
-        mine = select(SceneRow).where(SceneRow.state == "rejected", SceneRow.assignee == actor.name)
+        mine = select(SceneRow).where(
+            SceneRow.state == "rejected", SceneRow.assignee == actor.name, _IN_USE
+        )
         rejected = list(session.scalars(mine.order_by(SceneRow.updated_at)))
         predicted = session.scalars(
             select(SceneRow)
-            .where(SceneRow.state == "predicted")
+            .where(SceneRow.state == "predicted", _IN_USE)
             .order_by(
                 SceneRow.uncertainty.is_(None),  # unknown last
                 SceneRow.uncertainty.desc(),
@@ -293,7 +300,10 @@ class WorkflowStore:
 
         def reopen(session: Session, new_revision: int) -> None:
             row = _row(session, scene_id)
-            transition = workflow_rules.second_annotation(status_of(row))
+            status = status_of(row)
+            if status.archived_by is not None:
+                raise WorkflowError(workflow_rules.archived_text(status.archived_by))
+            transition = workflow_rules.second_annotation(status)
             row.annotation_round += 1
             _apply(session, row, transition, actor, new_revision, comment)
 
@@ -320,7 +330,10 @@ class WorkflowStore:
             row = _row(session, scene_id)
             if row.current_revision != revision:
                 raise RevisionConflictError(row.current_revision)
-            transition = rule(status_of(row))
+            status = status_of(row)
+            if status.archived_by is not None:  # no step of the workflow until restored
+                raise WorkflowError(workflow_rules.archived_text(status.archived_by))
+            transition = rule(status)
             if not _apply_if_unchanged(session, row, transition, actor, revision, comment):
                 session.rollback()
                 raise WorkflowError("the scene changed meanwhile; reload it and try again")
@@ -334,7 +347,7 @@ class WorkflowStore:
             counts = {
                 state: count
                 for state, count in session.execute(
-                    select(SceneRow.state, func.count()).group_by(SceneRow.state)
+                    select(SceneRow.state, func.count()).where(_IN_USE).group_by(SceneRow.state)
                 )
             }
             states: dict[SceneState, int] = {s: int(counts.get(s, 0)) for s in STATES}

@@ -24,6 +24,8 @@ NEEDS: dict[tuple[str, str], str] = {
     ("POST", "/api/scenes/{scene_id}/reject"): "reviewer",
     ("POST", "/api/scenes/{scene_id}/second-annotation"): "reviewer",
     ("GET", "/api/scenes/next-review"): "reviewer",
+    ("POST", "/api/scenes/{scene_id}/archive"): "admin",
+    ("POST", "/api/scenes/{scene_id}/unarchive"): "admin",
     ("POST", "/api/models/retrain"): "admin",
     ("POST", "/api/models/retrain/{job_id}/cancel"): "admin",
     ("POST", "/api/models/{model_id}/promote"): "admin",

@@ -393,3 +393,45 @@ def test_pipeline_result_is_not_stored_on_a_submitted_scene(api: Api, accounts: 
     with pytest.raises(WorkflowError, match=r"submitted.*not stored"):
         scenes.commit_pipeline_result(scene_id, current, None)
     assert api.snapshot(scene_id) == before  # same revisions, state and history
+
+
+def test_an_archived_scene_leaves_the_lists_and_nobody_works_on_it(
+    api: Api, accounts: Accounts
+) -> None:
+    scenes = accounts.workbench.scenes
+    kept = store_predicted_scene(scenes, "kept", {"o1": 0.9, "o2": 0.9, "o3": 0.9})
+    junk = store_predicted_scene(scenes, "all black", with_objects=False)  # the most uncertain
+    before = api.snapshot(junk)
+
+    # Only an admin archives.
+    _refused(api, junk, api.post("rex", f"/api/scenes/{junk}/archive"), 403, "admin")
+    archived = api.post("ada", f"/api/scenes/{junk}/archive")
+    assert archived.status_code == 200, archived.text
+    assert archived.json()["archived_by"] == "ada" and archived.json()["archived_at"]
+
+    # Out of the list, "Next scene" and the dashboard's counts; listed on request.
+    assert [s["name"] for s in api.get("ann", "/api/scenes")] == ["kept"]
+    assert [s["id"] for s in api.get("ann", "/api/scenes?archived=only")] == [junk]
+    assert len(api.get("ann", "/api/scenes?archived=include")) == 2
+    assert api.get("ann", "/api/dashboard")["states"]["predicted"] == 1
+    assert api.post("ann", "/api/scenes/next").json()["id"] == kept
+
+    # Read only for everyone, admins too, with the reason; nothing written.
+    document = api.get("bob", f"/api/scenes/{junk}")
+    assert document["editable"] is False
+    assert "archived by ada" in document["editable_reason"]
+    refused = api.edit("ada", junk, _set("o1", "floor"))
+    _refused(api, junk, refused, 409, "archived by ada")
+    _refused(api, junk, api.post("ada", f"/api/scenes/{junk}/take"), 409, "archived by ada")
+    _refused(api, junk, api.act("ada", junk, "submit"), 409, "archived by ada")
+    assert api.workflow(junk)["archived_by"] == "ada"
+    pipeline = api.post("ada", f"/api/scenes/{junk}/pipeline-jobs")
+    _refused(api, junk, pipeline, 409, "archived by ada")
+    assert api.snapshot(junk) == before
+
+    # Restored as it was: listed, and "Next scene" offers it again.
+    restored = api.post("ada", f"/api/scenes/{junk}/unarchive")
+    assert restored.status_code == 200, restored.text
+    assert restored.json()["archived_at"] is None
+    assert api.get("bob", f"/api/scenes/{junk}")["editable"] is True
+    assert api.post("bob", "/api/scenes/next").json()["id"] == junk

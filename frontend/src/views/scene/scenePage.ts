@@ -4,6 +4,7 @@ import type { Job, SceneDocument, SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { ApiError } from "../../api/errors";
 import { isFinished, pollJob } from "../../api/jobs";
+import { workflowApi } from "../../api/workflow";
 import { button, el } from "../../dom";
 import { warnBeforeLeaving } from "../../editors/saving/leaveWarning";
 import { getAuthor } from "../../state/author";
@@ -12,6 +13,7 @@ import { saveDone } from "../../state/objectEditor";
 import { SceneSession } from "../../state/sceneSession";
 import { jobProgress, waitingText } from "../common/jobProgress";
 import { mayHaveGlb } from "../scene3d/viewportObjects";
+import { archiveControl } from "./archiveControl";
 import { downloadMenu } from "./downloadMenu";
 import { sceneMeta } from "./sceneMeta";
 import { mountSceneWorkbench } from "./sceneWorkbench";
@@ -19,7 +21,7 @@ import { viserLink } from "./viserLink";
 
 /** The scene's line of the scene list: its name and latest job (null when it is not there). */
 async function sceneSummary(sceneId: string, signal: AbortSignal): Promise<SceneSummary | null> {
-  const scenes = await api.listScenes(signal);
+  const scenes = await workflowApi.listScenes(null, signal, false, "include");
   return scenes.find((s) => s.id === sceneId) ?? null;
 }
 
@@ -42,6 +44,11 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     () => shown === null || mayHaveGlb(shown.doc),
     () => shown,
   );
+  const archive = archiveControl(
+    sceneId,
+    () => void load().catch(fail),
+    (error) => fail(error),
+  );
   container.replaceChildren(
     el(
       "div",
@@ -56,6 +63,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
         downloads.element,
         viser.element,
         rerun,
+        archive.element,
       ),
       progress.element,
       message,
@@ -138,6 +146,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     message.textContent = "Loading…";
     const summary = await sceneSummary(sceneId, abort.signal);
     if (summary) title.textContent = summary.name; // named while its pipeline job runs
+    archive.show(summary);
     const job = summary?.latest_job ?? null;
     if (job && !isFinished(job)) {
       message.textContent = waitingText(job);

@@ -14,6 +14,9 @@ import { MINE, myWork, sentBack, sentBackText } from "./myWork";
 import { SceneSelection } from "./sceneSelection";
 import { uploadForm } from "./uploadForm";
 
+/** The state filter's value for the archived scenes (not a workflow state). */
+const ARCHIVED = "archived";
+
 const REFRESH_WHILE_RUNNING_MS = 2000;
 const REFRESH_IDLE_MS = 10_000;
 // Header columns that give way in a narrow window (.narrow-hidden in styles.css; their cells in
@@ -146,6 +149,10 @@ export function mountSceneList(container: HTMLElement): () => void {
     ...SCENE_STATES.map((state) =>
       el("option", { text: stateLabel(state), attrs: { value: state } }),
     ),
+    el("option", {
+      text: "Archived",
+      attrs: { value: ARCHIVED, title: "Scenes an admin archived: out of the other lists" },
+    }),
   );
   const next = nextSceneControl({ take: "N", review: "R" });
   // Scenes a reviewer sent back wait on their annotator: said above the list, whatever its
@@ -179,8 +186,10 @@ export function mountSceneList(container: HTMLElement): () => void {
     }
     try {
       const mine = filter.value === MINE;
-      const state = (mine ? null : filter.value || null) as SceneState | null;
-      const listed = await workflowApi.listScenes(state, abort.signal, background);
+      const archived = filter.value === ARCHIVED;
+      const state = (mine || archived ? null : filter.value || null) as SceneState | null;
+      const scope = archived ? "only" : "exclude";
+      const listed = await workflowApi.listScenes(state, abort.signal, background, scope);
       const me = getCurrentUser()?.name ?? null;
       const scenes = mine ? myWork(listed, me) : listed;
       // Known only when the list holds every state (a state filter lists one).
@@ -199,9 +208,11 @@ export function mountSceneList(container: HTMLElement): () => void {
           ? ""
           : mine
             ? `Nothing to do: no scene is yours to annotate or fix. "Next scene" hands you one.`
-            : state
-              ? `No scene is ${stateLabel(state)}.`
-              : "No scenes yet: import a photo below.";
+            : archived
+              ? "No scene is archived."
+              : state
+                ? `No scene is ${stateLabel(state)}.`
+                : "No scenes yet: import a photo below.";
       const running = scenes.some((s) => s.latest_job && !isFinished(s.latest_job));
       const wait = running ? REFRESH_WHILE_RUNNING_MS : REFRESH_IDLE_MS;
       timer = window.setTimeout(() => void refresh(true), wait);

@@ -164,6 +164,12 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
     reviewer = now.reviewer;
     const { flow, pending, recovered, busy, mine } = now;
     const state = flow.state;
+    // Archived: no step of the workflow until an admin restores it (the banner says so).
+    if (flow.archived_by != null) {
+      for (const action of [take, submit, release, accept, reject, again]) action.hidden = true;
+      rejectBox.hidden = true;
+      return;
+    }
     take.hidden = !(
       (now.annotator &&
         (state === "new" || state === "predicted" || (state === "rejected" && mine))) ||

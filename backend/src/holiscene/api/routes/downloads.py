@@ -65,7 +65,7 @@ def download_archive(request: SceneArchiveRequest, workbench: WorkbenchDep) -> R
     """The scenes as one zip (see export/archive.py); 404 naming every unknown id, and
     nothing is made then."""
     scene_ids = list(dict.fromkeys(request.scene_ids))  # the same scene once
-    known = {s.id for s in workbench.scenes.list_summaries()}
+    known = {s.id for s in workbench.scenes.list_summaries(archived=None)}
     unknown = [i for i in scene_ids if i not in known]
     if unknown:
         raise SceneNotFoundError(f"no scene with the id {', '.join(unknown)}: nothing archived")

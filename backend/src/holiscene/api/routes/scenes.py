@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path as FilePath
-from typing import Annotated
+from typing import Annotated, Literal
 
 import numpy as np
 from fastapi import APIRouter, File, Form, Path, Query, UploadFile
@@ -66,11 +66,19 @@ async def _read_limited(upload: UploadFile, what: str, limit: int) -> bytes:
     return data
 
 
+# Which scenes a list holds: those in use (the default), the archived ones, or both.
+ArchivedScope = Literal["exclude", "only", "include"]
+_ARCHIVED: dict[ArchivedScope, bool | None] = {"exclude": False, "only": True, "include": None}
+
+
 @router.get("", response_model=list[SceneSummary])
-def list_scenes(workbench: WorkbenchDep, state: SceneState | None = None) -> list[SceneSummary]:
-    """Every scene, newest first; `state` keeps the scenes in that workflow state."""
+def list_scenes(
+    workbench: WorkbenchDep, state: SceneState | None = None, archived: ArchivedScope = "exclude"
+) -> list[SceneSummary]:
+    """The scenes, newest first; `state` keeps the scenes in that workflow state, `archived`
+    says whether archived scenes are left out (the default), the only ones, or included."""
     latest = workbench.jobs.latest_for_scenes()
-    summaries = workbench.scenes.list_summaries(state)
+    summaries = workbench.scenes.list_summaries(state, _ARCHIVED[archived])
     return [s.model_copy(update={"latest_job": latest.get(s.id)}) for s in summaries]
 
 

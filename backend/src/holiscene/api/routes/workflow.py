@@ -16,7 +16,7 @@ from holiscene_schema import (
     SubmitRequest,
 )
 
-from ..deps import AnnotatorDep, ReviewerDep, UserDep, WorkbenchDep
+from ..deps import AdminDep, AnnotatorDep, ReviewerDep, UserDep, WorkbenchDep
 from ..permissions import with_edit_permission
 
 router = APIRouter(prefix="/api", tags=["workflow"])
@@ -108,6 +108,20 @@ def second_annotation(
     dashboard then shows how far the two annotations agree."""
     flow = workbench.workflow.second_annotation(scene_id, body.revision, user, body.comment)
     return with_edit_permission(flow, workbench, user)
+
+
+@router.post("/scenes/{scene_id}/archive", response_model=SceneSummary, responses=_ERRORS)
+def archive_scene(scene_id: str, user: AdminDep, workbench: WorkbenchDep) -> SceneSummary:
+    """Archive a scene nobody should work on (a junk photo, a duplicate): it leaves the scene
+    list, "Next scene", reviews, retraining and batch runs and is read only; every revision
+    is kept, and `unarchive` brings it back (admin)."""
+    return workbench.scenes.set_archived(scene_id, user.name)
+
+
+@router.post("/scenes/{scene_id}/unarchive", response_model=SceneSummary, responses=_ERRORS)
+def unarchive_scene(scene_id: str, _: AdminDep, workbench: WorkbenchDep) -> SceneSummary:
+    """Bring an archived scene back, as it was (admin)."""
+    return workbench.scenes.set_archived(scene_id, None)
 
 
 @router.get("/dashboard", response_model=Dashboard)
