@@ -250,7 +250,7 @@ test("a real photo: labels apart, sources, 3D box confidences and mesh sources i
   const judged = doc.scene.objects?.filter((o) => o.box_3d && o.box_3d_confidence != null) ?? [];
   expect(judged.length).toBeGreaterThan(0);
   for (const object of judged) {
-    const percent = Math.round((object.box_3d_confidence ?? 0) * 100);
+    const percent = Math.floor((object.box_3d_confidence ?? 0) * 100 + 1e-9); // rounded down
     await expect(page.getByTestId(`box-confidence-${object.id}`)).toHaveText(`3D ${percent}%`);
   }
   // Which stage made each mesh: the mesh network's deformed templates among them.

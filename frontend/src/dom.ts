@@ -133,6 +133,10 @@ export function placeChildren(parent: Element, nodes: readonly Element[]): void 
 }
 
 /** Format an ISO time as a short local date and time. */
+/** A score, confidence or probability as a whole percent, rounded down: 99.6% never reads
+ * as a sure 100%, and 29.6% is under a 30% threshold as it is. */
+export const percentText = (share: number) => `${Math.floor(share * 100 + 1e-9)}%`;
+
 /** A time as every page shows it: the month named (no day/month ambiguity), to the second
  * (revisions can follow each other within a minute). */
 const FULL_TIME: Intl.DateTimeFormatOptions = {

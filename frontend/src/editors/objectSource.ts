@@ -1,6 +1,7 @@
 // Where an object came from, in words, for the object list: boxes given with the photo, the
 // object detector (with its score), or a person; and whether people changed it since.
 import type { SceneObject } from "@holiscene/schema";
+import { percentText } from "../dom";
 
 export interface SourceText {
   /** Short, for the badge: "given", "detector 87%", "by hand", "detector 61% · edited". */
@@ -17,7 +18,7 @@ export function objectSource({ source, score, set_by_person }: SourceFields): So
   const changed = setByPerson.filter((part) => part !== "object");
   const edited = changed.length > 0 && source !== "manual";
   const editedTitle = edited ? `; a person set its ${changed.join(", ")}` : "";
-  const percent = typeof score === "number" ? ` ${Math.round(score * 100)}%` : "";
+  const percent = typeof score === "number" ? ` ${percentText(score)}` : "";
   const suffix = edited ? " · edited" : "";
   switch (source) {
     case "given":

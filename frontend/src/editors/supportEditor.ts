@@ -3,7 +3,7 @@
 // are staged in the session as undoable actions (shown at once on the photo) and autosaved.
 import type { SceneObject } from "@holiscene/schema";
 import { STRUCTURAL_SUPPORTERS, SUPPORT_TYPES } from "@holiscene/schema";
-import { button, el, placeChildren } from "../dom";
+import { button, el, percentText, placeChildren } from "../dom";
 import { classText, objectClassText } from "../state/classNames";
 import type { SceneSession } from "../state/sceneSession";
 import {
@@ -80,7 +80,18 @@ function statusText(support: ShownSupport | undefined): string {
   if (support.pending) return "unsaved";
   if (support.source === "manual") return `manual${support.author ? ` · ${support.author}` : ""}`;
   const confidence = support.confidence;
-  return typeof confidence === "number" ? `auto · ${Math.round(confidence * 100)}%` : "auto";
+  return typeof confidence === "number" ? `auto · ${percentText(confidence)}` : "auto";
+}
+
+/** What the status chip stands for, for its tooltip. */
+function sourceTitle(support: ShownSupport | undefined): string {
+  if (!support) return "No supporter yet: pick one in the menu, or drag the arrow on the photo";
+  if (support.pending) return "Changed here, not saved yet";
+  if (support.source === "manual")
+    return `Set by ${support.author ?? "a person"}: a label, which retraining learns from`;
+  const sure =
+    typeof support.confidence === "number" ? `, ${percentText(support.confidence)} sure` : "";
+  return `The pipeline's guess${sure}; nobody has checked it yet`;
 }
 
 /** The object's class: a button opening the picker when classes can be changed here. */
@@ -257,7 +268,7 @@ function objectRow(
     const doubtful = !support || Boolean(beside) || (!pending && isDoubtfulSupport(support));
     const badge = `badge${doubtful ? " badge--warn" : ""}${pending ? " badge--pending" : ""}`;
     if (status.className !== badge) status.className = badge;
-    const why = beside || "";
+    const why = beside || sourceTitle(support);
     if (status.title !== why) status.title = why;
     element.classList.toggle("is-unsupported", !support);
     element.classList.toggle("is-pending", pending);

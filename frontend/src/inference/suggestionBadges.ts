@@ -1,11 +1,10 @@
 // The model's answer beside each object in the support editor's table: a badge with the most
 // probable supporter and type, the next answers in its tooltip. Where a person's label
 // contradicts a confident answer (labelDoubts.ts) the badge turns orange and says so.
-import { el } from "../dom";
+import { el, percentText } from "../dom";
 import type { SceneScores, SupportSuggestion } from "./supportModel";
 
-const percent = (p: number) => `${Math.round(p * 100)}%`;
-const answer = (s: SupportSuggestion) => `${s.supporter} · ${s.type} ${percent(s.probability)}`;
+const answer = (s: SupportSuggestion) => `${s.supporter} · ${s.type} ${percentText(s.probability)}`;
 
 /** Put the badges into `table`'s object rows (`tr[data-object]`), unless they are there
  * already with the same doubts. */
@@ -34,9 +33,13 @@ export function showSuggestionBadges(
         text: `model: ${answer(best)}`,
         attrs: {
           title: doubt
-            ? `The model is ${percent(best.probability)} sure of ${best.supporter} · ` +
+            ? `The model is ${percentText(best.probability)} sure of ${best.supporter} · ` +
               `${best.type}, not the label set by a person: check it.\n${alternatives}`
-            : alternatives,
+            : // The live suggestions decode the whole scene at once: they may differ from
+              // this object's own best answer.
+              `The support network's answers for this object alone:\n${alternatives}\n` +
+              "Live suggestions weigh them with the class priors and what the other objects " +
+              "rest on, so they can differ.",
         },
       }),
     );

@@ -1,5 +1,6 @@
 // What changed between two revisions of a scene (the history's diff).
 import type { Scene, SceneObject, SupportRelation } from "@holiscene/schema";
+import { percentText } from "../dom";
 import { objectClassText } from "./classNames";
 import { sameRelation } from "./supportGraph";
 
@@ -97,7 +98,7 @@ function relationText(s: SupportRelation | null): string {
   const who =
     s.source === "manual"
       ? `by ${s.author ?? "someone"}`
-      : `predicted${s.confidence === null || s.confidence === undefined ? "" : ` ${Math.round(s.confidence * 100)}%`}`;
+      : `predicted${s.confidence === null || s.confidence === undefined ? "" : ` ${percentText(s.confidence)}`}`;
   return `on ${s.parent} (${s.type}, ${who})`;
 }
 

@@ -4,7 +4,7 @@
 // labels and "?" flags are labelLayer.ts's). Each arrow carries its provenance (source,
 // author, time, confidence) as data attributes and in its tooltip.
 import type { SceneObject } from "@holiscene/schema";
-import { formatTime, svgEl } from "../../dom";
+import { formatTime, percentText, svgEl } from "../../dom";
 import type { SuggestedSupport } from "../../state/sceneSession";
 import { isDoubtfulSupport, isStructural, type ShownSupport } from "../../state/supportGraph";
 import {
@@ -69,7 +69,7 @@ export function provenanceText(
   suggestion?: SuggestedSupport,
 ): string {
   if (suggestion) {
-    return `suggested by the model (${Math.round(suggestion.probability * 100)}%) after your corrections`;
+    return `suggested by the model (${percentText(suggestion.probability)}) after your corrections`;
   }
   if (!support) return "no supporter";
   if (support.pending && support.source === "manual") return "your edit, not saved yet";
@@ -77,7 +77,7 @@ export function provenanceText(
   const unsaved = support.pending ? " (restored, not saved yet)" : "";
   if (support.source === "manual")
     return `manual · ${support.author ?? "unknown"}${when}${unsaved}`;
-  const confidence = support.confidence === null ? "" : ` ${Math.round(support.confidence * 100)}%`;
+  const confidence = support.confidence === null ? "" : ` ${percentText(support.confidence)}`;
   return `predicted (auto${confidence})${when}${unsaved}`;
 }
 

@@ -6,7 +6,7 @@
 // save the first line, often a faint detector guess, without the person choosing it.
 // Picks are counted in this browser (with the scene's own objects) to order the list.
 import type { SceneObject } from "@holiscene/schema";
-import { el } from "../../dom";
+import { el, percentText } from "../../dom";
 import type { LikelyClass } from "./classHints";
 import { keepInView, optionItem, placeBeside } from "./classPickerParts";
 import { CLASS_OPTIONS, type ClassOption, rankClasses } from "./classRanking";
@@ -98,7 +98,7 @@ export function pickClass(options: PickerOptions): Promise<string | null> {
   const likely = options.likely ?? [];
   const detectorNote = (cls: string) => {
     const hint = likely.find((l) => l.cls === cls);
-    return hint ? `detector ${Math.round(hint.score * 100)}%` : null;
+    return hint ? `detector ${percentText(hint.score)}` : null;
   };
 
   const draw = () => {

@@ -1,6 +1,7 @@
 // Which of the detector's boxes the scene page offers as new objects, and the edit that adds
 // one (POST /api/scenes/{id}/edits, kind "add_object": the server makes its mask).
 import { type AddObject, DETECTOR_MODEL, type SceneObject } from "@holiscene/schema";
+import { percentText } from "../../dom";
 import { type Box, boxIou, type DetectedBox } from "../../inference/detectorTensor";
 
 /** Boxes that overlap an object (or a rejected offer) of their class more than this are not
@@ -96,10 +97,6 @@ export function addObjectEdit(offer: Offer, id: string): AddObjectEdit {
     source: "detector",
   };
 }
-
-/** A score as people read it: "42%"; rounded down, so a box below the threshold (29.6%)
- * never reads as at it ("30%"). */
-export const percentText = (score: number) => `${Math.floor(score * 100 + 1e-9)}%`;
 
 /** "chair 87%" */
 export const offerLabel = (offer: Offer) => `${offer.cls} ${percentText(offer.score)}`;

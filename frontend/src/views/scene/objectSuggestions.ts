@@ -13,7 +13,7 @@ import { plural, type SceneSession } from "../../state/sceneSession";
 import { isStructural } from "../../state/supportGraph";
 import { frameFor } from "../photo/arrowGeometry";
 import { classHints } from "./classHints";
-import { type Offer, offerLabel, percentText } from "./detectionOffers";
+import { type Offer, offerLabel } from "./detectionOffers";
 import { addingText, addOffers } from "./suggestions/addOffers";
 import { type DetectorBarActions, detectorBar } from "./suggestions/detectorBar";
 import { fainterText, foundText, runDetector } from "./suggestions/detectorRun";
@@ -22,6 +22,7 @@ import { OfferState } from "./suggestions/offerState";
 import { loadRejected, saveRejected } from "./suggestions/rejectedOffers";
 import { suggestionKeys } from "./suggestions/suggestionKeys";
 import "./objectSuggestions.css";
+import { percentText } from "../../dom";
 
 // Its parts, in suggestions/: the bar (detectorBar), a detector run (detectorRun), the boxes on
 // the photo (offerBoxes) and the keys; this module keeps the offers and accepts or rejects them.

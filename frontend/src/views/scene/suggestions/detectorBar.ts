@@ -2,9 +2,9 @@
 // (or why it failed) with "Show N fainter" after it when the run saw boxes below the
 // detector's threshold and "Offer N rejected again" when boxes rejected before are left out,
 // and while there are boxes: the selected one, Accept, Reject, Accept all, Reject all.
-import { button, el } from "../../../dom";
+import { button, el, percentText } from "../../../dom";
 import { SCORE_THRESHOLD } from "../../../inference/detectorTensor";
-import { type Offer, offerLabel, percentText } from "../detectionOffers";
+import { type Offer, offerLabel } from "../detectionOffers";
 
 export const DETECT_KEY = "D";
 export const ACCEPT_KEY = "Y";

@@ -1,12 +1,12 @@
 // One run of the object detector on the scene's photo, in this browser, and what to say about
 // what it found.
 import { api } from "../../../api/client";
+import { percentText } from "../../../dom";
 import { activeDetector, detectorModel } from "../../../inference/detector";
 import { type DetectedBox, isFlatPhoto, SCORE_THRESHOLD } from "../../../inference/detectorTensor";
 import { photoPixels } from "../../../inference/supportSuggestions";
 import { plural } from "../../../state/sceneSession";
 import { HINT_SCORE } from "../classHints";
-import { percentText } from "../detectionOffers";
 
 const MB = (bytes: number) => `${(bytes / 1e6).toFixed(1)} MB`;
 

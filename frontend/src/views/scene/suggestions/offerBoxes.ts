@@ -2,12 +2,12 @@
 // ones first so a smaller box inside one stays clickable, and every tag over every box, so a
 // box's tag is never under another box; a click on a box or its tag selects it. The tags keep
 // clear of each other and of the objects' labels (offerLabelPlacement.ts).
-import { svgEl } from "../../../dom";
+import { percentText, svgEl } from "../../../dom";
 import { SCORE_THRESHOLD } from "../../../inference/detectorTensor";
 import { type Frame, strokeWidth } from "../../photo/arrowGeometry";
 import type { Rect } from "../../photo/cornerHandles";
 import { drawnLabelTags } from "../../photo/labelLayer";
-import { type Offer, offerLabel, percentText } from "../detectionOffers";
+import { type Offer, offerLabel } from "../detectionOffers";
 import { placeTags } from "./offerLabelPlacement";
 
 /** The tag's font size and box for a label of this text. */
