@@ -10,8 +10,10 @@ import { screenshotPath } from "../helpers/screenshots";
 test("an admin archives a scene, finds it under Archived and restores it", async ({ page }) => {
   const doc = await seedScene(page.request, T3D_5, "archive me");
   await openScene(page, doc.scene_id);
-  const archive = page.getByTestId("archive-scene");
-  await expect(archive).toHaveText("Archive");
+  const archive = page.getByTestId("workflow-archive");
+  const restore = page.getByTestId("workflow-unarchive");
+  await expect(archive).toBeVisible();
+  await expect(restore).toBeHidden();
   await expect(page.getByTestId("read-only-banner")).toBeHidden();
 
   // It asks first; then the scene is read only, saying why.
@@ -21,7 +23,8 @@ test("an admin archives a scene, finds it under Archived and restores it", async
     void dialog.accept();
   });
   await archive.click();
-  await expect(archive).toHaveText("Restore");
+  await expect(restore).toBeVisible();
+  await expect(archive).toBeHidden();
   expect(asked).toContain('Archive "archive me"?');
   await expect(page.getByTestId("read-only-banner")).toContainText("archived by local");
   await expect(page.locator("[data-testid^='supporter-select-']").first()).toBeDisabled();
@@ -42,8 +45,8 @@ test("an admin archives a scene, finds it under Archived and restores it", async
 
   // Restored as it was: editable, and back in the list.
   await openScene(page, doc.scene_id);
-  await page.getByTestId("archive-scene").click();
-  await expect(page.getByTestId("archive-scene")).toHaveText("Archive");
+  await restore.click();
+  await expect(archive).toBeVisible();
   await expect(page.getByTestId("read-only-banner")).toBeHidden();
   await expect(page.locator("[data-testid^='supporter-select-']").first()).toBeEnabled();
   await expect(page.getByTestId("workflow-take")).toBeVisible();

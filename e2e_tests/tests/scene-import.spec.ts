@@ -54,7 +54,8 @@ test("a scene whose pipeline is still running shows progress, then opens", async
   // The pipeline on this photo takes well under a second, too quick to watch: the page is
   // shown the job as still running for its first two looks at it.
   const running = { status: "running", progress: 0.4, stage: "supports" } as const;
-  await page.route("**/api/scenes", async (route) => {
+  // The list, with or without its query (the scene page asks for archived scenes too).
+  await page.route(/\/api\/scenes(\?[^/]*)?$/, async (route) => {
     const response = await route.fetch();
     const scenes = (await response.json()) as SceneSummary[];
     const json = scenes.map((s) =>

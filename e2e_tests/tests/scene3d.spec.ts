@@ -70,6 +70,11 @@ test("shows the frustum and arrows, shares the selection with the photo, exports
   await page.mouse.click(at.x, at.y);
   await expect(canvas).toHaveAttribute("data-selected", first);
   await expect(page.getByTestId(`mask-${first}`)).toHaveClass(/is-selected/);
+  // The object pointed at is named over the view, with its 3D box's size in metres.
+  const caption = page.getByTestId("scene3d-caption");
+  await expect(caption).toContainText(
+    new RegExp(`^${first} .* · 3D box [0-9.]+ × [0-9.]+ × [0-9.]+ m`),
+  );
   // The selected object glows in 3D, on top of its class colour.
   await page.mouse.move(4, 4);
   expect(brightness(await colour(first))).toBeGreaterThan(brightness(plain) + 0.1);
@@ -77,6 +82,7 @@ test("shows the frustum and arrows, shares the selection with the photo, exports
   // A click on nothing in 3D clears it; a click on the photo selects there and in 3D.
   await canvas.click({ position: { x: 4, y: 4 } });
   await expect(canvas).toHaveAttribute("data-selected", "");
+  await expect(caption).toBeHidden();
   await expect(page.getByTestId(`mask-${first}`)).not.toHaveClass(/is-selected/);
   expect(await colour(first)).toEqual(plain);
   await page.getByTestId("toggle-arrows").uncheck();

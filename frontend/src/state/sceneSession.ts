@@ -568,7 +568,8 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
             (options.hold ? "; review and save." : "."),
         );
       }
-      this.notice = lines.join(" ");
+      // Nothing new and nothing of theirs to tell (a reload after a workflow step): no notice.
+      this.notice = newer.length === 0 && lines.length === 1 ? null : lines.join(" ");
       this.holdAutosave = options.hold === true && unsaved > 0;
       this.saveState = { kind: "clean" }; // the conflict is resolved; editsChanged() says what is left
       this.setDocument(doc);

@@ -113,6 +113,15 @@ export function mountDashboardPage(container: HTMLElement): () => void {
           "section",
           { className: "card" },
           el("h2", { text: "People" }),
+          // The state counts above are scenes now; these are steps over time, and say so.
+          el("p", {
+            className: "field-hint",
+            testid: "people-hint",
+            text:
+              "Annotating: the scenes each person holds now. Submitted, Accepted, Rejected " +
+              "and Reviewed: every such step so far (a scene submitted again after a " +
+              "rejection counts twice), so they need not add up to the scene counts above.",
+          }),
           table(
             "people-table",
             ["Name", "Role", "Annotating", "Submitted", "Accepted", "Rejected", "Reviewed"],

@@ -13,7 +13,6 @@ import { saveDone } from "../../state/objectEditor";
 import { SceneSession } from "../../state/sceneSession";
 import { jobProgress, waitingText } from "../common/jobProgress";
 import { mayHaveGlb } from "../scene3d/viewportObjects";
-import { archiveControl } from "./archiveControl";
 import { downloadMenu } from "./downloadMenu";
 import { sceneMeta } from "./sceneMeta";
 import { mountSceneWorkbench } from "./sceneWorkbench";
@@ -44,11 +43,6 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     () => shown === null || mayHaveGlb(shown.doc),
     () => shown,
   );
-  const archive = archiveControl(
-    sceneId,
-    () => void load().catch(fail),
-    (error) => fail(error),
-  );
   container.replaceChildren(
     el(
       "div",
@@ -63,7 +57,6 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
         downloads.element,
         viser.element,
         rerun,
-        archive.element,
       ),
       progress.element,
       message,
@@ -146,7 +139,6 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     message.textContent = "Loading…";
     const summary = await sceneSummary(sceneId, abort.signal);
     if (summary) title.textContent = summary.name; // named while its pipeline job runs
-    archive.show(summary);
     const job = summary?.latest_job ?? null;
     if (job && !isFinished(job)) {
       message.textContent = waitingText(job);

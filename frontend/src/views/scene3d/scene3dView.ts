@@ -9,6 +9,7 @@ import { api } from "../../api/client";
 import type { LayoutDraft } from "../../state/layoutDraft";
 import type { SceneSession } from "../../state/sceneSession";
 import { mountDepthPoints } from "./depthPoints";
+import { objectCaption } from "./objectCaption";
 import { downloadCanvasPng, pngFileName } from "./pngExport";
 import { ViewportCamera } from "./viewportCamera";
 import { buildViewportDom } from "./viewportDom";
@@ -140,7 +141,14 @@ export function mountScene3d(
     if (objects.stale) void objects.load();
     depthPoints?.refresh();
   });
+  // The object pointed at, else the selected one, named over the view with its box's size.
+  const showCaption = () => {
+    const id = session.hovered ?? session.selected;
+    const object = id === null ? undefined : session.object(id);
+    dom.setCaption(object ? objectCaption(object) : "");
+  };
   const unsubscribe = session.subscribe((change) => {
+    if (change === "hover" || change === "select" || change === "document") showCaption();
     if (change === "hover" || change === "select") objects.highlight();
     else if (change === "edits") follow();
     else if (change === "document") {

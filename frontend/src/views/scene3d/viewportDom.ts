@@ -43,6 +43,8 @@ export interface ViewportDom {
   extras: HTMLElement;
   /** Says the view's state on the panel and the canvas (data-status) and in the status line. */
   setStatus(state: Scene3dStatus, text: string): void;
+  /** The line over the view naming the object pointed at or selected ("": hidden). */
+  setCaption(text: string): void;
 }
 
 /** Fill `container` with the toolbar, the canvas and its status line. */
@@ -60,7 +62,9 @@ export function buildViewportDom(container: HTMLElement): ViewportDom {
   const overviewButton = viewButton("Overview", "scene3d-overview");
   const photoViewButton = viewButton("Photo viewpoint", "scene3d-photo-view");
   const exportButton = viewButton("Export PNG", "scene3d-export");
-  const viewport = el("div", { className: "scene3d-viewport" }, canvas, status);
+  const caption = el("p", { className: "scene3d-caption", testid: "scene3d-caption" });
+  caption.hidden = true;
+  const viewport = el("div", { className: "scene3d-viewport" }, canvas, caption, status);
   const extras = el("span", { className: "toolbar-extras" });
   container.replaceChildren(
     el(
@@ -81,5 +85,18 @@ export function buildViewportDom(container: HTMLElement): ViewportDom {
     status.textContent = text;
     status.hidden = text === "";
   };
-  return { canvas, viewport, overviewButton, photoViewButton, exportButton, extras, setStatus };
+  const setCaption = (text: string) => {
+    if (caption.textContent !== text) caption.textContent = text;
+    caption.hidden = text === "";
+  };
+  return {
+    canvas,
+    viewport,
+    overviewButton,
+    photoViewButton,
+    exportButton,
+    extras,
+    setStatus,
+    setCaption,
+  };
 }

@@ -25,6 +25,7 @@ export interface ActionState {
   canTakeOver: boolean;
   canReview: boolean;
   reviewer: boolean;
+  admin: boolean;
 }
 
 /** What `me` may do with the scene now (busy: an action is on its way). */
@@ -49,6 +50,7 @@ export function actionState(
     busy,
     annotator,
     reviewer,
+    admin,
     mine,
     canSubmit: flow.state === "in_annotation" && mine && annotator && !busy,
     // In local mode one person plays every part: there is nobody to give it back to.
@@ -78,6 +80,9 @@ export interface ActionHandlers {
   /** "Send" with no comment. */
   onEmptyReject(): void;
   onSecondAnnotation(): void;
+  /** An admin archives the scene (asked first) or restores it. */
+  onArchive(): void;
+  onUnarchive(): void;
 }
 
 export interface WorkflowActions {
@@ -115,6 +120,21 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
     "workflow-second",
     "Reset the supports to the pipeline's guesses and have another annotator label it",
   );
+  // An admin's: a scene nobody should work on leaves the lists, read only, kept whole.
+  const archive = actionButton(
+    "Archive scene",
+    "workflow-archive",
+    "Take this scene out of the lists and 'Next scene' (a junk photo, a duplicate); read " +
+      "only, every revision kept, and an admin can restore it",
+  );
+  const unarchive = actionButton(
+    "Restore",
+    "workflow-unarchive",
+    "Bring the archived scene back to the lists, as it was",
+    true,
+  );
+  archive.addEventListener("click", handlers.onArchive);
+  unarchive.addEventListener("click", handlers.onUnarchive);
   const rejectText = el("textarea", {
     testid: "reject-comment",
     attrs: {
@@ -164,8 +184,12 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
     reviewer = now.reviewer;
     const { flow, pending, recovered, busy, mine } = now;
     const state = flow.state;
+    const archived = flow.archived_by != null;
+    archive.hidden = !now.admin || archived;
+    unarchive.hidden = !now.admin || !archived;
+    archive.disabled = unarchive.disabled = busy;
     // Archived: no step of the workflow until an admin restores it (the banner says so).
-    if (flow.archived_by != null) {
+    if (archived) {
       for (const action of [take, submit, release, accept, reject, again]) action.hidden = true;
       rejectBox.hidden = true;
       return;
@@ -215,6 +239,8 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
       accept,
       reject,
       again,
+      unarchive,
+      archive,
     ),
     rejectBox,
     submitByKey: () => handlers.onSubmit(true),

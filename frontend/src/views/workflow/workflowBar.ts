@@ -105,6 +105,15 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
         actions.rejected();
       }),
     onEmptyReject: () => showError("Say what went wrong: the annotator sees this comment."),
+    onArchive: () => {
+      const question =
+        `Archive "${session.doc.scene.name}"? It leaves the scene list, "Next scene", reviews, ` +
+        "retraining and batch runs, and becomes read only. Every revision is kept, and an " +
+        "admin can restore it (the list's Archived filter shows it).";
+      // The document is loaded again for its permission (read only now); no revision changed.
+      if (window.confirm(question)) void act(() => workflowApi.archive(session.sceneId), true);
+    },
+    onUnarchive: () => void act(() => workflowApi.unarchive(session.sceneId), true),
     onSecondAnnotation: () => {
       const question =
         "Reset this scene's supports to the pipeline's guesses so that another annotator labels it independently?";

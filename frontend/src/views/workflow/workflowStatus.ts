@@ -39,6 +39,11 @@ export interface NoteInputs {
 
 export function noteText({ flow, pending, recovered, me, labelled }: NoteInputs): string {
   const name = me?.name;
+  if (flow.archived_by != null)
+    return (
+      `Archived by ${flow.archived_by}: out of the scene list, "Next scene" and retraining, ` +
+      "and read only; every revision is kept. An admin's Restore brings it back."
+    );
   switch (flow.state) {
     case "new":
       // Imported without a pipeline run, or its run failed: the page waits while one runs.

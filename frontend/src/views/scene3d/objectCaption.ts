@@ -1,0 +1,23 @@
+// The line over the 3D view naming the object under the pointer (or the selected one): which
+// object it is, and its 3D box's size in metres, so a reviewer can tell a lamp 2 m tall or a
+// bed 40 cm long without opening the viser viewer.
+import type { SceneObject } from "@holiscene/schema";
+import { percentText } from "../../dom";
+import { classText } from "../../state/classNames";
+
+const metres = (value: number) => value.toFixed(2);
+
+/** "o3 books · 3D box 0.50 × 0.23 × 0.21 m (depth × height × width) · 3D 87%" */
+export function objectCaption(
+  object: Pick<SceneObject, "id" | "class" | "box_3d" | "box_3d_confidence">,
+): string {
+  const name = `${object.id} ${classText(object.class)}`;
+  const box = object.box_3d;
+  if (!box) return `${name} · no 3D box`;
+  const size = box.size.map(metres).join(" × ");
+  const sure =
+    typeof object.box_3d_confidence === "number"
+      ? ` · 3D ${percentText(object.box_3d_confidence)}`
+      : "";
+  return `${name} · 3D box ${size} m (depth × height × width)${sure}`;
+}
