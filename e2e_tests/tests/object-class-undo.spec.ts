@@ -89,6 +89,8 @@ test("a class changed with the picker, and an object deleted, come back with und
   await expect(page.getByTestId("class-picker")).toHaveCount(0);
   let doc = await revisionSaved(page, sceneId, start + 1);
   expect(objectOf(doc, dresser.id)?.class).toBe("shelves");
+  // The keyboard goes back where it was (the Box tool's button), not to the page's start.
+  await expect(page.getByTestId("photo-tool-box")).toBeFocused();
   await expect(page.getByTestId("undo-button")).toHaveAttribute(
     "title",
     /Undo: dresser .* → shelves/,

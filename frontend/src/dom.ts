@@ -120,6 +120,11 @@ export function svgEl<K extends keyof SVGElementTagNameMap>(
  * its focus).
  */
 export function placeChildren(parent: Element, nodes: readonly Element[]): void {
+  // A control with the keyboard on it, in a node replaced here (a row redrawn after an edit):
+  // the keyboard moves to its twin in the new node, not back to the page's start.
+  const focused =
+    typeof document === "undefined" ? null : (document.activeElement as HTMLElement | null);
+  const testid = focused && parent.contains(focused) ? focused.dataset?.testid : undefined;
   let cursor = parent.firstElementChild;
   for (const node of nodes) {
     if (node === cursor) cursor = cursor.nextElementSibling;
@@ -130,9 +135,12 @@ export function placeChildren(parent: Element, nodes: readonly Element[]): void 
     cursor.remove();
     cursor = next;
   }
+  if (testid && !parent.contains(document.activeElement))
+    parent
+      .querySelector<HTMLElement>(`[data-testid="${CSS.escape(testid)}"]`)
+      ?.focus({ preventScroll: true });
 }
 
-/** Format an ISO time as a short local date and time. */
 /** A score, confidence or probability as a whole percent, rounded down: 99.6% never reads
  * as a sure 100%, and 29.6% is under a 30% threshold as it is. */
 export const percentText = (share: number) => `${Math.floor(share * 100 + 1e-9)}%`;

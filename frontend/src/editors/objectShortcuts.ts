@@ -33,7 +33,14 @@ export async function removeSelected(editor: ObjectEditor): Promise<void> {
 /** Pick a new class for the selected object (near its box on `svg`). */
 export async function changeSelectedClass(editor: ObjectEditor, svg: SVGSVGElement): Promise<void> {
   const object = selectedOrAsk(editor.session);
-  if (object) await changeClass(editor, object, screenRect(svg, object.bbox));
+  if (!object) return;
+  await changeClass(editor, object, screenRect(svg, object.bbox));
+  // Opened by a key over the photo: the keyboard lands on the object's row, not the page's
+  // start (Tab then goes on from the object, as a keyboard user expects).
+  if (document.activeElement === document.body)
+    document
+      .querySelector<HTMLElement>(`[data-testid="object-class-${CSS.escape(object.id)}"]`)
+      ?.focus({ preventScroll: true });
 }
 
 /** Pick a new class for `object` in the class picker shown beside `near` (client pixels). */

@@ -136,10 +136,16 @@ export function pickClass(options: PickerOptions): Promise<string | null> {
   const onOutside = (event: PointerEvent) => {
     if (!box.contains(event.target as Node)) finish(null);
   };
+  // Where the keyboard was: it goes back there when the picker closes by a key (removing
+  // the focused input would drop it to the page's start, far from the object).
+  const before = document.activeElement;
   const finish = (name: string | null) => {
     if (closeOpen === cancel) closeOpen = null;
     window.removeEventListener("pointerdown", onOutside, true);
+    const hadFocus = box.contains(document.activeElement);
     box.remove();
+    if (hadFocus && before instanceof HTMLElement && before !== document.body && before.isConnected)
+      before.focus({ preventScroll: true });
     if (name) countPick(CLASS_OPTIONS.find((o) => o.name === name)?.cls ?? name);
     resolve(name);
   };
