@@ -22,7 +22,11 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
     switchLabel: "Relation Network",
     title: "Relation Network models",
     usedBy:
-      "The pipeline and the browser use the active model. An admin can make any model active again.",
+      "It predicts, for each object of a photo, what holds it up (another object, the floor, " +
+      "a wall or the ceiling) and how (from below or from behind): the support arrows. The " +
+      "pipeline and the browser's suggestions use the active model; an admin can make any " +
+      "model active again. The 3D networks (layout, boxes, meshes) ship with the app and are " +
+      "trained with holiscene train-3d, not here.",
     empty: "No Relation Network model is registered yet: retrain to make one.",
     heldoutColumn: "Held-out accuracy",
     heldoutItems: ["labelled object", "labelled objects"],
@@ -31,8 +35,9 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
     retrainHint:
       "Trains a new Relation Network on the synthetic scenes and on every scene whose supports " +
       "a person set. A fixed fifth of those scenes is held out: the new model becomes active " +
-      "only if it is more accurate on them than the active one (exactly as accurate: kept as a " +
-      "candidate, to make active by hand). Every model is kept.",
+      "only if it is more accurate on them than the active one, on 20 labelled objects or " +
+      "more (exactly as accurate, or better on fewer: kept as a candidate, to make active by " +
+      "hand). Every model is kept.",
     epochs: ["Epochs at most", "default (40)"],
     synthetic: ["Synthetic scenes", "default (1200)"],
   },
@@ -40,7 +45,9 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
     switchLabel: "Object detector",
     title: "Object detector models",
     usedBy:
-      "The pipeline finds objects with the active detector. An admin can make any detector active again.",
+      "It finds the objects of a photo uploaded without boxes (each a box and an NYU-40 " +
+      "class), in the pipeline and behind Detect objects. The pipeline uses the active " +
+      "detector; an admin can make any detector active again.",
     empty: "No object detector is registered yet: retrain to make one.",
     heldoutColumn: "Held-out mAP@0.5 · recall",
     heldoutItems: ["confirmed box", "confirmed boxes"],
@@ -53,8 +60,9 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
       "Fine-tunes a new detector on synthetic rooms and on every scene whose boxes a person " +
       "confirmed: drawn, given with the photo, accepted suggestions, or all of a scene a " +
       "reviewer accepted. A fixed fifth of those scenes is held out: the new detector becomes " +
-      "active only if it does better on them (mAP@0.5, then recall); exactly as well: kept as " +
-      "a candidate, to make active by hand. Every detector is kept.",
+      "active only if it does better on them (mAP@0.5, then recall) on 20 confirmed boxes or " +
+      "more; exactly as well, or better on fewer: kept as a candidate, to make active by " +
+      "hand. Every detector is kept.",
     epochs: ["Epochs", "default (12)"],
     synthetic: ["Synthetic rooms", "default (300)"],
   },

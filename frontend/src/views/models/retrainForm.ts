@@ -84,9 +84,13 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
     log,
   );
 
+  // The finished job whose outcome a refused start put away: a late report of it (the page
+  // reloading after it ended) must not bring it back under the refusal.
+  let putAway: string | null = null;
   const showJob = (job: Job) => {
     if (job.id !== shownJob?.id) since.hidden = true;
     shownJob = job;
+    if (job.id === putAway && isFinished(job)) return;
     progress.element.hidden = false;
     progress.update(job);
     log.hidden = job.log === "";
@@ -145,6 +149,7 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
       retrainError.textContent = `Retraining did not start: ${String(error instanceof Error ? error.message : error)}`;
       // An earlier job's outcome under this refusal would read as this attempt's.
       for (const old of [progress.element, log, since]) old.hidden = true;
+      putAway = shownJob?.id ?? null;
     }
   });
 
