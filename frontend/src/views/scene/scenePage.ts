@@ -58,6 +58,7 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
         viser.element,
         rerun,
       ),
+      viser.note,
       progress.element,
       message,
       content,

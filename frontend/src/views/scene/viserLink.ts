@@ -7,6 +7,9 @@ import { button, el } from "../../dom";
 
 export interface ViserLink {
   element: HTMLElement;
+  /** How to reach the viewer from another machine, for under the header (hidden when the
+   * page is on the server itself). */
+  note: HTMLElement;
   /** The scene's revision on the page: a viewer of an older one says it is behind. */
   showRevision(revision: number): void;
   /** The page is left: a rebuild waiting for the saves to pause is not asked for. */
@@ -14,6 +17,20 @@ export interface ViserLink {
 }
 
 const VIEWER_FOLLOW_MS = 2000;
+
+const LOOPBACK = new Set(["localhost", "127.0.0.1", "[::1]", "::1"]);
+
+/** The viewer listens on the server's loopback only (viser has no login): from another
+ * machine its address is the reviewer's own loopback, so the page says how to reach it. */
+export function remoteViewerNote(url: string, pageHost: string): string | null {
+  if (LOOPBACK.has(pageHost)) return null;
+  const port = new URL(url).port;
+  return (
+    `The viewer runs on the server and answers there only (it has no login). From this ` +
+    `machine, forward its port first: ssh -L ${port}:127.0.0.1:${port} ${pageHost}, ` +
+    `then open ${url}.`
+  );
+}
 
 /** A button that opens the viewer, and a link to it once it runs. */
 export function viserLink(sceneId: string): ViserLink {
@@ -23,6 +40,11 @@ export function viserLink(sceneId: string): ViserLink {
   const link = el("a", {
     testid: "viser-link",
     attrs: { target: "_blank", rel: "noopener", hidden: true },
+  });
+  const note = el("span", {
+    className: "alert alert--info viser-remote-note",
+    testid: "viser-remote-note",
+    attrs: { hidden: true },
   });
   const openButton = button("Open in viser", {
     testid: "open-viser",
@@ -44,7 +66,8 @@ export function viserLink(sceneId: string): ViserLink {
   openButton.onclick = async () => {
     // Open the tab now, while the click still counts as the user's: popup blockers refuse
     // a window opened after an await.
-    const tab = window.open("about:blank", "_blank");
+    const remote = !LOOPBACK.has(window.location.hostname);
+    const tab = remote ? null : window.open("about:blank", "_blank");
     if (tab) tab.opener = null;
     openButton.disabled = true;
     try {
@@ -55,6 +78,8 @@ export function viserLink(sceneId: string): ViserLink {
       link.title = `${info.url} — from a shell: ${info.command}`;
       link.hidden = false;
       if (tab) tab.location.href = info.url;
+      note.textContent = remoteViewerNote(info.url, window.location.hostname) ?? "";
+      note.hidden = note.textContent === "";
     } catch (error) {
       tab?.close();
       link.removeAttribute("href");
@@ -73,6 +98,7 @@ export function viserLink(sceneId: string): ViserLink {
   }
   return {
     element: el("span", { className: "viser-link" }, openButton, " ", link),
+    note,
     showRevision(revision) {
       latest = revision;
       showLinkText();
