@@ -27,6 +27,10 @@ test("an admin archives a scene, finds it under Archived and restores it", async
   await expect(archive).toBeHidden();
   expect(asked).toContain('Archive "archive me"?');
   await expect(page.getByTestId("read-only-banner")).toContainText("archived by local");
+  await expect(page.getByTestId("workflow-state")).toHaveText(/^archived · /);
+  await expect(page.getByTestId("workflow-events").locator("li").last()).toContainText(
+    "local archived it",
+  );
   await expect(page.locator("[data-testid^='supporter-select-']").first()).toBeDisabled();
   await expect(page.getByTestId("run-pipeline")).toBeDisabled();
   // No workflow step is offered on it (taking it would only be refused).
@@ -42,6 +46,7 @@ test("an admin archives a scene, finds it under Archived and restores it", async
   await expect(row).toHaveCount(0);
   await page.getByTestId("state-filter").selectOption("archived");
   await expect(row).toBeVisible();
+  await expect(row).toHaveText(/^archived · /);
 
   // Restored as it was: editable, and back in the list.
   await openScene(page, doc.scene_id);

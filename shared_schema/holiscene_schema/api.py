@@ -594,6 +594,8 @@ WorkflowAction = Literal[
     "accept",
     "reject",
     "second_annotation",
+    "archive",
+    "unarchive",
 ]
 
 

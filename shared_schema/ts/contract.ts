@@ -1247,7 +1247,7 @@ state: ("new" | "predicted" | "in_annotation" | "submitted" | "accepted" | "reje
  * via the `definition` "WorkflowEvent".
  */
 export interface WorkflowEvent {
-action: ("import" | "predict" | "claim" | "release" | "reopen" | "submit" | "accept" | "reject" | "second_annotation")
+action: ("import" | "predict" | "claim" | "release" | "reopen" | "submit" | "accept" | "reject" | "second_annotation" | "archive" | "unarchive")
 actor: string
 annotation_round: number
 /**

@@ -72,7 +72,10 @@ describe("object colours", () => {
 
   it("gives the classes of a scene hues apart, each its own colour where none is near", () => {
     // Books, bookshelf and shelves (one green each before) and sofa beside picture.
-    const crowded = ["books", "bookshelf", "shelves", "sofa", "picture", "chair", "table", "lamp"];
+    const crowded = [
+      ...["books", "bookshelf", "shelves", "sofa", "picture", "chair", "table", "lamp"],
+      ...["pillow", "box", "otherprop"],
+    ];
     const colours = classColours(crowded);
     const hues = [...colours.values()].map(hue);
     hues.forEach((a, i) => {
@@ -81,6 +84,12 @@ describe("object colours", () => {
         expect(Math.min(d, 360 - d)).toBeGreaterThan(20);
       }
     });
+    // A lamp's and a pillow's were a purple and a blue 15 degrees apart.
+    const apart = (a: string, b: string) => {
+      const d = Math.abs(hue(colours.get(a) as Rgb) - hue(colours.get(b) as Rgb));
+      return Math.min(d, 360 - d);
+    };
+    expect(apart("lamp", "pillow")).toBeGreaterThan(40);
     // The most common class keeps the colour it has alone; the order given does not matter.
     expect(colours.get("chair")).toEqual(classColours(["chair"]).get("chair"));
     expect(classColours([...crowded].reverse())).toEqual(colours);

@@ -21,6 +21,9 @@ const PALETTE: readonly Rgb[] = Array.from({ length: SLOTS }, (_, k) =>
 /** Two colours nearer in hue read as one (a darker red is still red): a slot this near a
  * colour given already gives way. */
 const NEAR_HUE = 25;
+/** The same for classes: a scene holds a handful, so they can keep farther apart (25 degrees
+ * left a lamp's purple and a pillow's blue alike). */
+const CLASS_NEAR_HUE = 40;
 
 function hueDistance(a: number, b: number): number {
   const d = Math.abs(slotHue(a) - slotHue(b));
@@ -63,12 +66,13 @@ function preferredSlot(id: string): number {
 function distinctSlots(
   keys: readonly string[],
   preferred: (key: string) => number,
+  near = NEAR_HUE,
 ): Map<string, number> {
   const used = new Set<number>();
   const slots = new Map<string, number>();
   for (const key of keys) {
     let slot = preferred(key);
-    if (used.has(slot) || nearestGiven(slot, used) < NEAR_HUE) {
+    if (used.has(slot) || nearestGiven(slot, used) < near) {
       let best = -1;
       for (let k = 0; k < SLOTS; k++) {
         const distance = used.has(k) ? -1 : nearestGiven(k, used);
@@ -112,10 +116,14 @@ export function classColours(classes: Iterable<string>): Map<string, Rgb> {
   };
   const unique = [...new Set(classes)].sort((a, b) => order(a) - order(b) || a.localeCompare(b));
   return paletteColours(
-    distinctSlots(unique, (cls) => {
-      const index = classIndex(cls);
-      return (index < 0 ? idHash(cls) : index) % SLOTS;
-    }),
+    distinctSlots(
+      unique,
+      (cls) => {
+        const index = classIndex(cls);
+        return (index < 0 ? idHash(cls) : index) % SLOTS;
+      },
+      CLASS_NEAR_HUE,
+    ),
   );
 }
 

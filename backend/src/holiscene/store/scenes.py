@@ -300,12 +300,25 @@ class SceneStore:
             ).first()
             return self._summary(row) if row is not None else None
 
-    def set_archived(self, scene_id: str, by: str | None) -> SceneSummary:
-        """Archive the scene (by an admin), or restore it (`by` None); every revision stays."""
+    def set_archived(self, scene_id: str, archive: bool, actor: str) -> SceneSummary:
+        """Archive the scene (an admin), or restore it; every revision stays, and the scene's
+        workflow history says who did it and when (its state and annotator do not change)."""
         with Session(self.engine) as session:
             row = self._row(session, scene_id)
-            row.archived_at = utcnow() if by is not None else None
-            row.archived_by = by
+            if (row.archived_at is not None) != archive:
+                row.archived_at = utcnow() if archive else None
+                row.archived_by = actor if archive else None
+                state = as_state(row.state)
+                record_event(
+                    session,
+                    row,
+                    action="archive" if archive else "unarchive",
+                    to_state=state,
+                    assignee=row.assignee,
+                    actor=actor,
+                    revision=row.current_revision,
+                    from_state=state,
+                )
             session.commit()
         return self.summary(scene_id)
 

@@ -356,7 +356,9 @@ class WorkflowStore:
                 name: count
                 for name, count in session.execute(
                     select(SceneRow.assignee, func.count())
-                    .where(SceneRow.state == "in_annotation", SceneRow.assignee.is_not(None))
+                    .where(
+                        SceneRow.state == "in_annotation", SceneRow.assignee.is_not(None), _IN_USE
+                    )
                     .group_by(SceneRow.assignee)
                 )
             }

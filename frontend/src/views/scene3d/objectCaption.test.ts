@@ -15,5 +15,10 @@ describe("objectCaption", () => {
     expect(objectCaption({ id: "d2", class: "lamp", box_3d: null, box_3d_confidence: null })).toBe(
       "d2 lamp · no 3D box",
     );
+    // The detector's own name too, as the object list writes it.
+    const clock = { id: "o15", class: "otherprop" as const, source_class: "clock" };
+    expect(objectCaption({ ...clock, box_3d: null, box_3d_confidence: null })).toMatch(
+      /^o15 otherprop \(clock\)/,
+    );
   });
 });

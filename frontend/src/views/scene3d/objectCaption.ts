@@ -3,15 +3,18 @@
 // bed 40 cm long without opening the viser viewer.
 import type { SceneObject } from "@holiscene/schema";
 import { percentText } from "../../dom";
-import { classText } from "../../state/classNames";
+import { objectClassText } from "../../state/classNames";
 
 const metres = (value: number) => value.toFixed(2);
 
 /** "o3 books · 3D box 0.50 × 0.23 × 0.21 m (depth × height × width) · 3D 87%" */
 export function objectCaption(
-  object: Pick<SceneObject, "id" | "class" | "box_3d" | "box_3d_confidence">,
+  object: Pick<SceneObject, "id" | "class" | "box_3d" | "box_3d_confidence"> & {
+    source_class?: string | null;
+  },
 ): string {
-  const name = `${object.id} ${classText(object.class)}`;
+  // The class as the object list writes it ("otherprop (clock)": the detector's own name too).
+  const name = `${object.id} ${objectClassText(object)}`;
   const box = object.box_3d;
   if (!box) return `${name} · no 3D box`;
   const size = box.size.map(metres).join(" × ");

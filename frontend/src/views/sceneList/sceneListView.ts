@@ -53,9 +53,12 @@ function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowE
       {},
       el("span", {
         className: "state-badge",
-        text: stateLabel(scene.state),
+        text: scene.archived_at ? `archived · ${stateLabel(scene.state)}` : stateLabel(scene.state),
         testid: `scene-state-${scene.id}`,
-        attrs: { "data-state": scene.state },
+        attrs: {
+          "data-state": scene.archived_at ? "archived" : scene.state,
+          title: scene.archived_by ? `Archived by ${scene.archived_by}` : "",
+        },
       }),
     ),
     el("td", { text: scene.assignee ?? "—", testid: `scene-assignee-${scene.id}` }),

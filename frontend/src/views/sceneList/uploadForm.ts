@@ -140,7 +140,7 @@ export function uploadForm(
         if (finished.status === "succeeded") {
           const doc = await api.getScene(scene.id, signal);
           const warnings = pipelineWarnings(doc.scene.stages);
-          if (warnings.length > 0)
+          if (warnings.length > 0) {
             result.append(
               el("p", {
                 className: "alert alert--warn",
@@ -151,6 +151,8 @@ export function uploadForm(
                   "open the scene to see what to check.",
               }),
             );
+            result.scrollIntoView({ block: "nearest" });
+          }
         }
       } else {
         progress.element.remove();
@@ -158,6 +160,8 @@ export function uploadForm(
     } catch (error) {
       if (signal.aborted) return;
       result.replaceChildren(failureAlert("Import", error));
+      // The button sits low on the page: the reason must not land below the window.
+      result.scrollIntoView({ block: "nearest" });
     } finally {
       submit.disabled = false;
     }

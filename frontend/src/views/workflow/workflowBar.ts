@@ -106,10 +106,16 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
       }),
     onEmptyReject: () => showError("Say what went wrong: the annotator sees this comment."),
     onArchive: () => {
+      // Someone holding the scene can save nothing more until it is restored: said first.
+      const holder =
+        flow?.assignee && (flow.state === "in_annotation" || flow.state === "rejected")
+          ? ` ${flow.assignee} is annotating it: their next save is refused (kept in their ` +
+            "browser) until it is restored."
+          : "";
       const question =
         `Archive "${session.doc.scene.name}"? It leaves the scene list, "Next scene", reviews, ` +
         "retraining and batch runs, and becomes read only. Every revision is kept, and an " +
-        "admin can restore it (the list's Archived filter shows it).";
+        `admin can restore it (the list's Archived filter shows it).${holder}`;
       // The document is loaded again for its permission (read only now); no revision changed.
       if (window.confirm(question)) void act(() => workflowApi.archive(session.sceneId), true);
     },

@@ -14,6 +14,8 @@ const ACTION_TEXT: Record<WorkflowEvent["action"], string> = {
   accept: "accepted",
   reject: "rejected",
   second_annotation: "asked for a second annotation",
+  archive: "archived it",
+  unarchive: "restored it from the archive",
 };
 
 function eventLine(event: WorkflowEvent): HTMLElement {
@@ -99,8 +101,10 @@ export function workflowStatus(): WorkflowStatus {
   );
   const show = (flow: SceneWorkflow, noteLine: string) => {
     const state = flow.state;
-    badge.textContent = stateLabel(state);
-    badge.dataset.state = state;
+    // Archived, the state is where it will be again once restored: both are said.
+    const archived = flow.archived_by != null;
+    badge.textContent = archived ? `archived · ${stateLabel(state)}` : stateLabel(state);
+    badge.dataset.state = archived ? "archived" : state;
     who.textContent = flow.assignee
       ? `${state === "in_annotation" ? "annotated by" : "annotator:"} ${flow.assignee}`
       : "";

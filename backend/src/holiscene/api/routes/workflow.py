@@ -115,13 +115,13 @@ def archive_scene(scene_id: str, user: AdminDep, workbench: WorkbenchDep) -> Sce
     """Archive a scene nobody should work on (a junk photo, a duplicate): it leaves the scene
     list, "Next scene", reviews, retraining and batch runs and is read only; every revision
     is kept, and `unarchive` brings it back (admin)."""
-    return workbench.scenes.set_archived(scene_id, user.name)
+    return workbench.scenes.set_archived(scene_id, True, user.name)
 
 
 @router.post("/scenes/{scene_id}/unarchive", response_model=SceneSummary, responses=_ERRORS)
-def unarchive_scene(scene_id: str, _: AdminDep, workbench: WorkbenchDep) -> SceneSummary:
+def unarchive_scene(scene_id: str, user: AdminDep, workbench: WorkbenchDep) -> SceneSummary:
     """Bring an archived scene back, as it was (admin)."""
-    return workbench.scenes.set_archived(scene_id, None)
+    return workbench.scenes.set_archived(scene_id, False, user.name)
 
 
 @router.get("/dashboard", response_model=Dashboard)
