@@ -1,5 +1,5 @@
 // User story: an admin archives a junk scene. It leaves the scene list and turns read only
-// (the banner says who archived it); the list's Archived filter shows it, and Restore brings
+// (the banner says who archived it); the list's Archived filter shows it, and Unarchive brings
 // it back as it was, editable again.
 import type { SceneSummary } from "@holiscene/schema";
 import { expect, test } from "@playwright/test";

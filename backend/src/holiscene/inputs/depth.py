@@ -95,7 +95,9 @@ def depth_from_png(
     """A 16-bit PNG of depth units (millimetres by default). SUN RGB-D stores its millimetres
     rotated by 3 bits (`sunrgbd_bit_rotation`): depth = (v >> 3) | (v << 13)."""
     if not data.startswith(PNG_SIGNATURE):
-        raise InputError(f"{what} is not a PNG image")
+        raise InputError(
+            f"{what} is not a PNG image (depth is a 16-bit PNG of millimetres, or a .npy of metres)"
+        )
     if len(data) >= 24 and data[12:16] == b"IHDR":
         # The size in the header, before decoding: a file of another size (or a huge one) is
         # refused without unpacking its pixels.

@@ -110,12 +110,25 @@ class DatasetImports:
             return
         earlier = stored_before(self.workbench.scenes, inputs, source)
         if earlier is not None:
-            self.jobs.photo_done(job.id, "skipped", label, earlier)
+            # An archived scene is not in the list: the summary says where it is.
+            hidden = (
+                (f"archived by {earlier.archived_by}: the list's Archived filter shows it",)
+                if earlier.archived_at is not None
+                else ()
+            )
+            self.jobs.photo_done(job.id, "skipped", label, earlier, hidden)
             return
         # Another labelling of a photo stored before: kept, and said (it also shares that
         # scene's side of the held-out split).
         twin = self.workbench.scenes.first_with_photo(inputs.photo.data)
-        also = () if twin is None else (f"the same photo as scene {twin.name}, stored before",)
+        also = (
+            ()
+            if twin is None
+            else (
+                f"the same photo as scene {twin.name}, stored before with other labels: kept "
+                "as a scene of its own",
+            )
+        )
         author = job.started_by or "import"
         stored = self.workbench.import_scene(inputs, source.name, author, run_pipeline=False)
         if job.run_pipeline:

@@ -188,7 +188,9 @@ def test_a_photo_stored_before_with_other_labels_is_a_new_scene_with_a_note(
     assert [p["name"] for p in second["skipped"]] == ["b.png"]  # the very same labels
     (relabelled,) = second["imported"]
     assert relabelled["scene_id"] != first["imported"][0]["scene_id"]
-    assert relabelled["notes"] == ["the same photo as scene a, stored before"]
+    assert relabelled["notes"] == [
+        "the same photo as scene a, stored before with other labels: kept as a scene of its own"
+    ]
     assert first["imported"][0]["notes"] == []
 
 
@@ -205,6 +207,21 @@ def test_a_zip_of_input_folders_queues_their_pipeline(client: TestClient, tmp_pa
     assert sorted(p["name"] for p in job["imported"]) == ["hall", "kitchen"]
     scenes = client.get("/api/scenes").json()
     assert all(s["latest_job"]["kind"] == "pipeline" for s in scenes)
+
+
+def test_a_photo_skipped_as_an_archived_scene_says_where_that_scene_is(
+    client: TestClient, tmp_path: Path
+) -> None:
+    (tmp_path / "shots").mkdir()
+    (tmp_path / "shots" / "blurry.jpg").write_bytes(photo_bytes(3))
+    upload = {"archive": ("shots.zip", _zip_folder(tmp_path / "shots"), "application/zip")}
+    first = _finished(client, client.post("/api/imports", files=upload).json()["id"])
+    [stored] = first["imported"]
+    assert client.post(f"/api/scenes/{stored['scene_id']}/archive").status_code == 200
+    again = _finished(client, client.post("/api/imports", files=upload).json()["id"])
+    [skipped] = again["skipped"]
+    assert skipped["scene_id"] == stored["scene_id"]
+    assert skipped["notes"] == ["archived by local: the list's Archived filter shows it"]
 
 
 def test_a_zip_of_plain_photos_makes_a_scene_of_each(client: TestClient, tmp_path: Path) -> None:

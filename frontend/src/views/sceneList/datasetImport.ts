@@ -15,7 +15,8 @@ const plural = (count: number, one: string, many = `${one}s`) =>
 
 function progressText(job: ImportJob): string {
   const what = job.format ? `${job.format}: ` : "";
-  if (job.status === "queued") return `${what}waiting for another import to finish…`;
+  // Imports run one at a time: a queued one may wait for another, or only for its turn.
+  if (job.status === "queued") return `${what}queued (imports run one at a time)…`;
   return `${what}${job.done} of ${plural(job.total, "photo")} read`;
 }
 

@@ -128,7 +128,7 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
       "only, every revision kept, and an admin can restore it",
   );
   const unarchive = actionButton(
-    "Restore",
+    "Unarchive",
     "workflow-unarchive",
     "Bring the archived scene back to the lists, as it was",
     true,

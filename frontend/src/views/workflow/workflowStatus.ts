@@ -44,7 +44,7 @@ export function noteText({ flow, pending, recovered, me, labelled }: NoteInputs)
   if (flow.archived_by != null)
     return (
       `Archived by ${flow.archived_by}: out of the scene list, "Next scene" and retraining, ` +
-      "and read only; every revision is kept. An admin's Restore brings it back."
+      "and read only; every revision is kept. An admin's Unarchive brings it back."
     );
   switch (flow.state) {
     case "new":
