@@ -11,7 +11,9 @@ describe("objectCaption", () => {
     };
     expect(
       objectCaption({ id: "o3", class: "night_stand", box_3d: box, box_3d_confidence: 0.876 }),
-    ).toBe("o3 night stand · 3D box 0.50 × 0.23 × 0.21 m (depth × height × width) · 3D 87%");
+    ).toBe(
+      "o3 night stand · 3D box 0.50 × 0.23 × 0.21 m (depth × height × width) · 87% likely right (box refiner)",
+    );
     expect(objectCaption({ id: "d2", class: "lamp", box_3d: null, box_3d_confidence: null })).toBe(
       "d2 lamp · no 3D box",
     );

@@ -7,7 +7,8 @@ import { objectClassText } from "../../state/classNames";
 
 const metres = (value: number) => value.toFixed(2);
 
-/** "o3 books · 3D box 0.50 × 0.23 × 0.21 m (depth × height × width) · 3D 87%" */
+/** "o3 books · 3D box 0.50 × 0.23 × 0.21 m (depth × height × width) · 87% likely right
+ * (box refiner)" */
 export function objectCaption(
   object: Pick<SceneObject, "id" | "class" | "box_3d" | "box_3d_confidence"> & {
     source_class?: string | null;
@@ -20,7 +21,7 @@ export function objectCaption(
   const size = box.size.map(metres).join(" × ");
   const sure =
     typeof object.box_3d_confidence === "number"
-      ? ` · 3D ${percentText(object.box_3d_confidence)}`
+      ? ` · ${percentText(object.box_3d_confidence)} likely right (box refiner)`
       : "";
   return `${name} · 3D box ${size} m (depth × height × width)${sure}`;
 }

@@ -70,7 +70,7 @@ export function buildViewportDom(container: HTMLElement): ViewportDom {
     el(
       "div",
       { className: "panel-toolbar" },
-      el("span", { className: "hint", text: "Drag to orbit, right-drag to pan, scroll to zoom" }),
+      el("span", { className: "hint", text: "Drag: orbit · right-drag: pan · scroll: zoom" }),
       extras,
       el("span", { className: "spacer" }),
       overviewButton,
