@@ -25,6 +25,12 @@ export const SCENE_STATES: readonly SceneState[] = [
 
 export const stateLabel = (state: SceneState) => state.replace("_", " ");
 
+/** A state badge's text and its data-state (its colour): an archived scene says so first. */
+export const stateBadge = (state: SceneState, archived: boolean) =>
+  archived
+    ? { text: `archived · ${stateLabel(state)}`, key: "archived" }
+    : { text: stateLabel(state), key: state };
+
 const sceneUrl = (sceneId: string) => `/scenes/${encodeURIComponent(sceneId)}`;
 const userUrl = (name: string) => `/users/${encodeURIComponent(name)}`;
 

@@ -94,8 +94,7 @@ def take_for_annotation(
     who wants a change rejects the scene with a comment (its annotator fixes it; an admin
     may take it over), and an accepted scene changes only through a second annotation."""
     state, assignee = status.state, status.assignee
-    if status.archived_by is not None:
-        raise WorkflowError(archived_text(status.archived_by))
+    check_not_archived(status)
     if state == "submitted":
         by = assignee or "someone"
         if has_role(actor.role, "reviewer") and actor.name != assignee:
@@ -203,16 +202,20 @@ def second_annotation(status: SceneStatus) -> Transition:
     return Transition("second_annotation", "predicted", None)
 
 
-def archived_text(by: str) -> str:
-    """Why an archived scene is refused (edits, takes, jobs)."""
-    return f"the scene was archived by {by}: an admin restores it before anyone works on it"
+def check_not_archived(status: SceneStatus) -> None:
+    """WorkflowError for an archived scene: no edit, take, workflow step or job until an admin
+    restores it."""
+    if status.archived_by is not None:
+        raise WorkflowError(
+            f"the scene was archived by {status.archived_by}: an admin restores it before "
+            "anyone works on it"
+        )
 
 
 def check_pipeline_allowed(status: SceneStatus) -> None:
     """Re-running the pipeline would change what a reviewer is judging or has accepted; an
     archived scene is left as it is."""
-    if status.archived_by is not None:
-        raise WorkflowError(archived_text(status.archived_by))
+    check_not_archived(status)
     if status.state in ("submitted", "accepted"):
         raise WorkflowError(
             f"the scene is {describe(status.state)}: the pipeline cannot re-run on it now"

@@ -62,7 +62,7 @@ def archived_scene(
     """A stored scene's current revision and its files (SceneNotFoundError for an unknown id)."""
     document = scenes.document(scene_id)
     made = scenes.glb_file(scene_id)
-    glb = made[1] if made is not None and made[1].is_file() else None
+    glb_revision, glb = made if made is not None and made[1].is_file() else (None, None)
     truth = scenes.files.ground_truth_path(scene_id)
     depth = scenes.files.folder(scene_id) / DEPTH_FILE
     return ArchivedScene(
@@ -71,7 +71,7 @@ def archived_scene(
         scene=document.scene,
         photo=scenes.image_path(scene_id),
         glb=glb,
-        glb_revision=made[0] if glb is not None and made is not None else None,
+        glb_revision=glb_revision,
         ground_truth=truth if truth.is_file() else None,
         depth=depth if document.scene.depth is not None and depth.is_file() else None,
         state=scenes.summary(scene_id).state,

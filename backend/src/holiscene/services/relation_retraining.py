@@ -259,9 +259,10 @@ class RetrainJob(TrainingJob):
         heldout = self._samples([by_id[i] for i in heldout_ids])
         if not heldout:
             raise NotEnoughLabelsError("none of the held-out scenes has a labelled object")
+        heldout_objects = sum(s.labelled for s in heldout)
         self._log(
             f"{len(labelled)} labelled scenes: {len(train)} to train on, "
-            f"{len(heldout)} held out ({sum(s.labelled for s in heldout)} labelled objects)"
+            f"{len(heldout)} held out ({heldout_objects} labelled objects)"
         )
         self.models.seed_if_empty()
         parent = self.models.active_or_none()
@@ -288,7 +289,7 @@ class RetrainJob(TrainingJob):
             [new_accuracy],
             None if parent_accuracy is None else [parent_accuracy],
             parent.version if parent else None,
-            sum(s.labelled for s in heldout),
+            heldout_objects,
             self.promote_min_items,
         )
         info = self._register(
@@ -300,7 +301,7 @@ class RetrainJob(TrainingJob):
             verdict,
             [by_id[i].key for i in train_ids],
             [by_id[i].key for i in heldout_ids],
-            sum(s.labelled for s in heldout),
+            heldout_objects,
         )
         message = _outcome(info, new_accuracy, parent, parent_accuracy)
         self._log(message)

@@ -65,7 +65,7 @@ from .clock import as_utc, utcnow
 from .files import GROUND_TRUTH_FILE, SceneFiles
 from .revision_writes import WorkflowMove, add_revision, revision_values, write_at_once
 from .scene_events import SceneHead, as_state, pipeline_committed, record_event
-from .tables import SCENE_NAME_LENGTH, RevisionRow, SceneEventRow, SceneRow
+from .tables import SCENE_IN_USE, SCENE_NAME_LENGTH, RevisionRow, SceneEventRow, SceneRow
 
 _EDITS = TypeAdapter(list[Edit])
 # Runs inside a revision's write transaction, after the scene row moved to the new revision
@@ -189,9 +189,7 @@ class SceneStore:
         if state is not None:
             query = query.where(SceneRow.state == state)
         if archived is not None:
-            query = query.where(
-                SceneRow.archived_at.is_not(None) if archived else SceneRow.archived_at.is_(None)
-            )
+            query = query.where(~SCENE_IN_USE if archived else SCENE_IN_USE)
         with Session(self.engine) as session:
             return [self._summary(row, None, last) for row, last in session.execute(query).all()]
 

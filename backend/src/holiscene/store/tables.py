@@ -62,6 +62,10 @@ class SceneRow(Base):
     archived_by: Mapped[str | None] = mapped_column(String(64), nullable=True)
 
 
+# The scenes in use, not archived: the lists, "Next scene", retraining and batch runs.
+SCENE_IN_USE = SceneRow.archived_at.is_(None)
+
+
 class RevisionRow(Base):
     __tablename__ = "revisions"
     __table_args__ = (UniqueConstraint("scene_id", "number"),)

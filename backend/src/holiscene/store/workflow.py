@@ -42,13 +42,13 @@ from .scenes import (
     SceneRowChangedError,
     SceneStore,
 )
-from .tables import SceneEventRow, SceneRow
+from .tables import SCENE_IN_USE, SceneEventRow, SceneRow
 
 _ACTIONS = get_args(WorkflowAction)
 
 
 # Scenes not archived: what "Next scene", reviews and the dashboard's counts look at.
-_IN_USE = SceneRow.archived_at.is_(None)
+_IN_USE = SCENE_IN_USE
 
 
 class NoSceneWaitingError(NotFoundError):
@@ -301,8 +301,7 @@ class WorkflowStore:
         def reopen(session: Session, new_revision: int) -> None:
             row = _row(session, scene_id)
             status = status_of(row)
-            if status.archived_by is not None:
-                raise WorkflowError(workflow_rules.archived_text(status.archived_by))
+            workflow_rules.check_not_archived(status)
             transition = workflow_rules.second_annotation(status)
             row.annotation_round += 1
             _apply(session, row, transition, actor, new_revision, comment)
@@ -331,8 +330,7 @@ class WorkflowStore:
             if row.current_revision != revision:
                 raise RevisionConflictError(row.current_revision)
             status = status_of(row)
-            if status.archived_by is not None:  # no step of the workflow until restored
-                raise WorkflowError(workflow_rules.archived_text(status.archived_by))
+            workflow_rules.check_not_archived(status)  # no step of the workflow until restored
             transition = rule(status)
             if not _apply_if_unchanged(session, row, transition, actor, revision, comment):
                 session.rollback()

@@ -33,6 +33,10 @@ export function pipelineWarnings(
   });
 }
 
+/** The stages that warned, each once, in order ("intrinsics, masks grabcut"). */
+export const warnedStages = (warnings: readonly PipelineWarning[]): string =>
+  [...new Set(warnings.map((w) => w.stage))].join(", ");
+
 /** How the pipeline and the detector name objects (o12, d3, o4_1): a token of a warning that
  * looks like one but is not in the scene names an object removed since the run. */
 const OBJECT_ID = /^[od]\d+(_\d+)?$/;
@@ -82,8 +86,7 @@ export function pipelineWarningsPanel(session: SceneSession): {
     const { stages, layout } = session.doc.scene;
     const warnings = pipelineWarnings(stages, layout?.source === "manual");
     element.hidden = warnings.length === 0;
-    const stagesNamed = [...new Set(warnings.map((w) => w.stage))].join(", ");
-    title.textContent = `${plural(warnings.length, "pipeline warning")}: ${stagesNamed}`;
+    title.textContent = `${plural(warnings.length, "pipeline warning")}: ${warnedStages(warnings)}`;
     const seen = JSON.stringify(warnings);
     const ids = new Set(session.objects.map((o) => o.id));
     const idsNow = [...ids].join(" ");

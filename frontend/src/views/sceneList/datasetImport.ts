@@ -146,7 +146,8 @@ export function datasetImportForm(
       "A .zip of a COCO or LabelMe dataset (the JSON with its images), SUN RGB-D image " +
         "folders, or input folders (img.jpg with cam_K.txt, detections.json…), as ",
       el("code", { text: "holiscene export" }),
-      " writes them; or plain photos (.jpg, .png), each a scene named after its file. A photo imported before with the very same files is skipped, as is a " +
+      " writes them; or plain photos (.jpg, .png), each a scene named after its file. " +
+        "A photo imported before with the very same files is skipped, as is a " +
         "scene downloaded from here and not changed since; a downloaded scene edited before " +
         "upload comes in as a new scene. " +
         "NYU Depth v2's .mat is too large " +

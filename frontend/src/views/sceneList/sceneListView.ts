@@ -3,7 +3,13 @@
 import type { SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { isFinished } from "../../api/jobs";
-import { SCENE_STATES, type SceneState, stateLabel, workflowApi } from "../../api/workflow";
+import {
+  SCENE_STATES,
+  type SceneState,
+  stateBadge,
+  stateLabel,
+  workflowApi,
+} from "../../api/workflow";
 import { button, el, formatShortTime, formatTime } from "../../dom";
 import { getCurrentUser } from "../../state/currentUser";
 import { describeJob, jobColumnText } from "../common/jobProgress";
@@ -27,6 +33,7 @@ function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowE
   const href = `#/scenes/${encodeURIComponent(scene.id)}`;
   const job = scene.latest_job;
   const updated = scene.last_activity_at ?? scene.updated_at;
+  const badge = stateBadge(scene.state, scene.archived_at != null);
   return el(
     "tr",
     { testid: `scene-row-${scene.id}` },
@@ -53,10 +60,10 @@ function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowE
       {},
       el("span", {
         className: "state-badge",
-        text: scene.archived_at ? `archived · ${stateLabel(scene.state)}` : stateLabel(scene.state),
+        text: badge.text,
         testid: `scene-state-${scene.id}`,
         attrs: {
-          "data-state": scene.archived_at ? "archived" : scene.state,
+          "data-state": badge.key,
           title: scene.archived_by ? `Archived by ${scene.archived_by}` : "",
         },
       }),
@@ -94,7 +101,7 @@ function sceneRow(scene: SceneSummary, selection: SceneSelection): HTMLTableRowE
 /** A button that brings `form` into view and puts the keyboard on its first field. */
 function jumpTo(text: string, testid: string, form: HTMLFormElement): HTMLButtonElement {
   return button(`${text} ↓`, {
-    className: "list-jump",
+    className: "link-like",
     testid,
     title: `Go to the ${text} form below the list`,
     onClick: () => {

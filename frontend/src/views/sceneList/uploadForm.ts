@@ -6,7 +6,7 @@ import { pollJob } from "../../api/jobs";
 import { button, el, failureAlert, labelledField } from "../../dom";
 import { plural } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
-import { pipelineWarnings } from "../scene/pipelineWarnings";
+import { pipelineWarnings, warnedStages } from "../scene/pipelineWarnings";
 
 /** Photo names that say nothing of the scene (each dataset folder holds one such photo). */
 const GENERIC_PHOTO_NAMES = new Set(["img", "image", "rgb", "photo", "color", "colour", "im"]);
@@ -21,7 +21,7 @@ function fileField(label: string, name: string, accept: string, hint: string, re
   // An optional file chosen by mistake (a wrong depth) can be taken off again: a file input
   // alone only swaps one file for another.
   const remove = button("Remove", {
-    className: "file-remove",
+    className: "link-like",
     testid: `upload-${name}-remove`,
     title: `Import without a ${label.toLowerCase()} file`,
     hidden: true,
@@ -102,6 +102,8 @@ export function uploadForm(
     result,
   );
 
+  const showResult = () => result.scrollIntoView({ block: "nearest" });
+
   form.addEventListener("submit", async (event) => {
     event.preventDefault();
     const photo = image.input.files?.[0];
@@ -122,9 +124,6 @@ export function uploadForm(
       // The name is optional again; no Remove stays beside an emptied file field.
       for (const field of [image, camK, detections, classMap, depth])
         field.input.dispatchEvent(new Event("change"));
-      await onImported(scene);
-      // The new row above pushed the form down: its result stays where the person looks.
-      result.scrollIntoView({ block: "nearest" });
       const link = el("a", {
         text: `Open ${scene.name}`,
         testid: "upload-open",
@@ -132,6 +131,9 @@ export function uploadForm(
       });
       const progress = jobProgress("upload-job-progress");
       result.replaceChildren(el("p", {}, `Imported ${scene.name}. `, link), progress.element);
+      await onImported(scene);
+      // The new row above pushed the form down: its result stays where the person looks.
+      showResult();
       if (imported.job) {
         const finished = await pollJob(imported.job, { signal, onUpdate: progress.update });
         void onImported(scene);
@@ -146,12 +148,11 @@ export function uploadForm(
                 className: "alert alert--warn",
                 testid: "upload-warnings",
                 text:
-                  `${plural(warnings.length, "pipeline warning")} (` +
-                  `${[...new Set(warnings.map((w) => w.stage))].join(", ")}): ` +
+                  `${plural(warnings.length, "pipeline warning")} (${warnedStages(warnings)}): ` +
                   "open the scene to see what to check.",
               }),
             );
-            result.scrollIntoView({ block: "nearest" });
+            showResult();
           }
         }
       } else {
@@ -160,8 +161,7 @@ export function uploadForm(
     } catch (error) {
       if (signal.aborted) return;
       result.replaceChildren(failureAlert("Import", error));
-      // The button sits low on the page: the reason must not land below the window.
-      result.scrollIntoView({ block: "nearest" });
+      showResult(); // the button sits low on the page: the reason must not land below it
     } finally {
       submit.disabled = false;
     }

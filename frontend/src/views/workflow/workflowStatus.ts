@@ -1,7 +1,7 @@
 // The workflow bar's account of the scene: its state badge, who annotates it, the reviewer's
 // comment when it came back, a note on what to do next, and the workflow history.
 import type { CurrentUser, SceneWorkflow, WorkflowEvent } from "@holiscene/schema";
-import { stateLabel } from "../../api/workflow";
+import { stateBadge } from "../../api/workflow";
 import { el, formatTime } from "../../dom";
 
 const ACTION_TEXT: Record<WorkflowEvent["action"], string> = {
@@ -102,9 +102,9 @@ export function workflowStatus(): WorkflowStatus {
   const show = (flow: SceneWorkflow, noteLine: string) => {
     const state = flow.state;
     // Archived, the state is where it will be again once restored: both are said.
-    const archived = flow.archived_by != null;
-    badge.textContent = archived ? `archived · ${stateLabel(state)}` : stateLabel(state);
-    badge.dataset.state = archived ? "archived" : state;
+    const shown = stateBadge(state, flow.archived_by != null);
+    badge.textContent = shown.text;
+    badge.dataset.state = shown.key;
     who.textContent = flow.assignee
       ? `${state === "in_annotation" ? "annotated by" : "annotator:"} ${flow.assignee}`
       : "";

@@ -90,7 +90,7 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
   // A link-sized button at the end of the status line: the line's height stays the same
   // whether it shows or not, so the photo does not move when a detection ends.
   const fainterButton = button("Show fainter", {
-    className: "detector-fainter",
+    className: "link-like detector-fainter",
     testid: "show-fainter-suggestions",
     title:
       "Also offer the boxes the detector saw below its threshold: more of the real objects, " +
@@ -98,7 +98,7 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
     onClick: actions.showFainter,
   });
   const rejectedButton = button("Offer rejected again", {
-    className: "detector-fainter",
+    className: "link-like detector-fainter",
     testid: "offer-rejected-suggestions",
     title:
       "Offer again the boxes rejected on this scene (rejections are remembered in this browser)",
