@@ -109,17 +109,17 @@ test("the depth overlay on the photo has a key from near to far", async ({ page 
     .getByTestId("depth-key-bar")
     .evaluate((node) => getComputedStyle(node).backgroundImage);
   expect(bar).toContain("linear-gradient");
-  // The key sits in the layer bar beside its toggle, above the photo: it covers no label.
+  // The key sits in the layer bar beside its toggle, under the photo: it covers no label.
   const photo = await page.getByTestId("photo").boundingBox();
   const box = await key.boundingBox();
   const toggle = await page.getByTestId("toggle-depth").boundingBox();
   expect(photo && box && toggle).toBeTruthy();
   if (photo && box && toggle) {
-    expect(box.y + box.height).toBeLessThanOrEqual(photo.y);
+    expect(box.y).toBeGreaterThanOrEqual(photo.y + photo.height);
     expect(box.x).toBeGreaterThan(toggle.x);
   }
-  // The photo panel: bars and photo.
-  const panel = page.getByTestId("photo").locator("xpath=../..");
+  // The photo panel: bars, photo and the key under it.
+  const panel = page.getByTestId("photo-panel");
   await panel.screenshot({ path: path.join(screenshots, "depth-key.png") });
   await page.getByTestId("toggle-depth").uncheck();
   await expect(key).toBeHidden();

@@ -271,16 +271,26 @@ test("a real photo: labels apart, sources, 3D box confidences and mesh sources i
   const unmeshed = doc.scene.objects?.find((o) => !o.mesh && o.class !== "floor");
   if (unmeshed) await expect(page.getByTestId(`object-mesh-${unmeshed.id}`)).toHaveCount(0);
   // Little above the photo: the panel's heading shares the layout buttons' line, and the
-  // arrows' legend is under the photo, like a figure's caption.
+  // layer toggles and the arrows' legend are under the photo, like a figure's caption.
   const heading = await page.getByTestId("photo-panel").locator("h2").boundingBox();
   const layoutButton = await page.getByTestId("layout-toggle").boundingBox();
   const photo = await page.getByTestId("photo").boundingBox();
   const legend = await page.getByTestId("arrow-legend").boundingBox();
-  if (!heading || !layoutButton || !photo || !legend)
+  const viewOptions = await page.getByTestId("photo-view-options").boundingBox();
+  if (!heading || !layoutButton || !photo || !legend || !viewOptions)
     throw new Error("a part of the photo panel is not shown");
   expect(heading.y).toBeLessThan(layoutButton.y + layoutButton.height);
   expect(heading.y + heading.height).toBeGreaterThan(layoutButton.y);
-  expect(legend.y).toBeGreaterThanOrEqual(photo.y + photo.height);
+  expect(viewOptions.y).toBeGreaterThanOrEqual(photo.y + photo.height);
+  expect(legend.y).toBeGreaterThanOrEqual(viewOptions.y + viewOptions.height);
+  // Tab goes from the photo to the supports beside it, and only then to the 3D view below.
+  const order = await page.evaluate(() => {
+    const panels = ["photo-panel", "editor-panel", "scene3d-panel"].map((id) =>
+      document.querySelector(`[data-testid="${id}"]`),
+    );
+    return panels.every((panel, i) => i === 0 || panels[i - 1]?.nextElementSibling === panel);
+  });
+  expect(order).toBe(true);
   // Scrolled down the photo, its tools stay in view at the top of the window.
   await page.evaluate(() => window.scrollBy(0, 400));
   await expect

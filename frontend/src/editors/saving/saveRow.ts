@@ -115,11 +115,9 @@ export function saveRow({
     "div",
     { className: "save-row" },
     status,
-    el("span", { className: "spacer" }),
-    undo,
-    redo,
-    discard,
-    save,
+    // Together, at the right: beside the status when there is room, else all on the line
+    // under it (not two here and two there).
+    el("span", { className: "save-actions" }, undo, redo, discard, save),
   );
 
   const update = () => {

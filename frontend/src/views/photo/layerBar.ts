@@ -1,6 +1,6 @@
-// The row above the photo: a checkbox (and key) per overlay layer and the mask style controls;
-// for a photo with depth, a checkbox that shows the depth over it. The arrows' legend goes under
-// the photo, as a figure's caption (above it, its two lines pushed the photo down).
+// The row under the photo: a checkbox (and key) per overlay layer and the mask style controls;
+// for a photo with depth, a checkbox that shows the depth over it. Beside the legends, as how
+// the photo is drawn; above the photo it pushed the photo down a line.
 import { el } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
 import { maskStyleControls } from "./maskStyle";
@@ -72,7 +72,7 @@ export function layerBar(
     );
   const element = el(
     "div",
-    { className: "photo-toolbar" },
+    { className: "photo-toolbar photo-view-options", testid: "photo-view-options" },
     ...layerToggles.map((t) => t.label),
     depth?.label,
     // Beside its toggle, not over the photo, where it would hide labels and masks.

@@ -19,6 +19,9 @@ import { mountPhotoZoom } from "./photoZoom";
 export interface PhotoViewHandle {
   /** The photo's tools: others add theirs (box, mask tools) with `tools.add`. */
   tools: PhotoTools;
+  /** The layer toggles and mask style, for the caller to put under the photo (above it they
+   * pushed the photo a line further below the fold). */
+  viewOptions: HTMLElement;
   dispose(): void;
 }
 
@@ -33,12 +36,7 @@ export function mountPhotoView(
   const key = layers.depth ? depthKey(session.sceneId) : null;
   const layersBar = layerBar(layers, key ?? undefined);
   const toolbar = el("div", { className: "photo-toolbar photo-tool-row", testid: "photo-tools" });
-  container.replaceChildren(
-    toolbar,
-    layersBar.element,
-    el("div", { className: "photo-box" }, svg),
-    status,
-  );
+  container.replaceChildren(toolbar, el("div", { className: "photo-box" }, svg), status);
   const overlays = new PhotoOverlays(svg, layers, frame, session);
 
   const pointOf = (event: MouseEvent) => toImage(svg, event);
@@ -106,6 +104,7 @@ export function mountPhotoView(
   });
   return {
     tools,
+    viewOptions: layersBar.element,
     dispose: () => {
       tools.dispose();
       zoom.dispose();

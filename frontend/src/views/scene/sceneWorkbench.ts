@@ -27,12 +27,22 @@ import { pipelineWarningsPanel } from "./pipelineWarnings";
 import { readOnlyBanner } from "./readOnlyBanner";
 import { mountRevisionHistory } from "./revisionHistory";
 
-function panel(title: string, className: string, testid: string) {
+/** A panel with its heading; `hint`, how to work it, goes beside the heading (a line of the
+ * panel's toolbar less, where it made the buttons wrap). */
+function panel(title: string, className: string, testid: string, hint?: string) {
   const body = el("div", { className: "panel-body" });
+  const heading = el("h2", { text: title });
   const element = el(
     "section",
     { className: `panel ${className}`, testid, attrs: { "aria-label": title } },
-    el("h2", { text: title }),
+    hint
+      ? el(
+          "div",
+          { className: "panel-heading" },
+          heading,
+          el("span", { className: "hint", text: hint }),
+        )
+      : heading,
     body,
   );
   return { element, body };
@@ -48,7 +58,12 @@ export function mountSceneWorkbench(
   disposers: (() => void)[],
 ): void {
   const photo = panel("Photo", "panel--photo", "photo-panel");
-  const scene3d = panel("3D scene", "panel--scene3d", "scene3d-panel");
+  const scene3d = panel(
+    "3D scene",
+    "panel--scene3d",
+    "scene3d-panel",
+    "Drag: orbit · right-drag: pan · scroll: zoom",
+  );
   const editor = panel("Support relations", "panel--editor", "editor-panel");
   const saveBar = el("div", { className: "save-bar", testid: "save-bar" });
   const table = el("div", { className: "editor-table" });
@@ -63,14 +78,12 @@ export function mountSceneWorkbench(
   photo.element.append(edgeInfo, arrowLegend(), classes.element);
   const banner = readOnlyBanner(session);
   const warnings = pipelineWarningsPanel(session);
-  content.append(
-    banner.element,
-    warnings.element,
-    el("div", { className: "scene-main" }, photo.element, scene3d.element),
-    editor.element,
-  );
+  // In the order Tab takes them; the page's grid puts the editor beside the photo.
+  content.append(banner.element, warnings.element, photo.element, editor.element, scene3d.element);
   const objectEditor = new ObjectEditor(session);
   const photoView = mountPhotoView(photo.body, session, objectEditor);
+  // Under the line about the selection, with the legends: how the photo is drawn.
+  edgeInfo.after(photoView.viewOptions);
   disposers.push(
     () => objectEditor.dispose(),
     photoView.dispose,

@@ -39,7 +39,7 @@ export interface ViewportDom {
   overviewButton: HTMLButtonElement;
   photoViewButton: HTMLButtonElement;
   exportButton: HTMLButtonElement;
-  /** Where the view's own controls go (the depth points' checkbox), after the hint. */
+  /** Where the view's own controls go (the depth points' checkbox), first in the toolbar. */
   extras: HTMLElement;
   /** Says the view's state on the panel and the canvas (data-status) and in the status line. */
   setStatus(state: Scene3dStatus, text: string): void;
@@ -70,7 +70,6 @@ export function buildViewportDom(container: HTMLElement): ViewportDom {
     el(
       "div",
       { className: "panel-toolbar" },
-      el("span", { className: "hint", text: "Drag: orbit · right-drag: pan · scroll: zoom" }),
       extras,
       el("span", { className: "spacer" }),
       overviewButton,
