@@ -175,3 +175,33 @@ test("a class changed with the picker, and an object deleted, come back with und
   expect(objectOf(doc, dresser.id)?.class).toBe("shelves"); // the later change stays
   await expect(page.getByTestId(`mask-${target}`)).toHaveCount(1);
 });
+
+test("an object named by another dataset's word gets the plain class when that is picked", async ({
+  page,
+  request,
+}) => {
+  const seeded = await seedScene(request, T3D_5, "t3d-5 plain class");
+  const sceneId = seeded.scene_id;
+  await openScene(page, sceneId);
+  const dresser = (seeded.scene.objects ?? []).find((o) => o.class === "dresser");
+  if (!dresser) throw new Error("t3d-5 has a dresser");
+  await clickObject(page, dresser.id);
+  const pick = async (typed: string, expected: string) => {
+    await page.keyboard.press("Shift+C");
+    await page.getByTestId("class-picker-input").fill(typed);
+    await expect(page.getByTestId("class-option").first()).toHaveAttribute("data-name", expected);
+    await page.getByTestId("class-picker-input").press("Enter");
+    await expect(page.getByTestId("class-picker")).toHaveCount(0);
+  };
+  // Another dataset's word for a chair: stored as chair, the word kept beside it.
+  await pick("sofa chair", "sofa_chair");
+  let doc = await revisionSaved(page, sceneId, seeded.revision + 1);
+  expect(objectOf(doc, dresser.id)).toMatchObject({ class: "chair", source_class: "sofa_chair" });
+  await expect(page.locator(`tr[data-object="${dresser.id}"]`)).toContainText("chair (sofa_chair)");
+  // The plain class then is a change: the word goes (it was a silent no-op).
+  await pick("chair", "chair");
+  doc = await revisionSaved(page, sceneId, seeded.revision + 2);
+  expect(objectOf(doc, dresser.id)?.class).toBe("chair");
+  expect(objectOf(doc, dresser.id)?.source_class ?? null).toBeNull();
+  await expect(page.locator(`tr[data-object="${dresser.id}"]`)).not.toContainText("sofa_chair");
+});

@@ -291,6 +291,13 @@ test("a real photo: labels apart, sources, 3D box confidences and mesh sources i
     return panels.every((panel, i) => i === 0 || panels[i - 1]?.nextElementSibling === panel);
   });
   expect(order).toBe(true);
+  // Past the app's header, Tab reaches a link over the scene's header and warnings to the tools.
+  await page.getByTestId("models-link").focus();
+  await page.keyboard.press("Tab");
+  await expect(page.getByTestId("skip-to-photo")).toBeFocused();
+  await expect(page.getByTestId("skip-to-photo")).toBeInViewport();
+  await page.keyboard.press("Enter");
+  await expect(page.getByTestId("photo-tool-select")).toBeFocused();
   // Scrolled down the photo, its tools stay in view at the top of the window.
   await page.evaluate(() => window.scrollBy(0, 400));
   await expect

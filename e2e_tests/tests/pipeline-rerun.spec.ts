@@ -19,6 +19,17 @@ test("running the pipeline again saves the unsaved edit, keeps the scene in view
   await clickArrow(page, "o3");
   await page.keyboard.press("w");
   await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "dirty");
+  // It asks first (the button is one click from Open in viser); a No runs nothing.
+  let asked = "";
+  page.once("dialog", (dialog) => {
+    asked = dialog.message();
+    void dialog.dismiss();
+  });
+  await page.getByTestId("run-pipeline").click();
+  expect(asked).toContain("every label a person set is kept");
+  await expect(page.getByTestId("run-pipeline")).toBeEnabled();
+  await expect(page.getByTestId("job-progress")).toBeHidden();
+  page.once("dialog", (dialog) => void dialog.accept());
   await page.getByTestId("run-pipeline").click();
   await expect(page.getByTestId("read-only-banner")).toContainText("Pipeline running — read only");
   await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");

@@ -3,7 +3,7 @@
 // the new supporter, keys to flip, remove, accept and reject), with each edge's provenance
 // shown; the corrections are saved.
 import { expect, test } from "@playwright/test";
-import { getRevisions, getScene, seedScene, supportOf, T3D_5 } from "../helpers/api";
+import { getRevisions, getScene, seedScene, supportOf, T3D_1, T3D_5 } from "../helpers/api";
 import { canvasColours } from "../helpers/canvas";
 import { screenPoint } from "../helpers/objects";
 import {
@@ -407,4 +407,77 @@ test("a supporter's arrows start apart, under each child, clear of its centre, a
   );
   await expect(page.getByTestId(`arrow-${child}`)).toHaveAttribute("data-pending", "false");
   await expect(page.getByTestId("save-status")).toContainText("no unsaved changes");
+});
+
+test("a crowded photo at 1280x800: a click near an object's centre only selects it, an armed pick is said above the photo, and the selected row shows in the window", async ({
+  page,
+  request,
+}) => {
+  const seeded = await seedScene(request, T3D_1, "t3d-1 picking");
+  await openScene(page, seeded.scene_id);
+  await page.getByTestId("photo").evaluate((photo) => photo.scrollIntoView({ block: "center" }));
+  // A point of an arrow's wide hit margin, off the arrow drawn, inside its own object's mask
+  // (the arrow runs over its object to the centre, where people click to select it).
+  const candidates = await page.evaluate(() =>
+    [...document.querySelectorAll<SVGGElement>(".arrow[data-child]")].flatMap((arrow) => {
+      const shaft = arrow.querySelector<SVGPathElement>(".arrow-shaft");
+      const matrix = shaft?.getScreenCTM();
+      if (!shaft || !matrix) return [];
+      const length = shaft.getTotalLength();
+      return [0.6, 0.7, 0.8].flatMap((f) => {
+        const q = shaft.getPointAtLength(length * f);
+        const s = new DOMPoint(q.x, q.y).matrixTransform(matrix);
+        return [7, -7].flatMap((dx) => {
+          const hit = document.elementFromPoint(s.x + dx, s.y);
+          return hit?.classList.contains("arrow-hit") && hit.closest(".arrow") === arrow
+            ? [{ child: arrow.dataset.child ?? "", x: s.x + dx, y: s.y }]
+            : [];
+        });
+      });
+    }),
+  );
+  // Which of them lie in their own object's mask: hovered with the arrows hidden.
+  await page.getByTestId("toggle-arrows").uncheck();
+  let margin: { child: string; x: number; y: number } | null = null;
+  for (const point of candidates) {
+    await page.mouse.move(point.x, point.y);
+    if (await page.getByTestId(`mask-${point.child}`).evaluate((n) => n.matches(".is-hovered"))) {
+      margin = point;
+      break;
+    }
+  }
+  await page.getByTestId("toggle-arrows").check();
+  if (!margin)
+    throw new Error(`none of ${candidates.length} points of arrow margins is in its own object`);
+  await page.mouse.click(margin.x, margin.y);
+  await expect(page.getByTestId(`object-row-${margin.child}`)).toHaveClass(/is-selected/);
+  await expect(page.getByTestId("photo")).not.toHaveClass(/is-picking/);
+  // The drawn arrow arms the pick; the tool row (in view while working on the photo) says so,
+  // and the object under the pointer shows the arrow a click would give.
+  await clickArrow(page, margin.child);
+  await expect(page.getByTestId("photo")).toHaveClass(/is-picking/);
+  await expect(page.getByTestId("photo-tool-options")).toContainText(
+    `Now click the object that holds up ${margin.child}`,
+  );
+  const other = (seeded.scene.objects ?? []).find((o) => o.id !== margin?.child)?.id ?? "";
+  await objectPoint(page, other);
+  await expect(page.getByTestId("drag-line")).toHaveCount(1);
+  await page.keyboard.press("Escape");
+  await expect(page.getByTestId("photo")).not.toHaveClass(/is-picking/);
+  await expect(page.getByTestId("drag-line")).toHaveCount(0);
+  await expect(page.getByTestId("photo-tool-options")).toContainText("Click an object or an arrow");
+
+  // On a laptop's screen, before the page is scrolled, the editor's foot is below the window:
+  // each object N selects has its row brought into the window, not only into the panel.
+  await page.setViewportSize({ width: 1280, height: 800 });
+  await page.evaluate(() => window.scrollTo(0, 0));
+  const count = seeded.scene.objects?.length ?? 0;
+  expect(count).toBeGreaterThan(12);
+  for (let i = 0; i < count; i++) {
+    await page.locator("body").click({ position: { x: 5, y: 5 } });
+    await page.keyboard.press("n");
+    const selected = page.locator(".object-row.is-selected");
+    await expect(selected).toHaveCount(1);
+    await expect(selected).toBeInViewport({ ratio: 0.9 });
+  }
 });

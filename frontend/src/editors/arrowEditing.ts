@@ -4,8 +4,12 @@
 // selected otherwise (its label, the list, N). Or drag an arrow (from its head or anywhere on
 // it) and drop it on the new supporter.
 // Clicking an object only selects it unless a pick is armed: an annotator who clicks from
-// object to object to look at them changes nothing. Clicking the selected object or the
-// background clears the selection. While the scene is read only, clicks only select.
+// object to object to look at them changes nothing. An arrow runs over its own object to the
+// object's centre, so there only the drawn arrow arms a pick; the wider margin around it that
+// makes arrows easy to hit elsewhere belongs to the object (a click there selects it). While
+// a pick is armed, the object under the pointer shows the arrow it would get (a dashed line).
+// Clicking the selected object or the background clears the selection. While the scene is
+// read only, clicks only select.
 import { svgEl } from "../dom";
 import { registerShortcut } from "../shortcuts";
 import type { SceneSession } from "../state/sceneSession";
@@ -31,6 +35,17 @@ const DROP_HINT_MS = 3000; // how long the hint at a drop on no object stays
 const arrowAt = (event: Event): string | null =>
   (event.target as Element | null)?.closest<SVGGElement>(".arrow[data-child]")?.dataset.child ??
   null;
+
+/** The press (`at`, in image pixels) is on the arrow's invisible hit margin, off the arrow
+ * drawn (its white halo; the head takes its own presses). */
+function onHitMargin(event: Event, at: readonly [number, number] | null): boolean {
+  const target = event.target as Element | null;
+  if (!at || !target?.classList.contains("arrow-hit")) return false;
+  const halo = target.closest(".arrow")?.querySelector<SVGGeometryElement>(".arrow-halo");
+  // Without the geometry (an old browser) the whole margin stays the arrow's.
+  if (typeof halo?.isPointInStroke !== "function") return false;
+  return !halo.isPointInStroke(new DOMPoint(at[0], at[1]));
+}
 
 /** The object whose "?" flag (no supporter) is under the pointer. */
 const flagAt = (event: Event): string | null =>
@@ -74,6 +89,12 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
       pickSupporter(selected, object);
       return;
     }
+    if (arrow && arrow === object && onHitMargin(event, picking.toImage(event))) {
+      session.say(null);
+      session.select(object);
+      arm(null);
+      return;
+    }
     if (arrow) {
       session.say(null);
       session.select(arrow);
@@ -85,12 +106,13 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     arm(null);
   };
 
-  const drawDrag = (event: PointerEvent) => {
-    if (!press) return;
-    const to = picking.centroid(press.child);
+  /** The arrow `child` would get from where the pointer is: a dashed line to the pointer and
+   * the box of the object under it (the one a drop or a click would make its supporter). */
+  const drawPick = (child: string, event: MouseEvent) => {
+    const to = picking.centroid(child);
     const at = picking.toImage(event);
     const target = picking.objectAt(event);
-    const box = target && target !== press.child ? picking.bbox(target) : null;
+    const box = target && target !== child ? picking.bbox(target) : null;
     const width = picking.strokeWidth();
     dragLayer.replaceChildren(
       ...(box
@@ -125,7 +147,18 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
       return;
     press.dragging = true;
     svg.classList.add("is-picking");
-    drawDrag(event);
+    drawPick(press.child, event);
+  };
+  // An armed pick shows what a click would do before it is made.
+  const armedChild = () =>
+    session.picking !== null && session.picking === session.selected ? session.picking : null;
+  const onHover = (event: MouseEvent) => {
+    if (press) return;
+    const child = armedChild();
+    if (child) drawPick(child, event);
+  };
+  const clearPreview = () => {
+    if (!press) dragLayer.replaceChildren();
   };
   const onUp = (event: PointerEvent) => {
     window.removeEventListener("pointermove", onMove);
@@ -188,10 +221,15 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
 
   svg.addEventListener("click", onClick);
   svg.addEventListener("pointerdown", onDown);
+  svg.addEventListener("mousemove", onHover);
+  svg.addEventListener("mouseleave", clearPreview);
   const unsubscribe = session.subscribe((change) => {
     // A locked scene ends the pick (another selection ends it in the session).
     if (change === "lock") arm(null);
-    if (change === "select") svg.classList.toggle("is-picking", session.picking !== null);
+    if (change === "select") {
+      svg.classList.toggle("is-picking", session.picking !== null);
+      if (armedChild() === null) clearPreview();
+    }
   });
   const removeKey = registerShortcut({
     keys: PICK_SUPPORTER_KEY,
@@ -214,6 +252,8 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     removeKey();
     svg.removeEventListener("click", onClick);
     svg.removeEventListener("pointerdown", onDown);
+    svg.removeEventListener("mousemove", onHover);
+    svg.removeEventListener("mouseleave", clearPreview);
     window.removeEventListener("pointermove", onMove);
     window.removeEventListener("pointerup", onUp);
     dragLayer.remove();

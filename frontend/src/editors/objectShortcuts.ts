@@ -57,7 +57,9 @@ export async function changeClass(
     current: object.class,
     likely: classHints.at(session.sceneId, object.bbox),
   });
-  if (!cls || classKey(cls) === object.class) return;
+  // The plain class is a change for an object shown with an imported name ("chair
+  // (sofa_chair)"): the server then drops that name.
+  if (!cls || classKey(cls) === (object.source_class ?? object.class)) return;
   await editor.apply(
     [{ kind: "set_class", id: object.id, class: cls }],
     `${objectName(object)} → ${classText(cls)}`,

@@ -94,12 +94,20 @@ function selectTool(session: SceneSession): PhotoTool {
     label: "Select",
     key: SELECT_TOOL_KEY,
     description: "Select: click objects and arrows, drag arrows to a new supporter",
-    options: () =>
-      toolHint(
-        session.editable
-          ? "Click an object or an arrow to select it; drag an arrow's head to a new supporter."
-          : "Click an object or an arrow to select it and see where its labels came from.",
-      ),
+    options: () => {
+      // An armed pick (an arrow clicked, or S) is said here, in the row that stays in view:
+      // the next click on an object changes a label.
+      const picking = session.editable ? session.picking : null;
+      const hint = toolHint(
+        picking
+          ? `Now click the object that holds up ${picking} (or F, W, C) · Esc cancels.`
+          : session.editable
+            ? "Click an object or an arrow to select it; drag an arrow's head to a new supporter."
+            : "Click an object or an arrow to select it and see where its labels came from.",
+      );
+      hint.classList.toggle("is-picking", picking !== null);
+      return hint;
+    },
   };
 }
 
@@ -243,6 +251,8 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
   // A scene turning read only drops the editing tools; turning editable gives the dropped one
   // back.
   const unsubscribe = host.session.subscribe((change) => {
+    // Select's hint says when a pick is armed.
+    if (change === "select" && state.active === select) show();
     if (change !== "lock") return;
     const taken = takenByLock;
     if (!usable(state.active)) {

@@ -400,16 +400,18 @@ export function mountSupportEditor(
 
 /**
  * Scroll the editor panel (not the page) so that `row` shows below the panel's sticky save
- * bar. Where the panel does not scroll by itself (one column: it sits under the photo), the
- * page is left where it is: jumping away from the photo the person just clicked would lose it.
+ * bar and inside the window (before the page is scrolled, the panel's foot is below the
+ * window's). Where the panel does not scroll by itself (one column: it sits under the photo),
+ * the page is left where it is: jumping away from the photo the person just clicked would
+ * lose it.
  */
 function revealInPanel(row: HTMLElement): void {
   const panel = row.closest<HTMLElement>(".panel--editor");
   if (!panel || panel.scrollHeight <= panel.clientHeight) return;
   const box = panel.getBoundingClientRect();
   const bar = panel.querySelector<HTMLElement>(".save-bar")?.getBoundingClientRect();
-  const top = Math.max(box.top, bar?.bottom ?? box.top) + 4;
-  const bottom = box.bottom - 4;
+  const top = Math.max(box.top, bar?.bottom ?? box.top, 0) + 4;
+  const bottom = Math.min(box.bottom, window.innerHeight) - 4;
   const at = row.getBoundingClientRect();
   if (at.top < top) panel.scrollTop -= top - at.top;
   else if (at.bottom > bottom) panel.scrollTop += Math.min(at.bottom - bottom, at.top - top);

@@ -46,8 +46,9 @@ describe("rankClasses", () => {
     ]);
     expect(names("", uses, 3)).toEqual(["chair", "lamp", "cabinet"]);
     expect(names("c", uses, 3)).toEqual(["chair", "cabinet", "counter"]);
-    // Aliases of a used class rank with it.
-    expect(names("s", new Map([["chair", 3]]), 3)).toEqual(["seat", "sofa_chair", "stool"]);
+    // Aliases of a used class rank with it, but never above a shorter form of themselves.
+    expect(names("s", new Map([["chair", 3]]), 3)).toEqual(["seat", "sofa", "sofa_chair"]);
+    expect(names("sof", new Map([["chair", 9]]), 2)).toEqual(["sofa", "sofa_chair"]);
   });
 
   it("puts the classes the detector saw at the box after the match, before the most used", () => {

@@ -75,5 +75,27 @@ export function rankClasses(
       a.alias - b.alias ||
       a.index - b.index,
   );
-  return scored.slice(0, limit).map((s) => s.option);
+  return beforeLongerForms(scored.map((s) => s.option)).slice(0, limit);
+}
+
+/**
+ * A name listed after a longer form of itself ("sofa" after "sofa_chair", which a scene of
+ * chairs ranks high) moves up to just before it: "sof" typed means the sofa until more of
+ * "sofa chair" is typed.
+ */
+function beforeLongerForms(options: ClassOption[]): ClassOption[] {
+  const ordered = [...options];
+  let i = 0;
+  while (i < ordered.length) {
+    const longer = ordered[i] as ClassOption;
+    const j = ordered.findIndex((o, k) => k > i && longer.name.startsWith(`${o.name}_`));
+    if (j < 0) {
+      i++;
+      continue;
+    }
+    // The shorter form takes place i and is looked at next (it may have one of its own).
+    const [shorter] = ordered.splice(j, 1);
+    ordered.splice(i, 0, shorter as ClassOption);
+  }
+  return ordered;
 }

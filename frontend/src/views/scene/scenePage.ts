@@ -26,6 +26,11 @@ async function sceneSummary(sceneId: string, signal: AbortSignal): Promise<Scene
 
 const RERUN_TITLE = "Run the whole pipeline again on this photo; the labels people set are kept";
 
+const rerunQuestion = (name: string) =>
+  `Run the whole pipeline again on "${name}"? What it made (masks, supports, heights, 3D ` +
+  "boxes, meshes) is made afresh; every label a person set is kept. The scene is read only " +
+  "for everyone until the run ends.";
+
 export function mountScenePage(container: HTMLElement, sceneId: string): () => void {
   const abort = new AbortController();
   const disposers: (() => void)[] = [];
@@ -43,10 +48,18 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     () => shown === null || mayHaveGlb(shown.doc),
     () => shown,
   );
+  // Tab's first stop after the app's header, shown only while it has the focus: the scene's
+  // header and the warnings' object links come before the photo otherwise (26 stops on t3d-1).
+  const skip = button("Skip to the photo tools", {
+    className: "skip-link",
+    testid: "skip-to-photo",
+    onClick: () => content.querySelector<HTMLElement>(".photo-tools button")?.focus(),
+  });
   container.replaceChildren(
     el(
       "div",
       { className: "scene-page" },
+      skip,
       el(
         "div",
         { className: "scene-header" },
@@ -104,6 +117,9 @@ export function mountScenePage(container: HTMLElement, sceneId: string): () => v
     // The re-run keeps what people set, so unsaved edits are saved first, not dropped; if
     // they cannot be (a conflict, the server away), nothing runs and the save bar says why.
     rerun.onclick = async () => {
+      // One click beside "Open in viser" must not start a run by mistake: it replaces what
+      // the pipeline made and locks the scene for everyone until it ends.
+      if (!window.confirm(rerunQuestion(session.doc.scene.name))) return;
       if (session.unsavedCount > 0 || session.saveState.kind === "saving") {
         rerun.disabled = true;
         await saveDone(session); // an autosave on its way

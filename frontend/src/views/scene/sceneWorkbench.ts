@@ -22,6 +22,7 @@ import { mountPhotoView } from "../photo/photoView";
 import { mountPlacementNotice } from "../scene3d/placementNotice";
 import { mountScene3d } from "../scene3d/scene3dView";
 import { mountWorkflowBar } from "../workflow/workflowBar";
+import { fitPanelToWindow } from "./editorPanelFit";
 import { mountObjectSuggestions } from "./objectSuggestions";
 import { pipelineWarningsPanel } from "./pipelineWarnings";
 import { readOnlyBanner } from "./readOnlyBanner";
@@ -127,5 +128,7 @@ export function mountSceneWorkbench(
     mountWorkflowBar(workflow, session),
     banner.dispose,
     warnings.dispose,
+    // after the panels above it are filled: they set its top
+    fitPanelToWindow(editor.element),
   );
 }
