@@ -50,6 +50,15 @@ test("boxes drawn on an empty photo become objects with masks and supporters", a
   await expect(page.locator('.masks [data-object="d1"]')).toHaveCount(1);
   await objectEditsSaved(page);
   await expect(page.getByTestId("object-edit-status")).toContainText(": saved.");
+  // The line is on the dark band over the photo's top edge, the photo's width: it moves
+  // nothing and has room for what to do next (beside the tool buttons it had 200 pixels).
+  const line = await page.getByTestId("object-edit-status").boundingBox();
+  const image = await page.getByTestId("photo-image").boundingBox();
+  const frame = await page.getByTestId("photo").boundingBox();
+  if (!line || !image || !frame) throw new Error("the status line or the photo is not shown");
+  expect(line.y).toBeGreaterThanOrEqual(frame.y);
+  expect(line.y + line.height).toBeLessThanOrEqual(image.y);
+  expect(line.width).toBeGreaterThan(frame.width * 0.9);
 
   // The new object is selected: the floor holds it up (F).
   await expect(page.getByTestId("box-tool-selected")).toHaveCount(1);

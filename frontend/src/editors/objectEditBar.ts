@@ -1,7 +1,9 @@
-// What the object editor is doing, above the photo: saving an action, what the last one did
-// (e.g. that it was applied on top of someone else's revision), and an action that could not
-// be saved, kept with Retry and Discard until the person chooses. The status keeps its one
-// line when empty, so the photo does not move as messages come and go.
+// What the object editor is doing: saving an action and what the last one did (e.g. that it
+// was applied on top of someone else's revision, or that a new object's mask is its whole
+// box) on the dark band over the photo's top edge, the width of the photo, where it moves
+// nothing as messages come and go (beside the tool buttons it had 200 pixels and cut the
+// part that said what to do); and, in the tool row, an action that could not be saved, kept
+// with Retry and Discard until the person chooses.
 import { button, el } from "../dom";
 import type { ObjectEditor } from "../state/objectEditor";
 
@@ -10,7 +12,11 @@ import type { ObjectEditor } from "../state/objectEditor";
 const DONE_MESSAGE_MS = 8000;
 const DONE_ONLY = /: saved\.$/;
 
-export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor): () => void {
+export function mountObjectEditBar(
+  container: HTMLElement,
+  photoBox: HTMLElement,
+  editor: ObjectEditor,
+): () => void {
   const status = el("span", {
     className: "object-edit-status",
     testid: "object-edit-status",
@@ -38,13 +44,9 @@ export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor)
       onClick: () => editor.discardFailed(),
     }),
   );
-  const bar = el(
-    "div",
-    { className: "object-edit-bar", testid: "object-edit-bar" },
-    status,
-    failure,
-  );
+  const bar = el("div", { className: "object-edit-bar", testid: "object-edit-bar" }, failure);
   container.append(bar);
+  photoBox.append(status);
 
   // What an action did ("Add d1 (bag): saved.") goes after a while: left up, it reads as news
   // beside later actions of other tools. Errors stay until the next action.
@@ -65,6 +67,7 @@ export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor)
     status.dataset.state = state.kind;
     const failed = editor.failure;
     failure.hidden = failed === null;
+    bar.hidden = failed === null;
     const again = failed?.retrying ? " Trying again every few seconds." : "";
     failureText.textContent = failed
       ? `Not saved: ${failed.label}. ${failed.message}${again} `
@@ -76,5 +79,6 @@ export function mountObjectEditBar(container: HTMLElement, editor: ObjectEditor)
     window.clearTimeout(fading);
     unsubscribe();
     bar.remove();
+    status.remove();
   };
 }

@@ -36,7 +36,8 @@ export function mountPhotoView(
   const key = layers.depth ? depthKey(session.sceneId) : null;
   const layersBar = layerBar(layers, key ?? undefined);
   const toolbar = el("div", { className: "photo-toolbar photo-tool-row", testid: "photo-tools" });
-  container.replaceChildren(toolbar, el("div", { className: "photo-box" }, svg), status);
+  const photoBox = el("div", { className: "photo-box" }, svg);
+  container.replaceChildren(toolbar, photoBox, status);
   const overlays = new PhotoOverlays(svg, layers, frame, session);
 
   const pointOf = (event: MouseEvent) => toImage(svg, event);
@@ -80,7 +81,7 @@ export function mountPhotoView(
     tools.active.drawsOnSelected && session.selectedObject ? null : objectAt(event);
   svg.addEventListener("mousemove", (event) => session.hover(hovering(event)));
   svg.addEventListener("mouseleave", () => session.hover(null));
-  const stopEditBar = mountObjectEditBar(toolbar, objectEditor);
+  const stopEditBar = mountObjectEditBar(toolbar, photoBox, objectEditor);
   // The sticky tool row's height, for what sticks under it (the detector's bar).
   const toolHeight =
     typeof ResizeObserver === "undefined"
