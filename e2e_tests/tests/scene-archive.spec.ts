@@ -47,6 +47,12 @@ test("an admin archives a scene, finds it under Archived and restores it", async
   await page.getByTestId("state-filter").selectOption("archived");
   await expect(row).toBeVisible();
   await expect(row).toHaveText(/^archived · /);
+  // Opened from there, Back finds the list still filtered (kept for this tab).
+  await page.getByTestId(`scene-row-${doc.scene_id}`).locator("a.scene-name-link").click();
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await page.goBack();
+  await expect(page.getByTestId("state-filter")).toHaveValue("archived");
+  await expect(row).toBeVisible();
 
   // Restored as it was: editable, and back in the list.
   await openScene(page, doc.scene_id);

@@ -7,3 +7,13 @@ export function browserStorage(): Storage | null {
     return null;
   }
 }
+
+/** This tab's sessionStorage (what a page remembers while the person moves around in one
+ * tab, e.g. the scene list's filter), or null where it is blocked. */
+export function tabStorage(): Storage | null {
+  try {
+    return typeof sessionStorage === "undefined" ? null : sessionStorage;
+  } catch {
+    return null;
+  }
+}

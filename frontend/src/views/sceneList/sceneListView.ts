@@ -11,6 +11,7 @@ import {
   workflowApi,
 } from "../../api/workflow";
 import { button, el, formatShortTime, formatTime } from "../../dom";
+import { tabStorage } from "../../state/browserStorage";
 import { getCurrentUser } from "../../state/currentUser";
 import { describeJob, jobColumnText } from "../common/jobProgress";
 import { nextSceneControl } from "../workflow/nextScene";
@@ -19,6 +20,9 @@ import { datasetImportForm } from "./datasetImport";
 import { MINE, myWork, sentBack, sentBackText } from "./myWork";
 import { SceneSelection } from "./sceneSelection";
 import { uploadForm } from "./uploadForm";
+
+/** Where this tab keeps the state filter's value. */
+const FILTER_KEY = "holiscene.sceneListFilter";
 
 /** The state filter's value for the archived scenes (not a workflow state). */
 const ARCHIVED = "archived";
@@ -173,7 +177,7 @@ export function mountSceneList(container: HTMLElement): () => void {
     testid: "show-sent-back",
     onClick: () => {
       filter.value = MINE;
-      void refresh();
+      filter.dispatchEvent(new Event("change"));
     },
   });
   const sentBackNotice = el(
@@ -268,7 +272,16 @@ export function mountSceneList(container: HTMLElement): () => void {
       datasetImport,
     ),
   );
-  filter.addEventListener("change", () => void refresh());
+  // Back from a scene opened from a filtered list (the archived ones, say) finds the list as
+  // it was left: the filter is kept for this tab and this person (another who logs in on the
+  // tab starts from all states).
+  const filterKey = `${FILTER_KEY}.${getCurrentUser()?.name ?? ""}`;
+  const kept = tabStorage()?.getItem(filterKey);
+  if (kept && [...filter.options].some((o) => o.value === kept)) filter.value = kept;
+  filter.addEventListener("change", () => {
+    tabStorage()?.setItem(filterKey, filter.value);
+    void refresh();
+  });
   void refresh();
   return () => {
     abort.abort();
