@@ -110,16 +110,20 @@ export function mountSupportSuggestions(
     const count = scores?.ids.length ?? 0;
     const suggested = session.suggestions().size;
     const doubted = doubtedLabels(session.shown(), scores).size;
-    // A no-break space after each "·": a wrapped line starts with it, never ends on it.
-    status.textContent =
-      `${plural(count, "object")} scored in ${Math.round(ms)} ms` +
+    // Parts joined by "; ": a wrapped line ends on the mark and starts with a word (a "·"
+    // started or ended a line, where it read as a stray dot).
+    status.textContent = [
+      `${plural(count, "object")} scored in ${Math.round(ms)} ms`,
       // Read only (a reviewer), nothing is suggested: saying "no changes" would mislead.
-      (live.checked && session.editable
-        ? ` ·\u00a0live: ${suggested === 0 ? "no changes suggested" : `${suggested} suggested`}`
-        : "") +
-      (doubted > 0
-        ? ` ·\u00a0the model disagrees with ${plural(doubted, "label")} set by a person (orange)`
-        : "");
+      live.checked && session.editable
+        ? `live: ${suggested === 0 ? "no changes suggested" : `${suggested} suggested`}`
+        : "",
+      doubted > 0
+        ? `the model disagrees with ${plural(doubted, "label")} set by a person (orange)`
+        : "",
+    ]
+      .filter((part) => part !== "")
+      .join("; ");
     status.classList.toggle("has-doubts", doubted > 0);
   };
   let scoredMs = 0;
