@@ -217,12 +217,17 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   await clickObject(page, "o0");
   await expect(arrow("o1")).toHaveAttribute("data-parent", "o0");
   await expect(arrow("o1")).toHaveClass(/is-selected/);
-  // An armed pick takes the object under the click even on that object's own arrow, which
-  // ends at its centre, where people click.
+  // While a pick is armed, a click on another object's drawn arrow takes up that arrow: a
+  // person looking from arrow to arrow changes nothing. Its mask picks it.
   await clickArrow(page, "o2");
   await expect(page.getByTestId("photo")).toHaveClass(/is-picking/);
   const onBedsArrow = await arrowPoint(page, "o0", "head");
   await page.mouse.click(onBedsArrow.x, onBedsArrow.y);
+  await expect(arrow("o0")).toHaveClass(/is-selected/);
+  await expect(page.getByTestId("photo-tool-options")).toContainText("holds up o0");
+  await expect(arrow("o2")).toHaveAttribute("data-parent", guess("o2").parent);
+  await clickArrow(page, "o2");
+  await clickObject(page, "o0");
   await expect(arrow("o2")).toHaveAttribute("data-parent", "o0");
   await page.keyboard.press("Control+z");
   await expect(arrow("o2")).toHaveAttribute("data-parent", guess("o2").parent);

@@ -96,7 +96,11 @@ export const workflowApi = {
   next: () => request<SceneSummary>("/scenes/next", { method: "POST" }),
 
   /** The scene waiting longest for the caller's review; nothing is assigned (404: none). */
-  nextToReview: () => request<SceneSummary>("/scenes/next-review"),
+  /** `after`: the scene open now; the next one after it in the queue comes back. */
+  nextToReview: (after?: string) =>
+    request<SceneSummary>(
+      `/scenes/next-review${after ? `?after=${encodeURIComponent(after)}` : ""}`,
+    ),
 
   /** `background`: the page checks by itself (not activity, see BACKGROUND_HEADER). */
   get: (sceneId: string, signal?: AbortSignal, background = false) =>

@@ -1,13 +1,15 @@
 // Editing supports with the mouse on the photo. Click an arrow (or an unsupported object's
 // "?" flag) to select its object and arm a pick: the next click on another object makes that
-// object the supporter (inside its mask, on its own arrow too). S arms a pick for an object
+// object the supporter (inside its mask, off its own drawn arrow). S arms a pick for an object
 // selected otherwise (its label, the list, N). Or drag an arrow (from its head or anywhere on
 // it) and drop it on the new supporter.
 // Clicking an object only selects it unless a pick is armed: an annotator who clicks from
 // object to object to look at them changes nothing. An arrow runs over its own object to the
 // object's centre, so there only the drawn arrow arms a pick; the wider margin around it that
-// makes arrows easy to hit elsewhere belongs to the object (a click there selects it). While
-// a pick is armed, the object under the pointer shows the arrow it would get (a dashed line).
+// makes arrows easy to hit elsewhere belongs to the object (a click there selects it, or picks
+// it while a pick is armed). While a pick is armed, a click on another drawn arrow takes up
+// that arrow instead, and the object under the pointer shows the arrow it would get (a
+// dashed line).
 // Clicking the selected object or the background clears the selection. While the scene is
 // read only, clicks only select.
 import { svgEl } from "../dom";
@@ -66,9 +68,11 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     const current = session.displayed(child);
     // Picking the supporter it has is no edit: a click meant to look at that object must
     // not turn the pipeline's guess into a person's label (A confirms a guess on purpose).
+    // The model's live suggestion is not stored yet (the list still shows the old
+    // supporter): picking it is the person's answer, as A would be.
     session.say(
-      current?.parent === parent
-        ? `${child} is on ${parent} already${current.suggested || current.support?.source === "auto" ? ": A accepts that guess" : ""}.`
+      current?.parent === parent && !current.suggested
+        ? `${child} is on ${parent} already${current.support?.source === "auto" ? ": A accepts that guess" : ""}.`
         : setSupporter(session, child, parent),
     );
     arm(null); // picked: the next click selects again
@@ -83,13 +87,16 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     const object = picking.objectAt(event);
     const selected = session.selected;
     const armed = session.picking !== null && session.picking === selected;
-    // An object's own arrow ends at its centre, where people click to pick it: while a pick is
-    // armed, a click inside another object's mask picks that object, even on its own arrow.
-    if (armed && object && object !== selected && (arrow === null || arrow === object)) {
+    // The margin of an arrow over its own object is the object's; the arrow drawn (or a "?"
+    // flag) is the arrow's, armed pick or not: a person looking from arrow to arrow takes
+    // up each in turn and changes nothing.
+    const onArrow =
+      arrow !== null && !(arrow === object && onHitMargin(event, picking.toImage(event)));
+    if (armed && object && object !== selected && !onArrow) {
       pickSupporter(selected, object);
       return;
     }
-    if (arrow && arrow === object && onHitMargin(event, picking.toImage(event))) {
+    if (arrow && !onArrow) {
       session.say(null);
       session.select(object);
       arm(null);

@@ -26,7 +26,7 @@ from holiscene_schema import (
     WorkflowAction,
     WorkflowEvent,
 )
-from sqlalchemy import Connection, Engine, func, select, update
+from sqlalchemy import Connection, Engine, and_, func, or_, select, update
 from sqlalchemy.orm import Session
 
 from ..core.errors import DomainError, NotFoundError
@@ -203,17 +203,33 @@ class WorkflowStore:
                     )
         raise NoSceneWaitingError("every candidate was taken by someone else; try again")
 
-    def next_to_review(self, actor: Actor) -> SceneSummary:
+    def next_to_review(self, actor: Actor, after: str | None = None) -> SceneSummary:
         """The scene waiting longest for review that the reviewer did not annotate (any, in
         single-user mode). Nothing changes: reviewing needs no claim, and a scene opened but
-        not judged stays for the next reviewer."""
+        not judged stays for the next reviewer.
+
+        `after`: the scene the reviewer has open; the one waiting next after it comes back
+        (round the queue to the oldest), never that scene itself: a reviewer who skips a
+        scene moves on through the queue instead of being handed the same one again."""
         query = select(SceneRow).where(SceneRow.state == "submitted", _IN_USE)
         if not actor.local:
             query = query.where(SceneRow.assignee.is_distinct_from(actor.name))
+        in_queue_order = (SceneRow.updated_at, SceneRow.id)
         with Session(self.engine) as session:
-            row = session.scalars(query.order_by(SceneRow.updated_at).limit(1)).first()
+            current = session.get(SceneRow, after) if after else None
+            row = None
+            if current is not None:
+                later = or_(
+                    SceneRow.updated_at > current.updated_at,
+                    and_(SceneRow.updated_at == current.updated_at, SceneRow.id > current.id),
+                )
+                row = session.scalars(query.where(later).order_by(*in_queue_order).limit(1)).first()
+                query = query.where(SceneRow.id != current.id)
+            if row is None:
+                row = session.scalars(query.order_by(*in_queue_order).limit(1)).first()
         if row is None:
-            raise NoSceneWaitingError("no scene is waiting for your review")
+            other = " other than this one" if current is not None else ""
+            raise NoSceneWaitingError(f"no scene{other} is waiting for your review")
         return self.scenes.summary(row.id)
 
     @staticmethod

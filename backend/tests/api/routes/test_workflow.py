@@ -251,6 +251,30 @@ def test_next_to_review_opens_the_oldest_submitted_scene_of_someone_else(
     assert refused.status_code == 403
 
 
+def test_next_to_review_after_the_open_scene_moves_through_the_queue(
+    api: Api, accounts: Accounts
+) -> None:
+    scenes = accounts.workbench.scenes
+    queue = [store_predicted_scene(scenes, name) for name in ("a", "b", "c")]
+    for scene_id in queue:
+        assert api.post("ann", f"/api/scenes/{scene_id}/take").status_code == 200
+        assert api.act("ann", scene_id, "submit").status_code == 200
+    first, second, third = queue
+
+    def after(scene_id: str) -> str:
+        return str(api.get("rita", f"/api/scenes/next-review?after={scene_id}")["id"])
+
+    # Skipping goes on through the queue and round to the oldest, never the scene open.
+    assert [after(first), after(second), after(third)] == [second, third, first]
+    assert after("no-such-scene") == first
+    assert api.act("rex", second, "accept").status_code == 200
+    assert api.act("rex", third, "accept").status_code == 200
+    alone = api.client.get(
+        f"/api/scenes/next-review?after={first}", headers=accounts.headers("rita")
+    )
+    assert alone.status_code == 404 and "other than this one" in alone.json()["detail"]
+
+
 def test_next_scene_picks_the_most_uncertain_first(api: Api, accounts: Accounts) -> None:
     scenes = accounts.workbench.scenes
     # Mean doubt (1 - confidence) over 4 objects, 0.9 unless given:

@@ -16,6 +16,8 @@ export interface NextSceneKeys {
   take: string;
   /** Open the next scene waiting for review (reviewers). */
   review: string;
+  /** The scene open on the page: "Next to review" goes on past it through the queue. */
+  current?: string;
 }
 
 /** The buttons and their message line; the keys work while they are mounted. */
@@ -54,7 +56,10 @@ export function nextSceneControl(keys: NextSceneKeys): {
   };
   const go = open(() => workflowApi.next(), "Could not take a scene");
   nextButton.addEventListener("click", () => void go());
-  const goReview = open(() => workflowApi.nextToReview(), "Could not find a scene to review");
+  const goReview = open(
+    () => workflowApi.nextToReview(keys.current),
+    "Could not find a scene to review",
+  );
   reviewButton.addEventListener("click", () => void goReview());
   const removeTakeKey = registerShortcut({
     keys: keys.take,

@@ -32,7 +32,11 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
   let busy = false;
 
   const status = workflowStatus();
-  const next = nextSceneControl({ take: ">", review: "Shift+ArrowRight" });
+  const next = nextSceneControl({
+    take: ">",
+    review: "Shift+ArrowRight",
+    current: session.sceneId,
+  });
   const error = hiddenErrorAlert("workflow-error");
   const revision = () => session.doc.revision;
   const personLabels = () =>

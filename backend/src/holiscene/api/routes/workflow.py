@@ -40,10 +40,13 @@ def next_scene(user: AnnotatorDep, workbench: WorkbenchDep) -> SceneSummary:
 
 
 @router.get("/scenes/next-review", response_model=SceneSummary, responses=_ERRORS)
-def next_to_review(user: ReviewerDep, workbench: WorkbenchDep) -> SceneSummary:
+def next_to_review(
+    user: ReviewerDep, workbench: WorkbenchDep, after: str | None = None
+) -> SceneSummary:
     """The submitted scene waiting longest that the caller did not annotate; nothing is
-    assigned (404 when none waits)."""
-    return workbench.workflow.next_to_review(user)
+    assigned (404 when none waits). `after`: the scene open now; the next one in the queue
+    after it comes back (round to the oldest), never itself."""
+    return workbench.workflow.next_to_review(user, after)
 
 
 @router.get("/scenes/{scene_id}/workflow", response_model=SceneWorkflow, responses=_ERRORS)
