@@ -356,9 +356,23 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId("review-comment")).toBeHidden();
   await logOut(page);
 
-  // The reviewer accepts it; the dashboard shows the counts.
+  // The reviewer looks first at what changed since sending it back, then accepts it; the
+  // dashboard shows the counts.
   await logIn(page, REVIEWER.name, REVIEWER.password);
   await openScene(page, first.id);
+  const rejectedAt = (await workflowOf(admin, first.id)).events.findLast(
+    (e) => e.action === "reject",
+  )?.revision;
+  await expect(page.getByTestId("since-rejection")).toHaveText(
+    `What changed since it was sent back (revision ${rejectedAt})`,
+  );
+  await page.getByTestId("since-rejection").click();
+  const since = page.getByTestId(`revision-diff-${rejectedAt}`);
+  await expect(since).toBeVisible();
+  await expect(since).toBeInViewport();
+  // The annotator's correction: one support changed.
+  await expect(since.locator("li[data-child]")).not.toHaveCount(0);
+  await expect(since).not.toContainText("nothing has changed since");
   // Accepting is final: a click asks first too, saying how much a person checked.
   let asked = "";
   page.once("dialog", (dialog) => {

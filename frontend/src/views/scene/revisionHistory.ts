@@ -14,11 +14,17 @@ import type { SceneSession } from "../../state/sceneSession";
 import { diffLines } from "./history/diffLines";
 import { revertTo } from "./history/revertRevision";
 
+export interface RevisionHistory {
+  /** Open the history at what changed from revision `from` to the current one. */
+  showSince(from: number): void;
+  dispose(): void;
+}
+
 export function mountRevisionHistory(
   container: HTMLElement,
   session: SceneSession,
   editor: ObjectEditor,
-): () => void {
+): RevisionHistory {
   const list = el("ol", { className: "revision-list", testid: "revision-list" });
   const summary = el("summary", { text: "History", testid: "history-toggle" });
   // Why a revert did nothing, beside the button clicked; gone with the next revision.
@@ -151,9 +157,14 @@ export function mountRevisionHistory(
   };
 
   let shownRevision = -1;
-  const refresh = async () => {
-    if (shownRevision === session.doc.revision) return;
+  let listed: Promise<void> = Promise.resolve();
+  const refresh = () => {
+    if (shownRevision === session.doc.revision) return listed;
     shownRevision = session.doc.revision;
+    listed = fill();
+    return listed;
+  };
+  const fill = async () => {
     try {
       const revisions = await api.listRevisions(session.sceneId);
       const current = session.doc.revision;
@@ -194,9 +205,21 @@ export function mountRevisionHistory(
         revertButton.disabled = !session.editable;
     }
   });
-  return () => {
-    refreshLater.cancel();
-    unsubscribe();
-    removeKey();
+  const showSince = async (from: number) => {
+    details.open = true;
+    await refresh();
+    const diff = list.querySelector<HTMLElement>(`[data-testid="revision-diff-${from}"]`);
+    if (!diff) return;
+    diff.closest("li")?.scrollIntoView({ block: "start" });
+    if (diff.hidden || diff.dataset.mode !== "since")
+      await showDiff(diff, "since", from, async () => session.doc);
+  };
+  return {
+    showSince: (from) => void showSince(from),
+    dispose: () => {
+      refreshLater.cancel();
+      unsubscribe();
+      removeKey();
+    },
   };
 }

@@ -91,6 +91,8 @@ export function mountSceneWorkbench(
     // after the photo view: it draws in its SVG
     mountObjectSuggestions(photo.body, session, objectEditor),
   );
+  const revisions = mountRevisionHistory(history, session, objectEditor);
+  disposers.push(revisions.dispose);
   const layout = mountLayoutEditing(photo.element, photo.body, session);
   // Room corners and a photo tool would both take the photo's presses: editing the layout
   // puts the tool down (back to Select), and taking up a tool ends the layout editing.
@@ -124,8 +126,7 @@ export function mountSceneWorkbench(
       objectEditor,
     ),
     mountSupportSuggestions(suggestions, table, session),
-    mountRevisionHistory(history, session, objectEditor),
-    mountWorkflowBar(workflow, session),
+    mountWorkflowBar(workflow, session, revisions.showSince),
     banner.dispose,
     warnings.dispose,
     // after the panels above it are filled: they set its top

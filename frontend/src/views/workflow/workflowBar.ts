@@ -26,12 +26,17 @@ import "./workflow.css";
 
 const WORKFLOW_CHECK_MS = 10_000;
 
-export function mountWorkflowBar(container: HTMLElement, session: SceneSession): () => void {
+/** `showSince(n)`: open the revision history at what changed since revision n. */
+export function mountWorkflowBar(
+  container: HTMLElement,
+  session: SceneSession,
+  showSince: (revision: number) => void,
+): () => void {
   const abort = new AbortController();
   let flow: SceneWorkflow | null = null;
   let busy = false;
 
-  const status = workflowStatus();
+  const status = workflowStatus(showSince);
   const next = nextSceneControl({
     take: ">",
     review: "Shift+ArrowRight",
@@ -145,6 +150,7 @@ export function mountWorkflowBar(container: HTMLElement, session: SceneSession):
       ),
       status.comment,
       status.note,
+      status.sinceRejection,
       actions.element,
       actions.rejectBox,
       error,

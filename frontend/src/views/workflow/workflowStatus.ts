@@ -2,7 +2,7 @@
 // comment when it came back, a note on what to do next, and the workflow history.
 import type { CurrentUser, SceneWorkflow, WorkflowEvent } from "@holiscene/schema";
 import { stateBadge } from "../../api/workflow";
-import { el, formatTime } from "../../dom";
+import { button, el, formatTime } from "../../dom";
 
 const ACTION_TEXT: Record<WorkflowEvent["action"], string> = {
   import: "imported",
@@ -79,11 +79,22 @@ export interface WorkflowStatus {
   who: HTMLElement;
   comment: HTMLElement;
   note: HTMLElement;
+  /** What changed since the last rejection: a link to the revision history's diff. */
+  sinceRejection: HTMLElement;
   history: HTMLElement;
   show(flow: SceneWorkflow, note: string): void;
 }
 
-export function workflowStatus(): WorkflowStatus {
+/** The revision a reviewer last sent the scene back at, while the scene has moved on from it
+ * in the same round of review (fixed, resubmitted): null otherwise. */
+export function rejectedAt(flow: SceneWorkflow): number | null {
+  if (flow.state === "accepted" || flow.state === "predicted" || flow.state === "new") return null;
+  const rejection = [...flow.events].reverse().find((e) => e.action === "reject");
+  return rejection && flow.revision > rejection.revision ? rejection.revision : null;
+}
+
+/** `showSince(n)`: open the revision history at what changed since revision n. */
+export function workflowStatus(showSince: (revision: number) => void): WorkflowStatus {
   const badge = el("span", { className: "state-badge", testid: "workflow-state" });
   const who = el("span", { className: "workflow-who", testid: "workflow-assignee" });
   const comment = el("div", {
@@ -92,6 +103,15 @@ export function workflowStatus(): WorkflowStatus {
     attrs: { role: "note", hidden: true },
   });
   const note = el("p", { className: "workflow-note", testid: "workflow-note" });
+  let since: number | null = null;
+  // A reviewer judging a resubmitted scene looks at what the annotator changed first.
+  const sinceRejection = button("", {
+    className: "link-button",
+    testid: "since-rejection",
+    onClick: () => {
+      if (since !== null) showSince(since);
+    },
+  });
   const events = el("ol", { className: "workflow-events", testid: "workflow-events" });
   const history = el(
     "details",
@@ -117,7 +137,11 @@ export function workflowStatus(): WorkflowStatus {
       el("span", { text: flow.review_comment ?? "", testid: "review-comment-text" }),
     );
     note.textContent = noteLine;
+    since = rejectedAt(flow);
+    sinceRejection.hidden = since === null;
+    sinceRejection.textContent =
+      since === null ? "" : `What changed since it was sent back (revision ${since})`;
     events.replaceChildren(...flow.events.map(eventLine));
   };
-  return { badge, who, comment, note, history, show };
+  return { badge, who, comment, note, sinceRejection, history, show };
 }
