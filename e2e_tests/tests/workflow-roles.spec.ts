@@ -3,7 +3,7 @@
 // supporter and submits both; the reviewer rejects one with a comment and accepts the other;
 // the annotator sees the comment, fixes the scene and resubmits; the reviewer accepts; the
 // dashboard shows the counts. A submitted scene is read only for its annotator (a banner says
-// why; the support editor, the layout editor and their keys are off, the key list still opens)
+// why; editing and its keys are off, the key list still opens)
 // until the reviewer sends it back. Runs on its own server, where login is required.
 import path from "node:path";
 import type { SceneDocument, SceneWorkflow } from "@holiscene/schema";
@@ -67,9 +67,7 @@ async function expectReadOnly(page: Page, sceneId: string, title: string): Promi
   const banner = page.getByTestId("read-only-banner");
   await expect(banner).toBeVisible();
   await expect(page.getByTestId("read-only-reason")).toHaveText(title);
-  await expect(banner).toContainText(
-    "The support editor, the layout editor and their keys are off",
-  );
+  await expect(banner).toContainText("Editing (supports, objects, room) and its keys are off");
   const selects = page.locator("[data-testid^='supporter-select-']");
   for (const select of await selects.all()) await expect(select).toBeDisabled();
   await expect(page.getByTestId("layout-toggle")).toBeDisabled();

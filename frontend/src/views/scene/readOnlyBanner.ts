@@ -34,8 +34,9 @@ export function readOnlyBanner(session: SceneSession): {
     const kept = session.unsavedCount;
     detail.textContent =
       (lock?.reason ? `${sentence(lock.reason)} ` : "") +
-      "The support editor, the layout editor and their keys are off; the photo, the 3D view " +
-      "and ? (the key list) still work." +
+      // Short: the banner stands between a reviewer and the photo they came to judge.
+      "Editing (supports, objects, room) and its keys are off; the photo, the 3D view and ? " +
+      "still work." +
       (kept > 0
         ? ` Your ${plural(kept, "unsaved change")} ${kept === 1 ? "is" : "are"} kept in this browser until the scene can be edited again.`
         : "");
