@@ -155,7 +155,12 @@ test("the editing tool a lock took away comes back when the scene is editable ag
   const asked = await submitAndSendBack(page, "Check the lamp's box.", async () => {
     await expect(page.getByTestId("photo-tool-select")).toHaveAttribute("aria-pressed", "true");
     await expect(page.getByTestId("photo-tool-box")).toBeDisabled();
+    // Read only while submitted: the drawing tools and layout buttons are left out, not greyed.
+    await expect(page.getByTestId("photo-tool-box")).toBeHidden();
+    await expect(page.getByTestId("layout-toggle")).toBeHidden();
+    await expect(page.getByTestId("layout-status")).toBeVisible();
   });
+  await expect(page.getByTestId("layout-toggle")).toBeVisible();
   // Nobody set a supporter here: submitting asked first.
   expect(asked).toMatch(/None of the \d+ objects has a supporter set by a person/);
   await expect(page.getByTestId("photo-tool-box")).toHaveAttribute("aria-pressed", "true");

@@ -187,6 +187,13 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
    * Why the scene cannot be edited now (null: it can): the server says so (on the scene or
    * its workflow), or it is submitted or accepted, or the server refused the last save.
    */
+  /** Read only for as long as the scene keeps its workflow state or its annotator (submitted,
+   * accepted, someone else's): not a passing lock (a re-run, a refused save). The page then
+   * leaves out controls that could only be greyed. */
+  get viewOnly(): boolean {
+    return editLock(this.workflow?.state, this.permission) !== null;
+  }
+
   get lock(): EditLock | null {
     const lock = editLock(this.workflow?.state, this.permission);
     if (lock) return lock;

@@ -91,6 +91,15 @@ export function mountSceneWorkbench(
     // after the photo view: it draws in its SVG
     mountObjectSuggestions(photo.body, session, objectEditor),
   );
+  // A scene this person can only look at: the photo panel leaves out the layout buttons and
+  // the drawing tools (greyed, they stood between a reviewer and the photo).
+  const markViewOnly = () => photo.element.classList.toggle("is-view-only", session.viewOnly);
+  markViewOnly();
+  disposers.push(
+    session.subscribe((change) => {
+      if (change === "lock") markViewOnly();
+    }),
+  );
   const revisions = mountRevisionHistory(history, session, objectEditor);
   disposers.push(revisions.dispose);
   const layout = mountLayoutEditing(photo.element, photo.body, session);

@@ -16,7 +16,8 @@ export interface NextSceneKeys {
   take: string;
   /** Open the next scene waiting for review (reviewers). */
   review: string;
-  /** The scene open on the page: "Next to review" goes on past it through the queue. */
+  /** The scene open on the page: "Next to review" goes on past it through the queue. On a
+   * scene page the buttons are plain: the scene's own step (Accept, Submit) is the blue one. */
   current?: string;
 }
 
@@ -31,13 +32,14 @@ export function nextSceneControl(keys: NextSceneKeys): {
     attrs: { role: "status" },
   });
   const reviewer = hasRole("reviewer");
+  const onScenePage = keys.current !== undefined;
   const nextButton = button("Next scene", {
-    className: reviewer ? "" : "primary",
+    className: reviewer || onScenePage ? "" : "primary",
     testid: "next-scene",
     title: `Take the next scene to annotate: it becomes yours (${keys.take})`,
   });
   const reviewButton = button("Next to review", {
-    className: "primary",
+    className: onScenePage ? "" : "primary",
     testid: "next-review",
     title: `Open the scene waiting longest for review; nothing is assigned to you (${keys.review})`,
   });
