@@ -47,10 +47,6 @@ from .tables import SCENE_IN_USE, SceneEventRow, SceneRow
 _ACTIONS = get_args(WorkflowAction)
 
 
-# Scenes not archived: what "Next scene", reviews and the dashboard's counts look at.
-_IN_USE = SCENE_IN_USE
-
-
 class NoSceneWaitingError(NotFoundError):
     """Next scene found nothing to annotate (HTTP 404 with the message)."""
 
@@ -211,7 +207,7 @@ class WorkflowStore:
         `after`: the scene the reviewer has open; the one waiting next after it comes back
         (round the queue to the oldest), never that scene itself: a reviewer who skips a
         scene moves on through the queue instead of being handed the same one again."""
-        query = select(SceneRow).where(SceneRow.state == "submitted", _IN_USE)
+        query = select(SceneRow).where(SceneRow.state == "submitted", SCENE_IN_USE)
         if not actor.local:
             query = query.where(SceneRow.assignee.is_distinct_from(actor.name))
         in_queue_order = (SceneRow.updated_at, SceneRow.id)
@@ -235,12 +231,12 @@ class WorkflowStore:
     @staticmethod
     def _next_candidates(session: Session, actor: Actor) -> list[SceneRow]:
         mine = select(SceneRow).where(
-            SceneRow.state == "rejected", SceneRow.assignee == actor.name, _IN_USE
+            SceneRow.state == "rejected", SceneRow.assignee == actor.name, SCENE_IN_USE
         )
         rejected = list(session.scalars(mine.order_by(SceneRow.updated_at)))
         predicted = session.scalars(
             select(SceneRow)
-            .where(SceneRow.state == "predicted", _IN_USE)
+            .where(SceneRow.state == "predicted", SCENE_IN_USE)
             .order_by(
                 SceneRow.uncertainty.is_(None),  # unknown last
                 SceneRow.uncertainty.desc(),
@@ -361,7 +357,9 @@ class WorkflowStore:
             counts = {
                 state: count
                 for state, count in session.execute(
-                    select(SceneRow.state, func.count()).where(_IN_USE).group_by(SceneRow.state)
+                    select(SceneRow.state, func.count())
+                    .where(SCENE_IN_USE)
+                    .group_by(SceneRow.state)
                 )
             }
             states: dict[SceneState, int] = {s: int(counts.get(s, 0)) for s in STATES}
@@ -371,7 +369,9 @@ class WorkflowStore:
                 for name, count in session.execute(
                     select(SceneRow.assignee, func.count())
                     .where(
-                        SceneRow.state == "in_annotation", SceneRow.assignee.is_not(None), _IN_USE
+                        SceneRow.state == "in_annotation",
+                        SceneRow.assignee.is_not(None),
+                        SCENE_IN_USE,
                     )
                     .group_by(SceneRow.assignee)
                 )

@@ -74,6 +74,10 @@ export function mountRevisionHistory(
     }
   };
 
+  /** Show (or hide) in `box` what changed from revision `from` to the current one. */
+  const showChangesSince = (box: HTMLElement, from: number) =>
+    showDiff(box, "since", from, async () => session.doc);
+
   /** One removed object back as revision `from` had it (restore_object: one new revision,
    * undoable), without reverting everything else that changed since. */
   const restoreLink = (id: string, from: number): HTMLElement | null => {
@@ -130,7 +134,7 @@ export function mountRevisionHistory(
       className: "link-button",
       testid: `revision-since-button-${info.number}`,
       title: "What changed from this revision to the current one",
-      onClick: () => void showDiff(diff, "since", info.number, async () => session.doc),
+      onClick: () => void showChangesSince(diff, info.number),
     });
     const revertButton = button("Revert to this", {
       className: "link-button",
@@ -211,8 +215,7 @@ export function mountRevisionHistory(
     const diff = list.querySelector<HTMLElement>(`[data-testid="revision-diff-${from}"]`);
     if (!diff) return;
     diff.closest("li")?.scrollIntoView({ block: "start" });
-    if (diff.hidden || diff.dataset.mode !== "since")
-      await showDiff(diff, "since", from, async () => session.doc);
+    if (diff.hidden || diff.dataset.mode !== "since") await showChangesSince(diff, from);
   };
   return {
     showSince: (from) => void showSince(from),

@@ -85,11 +85,15 @@ export interface WorkflowStatus {
   show(flow: SceneWorkflow, note: string): void;
 }
 
+/** The scene's last rejection, if it had one. */
+const lastRejection = (flow: SceneWorkflow) =>
+  [...flow.events].reverse().find((e) => e.action === "reject");
+
 /** The revision a reviewer last sent the scene back at, while the scene has moved on from it
  * in the same round of review (fixed, resubmitted): null otherwise. */
 export function rejectedAt(flow: SceneWorkflow): number | null {
   if (flow.state === "accepted" || flow.state === "predicted" || flow.state === "new") return null;
-  const rejection = [...flow.events].reverse().find((e) => e.action === "reject");
+  const rejection = lastRejection(flow);
   return rejection && flow.revision > rejection.revision ? rejection.revision : null;
 }
 
@@ -131,9 +135,8 @@ export function workflowStatus(showSince: (revision: number) => void): WorkflowS
     if (flow.annotation_round > 1)
       who.textContent += ` · annotation round ${flow.annotation_round}`;
     comment.hidden = !flow.review_comment;
-    const rejection = [...flow.events].reverse().find((e) => e.action === "reject");
     comment.replaceChildren(
-      el("strong", { text: `Rejected by ${rejection?.actor ?? "a reviewer"}: ` }),
+      el("strong", { text: `Rejected by ${lastRejection(flow)?.actor ?? "a reviewer"}: ` }),
       el("span", { text: flow.review_comment ?? "", testid: "review-comment-text" }),
     );
     note.textContent = noteLine;
