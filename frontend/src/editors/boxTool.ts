@@ -6,7 +6,7 @@
 
 import { svgEl } from "../dom";
 import { BoxEdits } from "./boxes/boxEdits";
-import { drawBoxLayer, HANDLE_PX } from "./boxes/boxLayer";
+import { drawBoxLayer, handleReach } from "./boxes/boxLayer";
 import { type Press, startPress } from "./boxes/boxPress";
 import { boxFromCorners, dragBox, type Grip, gripAt, isBigEnough } from "./boxGeometry";
 import { type PhotoTool, type PhotoTools, toolHint } from "./photoTools";
@@ -79,7 +79,9 @@ export function mountBoxTool(tools: PhotoTools): () => void {
     move(at) {
       if (!press) {
         const selected = session.selectedObject;
-        const grip = selected ? gripAt(selected.bbox, at, HANDLE_PX * host.pixelSize()) : null;
+        const grip = selected
+          ? gripAt(selected.bbox, at, handleReach(selected.bbox, host.pixelSize()))
+          : null;
         host.svg.style.cursor = grip ? CURSORS[grip] : "crosshair";
         return;
       }

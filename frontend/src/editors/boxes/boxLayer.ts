@@ -4,8 +4,22 @@ import type { SceneObject } from "@holiscene/schema";
 import { svgEl } from "../../dom";
 import { type Box, HANDLES, handlePoint } from "../boxGeometry";
 
-/** Handle size on the screen, pixels. */
+/** Handle size on the screen, pixels, on a box large enough for it. */
 export const HANDLE_PX = 9;
+/** The smallest handle drawn, screen pixels. */
+const MIN_HANDLE_PX = 3;
+
+/**
+ * How far from a handle a press still grips it, in photo pixels (the handle is drawn that
+ * wide). On a small box the handles shrink to a quarter of its shorter side, so that at least
+ * half of it is left to move it by: full-size handles covered a small box, and a press meant
+ * to move it resized it.
+ */
+export function handleReach(box: readonly number[], pixelSize: number): number {
+  const shorter = Math.min((box[2] ?? 0) - (box[0] ?? 0), (box[3] ?? 0) - (box[1] ?? 0));
+  const screen = Math.max(MIN_HANDLE_PX, Math.min(HANDLE_PX, shorter / pixelSize / 4));
+  return screen * pixelSize;
+}
 
 export interface BoxLayerState {
   /** Boxes sent and not yet in a revision. */
@@ -38,7 +52,7 @@ export function drawBoxLayer(layer: SVGGElement, state: BoxLayerState): void {
   const box = editing ?? selected?.bbox;
   if (box && (editing || selected)) {
     nodes.push(rect(box, "box-tool-selected", px, "box-tool-selected"));
-    const size = HANDLE_PX * px;
+    const size = handleReach(box, px);
     for (const handle of HANDLES) {
       const [x, y] = handlePoint(box, handle);
       nodes.push(

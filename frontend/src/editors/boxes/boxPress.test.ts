@@ -44,6 +44,19 @@ describe("a press of the box tool", () => {
     });
   });
 
+  it("on a small selected box moves it from most of its inside, its handles shrunk to fit", () => {
+    const book = sceneObject("o2", "books", [300, 300, 320, 316]);
+    // Full-size handles (9 px each way) would cover the whole of this 20 x 16 px box.
+    for (const at of [
+      [306, 305],
+      [314, 311],
+      [310, 308],
+    ] as [number, number][])
+      expect(start(at, { selected: book, under: book }).press).toMatchObject({ grip: "move" });
+    expect(start([302, 301], { selected: book, under: book }).press).toMatchObject({ grip: "nw" });
+    expect(start([321, 308], { selected: book, under: book }).press).toMatchObject({ grip: "e" });
+  });
+
   it("on another object inside the selected box draws (a click selects that one)", () => {
     const { press } = start([200, 150], { selected: bed, under: pillow });
     expect(press).toMatchObject({ kind: "draw", pick: "o1" });

@@ -7,7 +7,7 @@
 import type { SceneObject } from "@holiscene/schema";
 import { type Box, boxFromCorners, type Grip, gripAt } from "../boxGeometry";
 import type { ImagePoint } from "../photoTools";
-import { HANDLE_PX } from "./boxLayer";
+import { handleReach } from "./boxLayer";
 
 export type Press =
   | {
@@ -44,7 +44,9 @@ export function startPress(
   context: PressContext,
 ): { press: Press; select?: string | null } {
   const { selected, shift } = context;
-  const grip = selected ? gripAt(selected.bbox, at, HANDLE_PX * context.pixelSize) : null;
+  const grip = selected
+    ? gripAt(selected.bbox, at, handleReach(selected.bbox, context.pixelSize))
+    : null;
   const object = shift ? undefined : context.under;
   const edit = (id: string, bbox: readonly number[], how: Grip): Press => {
     const from = [...bbox] as Box;
