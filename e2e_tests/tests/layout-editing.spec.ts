@@ -377,6 +377,71 @@ test("a corner dropped where no box room reaches: a dashed line and a note, the 
   await expect(label).toHaveText("");
 });
 
+test("while the layout is edited the 3D view waits in the window's corner, following the drag", async ({
+  page,
+  request,
+}) => {
+  const doc = await seedFolder(request, T3D_5, "t3d-5 3D inset");
+  await slowAutosave(page);
+  await openScene(page, doc.scene_id);
+  const panel = page.getByTestId("scene3d-panel");
+  const canvas = page.getByTestId("scene3d-canvas");
+  const windowSize = page.viewportSize() ?? { width: 0, height: 0 };
+  const wholeInWindow = async () => {
+    const box = await canvas.boundingBox();
+    if (!box) return false;
+    return (
+      box.x >= 0 &&
+      box.y >= 0 &&
+      box.x + box.width <= windowSize.width + 0.5 &&
+      box.y + box.height <= windowSize.height + 0.5
+    );
+  };
+  // Under the photo, out of the window while the photo is looked at.
+  await expect(panel).not.toHaveClass(/is-inset/);
+  expect(await wholeInWindow()).toBe(false);
+
+  await page.getByTestId("layout-toggle").click();
+  await expect(panel).toHaveClass(/is-inset/);
+  await expect(page.getByTestId("scene3d-inset-bar")).toBeVisible();
+  expect(await wholeInWindow()).toBe(true);
+  // A floor corner dragged: the room in the corner's view moves while the mouse is down, and
+  // the photo's corner handles are not under the view.
+  const shown = await handles(page);
+  const floor = [...shown.keys()].find((i) => i < 4);
+  if (floor === undefined) throw new Error("no floor corner in view");
+  const view = await canvas.boundingBox();
+  for (const centre of shown.values()) {
+    const covered =
+      view !== null &&
+      centre.x >= view.x &&
+      centre.x <= view.x + view.width &&
+      centre.y >= view.y &&
+      centre.y <= view.y + view.height;
+    expect(covered).toBe(false);
+  }
+  const drag = await dragCorner(page, floor, floor === 1 ? -16 : 16, 20);
+  expect(Math.max(...drag.roomMoves)).toBeGreaterThan(0.01);
+  expect(await wholeInWindow()).toBe(true);
+  await page.screenshot({ path: screenshotPath("layout-3d-inset.png") });
+
+  // Closed: back in its place until editing starts again.
+  await page.getByTestId("scene3d-inset-close").click();
+  await expect(panel).not.toHaveClass(/is-inset/);
+  await page.getByTestId("layout-toggle").click();
+  await page.getByTestId("layout-toggle").click();
+  await expect(panel).toHaveClass(/is-inset/);
+  // Its place scrolled into view: it goes back there; out of view again, it comes back.
+  await panel.evaluate((node) => node.scrollIntoView({ block: "center" }));
+  await expect(panel).not.toHaveClass(/is-inset/);
+  await page.evaluate(() => window.scrollTo(0, 0));
+  await expect(panel).toHaveClass(/is-inset/);
+  // Editing ended: in its place.
+  await page.getByTestId("layout-toggle").click();
+  await expect(panel).not.toHaveClass(/is-inset/);
+  await expect(page.getByTestId("scene3d-inset-bar")).toBeHidden();
+});
+
 test("layout undo after an autosave: the drag is saved back, and a reload shows the room as it was", async ({
   page,
   request,

@@ -20,6 +20,7 @@ import { classLegend } from "../photo/classLegend";
 import { arrowLegend } from "../photo/layerBar";
 import { mountPhotoView } from "../photo/photoView";
 import { mountPlacementNotice } from "../scene3d/placementNotice";
+import { mountScene3dInset } from "../scene3d/scene3dInset";
 import { mountScene3d } from "../scene3d/scene3dView";
 import { mountWorkflowBar } from "../workflow/workflowBar";
 import { fitPanelToWindow } from "./editorPanelFit";
@@ -123,6 +124,8 @@ export function mountSceneWorkbench(
     mountMaskTools(photoView.tools),
     startAutosave(session, { author: getAuthor, otherSaving: () => objectEditor.busy }),
     mountScene3d(scene3d.body, session, layout.draft),
+    // after the 3D view: it moves the view's viewport
+    mountScene3dInset(scene3d.element, layout.draft),
     mountPlacementNotice(scene3d.element, scene3d.body, session),
     mountSaveBar(saveBar, session, objectEditor),
     mountSupportEditor(
