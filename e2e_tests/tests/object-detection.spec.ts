@@ -192,8 +192,41 @@ test("the detector's fainter boxes are offered when asked for, and find more of 
   expect(found(all)).toBeGreaterThan(found(offered));
   await page.screenshot({ path: screenshotPath("object-suggestions-fainter.png") });
 
-  // Every tag is drawn over every box (the likelier tag over a fainter one where the two could
-  // not be kept apart): a click on a tag selects its own box.
+  // A fainter box's tag covers no other tag: where it finds no free spot it goes without one
+  // (its class in its tooltip) until it is selected.
+  const tagRects = () =>
+    page.getByTestId("detector-suggestion-tag").evaluateAll((tags) =>
+      tags.map((tag) => {
+        const r = (tag.querySelector(".detector-label-box") as Element).getBoundingClientRect();
+        const key = (tag as SVGGElement).dataset.key ?? "";
+        return { key, faint: tag.classList.contains("is-faint"), r };
+      }),
+    );
+  const overlap = (a: DOMRect, b: DOMRect) =>
+    Math.min(a.right, b.right) - Math.max(a.left, b.left) > 0.5 &&
+    Math.min(a.bottom, b.bottom) - Math.max(a.top, b.top) > 0.5;
+  const drawnTags = await tagRects();
+  for (const tag of drawnTags.filter((t) => t.faint)) {
+    const covered = drawnTags.filter((other) => other.key !== tag.key && overlap(tag.r, other.r));
+    expect(covered.map((c) => c.key)).toEqual([]);
+  }
+  const tagged = new Set(drawnTags.map((t) => t.key));
+  const keys = await boxes.evaluateAll((nodes) =>
+    nodes.map((n) => (n as SVGGElement).dataset.key ?? ""),
+  );
+  const untagged = keys.filter((key) => !tagged.has(key));
+  console.log(`fainter boxes: ${fainter}; tags drawn ${drawnTags.length} of ${keys.length}`);
+  expect(untagged.length).toBeGreaterThan(0);
+  const chosen = page.locator(`[data-testid="detector-suggestion"][data-key="${untagged[0]}"]`);
+  await expect(chosen.locator("title")).toContainText("Suggested ");
+  await chosen.locator(".detector-box").dispatchEvent("click");
+  await expect(chosen).toHaveClass(/is-selected/);
+  await expect(
+    page.locator(`[data-testid="detector-suggestion-tag"][data-key="${untagged[0]}"]`),
+  ).toBeVisible();
+
+  // Every tag is drawn over every box (the likelier tag over another where the two could not be
+  // kept apart): a click on a tag selects its own box.
   const tags = page.getByTestId("detector-suggestion-tag");
   let clicked = 0;
   for (let i = 0; i < (await tags.count()); i++) {

@@ -1,7 +1,9 @@
 // The detector's suggested boxes over the photo: dashed boxes with class and score, larger
 // ones first so a smaller box inside one stays clickable, and every tag over every box, so a
 // box's tag is never under another box; a click on a box or its tag selects it. The tags keep
-// clear of each other and of the objects' labels (offerLabelPlacement.ts).
+// clear of each other and of the objects' labels (offerLabelPlacement.ts); a fainter box whose
+// tag finds no free spot goes without one until it is selected (its class in its tooltip and
+// in the bar): on a dense shelf fifteen "books" tags piled up, cut to "b".
 import { percentText, svgEl } from "../../../dom";
 import { SCORE_THRESHOLD } from "../../../inference/detectorTensor";
 import { type Frame, strokeWidth } from "../../photo/arrowGeometry";
@@ -16,23 +18,22 @@ function tagSize(label: string, frame: Frame): { size: number; width: number; he
   return { size, width: label.length * size * 0.62 + size * 0.6, height: size * 1.35 };
 }
 
-/** The offer's box and, drawn over all boxes, its tag: both select it (`data-key`). */
+/** Below the detector's threshold: offered only because the person asked for fainter boxes. */
+const isFaint = (offer: Offer) => offer.score < SCORE_THRESHOLD;
+
+/** The offer's box and, drawn over all boxes, its tag (if it has a place): both select it
+ * (`data-key`). */
 function offerBox(
   offer: Offer,
   selected: boolean,
   frame: Frame,
-  tagRect: Rect,
-): { box: SVGGElement; tag: SVGGElement } {
+  tagRect: Rect | null,
+): { box: SVGGElement; tag: SVGGElement | null } {
   const stroke = strokeWidth(frame);
   const [x1, y1, x2, y2] = offer.bbox;
   const label = offerLabel(offer);
   const { size } = tagSize(label, frame);
-  // Below the detector's threshold: offered only because the person asked for fainter boxes.
-  const faint = offer.score < SCORE_THRESHOLD;
-  const classes = `detector-suggestion${selected ? " is-selected" : ""}${faint ? " is-faint" : ""}`;
-  const { left, top } = tagRect;
-  const labelWidth = tagRect.right - tagRect.left;
-  const labelHeight = tagRect.bottom - tagRect.top;
+  const classes = `detector-suggestion${selected ? " is-selected" : ""}${isFaint(offer) ? " is-faint" : ""}`;
   const title = `Suggested ${label} (the detector's ${offer.sourceClass}): click to select`;
   const box = svgEl(
     "g",
@@ -63,6 +64,10 @@ function offerBox(
       "stroke-dasharray": `${stroke * 4} ${stroke * 2.5}`,
     }),
   );
+  if (!tagRect) return { box, tag: null };
+  const { left, top } = tagRect;
+  const labelWidth = tagRect.right - tagRect.left;
+  const labelHeight = tagRect.bottom - tagRect.top;
   const tag = svgEl(
     "g",
     {
@@ -130,8 +135,9 @@ export function offerBoxes(
         box: offer.bbox,
         ...tagSize(offerLabel(offer), frame),
       }));
-      const scores = byArea.map((offer) => offer.score);
-      const surest = scores.map((_, i) => i).sort((a, b) => (scores[b] ?? 0) - (scores[a] ?? 0));
+      // The selected box places its tag first, then the surer ones.
+      const rank = byArea.map((offer) => (offer.key === selected ? 2 : offer.score));
+      const surest = rank.map((_, i) => i).sort((a, b) => (rank[b] ?? 0) - (rank[a] ?? 0));
       const bounds = {
         left: -frame.margin,
         top: -frame.margin,
@@ -143,12 +149,16 @@ export function offerBoxes(
         surest,
         bounds,
         drawnLabelTags(svg).map((tag) => tag.rect),
+        (i) => {
+          const offer = byArea[i] as Offer;
+          return isFaint(offer) && offer.key !== selected;
+        },
       );
       const drawn = byArea.map((offer, i) =>
-        offerBox(offer, offer.key === selected, frame, tags[i] as Rect),
+        offerBox(offer, offer.key === selected, frame, tags[i] ?? null),
       );
       // Tags the placement could not keep apart overlap: the likelier one on top.
-      const tagsFaintFirst = [...surest].reverse().map((i) => (drawn[i] as (typeof drawn)[0]).tag);
+      const tagsFaintFirst = [...surest].reverse().flatMap((i) => drawn[i]?.tag ?? []);
       layer.replaceChildren(...drawn.map((d) => d.box), ...tagsFaintFirst);
     },
   };

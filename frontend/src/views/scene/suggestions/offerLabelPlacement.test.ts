@@ -33,4 +33,13 @@ describe("suggested boxes' tags", () => {
     const rects = placeTags([tag([100, 100, 200, 200])], [0], bounds, everything);
     expect(rects[0]).toEqual({ left: 100, top: 86, right: 160, bottom: 100 });
   });
+
+  it("leave out a tag that may go without one where every spot is taken", () => {
+    const everything = [{ left: -20, top: -20, right: 520, bottom: 420 }];
+    const box = tag([100, 100, 200, 200]);
+    expect(placeTags([box], [0], bounds, everything, () => true)).toEqual([null]);
+    expect(placeTags([box], [0], bounds, everything, () => false)[0]).not.toBeNull();
+    // With a free spot it keeps its tag.
+    expect(placeTags([box], [0], bounds, [], () => true)[0]).not.toBeNull();
+  });
 });

@@ -1,7 +1,8 @@
 // Where the suggested boxes' tags ("table 26%") go: at a corner of their box, above it or just
 // inside, the first spot that covers no tag placed before (the surer suggestions place theirs
 // first) and none of the objects' own labels; when every spot is taken, the one that covers
-// the fewest. Deterministic, so tags do not jump between redraws.
+// the fewest, or no tag at all for a request that may go without. Deterministic, so tags do
+// not jump between redraws.
 import type { Rect } from "../../photo/cornerHandles";
 import { rectsOverlap } from "../../photo/labelPlacement";
 
@@ -27,15 +28,17 @@ function spots(request: TagRequest): [number, number][] {
 
 /**
  * One rectangle per request, in the requests' order; `order` says who places first (indices
- * into `requests`), `bounds` holds every tag, `taken` is what no tag should cover.
+ * into `requests`), `bounds` holds every tag, `taken` is what no tag should cover. A request
+ * `mayGoWithout` gets null where every spot would cover another tag.
  */
 export function placeTags(
   requests: readonly TagRequest[],
   order: readonly number[],
   bounds: Rect,
   taken: readonly Rect[],
-): Rect[] {
-  const placed: Rect[] = new Array(requests.length);
+  mayGoWithout: (index: number) => boolean = () => false,
+): (Rect | null)[] {
+  const placed: (Rect | null)[] = new Array(requests.length).fill(null);
   const occupied = [...taken];
   for (const index of order) {
     const request = requests[index];
@@ -53,7 +56,7 @@ export function placeTags(
         if (covered === 0) break;
       }
     }
-    if (best) {
+    if (best && (fewest === 0 || !mayGoWithout(index))) {
       placed[index] = best;
       occupied.push(best);
     }
