@@ -54,7 +54,8 @@ test("an admin retrains, makes the new model active and rolls back", async ({ pa
   // Its held-out figure says how many labelled objects it rests on.
   await expect(row).toContainText(`on ${trained.heldout_items} labelled object`);
   // The card shows the curve the admin waited for, not the active model's.
-  await expect(page.locator(".card h2", { hasText: "Training curve of" })).toHaveText(
+  const curveTitle = page.locator(".card h2", { hasText: "Training curve of" });
+  await expect(curveTitle).toHaveText(
     `Training curve of v${trained.version} (${trained.active ? "active" : trained.status})`,
   );
   await page.screenshot({ path: screenshotPath("models-retrained.png"), fullPage: true });
@@ -82,11 +83,14 @@ test("an admin retrains, makes the new model active and rolls back", async ({ pa
   }
   await expect(row).toHaveClass(/is-active/);
   await expect(page.getByTestId("model-history")).toContainText(`v${trained.version}`);
+  await expect(curveTitle).toHaveText(`Training curve of v${trained.version} (active)`);
 
   // Roll back: the model active before is active again, on the page and on the server.
   await page.getByTestId(`promote-${active.version}`).click();
   await expect(page.getByTestId(`model-row-${active.version}`)).toHaveClass(/is-active/);
   expect(asked.at(-1)).toContain(`Make v${active.version} the active model?`);
+  // The card follows to the model made active (it may have no curve: the card says so).
+  await expect(curveTitle).toHaveText(`Training curve of v${active.version} (active)`);
   // The job's outcome line stays, marked as history: it no longer says which model is active.
   await expect(page.getByTestId("retrain-since")).toBeVisible();
   await expect(row).not.toHaveClass(/is-active/);

@@ -3,6 +3,7 @@
 import type { ModelInfo } from "@holiscene/schema";
 import { modelsApi } from "../../api/models";
 import { el } from "../../dom";
+import { STATUS_TEXT } from "./modelFigures";
 
 export interface CurveCard {
   element: HTMLElement;
@@ -32,7 +33,7 @@ export function curveCard(): CurveCard {
       if (!model) return;
       shownId = model.id;
       // Its standing too: the curve shown may be of a candidate or a rejected model.
-      const standing = model.active ? "active" : model.status;
+      const standing = model.active ? "active" : STATUS_TEXT[model.status];
       title.textContent = `Training curve of v${model.version} (${standing})`;
       image.hidden = !model.has_curve;
       empty.hidden = model.has_curve;

@@ -34,8 +34,9 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
     noValidation: "No validation figure was recorded with this model.",
     retrainHint:
       "Trains a new Relation Network on the synthetic scenes and on every scene whose supports " +
-      "a person set. A fixed fifth of those scenes is held out: the new model becomes active " +
-      "only if it is more accurate on them than the active one, on 20 labelled objects or " +
+      "a person set. About a fifth of their photos is held out (the same ones in every " +
+      "retrain, each photo's scenes on one side; with few photos the share varies): the new " +
+      "model becomes active only if it is more accurate on them than the active one, on 20 labelled objects or " +
       "more (exactly as accurate, or better on fewer: kept as a candidate, to make active by " +
       "hand). Every model is kept.",
     epochs: ["Epochs at most", "default (40)"],
@@ -59,8 +60,9 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
     retrainHint:
       "Fine-tunes a new detector on synthetic rooms and on every scene whose boxes a person " +
       "confirmed: drawn, given with the photo, accepted suggestions, or all of a scene a " +
-      "reviewer accepted. A fixed fifth of those scenes is held out: the new detector becomes " +
-      "active only if it does better on them (mAP@0.5, then recall) on 20 confirmed boxes or " +
+      "reviewer accepted. About a fifth of their photos is held out (the same ones in every " +
+      "retrain, each photo's scenes on one side; with few photos the share varies): the new " +
+      "detector becomes active only if it does better on them (mAP@0.5, then recall) on 20 confirmed boxes or " +
       "more; exactly as well, or better on fewer: kept as a candidate, to make active by " +
       "hand. Every detector is kept.",
     epochs: ["Epochs", "default (12)"],

@@ -65,6 +65,32 @@ describe("the question before a model is made active", () => {
     expect(promoteQuestion(active, active, text)).not.toMatch(/active now|Warning/);
   });
 
+  it("warns when the model was never judged on held-out scenes, not when a retrain compared it", () => {
+    const shippedCandidate = model({
+      id: "c",
+      version: 2,
+      status: "candidate",
+      validation_accuracy: 0.99,
+    });
+    expect(promoteQuestion(shippedCandidate, active, text)).toMatch(
+      /^Warning: v2 was never measured on held-out scenes of this team's labels; its figures below are not from the same scenes as the active model's\. Make v2/,
+    );
+    // Rolled back to: the newest retrain from it compared the two on its held-out scenes.
+    const retrainedFromIt = model({
+      id: "d",
+      version: 3,
+      active: true,
+      heldout_accuracy: 0.9,
+      parent_id: "c",
+      parent_version: 2,
+      parent_heldout_accuracy: 0.95,
+    });
+    const others = [shippedCandidate, retrainedFromIt];
+    expect(promoteQuestion(shippedCandidate, retrainedFromIt, text, others)).not.toMatch(
+      /never measured/,
+    );
+  });
+
   it("warns when the held-out figure rests on a handful of items, not when it does not", () => {
     const close = { ...retrained, validation_accuracy: 0.98 } as ModelInfo;
     expect(promoteQuestion(close, active, text)).toMatch(/^Make v2 the active model\?/);

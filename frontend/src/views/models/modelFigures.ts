@@ -44,6 +44,14 @@ export function heldoutText(
   return `${figures(model.heldout_accuracy, model.heldout_recall)}${parent}${count}`;
 }
 
+/** A model's status as the list and the curve's title say it. */
+export const STATUS_TEXT: Record<ModelInfo["status"], string> = {
+  default: "shipped with the app",
+  accepted: "accepted",
+  candidate: "candidate",
+  rejected: "rejected",
+};
+
 /** A column's title inside a sentence: its first letter small, the rest as written (mAP). */
 const inSentence = (title: string) => title.charAt(0).toLowerCase() + title.slice(1);
 
@@ -69,7 +77,7 @@ export function promoteQuestion(
       ? `v${model.version} did worse than the model it was compared with on the held-out scenes. `
       : "";
   const lines = [
-    `${lost}${cautions(model, active).join("")}` +
+    `${lost}${cautions(model, active, others).join("")}` +
       `Make v${model.version} the active model? Pipeline runs and suggestions use it from now on.`,
     "",
     `v${model.version}: ${figuresLine(model, text, others)}`,
@@ -86,13 +94,26 @@ export const WORSE_VALIDATION = 0.05;
 
 /** Warnings before making `model` active: much worse on validation than the active model,
  * or a held-out figure that rests on a handful of items. */
-function cautions(model: ModelInfo, active: ModelInfo | undefined): string[] {
+function cautions(
+  model: ModelInfo,
+  active: ModelInfo | undefined,
+  others: readonly ModelInfo[],
+): string[] {
   const out: string[] = [];
   const mine = model.validation_accuracy;
   const theirs = active && active.id !== model.id ? active.validation_accuracy : null;
   if (mine !== null && theirs !== null && theirs - mine >= WORSE_VALIDATION) {
     const points = ((theirs - mine) * 100).toFixed(1);
     out.push(`Warning: its validation figure is ${points} points below the active model's.`);
+  }
+  // Nothing held out judged it (a model shipped with the app, never compared with a model
+  // retrained from it): its figures come from elsewhere, not from this team's photos.
+  const judged = model.heldout_accuracy !== null || newestComparison(model, others);
+  if (!judged && active && active.id !== model.id) {
+    out.push(
+      `Warning: v${model.version} was never measured on held-out scenes of this team's labels; ` +
+        "its figures below are not from the same scenes as the active model's.",
+    );
   }
   const items = model.heldout_items;
   if (model.heldout_accuracy !== null && items != null && items < FEW_HELDOUT_ITEMS) {

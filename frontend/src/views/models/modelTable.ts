@@ -6,21 +6,14 @@ import { button, el, formatTime } from "../../dom";
 import { getAuthor } from "../../state/author";
 import { hasRole } from "../../state/currentUser";
 import type { KindText } from "./kindText";
-import { heldoutText, percent, promoteQuestion } from "./modelFigures";
-
-const STATUS_TEXT: Record<ModelInfo["status"], string> = {
-  default: "shipped with the app",
-  accepted: "accepted",
-  candidate: "candidate",
-  rejected: "rejected",
-};
+import { heldoutText, percent, promoteQuestion, STATUS_TEXT } from "./modelFigures";
 
 export interface ModelTableInputs {
   text: KindText;
   /** "Curve" was pressed on a model's row. */
   onCurve(model: ModelInfo): void;
-  /** A model was made active: the page loads the list again. */
-  onPromoted(): Promise<void>;
+  /** `model` was made active: the page loads the list again. */
+  onPromoted(model: ModelInfo): Promise<void>;
 }
 
 export interface ModelTable {
@@ -70,7 +63,7 @@ export function modelTable({ text, onCurve, onPromoted }: ModelTableInputs): Mod
     try {
       await modelsApi.promote(model.id, { author: getAuthor(), note: null });
       notice.textContent = `v${model.version} is now the active model.`;
-      await onPromoted();
+      await onPromoted(model);
     } catch (error) {
       promoteButton.disabled = false;
       const reason = error instanceof Error ? error.message : String(error);

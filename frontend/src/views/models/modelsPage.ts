@@ -55,8 +55,10 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
   const table = modelTable({
     text,
     onCurve: curve.show,
-    onPromoted: () => {
+    onPromoted: (model) => {
       form.activeChanged();
+      // The curve of the model just made active (the admin's next question is what it is).
+      curve.show(model);
       return refresh();
     },
   });
