@@ -133,12 +133,20 @@ test("an admin cancels a long retrain: it stops, says who cancelled it, and regi
   await page.getByTestId("retrain-button").click();
   const cancel = page.getByTestId("retrain-cancel");
   await expect(cancel).toBeVisible();
+  // While it runs, the curve card says the new curve comes when it ends, and the line says how
+  // long it has run.
+  await expect(page.getByTestId("curve-waiting")).toBeVisible();
+  await expect(page.getByTestId("retrain-progress")).toContainText(/\d+ s so far/, {
+    timeout: 20_000,
+  });
   page.once("dialog", (dialog) => void dialog.accept()); // asked first
   await cancel.click();
   const progress = page.getByTestId("retrain-progress");
   await expect(progress).toHaveAttribute("data-status", "cancelled", { timeout: 60_000 });
   await expect(progress).toContainText("Retraining cancelled by");
   await expect(progress).not.toHaveClass(/is-failed/);
+  await expect(progress.locator("progress")).toBeHidden(); // no bar part filled beside it
+  await expect(page.getByTestId("curve-waiting")).toBeHidden();
   await expect(cancel).toBeHidden();
   await expect(page.getByTestId("retrain-button")).toBeEnabled();
   expect((await models(page.request)).map((m) => m.id)).toEqual(before.map((m) => m.id));

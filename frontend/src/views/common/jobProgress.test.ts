@@ -2,7 +2,7 @@
 // pipeline is running (nothing runs it until a batch does).
 import type { Job } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
-import { describeJob, jobColumnText, waitingText } from "./jobProgress";
+import { describeJob, durationText, jobColumnText, waitingText } from "./jobProgress";
 
 const job = (stage: string | null): Job => ({
   id: "j1",
@@ -38,6 +38,26 @@ describe("job texts", () => {
     expect(describeJob(running)).toBe("Running layout from lines · 42%");
     const failed: Job = { ...job("masks_grabcut"), status: "failed", error: "no memory" };
     expect(describeJob(failed)).toBe("Pipeline failed in masks grabcut: no memory");
+  });
+
+  it("says how long a running job has run and, at its pace, about how long it has left", () => {
+    const start = Date.parse("2026-12-05T00:00:00Z");
+    const training: Job = {
+      ...job("training"),
+      kind: "retrain",
+      status: "running",
+      progress: 0.07,
+    };
+    expect(describeJob(training, start + 3000)).toBe("Running training · 7%");
+    expect(describeJob(training, start + 12_000)).toBe("Running training · 7% · 12 s so far");
+    expect(describeJob(training, start + 60_000)).toBe(
+      "Running training · 7% · 1 min so far, about 13 min left",
+    );
+    const slow = { ...training, progress: 0.5 };
+    expect(describeJob(slow, start + 3_600_000)).toBe(
+      "Running training · 50% · 1 h 00 min so far, about 1 h 00 min left",
+    );
+    expect(durationText(89_000)).toBe("1 min");
   });
 
   it("says a job in a word or two for the scene list's column", () => {

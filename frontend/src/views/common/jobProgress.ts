@@ -19,7 +19,29 @@ export function readableStage(name: string): string {
   return name.replaceAll("_", " ");
 }
 
-export function describeJob(job: Job): string {
+/** A duration as people read it: "40 s", "7 min", "1 h 05 min". */
+export function durationText(ms: number): string {
+  const seconds = Math.max(0, Math.round(ms / 1000));
+  if (seconds < 60) return `${seconds} s`;
+  const minutes = Math.round(seconds / 60);
+  if (minutes < 60) return `${minutes} min`;
+  return `${Math.floor(minutes / 60)} h ${String(minutes % 60).padStart(2, "0")} min`;
+}
+
+/** How long a running job has run and, once it has gone far enough to tell, about how long it
+ * has left at its pace so far (a retrain runs for minutes; its percentage alone said little). */
+function timeText(job: Job, now: number): string {
+  const elapsed = now - Date.parse(job.created_at);
+  if (!(elapsed >= 5000)) return "";
+  const left =
+    job.progress >= 0.03 && elapsed >= 20_000
+      ? `, about ${durationText((elapsed * (1 - job.progress)) / job.progress)} left`
+      : "";
+  return ` · ${durationText(elapsed)} so far${left}`;
+}
+
+/** What the job is doing; with `now` (ms), a running job's time so far and left. */
+export function describeJob(job: Job, now?: number): string {
   const stage = job.stage ? readableStage(job.stage) : null;
   const percent = `${Math.round(job.progress * 100)}%`;
   const what = {
@@ -33,7 +55,10 @@ export function describeJob(job: Job): string {
     case "queued":
       return job.stage === BATCH_STAGE ? `${what} queued in a batch…` : `${what} queued…`;
     case "running":
-      return `Running${stage ? ` ${stage}` : ""} · ${percent}${job.message ? ` · ${job.message}` : ""}`;
+      return (
+        `Running${stage ? ` ${stage}` : ""} · ${percent}` +
+        `${now === undefined ? "" : timeText(job, now)}${job.message ? ` · ${job.message}` : ""}`
+      );
     case "succeeded":
       return retraining
         ? `Retraining finished: ${job.message ?? "done"}`
@@ -81,7 +106,9 @@ export function jobProgress(testid = "job-progress"): JobProgress {
     update(job) {
       bar.value = job.status === "succeeded" ? 1 : job.progress;
       if (job.status === "queued") bar.removeAttribute("value");
-      text.textContent = describeJob(job);
+      // A bar part filled beside "cancelled" or "failed" read as still going.
+      bar.hidden = job.status === "cancelled" || job.status === "failed";
+      text.textContent = describeJob(job, Date.now());
       element.dataset.status = job.status;
       element.classList.toggle("is-failed", job.status === "failed");
       element.classList.toggle("is-cancelled", job.status === "cancelled");

@@ -11,6 +11,8 @@ export interface CurveCard {
   readonly shownId: string | null;
   /** Show the model's curve; nothing hides the card. */
   show(model: ModelInfo | undefined): void;
+  /** Whether a retrain runs: its curve comes when it ends, and the card says so meanwhile. */
+  retrainRunning(running: boolean): void;
 }
 
 export function curveCard(): CurveCard {
@@ -21,12 +23,21 @@ export function curveCard(): CurveCard {
     attrs: { alt: "", width: 600, height: 350 },
   });
   const empty = el("p", { className: "field-hint", text: "This model has no curve." });
-  const element = el("section", { className: "card" }, title, image, empty);
+  const waiting = el("p", {
+    className: "field-hint",
+    testid: "curve-waiting",
+    text: "A retrain is running: its curve shows here when it ends; its log is under Retrain.",
+  });
+  waiting.hidden = true;
+  const element = el("section", { className: "card" }, title, waiting, image, empty);
   let shownId: string | null = null;
   return {
     element,
     get shownId() {
       return shownId;
+    },
+    retrainRunning(running) {
+      waiting.hidden = !running;
     },
     show(model) {
       element.hidden = !model;

@@ -51,6 +51,7 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
     text,
     signal: abort.signal,
     onFinished: (job) => refresh(job.status === "succeeded"),
+    onJob: (job) => curve.retrainRunning(job.status === "queued" || job.status === "running"),
   });
   const table = modelTable({
     text,

@@ -31,6 +31,8 @@ export interface RetrainFormInputs {
   signal: AbortSignal;
   /** A job ended: the page loads the models again. */
   onFinished(job: Job): Promise<void>;
+  /** A retrain job shown started, ran on or ended (the curve card says it waits for it). */
+  onJob?(job: Job): void;
 }
 
 export interface RetrainForm {
@@ -43,7 +45,13 @@ export interface RetrainForm {
   showReadiness(readiness: RetrainReadiness): void;
 }
 
-export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInputs): RetrainForm {
+export function retrainForm({
+  kind,
+  text,
+  signal,
+  onFinished,
+  onJob,
+}: RetrainFormInputs): RetrainForm {
   const epochs = numberField(text.epochs[0], "epochs", text.epochs[1], 500);
   const synthetic = numberField(text.synthetic[0], "synthetic", text.synthetic[1], 20000);
   const retrain = button("Retrain", {
@@ -90,6 +98,7 @@ export function retrainForm({ kind, text, signal, onFinished }: RetrainFormInput
   const showJob = (job: Job) => {
     if (job.id !== shownJob?.id) since.hidden = true;
     shownJob = job;
+    onJob?.(job);
     if (job.id === putAway && isFinished(job)) return;
     progress.element.hidden = false;
     progress.update(job);
