@@ -165,6 +165,11 @@ test("the scene page shows the model's suggested supporter of each object", asyn
     `${objects.length} objects scored in`,
     { timeout: 60_000 },
   );
+  // It names the registry's active model, whose scores these are.
+  const active = (await (await request.get("/api/models/active")).json()) as { version: number };
+  await expect(page.getByTestId("suggestion-status")).toContainText(
+    `ms by the Relation Network v${active.version}`,
+  );
   // The model runs in onnxruntime-web's own worker, never on the page's thread (where a
   // scoring would hold an edit's redraw back).
   expect(

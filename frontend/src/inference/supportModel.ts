@@ -91,6 +91,8 @@ export interface SceneScores {
   /** [N, N + 3, 2] softmax probabilities, flat. */
   probabilities: Float64Array;
   ranked: ObjectSupportScores[];
+  /** The registry's version of the model that scored, when it was the active one. */
+  modelVersion?: number;
 }
 
 export class SupportModel {
@@ -228,8 +230,16 @@ export async function scoreScene(
         `${scene.image.width}x${scene.image.height}`,
     );
   }
-  const model = await supportModel(modelUrl ?? (await activeModelUrl()));
-  const scores = await model.probabilities(scene.objects, imageData);
+  let url = modelUrl;
+  let modelVersion: number | undefined;
+  if (url === undefined) {
+    const active = await modelsApi.activeModel();
+    url = modelsApi.onnxUrl(active.id);
+    modelVersion = active.version;
+  }
+  const model = await supportModel(url);
+  const scores: SceneScores = { ...(await model.probabilities(scene.objects, imageData)) };
+  if (modelVersion !== undefined) scores.modelVersion = modelVersion;
   // What the geometry rules out, as the pipeline's support stage does (supportGeometry.ts).
   const boxes = modelObjects(scene.objects).map((o) => o.bbox);
   const offFloor = offTheFloor(scene.camera, boxes, scene.image.height);

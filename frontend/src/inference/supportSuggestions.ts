@@ -113,7 +113,11 @@ export function mountSupportSuggestions(
     // Parts joined by "; ": a wrapped line ends on the mark and starts with a word (a "·"
     // started or ended a line, where it read as a stray dot).
     status.textContent = [
-      `${plural(count, "object")} scored in ${Math.round(ms)} ms`,
+      // Which model: after an admin switches models, people can tell whose scores these are.
+      `${plural(count, "object")} scored in ${Math.round(ms)} ms` +
+        (scores?.modelVersion === undefined
+          ? ""
+          : ` by the Relation Network v${scores.modelVersion}`),
       // Read only (a reviewer), nothing is suggested: saying "no changes" would mislead.
       live.checked && session.editable
         ? `live: ${suggested === 0 ? "no changes suggested" : `${suggested} suggested`}`
