@@ -6,12 +6,12 @@
 import { afterEach, beforeEach, describe, expect, it, vi } from "vitest";
 import { startAutosave } from "./autosave";
 import { setCurrentUser } from "./currentUser";
-import type { Change, SaveState, SceneSession } from "./sceneSession";
+import type { AutosaveHold, Change, SaveState, SceneSession } from "./sceneSession";
 
 class StandIn {
   pending: unknown[] = [];
   saveState: SaveState = { kind: "clean" };
-  holdAutosave = false;
+  holdAutosave: AutosaveHold | null = null;
   editable = true;
   /** Whose edits (null: drafts stored before they had owners). */
   drafts = { owner: null as string | null };
@@ -80,7 +80,7 @@ describe("autosave", () => {
     });
     vi.advanceTimersByTime(5000);
     expect(session.saves).toBe(0);
-    session.holdAutosave = true;
+    session.holdAutosave = "reload";
     session.settle({ kind: "dirty" });
     vi.advanceTimersByTime(5000);
     expect(session.saves).toBe(0);

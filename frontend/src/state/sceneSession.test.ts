@@ -102,6 +102,15 @@ describe("SceneSession editing", () => {
     expect(session.pending).toHaveLength(0);
     session.undo();
     expect(session.pending.map((e) => e.kind)).toEqual(["remove_support"]);
+    // What Undo brought back after Discard waits for Save: an Undo meant for an earlier
+    // action would otherwise store it unseen. The next edit, or Redo, lets autosave go on.
+    expect(session.holdAutosave).toBe("undone discard");
+    session.redo();
+    expect(session.holdAutosave).toBeNull();
+    session.undo();
+    expect(session.holdAutosave).toBe("undone discard");
+    session.edit("remove", [{ kind: "remove_support", child: "o2" }]);
+    expect(session.holdAutosave).toBeNull();
   });
 
   it("remembers rejected answers with the edit, and undo forgets them", () => {

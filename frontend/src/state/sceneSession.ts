@@ -99,6 +99,12 @@ type HistoryState =
   | { part: "support"; state: ObjectState }
   | { part: "layout"; state: LayoutState };
 
+/** Why autosave waits (see SceneSession.holdAutosave). */
+export type AutosaveHold = "reload" | "undone discard";
+
+/** Discard's action in the undo history. */
+const DISCARD_LABEL = "discard unsaved changes";
+
 /** The room layout's step of the history (objects are keyed by their id). */
 const layoutChange = (before: LayoutState, after: LayoutState): HistoryChange<HistoryState> => ({
   key: "layout",
@@ -122,8 +128,10 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
   notice: string | null = null;
   /** Unsaved edits an earlier visit left (in localStorage), until restored or discarded. */
   recovered: Draft | null;
-  /** After "reload" on a conflict: do not autosave until the user edits or saves. */
-  holdAutosave = false;
+  /** Why unsaved edits wait for Save instead of autosaving, until the person edits or saves:
+   * after "reload" on a conflict (to review them first), or after Undo brought back what
+   * Discard had dropped (an Undo meant for an earlier action stored them unseen). */
+  holdAutosave: AutosaveHold | null = null;
 
   private readonly edits = new Map<string, Edit>();
   private readonly rejected = new Map<string, Set<string>>();
@@ -351,7 +359,7 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
   /** Remember an action for undo; the unsaved changes changed. */
   private record(label: string, changes: HistoryChange<HistoryState>[]): void {
     this.history.record({ label, changes });
-    this.holdAutosave = false;
+    this.holdAutosave = null;
     this.notice = null; // what a merge or a recovery reported is old news now
     this.editsChanged();
   }
@@ -362,7 +370,7 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     const entry = this.history.undo();
     if (!entry) return null;
     for (const change of entry.changes) this.applyState(change.key, change.before);
-    this.holdAutosave = false;
+    this.holdAutosave = entry.label === DISCARD_LABEL ? "undone discard" : null;
     this.editsChanged();
     return entry.label;
   }
@@ -373,7 +381,7 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     const entry = this.history.redo();
     if (!entry) return null;
     for (const change of entry.changes) this.applyState(change.key, change.after);
-    this.holdAutosave = false;
+    this.holdAutosave = null;
     this.editsChanged();
     return entry.label;
   }
@@ -389,7 +397,7 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
       layoutChange = { before, after: layout.snapshot() };
     }
     this.edit(
-      "discard unsaved changes",
+      DISCARD_LABEL,
       this.pending.map((e) => this.savedState(e.child)),
       [],
       layoutChange,
@@ -482,7 +490,7 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     const [first, ...rest] = [...sent.map(wireEdit), ...(layoutEdit ? [layoutEdit] : [])];
     if (!first) return;
     const baseRevision = this.doc.revision;
-    this.holdAutosave = false;
+    this.holdAutosave = null;
     this.setSaveState({ kind: "saving" });
     try {
       const doc = await api.postEdits(this.sceneId, {
@@ -577,7 +585,7 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
       }
       // Nothing new and nothing of theirs to tell (a reload after a workflow step): no notice.
       this.notice = newer.length === 0 && lines.length === 1 ? null : lines.join(" ");
-      this.holdAutosave = options.hold === true && unsaved > 0;
+      this.holdAutosave = options.hold === true && unsaved > 0 ? "reload" : null;
       this.saveState = { kind: "clean" }; // the conflict is resolved; editsChanged() says what is left
       this.setDocument(doc);
       this.editsChanged();

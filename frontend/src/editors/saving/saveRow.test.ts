@@ -44,6 +44,10 @@ describe("the save status", () => {
     expect(statusText({ kind: "dirty" }, 2, 19, "held", null)).toBe(
       "2 unsaved changes on revision 19 · held after the reload: review, then Save (Ctrl+S)",
     );
+    expect(statusText({ kind: "dirty" }, 12, 4, "undiscarded", null)).toBe(
+      "12 unsaved changes on revision 4 · brought back by Undo after Discard, not saved: " +
+        "Save (Ctrl+S) keeps them",
+    );
     expect(
       statusText(
         { kind: "conflict", baseRevision: 4, currentRevision: 5, message: "", theirs: [] },

@@ -8,10 +8,11 @@ import { latestRedo, latestUndo, type Undoable } from "../../state/undoOrder";
 /** How unsaved edits will be saved: by themselves, or only when the person says so (after a
  * conflict's "Reload: review first", with autosave turned off in this browser, or never while
  * no room fits the moved corners). */
-export type SavingMode = "auto" | "held" | "off" | "unfit";
+export type SavingMode = "auto" | "held" | "undiscarded" | "off" | "unfit";
 
 export function savingMode(session: SceneSession): SavingMode {
   if (!session.savable) return "unfit";
+  if (session.holdAutosave === "undone discard") return "undiscarded";
   if (session.holdAutosave) return "held";
   return autosaveDelay() === 0 ? "off" : "auto";
 }
@@ -19,6 +20,7 @@ export function savingMode(session: SceneSession): SavingMode {
 const DIRTY_TAIL: Record<SavingMode, string> = {
   auto: "autosaving",
   held: "held after the reload: review, then Save (Ctrl+S)",
+  undiscarded: "brought back by Undo after Discard, not saved: Save (Ctrl+S) keeps them",
   off: "autosave is off here: Save (Ctrl+S)",
   unfit: "not saved while no room fits the moved corners",
 };
