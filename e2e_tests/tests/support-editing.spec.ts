@@ -218,10 +218,11 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   await expect(arrow("o1")).toHaveAttribute("data-parent", "o0");
   await expect(arrow("o1")).toHaveClass(/is-selected/);
   // While a pick is armed, a click on another object's drawn arrow takes up that arrow: a
-  // person looking from arrow to arrow changes nothing. Its mask picks it.
+  // person looking from arrow to arrow changes nothing. Its mask (and its arrow's head, at its
+  // centre) picks it.
   await clickArrow(page, "o2");
   await expect(page.getByTestId("photo")).toHaveClass(/is-picking/);
-  const onBedsArrow = await arrowPoint(page, "o0", "head");
+  const onBedsArrow = await arrowPoint(page, "o0");
   await page.mouse.click(onBedsArrow.x, onBedsArrow.y);
   await expect(arrow("o0")).toHaveClass(/is-selected/);
   await expect(page.getByTestId("photo-tool-options")).toContainText("holds up o0");
@@ -441,21 +442,47 @@ test("a crowded photo at 1280x800: a click near an object's centre only selects 
       });
     }),
   );
+  // The middle of a drawn arrow's head, at its object's centre (where people click to select
+  // the object).
+  const heads = await page.evaluate(() =>
+    [...document.querySelectorAll<SVGGElement>(".arrow[data-child]")].flatMap((arrow) => {
+      const head = arrow.querySelector<SVGPathElement>(".arrow-head");
+      const matrix = head?.getScreenCTM();
+      if (!head || !matrix) return [];
+      const box = head.getBBox();
+      const middle = new DOMPoint(box.x + box.width / 2, box.y + box.height / 2);
+      const s = middle.matrixTransform(matrix);
+      const hit = document.elementFromPoint(s.x, s.y);
+      return hit && !hit.classList.contains("arrow-hit") && hit.closest(".arrow") === arrow
+        ? [{ child: arrow.dataset.child ?? "", x: s.x, y: s.y }]
+        : [];
+    }),
+  );
   // Which of them lie in their own object's mask: hovered with the arrows hidden.
-  await page.getByTestId("toggle-arrows").uncheck();
-  let margin: { child: string; x: number; y: number } | null = null;
-  for (const point of candidates) {
-    await page.mouse.move(point.x, point.y);
-    if (await page.getByTestId(`mask-${point.child}`).evaluate((n) => n.matches(".is-hovered"))) {
-      margin = point;
-      break;
+  const inOwnObject = async (points: { child: string; x: number; y: number }[]) => {
+    await page.getByTestId("toggle-arrows").uncheck();
+    let found: { child: string; x: number; y: number } | null = null;
+    for (const point of points) {
+      await page.mouse.move(point.x, point.y);
+      if (await page.getByTestId(`mask-${point.child}`).evaluate((n) => n.matches(".is-hovered"))) {
+        found = point;
+        break;
+      }
     }
-  }
-  await page.getByTestId("toggle-arrows").check();
+    await page.getByTestId("toggle-arrows").check();
+    return found;
+  };
+  const margin = await inOwnObject(candidates);
   if (!margin)
     throw new Error(`none of ${candidates.length} points of arrow margins is in its own object`);
   await page.mouse.click(margin.x, margin.y);
   await expect(page.getByTestId(`object-row-${margin.child}`)).toHaveClass(/is-selected/);
+  await expect(page.getByTestId("photo")).not.toHaveClass(/is-picking/);
+  // Another object's (the one selected would stay selected whatever the click did).
+  const head = await inOwnObject(heads.filter((h) => h.child !== margin.child));
+  if (!head) throw new Error(`none of ${heads.length} arrow heads is in its own object`);
+  await page.mouse.click(head.x, head.y);
+  await expect(page.getByTestId(`object-row-${head.child}`)).toHaveClass(/is-selected/);
   await expect(page.getByTestId("photo")).not.toHaveClass(/is-picking/);
   // The drawn arrow arms the pick; the tool row (in view while working on the photo) says so,
   // and the object under the pointer shows the arrow a click would give.

@@ -5,9 +5,9 @@
 // it) and drop it on the new supporter.
 // Clicking an object only selects it unless a pick is armed: an annotator who clicks from
 // object to object to look at them changes nothing. An arrow runs over its own object to the
-// object's centre, so there only the drawn arrow arms a pick; the wider margin around it that
-// makes arrows easy to hit elsewhere belongs to the object (a click there selects it, or picks
-// it while a pick is armed). While a pick is armed, a click on another drawn arrow takes up
+// object's centre, so there only the drawn arrow away from that centre arms a pick; its head
+// there and the wider margin around it that makes arrows easy to hit elsewhere belong to the
+// object (a click there selects it, or picks it while a pick is armed). While a pick is armed, a click on another drawn arrow takes up
 // that arrow instead, and the object under the pointer shows the arrow it would get (a
 // dashed line).
 // Clicking the selected object or the background clears the selection. While the scene is
@@ -49,6 +49,12 @@ function onHitMargin(event: Event, at: readonly [number, number] | null): boolea
   return !halo.isPointInStroke(new DOMPoint(at[0], at[1]));
 }
 
+/** How far from its head (its object's centre) a click on an arrow is a click on the object:
+ * in stroke widths (about 17 screen pixels), and at most this share of the arrow's length (so
+ * that on a short arrow its shaft still takes it up). */
+const HEAD_STROKES = 6;
+const HEAD_SHARE = 0.5;
+
 /** The object whose "?" flag (no supporter) is under the pointer. */
 const flagAt = (event: Event): string | null =>
   (event.target as Element | null)?.closest<SVGGElement>("[data-unsupported]")?.dataset
@@ -78,6 +84,26 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     arm(null); // picked: the next click selects again
   };
 
+  /** The press is on the arrow of `child` near its head, the centre of the object: where
+   * people click to select the object (on a small object the arrow covers much of it). */
+  const nearOwnHead = (event: MouseEvent, child: string): boolean => {
+    const at = picking.toImage(event);
+    const head = picking.centroid(child);
+    if (!at || !head) return false;
+    const shaft = (event.target as Element | null)
+      ?.closest(".arrow")
+      ?.querySelector<SVGGeometryElement>(".arrow-shaft");
+    let length = Number.POSITIVE_INFINITY;
+    if (typeof shaft?.getTotalLength === "function") {
+      // The shaft ends where the head's triangle begins: the head's length is added.
+      const shaftLength = shaft.getTotalLength();
+      const end = shaft.getPointAtLength(shaftLength);
+      length = shaftLength + Math.hypot(end.x - head[0], end.y - head[1]);
+    }
+    const reach = Math.min(HEAD_STROKES * picking.strokeWidth(), HEAD_SHARE * length);
+    return Math.hypot(at[0] - head[0], at[1] - head[1]) <= reach;
+  };
+
   const onClick = (event: MouseEvent) => {
     if (swallowClick) {
       swallowClick = false;
@@ -87,11 +113,16 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     const object = picking.objectAt(event);
     const selected = session.selected;
     const armed = session.picking !== null && session.picking === selected;
-    // The margin of an arrow over its own object is the object's; the arrow drawn (or a "?"
-    // flag) is the arrow's, armed pick or not: a person looking from arrow to arrow takes
-    // up each in turn and changes nothing.
+    // The margin of an arrow over its own object is the object's, and so is the arrow's head
+    // there (at the object's centre); the rest of the arrow drawn (or a "?" flag) is the
+    // arrow's, armed pick or not: a person looking from arrow to arrow takes up each in turn
+    // and changes nothing.
     const onArrow =
-      arrow !== null && !(arrow === object && onHitMargin(event, picking.toImage(event)));
+      arrow !== null &&
+      !(
+        arrow === object &&
+        (onHitMargin(event, picking.toImage(event)) || nearOwnHead(event, arrow))
+      );
     if (armed && object && object !== selected && !onArrow) {
       pickSupporter(selected, object);
       return;
