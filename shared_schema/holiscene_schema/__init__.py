@@ -102,7 +102,7 @@ from .scene import (
     SupportRelation,
     SupportType,
 )
-from .support_graph import STRUCTURAL_SUPPORTERS, support_graph_problems
+from .support_graph import STRUCTURAL_SUPPORT_TYPES, STRUCTURAL_SUPPORTERS, support_graph_problems
 
 __all__ = [
     "BOX_CORNER_SIGNS",
@@ -111,6 +111,7 @@ __all__ = [
     "NYU40_CLASSES",
     "STRUCTURAL_CLASSES",
     "STRUCTURAL_SUPPORTERS",
+    "STRUCTURAL_SUPPORT_TYPES",
     "UNKNOWN_CLASS_FALLBACK",
     "AddObject",
     "Box3D",

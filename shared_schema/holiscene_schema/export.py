@@ -62,7 +62,7 @@ from .classes import CLASS_ALIASES, NYU40_CLASSES
 from .detector_model import detector_contract
 from .relation_model import relation_model_contract
 from .scene import Scene
-from .support_graph import STRUCTURAL_SUPPORTERS
+from .support_graph import STRUCTURAL_SUPPORT_TYPES, STRUCTURAL_SUPPORTERS
 
 SCHEMA_DIR = Path(__file__).resolve().parent.parent / "jsonschema"
 
@@ -132,6 +132,7 @@ def render_schemas() -> dict[str, str]:
                 "longest_typo": LONGEST_TYPO,
             },
             "structural_supporters": sorted(STRUCTURAL_SUPPORTERS),
+            "structural_support_types": STRUCTURAL_SUPPORT_TYPES,
             "support_types": ["below", "behind"],
             "relation_model": relation_model_contract(),
             "detector_model": detector_contract(),

@@ -5,6 +5,10 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 
 STRUCTURAL_SUPPORTERS = frozenset({"floor", "wall", "ceiling"})
+# How each part of the room can hold an object up: the floor from below; a wall, and the
+# ceiling an object hangs from, from behind (the type the workbench gives them). The other
+# type names nothing physical ("floor, behind"): edits refuse it.
+STRUCTURAL_SUPPORT_TYPES = {"floor": "below", "wall": "behind", "ceiling": "behind"}
 
 
 def support_graph_problems(

@@ -51,6 +51,8 @@ const vocabularyTs = [
   `export const CLASS_WORDS = ${JSON.stringify(vocabulary.class_words)} as const;`,
   `export const STRUCTURAL_SUPPORTERS = ${JSON.stringify(vocabulary.structural_supporters)} as const;`,
   `export const SUPPORT_TYPES = ${JSON.stringify(vocabulary.support_types)} as const;`,
+  "/** The one support type each part of the room holds objects up by. */",
+  `export const STRUCTURAL_SUPPORT_TYPES: Readonly<Record<string, "below" | "behind">> = ${JSON.stringify(vocabulary.structural_support_types)};`,
   `export const RELATION_MODEL = ${JSON.stringify(vocabulary.relation_model)} as const;`,
   `export const DETECTOR_MODEL = ${JSON.stringify(vocabulary.detector_model)} as const;`,
   `export const RETRAINING = ${JSON.stringify(vocabulary.retraining)} as const;`,

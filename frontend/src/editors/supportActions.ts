@@ -2,7 +2,13 @@
 // step on the session. The photo's mouse handling and the keyboard shortcuts both call these.
 // Each returns a message for the user when the action could not be done (null: done).
 import type { SceneSession } from "../state/sceneSession";
-import { defaultType, type Edit, isStructural, type SupportType } from "../state/supportGraph";
+import {
+  type Edit,
+  isStructural,
+  onlyType,
+  type SupportType,
+  typeFor,
+} from "../state/supportGraph";
 
 export type ActionResult = string | null;
 
@@ -41,11 +47,7 @@ export function setSupporter(session: SceneSession, child: string, parent: strin
   const shown = session.shown();
   const guesses = (loop ?? []).filter((id) => !session.isResolved(id));
   if (loop && guesses.length === 0) return `${parent} rests on ${child}: pick another supporter.`;
-  const current = session.displayed(child);
-  const type =
-    current && defaultType(current.parent) === defaultType(parent)
-      ? current.type
-      : defaultType(parent);
+  const type = typeFor(parent, session.displayed(child));
   const edits: Edit[] = [{ kind: "set_support", child, parent, type }];
   const rejected: { child: string; parent: string; type: string }[] = [];
   if (loop) {
@@ -63,6 +65,8 @@ export function setSupporter(session: SceneSession, child: string, parent: strin
 export function flipType(session: SceneSession, child: string): ActionResult {
   const current = session.displayed(child);
   if (!current) return `${child} has no supporter to flip.`;
+  const only = onlyType(current.parent);
+  if (only) return `The ${current.parent} holds ${child} up from ${only} only.`;
   const type = other(current.type);
   session.edit(`${child}: ${type}`, [{ kind: "set_support", child, parent: current.parent, type }]);
   return null;
@@ -82,7 +86,7 @@ export function acceptEdge(session: SceneSession, child: string): ActionResult {
   const current = session.displayed(child);
   if (!current) return `${child} has no supporter to accept: pick one.`;
   session.edit(`accept ${child} on ${current.parent}`, [
-    { kind: "set_support", child, parent: current.parent, type: current.type },
+    { kind: "set_support", child, parent: current.parent, type: typeFor(current.parent, current) },
   ]);
   return null;
 }
@@ -116,7 +120,14 @@ export function acceptAll(session: SceneSession): ActionResult {
   const edits: Edit[] = unresolved(session).flatMap((child) => {
     const current = session.displayed(child);
     return current
-      ? [{ kind: "set_support" as const, child, parent: current.parent, type: current.type }]
+      ? [
+          {
+            kind: "set_support" as const,
+            child,
+            parent: current.parent,
+            type: typeFor(current.parent, current),
+          },
+        ]
       : [];
   });
   if (edits.length === 0) return "Nothing left to accept.";

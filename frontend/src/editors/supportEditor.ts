@@ -11,8 +11,10 @@ import {
   implausibleBelow,
   isDoubtfulSupport,
   isStructural,
+  onlyType,
   type ShownSupport,
   type SupportType,
+  typeFor,
   withoutSupporter,
   wouldCycle,
 } from "../state/supportGraph";
@@ -143,15 +145,8 @@ function editOnChange(
       session.edit(`remove ${id}'s supporter`, [{ kind: "remove_support", child: id }]);
       return;
     }
-    const current = session.shown().get(id);
-    const keepType = current && defaultType(current.parent) === defaultType(parent);
     session.edit(`${id} on ${parent}`, [
-      {
-        kind: "set_support",
-        child: id,
-        parent,
-        type: keepType ? current.type : defaultType(parent),
-      },
+      { kind: "set_support", child: id, parent, type: typeFor(parent, session.shown().get(id)) },
     ]);
   });
   type.addEventListener("change", () => {
@@ -255,7 +250,8 @@ function objectRow(
     const supporterText = supporter.selectedOptions[0]?.text ?? "";
     if (supporter.title !== supporterText) supporter.title = supporterText;
     setDisabled(supporter, !session.editable);
-    setDisabled(type, !support || !session.editable);
+    // A part of the room holds up one way only ("floor, behind" names nothing).
+    setDisabled(type, !support || !session.editable || onlyType(support.parent) !== null);
     if (cls instanceof HTMLButtonElement) setDisabled(cls, !session.editable);
     markLoops(supporter, id, support?.parent, shown);
     const pending = session.isPending(id);

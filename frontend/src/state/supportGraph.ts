@@ -6,7 +6,7 @@ import type {
   SetSupport,
   SupportRelation,
 } from "@holiscene/schema";
-import { STRUCTURAL_SUPPORTERS } from "@holiscene/schema";
+import { STRUCTURAL_SUPPORT_TYPES, STRUCTURAL_SUPPORTERS } from "@holiscene/schema";
 
 // The generated types have `kind` optional (it has a default in pydantic); the app always
 // sends it, and requiring it here lets TypeScript tell the kinds apart.
@@ -174,9 +174,30 @@ export function editProblem(edit: Edit, objects: readonly SceneObject[]): string
   return null;
 }
 
-/** The usual support type for a supporter: walls and ceilings hold from behind. */
+/** The usual support type for a supporter: walls and ceilings hold from behind (and only so),
+ * the floor and objects from below. */
 export function defaultType(parent: string): SupportType {
-  return parent === "wall" || parent === "ceiling" ? "behind" : "below";
+  return STRUCTURAL_SUPPORT_TYPES[parent] ?? "below";
+}
+
+/** The one type a part of the room holds objects up by; null for an object (either type). */
+export const onlyType = (parent: string): SupportType | null =>
+  STRUCTURAL_SUPPORT_TYPES[parent] ?? null;
+
+/**
+ * The type of an edge whose supporter becomes `parent`: a part of the room's own type; between
+ * objects the current type, unless the supporter changes kind (a picture moved from a wall to
+ * a shelf rests on it from below).
+ */
+export function typeFor(
+  parent: string,
+  current?: { parent: string; type: SupportType } | null,
+): SupportType {
+  const only = onlyType(parent);
+  if (only) return only;
+  return current && defaultType(current.parent) === defaultType(parent)
+    ? current.type
+    : defaultType(parent);
 }
 
 /** A readable description of an edit, for notices and the pending list. */

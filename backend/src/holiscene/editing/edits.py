@@ -10,6 +10,7 @@ from datetime import datetime
 import numpy as np
 from holiscene_schema import (
     STRUCTURAL_CLASSES,
+    STRUCTURAL_SUPPORT_TYPES,
     STRUCTURAL_SUPPORTERS,
     AddObject,
     Edit,
@@ -197,6 +198,7 @@ def _apply_support_edit(
     _check_child(draft, edit.child)
     if isinstance(edit, SetSupport):
         _check_supporter(draft, edit.parent)
+        _check_structural_type(edit.parent, edit.type)
         draft.supports[edit.child] = SupportRelation(
             child=edit.child,
             parent=edit.parent,
@@ -226,6 +228,14 @@ def _check_supporter(draft: _Draft, parent: str) -> None:
     if parent not in draft.objects and parent not in STRUCTURAL_SUPPORTERS:
         raise InvalidEditError(
             f"supporter {parent!r} is neither an object of this scene nor floor, wall or ceiling"
+        )
+
+
+def _check_structural_type(parent: str, support_type: str) -> None:
+    required = STRUCTURAL_SUPPORT_TYPES.get(parent)
+    if required is not None and support_type != required:
+        raise InvalidEditError(
+            f"the {parent} holds objects up from {required} only, not from {support_type}"
         )
 
 

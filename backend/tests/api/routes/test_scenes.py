@@ -101,6 +101,19 @@ def test_stale_write_gets_409_and_changes_nothing(client: TestClient, t3d5: Path
         ({"kind": "set_support", "child": "o9", "parent": "floor", "type": "below"}, "no object"),
         ({"kind": "set_support", "child": "o1", "parent": "sky", "type": "below"}, "neither"),
         ({"kind": "set_support", "child": "o1", "parent": "floor", "type": "above"}, "type"),
+        # Types no part of the room holds anything up by.
+        (
+            {"kind": "set_support", "child": "o1", "parent": "floor", "type": "behind"},
+            "the floor holds objects up from below only",
+        ),
+        (
+            {"kind": "set_support", "child": "o1", "parent": "wall", "type": "below"},
+            "the wall holds objects up from behind only",
+        ),
+        (
+            {"kind": "set_support", "child": "o1", "parent": "ceiling", "type": "below"},
+            "the ceiling holds objects up from behind only",
+        ),
     ],
 )
 def test_invalid_edits_are_refused(
