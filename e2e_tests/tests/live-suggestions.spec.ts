@@ -61,6 +61,11 @@ test("a correction re-scores the other predictions in the browser, without the s
   expect(suggestion?.parent).not.toBe(b);
   expect(suggestion?.source).toBe("model");
   await expect(page.getByTestId("suggestion-status")).toContainText("1 suggested");
+  // The list shows what A would accept: the suggestion, marked as not stored.
+  const menu = page.getByTestId(`supporter-select-${a}`);
+  await expect(menu).toHaveValue(suggestion?.parent ?? "");
+  await expect(menu).toHaveClass(/is-suggested/);
+  await expect(menu).toHaveAttribute("title", /the model's suggestion .* A accepts it/);
   console.log(
     `live suggestion: ${a} now on ${suggestion?.parent} (was ${b}), seen ${elapsed} ms after ` +
       "the click (Playwright's round trips included)",
@@ -71,6 +76,8 @@ test("a correction re-scores the other predictions in the browser, without the s
   await page.keyboard.press("Control+z");
   await expect(page.getByTestId(`arrow-${a}`)).toHaveAttribute("data-suggested", "false");
   await expect(page.getByTestId(`arrow-${a}`)).toHaveAttribute("data-parent", b);
+  await expect(menu).toHaveValue(b);
+  await expect(menu).not.toHaveClass(/is-suggested/);
   await page.keyboard.press("Control+Shift+z");
   await expect(page.getByTestId(`arrow-${a}`)).toHaveAttribute("data-suggested", "true");
 

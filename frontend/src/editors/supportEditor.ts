@@ -244,11 +244,21 @@ function objectRow(
     const support = shown.get(id);
     // Written only when they change: the list is updated on every change of the session (a
     // hover too), and each write would make the browser restyle the row.
-    supporter.value = support?.parent ?? NONE;
-    type.value = support?.type ?? defaultType(NONE);
+    // The model's live suggestion, drawn dotted on the photo, is what A accepts: the menus
+    // show it too, marked (they showed the stored guess, and A stored another supporter).
+    const displayed = session.displayed(id);
+    const suggested = displayed?.suggested === true;
+    supporter.value = displayed?.parent ?? NONE;
+    type.value = displayed?.type ?? defaultType(NONE);
+    supporter.classList.toggle("is-suggested", suggested);
+    type.classList.toggle("is-suggested", suggested);
     // The narrow menu cuts a long supporter short ("o6 · cou"): the pointer reads it whole.
     const supporterText = supporter.selectedOptions[0]?.text ?? "";
-    if (supporter.title !== supporterText) supporter.title = supporterText;
+    const menuTitle = suggested
+      ? `${supporterText}: the model's suggestion (dotted on the photo), not stored yet; ` +
+        `A accepts it, R rejects it${support ? ` (the guess before: ${support.parent})` : ""}`
+      : supporterText;
+    if (supporter.title !== menuTitle) supporter.title = menuTitle;
     setDisabled(supporter, !session.editable);
     // A part of the room holds up one way only ("floor, behind" names nothing).
     setDisabled(type, !support || !session.editable || onlyType(support.parent) !== null);
