@@ -365,7 +365,11 @@ export function mountSupportEditor(
   };
   // The swatches match the masks on the photo (by object or by class).
   const paintSwatches = () => {
-    const colours = maskColours(session.objects, maskStyle.get().colouring);
+    const colours = maskColours(
+      session.objects,
+      maskStyle.get().colouring,
+      session.doc.scene.removed_by_person,
+    );
     for (const swatch of body.querySelectorAll<HTMLElement>("[data-swatch-of]")) {
       const colour = colours.get(swatch.dataset.swatchOf ?? "");
       swatch.style.background = colour ? rgbCss(colour) : "";

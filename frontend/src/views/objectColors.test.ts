@@ -56,6 +56,26 @@ describe("object colours", () => {
     expect(objectColours(ids(12))).toEqual(before);
   });
 
+  it("keeps the other objects' colours when a person removes one", () => {
+    // The pipeline's o0..o9 and the detector's d1..d4 beside them, where some took another
+    // slot than their own; each removal in turn leaves every other colour as it was.
+    const scene = [...ids(10), ...ids(5, "d").slice(1)];
+    const before = objectColours(scene);
+    for (const gone of scene) {
+      const left = scene.filter((o) => o.id !== gone.id);
+      const after = objectColours(left, [gone.id]);
+      for (const o of left)
+        expect(after.get(o.id), `${o.id} after ${gone.id}`).toEqual(before.get(o.id));
+    }
+    // Without the removed list, a removal moves some (what people saw: o7 took o6's blue).
+    const moved = scene.some((gone) => {
+      const left = scene.filter((o) => o.id !== gone.id);
+      const after = objectColours(left);
+      return left.some((o) => String(after.get(o.id)) !== String(before.get(o.id)));
+    });
+    expect(moved).toBe(true);
+  });
+
   it("colours by class on request", () => {
     const objects = [
       { id: "a", class: "chair" as const },

@@ -91,14 +91,41 @@ function distinctSlots(
 const paletteColours = (slots: Map<string, number>): Map<string, Rgb> =>
   new Map([...slots].map(([key, slot]) => [key, PALETTE[slot] as Rgb]));
 
-/** Each object's colour, in document order (new objects come last, so they never move others). */
-export function objectColours(objects: readonly Pick<SceneObject, "id">[]): Map<string, Rgb> {
-  return paletteColours(
-    distinctSlots(
-      objects.map((o) => o.id),
-      preferredSlot,
-    ),
-  );
+/** An id's series and number: "o12" -> ["o", 12]; an id without a number is a series alone. */
+function seriesOf(id: string): [string, number] {
+  const numbered = /^(.*?)(\d+)$/.exec(id);
+  return numbered ? [numbered[1] ?? "", Number(numbered[2])] : [id, -1];
+}
+
+/**
+ * The ids in the order their colours are chosen: the objects' in document order, with each
+ * object a person removed put back where it stood (after the one before it in its numbered
+ * series, else before the one after it), so that a removal changes no other object's colour.
+ */
+function colourOrder(ids: readonly string[], removed: readonly string[]): string[] {
+  const order = [...ids];
+  const present = new Set(ids);
+  const gone = removed.filter((id) => !present.has(id)).map((id) => [id, ...seriesOf(id)] as const);
+  gone.sort((a, b) => a[1].localeCompare(b[1]) || a[2] - b[2]);
+  for (const [id, series, number] of gone) {
+    const sameSeries = order.map(seriesOf).map(([s, n]) => (s === series ? n : null));
+    const before = sameSeries.findLastIndex((n) => n !== null && n < number);
+    const after = sameSeries.findIndex((n) => n !== null && n > number);
+    const at = before >= 0 ? before + 1 : after >= 0 ? after : order.length;
+    order.splice(at, 0, id);
+  }
+  return order;
+}
+
+/** Each object's colour, in document order (new objects come last, so they never move others;
+ * `removed`: the ids of objects a person removed, which keep their place). */
+export function objectColours(
+  objects: readonly Pick<SceneObject, "id">[],
+  removed: readonly string[] = [],
+): Map<string, Rgb> {
+  const ids = objects.map((o) => o.id);
+  const all = paletteColours(distinctSlots(colourOrder(ids, removed), preferredSlot));
+  return new Map(ids.map((id) => [id, all.get(id) as Rgb]));
 }
 
 const classIndex = (cls: string) => (NYU40_CLASSES as readonly string[]).indexOf(cls);
@@ -129,12 +156,18 @@ export function classColours(classes: Iterable<string>): Map<string, Rgb> {
 
 export type Colouring = "object" | "class";
 
-/** The colour of every object's mask, outline and list swatch, by object or by class. */
+/** The colour of every object's mask, outline and list swatch, by object or by class;
+ * `removed`: the objects a person removed (the scene's removed_by_person). */
 export function maskColours(
   objects: readonly Pick<SceneObject, "id" | "class">[],
   colouring: Colouring,
+  removed: readonly Pick<SceneObject, "id">[] = [],
 ): Map<string, Rgb> {
-  if (colouring === "object") return objectColours(objects);
+  if (colouring === "object")
+    return objectColours(
+      objects,
+      removed.map((o) => o.id),
+    );
   const byClass = classColours(objects.map((o) => o.class));
   return new Map(objects.map((o) => [o.id, byClass.get(o.class) as Rgb]));
 }

@@ -89,7 +89,7 @@ export class PhotoOverlays {
     const objects = this.session.objects;
     const { colouring, opacity } = maskStyle.get();
     this.svg.style.setProperty("--mask-opacity", String(opacity));
-    const colours = maskColours(objects, colouring);
+    const colours = maskColours(objects, colouring, this.session.doc.scene.removed_by_person);
     const drawn = new Map<string, DrawnMask>();
     let changed = objects.length !== this.drawn.size;
     for (const object of objects) {

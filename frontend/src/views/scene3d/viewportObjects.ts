@@ -69,7 +69,11 @@ export class ViewportObjects {
 
   /** Objects in 3D have the colours of their masks on the photo. */
   private colours() {
-    return maskColours(this.inputs.session.objects, maskStyle.get().colouring);
+    return maskColours(
+      this.inputs.session.objects,
+      maskStyle.get().colouring,
+      this.inputs.session.doc.scene.removed_by_person,
+    );
   }
 
   /** Whether the session's revision needs another GLB than the one shown. */
