@@ -170,3 +170,34 @@ test("a box whose answer never arrived is saved once: sent again by itself, it f
   await expect.poll(async () => (await getScene(page.request, sceneId)).revision).toBe(before + 2);
   expect((await getScene(page.request, sceneId)).scene.objects ?? []).toEqual([]);
 });
+
+test("a box whose class was still being picked when the page was left is offered on the next visit", async ({
+  page,
+}) => {
+  const sceneId = await importWithoutObjects(page.request, "t3d-5 box left unnamed");
+  await page.goto("/#/");
+  await page.goto(`/#/scenes/${sceneId}`);
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  await page.keyboard.press("b");
+  await dragOnPhoto(page, [150, 190], [400, 420]);
+  await expect(page.getByTestId("class-picker")).toBeVisible();
+  await page.getByTestId("class-picker-input").fill("lamp");
+  // The browser's Back, the picker still open: the picker goes with the page.
+  await page.goBack();
+  await expect(page.getByTestId("scene-list")).toBeVisible();
+  await expect(page.getByTestId("class-picker")).toHaveCount(0);
+  expect((await getScene(page.request, sceneId)).scene.objects ?? []).toHaveLength(0);
+
+  // Back on the scene: the box is offered, and Retry adds it (as otherprop, to be named).
+  await page.goto(`/#/scenes/${sceneId}`);
+  await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
+  const failureText = page.getByTestId("object-edit-failure-text");
+  await expect(failureText).toContainText("Not saved on your last visit");
+  await expect(failureText).toContainText("class was being picked");
+  await page.getByTestId("object-edit-retry").click();
+  await objectEditsSaved(page);
+  const objects = (await getScene(page.request, sceneId)).scene.objects ?? [];
+  expect(objects.map((o) => o.class)).toEqual(["otherprop"]);
+  const [x1 = 0, y1 = 0, x2 = 0, y2 = 0] = objects[0]?.bbox ?? [];
+  expect([x1, y1, x2, y2].map((v) => Math.round(v / 10))).toEqual([15, 19, 40, 42]);
+});

@@ -126,6 +126,7 @@ export function mountBoxTool(tools: PhotoTools): () => void {
     if (change === "document" || change === "select") drawSoon();
   });
   return () => {
+    edits.leave();
     cancelAnimationFrame(frame);
     unsubscribe();
     stopTools();

@@ -4,7 +4,7 @@
 
 import { classText } from "../../state/classNames";
 import { classHints } from "../../views/scene/classHints";
-import { pickClass } from "../../views/scene/classPicker";
+import { cancelClassPicker, pickClass } from "../../views/scene/classPicker";
 import { type Box, type Grip, roundBox } from "../boxGeometry";
 import type { PhotoToolHost } from "../photoTools";
 
@@ -21,9 +21,14 @@ export function screenRect(svg: SVGSVGElement, box: readonly number[]) {
   return { left: a.x, top: a.y, right: b.x, bottom: b.y };
 }
 
+/** The class a box gets when the page is left before its class was chosen. */
+const UNCHOSEN_CLASS = "otherprop";
+
 export class BoxEdits {
   /** Boxes sent and not yet in a revision (drawn until the answer comes). */
   readonly sending = new Map<string, Box>();
+  /** The page is going: a box waiting for its class stays in the drafts. */
+  private leaving = false;
 
   /** `redraw` is told whenever `sending` changes. */
   constructor(
@@ -39,18 +44,22 @@ export class BoxEdits {
     sending.set(key, box);
     redraw();
     const near = screenRect(host.svg, box);
+    const [id = "d1"] = editor.newObjectIds(1);
+    // Kept in the drafts while its class is picked: a page left (Back, a link, the tab
+    // closed) before the pick offers the box on the next visit, as an object action not saved.
+    const kept = this.keepWhilePicking(id, box);
     const cls = await pickClass({
       near,
       title: "Class of the new object",
       objects: session.objects,
       likely: classHints.at(session.sceneId, box),
     });
+    if (kept && !this.leaving) session.drafts.saveFailedAction(session.sceneId, null);
     if (!cls) {
       sending.delete(key);
       redraw();
       return;
     }
-    const [id = "d1"] = editor.newObjectIds(1);
     // Selected as soon as it is drawn (before the server answers), so a key pressed at once
     // (F: on the floor) is for it; after the other listeners have seen the new revision.
     const stopWatching = session.subscribe((change) => {
@@ -70,6 +79,32 @@ export class BoxEdits {
     if (saved) session.select(session.object(id) ? id : null);
     else if (session.selected === id && !session.object(id)) session.select(null);
     redraw();
+  }
+
+  /** Put the box in the drafts as an action not saved; false when one is there already (the
+   * drafts keep one, which is not overwritten). */
+  private keepWhilePicking(id: string, box: Box): boolean {
+    const { session } = this.host;
+    if (session.drafts.loadFailedAction(session.sceneId)) return false;
+    session.drafts.saveFailedAction(session.sceneId, {
+      label: `add ${objectName({ id, class: UNCHOSEN_CLASS })}`,
+      message:
+        "the page was left while this box's class was being picked; Retry adds it as " +
+        `${UNCHOSEN_CLASS}, then give it its class`,
+      edits: [
+        { kind: "add_object", id, class: UNCHOSEN_CLASS, bbox: roundBox(box), source: "manual" },
+      ],
+      failedAt: new Date().toISOString(),
+      madeOn: session.doc.revision,
+    });
+    return true;
+  }
+
+  /** The page is going: a class picker open for a new box closes, and the box stays in the
+   * drafts for the next visit. */
+  leave(): void {
+    this.leaving = true;
+    cancelClassPicker();
   }
 
   /** Give the object its moved (grip "move") or resized box. */

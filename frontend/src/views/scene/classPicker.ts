@@ -57,6 +57,11 @@ let closeOpen: (() => void) | null = null;
 const NONE = -1;
 const HINT = "↑↓ move · Enter or 1–9 pick · Esc cancel";
 
+/** Close the picker if one is open, as cancelled (its page is going). */
+export function cancelClassPicker(): void {
+  closeOpen?.();
+}
+
 /** Open the picker; resolves to the name picked (a class or an alias), or null if cancelled. */
 export function pickClass(options: PickerOptions): Promise<string | null> {
   closeOpen?.(); // one at a time: the one open is cancelled
