@@ -19,8 +19,13 @@ describe("pipeline warnings", () => {
       run("heights_by_metrology", "class prior for 1: o2 (measured 9.00 m)", true),
     ];
     expect(pipelineWarnings(stages)).toEqual([
-      { stage: "objects from detections", text: "no detections.json was given" },
-      { stage: "heights by metrology", text: "class prior for 1: o2 (measured 9.00 m)" },
+      { stage: "objects from detections", text: "no detections.json was given", routine: false },
+      // A few objects' fallback, as on most real photos: routine (not opened over the photo).
+      {
+        stage: "heights by metrology",
+        text: "class prior for 1: o2 (measured 9.00 m)",
+        routine: true,
+      },
     ]);
   });
 
