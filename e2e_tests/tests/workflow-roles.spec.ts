@@ -148,7 +148,9 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId("login-error")).toHaveText("wrong user name or password");
   await logIn(page, ADMIN.name, ADMIN.password);
   await expect(page.getByTestId("current-role")).toHaveText("(admin)");
-  await page.getByTestId("dashboard-link").click();
+  // The accounts are one click away in the header, the dashboard opened at them.
+  await page.getByTestId("accounts-link").click();
+  await expect(page.getByTestId("accounts")).toBeInViewport();
   for (const [user, role] of [
     [ANNOTATOR, "annotator"],
     [REVIEWER, "reviewer"],

@@ -51,7 +51,7 @@ function mount(root: HTMLElement): () => void {
       return mountModelsPage(root, route.kind);
     case "dashboard":
       document.title = "Dashboard · HoliScene";
-      return mountDashboardPage(root);
+      return mountDashboardPage(root, route.accounts === true);
     case "unknown":
       document.title = "HoliScene";
       root.replaceChildren(
@@ -86,6 +86,19 @@ function renderUserArea(user: CurrentUser | null): void {
         title: "The Relation Network and the object detector: retrain, compare, roll back",
       },
     }),
+    // The accounts are at the dashboard's foot: an admin gets there in one click.
+    ...(user.role === "admin" && !user.local_mode
+      ? [
+          el("a", {
+            text: "Accounts",
+            testid: "accounts-link",
+            attrs: {
+              href: "#/dashboard/accounts",
+              title: "Add people, change roles, reset passwords",
+            },
+          }),
+        ]
+      : []),
     el(
       "span",
       {

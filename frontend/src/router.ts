@@ -1,6 +1,7 @@
 // Hash routes: `#/` is the scene list, `#/scenes/{id}` a scene, `#/models` the Relation
 // Network models and `#/models/detector` the object detectors (admin), `#/dashboard` the
-// workflow dashboard, `#/login` the login page.
+// workflow dashboard (`#/dashboard/accounts`: scrolled to its accounts, for admins), `#/login`
+// the login page.
 import type { ModelInfo } from "@holiscene/schema";
 
 /** The kinds of model the registry holds. */
@@ -10,7 +11,7 @@ export type Route =
   | { page: "list" }
   | { page: "scene"; sceneId: string }
   | { page: "models"; kind: ModelKind }
-  | { page: "dashboard" }
+  | { page: "dashboard"; accounts?: true }
   | { page: "login" }
   | { page: "unknown" };
 
@@ -21,6 +22,7 @@ export function parseRoute(hash: string): Route {
   const models = /^\/models\/(relation|detector)\/?$/.exec(path);
   if (models?.[1]) return { page: "models", kind: models[1] as ModelKind };
   if (/^\/dashboard\/?$/.test(path)) return { page: "dashboard" };
+  if (/^\/dashboard\/accounts\/?$/.test(path)) return { page: "dashboard", accounts: true };
   if (/^\/login\/?$/.test(path)) return { page: "login" };
   const scene = /^\/scenes\/([^/]+)\/?$/.exec(path);
   if (scene?.[1]) return { page: "scene", sceneId: decodeURIComponent(scene[1]) };

@@ -93,7 +93,8 @@ function statesSection(dashboard: Dashboard): HTMLElement {
   );
 }
 
-export function mountDashboardPage(container: HTMLElement): () => void {
+/** `toAccounts`: the page opens at its accounts (the header's Accounts link). */
+export function mountDashboardPage(container: HTMLElement, toAccounts = false): () => void {
   const abort = new AbortController();
   const content = el("div", { className: "dashboard-content" });
   const status = el("p", { testid: "dashboard-status", attrs: { role: "status" } });
@@ -152,6 +153,8 @@ export function mountDashboardPage(container: HTMLElement): () => void {
       );
       status.textContent = "";
       status.hidden = true;
+      // Opened at the accounts: scrolled there once the figures above them are laid out.
+      if (toAccounts && !background) accounts?.scrollIntoView({ block: "start" });
     } catch (err) {
       if (background) return; // the figures shown stay; the next check tries again
       status.hidden = false;
@@ -160,6 +163,7 @@ export function mountDashboardPage(container: HTMLElement): () => void {
     }
   };
   refreshButton.addEventListener("click", () => void refresh());
+  const accounts = hasRole("admin") ? accountsSection(abort.signal, () => void refresh()) : null;
   container.replaceChildren(
     el(
       "div",
@@ -173,7 +177,7 @@ export function mountDashboardPage(container: HTMLElement): () => void {
       ),
       status,
       content,
-      hasRole("admin") ? accountsSection(abort.signal, () => void refresh()) : null,
+      accounts,
     ),
   );
   void refresh();
