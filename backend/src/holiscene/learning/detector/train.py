@@ -341,7 +341,7 @@ def train_detector(
         say(
             0.25 + 0.75 * epoch / config.epochs,
             f"epoch {epoch}: loss {curve[-1]['train_loss']:.3f}, "
-            f"validation mAP@0.5 {100 * score:.1f} (best {100 * best:.1f})",
+            f"validation mAP@0.5 {100 * score:.1f}% (best {100 * best:.1f}%)",
         )
     head.load_state_dict(best_state)
     head.eval()
