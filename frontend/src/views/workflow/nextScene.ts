@@ -21,8 +21,14 @@ export interface NextSceneKeys {
   current?: string;
 }
 
-/** The buttons and their message line; the keys work while they are mounted. */
-export function nextSceneControl(keys: NextSceneKeys): {
+/**
+ * The buttons and their message line; the keys work while they are mounted. `beforeTake`: run
+ * before the next scene is taken (on a scene page: giving back the open one, untouched).
+ */
+export function nextSceneControl(
+  keys: NextSceneKeys,
+  beforeTake?: () => Promise<void>,
+): {
   element: HTMLElement;
   dispose: () => void;
 } {
@@ -36,7 +42,10 @@ export function nextSceneControl(keys: NextSceneKeys): {
   const nextButton = button("Next scene", {
     className: reviewer || onScenePage ? "" : "primary",
     testid: "next-scene",
-    title: `Take the next scene to annotate: it becomes yours (${keys.take})`,
+    title: onScenePage
+      ? `Take the next scene to annotate: it becomes yours; this one, if you took it and ` +
+        `changed nothing, goes back to the queue (${keys.take})`
+      : `Take the next scene to annotate: it becomes yours (${keys.take})`,
   });
   const reviewButton = button("Next to review", {
     className: onScenePage ? "" : "primary",
@@ -56,7 +65,10 @@ export function nextSceneControl(keys: NextSceneKeys): {
       nextButton.disabled = reviewButton.disabled = false;
     }
   };
-  const go = open(() => workflowApi.next(), "Could not take a scene");
+  const go = open(async () => {
+    await beforeTake?.();
+    return workflowApi.next();
+  }, "Could not take a scene");
   nextButton.addEventListener("click", () => void go());
   const goReview = open(
     () => workflowApi.nextToReview(keys.current),

@@ -37,11 +37,24 @@ export function mountWorkflowBar(
   let busy = false;
 
   const status = workflowStatus(showSince);
-  const next = nextSceneControl({
-    take: ">",
-    review: "Shift+ArrowRight",
-    current: session.sceneId,
-  });
+  // Next scene from a scene this person took and left as it was gives it back first: it
+  // waits for the next annotator instead of staying theirs, untouched (two clicks of Next
+  // scene kept two scenes "in annotation" with nobody working on them).
+  const giveBackUntouched = async () => {
+    const took = flow?.events.at(-1);
+    const untouched =
+      flow?.state === "in_annotation" &&
+      flow.assignee === getCurrentUser()?.name &&
+      took?.action === "claim" &&
+      took.revision === revision() &&
+      session.unsavedCount === 0 &&
+      session.saveState.kind !== "saving";
+    if (untouched) await workflowApi.release(session.sceneId, revision());
+  };
+  const next = nextSceneControl(
+    { take: ">", review: "Shift+ArrowRight", current: session.sceneId },
+    giveBackUntouched,
+  );
   const error = hiddenErrorAlert("workflow-error");
   const revision = () => session.doc.revision;
   const personLabels = () =>
