@@ -142,8 +142,9 @@ test("a save based on a stale revision shows a conflict and keeps the edit", asy
   await alice.getByTestId("save-button").click();
   await expect(alice.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
 
-  // Bob saves on the revision he loaded, which is no longer the latest.
-  await bob.getByTestId(`type-select-${fourth.id}`).selectOption("behind");
+  // Bob saves on the revision he loaded, which is no longer the latest (another object: the
+  // wall holds it up, from behind).
+  await bob.getByTestId(`supporter-select-${fourth.id}`).selectOption("wall");
   await bob.getByTestId("save-button").click();
   const conflict = bob.getByTestId("conflict-message");
   await expect(conflict).toBeVisible();
