@@ -1,5 +1,5 @@
 import { describe, expect, it } from "vitest";
-import { type DetectorRun, foundText } from "./detectorRun";
+import { type DetectorRun, foundText, shortDetectorName } from "./detectorRun";
 
 const run = (over: Partial<DetectorRun> = {}): DetectorRun => ({
   seen: [],
@@ -13,22 +13,28 @@ const run = (over: Partial<DetectorRun> = {}): DetectorRun => ({
 describe("foundText", () => {
   it("says what was suggested, how fast and by which detector", () => {
     expect(foundText(5, 5, run())).toBe(
-      "5 objects suggested in 0.6 s by COCO PicoDet-S 416 (LCNet), converted " +
-        "(loading it took 1.5 s): click a box, then Accept or Reject.",
+      "5 objects suggested in 0.6 s by COCO PicoDet-S 416 (loading it took 1.5 s): click a " +
+        "box, then Accept or Reject.",
     );
     expect(foundText(3, 0, run({ loadMs: 10 }))).toBe(
-      "All 3 boxes found are labelled already, in 0.6 s by COCO PicoDet-S 416 (LCNet), converted.",
+      "All 3 boxes found are labelled already, in 0.6 s by COCO PicoDet-S 416.",
     );
   });
 
   it("says when boxes rejected before are left out", () => {
     expect(foundText(4, 2, run({ loadMs: 10 }), 2)).toBe(
-      "2 objects suggested (2 rejected before left out) in 0.6 s by COCO PicoDet-S 416 " +
-        "(LCNet), converted: click a box, then Accept or Reject.",
+      "2 objects suggested (2 rejected before left out) in 0.6 s by COCO PicoDet-S 416: " +
+        "click a box, then Accept or Reject.",
     );
     expect(foundText(1, 0, run({ loadMs: 10 }), 1)).toMatch(
       /^The box found is labelled or rejected already \(1 rejected before left out\), in 0.6 s/,
     );
+  });
+
+  it("names a detector up to its first comma or bracket", () => {
+    expect(shortDetectorName("COCO PicoDet-S 416 (LCNet), converted")).toBe("COCO PicoDet-S 416");
+    expect(shortDetectorName("NYU-40 head, fine-tuned")).toBe("NYU-40 head");
+    expect(shortDetectorName("plain")).toBe("plain");
   });
 
   it("says why nothing was looked for in a flat photo", () => {

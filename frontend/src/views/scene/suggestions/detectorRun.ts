@@ -57,13 +57,18 @@ export async function runDetector(
   };
 }
 
+/** A detector's name as the status line says it: up to its first comma or bracket ("COCO
+ * PicoDet-S 416"); the whole name is on the models page. At 1280 px the line cut it at "COCO
+ * Pico…". */
+export const shortDetectorName = (name: string): string => name.split(/,| \(/)[0]?.trim() || name;
+
 /** What the run found, for the status line: `found` boxes, `open` of them not labelled yet,
  * `rejected` left out as rejected before (the fainter ones have their own button in the bar). */
 export function foundText(found: number, open: number, run: DetectorRun, rejected = 0): string {
   const seconds = (ms: number) => `${(ms / 1000).toFixed(1)} s`;
   // Which detector: after an admin switches models, a reviewer can tell whose boxes these are.
   const time =
-    `in ${seconds(run.runMs)} by ${run.detector}` +
+    `in ${seconds(run.runMs)} by ${shortDetectorName(run.detector)}` +
     (run.loadMs > 100 ? ` (loading it took ${seconds(run.loadMs)})` : "");
   if (run.flat) return "The photo is one flat colour: there is nothing to detect in it.";
   if (found === 0) return `No objects found ${time}.`;
