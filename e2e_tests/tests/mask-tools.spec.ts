@@ -2,6 +2,7 @@
 // the Brush paints more of it (the stroke shows at once), the Eraser takes some away, a
 // Polygon adds a part, and Refine cuts the mask again from strokes; each is saved as one
 // revision holding a "manual" mask, and a reload shows the same mask.
+import path from "node:path";
 import type { Mask, SceneDocument, SceneObject } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getRevisions, getScene, seedScene, T3D_5 } from "../helpers/api";
@@ -450,4 +451,40 @@ test("brush, eraser, polygon and refine edit the selected object's mask, saved a
   }, saved);
   expect(filled.length).toBe(area(saved));
   expect(filled.filter((p) => !maskHas(saved, p))).toEqual([]);
+});
+
+test("a polygon replaces a mask that is still its box, where adding to it would change nothing", async ({
+  page,
+  request,
+}) => {
+  // im3d-3: the pipeline could not cut masks for several pillows and kept their boxes.
+  const seeded = await seedScene(request, path.join(path.dirname(T3D_5), "im3d-3"), "box masks");
+  const boxed = (seeded.scene.objects ?? []).find((o) => {
+    const [x1 = 0, y1 = 0, x2 = 0, y2 = 0] = o.bbox;
+    return (x2 - x1) * (y2 - y1) > 2000 && area(o.mask) >= 0.97 * (x2 - x1) * (y2 - y1);
+  });
+  if (!boxed) throw new Error("no object whose mask is its box");
+  await openScene(page, seeded.scene_id);
+  await page.getByTestId(`object-row-${boxed.id}`).click();
+  await page.keyboard.press("G");
+  const [x1 = 0, y1 = 0, x2 = 0, y2 = 0] = boxed.bbox;
+  const [cx, cy] = [(x1 + x2) / 2, (y1 + y2) / 2];
+  const [w, h] = [(x2 - x1) / 4, (y2 - y1) / 4];
+  for (const corner of [
+    [cx - w, cy - h],
+    [cx + w, cy - h],
+    [cx + w, cy + h],
+    [cx - w, cy + h],
+  ] as Xy[]) {
+    const at = await screenPoint(page, ...corner);
+    await page.mouse.click(at.x, at.y);
+  }
+  const saved = waitForEdit(page, seeded.scene_id);
+  await page.keyboard.press("Enter");
+  const object = (await saved).scene.objects?.find((o) => o.id === boxed.id);
+  expect(maskHas(object?.mask, [cx, cy])).toBe(true);
+  // The box's corners are no longer in it: the polygon is the whole mask.
+  expect(maskHas(object?.mask, [x1 + 2, y1 + 2])).toBe(false);
+  expect(area(object?.mask)).toBeLessThan(0.5 * (x2 - x1) * (y2 - y1));
+  await expect(page.getByTestId("object-edit-status")).toContainText("box-shaped mask");
 });

@@ -1,6 +1,9 @@
 // Polygon: click points around a part of the object; Enter or a click on the first point
-// closes it and adds it to the mask (Shift: takes it out). Backspace drops the last point.
+// closes it and adds it to the mask (Shift: takes it out). Backspace drops the last point. A
+// mask that is still its box (the pipeline could not cut one) is replaced by the polygon:
+// added to the box it would change nothing.
 import type { Sheet } from "../liveLayer";
+import { MaskRaster } from "../maskPainting";
 import type { ImagePoint, PhotoTool } from "../photoTools";
 import type { MaskDrawing } from "./maskDrawing";
 
@@ -26,6 +29,16 @@ export interface PolygonTool {
   dropPoint(): void;
   /** Draw it again (the photo was zoomed, panned or resized). */
   redraw(): void;
+}
+
+/** A mask this full of its box is the box itself (the pipeline's fallback, or none at all). */
+const BOX_FILL = 0.97;
+
+/** Whether the mask covers (nearly) all of its object's box. */
+function fillsItsBox(raster: MaskRaster, bbox: readonly number[]): boolean {
+  const [x1 = 0, y1 = 0, x2 = 0, y2 = 0] = bbox;
+  const area = Math.round(x2 - x1) * Math.round(y2 - y1);
+  return area > 0 && raster.count() >= BOX_FILL * area;
 }
 
 export function polygonTool(drawing: MaskDrawing): PolygonTool {
@@ -77,14 +90,15 @@ export function polygonTool(drawing: MaskDrawing): PolygonTool {
     if (!draft || draft.points.length < 3) return;
     const object = session.object(draft.objectId);
     if (!object) return;
-    const raster = drawing.startingRaster(object);
+    const start = drawing.startingRaster(object);
+    const replace = !subtract && fillsItsBox(start, object.bbox);
+    const raster = replace ? new MaskRaster(drawing.photo) : start;
     raster.fillPolygon(draft.points, subtract ? 0 : 1);
     preview.show(object.id, raster);
-    void drawing.save(
-      object.id,
-      raster,
-      `${subtract ? "cut a polygon from" : "add a polygon to"} ${object.id}'s mask`,
-    );
+    const what = replace
+      ? `replace ${object.id}'s box-shaped mask with a polygon`
+      : `${subtract ? "cut a polygon from" : "add a polygon to"} ${object.id}'s mask`;
+    void drawing.save(object.id, raster, what);
   };
 
   const tool: PhotoTool = {
