@@ -294,9 +294,16 @@ def plot_curve(
         loss_axis.set_xticks(epochs)
     else:
         loss_axis.xaxis.set_major_locator(MaxNLocator(integer=True))
-    # One legend for the two axes' lines.
+    # One legend for the two axes' lines, above the plot: inside it ("best" weighs only the
+    # axis it belongs to) it covered the first epoch's loss.
     lines = loss_axis.get_lines() + accuracy_axis.get_lines()
-    accuracy_axis.legend(lines, [str(line.get_label()) for line in lines], loc="best")
-    fig.tight_layout()
+    fig.legend(
+        lines,
+        [str(line.get_label()) for line in lines],
+        loc="upper center",
+        ncol=len(lines),
+        frameon=False,
+    )
+    fig.tight_layout(rect=(0, 0, 1, 0.9))
     fig.savefig(path)
     plt.close(fig)
