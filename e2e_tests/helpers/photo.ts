@@ -47,11 +47,21 @@ export async function arrowPoint(
       const length = shaft.getTotalLength();
       const fractions =
         where === "head" ? [0.98, 0.95, 0.9, 0.85] : [0.5, 0.4, 0.6, 0.3, 0.7, 0.2, 0.8, 0.9];
+      // Other objects' centres (where their arrows' heads are): a click there is about that
+      // object, not this arrow.
+      const centres = [...document.querySelectorAll<SVGGraphicsElement>(".arrow-head")]
+        .filter((head) => head.closest(".arrow") !== group)
+        .map((head) => {
+          const box = head.getBoundingClientRect();
+          return [box.x + box.width / 2, box.y + box.height / 2] as const;
+        });
+      const clear = (x: number, y: number) =>
+        where === "head" || centres.every(([cx, cy]) => Math.hypot(cx - x, cy - y) > 16);
       for (const f of fractions) {
         const p = shaft.getPointAtLength(length * f);
         const s = new DOMPoint(p.x, p.y).matrixTransform(matrix);
         const hit = document.elementFromPoint(s.x, s.y);
-        if (hit?.closest(".arrow") === group) return { x: s.x, y: s.y };
+        if (hit?.closest(".arrow") === group && clear(s.x, s.y)) return { x: s.x, y: s.y };
       }
       return null;
     },

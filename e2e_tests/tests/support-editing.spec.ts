@@ -499,6 +499,15 @@ test("a crowded photo at 1280x800: a click near an object's centre only selects 
   await expect(page.getByTestId("photo")).not.toHaveClass(/is-picking/);
   await expect(page.getByTestId("drag-line")).toHaveCount(0);
   await expect(page.getByTestId("photo-tool-options")).toContainText("Click an object or an arrow");
+  // Armed again, a click at another object's centre (its arrow's head) picks that object.
+  await clickArrow(page, margin.child);
+  await expect(page.getByTestId("photo")).toHaveClass(/is-picking/);
+  await page.mouse.click(head.x, head.y);
+  await expect(page.getByTestId(`arrow-${margin.child}`)).toHaveAttribute(
+    "data-parent",
+    head.child,
+  );
+  await expect(page.getByTestId("photo")).not.toHaveClass(/is-picking/);
 
   // On a laptop's screen, before the page is scrolled, the editor's foot is below the window:
   // each object N selects has its row brought into the window, not only into the panel.

@@ -54,6 +54,9 @@ function onHitMargin(event: Event, at: readonly [number, number] | null): boolea
  * that on a short arrow its shaft still takes it up). */
 const HEAD_STROKES = 6;
 const HEAD_SHARE = 0.5;
+/** How near the centre of the object under it (about 8 screen pixels) a click on another
+ * object's arrow is a click on that object. */
+const CENTRE_STROKES = 3;
 
 /** The object whose "?" flag (no supporter) is under the pointer. */
 const flagAt = (event: Event): string | null =>
@@ -104,25 +107,44 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     return Math.hypot(at[0] - head[0], at[1] - head[1]) <= reach;
   };
 
+  /** The press is within a few pixels of `id`'s centre (where its arrows end). */
+  const nearCentre = (event: MouseEvent, id: string): boolean => {
+    const at = picking.toImage(event);
+    const centre = picking.centroid(id);
+    if (!at || !centre) return false;
+    return (
+      Math.hypot(at[0] - centre[0], at[1] - centre[1]) <= CENTRE_STROKES * picking.strokeWidth()
+    );
+  };
+
   const onClick = (event: MouseEvent) => {
     if (swallowClick) {
       swallowClick = false;
       return;
     }
-    const arrow = arrowAt(event) ?? flagAt(event);
-    const object = picking.objectAt(event);
+    const drawn = arrowAt(event);
+    const arrow = drawn ?? flagAt(event);
+    const under = picking.objectAt(event);
+    // A click at an object's centre is about that object: its own arrow's head is there (its
+    // mask may not be, a chair's), and another arrow's shaft may pass over it.
+    const centred =
+      drawn === null
+        ? null
+        : nearOwnHead(event, drawn)
+          ? drawn
+          : under !== null && under !== drawn && nearCentre(event, under)
+            ? under
+            : null;
+    const object = centred ?? under;
     const selected = session.selected;
     const armed = session.picking !== null && session.picking === selected;
-    // The margin of an arrow over its own object is the object's, and so is the arrow's head
-    // there (at the object's centre); the rest of the arrow drawn (or a "?" flag) is the
-    // arrow's, armed pick or not: a person looking from arrow to arrow takes up each in turn
-    // and changes nothing.
+    // The margin of an arrow over its own object is the object's, and so is an object's
+    // centre; the rest of the arrow drawn (or a "?" flag) is the arrow's, armed pick or not:
+    // a person looking from arrow to arrow takes up each in turn and changes nothing.
     const onArrow =
       arrow !== null &&
-      !(
-        arrow === object &&
-        (onHitMargin(event, picking.toImage(event)) || nearOwnHead(event, arrow))
-      );
+      centred === null &&
+      !(arrow === object && onHitMargin(event, picking.toImage(event)));
     if (armed && object && object !== selected && !onArrow) {
       pickSupporter(selected, object);
       return;
