@@ -523,3 +523,23 @@ test("a crowded photo at 1280x800: a click near an object's centre only selects 
     await expect(selected).toBeInViewport({ ratio: 0.9 });
   }
 });
+
+test("T on an object the floor holds up does nothing, and says why where the tools are", async ({
+  page,
+  request,
+}) => {
+  const seeded = await seedScene(request, T3D_5, "t3d-5 floor type");
+  const onFloor = (seeded.scene.supports ?? []).find((s) => s.parent === "floor");
+  if (!onFloor) throw new Error("nothing stands on the floor in t3d-5");
+  await openScene(page, seeded.scene_id);
+  await page.getByTestId(`object-row-${onFloor.child}`).click();
+  await page.locator("body").click({ position: { x: 5, y: 80 } }); // keys go to the page
+  await page.getByTestId(`object-row-${onFloor.child}`).locator("th").click();
+  await page.keyboard.press("t");
+  await expect(page.getByTestId("photo-tool-options")).toContainText(
+    `The floor holds ${onFloor.child} up from below only.`,
+  );
+  await expect(page.getByTestId(`arrow-${onFloor.child}`)).toHaveAttribute("data-type", "below");
+  await expect(page.getByTestId("save-status")).toContainText("no unsaved changes");
+  await expect(page.getByTestId(`type-select-${onFloor.child}`)).toBeDisabled();
+});

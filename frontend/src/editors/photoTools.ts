@@ -98,14 +98,18 @@ function selectTool(session: SceneSession): PhotoTool {
       // An armed pick (an arrow clicked, or S) is said here, in the row that stays in view:
       // the next click on an object changes a label.
       const picking = session.editable ? session.picking : null;
+      // Why a key or a click did nothing ("The floor holds o0 up from below only.") is said
+      // here too: the line under the photo that says it may be below the window.
+      const said = picking ? null : session.message;
       const hint = toolHint(
         picking
           ? `Now click the object that holds up ${picking} (or F, W, C) · Esc cancels.`
-          : session.editable
-            ? "Click an object or an arrow to select it; drag an arrow's head to a new supporter."
-            : "Click an object or an arrow to select it and see where its labels came from.",
+          : (said ??
+              (session.editable
+                ? "Click an object or an arrow to select it; drag an arrow's head to a new supporter."
+                : "Click an object or an arrow to select it and see where its labels came from.")),
       );
-      hint.classList.toggle("is-picking", picking !== null);
+      hint.classList.toggle("is-picking", picking !== null || said !== null);
       return hint;
     },
   };
@@ -251,8 +255,8 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
   // A scene turning read only drops the editing tools; turning editable gives the dropped one
   // back.
   const unsubscribe = host.session.subscribe((change) => {
-    // Select's hint says when a pick is armed.
-    if (change === "select" && state.active === select) show();
+    // Select's hint says when a pick is armed, and why an action did nothing.
+    if ((change === "select" || change === "message") && state.active === select) show();
     if (change !== "lock") return;
     const taken = takenByLock;
     if (!usable(state.active)) {

@@ -72,8 +72,13 @@ describe("the question before a model is made active", () => {
       status: "candidate",
       validation_accuracy: 0.99,
     });
-    expect(promoteQuestion(shippedCandidate, active, text)).toMatch(
+    const judgedActive = { ...active, heldout_accuracy: 0.9, heldout_items: 40 } as ModelInfo;
+    expect(promoteQuestion(shippedCandidate, judgedActive, text)).toMatch(
       /^Warning: v2 was never measured on held-out scenes of this team's labels; its figures below are not from the same scenes as the active model's\. Make v2/,
+    );
+    // Neither was: the figures do not compare the two at all.
+    expect(promoteQuestion(shippedCandidate, active, text)).toMatch(
+      /^Warning: neither v2 nor the active v1 was measured on held-out scenes of this team's labels: the figures below do not say which does better on them\. Make v2/,
     );
     // Rolled back to: the newest retrain from it compared the two on its held-out scenes.
     const retrainedFromIt = model({

@@ -108,11 +108,16 @@ function cautions(
   }
   // Nothing held out judged it (a model shipped with the app, never compared with a model
   // retrained from it): its figures come from elsewhere, not from this team's photos.
-  const judged = model.heldout_accuracy !== null || newestComparison(model, others);
-  if (!judged && active && active.id !== model.id) {
+  const judged = (m: ModelInfo) =>
+    m.heldout_accuracy !== null || newestComparison(m, others) !== undefined;
+  if (!judged(model) && active && active.id !== model.id) {
     out.push(
-      `Warning: v${model.version} was never measured on held-out scenes of this team's labels; ` +
-        "its figures below are not from the same scenes as the active model's.",
+      judged(active)
+        ? `Warning: v${model.version} was never measured on held-out scenes of this team's ` +
+            "labels; its figures below are not from the same scenes as the active model's."
+        : `Warning: neither v${model.version} nor the active v${active.version} was measured ` +
+            "on held-out scenes of this team's labels: the figures below do not say which " +
+            "does better on them.",
     );
   }
   const items = model.heldout_items;

@@ -103,13 +103,13 @@ export function mountModelsPage(container: HTMLElement, kind: ModelKind = "relat
       form.showReadiness(readiness);
       if (readiness.other_retrain) void followOtherRetrain();
       history.show(events);
-      // The model asked for, else the active one when it has a curve, else the newest with a
-      // curve (the committed default has none); after a retrain, the new model.
+      // The model asked for, else the active one (its card says when it has no curve: the
+      // newest curve shown instead was read as the active model's); after a retrain, the new
+      // model.
       const active = models.find((m) => m.active);
       const withCurve = models.filter((m) => m.has_curve).sort((a, b) => b.version - a.version)[0];
       const asked = newest ? withCurve : models.find((m) => m.id === curve.shownId);
-      const activeCurve = active?.has_curve ? active : undefined;
-      curve.show(asked ?? activeCurve ?? withCurve ?? active ?? models[0]);
+      curve.show(asked ?? active ?? withCurve ?? models[0]);
     } catch (error) {
       if (!abort.signal.aborted) table.showError(`Could not load the models: ${String(error)}`);
     }

@@ -17,8 +17,13 @@ export interface PipelineWarning {
 }
 
 /** The stages whose warnings are routine (see PipelineWarning.routine): on 16 of the 17 real
- * photos one of them warns, and opened they pushed the photo down by 60-100 pixels. */
-const ROUTINE_STAGES: ReadonlySet<string> = new Set(["masks_grabcut", "heights_by_metrology"]);
+ * photos one of them warns (and on a room with depth, the completion's), and opened they
+ * pushed the photo down by 60-100 pixels. */
+const ROUTINE_STAGES: ReadonlySet<string> = new Set([
+  "masks_grabcut",
+  "heights_by_metrology",
+  "shape_completion", // a few objects keep their earlier meshes (too few depth points)
+]);
 
 /** The stages that find the room layout: their warnings are about the room the pipeline
  * found, not one a person set since. */
