@@ -424,6 +424,18 @@ test("while the layout is edited the 3D view waits in the window's corner, follo
   expect(Math.max(...drag.roomMoves)).toBeGreaterThan(0.01);
   expect(await wholeInWindow()).toBe(true);
   await page.screenshot({ path: screenshotPath("layout-3d-inset.png") });
+  // Its bar moves it off whatever it covers, inside the window.
+  const before = await canvas.boundingBox();
+  const bar = await page.getByTestId("scene3d-inset-bar").boundingBox();
+  if (!before || !bar) throw new Error("the corner view is not laid out");
+  await page.mouse.move(bar.x + 30, bar.y + bar.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(bar.x - 270, bar.y - 150, { steps: 5 });
+  await page.mouse.up();
+  const moved = await canvas.boundingBox();
+  expect(moved?.x ?? 0).toBeLessThan(before.x - 250);
+  expect(moved?.y ?? 0).toBeLessThan(before.y - 120);
+  expect(await wholeInWindow()).toBe(true);
 
   // Closed: back in its place until editing starts again.
   await page.getByTestId("scene3d-inset-close").click();
@@ -440,6 +452,11 @@ test("while the layout is edited the 3D view waits in the window's corner, follo
   await page.getByTestId("layout-toggle").click();
   await expect(panel).not.toHaveClass(/is-inset/);
   await expect(page.getByTestId("scene3d-inset-bar")).toBeHidden();
+  // In its place the view has no offsets left from the drag.
+  const offsets = await panel
+    .locator(".scene3d-viewport")
+    .evaluate((n) => `${(n as HTMLElement).style.right}${(n as HTMLElement).style.bottom}`);
+  expect(offsets).toBe("");
 });
 
 test("layout undo after an autosave: the drag is saved back, and a reload shows the room as it was", async ({

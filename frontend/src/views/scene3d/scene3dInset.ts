@@ -11,6 +11,54 @@ const IN_VIEW_SHARE = 0.4;
 /** The page's one-column width (styles.css): no editor column beside the photo to cover. */
 const ONE_COLUMN = "(max-width: 960px)";
 
+/** Where the view was dragged to (its right and bottom gaps, pixels), for the next editing. */
+let placed: { right: number; bottom: number } | null = null;
+
+/**
+ * Dragging `handle` moves `box` within the window while it is fixed in the corner: `place(true)`
+ * puts it where it was dragged to, `place(false)` back in the page's flow (no offsets).
+ */
+function movableBy(
+  handle: HTMLElement,
+  box: HTMLElement,
+): { place: (inCorner: boolean) => void; stop: () => void } {
+  const place = (inCorner: boolean) => {
+    box.style.right = inCorner && placed ? `${placed.right}px` : "";
+    box.style.bottom = inCorner && placed ? `${placed.bottom}px` : "";
+  };
+  const apply = () => place(true);
+  const onDown = (down: PointerEvent) => {
+    if ((down.target as Element).closest("button")) return; // its ×
+    down.preventDefault();
+    const start = box.getBoundingClientRect();
+    const move = (event: PointerEvent) => {
+      const dx = event.clientX - down.clientX;
+      const dy = event.clientY - down.clientY;
+      const right = window.innerWidth - start.right - dx;
+      const bottom = window.innerHeight - start.bottom - dy;
+      placed = {
+        right: Math.min(Math.max(0, right), window.innerWidth - start.width),
+        bottom: Math.min(Math.max(0, bottom), window.innerHeight - start.height),
+      };
+      apply();
+    };
+    const up = () => {
+      window.removeEventListener("pointermove", move);
+      window.removeEventListener("pointerup", up);
+    };
+    window.addEventListener("pointermove", move);
+    window.addEventListener("pointerup", up);
+  };
+  handle.addEventListener("pointerdown", onDown);
+  return {
+    place,
+    stop: () => {
+      handle.removeEventListener("pointerdown", onDown);
+      place(false);
+    },
+  };
+}
+
 /**
  * `panel` is the 3D scene's panel; its `.scene3d-viewport` (the canvas and what is drawn over
  * it) is what goes to the corner. Returns the function that stops it.
@@ -20,7 +68,9 @@ export function mountScene3dInset(panel: HTMLElement, draft: LayoutDraft): () =>
   if (!viewport) return () => {};
   let placeInView = false;
   let closed = false;
-  const title = el("span", { text: "3D scene: the room follows the corners you drag" });
+  const title = el("span", {
+    text: "3D scene: the room follows the corners you drag (drag this bar to move it)",
+  });
   const close = button("×", {
     className: "scene3d-inset-close",
     testid: "scene3d-inset-close",
@@ -37,6 +87,7 @@ export function mountScene3dInset(panel: HTMLElement, draft: LayoutDraft): () =>
     close,
   );
   viewport.prepend(bar);
+  const moving = movableBy(bar, viewport);
 
   const update = () => {
     const inset =
@@ -46,6 +97,7 @@ export function mountScene3dInset(panel: HTMLElement, draft: LayoutDraft): () =>
     // pointer and the place can be watched coming into view.
     panel.style.minHeight = inset ? `${panel.offsetHeight}px` : "";
     panel.classList.toggle("is-inset", inset);
+    moving.place(inset);
   };
 
   const observer = new IntersectionObserver(
@@ -62,6 +114,7 @@ export function mountScene3dInset(panel: HTMLElement, draft: LayoutDraft): () =>
     update();
   });
   return () => {
+    moving.stop();
     observer.disconnect();
     stopDraft();
     bar.remove();
