@@ -68,8 +68,10 @@ export function mountScene3dInset(panel: HTMLElement, draft: LayoutDraft): () =>
   if (!viewport) return () => {};
   let placeInView = false;
   let closed = false;
+  // One line at 380 px; the longer word in its tooltip.
   const title = el("span", {
-    text: "3D scene: the room follows the corners you drag (drag this bar to move it)",
+    text: "3D room · drag this bar to move it",
+    attrs: { title: "The room follows the corners you drag on the photo" },
   });
   const close = button("×", {
     className: "scene3d-inset-close",
