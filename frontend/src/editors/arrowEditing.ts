@@ -7,9 +7,9 @@
 // object to object to look at them changes nothing. An arrow runs over its own object to the
 // object's centre, so there only the drawn arrow away from that centre arms a pick; its head
 // there and the wider margin around it that makes arrows easy to hit elsewhere belong to the
-// object (a click there selects it, or picks it while a pick is armed). While a pick is armed, a click on another drawn arrow takes up
-// that arrow instead, and the object under the pointer shows the arrow it would get (a
-// dashed line).
+// object (a click there selects it, or picks it while a pick is armed). While a pick is
+// armed, a click on another drawn arrow takes up that arrow instead, and the object under the
+// pointer shows the arrow it would get (a dashed line).
 // Clicking the selected object or the background clears the selection. While the scene is
 // read only, clicks only select.
 import { svgEl } from "../dom";
@@ -89,10 +89,17 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
 
   /** The press is on the arrow of `child` near its head, the centre of the object: where
    * people click to select the object (on a small object the arrow covers much of it). */
-  const nearOwnHead = (event: MouseEvent, child: string): boolean => {
+  /** How far the press is from `id`'s centre, where its arrows end (image pixels; infinite
+   * when either is unknown). */
+  const fromCentre = (event: MouseEvent, id: string): number => {
     const at = picking.toImage(event);
+    const centre = picking.centroid(id);
+    return at && centre ? Math.hypot(at[0] - centre[0], at[1] - centre[1]) : Infinity;
+  };
+
+  const nearOwnHead = (event: MouseEvent, child: string): boolean => {
     const head = picking.centroid(child);
-    if (!at || !head) return false;
+    if (!head) return false;
     const shaft = (event.target as Element | null)
       ?.closest(".arrow")
       ?.querySelector<SVGGeometryElement>(".arrow-shaft");
@@ -104,18 +111,12 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
       length = shaftLength + Math.hypot(end.x - head[0], end.y - head[1]);
     }
     const reach = Math.min(HEAD_STROKES * picking.strokeWidth(), HEAD_SHARE * length);
-    return Math.hypot(at[0] - head[0], at[1] - head[1]) <= reach;
+    return fromCentre(event, child) <= reach;
   };
 
-  /** The press is within a few pixels of `id`'s centre (where its arrows end). */
-  const nearCentre = (event: MouseEvent, id: string): boolean => {
-    const at = picking.toImage(event);
-    const centre = picking.centroid(id);
-    if (!at || !centre) return false;
-    return (
-      Math.hypot(at[0] - centre[0], at[1] - centre[1]) <= CENTRE_STROKES * picking.strokeWidth()
-    );
-  };
+  /** The press is within a few pixels of `id`'s centre. */
+  const nearCentre = (event: MouseEvent, id: string): boolean =>
+    fromCentre(event, id) <= CENTRE_STROKES * picking.strokeWidth();
 
   const onClick = (event: MouseEvent) => {
     if (swallowClick) {
