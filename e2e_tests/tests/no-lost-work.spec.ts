@@ -1,8 +1,8 @@
 // User story: no lost work. Undo and redo across every edit (a taken-back acceptance gives
 // the pipeline's guess back as a guess); edits save themselves after a short idle time and
 // survive a reload; edits whose save failed survive a closed tab (localStorage) and are
-// offered back; the history shows each revision's diff and can revert; when two people edit
-// the same scene the second gets a clear conflict message and can merge or reload, keeping
+// offered back; the history shows each revision's diff and can revert; when two people change
+// the same object the second gets a clear conflict message and can merge or reload, keeping
 // their edit.
 import type { SceneDocument, SupportRelation } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
@@ -270,23 +270,24 @@ test("two people edit one scene: the second gets a conflict, merges or reloads, 
     revisions.some((r) => r.author === "alice" && r.summary.includes("o1 supported by o0")),
   ).toBe(true);
 
-  // Now Alice is behind. Her next edit conflicts; she reloads to review first.
-  await clickArrow(alice, "o2");
-  await alice.keyboard.press("w");
+  // Now Alice is behind. Her next edit is of o3, which Bob changed too: it conflicts, and
+  // she reloads to review first.
+  await clickArrow(alice, "o3");
+  await clickObject(alice, "o0");
   await expect(alice.getByTestId("conflict-message")).toBeVisible({ timeout: 20_000 });
   await alice.getByTestId("conflict-reload").click();
   await expect(alice.getByTestId("conflict-message")).toBeHidden();
   await expect(alice.getByTestId("reload-notice")).toContainText("by bob");
+  await expect(alice.getByTestId("reload-notice")).toContainText("Both of you changed o3");
   // Bob's change is shown, hers is kept unsaved until she saves.
-  await expect(alice.getByTestId("arrow-o3")).toHaveAttribute("data-parent", "wall");
-  await expect(alice.getByTestId("arrow-o2")).toHaveAttribute("data-pending", "true");
+  await expect(alice.getByTestId("arrow-o1")).toHaveAttribute("data-parent", "floor");
+  await expect(alice.getByTestId("arrow-o3")).toHaveAttribute("data-pending", "true");
   await alice.waitForTimeout(3000); // longer than the autosave delay: held for her review
   await expect(alice.getByTestId("save-status")).toHaveAttribute("data-state", "dirty");
   await expect(alice.getByTestId("save-status")).toContainText("review, then Save (Ctrl+S)");
   await alice.keyboard.press("Control+s");
   await autosaved(alice);
   doc = await getScene(request, seeded.scene_id);
-  expect(supportOf(doc, "o2")).toMatchObject({ parent: "wall", author: "alice" });
-  expect(supportOf(doc, "o3")).toMatchObject({ parent: "wall", author: "bob" });
+  expect(supportOf(doc, "o3")).toMatchObject({ parent: "o0", author: "alice" });
   expect(supportOf(doc, "o1")).toMatchObject({ parent: "floor", author: "bob" });
 });

@@ -2,7 +2,7 @@
 // corrects supports: in the object table, or on the photo (click an arrow, click or drag to
 // the new supporter, keys to flip, remove, accept and reject), with each edge's provenance
 // shown; the corrections are saved.
-import { expect, test } from "@playwright/test";
+import { type APIRequestContext, type Browser, expect, test } from "@playwright/test";
 import { getRevisions, getScene, seedScene, supportOf, T3D_1, T3D_5 } from "../helpers/api";
 import { canvasColours } from "../helpers/canvas";
 import { screenPoint } from "../helpers/objects";
@@ -122,15 +122,14 @@ test("shows masks, arrows and the 3D scene, and saves a changed supporter", asyn
   });
 });
 
-test("a save based on a stale revision shows a conflict and keeps the edit", async ({
-  browser,
-  request,
-}) => {
-  const seeded = await seedScene(request, T3D_5, "t3d-5 conflict");
+/**
+ * Two annotators, each in their own browser, open the same revision; Alice puts the second
+ * object on the first and saves, so Bob's page is one revision behind.
+ */
+async function bobBehindAlice(browser: Browser, request: APIRequestContext, name: string) {
+  const seeded = await seedScene(request, T3D_5, name);
   const [first, second, , fourth] = seeded.scene.objects ?? [];
   if (!first || !second || !fourth) throw new Error("the seeded scene has too few objects");
-
-  // Two annotators, each in their own browser, open the same revision.
   const alice = await (await browser.newContext()).newPage();
   const bob = await (await browser.newContext()).newPage();
   await slowAutosave(alice);
@@ -141,26 +140,36 @@ test("a save based on a stale revision shows a conflict and keeps the edit", asy
   await alice.getByTestId(`supporter-select-${second.id}`).selectOption(first.id);
   await alice.getByTestId("save-button").click();
   await expect(alice.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
+  return { seeded, first, second, fourth, bob };
+}
 
-  // Bob saves on the revision he loaded, which is no longer the latest (another object: the
-  // wall holds it up, from behind).
+test("a save based on a stale revision that changed the same object shows a conflict and keeps the edit", async ({
+  browser,
+  request,
+}) => {
+  const behind = await bobBehindAlice(browser, request, "t3d-5 conflict");
+  const { seeded, second, fourth, bob } = behind;
+
+  // Bob saves on the revision he loaded, which is no longer the latest, a change of the same
+  // object (the wall holds it up, from behind) and of another.
+  await bob.getByTestId(`supporter-select-${second.id}`).selectOption("wall");
   await bob.getByTestId(`supporter-select-${fourth.id}`).selectOption("wall");
   await bob.getByTestId("save-button").click();
   const conflict = bob.getByTestId("conflict-message");
   await expect(conflict).toBeVisible();
   await expect(conflict).toContainText("not saved");
   await expect(bob.getByTestId("save-status")).toHaveAttribute("data-state", "conflict");
-  // His edit is still there, visibly unsaved.
+  // His edits are still there, visibly unsaved.
   await expect(bob.getByTestId(`type-select-${fourth.id}`)).toHaveValue("behind");
   await expect(bob.getByTestId(`arrow-${fourth.id}`)).toHaveAttribute("data-pending", "true");
   await expect(bob.getByTestId("pending-edits")).toContainText(fourth.id);
   await bob.screenshot({ path: screenshotPath("conflict.png"), fullPage: true });
 
-  // Reload: Alice's change appears, Bob's edit is re-applied on top, and saves.
+  // Reload: Bob is told about the object both changed, his edits are re-applied on top.
   await bob.getByTestId("conflict-reload").click();
   await expect(conflict).toBeHidden();
-  await expect(bob.getByTestId("reload-notice")).toBeVisible();
-  await expect(bob.getByTestId(`supporter-select-${second.id}`)).toHaveValue(first.id);
+  await expect(bob.getByTestId("reload-notice")).toContainText(`Both of you changed ${second.id}`);
+  await expect(bob.getByTestId(`supporter-select-${second.id}`)).toHaveValue("wall");
   await expect(bob.getByTestId(`type-select-${fourth.id}`)).toHaveValue("behind");
   await expect(bob.getByTestId("save-status")).toHaveAttribute("data-state", "dirty");
   await bob.getByTestId("save-button").click();
@@ -168,8 +177,32 @@ test("a save based on a stale revision shows a conflict and keeps the edit", asy
 
   const doc = await getScene(request, seeded.scene_id);
   expect(doc.revision).toBe(seeded.revision + 2);
-  expect(supportOf(doc, second.id)).toMatchObject({ parent: first.id, source: "manual" });
+  expect(supportOf(doc, second.id)).toMatchObject({ parent: "wall", source: "manual" });
   expect(supportOf(doc, fourth.id)).toMatchObject({ type: "behind", source: "manual" });
+});
+
+test("a save based on a stale revision that changed other objects goes on top by itself", async ({
+  browser,
+  request,
+}) => {
+  const behind = await bobBehindAlice(browser, request, "t3d-5 disjoint saves");
+  const { seeded, first, second, fourth, bob } = behind;
+
+  // Bob changes another object on the revision he loaded: no choice to make, so no conflict.
+  await bob.getByTestId(`supporter-select-${fourth.id}`).selectOption("wall");
+  await bob.getByTestId("save-button").click();
+  await expect(bob.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
+  await expect(bob.getByTestId("conflict-message")).toBeHidden();
+  const notice = bob.getByTestId("reload-notice");
+  await expect(notice).toContainText("Your 1 change touches other objects: it is saved on top.");
+  await expect(notice).toContainText(`Changed since revision ${seeded.revision}`);
+  // Alice's change is on his page now.
+  await expect(bob.getByTestId(`supporter-select-${second.id}`)).toHaveValue(first.id);
+
+  const doc = await getScene(request, seeded.scene_id);
+  expect(doc.revision).toBe(seeded.revision + 2);
+  expect(supportOf(doc, second.id)).toMatchObject({ parent: first.id, source: "manual" });
+  expect(supportOf(doc, fourth.id)).toMatchObject({ parent: "wall", type: "behind" });
 });
 
 test("edits supports on the photo with clicks, a drag and keys, showing each edge's provenance", async ({

@@ -482,7 +482,8 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     return sending;
   }
 
-  private async send(author: string): Promise<void> {
+  /** `mergeIfDisjoint`: on a conflict, rebase and send again once when no edit overlaps theirs. */
+  private async send(author: string, mergeIfDisjoint = true): Promise<void> {
     if (this.saveState.kind === "saving" || !this.editable) return;
     const sent = this.pending;
     const layoutEdit = this.layout?.edit() ?? null;
@@ -511,6 +512,14 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
       // else's, or submitted), not a newer revision: nothing to merge. The edits are kept
       // (here and in localStorage) and the editor is read only until the workflow changes.
       if (error instanceof ConflictError && error.currentRevision !== null) {
+        // Someone saved other objects meanwhile: nothing to choose, so the edits go on top
+        // of theirs by themselves, and the notice says so.
+        const latest = mergeIfDisjoint ? await api.getScene(this.sceneId).catch(() => null) : null;
+        if (latest && this.overlaps(latest).length === 0) {
+          await this.reloadLatest({ latest, merged: true });
+          if (this.saveState.kind !== "error") await this.send(author, false);
+          return;
+        }
         const theirs = await api
           .listRevisions(this.sceneId)
           .then((all) => all.filter((r) => r.number > baseRevision))
@@ -534,15 +543,40 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
   }
 
   /**
+   * What stops the unsaved edits from going on top of `latest` unasked: the objects whose
+   * support both sides changed ("layout" when both moved the room's corners), and the edits
+   * `latest` can no longer take.
+   */
+  private overlaps(latest: SceneDocument): string[] {
+    const supportIn = (doc: SceneDocument, child: string) =>
+      doc.scene.supports?.find((s) => s.child === child);
+    const objects = latest.scene.objects ?? [];
+    const clashes = this.pending
+      .filter(
+        (edit) =>
+          editProblem(edit, objects) !== null ||
+          (!isNoOp(edit, latest.scene.supports ?? []) &&
+            !sameRelation(supportIn(this.doc, edit.child), supportIn(latest, edit.child))),
+      )
+      .map((edit) => edit.child);
+    if (this.layoutPending && layoutMoved(this.doc, latest)) clashes.push("layout");
+    return clashes;
+  }
+
+  /**
    * Load the latest revision and put the unsaved edits back on top of it, dropping only the
    * ones that no longer apply or that the latest revision already has, and saying which
    * objects both sides changed. `hold`: do not autosave until the user acts (review first).
+   * `latest`: the revision, fetched already; `merged`: it is loaded because the edits touch
+   * other objects than the revisions since, and they are being saved on top.
    */
-  async reloadLatest(options: { hold?: boolean } = {}): Promise<void> {
+  async reloadLatest(
+    options: { hold?: boolean; latest?: SceneDocument; merged?: boolean } = {},
+  ): Promise<void> {
     const previous = this.doc;
     try {
       const [doc, revisions] = await Promise.all([
-        api.getScene(this.sceneId),
+        options.latest ?? api.getScene(this.sceneId),
         api.listRevisions(this.sceneId).catch(() => []),
       ]);
       const lines: string[] = [];
@@ -570,14 +604,16 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
           );
         }
       }
-      const layoutChanged =
-        JSON.stringify(previous.scene.layout?.corners_2d) !==
-        JSON.stringify(doc.scene.layout?.corners_2d);
-      if (this.layoutPending && layoutChanged) {
+      if (this.layoutPending && layoutMoved(previous, doc)) {
         lines.push("Both of you changed the room layout: your corners are kept on top.");
       }
       const unsaved = this.unsavedCount;
-      if (unsaved > 0) {
+      if (options.merged && unsaved > 0) {
+        lines.push(
+          `Your ${plural(unsaved, "change")} ${unsaved === 1 ? "touches" : "touch"} other objects: ` +
+            `${unsaved === 1 ? "it is" : "they are"} saved on top.`,
+        );
+      } else if (unsaved > 0) {
         lines.push(
           `Your ${plural(unsaved, "unsaved change")} ${unsaved === 1 ? "is" : "are"} applied on top` +
             (options.hold ? "; review and save." : "."),
@@ -757,4 +793,12 @@ const workflowKey = (workflow: SceneWorkflow | null) =>
 export function plural(count: number, noun: string): string {
   if (count === 1) return `${count} ${noun}`;
   return `${count} ${noun}${/(s|x|ch|sh)$/.test(noun) ? "es" : "s"}`;
+}
+
+/** Whether the room's corners differ between two revisions. */
+function layoutMoved(before: SceneDocument, after: SceneDocument): boolean {
+  return (
+    JSON.stringify(before.scene.layout?.corners_2d) !==
+    JSON.stringify(after.scene.layout?.corners_2d)
+  );
 }
