@@ -4,6 +4,7 @@
 import type { SceneDocument, SceneWorkflow } from "@holiscene/schema";
 import { type APIRequestContext, expect, test } from "@playwright/test";
 import { postEdits, seedScene, T3D_1, T3D_5 } from "../helpers/api";
+import { screenshotPath } from "../helpers/screenshots";
 
 async function workflowOf(request: APIRequestContext, sceneId: string): Promise<SceneWorkflow> {
   const response = await request.get(`/api/scenes/${sceneId}/workflow`);
@@ -25,6 +26,13 @@ test("Next scene gives back the scene taken and left untouched, and keeps one th
   await expect(page).not.toHaveURL(new RegExp(`#/scenes/${a.scene_id}$`));
   await expect.poll(async () => (await workflowOf(request, a.scene_id)).state).toBe("predicted");
   expect((await workflowOf(request, a.scene_id)).events.at(-1)?.action).toBe("release");
+  // The page it lands on says so, once.
+  const said = page.getByTestId("next-scene-message");
+  await expect(said).toHaveText(
+    '"next scene untouched" went back to the queue: you took it and changed nothing.',
+  );
+  await expect(said).toBeVisible();
+  await page.screenshot({ path: screenshotPath("next-scene-gave-back.png") });
 
   // The scene Next scene took: changed, then skipped, it stays the person's.
   const landed = /#\/scenes\/([^/]+)$/.exec(page.url())?.[1] ?? "";
@@ -36,9 +44,12 @@ test("Next scene gives back the scene taken and left untouched, and keeps one th
   ]);
   await page.reload();
   await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+  await expect(said).toHaveText("");
   await page.getByTestId("next-scene").click();
   await expect(page).not.toHaveURL(new RegExp(`#/scenes/${landed}$`));
   const kept = await workflowOf(request, landed);
   expect(kept.state).toBe("in_annotation");
   expect(kept.events.at(-1)?.action).toBe("claim");
+  await expect(page.getByTestId("workflow-state")).toBeVisible();
+  await expect(said).toHaveText(""); // nothing was given back
 });

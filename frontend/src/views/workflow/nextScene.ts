@@ -9,7 +9,18 @@ import { ApiError } from "../../api/errors";
 import { workflowApi } from "../../api/workflow";
 import { button, el } from "../../dom";
 import { registerShortcut } from "../../shortcuts";
+import { tabStorage } from "../../state/browserStorage";
 import { hasRole } from "../../state/currentUser";
+
+/** What "Next scene" did to the scene it left, said on the page it opens (this tab only). */
+const LEFT_SCENE_KEY = "holiscene.nextScene.leftScene";
+
+/** The note about the scene left behind, once: read and forgotten. */
+function takeLeftSceneNote(): string {
+  const note = tabStorage()?.getItem(LEFT_SCENE_KEY) ?? "";
+  tabStorage()?.removeItem(LEFT_SCENE_KEY);
+  return note;
+}
 
 export interface NextSceneKeys {
   /** Take the next scene to annotate. */
@@ -23,11 +34,12 @@ export interface NextSceneKeys {
 
 /**
  * The buttons and their message line; the keys work while they are mounted. `beforeTake`: run
- * before the next scene is taken (on a scene page: giving back the open one, untouched).
+ * before the next scene is taken (on a scene page: giving back the open one, untouched); what
+ * it says it did is shown on the next scene's page.
  */
 export function nextSceneControl(
   keys: NextSceneKeys,
-  beforeTake?: () => Promise<void>,
+  beforeTake?: () => Promise<string | null>,
 ): {
   element: HTMLElement;
   dispose: () => void;
@@ -36,6 +48,7 @@ export function nextSceneControl(
     className: "next-scene-message",
     testid: "next-scene-message",
     attrs: { role: "status" },
+    text: takeLeftSceneNote(),
   });
   const reviewer = hasRole("reviewer");
   const onScenePage = keys.current !== undefined;
@@ -59,14 +72,15 @@ export function nextSceneControl(
       const scene = await fetch();
       window.location.hash = `#/scenes/${encodeURIComponent(scene.id)}`;
     } catch (error) {
-      message.textContent =
-        error instanceof ApiError ? error.message : `${failed}: ${String(error)}`;
+      const why = error instanceof ApiError ? error.message : `${failed}: ${String(error)}`;
+      message.textContent = [takeLeftSceneNote(), why].filter(Boolean).join(" ");
     } finally {
       nextButton.disabled = reviewButton.disabled = false;
     }
   };
   const go = open(async () => {
-    await beforeTake?.();
+    const note = await beforeTake?.();
+    if (note) tabStorage()?.setItem(LEFT_SCENE_KEY, note);
     return workflowApi.next();
   }, "Could not take a scene");
   nextButton.addEventListener("click", () => void go());

@@ -49,7 +49,9 @@ export function mountWorkflowBar(
       took.revision === revision() &&
       session.unsavedCount === 0 &&
       session.saveState.kind !== "saving";
-    if (untouched) await workflowApi.release(session.sceneId, revision());
+    if (!untouched) return null;
+    await workflowApi.release(session.sceneId, revision());
+    return `"${session.doc.scene.name}" went back to the queue: you took it and changed nothing.`;
   };
   const next = nextSceneControl(
     { take: ">", review: "Shift+ArrowRight", current: session.sceneId },
