@@ -188,16 +188,23 @@ test("a box whose class was still being picked when the page was left is offered
   await expect(page.getByTestId("class-picker")).toHaveCount(0);
   expect((await getScene(page.request, sceneId)).scene.objects ?? []).toHaveLength(0);
 
-  // Back on the scene: the box is offered, and Retry adds it (as otherprop, to be named).
+  // Back on the scene: the box is offered, and Retry adds it (as otherprop) and asks its
+  // class again, the new object selected.
   await page.goto(`/#/scenes/${sceneId}`);
   await expect(page.getByTestId("photo")).toHaveAttribute("data-loaded", "true");
   const failureText = page.getByTestId("object-edit-failure-text");
   await expect(failureText).toContainText("Not saved on your last visit");
-  await expect(failureText).toContainText("class was being picked");
+  await expect(failureText).toContainText("asks its class again");
   await page.getByTestId("object-edit-retry").click();
-  await objectEditsSaved(page);
-  const objects = (await getScene(page.request, sceneId)).scene.objects ?? [];
-  expect(objects.map((o) => o.class)).toEqual(["otherprop"]);
-  const [x1 = 0, y1 = 0, x2 = 0, y2 = 0] = objects[0]?.bbox ?? [];
+  await expect(page.getByTestId("class-picker")).toBeVisible();
+  const added = (await getScene(page.request, sceneId)).scene.objects ?? [];
+  expect(added.map((o) => o.class)).toEqual(["otherprop"]);
+  const [x1 = 0, y1 = 0, x2 = 0, y2 = 0] = added[0]?.bbox ?? [];
   expect([x1, y1, x2, y2].map((v) => Math.round(v / 10))).toEqual([15, 19, 40, 42]);
+  await expect(page.getByTestId(`object-row-${added[0]?.id}`)).toHaveClass(/is-selected/);
+  await page.getByTestId("class-picker-input").fill("lamp");
+  await page.keyboard.press("Enter");
+  await objectEditsSaved(page);
+  const named = (await getScene(page.request, sceneId)).scene.objects ?? [];
+  expect(named.map((o) => [o.id, o.class])).toEqual([[added[0]?.id, "lamp"]]);
 });

@@ -6,15 +6,28 @@
 // with Retry and Discard until the person chooses.
 import { button, el } from "../dom";
 import type { ObjectEditor } from "../state/objectEditor";
+import { screenRect } from "./boxes/boxEdits";
+import { changeClass } from "./objectShortcuts";
 
 /** How long the line says what an action did; only a plain "…: saved." goes (a note with
  * something to do, a mask left as a box, stays until the next action). */
 const DONE_MESSAGE_MS = 8000;
 const DONE_ONLY = /: saved\.$/;
 
+/** Send the failed action again; an object it added without its class (a box left while its
+ * class was picked) is selected and its class asked at once. */
+async function retry(editor: ObjectEditor, svg: SVGSVGElement): Promise<void> {
+  if (!(await editor.retry())) return;
+  const unnamed = editor.takeObjectToName();
+  if (!unnamed) return;
+  editor.session.select(unnamed.id);
+  await changeClass(editor, unnamed, screenRect(svg, unnamed.bbox));
+}
+
 export function mountObjectEditBar(
   container: HTMLElement,
   photoBox: HTMLElement,
+  svg: SVGSVGElement,
   editor: ObjectEditor,
 ): () => void {
   const status = el("span", {
@@ -36,7 +49,7 @@ export function mountObjectEditBar(
     button("Retry", {
       className: "primary",
       testid: "object-edit-retry",
-      onClick: () => void editor.retry(),
+      onClick: () => void retry(editor, svg),
     }),
     button("Discard", {
       testid: "object-edit-discard",

@@ -32,6 +32,9 @@ export interface FailedObjectAction {
   failedAt: string;
   /** The revision it was made on: a Retry tells whether others changed its objects since. */
   madeOn?: number;
+  /** A new object added under a stand-in class (its class was still being picked): once a
+   * Retry adds it, the person is asked its class. */
+  classToPick?: string;
 }
 
 /** Whether a draft holds anything unsaved. */
@@ -78,7 +81,8 @@ function isFailedObjectAction(value: unknown): value is FailedObjectAction {
     typeof a.failedAt === "string" &&
     Array.isArray(a.edits) &&
     a.edits.length > 0 &&
-    a.edits.every(isEdit)
+    a.edits.every(isEdit) &&
+    (a.classToPick === undefined || typeof a.classToPick === "string")
   );
 }
 

@@ -265,6 +265,10 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   private failedEdits: ObjectEdit[] | null = null;
   /** The revision the failed action was made on (null: not known, kept before this was). */
   private failedMadeOn: number | null = null;
+  /** The failed action adds this object under a stand-in class: name it once added. */
+  private failedClassToPick: string | null = null;
+  /** What a Retry added under a stand-in class, for the page to ask its class. */
+  private objectToName: SceneObject | null = null;
   /** The person was told someone changed the failed action's objects since: the next Retry
    * puts theirs on top. */
   private overwriteTold = false;
@@ -289,6 +293,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
       };
       this.failedEdits = [...kept.edits];
       this.failedMadeOn = kept.madeOn ?? null;
+      this.failedClassToPick = kept.classToPick ?? null;
       this.retryFailed = () => this.apply(kept.edits, kept.label);
     }
   }
@@ -390,6 +395,29 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
   }
 
   /**
+   * The object `edits` added as `id` under a stand-in class, as the revision holds it (the id
+   * may have been taken meanwhile and another given); null when it is not in the scene.
+   */
+  private addedObject(edits: readonly ObjectEdit[], id: string): SceneObject | null {
+    const add = edits.find(
+      (edit): edit is AddObject => edit.kind === "add_object" && edit.id === id,
+    );
+    if (!add) return null;
+    const objects = this.session.objects;
+    const same = (o: SceneObject) =>
+      o.class === add.class && o.bbox.every((v, i) => Math.abs(v - (add.bbox[i] ?? v)) < 0.5);
+    const own = objects.find((o) => o.id === add.id);
+    return own && same(own) ? own : (objects.find(same) ?? null);
+  }
+
+  /** The object the last Retry added whose class is still to be picked, once (null: none). */
+  takeObjectToName(): SceneObject | null {
+    const object = this.objectToName;
+    this.objectToName = null;
+    return object;
+  }
+
+  /**
    * Send the failed action again (on the latest revision); true once saved. If someone else
    * changed its objects since it was made, the first Retry only says so (putting it on top
    * would silently replace their change); the next one sends it.
@@ -399,6 +427,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     const again = this.retryFailed;
     const edits = this.failedEdits;
     const madeOn = this.failedMadeOn;
+    const classToPick = this.failedClassToPick;
     if (!failed || !again) return false;
     if (edits && madeOn !== null && !this.overwriteTold) {
       const since = await this.changedByOthers(edits, madeOn);
@@ -419,11 +448,13 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     // Stored until saved: a tab closed while it is being sent loses nothing.
     const saved = await again();
     if (saved && this.failure === null) this.keepFailed(null);
+    if (saved && edits && classToPick) this.objectToName = this.addedObject(edits, classToPick);
     // Not sent at all (the scene is read only now): still offered, for the person to retry.
     if (!saved && this.failure === null) {
       this.setFailure({ label: failed.label, message: failed.message }, again);
       this.failedEdits = edits;
       this.failedMadeOn = madeOn;
+      this.failedClassToPick = classToPick;
     }
     return saved;
   }
@@ -464,6 +495,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     if (failure === null) {
       this.failedEdits = null;
       this.failedMadeOn = null;
+      this.failedClassToPick = null;
       this.overwriteTold = false;
     }
     this.cancelRetry();

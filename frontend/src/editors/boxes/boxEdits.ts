@@ -89,13 +89,14 @@ export class BoxEdits {
     session.drafts.saveFailedAction(session.sceneId, {
       label: `add ${objectName({ id, class: UNCHOSEN_CLASS })}`,
       message:
-        "the page was left while this box's class was being picked; Retry adds it as " +
-        `${UNCHOSEN_CLASS}, then give it its class`,
+        "the page was left while this box's class was being picked; Retry adds it and asks " +
+        "its class again",
       edits: [
         { kind: "add_object", id, class: UNCHOSEN_CLASS, bbox: roundBox(box), source: "manual" },
       ],
       failedAt: new Date().toISOString(),
       madeOn: session.doc.revision,
+      classToPick: id,
     });
     return true;
   }

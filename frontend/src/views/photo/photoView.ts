@@ -81,7 +81,7 @@ export function mountPhotoView(
     tools.active.drawsOnSelected && session.selectedObject ? null : objectAt(event);
   svg.addEventListener("mousemove", (event) => session.hover(hovering(event)));
   svg.addEventListener("mouseleave", () => session.hover(null));
-  const stopEditBar = mountObjectEditBar(toolbar, photoBox, objectEditor);
+  const stopEditBar = mountObjectEditBar(toolbar, photoBox, svg, objectEditor);
   // The sticky tool row's height, for what sticks under it (the detector's bar).
   const toolHeight =
     typeof ResizeObserver === "undefined"
