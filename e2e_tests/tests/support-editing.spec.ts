@@ -48,6 +48,11 @@ test("shows masks, arrows and the 3D scene, and saves a changed supporter", asyn
   await expect(page.getByTestId("arrow-layer").locator("[data-testid^='arrow-']")).toHaveCount(
     objects.length,
   );
+  // A guess's tooltip names the model that made it.
+  await expect(page.getByTestId(`support-status-${child.id}`)).toHaveAttribute(
+    "title",
+    /^The pipeline's guess by the Relation Network v1, \d+% sure; nobody has checked it yet$/,
+  );
 
   // Masks can be hidden and shown again.
   await page.getByTestId("toggle-masks").uncheck();

@@ -188,6 +188,12 @@ class StageRun(SchemaModel):
         description="The note tells what the stage could not do (shown as a warning), "
         "not just what it found",
     )
+    model: str | None = Field(
+        default=None,
+        description="The learned model the stage ran, as the server's model registry names "
+        "it (e.g. 'Relation Network v2'); None for stages without one, or runs outside a "
+        "server",
+    )
 
 
 class RemovedObject(SchemaModel):

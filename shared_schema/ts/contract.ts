@@ -1153,6 +1153,10 @@ source_class: (string | null)
  * via the `definition` "StageRun".
  */
 export interface StageRun {
+/**
+ * The learned model the stage ran, as the server's model registry names it (e.g. 'Relation Network v2'); None for stages without one, or runs outside a server
+ */
+model: (string | null)
 name: string
 note: (string | null)
 seconds: number

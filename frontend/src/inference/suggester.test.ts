@@ -45,7 +45,9 @@ function session(): SceneSession {
     [auto("o0", "floor"), auto("o1", "o2"), auto("o2", "floor")],
     { revision: 2, size: 10 },
   );
-  doc.scene.stages = [{ name: "supports_from_network", seconds: 0.1, note: null, warning: false }];
+  doc.scene.stages = [
+    { name: "supports_from_network", seconds: 0.1, note: null, warning: false, model: null },
+  ];
   const s = sessionOn(doc, null);
   s.setSuggester(makeSuggester({ ids: ["o0", "o1", "o2"], probabilities }));
   return s;

@@ -28,6 +28,9 @@ from ..segmentation.rle import encode_mask
 
 LAYOUT_NOT_ESTIMATED = "the room layout is not estimated by this pipeline yet"
 
+# The stages that run the Relation Network (or its counted priors).
+SUPPORT_STAGES = ("supports_from_network", "supports_from_priors")
+
 
 @dataclass(frozen=True)
 class Reconstruction:
@@ -47,6 +50,7 @@ def reconstruct_scene(
     models_dir: Path | None = None,
     support_model_dir: Path | None = None,
     detector_model_dir: Path | None = None,
+    model_names: Mapping[str, str] | None = None,
     stage_options: Mapping[str, Mapping[str, Any]] | None = None,
     progress: ProgressCallback | None = None,
 ) -> Reconstruction:
@@ -54,6 +58,8 @@ def reconstruct_scene(
     (`<class>/*.obj|glb|ply`), offered to `shapes_fit` beside the built-in library;
     `support_model_dir` is the Relation Network to use (default: the committed model),
     `detector_model_dir` the object detector (default: the committed detector);
+    `model_names` names them by stage name, as the stage runs record them (a scene says
+    which model guessed its supports);
     `pinned_supports`, `pinned_objects` and `removed_objects` are people's, kept by the
     stages;
     `stage_options` adds options by stage name (e.g. the stored scene a placement job
@@ -61,7 +67,7 @@ def reconstruct_scene(
     options: dict[str, dict[str, Any]] = {k: dict(v) for k, v in (stage_options or {}).items()}
     if models_dir and "shapes_fit" in stages:
         options["shapes_fit"] = {"models_dir": models_dir}
-    for stage in ("supports_from_network", "supports_from_priors"):
+    for stage in SUPPORT_STAGES:
         if support_model_dir and stage in stages:
             options[stage] = {"model_dir": support_model_dir}
     if detector_model_dir and "objects_from_detector" in stages:
@@ -76,7 +82,12 @@ def reconstruct_scene(
         pinned_objects=list(pinned_objects),
         removed_objects=list(removed_objects),
     )
-    runs = pipeline.run(ctx, progress)
+    runs = [
+        run.model_copy(update={"model": model_names[run.name]})
+        if model_names and run.name in model_names
+        else run
+        for run in pipeline.run(ctx, progress)
+    ]
     if inputs.notes:  # what the import left out of the given labels stays said
         runs = [import_stage("; ".join(inputs.notes)), *runs]
     scene = Scene(

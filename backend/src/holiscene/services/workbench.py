@@ -39,7 +39,13 @@ from ..pipeline import PLACEMENT_STAGES
 from ..store import model_registry
 from ..store.files import SceneFiles
 from ..store.jobs import BATCH_ORPHANED, JobNotFoundError, JobStore, RetrainFinishedError
-from ..store.model_registry import KIND_FOLDERS, ModelNotFoundError, ModelStore, Registration
+from ..store.model_registry import (
+    KIND_FOLDERS,
+    ModelNotFoundError,
+    ModelStore,
+    Registration,
+    model_label,
+)
 from ..store.scenes import SceneChangedError, SceneStore
 from ..store.users import UserStore
 from ..store.workflow import WorkflowStore
@@ -53,7 +59,13 @@ from .detector_retraining import (
     detector_train_config,
 )
 from .heldout import heldout_split
-from .reconstruction import Reconstruction, full_run_stages, imported_scene, reconstruct_scene
+from .reconstruction import (
+    SUPPORT_STAGES,
+    Reconstruction,
+    full_run_stages,
+    imported_scene,
+    reconstruct_scene,
+)
 from .relation_retraining import (
     LABELLED_SCENES,
     MIN_LABELLED_SCENES,
@@ -403,6 +415,7 @@ class Workbench:
             # The promoted Relation Network and detector (None: the committed defaults).
             "support_model_dir": self.models.active_dir(),
             "detector_model_dir": self.detectors.active_dir(),
+            "model_names": self._model_names(),
             "stage_options": stage_options,
         }
         # The depth stored with the scene, so a placement job measures the boxes from it too.
@@ -415,6 +428,15 @@ class Workbench:
             arguments=arguments,
             earlier_stages=tuple(current.scene.stages),
         )
+
+    def _model_names(self) -> dict[str, str]:
+        """The active models' names by the stages that run them."""
+        relation = self.models.active_or_none()
+        detector = self.detectors.active_or_none()
+        names = {stage: model_label(relation) for stage in SUPPORT_STAGES if relation}
+        if detector:
+            names["objects_from_detector"] = model_label(detector)
+        return names
 
     def store_job_result(self, job: Job, run: JobRun, result: Reconstruction) -> None:
         """Store a job's computed result as the scene's next revision and finish the job."""

@@ -495,6 +495,14 @@ def _lookup_engine(url: str) -> Engine:
     return create_engine(url, poolclass=NullPool, connect_args=connect_args)
 
 
+def model_label(info: ModelInfo) -> str:
+    """How a stored scene names the model that made its guesses: "Relation Network v2",
+    "object detector v3 (COCO PicoDet-S 416 ...)"."""
+    if info.kind == "relation":
+        return f"Relation Network v{info.version}"
+    return f"object detector v{info.version}" + (f" ({info.name})" if info.name else "")
+
+
 def active_model_dir(settings: Settings, kind: ModelKind = "relation") -> Path | None:
     """The directory of the promoted model of a kind (the Relation Network's model.onnx,
     priors.json, ...; the detector's model.onnx, metadata.json), or None when no model of the

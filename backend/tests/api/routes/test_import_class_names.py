@@ -103,3 +103,4 @@ def test_the_pipeline_flags_the_unknown_name_too(client: TestClient, t3d5: Path)
     assert [o["class"] for o in scene["objects"]] == ["otherprop", "otherprop", "chair"]
     flagged = [s for s in scene["stages"] if s["warning"] and "spaceship" in (s["note"] or "")]
     assert [s["name"] for s in flagged] == ["objects_from_detector"]
+    assert flagged[0]["model"].startswith("object detector v1 (")

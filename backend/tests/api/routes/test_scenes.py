@@ -32,6 +32,10 @@ def test_import_runs_pipeline_and_serves_files(client: TestClient, t3d5: Path) -
     assert [o["class"] for o in scene["objects"]] == ["bed", "night_stand", "dresser", "dresser"]
     assert all(o["mask"] is not None for o in scene["objects"])
     assert len(scene["supports"]) == 4
+    # The stored guesses name the model that made them, as the model registry counts it.
+    models = {run["name"]: run["model"] for run in scene["stages"]}
+    assert models["supports_from_network"] == "Relation Network v1"
+    assert models["masks_grabcut"] is None
     listed = client.get("/api/scenes").json()
     assert [s["id"] for s in listed] == [scene_id]
     assert listed[0]["latest_job"]["status"] == "succeeded"

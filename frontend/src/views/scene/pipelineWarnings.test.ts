@@ -8,6 +8,7 @@ const run = (name: string, note: string | null, warning: boolean): StageRun => (
   seconds: 0.1,
   note,
   warning,
+  model: null,
 });
 
 describe("pipeline warnings", () => {

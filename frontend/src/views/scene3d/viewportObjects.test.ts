@@ -4,7 +4,13 @@ import { sceneDocument, sceneObject } from "../../testing/sceneDocuments";
 import { mayHaveGlb, missingSceneText } from "./viewportObjects";
 
 const withStages = (names: string[], doc = sceneDocument([])): SceneDocument => {
-  const stages = names.map((name) => ({ name, seconds: 0, note: null, warning: false }));
+  const stages = names.map((name) => ({
+    name,
+    seconds: 0,
+    note: null,
+    warning: false,
+    model: null,
+  }));
   return { ...doc, scene: { ...doc.scene, stages } };
 };
 
