@@ -13,13 +13,17 @@ test("imports a photo through the form and opens the scene", async ({ page }) =>
   await page.getByTestId("upload-image").setInputFiles(path.join(T3D_5, "img.jpg"));
   await page.getByTestId("upload-cam_k").setInputFiles(path.join(T3D_5, "cam_K.txt"));
   await page.getByTestId("upload-detections").setInputFiles(path.join(T3D_5, "detections.json"));
-  // A dataset folder's photo is called img.jpg, like every other: the scene needs a name.
+  // A dataset folder's photo is called img.jpg, like every other: the name suggested adds
+  // the time ("img of 7 Dec, 10:53:12"); one typed replaces it.
   const name = page.getByTestId("upload-name");
-  await expect(name).toHaveAttribute("required", "");
+  await expect(name).toHaveValue(/^img of .*\d\d:\d\d:\d\d/);
   await expect(page.getByTestId("upload-name-hint")).toContainText("every dataset folder");
   await name.fill("t3d-5 upload");
   await submitUploadAndWait(page);
-  await expect(name).not.toHaveAttribute("required", "");
+  await expect(name).toHaveValue("");
+  // Once the pipeline has finished, Open is the card's next step, and Enter takes it.
+  await expect(page.getByTestId("upload-open")).toHaveClass(/is-ready/);
+  await expect(page.getByTestId("upload-open")).toBeFocused();
   await expect(page.getByTestId("scene-list")).toContainText("t3d-5 upload");
   // "Pipeline finished" comes with the count of the run's warnings, as the scene stores them.
   const scenes = (await (await page.request.get("/api/scenes")).json()) as SceneSummary[];
@@ -36,7 +40,7 @@ test("imports a photo through the form and opens the scene", async ({ page }) =>
   mkdirSync(screenshots, { recursive: true });
   await page.screenshot({ path: path.join(screenshots, "scene-list.png"), fullPage: true });
 
-  await page.getByTestId("upload-open").click();
+  await page.keyboard.press("Enter");
   await expect(page.getByTestId("scene-title")).toHaveText("t3d-5 upload");
   await expect(page.getByTestId("mask-layer").locator("[data-testid^='mask-']")).toHaveCount(4);
   await expect(page.getByTestId("arrow-layer").locator("[data-testid^='arrow-']")).toHaveCount(4);

@@ -3,13 +3,22 @@
 import type { SceneSummary } from "@holiscene/schema";
 import { api } from "../../api/client";
 import { pollJob } from "../../api/jobs";
-import { button, el, failureAlert, labelledField } from "../../dom";
+import { button, el, failureAlert, formatTime, labelledField } from "../../dom";
 import { plural } from "../../state/sceneSession";
 import { jobProgress } from "../common/jobProgress";
 import { pipelineWarnings, warnedStages } from "../scene/pipelineWarnings";
+import "./uploadForm.css";
 
 /** Photo names that say nothing of the scene (each dataset folder holds one such photo). */
 const GENERIC_PHOTO_NAMES = new Set(["img", "image", "rgb", "photo", "color", "colour", "im"]);
+/** "7 Dec, 10:53:12": two photos uploaded a minute apart get names apart. */
+const SUGGESTED_TIME: Intl.DateTimeFormatOptions = {
+  day: "numeric",
+  month: "short",
+  hour: "2-digit",
+  minute: "2-digit",
+  second: "2-digit",
+};
 
 function fileField(label: string, name: string, accept: string, hint: string, required = false) {
   const input = el("input", {
@@ -68,14 +77,20 @@ export function uploadForm(
   });
   const nameHint = el("span", { className: "field-hint", testid: "upload-name-hint" });
   // Dataset folders name every photo alike (img.jpg, rgb.png): such a name would make a list
-  // of scenes all called "img", so the person names the scene instead.
+  // of scenes all called "img", so the name suggested adds the time of the upload (kept
+  // unless the person typed one).
+  let suggested = "";
   image.input.addEventListener("change", () => {
     const stem = (image.input.files?.[0]?.name ?? "").replace(/\.[^.]*$/, "");
     const generic = GENERIC_PHOTO_NAMES.has(stem.toLowerCase());
-    name.required = generic;
-    name.placeholder = generic ? "name the scene" : "defaults to the file name";
+    if (name.value === suggested || name.value === "") {
+      suggested = generic
+        ? `${stem} of ${formatTime(new Date().toISOString(), SUGGESTED_TIME)}`
+        : "";
+      name.value = suggested;
+    }
     nameHint.textContent = generic
-      ? `Required: "${stem}" is what every dataset folder calls its photo.`
+      ? `"${stem}" is what every dataset folder calls its photo: the time is added; change the name if you like.`
       : "";
   });
   const submit = button("Import and run pipeline", {
@@ -126,6 +141,7 @@ export function uploadForm(
         field.input.dispatchEvent(new Event("change"));
       const link = el("a", {
         text: `Open ${scene.name}`,
+        className: "upload-open",
         testid: "upload-open",
         attrs: { href: `#/scenes/${encodeURIComponent(scene.id)}` },
       });
@@ -137,6 +153,13 @@ export function uploadForm(
       if (imported.job) {
         const finished = await pollJob(imported.job, { signal, onUpdate: progress.update });
         void onImported(scene);
+        if (finished.status === "succeeded") {
+          link.classList.add("is-ready");
+          // Enter opens it, unless the person has gone on to something else meanwhile.
+          const focused = document.activeElement;
+          const waiting = focused === null || focused === document.body || focused === submit;
+          if (waiting) link.focus({ preventScroll: true });
+        }
         // "Pipeline finished" alone reads as all well on a photo the pipeline could do
         // little with (an all-black one): its warnings are named here, not only on the page.
         if (finished.status === "succeeded") {
