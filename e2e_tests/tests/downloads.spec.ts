@@ -215,6 +215,24 @@ test("the list downloads the selected scenes as one zip", async ({ page }) => {
     `from ${unplacedEntry?.folder}`,
   );
 
+  // The same scenes as a COCO dataset, as `holiscene export --format coco` writes it.
+  await page.getByTestId(`select-scene-${placed}`).check();
+  await page.getByTestId(`select-scene-${unplaced}`).check();
+  await page.getByTestId("download-format").selectOption({ label: "COCO dataset" });
+  await expect(button).toHaveAttribute("title", /annotations\.json/);
+  const [asCoco] = await Promise.all([page.waitForEvent("download"), button.click()]);
+  expect(asCoco.suggestedFilename()).toBe("holiscene-2-scenes-coco.zip");
+  const cocoFiles = readZip(await contents(asCoco));
+  const dataset = JSON.parse(cocoFiles.get("annotations.json")?.toString() ?? "null") as CocoFile;
+  expect(dataset.annotations.length).toBeGreaterThan(0);
+  expect([...cocoFiles.keys()].filter((name) => name.startsWith("images/"))).toHaveLength(2);
+  // A format with nothing to write says why, and nothing is downloaded.
+  await page.getByTestId("download-format").selectOption({ label: "Support pairs" });
+  await button.click();
+  await expect(page.getByTestId("download-selected-status")).toContainText(
+    "has supports set by a person: nothing to train on",
+  );
+
   // "Select all" ticks every listed scene; unticking it clears them.
   await page.getByTestId("select-all-scenes").check();
   await expect(page.getByTestId(`select-scene-${other}`)).toBeChecked();

@@ -186,12 +186,23 @@ class MaskRefineResult(SchemaModel):
     milliseconds: float = Field(description="Time the cut took on the server")
 
 
+# The formats `holiscene export --format` writes, which a browser download can ask for too.
+ExportFormatName = Literal[
+    "coco", "scene", "total3d", "total3d-training", "relation-training", "nyu-supports"
+]
+
+
 class SceneArchiveRequest(SchemaModel):
     """Scenes to download as one zip: per scene its scene.json, coco.json, photo and
-    scene.glb (when it has one)."""
+    scene.glb (when it has one); or, with `format`, what `holiscene export --format` writes."""
 
     scene_ids: list[Annotated[str, Field(min_length=1, max_length=64)]] = Field(
         min_length=1, max_length=500
+    )
+    format: ExportFormatName | None = Field(
+        default=None,
+        description="None: a folder per scene (HoliScene's own archive, which Import a "
+        "dataset takes back); else the export format of `holiscene export`",
     )
 
 

@@ -1183,12 +1183,16 @@ type: ("below" | "behind")
 }
 /**
  * Scenes to download as one zip: per scene its scene.json, coco.json, photo and
- * scene.glb (when it has one).
+ * scene.glb (when it has one); or, with `format`, what `holiscene export --format` writes.
  * 
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "SceneArchiveRequest".
  */
 export interface SceneArchiveRequest {
+/**
+ * None: a folder per scene (HoliScene's own archive, which Import a dataset takes back); else the export format of `holiscene export`
+ */
+format: (("coco" | "scene" | "total3d" | "total3d-training" | "relation-training" | "nyu-supports") | null)
 /**
  * @minItems 1
  * @maxItems 500

@@ -26,9 +26,12 @@ export async function glbRevision(sceneId: string, signal?: AbortSignal): Promis
   return Number(response.headers.get("X-Glb-Revision") ?? Number.NaN);
 }
 
-/** Download the scenes as one zip (a folder per scene). */
-export async function downloadArchive(sceneIds: SceneArchiveRequest["scene_ids"]): Promise<void> {
-  const body: SceneArchiveRequest = { scene_ids: sceneIds };
+/** Download the scenes as one zip: a folder per scene, or as `format` writes them. */
+export async function downloadArchive(
+  sceneIds: SceneArchiveRequest["scene_ids"],
+  format: SceneArchiveRequest["format"] = null,
+): Promise<void> {
+  const body: SceneArchiveRequest = { scene_ids: sceneIds, format };
   const { blob, filename } = await requestFile("/scenes/archive", jsonBody(body));
   saveBlob(blob, filename ?? "holiscene-scenes.zip");
 }

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+from ..core.errors import DomainError
 
-class ExportRefusedError(ValueError):
+
+class ExportRefusedError(DomainError, ValueError):
     """The chosen scenes hold nothing this format writes (e.g. no labels to train on); no file
-    was written."""
+    was written. The API answers 422 with its message."""

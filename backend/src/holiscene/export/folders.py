@@ -3,8 +3,11 @@ table of formats the command offers (EXPORT_FORMATS: a new format is one writer 
 
 from __future__ import annotations
 
+import io
 import json
 import shutil
+import tempfile
+import zipfile
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -114,3 +117,27 @@ EXPORT_FORMATS: dict[str, ExportFormat] = {
         "share one size) and DIR/support_labels.mat, as NYU Depth v2 has them",
     ),
 }
+
+# What a zip of an export stores as it is (compressed already).
+STORED_SUFFIXES = frozenset({".jpg", ".jpeg", ".png", ".glb", ".npz", ".mat"})
+EXPORT_NOTE_FILE = "export-note.txt"
+
+
+def exported_zip(chosen: list[ArchivedScene], format_name: str) -> bytes:
+    """What `holiscene export --format` writes for `chosen`, as one zip (the format's note,
+    when it has one, in export-note.txt). ExportRefusedError when the format refuses them."""
+    with tempfile.TemporaryDirectory(prefix="holiscene-export-") as scratch:
+        out = Path(scratch)
+        note = EXPORT_FORMATS[format_name].write(chosen, out)
+        buffer = io.BytesIO()
+        with zipfile.ZipFile(buffer, "w", compression=zipfile.ZIP_DEFLATED) as archive:
+            for path in sorted(p for p in out.rglob("*") if p.is_file()):
+                stored = path.suffix.lower() in STORED_SUFFIXES
+                archive.write(
+                    path,
+                    path.relative_to(out).as_posix(),
+                    zipfile.ZIP_STORED if stored else zipfile.ZIP_DEFLATED,
+                )
+            if note:
+                archive.writestr(EXPORT_NOTE_FILE, note + "\n")
+    return buffer.getvalue()

@@ -7,13 +7,14 @@ import io
 import json
 import zipfile
 from pathlib import Path
-from typing import Any
+from typing import Any, get_args
 
 import numpy as np
 from fastapi.testclient import TestClient
 from holiscene.export.coco import decode_coco_rle
+from holiscene.export.folders import EXPORT_FORMATS
 from holiscene.segmentation.rle import decode_mask
-from holiscene_schema import Mask
+from holiscene_schema import ExportFormatName, Mask
 
 from ...conftest import upload, wait_for_job
 
@@ -148,3 +149,34 @@ def test_the_archive_says_when_a_scene_glb_is_older_than_the_scene(
     assert entry["glb_note"] == (
         f"scene.glb was made at revision {made}: the edits of revision {made + 1} are not in it"
     )
+
+
+def test_the_archive_in_an_export_format_holds_what_the_export_command_writes(
+    client: TestClient, t3d5: Path
+) -> None:
+    placed = _import(client, t3d5, "t3d-5", run_pipeline=True)
+    response = client.post("/api/scenes/archive", json={"scene_ids": [placed], "format": "coco"})
+    assert response.status_code == 200, response.text
+    assert "holiscene-1-scenes-coco.zip" in response.headers["content-disposition"]
+    archive = zipfile.ZipFile(io.BytesIO(response.content))
+    assert sorted(archive.namelist()) == ["annotations.json", "images/t3d-5.jpg"]
+    coco = json.loads(archive.read("annotations.json"))
+    assert len(coco["annotations"]) == len(_document(client, placed)["scene"]["objects"])
+    assert archive.read("images/t3d-5.jpg") == (t3d5 / "img.jpg").read_bytes()
+
+    # Every format the export command has can be asked for (the schema's list is its table).
+    assert set(get_args(ExportFormatName)) == set(EXPORT_FORMATS)
+
+
+def test_an_export_format_with_nothing_to_write_is_422_with_its_reason(
+    client: TestClient, t3d5: Path
+) -> None:
+    unlabelled = _import(client, t3d5, "t3d-5")  # no supports set by a person
+    body = {"scene_ids": [unlabelled], "format": "relation-training"}
+    response = client.post("/api/scenes/archive", json=body)
+    assert response.status_code == 422
+    assert response.json()["detail"] == (
+        "none of the 1 scene(s) has supports set by a person: nothing to train on"
+    )
+    wrong = client.post("/api/scenes/archive", json={"scene_ids": [unlabelled], "format": "obj"})
+    assert wrong.status_code == 422 and "format" in wrong.json()["detail"]

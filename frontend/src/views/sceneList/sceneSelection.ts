@@ -1,10 +1,62 @@
-// Scenes ticked in the list, and "Download selected": one zip of their files. Only scenes the
-// list shows stay ticked (a filter or a refresh drops the others), so what is ticked on the
-// page is what is downloaded.
+// Scenes ticked in the list, and "Download selected": one zip of their files, as a folder per
+// scene or in one of the export formats of `holiscene export`. Only scenes the list shows stay
+// ticked (a filter or a refresh drops the others), so what is ticked on the page is what is
+// downloaded.
+import type { SceneArchiveRequest } from "@holiscene/schema";
 import { downloadArchive } from "../../api/downloads";
 import { button, el } from "../../dom";
 import { plural } from "../../state/sceneSession";
 import "./sceneSelection.css";
+
+interface DownloadFormat {
+  value: SceneArchiveRequest["format"];
+  label: string;
+  /** What the zip then holds (the menu's tooltip). */
+  holds: string;
+}
+
+const FOLDERS: DownloadFormat = {
+  value: null,
+  label: "HoliScene folders",
+  holds:
+    "a folder per scene: scene.json, COCO JSON, the photo, scene.glb and the labels as an " +
+    "input folder; Import a dataset takes it back",
+};
+
+/** The formats offered: HoliScene's own folders, then those of `holiscene export`. */
+const DOWNLOAD_FORMATS: readonly DownloadFormat[] = [
+  FOLDERS,
+  {
+    value: "coco",
+    label: "COCO dataset",
+    holds: "annotations.json (NYU-40 categories, masks as RLE, supports) and images/",
+  },
+  {
+    value: "scene",
+    label: "Input folders",
+    holds: "a folder per scene as holiscene infer reads it, with scene.json and scene.glb",
+  },
+  {
+    value: "total3d",
+    label: "Total3D demo",
+    holds: "Total3DUnderstanding's demo input and results per scene",
+  },
+  {
+    value: "total3d-training",
+    label: "Total3D training",
+    holds: "Total3DUnderstanding's data/sunrgbd/ layout for its training code",
+  },
+  {
+    value: "relation-training",
+    label: "Support pairs",
+    holds: "the Relation Network's inputs and the support pairs people labelled",
+  },
+  {
+    value: "nyu-supports",
+    label: "NYU Depth v2 .mat",
+    holds: "nyu_depth_v2_labeled.mat and support_labels.mat (the scenes must share one size)",
+  },
+];
 
 export class SceneSelection {
   private readonly selected = new Set<string>();
@@ -22,7 +74,23 @@ export class SceneSelection {
     testid: "download-selected-status",
     attrs: { role: "status" },
   });
-  readonly element = el("div", { className: "scene-selection" }, this.button, this.status);
+  private readonly format = el(
+    "select",
+    {
+      testid: "download-format",
+      attrs: { "aria-label": "Format of the download" },
+    },
+    ...DOWNLOAD_FORMATS.map((f) =>
+      el("option", { text: f.label, attrs: { value: f.value ?? "", title: f.holds } }),
+    ),
+  );
+  readonly element = el(
+    "div",
+    { className: "scene-selection" },
+    this.format,
+    this.button,
+    this.status,
+  );
 
   constructor() {
     this.allBox.addEventListener("change", () => {
@@ -34,6 +102,7 @@ export class SceneSelection {
       this.update();
     });
     this.button.addEventListener("click", () => void this.download());
+    this.format.addEventListener("change", () => this.update());
     this.update();
   }
 
@@ -72,9 +141,15 @@ export class SceneSelection {
       : count === 0
         ? "Download selected"
         : `Download ${plural(count, "selected scene")} (zip)`;
-    this.button.title =
-      "One zip with a folder per scene: scene.json, COCO JSON, the photo, scene.glb and the " +
-      "labels as an input folder; Import a dataset takes it back";
+    const chosen = this.chosenFormat();
+    this.button.title = `One zip: ${chosen.holds}`;
+    this.format.title = chosen.holds;
+    this.format.disabled = this.busy;
+  }
+
+  private chosenFormat(): DownloadFormat {
+    const value = this.format.value || null;
+    return DOWNLOAD_FORMATS.find((f) => f.value === value) ?? FOLDERS;
   }
 
   private async download(): Promise<void> {
@@ -85,7 +160,7 @@ export class SceneSelection {
     this.status.classList.remove("is-error");
     this.update();
     try {
-      await downloadArchive([first, ...rest]);
+      await downloadArchive([first, ...rest], this.chosenFormat().value);
     } catch (error) {
       this.status.classList.add("is-error");
       this.status.textContent = `Could not download: ${error instanceof Error ? error.message : String(error)}`;

@@ -1,4 +1,5 @@
-"""Files to download: a scene's scene.json and COCO JSON, and several scenes as one zip."""
+"""Files to download: a scene's scene.json and COCO JSON, and several scenes as one zip (a
+folder per scene, or an export format)."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ from ...export.archive import (
     scene_json,
     scenes_zip,
 )
+from ...export.folders import exported_zip
 from ...services.workbench import Workbench
 from ...store.scenes import SceneNotFoundError
 from ..deps import WorkbenchDep
@@ -62,13 +64,18 @@ def download_coco_json(scene_id: str, workbench: WorkbenchDep) -> Response:
     response_class=Response,
 )
 def download_archive(request: SceneArchiveRequest, workbench: WorkbenchDep) -> Response:
-    """The scenes as one zip (see export/archive.py); 404 naming every unknown id, and
-    nothing is made then."""
+    """The scenes as one zip (see export/archive.py), or as `format` writes them
+    (export/folders.py); 404 naming every unknown id, and nothing is made then."""
     scene_ids = list(dict.fromkeys(request.scene_ids))  # the same scene once
     known = {s.id for s in workbench.scenes.list_summaries(archived=None)}
     unknown = [i for i in scene_ids if i not in known]
     if unknown:
         raise SceneNotFoundError(f"no scene with the id {', '.join(unknown)}: nothing archived")
-    data = scenes_zip([_archived(workbench, i) for i in scene_ids])
-    name = f"holiscene-{len(scene_ids)}-scenes.zip"
+    chosen = [_archived(workbench, i) for i in scene_ids]
+    if request.format is None:
+        data = scenes_zip(chosen)
+        name = f"holiscene-{len(scene_ids)}-scenes.zip"
+    else:  # refused with 422 (ExportRefusedError) when the format has nothing to write
+        data = exported_zip(chosen, request.format)
+        name = f"holiscene-{len(scene_ids)}-scenes-{request.format}.zip"
     return Response(data, media_type="application/zip", headers=attachment(name))
