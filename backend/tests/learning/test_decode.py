@@ -29,6 +29,23 @@ def test_each_object_gets_its_most_probable_supporter() -> None:
     assert supports[0].source == "auto" and 0.8 < (supports[0].confidence or 0) <= 1
 
 
+def test_the_room_holds_things_up_one_way_only_whatever_the_network_says() -> None:
+    # Columns n..n+2 are ceiling, floor, wall; types 0 below, 1 behind. The network's best
+    # answers are "floor, behind" for o0 and "wall, below" for o1, which no room part does.
+    ids, classes = ["o0", "o1"], ["chair", "picture"]
+    table = _probabilities(2, {0: [(3, 1, 0.8), (3, 0, 0.1)], 1: [(4, 0, 0.7), (4, 1, 0.2)]})
+    supports = decode_supports(table, ids, classes)
+    assert [(s.child, s.parent, s.type) for s in supports] == [
+        ("o0", "floor", "below"),
+        ("o1", "wall", "behind"),
+    ]
+    for row in range(2):
+        ranked = ranked_candidates(table, row, ids, classes)
+        impossible = {("floor", "behind"), ("wall", "below"), ("ceiling", "below")}
+        assert all(score == 0 for score, parent, kind in ranked if (parent, kind) in impossible)
+        assert abs(sum(score for score, _, _ in ranked) - 1) < 1e-9
+
+
 def test_a_cycle_is_broken_by_the_less_confident_object() -> None:
     ids, classes = ["o0", "o1"], ["box", "box"]
     # o0 on o1 (0.9) and o1 on o0 (0.6): o1 must take its next choice, the floor.

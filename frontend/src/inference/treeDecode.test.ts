@@ -79,12 +79,21 @@ describe("the browser's additions", () => {
 
   it("a correction changes another object's answer: no cycles", () => {
     const free = decodeSupports(mutual.probabilities.data, mutual.ids);
+    // Each would rest on the other: the surer one does, the other cannot (a cycle).
+    const resting = free.filter((d) => ["o0", "o1"].includes(d.parent)).map((d) => d.child);
+    expect(resting).toHaveLength(1);
+    const winner = resting[0] as string;
+    const other = winner === "o0" ? "o1" : "o0";
+    expect(free.find((d) => d.child === winner)?.parent).toBe(other);
+    // A person puts the other one on it: the winner's answer changes.
     const corrected = decodeSupports(mutual.probabilities.data, mutual.ids, [
-      { child: "o1", parent: "o0", type: "below" },
+      { child: other, parent: winner, type: "below" },
     ]);
-    expect(free.find((d) => d.child === "o0")?.parent).toBe("o1");
-    expect(corrected.find((d) => d.child === "o0")?.parent).toBe("floor");
-    expect(corrected.find((d) => d.child === "o1")).toMatchObject({ parent: "o0", pinned: true });
+    expect(corrected.find((d) => d.child === winner)?.parent).not.toBe(other);
+    expect(corrected.find((d) => d.child === other)).toMatchObject({
+      parent: winner,
+      pinned: true,
+    });
   });
 
   it("leaves an object without a supporter when every answer is excluded", () => {

@@ -8,6 +8,7 @@
 // annotator's corrections pinned is how the remaining predictions follow a correction without
 // a server round trip. Both sides are tested against shared_schema/vectors/support_decode.json.
 
+import { STRUCTURAL_SUPPORT_TYPES } from "@holiscene/schema";
 import { STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER, type SupportTypeName } from "./supportModel";
 import type { SupportPriors } from "./supportPriors";
 
@@ -58,8 +59,13 @@ export function rankedCandidates(
   const columns = [...ids, ...STRUCTURAL_COLUMNS];
   const types = SUPPORT_TYPE_ORDER.length;
   const offset = row * columns.length * types;
+  // Not the object itself; and the room's parts hold things up one way only (the floor from
+  // below; walls and the ceiling from behind), whatever the network says.
+  const impossible = (c: number, t: number) =>
+    c === row ||
+    (c >= ids.length && STRUCTURAL_SUPPORT_TYPES[columns[c] as string] !== SUPPORT_TYPE_ORDER[t]);
   const scores = Array.from({ length: columns.length * types }, (_, k) =>
-    Math.floor(k / types) === row ? 0 : (probabilities[offset + k] as number),
+    impossible(Math.floor(k / types), k % types) ? 0 : (probabilities[offset + k] as number),
   );
   if (withPriors) {
     const { classes, priors } = withPriors;

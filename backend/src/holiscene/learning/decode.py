@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from typing import Literal
 
 import numpy as np
-from holiscene_schema import SupportRelation, support_graph_problems
+from holiscene_schema import STRUCTURAL_SUPPORT_TYPES, SupportRelation, support_graph_problems
 from holiscene_schema.relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER
 
 from .priors import SupportPriors
@@ -39,6 +39,12 @@ def ranked_candidates(
     column_classes = [*classes, *STRUCTURAL_COLUMNS]
     scores = probabilities[row].astype(np.float64).copy()  # (N + 3, T)
     scores[row] = 0.0
+    # The room's parts hold things up one way only (the floor from below; walls and the
+    # ceiling from behind): the other type is no candidate, whatever the network says.
+    for k, name in enumerate(STRUCTURAL_COLUMNS):
+        for t, kind in enumerate(SUPPORT_TYPE_ORDER):
+            if kind != STRUCTURAL_SUPPORT_TYPES[name]:
+                scores[n + k, t] = 0.0
     if mode == "network+priors" and priors is not None:
         category_mass: dict[str, float] = {}
         for column, cls in enumerate(column_classes):
@@ -49,8 +55,10 @@ def ranked_candidates(
                 prior = priors.conditional(cls, classes[row], kind) if cls in top else 0.0
                 scores[column, t] *= prior
     total = float(scores.sum())
-    if total <= 0:  # the priors ruled everything out: fall back to the network alone
+    if total <= 0 and mode == "network+priors":
+        # The priors ruled everything out: fall back to the network alone.
         return ranked_candidates(probabilities, row, object_ids, classes)
+    total = total if total > 0 else 1.0  # nothing has mass: every candidate scores 0
     found = [
         (float(scores[c, t]) / total, names[c], kind)
         for c in range(n + len(STRUCTURAL_COLUMNS))
