@@ -155,8 +155,11 @@ test("the editing tool a lock took away comes back when the scene is editable ag
   const asked = await submitAndSendBack(page, "Check the lamp's box.", async () => {
     await expect(page.getByTestId("photo-tool-select")).toHaveAttribute("aria-pressed", "true");
     await expect(page.getByTestId("photo-tool-box")).toBeDisabled();
-    // Read only while submitted: the drawing tools and layout buttons are left out, not greyed.
+    // Read only while submitted: the tool row, the detector bar and the layout buttons are
+    // left out, not greyed.
     await expect(page.getByTestId("photo-tool-box")).toBeHidden();
+    await expect(page.getByTestId("photo-tool-select")).toBeHidden();
+    await expect(page.getByTestId("detector-bar")).toBeHidden();
     await expect(page.getByTestId("layout-toggle")).toBeHidden();
     await expect(page.getByTestId("layout-status")).toBeVisible();
   });
@@ -168,6 +171,10 @@ test("the editing tool a lock took away comes back when the scene is editable ag
   // A tool chosen while locked is the person's choice: the next unlock leaves it.
   await page.getByTestId("workflow-take").click(); // "Reopen for changes"
   await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
-  await submitAndSendBack(page, "Once more.", () => chooseTool(page, "select"));
+  await submitAndSendBack(page, "Once more.", async () => {
+    await page.locator("body").click({ position: { x: 5, y: 5 } });
+    await page.keyboard.press("v"); // Select's key: its button is left out while locked
+    await expect(page.getByTestId("photo-tool-select")).toHaveAttribute("aria-pressed", "true");
+  });
   await expect(page.getByTestId("photo-tool-select")).toHaveAttribute("aria-pressed", "true");
 });

@@ -67,12 +67,17 @@ async function expectReadOnly(page: Page, sceneId: string, title: string): Promi
   const banner = page.getByTestId("read-only-banner");
   await expect(banner).toBeVisible();
   await expect(page.getByTestId("read-only-reason")).toHaveText(title);
-  await expect(banner).toContainText("Editing (supports, objects, room) and its keys are off");
+  await expect(banner).toHaveAttribute(
+    "title",
+    /^Editing \(supports, objects, room\) and its keys are off/,
+  );
   const selects = page.locator("[data-testid^='supporter-select-']");
   for (const select of await selects.all()) await expect(select).toBeDisabled();
   await expect(page.getByTestId("layout-toggle")).toBeDisabled();
-  await expect(page.getByTestId("undo-button")).toBeDisabled();
-  await expect(page.getByTestId("save-button")).toBeDisabled();
+  // Nothing unsaved: Undo, Redo, Discard and Save are left out, not greyed.
+  await expect(page.getByTestId("undo-button")).toBeHidden();
+  await expect(page.getByTestId("save-button")).toBeHidden();
+  await expect(page.getByTestId("save-status")).toBeVisible();
   await expect(page.getByTestId("run-pipeline")).toBeDisabled();
   // The line under the photo offers no key that would change anything.
   await expect(page.getByTestId("edge-info-hint")).toContainText(/read only/i);
@@ -301,6 +306,13 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId("workflow-submit")).toBeHidden();
   // The reviewer judges it as submitted: read only for them too.
   await expect(page.getByTestId("read-only-reason")).toHaveText("Submitted for review — read only");
+  // Where to start: what the annotator changed since taking the scene.
+  const takenAt = (await workflowOf(admin, first.id)).events.findLast(
+    (e) => e.to_state === "in_annotation",
+  )?.revision;
+  await expect(page.getByTestId("since-rejection")).toHaveText(
+    `What ${ANNOTATOR.name} changed since taking it (revision ${takenAt})`,
+  );
   await page.getByTestId("workflow-reject").click();
   await page.getByTestId("reject-send").click(); // no comment: refused in the page
   await expect(page.getByTestId("workflow-error")).toContainText("Say what went wrong");
@@ -365,6 +377,10 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   )?.revision;
   await expect(page.getByTestId("since-rejection")).toHaveText(
     `What changed since it was sent back (revision ${rejectedAt})`,
+  );
+  // What she asked for is still in view, to check it was done.
+  await expect(page.getByTestId("review-comment")).toContainText(
+    `Asked when sent back by ${REVIEWER.name} (revision ${rejectedAt}): ${comment}`,
   );
   await page.getByTestId("since-rejection").click();
   const since = page.getByTestId(`revision-diff-${rejectedAt}`);

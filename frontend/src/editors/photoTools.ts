@@ -135,7 +135,8 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
     measuredWidth = optionsBox.getBoundingClientRect().width;
     optionsBox.style.minHeight = "";
     let tallest = 0;
-    for (const tool of tools) {
+    // A scene the person can only look at keeps Select: no room for the others' options.
+    for (const tool of host.session.viewOnly ? [select] : tools) {
       optionsBox.replaceChildren(...[tool.options?.() ?? null].filter((n) => n !== null));
       tallest = Math.max(tallest, optionsBox.getBoundingClientRect().height);
     }
@@ -258,6 +259,7 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
     // Select's hint says when a pick is armed, and why an action did nothing.
     if ((change === "select" || change === "message") && state.active === select) show();
     if (change !== "lock") return;
+    queueMeasure(); // the room the options keep depends on which tools can be used
     const taken = takenByLock;
     if (!usable(state.active)) {
       const active = state.active;

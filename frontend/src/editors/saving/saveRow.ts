@@ -113,13 +113,14 @@ export function saveRow({
     title: "Drop the unsaved changes (undo brings them back)",
     onClick: () => session.discard(),
   });
+  const actions = el("span", { className: "save-actions" }, undo, redo, discard, save);
   const element = el(
     "div",
     { className: "save-row" },
     status,
     // Together, at the right: beside the status when there is room, else all on the line
     // under it (not two here and two there).
-    el("span", { className: "save-actions" }, undo, redo, discard, save),
+    actions,
   );
 
   const update = () => {
@@ -150,6 +151,9 @@ export function saveRow({
     const redoLabel = latestRedo(histories)?.redoLabel ?? null;
     undo.disabled = !editable || undoLabel === null;
     redo.disabled = !editable || redoLabel === null;
+    // Greyed buttons say nothing to a person who can only look: left out until there is
+    // something unsaved to keep (a refused save's changes, kept for later).
+    actions.hidden = session.viewOnly && unsaved === 0;
     undo.title = undoLabel ? `Undo: ${undoLabel} (Ctrl+Z)` : "Nothing to undo";
     redo.title = redoLabel ? `Redo: ${redoLabel} (Ctrl+Shift+Z)` : "Nothing to redo";
   };

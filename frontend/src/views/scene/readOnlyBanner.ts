@@ -32,11 +32,13 @@ export function readOnlyBanner(session: SceneSession): {
     element.hidden = lock === null;
     reason.textContent = lock?.title ?? "";
     const kept = session.unsavedCount;
-    detail.textContent =
-      (lock?.reason ? `${sentence(lock.reason)} ` : "") +
-      // Short: the banner stands between a reviewer and the photo they came to judge.
+    // Short: the banner stands between a reviewer and the photo they came to judge; what
+    // still works is in its tooltip.
+    element.title =
       "Editing (supports, objects, room) and its keys are off; the photo, the 3D view and ? " +
-      "still work." +
+      "still work.";
+    detail.textContent =
+      (lock?.reason ? sentence(lock.reason) : "") +
       (kept > 0
         ? ` Your ${plural(kept, "unsaved change")} ${kept === 1 ? "is" : "are"} kept in this browser until the scene can be edited again.`
         : "");

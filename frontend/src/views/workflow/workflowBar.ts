@@ -181,7 +181,7 @@ export function mountWorkflowBar(
     const pending = session.unsavedCount;
     const recovered = session.recovered !== null;
     const labelled = labelledText();
-    status.show(flow, noteText({ flow, pending, recovered, me: me(), labelled }));
+    status.show(flow, noteText({ flow, pending, recovered, me: me(), labelled }), me());
     actions.show(actionState(flow, me(), pending, busy, recovered));
   };
 

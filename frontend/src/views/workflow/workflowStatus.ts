@@ -79,10 +79,11 @@ export interface WorkflowStatus {
   who: HTMLElement;
   comment: HTMLElement;
   note: HTMLElement;
-  /** What changed since the last rejection: a link to the revision history's diff. */
+  /** What the annotator changed since the last rejection, or on a first review since they
+   * took the scene: a link to the revision history's diff. */
   sinceRejection: HTMLElement;
   history: HTMLElement;
-  show(flow: SceneWorkflow, note: string): void;
+  show(flow: SceneWorkflow, note: string, me: CurrentUser | null): void;
 }
 
 /** The scene's last rejection, if it had one. */
@@ -95,6 +96,25 @@ export function rejectedAt(flow: SceneWorkflow): number | null {
   if (flow.state === "accepted" || flow.state === "predicted" || flow.state === "new") return null;
   const rejection = lastRejection(flow);
   return rejection && flow.revision > rejection.revision ? rejection.revision : null;
+}
+
+/** Where a reviewer starts: what changed since the scene was sent back, or, on its first
+ * review, since its annotator took it (null: nothing to show). */
+export function reviewStart(flow: SceneWorkflow): { revision: number; text: string } | null {
+  const rejected = rejectedAt(flow);
+  if (rejected !== null)
+    return {
+      revision: rejected,
+      text: `What changed since it was sent back (revision ${rejected})`,
+    };
+  if (flow.state !== "submitted") return null;
+  const taken = [...flow.events].reverse().find((e) => e.to_state === "in_annotation");
+  if (!taken || flow.revision <= taken.revision) return null;
+  const who = flow.assignee ?? "the annotator";
+  return {
+    revision: taken.revision,
+    text: `What ${who} changed since taking it (revision ${taken.revision})`,
+  };
 }
 
 /** `showSince(n)`: open the revision history at what changed since revision n. */
@@ -123,7 +143,7 @@ export function workflowStatus(showSince: (revision: number) => void): WorkflowS
     el("summary", { text: "Workflow history" }),
     events,
   );
-  const show = (flow: SceneWorkflow, noteLine: string) => {
+  const show = (flow: SceneWorkflow, noteLine: string, me: CurrentUser | null) => {
     const state = flow.state;
     // Archived, the state is where it will be again once restored: both are said.
     const shown = stateBadge(state, flow.archived_by != null);
@@ -134,16 +154,26 @@ export function workflowStatus(showSince: (revision: number) => void): WorkflowS
       : "";
     if (flow.annotation_round > 1)
       who.textContent += ` · annotation round ${flow.annotation_round}`;
-    comment.hidden = !flow.review_comment;
+    // Resubmitted, the comment is the scene's no longer; a reviewer (not its annotator) still
+    // sees what was asked, to check it was done.
+    const rejection = lastRejection(flow);
+    const asked =
+      flow.review_comment ??
+      (flow.state === "submitted" && flow.assignee !== me?.name ? rejection?.comment : null);
+    comment.hidden = !asked;
     comment.replaceChildren(
-      el("strong", { text: `Rejected by ${lastRejection(flow)?.actor ?? "a reviewer"}: ` }),
-      el("span", { text: flow.review_comment ?? "", testid: "review-comment-text" }),
+      el("strong", {
+        text: flow.review_comment
+          ? `Rejected by ${rejection?.actor ?? "a reviewer"}: `
+          : `Asked when sent back by ${rejection?.actor ?? "a reviewer"} (revision ${rejection?.revision}): `,
+      }),
+      el("span", { text: asked ?? "", testid: "review-comment-text" }),
     );
     note.textContent = noteLine;
-    since = rejectedAt(flow);
-    sinceRejection.hidden = since === null;
-    sinceRejection.textContent =
-      since === null ? "" : `What changed since it was sent back (revision ${since})`;
+    const start = reviewStart(flow);
+    since = start?.revision ?? null;
+    sinceRejection.hidden = start === null;
+    sinceRejection.textContent = start?.text ?? "";
     events.replaceChildren(...flow.events.map(eventLine));
   };
   return { badge, who, comment, note, sinceRejection, history, show };
