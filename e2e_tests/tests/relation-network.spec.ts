@@ -182,9 +182,12 @@ test("the scene page shows the model's suggested supporter of each object", asyn
   for (const object of objects) {
     const badge = page.getByTestId(`support-suggestion-${object.id}`);
     await expect(badge).toBeVisible();
-    const match = /^model: (\S+) · (below|behind) (\d+)%$/.exec((await badge.textContent()) ?? "");
+    // "model: o5 99%"; the type is said only when it is "behind" on an object.
+    const match = /^model: (\S+)( · behind)? (\d+)%$/.exec((await badge.textContent()) ?? "");
     expect(match, `suggestion of ${object.id}`).not.toBeNull();
     expect(candidates).toContain(match?.[1]);
     expect(match?.[1]).not.toBe(object.id);
+    await expect(badge).toHaveAttribute("data-supporter", match?.[1] ?? "");
+    await expect(badge).toHaveAttribute("data-type", /^(below|behind)$/);
   }
 });

@@ -1,10 +1,19 @@
 // The model's answer beside each object in the support editor's table: a badge with the most
 // probable supporter and type, the next answers in its tooltip. Where a person's label
 // contradicts a confident answer (labelDoubts.ts) the badge turns orange and says so.
+import { STRUCTURAL_SUPPORT_TYPES } from "@holiscene/schema";
 import { el, percentText } from "../dom";
 import type { SceneScores, SupportSuggestion } from "./supportModel";
 
 const answer = (s: SupportSuggestion) => `${s.supporter} · ${s.type} ${percentText(s.probability)}`;
+
+/** The badge's short answer: the type only where it says something ("o5 · behind"); "below"
+ * is how an object rests on another, and the room's parts hold things up one way only. The
+ * row then keeps the badge beside the support's status (the list shows more objects). */
+const shortAnswer = (s: SupportSuggestion) =>
+  s.type === "below" || s.supporter in STRUCTURAL_SUPPORT_TYPES
+    ? `${s.supporter} ${percentText(s.probability)}`
+    : answer(s);
 
 /** Put the badges into `table`'s object rows (`tr[data-object]`), unless they are there
  * already with the same doubts. */
@@ -30,8 +39,10 @@ export function showSuggestionBadges(
       el("span", {
         className: doubt ? "badge badge--suggestion badge--doubt" : "badge badge--suggestion",
         testid: `support-suggestion-${s.id}`,
-        text: `model: ${answer(best)}`,
+        text: `model: ${shortAnswer(best)}`,
         attrs: {
+          "data-supporter": best.supporter,
+          "data-type": best.type,
           title: doubt
             ? `The model is ${percentText(best.probability)} sure of ${best.supporter} · ` +
               `${best.type}, not the label set by a person: check it.\n${alternatives}`
