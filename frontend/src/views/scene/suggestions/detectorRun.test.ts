@@ -13,11 +13,11 @@ const run = (over: Partial<DetectorRun> = {}): DetectorRun => ({
 describe("foundText", () => {
   it("says what was suggested, how fast and by which detector", () => {
     expect(foundText(5, 5, run())).toBe(
-      "5 objects suggested in 0.6 s by COCO PicoDet-S 416 (loading it took 1.5 s): click a " +
-        "box, then Accept or Reject.",
+      "5 objects suggested in 0.6 s by COCO PicoDet-S 416: click a box, then Accept or Reject.",
     );
     expect(foundText(3, 0, run({ loadMs: 10 }))).toBe(
-      "All 3 boxes found are labelled already, in 0.6 s by COCO PicoDet-S 416.",
+      "Nothing new: the 3 boxes found are on objects labelled already, in 0.6 s by COCO " +
+        "PicoDet-S 416.",
     );
   });
 
@@ -27,7 +27,7 @@ describe("foundText", () => {
         "click a box, then Accept or Reject.",
     );
     expect(foundText(1, 0, run({ loadMs: 10 }), 1)).toMatch(
-      /^The box found is labelled or rejected already \(1 rejected before left out\), in 0.6 s/,
+      /^Nothing new: the box found is on an object labelled or rejected already \(1 rejected before left out\), in 0.6 s/,
     );
   });
 

@@ -67,17 +67,19 @@ export const shortDetectorName = (name: string): string => name.split(/,| \(/)[0
 export function foundText(found: number, open: number, run: DetectorRun, rejected = 0): string {
   const seconds = (ms: number) => `${(ms / 1000).toFixed(1)} s`;
   // Which detector: after an admin switches models, a reviewer can tell whose boxes these are.
-  const time =
-    `in ${seconds(run.runMs)} by ${shortDetectorName(run.detector)}` +
-    (run.loadMs > 100 ? ` (loading it took ${seconds(run.loadMs)})` : "");
+  // (How long loading it took is the benchmark's business: the line was cut before its end.)
+  const time = `in ${seconds(run.runMs)} by ${shortDetectorName(run.detector)}`;
   if (run.flat) return "The photo is one flat colour: there is nothing to detect in it.";
   if (found === 0) return `No objects found ${time}.`;
   // What matters first: the status line shows one line, cut at its end (the rest in its title).
   const left = rejected > 0 ? ` (${rejected} rejected before left out)` : "";
   if (open === 0) {
+    // Boxes, not objects: two boxes of one object (a bed also found as a sofa) count twice.
     const settled = rejected > 0 ? "labelled or rejected already" : "labelled already";
     const all =
-      found === 1 ? `The box found is ${settled}` : `All ${found} boxes found are ${settled}`;
+      found === 1
+        ? `Nothing new: the box found is on an object ${settled}`
+        : `Nothing new: the ${found} boxes found are on objects ${settled}`;
     return `${all}${left}, ${time}.`;
   }
   return `${plural(open, "object")} suggested${left} ${time}: click a box, then Accept or Reject.`;
