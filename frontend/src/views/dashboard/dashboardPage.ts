@@ -119,13 +119,15 @@ export function mountDashboardPage(container: HTMLElement, toAccounts = false): 
             className: "field-hint",
             testid: "people-hint",
             text:
-              "Annotating: the scenes each person holds now. Submitted, Accepted, Rejected " +
-              "and Reviewed: every such step so far (a scene submitted again after a " +
-              "rejection counts twice), so they need not add up to the scene counts above.",
+              "Annotating: the scenes each person holds now. Submitted, Accepted and Sent " +
+              "back: what happened to the scenes they annotated; Reviews done: the scenes " +
+              "they accepted or sent back as a reviewer. Every such step so far counts (a " +
+              "scene submitted again after a rejection counts twice), so they need not add " +
+              "up to the scene counts above.",
           }),
           table(
             "people-table",
-            ["Name", "Role", "Annotating", "Submitted", "Accepted", "Rejected", "Reviewed"],
+            ["Name", "Role", "Annotating", "Submitted", "Accepted", "Sent back", "Reviews done"],
             [2, 3, 4, 5, 6],
             dashboard.people.map(personRow),
           ),
