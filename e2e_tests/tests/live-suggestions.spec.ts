@@ -39,7 +39,7 @@ test("a correction re-scores the other predictions in the browser, without the s
   await openScene(page, seeded.scene_id);
   await setAuthor(page, "e2e-live");
   await waitForModel(page);
-  await expect(page.getByTestId("suggestion-status")).toContainText("live: no changes suggested");
+  await expect(page.getByTestId("suggestion-status")).toContainText("live: no guess to change");
   expect(await arrowOf(page, a)).toMatchObject({ parent: b, suggested: false, source: "auto" });
 
   const requests: string[] = [];
@@ -60,7 +60,7 @@ test("a correction re-scores the other predictions in the browser, without the s
   const suggestion = await arrowOf(page, a);
   expect(suggestion?.parent).not.toBe(b);
   expect(suggestion?.source).toBe("model");
-  await expect(page.getByTestId("suggestion-status")).toContainText("1 suggested");
+  await expect(page.getByTestId("suggestion-status")).toContainText("live: 1 guess to change");
   // The list shows what A would accept: the suggestion, marked as not stored.
   const menu = page.getByTestId(`supporter-select-${a}`);
   await expect(menu).toHaveValue(suggestion?.parent ?? "");

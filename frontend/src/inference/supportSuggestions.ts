@@ -119,8 +119,10 @@ export function mountSupportSuggestions(
           ? ""
           : ` by the Relation Network v${scores.modelVersion}`),
       // Read only (a reviewer), nothing is suggested: saying "no changes" would mislead.
+      // Live suggestions replace guesses only: "no changes" read as the model agreeing with
+      // every label, people's too.
       live.checked && session.editable
-        ? `live: ${suggested === 0 ? "no changes suggested" : `${suggested} suggested`}`
+        ? `live: ${suggested === 0 ? "no guess to change" : `${plural(suggested, "guess")} to change`}`
         : "",
       doubted > 0
         ? `the model disagrees with ${plural(doubted, "label")} set by a person (orange)`
