@@ -3,9 +3,15 @@
 import { mkdirSync, readFileSync, writeFileSync } from "node:fs";
 import path from "node:path";
 import type { ImportResult, Job, SceneSummary } from "@holiscene/schema";
-import { expect, test } from "@playwright/test";
+import { expect, type Page, test } from "@playwright/test";
 import { getScene, seedScene, T3D_5, waitForJob } from "../helpers/api";
 import { submitUploadAndWait } from "../helpers/photo";
+
+async function listScenes(page: Page): Promise<SceneSummary[]> {
+  return (await (await page.request.get("/api/scenes")).json()) as SceneSummary[];
+}
+
+const scenesNamed = (scenes: SceneSummary[], name: string) => scenes.find((s) => s.name === name);
 
 test("imports a photo through the form and opens the scene", async ({ page }) => {
   await page.goto("/#/");
@@ -44,6 +50,25 @@ test("imports a photo through the form and opens the scene", async ({ page }) =>
   await expect(page.getByTestId("scene-title")).toHaveText("t3d-5 upload");
   await expect(page.getByTestId("mask-layer").locator("[data-testid^='mask-']")).toHaveCount(4);
   await expect(page.getByTestId("arrow-layer").locator("[data-testid^='arrow-']")).toHaveCount(4);
+
+  // The same photo once more: imported (other labels for one photo are fine), and said.
+  await page.goto("/#/");
+  await page.getByTestId("upload-image").setInputFiles(path.join(T3D_5, "img.jpg"));
+  await page.getByTestId("upload-name").fill("t3d-5 upload again");
+  await page.getByTestId("upload-submit").click();
+  // (Named by the first scene of the photo: in a full test run another spec's, imported
+  // earlier.)
+  const twin = page.getByTestId("upload-same-photo");
+  await expect(twin).toContainText("This very photo was imported before, as ");
+  await expect(twin).toContainText('"t3d-5 upload again" is a second scene of it.');
+  const firstId = ((await twin.getByRole("link").getAttribute("href")) ?? "").replace(
+    "#/scenes/",
+    "",
+  );
+  const again = scenesNamed(await listScenes(page), "t3d-5 upload again");
+  expect(firstId).not.toBe(again?.id);
+  const photo = await (await page.request.get(`/api/scenes/${firstId}/image`)).body();
+  expect(photo.equals(readFileSync(path.join(T3D_5, "img.jpg")))).toBe(true);
 });
 
 test("a scene whose pipeline is still running shows progress, then opens", async ({

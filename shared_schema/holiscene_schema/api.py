@@ -332,6 +332,11 @@ class SceneSummary(SchemaModel):
 class ImportResult(SchemaModel):
     scene: SceneSummary
     job: Job | None
+    same_photo: SceneSummary | None = Field(
+        default=None,
+        description="A scene stored before with this very photo file (the first), if any: the "
+        "import went ahead, as a second scene of the photo, and the page says so",
+    )
 
 
 class ImportedPhoto(SchemaModel):

@@ -650,6 +650,10 @@ scene_name: (string | null)
  */
 export interface ImportResult {
 job: (Job | null)
+/**
+ * A scene stored before with this very photo file (the first), if any: the import went ahead, as a second scene of the photo, and the page says so
+ */
+same_photo: (SceneSummary | null)
 scene: SceneSummary
 }
 /**

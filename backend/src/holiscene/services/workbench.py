@@ -255,9 +255,12 @@ class Workbench:
             self.jobs.check_queue_room(self.settings.max_queued_jobs)
         # Names tell scenes apart in lists and notices: a taken one gets a number ("im3d-2 2").
         name = self.scenes.unused_name(name)
+        same_photo = self.scenes.first_with_photo(inputs.photo.data)
         summary = self.scenes.create(inputs, imported_scene(inputs, name), author)
         job = self.start_pipeline(summary.id, author) if run_pipeline else None
-        return ImportResult(scene=summary.model_copy(update={"latest_job": job}), job=job)
+        return ImportResult(
+            scene=summary.model_copy(update={"latest_job": job}), job=job, same_photo=same_photo
+        )
 
     def start_pipeline(self, scene_id: str, started_by: str) -> Job:
         """Queue a pipeline job on the scene's latest revision. SceneJobRunningError when the

@@ -279,3 +279,14 @@ def test_scene_list_shows_the_newest_job(client: TestClient, t3d5: Path) -> None
     wait_for_job(client, rerun["id"])
     listed = client.get("/api/scenes").json()
     assert listed[0]["latest_job"]["id"] == rerun["id"]
+
+
+def test_a_photo_stored_before_is_imported_again_and_named_in_the_answer(
+    client: TestClient, t3d5: Path
+) -> None:
+    first = upload(client, t3d5, name="t3d-5", run_pipeline="false")
+    assert first["same_photo"] is None
+    second = upload(client, t3d5, name="t3d-5 again", run_pipeline="false")
+    assert second["scene"]["id"] != first["scene"]["id"]  # a second scene of the photo
+    assert second["same_photo"]["id"] == first["scene"]["id"]
+    assert second["same_photo"]["name"] == "t3d-5"

@@ -147,6 +147,22 @@ export function uploadForm(
       });
       const progress = jobProgress("upload-job-progress");
       result.replaceChildren(el("p", {}, `Imported ${scene.name}. `, link), progress.element);
+      // Not refused (other labels for one photo are fine), but said: a second scene of a
+      // photo by mistake doubles an annotator's work.
+      const twin = imported.same_photo;
+      if (twin)
+        result.append(
+          el(
+            "p",
+            { className: "alert alert--warn", testid: "upload-same-photo" },
+            "This very photo was imported before, as ",
+            el("a", {
+              text: twin.name,
+              attrs: { href: `#/scenes/${encodeURIComponent(twin.id)}` },
+            }),
+            `: "${scene.name}" is a second scene of it.`,
+          ),
+        );
       await onImported(scene);
       // The new row above pushed the form down: its result stays where the person looks.
       showResult();
