@@ -515,7 +515,7 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
         // Someone saved other objects meanwhile: nothing to choose, so the edits go on top
         // of theirs by themselves, and the notice says so.
         const latest = mergeIfDisjoint ? await api.getScene(this.sceneId).catch(() => null) : null;
-        if (latest && this.overlaps(latest).length === 0) {
+        if (latest && !this.clashesWith(latest)) {
           await this.reloadLatest({ latest, merged: true });
           if (this.saveState.kind !== "error") await this.send(author, false);
           return;
@@ -543,24 +543,15 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
   }
 
   /**
-   * What stops the unsaved edits from going on top of `latest` unasked: the objects whose
-   * support both sides changed ("layout" when both moved the room's corners), and the edits
-   * `latest` can no longer take.
+   * Whether the unsaved edits cannot go on top of `latest` unasked: both sides changed an
+   * object's support (or both moved the room's corners), or `latest` can no longer take one.
    */
-  private overlaps(latest: SceneDocument): string[] {
-    const supportIn = (doc: SceneDocument, child: string) =>
-      doc.scene.supports?.find((s) => s.child === child);
+  private clashesWith(latest: SceneDocument): boolean {
     const objects = latest.scene.objects ?? [];
-    const clashes = this.pending
-      .filter(
-        (edit) =>
-          editProblem(edit, objects) !== null ||
-          (!isNoOp(edit, latest.scene.supports ?? []) &&
-            !sameRelation(supportIn(this.doc, edit.child), supportIn(latest, edit.child))),
-      )
-      .map((edit) => edit.child);
-    if (this.layoutPending && layoutMoved(this.doc, latest)) clashes.push("layout");
-    return clashes;
+    const clash = (edit: Edit) =>
+      editProblem(edit, objects) !== null ||
+      (!isNoOp(edit, latest.scene.supports ?? []) && supportChanged(this.doc, latest, edit.child));
+    return this.pending.some(clash) || (this.layoutPending && layoutMoved(this.doc, latest));
   }
 
   /**
@@ -588,14 +579,13 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
               "."
           : `Loaded revision ${doc.revision}.`,
       );
-      const before = (child: string) => previous.scene.supports?.find((s) => s.child === child);
-      const after = (child: string) => doc.scene.supports?.find((s) => s.child === child);
+      const after = (child: string) => supportOf(doc, child);
       lines.push(...this.dropUnsavable(doc));
       for (const edit of this.pending) {
         if (isNoOp(edit, doc.scene.supports ?? [])) {
           lines.push(`Your edit "${describeEdit(edit)}" is already in revision ${doc.revision}.`);
           this.edits.delete(edit.child);
-        } else if (!sameRelation(before(edit.child), after(edit.child))) {
+        } else if (supportChanged(previous, doc, edit.child)) {
           const theirs = after(edit.child);
           lines.push(
             `Both of you changed ${edit.child}: yours is kept on top (theirs: ` +
@@ -794,6 +784,13 @@ export function plural(count: number, noun: string): string {
   if (count === 1) return `${count} ${noun}`;
   return `${count} ${noun}${/(s|x|ch|sh)$/.test(noun) ? "es" : "s"}`;
 }
+
+const supportOf = (doc: SceneDocument, child: string) =>
+  doc.scene.supports?.find((s) => s.child === child);
+
+/** Whether `child`'s support differs between two revisions. */
+const supportChanged = (before: SceneDocument, after: SceneDocument, child: string) =>
+  !sameRelation(supportOf(before, child), supportOf(after, child));
 
 /** Whether the room's corners differ between two revisions. */
 function layoutMoved(before: SceneDocument, after: SceneDocument): boolean {

@@ -415,10 +415,7 @@ class Workbench:
             "removed_objects": current.scene.removed_by_person,
             "stages": stages,
             "models_dir": self.settings.models_dir,
-            # The promoted Relation Network and detector (None: the committed defaults).
-            "support_model_dir": self.models.active_dir(),
-            "detector_model_dir": self.detectors.active_dir(),
-            "model_names": self._model_names(),
+            **self._active_models(),
             "stage_options": stage_options,
         }
         # The depth stored with the scene, so a placement job measures the boxes from it too.
@@ -432,14 +429,20 @@ class Workbench:
             earlier_stages=tuple(current.scene.stages),
         )
 
-    def _model_names(self) -> dict[str, str]:
-        """The active models' names by the stages that run them."""
+    def _active_models(self) -> dict[str, Any]:
+        """reconstruct_scene's model arguments, from one look at each registry: the promoted
+        Relation Network's and detector's folders (None: the committed defaults) and their
+        names by the stages that run them, so the names are those of the models run."""
         relation = self.models.active_or_none()
         detector = self.detectors.active_or_none()
         names = {stage: model_label(relation) for stage in SUPPORT_STAGES if relation}
         if detector:
             names["objects_from_detector"] = model_label(detector)
-        return names
+        return {
+            "support_model_dir": self.models.folder(relation.id) if relation else None,
+            "detector_model_dir": self.detectors.folder(detector.id) if detector else None,
+            "model_names": names,
+        }
 
     def store_job_result(self, job: Job, run: JobRun, result: Reconstruction) -> None:
         """Store a job's computed result as the scene's next revision and finish the job."""

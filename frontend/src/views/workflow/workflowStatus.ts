@@ -92,7 +92,7 @@ const lastRejection = (flow: SceneWorkflow) =>
 
 /** The revision a reviewer last sent the scene back at, while the scene has moved on from it
  * in the same round of review (fixed, resubmitted): null otherwise. */
-export function rejectedAt(flow: SceneWorkflow): number | null {
+function rejectedAt(flow: SceneWorkflow): number | null {
   if (flow.state === "accepted" || flow.state === "predicted" || flow.state === "new") return null;
   const rejection = lastRejection(flow);
   return rejection && flow.revision > rejection.revision ? rejection.revision : null;
