@@ -78,6 +78,25 @@ test("shows the frustum and arrows, shares the selection with the photo, exports
   // The selected object glows in 3D, on top of its class colour.
   await page.mouse.move(4, 4);
   expect(brightness(await colour(first))).toBeGreaterThan(brightness(plain) + 0.1);
+  // Its id is over it, as on the photo, marked as selected; other objects' ids too, and a click
+  // on one selects that object.
+  const label = (id: string) => page.getByTestId(`scene3d-label-${id}`);
+  await expect(label(first)).toBeVisible();
+  await expect(label(first)).toHaveClass(/is-selected/);
+  const tagged = await page
+    .locator('[data-testid^="scene3d-label-"]:visible')
+    .evaluateAll((tags) => tags.map((t) => (t as HTMLElement).dataset.object ?? ""));
+  expect(tagged.length).toBeGreaterThanOrEqual(Math.min(3, objects.length));
+  const other = tagged.find((id) => id !== first) ?? "";
+  await label(other).click();
+  await expect(canvas).toHaveAttribute("data-selected", other);
+  await expect(label(first)).not.toHaveClass(/is-selected/);
+  await page.getByTestId("toggle-scene3d-labels").uncheck();
+  await expect(label(other)).toBeHidden();
+  await page.getByTestId("toggle-scene3d-labels").check();
+  await expect(label(other)).toBeVisible();
+  await canvas.click({ position: { x: 4, y: 4 } });
+  await page.mouse.move(4, 4);
 
   // A click on nothing in 3D clears it; a click on the photo selects there and in 3D.
   await canvas.click({ position: { x: 4, y: 4 } });

@@ -13,6 +13,7 @@ import { objectCaption } from "./objectCaption";
 import { downloadCanvasPng, pngFileName } from "./pngExport";
 import { ViewportCamera } from "./viewportCamera";
 import { buildViewportDom } from "./viewportDom";
+import { ViewportLabels } from "./viewportLabels";
 import { LiveLayers } from "./viewportLive";
 import { ViewportObjects } from "./viewportObjects";
 import { ViewportPicking } from "./viewportPicking";
@@ -22,8 +23,8 @@ import { createRenderer, type FrameStats, ViewportRender } from "./viewportRende
 // Its parts, one file each: viewportDom (toolbar, canvas, status line), viewportRender (frames
 // on demand), viewportCamera (orbit, overview, photo viewpoint), viewportLive (room, frustum,
 // arrows), viewportObjects (the GLB's objects), viewportPicking (hover and click), depthPoints
-// (each object's points from the depth, for scenes with depth), and viewportProbe (what
-// end-to-end tests read).
+// (each object's points from the depth, for scenes with depth), viewportLabels (the objects'
+// ids over the view), and viewportProbe (what end-to-end tests read).
 export type { ProbedCanvas, Scene3dProbe } from "./viewportDom";
 
 export function mountScene3d(
@@ -55,6 +56,7 @@ export function mountScene3d(
     canvas,
     viewport: dom.viewport,
     stats,
+    afterFrame: () => labels.update(),
   });
 
   /** The room, frustum and arrows for the current revision and layout draft. */
@@ -90,6 +92,15 @@ export function mountScene3d(
     },
   });
   const picking = new ViewportPicking(canvas, view.camera, () => objects.model);
+  const labels = new ViewportLabels({
+    viewport: dom.viewport,
+    toolbar: dom.extras,
+    camera: view.camera,
+    session,
+    model: () => objects.model,
+    colours: () => objects.colours(),
+    requestRender,
+  });
   const depthPoints = session.doc.scene.depth
     ? mountDepthPoints({
         scene,
@@ -173,6 +184,7 @@ export function mountScene3d(
     unsubscribe();
     unsubscribeLayout();
     objects.dispose();
+    labels.dispose();
     depthPoints?.dispose();
     frames.dispose();
     view.dispose();

@@ -68,7 +68,7 @@ export class ViewportObjects {
   }
 
   /** Objects in 3D have the colours of their masks on the photo. */
-  private colours() {
+  colours() {
     return maskColours(
       this.inputs.session.objects,
       maskStyle.get().colouring,

@@ -41,6 +41,8 @@ export interface ViewportRenderInputs {
   /** The element whose size the drawing follows. */
   viewport: HTMLElement;
   stats: FrameStats;
+  /** Called after each frame (the labels over the view follow it). */
+  afterFrame?: () => void;
 }
 
 export class ViewportRender {
@@ -75,6 +77,7 @@ export class ViewportRender {
     this.frameInterval = start - this.lastFrameAt;
     this.lastFrameAt = start;
     renderer.render(scene, camera);
+    this.inputs.afterFrame?.();
     this.lastFrameSize = { width: canvas.width, height: canvas.height };
     stats.frames += 1;
     stats.renderMs.push(performance.now() - start);
