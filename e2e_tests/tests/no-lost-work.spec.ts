@@ -193,6 +193,10 @@ test("the history shows what each revision changed and reverts to any of them", 
   await expect(since.locator("li[data-child='o1']")).toHaveAttribute("data-kind", "moved");
   await expect(since).toContainText("objects removed: o2");
   await expect(since.locator("li[data-object='o0']")).toContainText("class");
+  // Each object a line names selects it on the photo; a removed one is struck through.
+  await since.locator("li[data-object='o0'] .object-id-link", { hasText: "o0" }).click();
+  await expect(page.getByTestId("mask-o0")).toHaveClass(/is-selected/);
+  await expect(since.locator("li[data-child='o2'] del", { hasText: "o2" }).first()).toBeVisible();
   await page.screenshot({ path: screenshotPath("revision-diff.png"), fullPage: true });
 
   // Revert to the pipeline's revision: the whole scene as the pipeline stored it (bob's removed

@@ -424,7 +424,7 @@ test("an object named in a warning is a link that selects it, and the link goes 
   // one line over the photo; opened by its title.
   await expect(warnings).not.toHaveAttribute("open", "");
   await page.getByTestId("pipeline-warnings-title").click();
-  const link = warnings.locator(".pipeline-warning-object").first();
+  const link = warnings.locator(".object-id-link").first();
   await expect(link).toBeVisible();
   const id = (await link.textContent()) ?? "";
   expect(id).toMatch(/^[a-z]\w*$/);
@@ -435,6 +435,6 @@ test("an object named in a warning is a link that selects it, and the link goes 
   await page.keyboard.press("Delete");
   await expect(page.getByTestId(`object-row-${id}`)).toHaveCount(0);
   // The warning still names it, as plain text: there is nothing left to select.
-  await expect(warnings.locator(".pipeline-warning-object", { hasText: id })).toHaveCount(0);
+  await expect(warnings.locator(".object-id-link", { hasText: id })).toHaveCount(0);
   await expect(warnings).toContainText(id);
 });

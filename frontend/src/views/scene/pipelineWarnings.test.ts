@@ -1,7 +1,7 @@
 // Only the notes the pipeline marked as warnings are listed, each with its stage.
 import type { StageRun } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
-import { pipelineWarnings, textWithObjectIds } from "./pipelineWarnings";
+import { pipelineWarnings } from "./pipelineWarnings";
 
 const run = (name: string, note: string | null, warning: boolean): StageRun => ({
   name,
@@ -46,25 +46,5 @@ describe("pipeline warnings", () => {
 
   it("has none for a scene without stages", () => {
     expect(pipelineWarnings([])).toEqual([]);
-  });
-
-  it("cuts a warning at the ids of the scene's objects, and only at those", () => {
-    const ids = new Set(["o3", "o5", "o4_1"]);
-    expect(textWithObjectIds("keep their box: o3, o5, o4_1 and o9 (o3)", ids)).toEqual([
-      { text: "keep their box: " },
-      { id: "o3" },
-      { text: ", " },
-      { id: "o5" },
-      { text: ", " },
-      { id: "o4_1" },
-      { text: " and " },
-      { removed: "o9" },
-      { text: " (" },
-      { id: "o3" },
-      { text: ")" },
-    ]);
-    expect(textWithObjectIds("no objects", ids)).toEqual([{ text: "no objects" }]);
-    // Words that only look alike stay text.
-    expect(textWithObjectIds("door ok2 o3x", ids)).toEqual([{ text: "door ok2 o3x" }]);
   });
 });

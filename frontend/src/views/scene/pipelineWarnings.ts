@@ -3,10 +3,11 @@
 // first time this browser shows a scene's warnings, unless all are routine; after that folded
 // to one line that names the stages, so the photo is not pushed down the page on every visit.
 import type { StageRun } from "@holiscene/schema";
-import { button, el } from "../../dom";
+import { el } from "../../dom";
 import { browserStorage } from "../../state/browserStorage";
 import { plural, type SceneSession } from "../../state/sceneSession";
 import { readableStage } from "../common/jobProgress";
+import { linkObjectIds } from "./objectIdLinks";
 
 export interface PipelineWarning {
   stage: string;
@@ -55,31 +56,6 @@ export function pipelineWarnings(
 export const warnedStages = (warnings: readonly PipelineWarning[]): string =>
   [...new Set(warnings.map((w) => w.stage))].join(", ");
 
-/** How the pipeline and the detector name objects (o12, d3, o4_1): a token of a warning that
- * looks like one but is not in the scene names an object removed since the run. */
-const OBJECT_ID = /^[od]\d+(_\d+)?$/;
-
-type WarningPart = { text: string } | { id: string } | { removed: string };
-
-/** A warning's text cut at the ids of the scene's objects: each `id` part can become a link
- * that selects its object ("masks: o3, o5" -> "masks: ", o3, ", ", o5); an id no longer in
- * the scene is a `removed` part. */
-export function textWithObjectIds(text: string, ids: ReadonlySet<string>): WarningPart[] {
-  const parts: WarningPart[] = [];
-  let plain = "";
-  // Ids are word-like tokens; anything else stays text.
-  for (const token of text.split(/([A-Za-z]\w*)/)) {
-    const part = ids.has(token) ? { id: token } : OBJECT_ID.test(token) ? { removed: token } : null;
-    if (part) {
-      if (plain) parts.push({ text: plain });
-      plain = "";
-      parts.push(part);
-    } else plain += token;
-  }
-  if (plain) parts.push({ text: plain });
-  return parts;
-}
-
 /** The panel (hidden while there is no warning) and how to stop updating it. */
 export function pipelineWarningsPanel(session: SceneSession): {
   element: HTMLElement;
@@ -122,20 +98,11 @@ export function pipelineWarningsPanel(session: SceneSession): {
     }
     // An object named in a warning is one click away: the link selects it on the photo.
     const linked = (text: string) =>
-      textWithObjectIds(text, ids).map((part) =>
-        "id" in part
-          ? button(part.id, {
-              className: "pipeline-warning-object",
-              title: `Select ${part.id}`,
-              onClick: () => session.select(part.id),
-            })
-          : "removed" in part
-            ? el("del", {
-                className: "pipeline-warning-removed",
-                text: part.removed,
-                attrs: { title: `${part.removed} was removed since the pipeline ran` },
-              })
-            : part.text,
+      linkObjectIds(
+        text,
+        ids,
+        (id) => session.select(id),
+        (id) => `${id} was removed since the pipeline ran`,
       );
     list.replaceChildren(
       ...warnings.map((w) =>

@@ -13,6 +13,7 @@ import type { ObjectEditor } from "../../state/objectEditor";
 import type { SceneSession } from "../../state/sceneSession";
 import { diffLines } from "./history/diffLines";
 import { revertTo } from "./history/revertRevision";
+import { linkObjectIds } from "./objectIdLinks";
 
 export interface RevisionHistory {
   /** Open the history at what changed from revision `from` to the current one. */
@@ -64,8 +65,20 @@ export function mountRevisionHistory(
     try {
       const after = await to();
       const before = from !== null && from >= 1 ? await revision(from) : null;
-      const lines = diffLines(before, after, (id) =>
-        before !== null ? restoreLink(id, before.revision) : null,
+      const idsNow = new Set(session.objects.map((o) => o.id));
+      // Each object a line names is a link that selects it on the photo, as in the warnings.
+      const linkIds = (text: string) =>
+        linkObjectIds(
+          text,
+          idsNow,
+          (id) => session.select(id),
+          (id) => `${id} is not in the scene now`,
+        );
+      const lines = diffLines(
+        before,
+        after,
+        (id) => (before !== null ? restoreLink(id, before.revision) : null),
+        linkIds,
       );
       const none = mode === "since" && lines.length === 0;
       box.replaceChildren(...(none ? [el("li", { text: "nothing has changed since" })] : lines));

@@ -7,11 +7,13 @@ import { describeChange, diffScenes } from "../../../state/revisionDiff";
 import { plural } from "../../../state/sceneSession";
 
 /** What `after` changed from `before` (null: `after` is the imported scene); `restoreLink`
- * gives a removed object's "restore" link (null: none, e.g. it is back in the scene). */
+ * gives a removed object's "restore" link (null: none, e.g. it is back in the scene), and
+ * `linkIds` turns the object ids in a line's text into links (objectIdLinks.ts). */
 export function diffLines(
   before: SceneDocument | null,
   after: SceneDocument,
   restoreLink: (id: string) => HTMLElement | null = () => null,
+  linkIds: (text: string) => (HTMLElement | string)[] = (text) => [text],
 ): HTMLLIElement[] {
   const diff = before
     ? diffScenes(before.scene, after.scene)
@@ -29,7 +31,7 @@ export function diffLines(
   const added = new Set(diff.objectsAdded);
   const lines = [
     ...(diff.objectsAdded.length > 0
-      ? [el("li", { text: `objects added: ${diff.objectsAdded.join(", ")}` })]
+      ? [el("li", {}, ...linkIds(`objects added: ${diff.objectsAdded.join(", ")}`))]
       : []),
     ...(diff.objectsRemoved.length > 0
       ? [
@@ -45,22 +47,24 @@ export function diffLines(
         ]
       : []),
     ...diff.supports.map((c) =>
-      el("li", {
-        text: `${added.has(c.child) ? "(new) " : ""}${describeChange(c)}`,
-        attrs: { "data-child": c.child, "data-kind": c.kind },
-      }),
+      el(
+        "li",
+        { attrs: { "data-child": c.child, "data-kind": c.kind } },
+        ...linkIds(`${added.has(c.child) ? "(new) " : ""}${describeChange(c)}`),
+      ),
     ),
     ...drawn.map((c) =>
-      el("li", {
-        text: `${c.id}: ${c.drawn.join(", ")}`,
-        attrs: { "data-object": c.id },
-      }),
+      el("li", { attrs: { "data-object": c.id } }, ...linkIds(`${c.id}: ${c.drawn.join(", ")}`)),
     ),
     ...(placed.length > 0
       ? [
-          el("li", {
-            text: `3D box or shape of ${plural(placed.length, "object")}: ${placed.join(", ")}`,
-          }),
+          el(
+            "li",
+            {},
+            ...linkIds(
+              `3D box or shape of ${plural(placed.length, "object")}: ${placed.join(", ")}`,
+            ),
+          ),
         ]
       : []),
     ...(diff.layoutChanged ? [el("li", { text: "room layout or camera changed" })] : []),
