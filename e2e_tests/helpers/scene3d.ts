@@ -73,6 +73,7 @@ interface Probe {
   screenPointOf(id: string): { x: number; y: number } | null;
   objectColour(id: string): number[] | null;
   renderInfo(): { calls: number; triangles: number; width: number; height: number };
+  glbLoad(): { ms: number; triangles: number } | null;
   orbit(azimuth: number): void;
   depthPoints(): { shown: boolean; partial: number[]; completed: number[] } | null;
 }

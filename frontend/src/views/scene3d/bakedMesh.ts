@@ -148,48 +148,69 @@ function flipped(geometry: THREE.BufferGeometry): THREE.BufferGeometry {
  */
 export function solidWinding(geometry: THREE.BufferGeometry, matrix: THREE.Matrix4): 1 | -1 | 0 {
   const position = geometry.getAttribute("position");
-  const count = geometry.index ? geometry.index.count : position.count;
+  const index = geometry.index;
+  const count = index ? index.count : position.count;
   if (count < 12 || count % 3 !== 0) return 0;
-  // Vertices by position (to a micrometre): a solid stored with split vertices (a seam, or
-  // a vertex per face for flat normals) is still closed.
-  const ids = new Map<string, number>();
-  const micro = (x: number) => Math.round(x * 1e6);
-  const idOf = (v: number) => {
-    const key = `${micro(position.getX(v))},${micro(position.getY(v))},${micro(position.getZ(v))}`;
-    let id = ids.get(key);
-    if (id === undefined) {
-      id = ids.size;
-      ids.set(key, id);
-    }
-    return id;
+  const ids = vertexIdsByPosition(position);
+  // Directed edge (p, q) -> how many triangles wind it, keyed p * vertices + q: numbers, not
+  // strings, since a crowded room's GLB has some 10^5 triangles to go through on opening.
+  const vertices = position.count;
+  const edges = new Map<number, number>();
+  const wind = (p: number, q: number) => {
+    const key = p * vertices + q;
+    edges.set(key, (edges.get(key) ?? 0) + 1);
   };
-  const edges = new Map<string, number>(); // directed edge -> how many triangles wind it
   const a = new THREE.Vector3();
   const b = new THREE.Vector3();
   const c = new THREE.Vector3();
   let volume = 0;
   for (let k = 0; k < count; k += 3) {
-    const v = [0, 1, 2].map((j) => geometry.index?.getX(k + j) ?? k + j) as [
-      number,
-      number,
-      number,
-    ];
-    const [p, q, r] = v.map(idOf) as [number, number, number];
+    const i = index ? index.getX(k) : k;
+    const j = index ? index.getX(k + 1) : k + 1;
+    const l = index ? index.getX(k + 2) : k + 2;
+    const [p, q, r] = [ids[i] as number, ids[j] as number, ids[l] as number];
     if (p === q || q === r || r === p) continue; // degenerate: no area, no edges
-    for (const edge of [`${p},${q}`, `${q},${r}`, `${r},${p}`]) {
-      edges.set(edge, (edges.get(edge) ?? 0) + 1);
-    }
-    a.fromBufferAttribute(position, v[0]);
-    b.fromBufferAttribute(position, v[1]);
-    c.fromBufferAttribute(position, v[2]);
+    wind(p, q);
+    wind(q, r);
+    wind(r, p);
+    a.fromBufferAttribute(position, i);
+    b.fromBufferAttribute(position, j);
+    c.fromBufferAttribute(position, l);
     volume += a.dot(b.cross(c)); // six times the signed volume of (origin, a, b, c)
   }
   // Closed and consistently wound: each edge is crossed as often one way as the other (parts
   // that touch, a table's top and legs, may share edges).
-  for (const [edge, times] of edges) {
-    const [p, q] = edge.split(",");
-    if (edges.get(`${q},${p}`) !== times) return 0;
+  for (const [key, times] of edges) {
+    const p = Math.floor(key / vertices);
+    const q = key - p * vertices;
+    if (edges.get(q * vertices + p) !== times) return 0;
   }
   const signed = volume * Math.sign(matrix.determinant());
   return signed > 0 ? 1 : signed < 0 ? -1 : 0;
+}
+
+/** Each vertex's id by its position (to a micrometre): a solid stored with split vertices (a
+ * seam, or a vertex per face for flat normals) is still closed. Vertices are sorted by their
+ * rounded coordinates and equal neighbours share an id (no string keys). */
+function vertexIdsByPosition(position: THREE.BufferAttribute | THREE.InterleavedBufferAttribute) {
+  const n = position.count;
+  const rounded = new Float64Array(n * 3);
+  for (let v = 0; v < n; v++) {
+    rounded[3 * v] = Math.round(position.getX(v) * 1e6);
+    rounded[3 * v + 1] = Math.round(position.getY(v) * 1e6);
+    rounded[3 * v + 2] = Math.round(position.getZ(v) * 1e6);
+  }
+  const order = Array.from({ length: n }, (_, v) => v);
+  const compare = (u: number, v: number) =>
+    (rounded[3 * u] as number) - (rounded[3 * v] as number) ||
+    (rounded[3 * u + 1] as number) - (rounded[3 * v + 1] as number) ||
+    (rounded[3 * u + 2] as number) - (rounded[3 * v + 2] as number);
+  order.sort(compare);
+  const ids = new Uint32Array(n);
+  let id = 0;
+  order.forEach((v, k) => {
+    if (k > 0 && compare(order[k - 1] as number, v) !== 0) id += 1;
+    ids[v] = id;
+  });
+  return ids;
 }

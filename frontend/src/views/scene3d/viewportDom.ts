@@ -21,6 +21,9 @@ export interface Scene3dProbe {
   screenPointOf(id: string): { x: number; y: number } | null;
   /** The object's colour as drawn now (linear RGB; brighter while selected or hovered). */
   objectColour(id: string): number[] | null;
+  /** How long the last scene.glb took to parse and bake into what is drawn (milliseconds),
+   * and its triangles; null before the first. */
+  glbLoad(): { ms: number; triangles: number } | null;
   /** The last frame's draw calls and triangles, and the drawing buffer's size then. */
   renderInfo(): { calls: number; triangles: number; width: number; height: number };
   /** Turn the view about the orbit target, as a horizontal drag does (radians). */

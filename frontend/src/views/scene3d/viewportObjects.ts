@@ -53,6 +53,8 @@ export interface ViewportObjectsInputs {
 
 export class ViewportObjects {
   model: SceneModel | null = null;
+  /** How long the last GLB took to parse and bake (milliseconds), for the benchmark. */
+  lastLoadMs: number | null = null;
   /** glbKey of the revision whose GLB was asked for last. */
   private loadedGlb = "";
   private readonly abort = new AbortController();
@@ -104,11 +106,10 @@ export class ViewportObjects {
       return;
     }
     if (!response.ok) throw new Error(`scene.glb: ${response.status} ${response.statusText}`);
-    const loaded = await SceneModel.parse(
-      await response.arrayBuffer(),
-      session.objects,
-      this.colours(),
-    );
+    const bytes = await response.arrayBuffer();
+    const start = performance.now();
+    const loaded = await SceneModel.parse(bytes, session.objects, this.colours());
+    this.lastLoadMs = performance.now() - start;
     if (this.abort.signal.aborted) {
       loaded.dispose();
       return;

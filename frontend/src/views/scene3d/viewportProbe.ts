@@ -1,6 +1,6 @@
 // The end-to-end tests' window into the 3D view (Scene3dProbe): read from the view's parts.
 
-import type * as THREE from "three";
+import * as THREE from "three";
 import type { DepthPointClouds } from "./depthPoints";
 import type { ViewportCamera } from "./viewportCamera";
 import type { Scene3dProbe } from "./viewportDom";
@@ -43,6 +43,17 @@ export function scene3dProbe(inputs: ProbeInputs): Scene3dProbe {
         partial: depthPoints.positions("partial"),
         completed: depthPoints.positions("completed"),
       },
+    glbLoad: () => {
+      const { model, lastLoadMs } = objects;
+      if (!model || lastLoadMs === null) return null;
+      let triangles = 0;
+      model.root.traverse((node) => {
+        if (!(node instanceof THREE.Mesh)) return;
+        const geometry = node.geometry as THREE.BufferGeometry;
+        triangles += (geometry.index?.count ?? geometry.getAttribute("position").count) / 3;
+      });
+      return { ms: lastLoadMs, triangles };
+    },
     renderInfo: () => ({
       calls: renderer.info.render.calls,
       triangles: renderer.info.render.triangles,
