@@ -156,10 +156,15 @@ test("a class changed with the picker, and an object deleted, come back with und
   expect(gone).toBeLessThan(HOLD_MS / 2);
   expect(back).toBeLessThan(HOLD_MS / 2);
 
-  // Deleted again, and the page reloaded (its undo history gone): the revision history's diff
-  // of that deletion brings the one object back, supports and all, changing nothing else.
+  // Deleted again, with the mouse this time (the selected object's "remove" in the tool hint),
+  // and the page reloaded (its undo history gone): the revision history's diff of that
+  // deletion brings the one object back, supports and all, changing nothing else.
+  await page.getByRole("button", { name: "Select", exact: true }).click();
   await clickObject(page, target);
-  await page.keyboard.press("Delete");
+  const hint = page.getByTestId("selected-object-hint");
+  await expect(hint).toContainText(`${target}: remove (Delete) · change class (Shift+C)`);
+  await hint.getByTestId("remove-selected-object").click();
+  await expect(page.getByTestId("selected-object-hint")).toHaveCount(0);
   doc = await revisionSaved(page, sceneId, start + 6);
   expect(objectOf(doc, target)).toBeUndefined();
   await page.reload();

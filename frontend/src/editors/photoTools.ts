@@ -4,11 +4,14 @@
 // nothing here, so those listeners get the events. Any other tool gets the primary button's
 // presses and the clicks are kept from the photo's own listeners. Other modules add tools
 // with `tools.add(tool)` (the box tool, the mask tools), drawing in `host.overlay`.
+import type { SceneObject } from "@holiscene/schema";
 import { button, el, svgEl } from "../dom";
 import { registerShortcut } from "../shortcuts";
 import { lockText, titleUnlessLocked } from "../state/editLock";
 import type { ObjectEditor } from "../state/objectEditor";
 import type { SceneSession } from "../state/sceneSession";
+import { objectName } from "./boxes/boxEdits";
+import { changeSelectedClass, removeSelected, SET_CLASS_KEY } from "./objectShortcuts";
 import { routePointer, type ToolState } from "./tools/pointerRouting";
 import "./photoTools.css";
 
@@ -87,8 +90,36 @@ export function toolHint(text: string): HTMLElement {
   return el("span", { className: "tool-hint", text });
 }
 
+/** What Select's hint says while an object is selected on an editable scene: what can be done
+ * with it, the removal and the class as links (a mouse user found no other way to remove an
+ * object than the Delete key, which only the help named). */
+function selectedObjectHint(host: PhotoToolHost, object: SceneObject): HTMLElement {
+  const link = (text: string, testid: string, title: string, run: () => void) =>
+    button(text, { className: "link-like tool-hint-link", testid, title, onClick: run });
+  return el(
+    "span",
+    { className: "tool-hint", testid: "selected-object-hint" },
+    `${objectName(object)}: `,
+    link(
+      "remove",
+      "remove-selected-object",
+      `Remove ${object.id} with its mask and supports (Delete; Ctrl+Z brings it back)`,
+      () => void removeSelected(host.objects),
+    ),
+    ` (Delete) · `,
+    link(
+      "change class",
+      "change-selected-class",
+      `Pick another class for ${object.id} (${SET_CLASS_KEY})`,
+      () => void changeSelectedClass(host.objects, host.svg),
+    ),
+    ` (${SET_CLASS_KEY}) · drag its arrow's head to a new supporter.`,
+  );
+}
+
 /** Select: the photo's own clicks and arrow drags (see the module's comment). */
-function selectTool(session: SceneSession): PhotoTool {
+function selectTool(host: PhotoToolHost): PhotoTool {
+  const { session } = host;
   return {
     id: SELECT_TOOL_ID,
     label: "Select",
@@ -101,6 +132,8 @@ function selectTool(session: SceneSession): PhotoTool {
       // Why a key or a click did nothing ("The floor holds o0 up from below only.") is said
       // here too: the line under the photo that says it may be below the window.
       const said = picking ? null : session.message;
+      const selected = session.editable ? session.selectedObject : undefined;
+      if (!picking && said === null && selected) return selectedObjectHint(host, selected);
       const hint = toolHint(
         picking
           ? `Now click the object that holds up ${picking} (or F, W, C) · Esc cancels.`
@@ -125,7 +158,7 @@ export function mountPhotoTools(toolbar: HTMLElement, host: PhotoToolHost): Phot
     className: "photo-tools",
     attrs: { role: "toolbar", "aria-label": "Photo tools" },
   });
-  const select = selectTool(host.session);
+  const select = selectTool(host);
   const optionsBox = el("span", { className: "photo-tool-options", testid: "photo-tool-options" });
   toolbar.append(buttonRow, optionsBox);
   // The options take the height of the tallest tool's options at this width: changing tool
