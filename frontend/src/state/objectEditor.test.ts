@@ -10,6 +10,7 @@ import { MemoryStorage } from "../testing/memoryStorage";
 import { sceneDocument, sceneObject, sessionOn } from "../testing/sceneDocuments";
 import { revertTo } from "../views/scene/history/revertRevision";
 import { DraftStore } from "./draftStore";
+import { twinNote, uncutNote } from "./newObjectNotes";
 import {
   type NewObject,
   type ObjectEdit,
@@ -18,7 +19,6 @@ import {
   restoreEdits,
   savedAlready,
   touchedIds,
-  uncutNote,
   WHOLE_SCENE,
 } from "./objectEditor";
 import type { SceneSession } from "./sceneSession";
@@ -557,5 +557,53 @@ describe("new objects the server could not cut out", () => {
       mask: { origin: [0, 0], size: [4, 4], rle: [0, 16], source: "box" },
     };
     expect(uncutNote([given as NewObject], doc)).toBe("");
+  });
+});
+
+describe("new objects on top of one of their class", () => {
+  const at = (id: string, cls: string, bbox: [number, number, number, number]): SceneObject => ({
+    ...object(id, cls),
+    bbox,
+  });
+  const add = (id: string): NewObject => ({
+    kind: "add_object",
+    id,
+    class: "bed",
+    bbox: [0, 0, 4, 4],
+    source: "detector",
+  });
+
+  it("are named with the object they overlap, and how to undo the twin", () => {
+    const doc = documentOf(7, [
+      at("o0", "bed", [10, 50, 200, 180]),
+      at("d3", "bed", [0, 20, 190, 170]),
+    ]);
+    expect(twinNote([add("d3")], doc)).toBe(
+      " d3 overlaps o0, also a bed: if they are the same bed, remove d3 (Delete).",
+    );
+    // Inside a larger box of its class: a part taken for a second one.
+    const inside = documentOf(7, [
+      at("o0", "bed", [0, 0, 400, 300]),
+      at("d3", "bed", [10, 10, 60, 40]),
+    ]);
+    expect(twinNote([add("d3")], inside)).toMatch(/^ d3 overlaps o0/);
+  });
+
+  it("say nothing of other classes, boxes apart, or objects added together", () => {
+    const otherClass = documentOf(7, [
+      at("o0", "sofa", [10, 50, 200, 180]),
+      at("d3", "bed", [0, 20, 190, 170]),
+    ]);
+    expect(twinNote([add("d3")], otherClass)).toBe("");
+    const apart = documentOf(7, [
+      at("o0", "bed", [0, 0, 100, 100]),
+      at("d3", "bed", [80, 0, 180, 100]),
+    ]);
+    expect(twinNote([add("d3")], apart)).toBe("");
+    const together = documentOf(7, [
+      at("d2", "bed", [0, 0, 100, 100]),
+      at("d3", "bed", [0, 0, 100, 100]),
+    ]);
+    expect(twinNote([add("d2"), add("d3")], together)).toBe("");
   });
 });

@@ -28,6 +28,7 @@ import { freshIds } from "../views/scene/detectionOffers";
 import { getAuthor } from "./author";
 import { HistoryKeeper } from "./editHistory";
 import { lockText } from "./editLock";
+import { newObjectNotes } from "./newObjectNotes";
 import { predictDocument } from "./objectPrediction";
 import { trackSave } from "./savesInFlight";
 import type { SceneSession } from "./sceneSession";
@@ -48,23 +49,6 @@ export type ObjectEdit =
 
 /** What an action that restored the whole scene touched: no object id looks like it. */
 export const WHOLE_SCENE = "*scene";
-
-/**
- * What to say of new objects the server could not cut out (their mask is their whole box,
- * which then covers whatever else is in it): "" when every one was cut.
- */
-export function uncutNote(edits: readonly ObjectEdit[], doc: SceneDocument): string {
-  const added = new Set(edits.flatMap((e) => (e.kind === "add_object" && !e.mask ? [e.id] : [])));
-  const uncut = (doc.scene.objects ?? []).filter(
-    (o) => added.has(o.id) && o.mask?.source === "box",
-  );
-  if (uncut.length === 0) return "";
-  const ids = uncut.map((o) => o.id).join(", ");
-  // What to do first: the status line shows its start, the rest on a click or hover.
-  const whose = uncut.length === 1 ? `${ids}'s mask is its` : `the masks of ${ids} are their`;
-  const them = uncut.length === 1 ? "it" : "them";
-  return ` But ${whose} whole box: fix with Brush, Eraser or Refine (the automatic cut could not separate ${them}).`;
-}
 
 /** What the editor is doing: nothing (with what the last action did), or saving an action. */
 export type ObjectEditStatus =
@@ -637,7 +621,7 @@ export class ObjectEditor extends HistoryKeeper<number> implements Undoable {
     this.remember(doc);
     // No revision number: the save bar says which revision is the latest, and this line stays
     // up while later saves move it on.
-    const message = (note ?? `${capital(label)}: saved.`) + uncutNote(edits, doc);
+    const message = (note ?? `${capital(label)}: saved.`) + newObjectNotes(edits, doc);
     this.setStatus({ kind: "idle", message, error: false });
     return { before, after: doc.revision, edits };
   }
