@@ -397,7 +397,7 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   });
   await page.getByTestId("workflow-accept").click();
   await expect(page.getByTestId("workflow-state")).toHaveText("accepted");
-  expect(asked).toMatch(/^Accept this scene\? .* objects have a supporter set by a person\.$/);
+  expect(asked).toMatch(/^Accept this scene\? .* objects? ha(s|ve) a supporter set by a person\.$/);
   await page.getByTestId("dashboard-link").click();
   await expect(page.getByTestId("state-count-accepted")).toHaveText("2");
   for (const state of ["new", "predicted", "in_annotation", "submitted", "rejected"]) {

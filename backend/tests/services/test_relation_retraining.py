@@ -73,6 +73,9 @@ def test_a_new_model_is_made_active_only_when_it_does_better_on_the_held_out_sce
     tie = heldout_verdict([0.5, 0.2], [0.5 + 1e-12, 0.2], 3, enough)
     assert (tie.status, tie.promote) == ("candidate", False)
     assert tie.note == "the same held-out scores as v3, which stays active"
+    # A tie on one item says how little it rests on.
+    one = heldout_verdict([1.0], [1.0], 1, 1, 4)
+    assert one.note == "the same held-out scores as v1 on 1 held-out item only, which stays active"
     # Better on a handful of items only: kept as a candidate, the active model stays.
     few = heldout_verdict([0.75, 0.2], [0.5, 0.2], 2, 4)
     assert (few.status, few.promote) == ("candidate", False)

@@ -262,7 +262,8 @@ class RetrainJob(TrainingJob):
         heldout_objects = sum(s.labelled for s in heldout)
         self._log(
             f"{len(labelled)} labelled scenes: {len(train)} to train on, "
-            f"{len(heldout)} held out ({heldout_objects} labelled objects)"
+            f"{len(heldout)} held out ({heldout_objects} labelled "
+            f"{'object' if heldout_objects == 1 else 'objects'})"
         )
         self.models.seed_if_empty()
         parent = self.models.active_or_none()
@@ -421,8 +422,14 @@ def heldout_verdict(
     if mine > theirs:
         return Verdict("accepted")
     if mine == theirs:
+        few = (
+            f" on {items} held-out {'item' if items == 1 else 'items'} only"
+            if items < enough_items
+            else ""
+        )
         return Verdict(
-            "candidate", f"the same held-out scores as v{active_version}, which stays active"
+            "candidate",
+            f"the same held-out scores as v{active_version}{few}, which stays active",
         )
     return Verdict("rejected")
 

@@ -35,9 +35,12 @@ describe("job texts", () => {
 
   it("names a running or failed job's stage as people read it", () => {
     const running: Job = { ...job("layout_from_lines"), status: "running", progress: 0.42 };
-    expect(describeJob(running)).toBe("Running layout from lines · 42%");
+    expect(describeJob(running)).toBe("Running room layout · 42%");
     const failed: Job = { ...job("masks_grabcut"), status: "failed", error: "no memory" };
-    expect(describeJob(failed)).toBe("Pipeline failed in masks grabcut: no memory");
+    expect(describeJob(failed)).toBe("Pipeline failed in masks: no memory");
+    // A stage without words of its own is still read without its underscores.
+    const other: Job = { ...job("some_new_stage"), status: "running", progress: 0.1 };
+    expect(describeJob(other)).toBe("Running some new stage · 10%");
   });
 
   it("says how long a running job has run and, at its pace, about how long it has left", () => {

@@ -14,9 +14,38 @@ export function waitingText(job: Job): string {
     : "The pipeline is still running on this scene; it opens when done.";
 }
 
-/** A pipeline stage's name as people read it: "layout_from_lines" -> "layout from lines". */
+/** What each pipeline stage does, in an annotator's words (the stage names are the pipeline's:
+ * `holiscene infer --stages`, docs/pipeline.md). */
+const STAGE_WORDS: Record<string, string> = {
+  objects_from_detections: "objects from the given boxes",
+  objects_from_detector: "objects from the detector",
+  intrinsics: "camera intrinsics",
+  masks_grabcut: "masks",
+  masks_from_boxes: "masks",
+  layout_from_lines: "room layout",
+  layout_from_depth: "room layout from the depth",
+  layout_by_network: "room layout (network)",
+  layout_from_revision: "room layout as saved",
+  layout_holds_hung_objects: "room around hung objects",
+  supports_from_network: "supports",
+  supports_from_priors: "supports",
+  heights_by_metrology: "object heights",
+  placement: "3D placement",
+  boxes_on_supporters: "3D placement",
+  boxes_by_refiner: "3D boxes",
+  boxes_by_network: "3D boxes (network)",
+  boxes_from_depth: "3D boxes from the depth",
+  shapes_fit: "shapes",
+  shapes_by_mesh_net: "shapes (mesh network)",
+  shape_completion: "shape completion",
+  scene_mesh: "3D scene",
+  scene_from_revision: "the saved scene",
+};
+
+/** A pipeline stage's name as people read it: "heights_by_metrology" -> "object heights"; a
+ * stage without words of its own: "new_stage" -> "new stage". */
 export function readableStage(name: string): string {
-  return name.replaceAll("_", " ");
+  return STAGE_WORDS[name] ?? name.replaceAll("_", " ");
 }
 
 /** A duration as people read it: "40 s", "7 min", "1 h 05 min". */

@@ -38,7 +38,8 @@ describe("the question before a model is made active", () => {
 
   it("gives both models' figures and how many scenes the held-out one rests on", () => {
     expect(promoteQuestion(retrained, active, text)).toBe(
-      "Warning: its validation figure is 59.5 points below the active model's. " +
+      "Warning: its validation figure is 59.5 points below the active model's (each measured " +
+        "on its own training run's validation scenes, not the same ones). " +
         "Make v2 the active model? Pipeline runs and suggestions use it from now on.\n\n" +
         "v2: held-out accuracy 97.1% (v1: 97.1%), on 34 labelled objects (1 held-out scene); " +
         "validation accuracy 39.6%\n" +
@@ -49,7 +50,7 @@ describe("the question before a model is made active", () => {
   it("puts two warnings one space apart, and writes a detector's mAP as a column does", () => {
     const both = { ...retrained, heldout_items: 10 } as ModelInfo;
     expect(promoteQuestion(both, active, text)).toMatch(
-      /below the active model's\. Its held-out figure rests on 10 items only: too few to tell two models apart\. Make v2/,
+      /not the same ones\)\. Its held-out figure rests on 10 items only: too few to tell two models apart\. Make v2/,
     );
     const detector = { ...retrained, heldout_recall: 0.5 } as ModelInfo;
     expect(promoteQuestion(detector, active, KIND_TEXT.detector)).toContain(

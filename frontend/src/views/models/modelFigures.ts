@@ -104,7 +104,10 @@ function cautions(
   const theirs = active && active.id !== model.id ? active.validation_accuracy : null;
   if (mine !== null && theirs !== null && theirs - mine >= WORSE_VALIDATION) {
     const points = ((theirs - mine) * 100).toFixed(1);
-    out.push(`Warning: its validation figure is ${points} points below the active model's.`);
+    out.push(
+      `Warning: its validation figure is ${points} points below the active model's ` +
+        "(each measured on its own training run's validation scenes, not the same ones).",
+    );
   }
   // Nothing held out judged it (a model shipped with the app, never compared with a model
   // retrained from it): its figures come from elsewhere, not from this team's photos.

@@ -20,10 +20,16 @@ describe("pipeline warnings", () => {
       run("heights_by_metrology", "class prior for 1: o2 (measured 9.00 m)", true),
     ];
     expect(pipelineWarnings(stages)).toEqual([
-      { stage: "objects from detections", text: "no detections.json was given", routine: false },
+      {
+        stage: "objects from the given boxes",
+        name: "objects_from_detections",
+        text: "no detections.json was given",
+        routine: false,
+      },
       // A few objects' fallback, as on most real photos: routine (not opened over the photo).
       {
-        stage: "heights by metrology",
+        stage: "object heights",
+        name: "heights_by_metrology",
         text: "class prior for 1: o2 (measured 9.00 m)",
         routine: true,
       },

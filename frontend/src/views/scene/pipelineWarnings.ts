@@ -10,7 +10,10 @@ import { readableStage } from "../common/jobProgress";
 import { linkObjectIds } from "./objectIdLinks";
 
 export interface PipelineWarning {
+  /** What the stage does, in words ("object heights"). */
   stage: string;
+  /** The stage's own name ("heights_by_metrology"), as `holiscene infer --stages` takes it. */
+  name: string;
   text: string;
   /** A stage that fell back for a few objects, as it does on most real photos (their box for a
    * mask, their class's height): said, but not opened over the photo on a first visit. */
@@ -45,6 +48,7 @@ export function pipelineWarnings(
     return [
       {
         stage: readableStage(run.name),
+        name: run.name,
         text: run.note + since,
         routine: ROUTINE_STAGES.has(run.name),
       },
@@ -109,7 +113,11 @@ export function pipelineWarningsPanel(session: SceneSession): {
         el(
           "li",
           { testid: "pipeline-warning" },
-          el("span", { className: "pipeline-warning-stage", text: w.stage }),
+          el("span", {
+            className: "pipeline-warning-stage",
+            text: w.stage,
+            attrs: { title: `pipeline stage ${w.name}` },
+          }),
           el("span", {}, ...linked(w.text)),
         ),
       ),

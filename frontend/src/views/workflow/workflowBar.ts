@@ -61,8 +61,10 @@ export function mountWorkflowBar(
   const revision = () => session.doc.revision;
   const personLabels = () =>
     (session.doc.scene.supports ?? []).filter((s) => s.source === "manual").length;
-  const labelledText = () =>
-    `${personLabels()} of ${session.objects.length} objects have a supporter set by a person.`;
+  const labelledText = () => {
+    const count = personLabels();
+    return `${count} of ${plural(session.objects.length, "object")} ${count === 1 ? "has" : "have"} a supporter set by a person.`;
+  };
   // What scene.glb lacks of the scene ("" when nothing, or when the server cannot say: the
   // question is a courtesy, not a gate).
   const outOfDate3d = () =>
