@@ -319,6 +319,27 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   await expect(page.getByTestId("edit-message")).toContainText("Dropped on no object");
   await expect(page.getByTestId("drop-hint")).toContainText("F floor, W wall, C ceiling");
   await expect(arrow("o3")).toHaveAttribute("data-parent", "o2");
+  // Dragged over the floor between objects, the drop names it, and dropped there the floor
+  // holds the object up (from below). The photo's bottom rows are searched for floor no mask
+  // covers, as a person's eye would find it.
+  const { width, height } = seeded.scene.image;
+  const from = await arrowPoint(page, "o3", "head");
+  await page.mouse.move(from.x, from.y);
+  await page.mouse.down();
+  let onFloor = false;
+  for (let y = height - 6; y > height * 0.6 && !onFloor; y -= 25) {
+    for (let x = 10; x < width && !onFloor; x += 30) {
+      const at = await screenPoint(page, x, y);
+      await page.mouse.move(at.x, at.y, { steps: 2 });
+      onFloor = (await page.getByTestId("drop-surface").allTextContents()).includes("floor");
+    }
+  }
+  expect(onFloor).toBe(true);
+  await page.mouse.up();
+  await expect(arrow("o3")).toHaveAttribute("data-parent", "floor");
+  await expect(arrow("o3")).toHaveAttribute("data-type", "below");
+  await page.keyboard.press("Control+z"); // back on o2, as the steps below expect
+  await expect(arrow("o3")).toHaveAttribute("data-parent", "o2");
 
   // R rejects a guess: it goes, and the model's next answer (if it has one) is suggested.
   await expect(page.getByTestId("suggestion-status")).toContainText(/objects? scored in/, {
@@ -528,7 +549,7 @@ test("a crowded photo at 1280x800: a click near an object's centre only selects 
   await clickArrow(page, margin.child);
   await expect(page.getByTestId("photo")).toHaveClass(/is-picking/);
   await expect(page.getByTestId("photo-tool-options")).toContainText(
-    `Now click the object that holds up ${margin.child}`,
+    `Now click what holds up ${margin.child}`,
   );
   const other = (seeded.scene.objects ?? []).find((o) => o.id !== margin?.child)?.id ?? "";
   await objectPoint(page, other);

@@ -13,6 +13,7 @@
 // Clicking the selected object or the background clears the selection. While the scene is
 // read only, clicks only select.
 import { svgEl } from "../dom";
+import { type RoomSurface, roomSurfaceAt } from "../geometry/roomSurface";
 import { registerShortcut } from "../shortcuts";
 import type { SceneSession } from "../state/sceneSession";
 import { setSupporter } from "./supportActions";
@@ -87,6 +88,15 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     arm(null); // picked: the next click selects again
   };
 
+  /** The floor, wall or ceiling the photo shows under the pointer (by the stored room and
+   * camera), where there is no object: a drop or an armed click there picks it. */
+  const surfaceAt = (event: MouseEvent): RoomSurface | null => {
+    const at = picking.toImage(event);
+    const { camera, layout, image } = session.doc.scene;
+    const onPhoto = at && at[0] >= 0 && at[1] >= 0 && at[0] < image.width && at[1] < image.height;
+    return onPhoto ? roomSurfaceAt(at, camera, layout?.corners_3d) : null;
+  };
+
   /** The press is on the arrow of `child` near its head, the centre of the object: where
    * people click to select the object (on a small object the arrow covers much of it). */
   /** How far the press is from `id`'s centre, where its arrows end (image pixels; infinite
@@ -150,6 +160,11 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
       pickSupporter(selected, object);
       return;
     }
+    const surface = armed && object === null && arrow === null ? surfaceAt(event) : null;
+    if (selected && surface) {
+      pickSupporter(selected, surface);
+      return;
+    }
     if (arrow && !onArrow) {
       session.say(null);
       session.select(object);
@@ -168,14 +183,33 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
   };
 
   /** The arrow `child` would get from where the pointer is: a dashed line to the pointer and
-   * the box of the object under it (the one a drop or a click would make its supporter). */
+   * the box of the object under it (the one a drop or a click would make its supporter), or
+   * the name of the room's surface there. */
   const drawPick = (child: string, event: MouseEvent) => {
     const to = picking.centroid(child);
     const at = picking.toImage(event);
     const target = picking.objectAt(event);
     const box = target && target !== child ? picking.bbox(target) : null;
+    // Between objects, the room's surface a drop would pick is named at the pointer.
+    const surface = target === null ? surfaceAt(event) : null;
     const width = picking.strokeWidth();
     dragLayer.replaceChildren(
+      ...(surface && at
+        ? [
+            svgEl(
+              "text",
+              {
+                class: "drop-hint",
+                "data-testid": "drop-surface",
+                x: at[0] + width * 3,
+                y: at[1] - width * 3,
+                "font-size": width * 5,
+                "stroke-width": width * 1.2,
+              },
+              surface,
+            ),
+          ]
+        : []),
       ...(box
         ? [
             svgEl("rect", {
@@ -233,11 +267,12 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
     setTimeout(() => {
       swallowClick = false;
     }, 0);
-    const target = picking.objectAt(event);
+    const target = picking.objectAt(event) ?? surfaceAt(event);
     session.select(done.child);
     if (target && target !== done.child) pickSupporter(done.child, target);
-    // Walls, floor and ceiling have no mask to drop on: say how to choose them, in the line
-    // under the photo and where the pointer is (that line may be below the window).
+    // Outside the room's faces (the margin beyond the photo, or no room known): say how to
+    // choose them, in the line under the photo and where the pointer is (that line may be
+    // below the window).
     else if (!target) {
       session.say(
         `Dropped on no object: ${done.child} keeps its supporter. For the floor, a wall or ` +
