@@ -24,6 +24,7 @@ import { rgbCss } from "../views/rgb";
 import { boxConfidence } from "./boxConfidence";
 import { objectMesh } from "./objectMesh";
 import { objectSource } from "./objectSource";
+import { nearestFirst } from "./supporterOrder";
 import { supportSummary } from "./supportSummary";
 
 const NONE = "";
@@ -64,15 +65,16 @@ function supporterOptions(object: SceneObject, objects: readonly SceneObject[]):
     ),
     el(
       "optgroup",
-      { attrs: { label: "Objects" } },
-      ...objects
-        .filter((other) => other.id !== object.id && !isStructural(other.class))
-        .map((other) =>
-          el("option", {
-            text: `${other.id} · ${classText(other.class)}`,
-            attrs: { value: other.id },
-          }),
-        ),
+      { attrs: { label: "Objects, nearest first" } },
+      ...nearestFirst(
+        object,
+        objects.filter((other) => other.id !== object.id && !isStructural(other.class)),
+      ).map((other) =>
+        el("option", {
+          text: `${other.id} · ${classText(other.class)}`,
+          attrs: { value: other.id },
+        }),
+      ),
     ),
   ];
 }
@@ -348,13 +350,14 @@ export function mountSupportEditor(
   let builtFor = "";
   let listedFor = "";
   // Rows of objects shown as before are kept (an object edit makes one row, not all); their
-  // supporter menus are listed again when the objects' ids or classes changed.
+  // supporter menus are listed again when the objects' ids, classes or boxes changed.
   const build = () => {
     const objects = session.objects;
     const key = JSON.stringify(objects.map(rowKey));
     if (key === builtFor) return;
     builtFor = key;
-    const listed = JSON.stringify(objects.map((o) => [o.id, o.class]));
+    // Boxes too: the menus list the objects nearest first (supporterOrder.ts).
+    const listed = JSON.stringify(objects.map((o) => [o.id, o.class, o.bbox]));
     const relist = listed !== listedFor;
     listedFor = listed;
     const kept = new Map(rows.map((r) => [r.key, r]));
