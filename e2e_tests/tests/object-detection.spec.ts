@@ -183,6 +183,10 @@ test("the detector's fainter boxes are offered when asked for, and find more of 
   const faint = all.filter((o) => o.score < 30);
   expect(faint).toHaveLength(fainter);
   await expect(page.locator('[data-testid="detector-suggestion"].is-faint')).toHaveCount(fainter);
+  // "Accept all" now says it takes the boxes at the threshold only, not the fainter ones.
+  await expect(page.getByTestId("accept-all-suggestions")).toHaveText(
+    `Accept the ${all.length - fainter} at 30%+`,
+  );
   // The photo's own boxes (detections.json): the fainter offers find some the others missed.
   const truth = JSON.parse(readFileSync(path.join(T3D_4, "detections.json"), "utf8")) as {
     bbox: number[];

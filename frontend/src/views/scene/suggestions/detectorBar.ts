@@ -161,6 +161,11 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
       const why = editable ? "" : " (the scene is read only)";
       acceptButton.disabled = busy || !editable || chosen === null;
       acceptAllButton.disabled = busy || !editable || confident === 0;
+      // With fainter boxes shown, "all" would read as every box: say which ones it takes.
+      acceptAllButton.textContent =
+        open > confident && confident > 0
+          ? `Accept the ${confident} at ${percentText(SCORE_THRESHOLD)}+`
+          : "Accept all";
       // Rejections are remembered for the scene (in this browser): also the editor's to make.
       rejectButton.disabled = busy || !editable || chosen === null;
       rejectAllButton.disabled = busy || !editable;
