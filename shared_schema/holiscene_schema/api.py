@@ -409,6 +409,15 @@ ModelStatus = Literal["default", "accepted", "candidate", "rejected"]
 ModelAction = Literal["seed", "promote", "rollback"]
 
 
+class HeldoutFigure(SchemaModel):
+    """Another registered model's figures on a retrain's held-out scenes (a shipped detector
+    that is neither the new model nor its parent gets figures no other way)."""
+
+    model_id: str
+    accuracy: float = Field(description="As ModelInfo.heldout_accuracy")
+    recall: float | None = Field(default=None, description="As ModelInfo.heldout_recall")
+
+
 class ModelInfo(SchemaModel):
     id: str
     kind: ModelKind = Field(
@@ -456,6 +465,11 @@ class ModelInfo(SchemaModel):
         ge=0,
         description="What those scenes held to score: labelled objects (relation) or "
         "confirmed boxes (detector); a handful decides little",
+    )
+    heldout_others: list[HeldoutFigure] = Field(
+        default_factory=list,
+        description="The other registered models of its kind, measured on the same held-out "
+        "scenes as this one when it was trained (detectors)",
     )
     has_curve: bool
     note: str | None = None

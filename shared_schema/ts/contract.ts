@@ -15,6 +15,7 @@ DepthRef?: DepthRef
 DetectorInfo?: DetectorInfo
 EditRequest?: EditRequest
 ErrorMessage?: ErrorMessage
+HeldoutFigure?: HeldoutFigure
 ImageInfo?: ImageInfo
 ImportJob?: ImportJob
 ImportResult?: ImportResult
@@ -550,6 +551,24 @@ export interface ErrorMessage {
 detail: string
 }
 /**
+ * Another registered model's figures on a retrain's held-out scenes (a shipped detector
+ * that is neither the new model nor its parent gets figures no other way).
+ * 
+ * This interface was referenced by `HoliSceneContract`'s JSON-Schema
+ * via the `definition` "HeldoutFigure".
+ */
+export interface HeldoutFigure {
+/**
+ * As ModelInfo.heldout_accuracy
+ */
+accuracy: number
+model_id: string
+/**
+ * As ModelInfo.heldout_recall
+ */
+recall: (number | null)
+}
+/**
  * This interface was referenced by `HoliSceneContract`'s JSON-Schema
  * via the `definition` "ImageInfo".
  */
@@ -891,6 +910,10 @@ heldout_accuracy: (number | null)
  * What those scenes held to score: labelled objects (relation) or confirmed boxes (detector); a handful decides little
  */
 heldout_items: (number | null)
+/**
+ * The other registered models of its kind, measured on the same held-out scenes as this one when it was trained (detectors)
+ */
+heldout_others: HeldoutFigure[]
 /**
  * Detector: share of the held-out confirmed boxes found with the right class (IoU 0.5)
  */

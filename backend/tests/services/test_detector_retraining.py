@@ -21,7 +21,7 @@ from holiscene.services.detector_retraining import (
 from holiscene.services.heldout import heldout_split
 from holiscene.services.workbench import Workbench
 from holiscene.store import model_registry as registry_module
-from holiscene.store.model_registry import active_model_dir
+from holiscene.store.model_registry import Registration, active_model_dir
 from holiscene.store.tables import ModelRow, SceneRow
 from holiscene_schema import AddObject, EditRequest, Job, RetrainRequest
 from sqlalchemy import update
@@ -151,6 +151,30 @@ def test_retrain_refuses_a_worse_detector(settings: Settings, rooms_cache: Path)
         assert job.message and "rejected" in job.message
         assert workbench.detectors.active().id == coco.id
         assert (workbench.detectors.folder(model.id) / "model.onnx").is_file()
+    finally:
+        workbench.close()
+
+
+def test_retrain_measures_every_other_detector_on_the_same_held_out_scenes(
+    settings: Settings, never_detecting: Path, rooms_cache: Path
+) -> None:
+    """A registered detector that is neither active nor the new one gets figures too: the
+    admin choosing which to make active has them side by side."""
+    workbench = _workbench(settings, COCO_DETECTOR_DIR)
+    try:
+        coco = workbench.detectors.active()
+        idle = workbench.detectors.register(never_detecting, Registration(status="candidate"))
+        for seed in BOXED_SEEDS[:3]:
+            store_boxed_scene(workbench.scenes, seed, source="given")
+        job = _run(workbench, dataclasses.replace(TINY, cache_dir=rooms_cache))
+        assert job.status == "succeeded", job.error
+        new = workbench.detectors.get(job.result_model_id or "")
+        assert [(f.model_id, f.accuracy, f.recall) for f in new.heldout_others] == [
+            (idle.id, 0.0, 0.0)
+        ], "the parent's figures are its own fields; the detector that never detects scores 0"
+        assert f"detector v{idle.version}: mAP@0.5 0.0%, recall 0.0%" in job.log
+        assert new.parent_id == coco.id
+        assert workbench.detectors.get(coco.id).heldout_others == []
     finally:
         workbench.close()
 

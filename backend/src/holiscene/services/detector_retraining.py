@@ -278,6 +278,7 @@ class DetectorRetrainJob(TrainingJob):
         new_score = score_detector(model_dir, heldout)
         self._log(f"new detector: {new_score.text()}")
         parent_score = self._score_parent(parent, heldout)
+        others = self._score_others(parent, heldout)
         self._check_stop()
 
         verdict = heldout_verdict(
@@ -290,6 +291,10 @@ class DetectorRetrainJob(TrainingJob):
         registration = self._registration(
             parent, new_score, parent_score, verdict, validation_map, train_items, heldout_items
         )
+        registration.data["heldout_others"] = [
+            {"model_id": model.id, "accuracy": score.map, "recall": score.recall}
+            for model, score in others
+        ]
         info = self.models.register(
             model_dir,
             registration,
@@ -390,6 +395,25 @@ class DetectorRetrainJob(TrainingJob):
             return None
         self._log(f"active detector v{parent.version}: {score.text()}")
         return score
+
+    def _score_others(
+        self, parent: ModelInfo | None, heldout: Sequence[tuple[BoxedPhoto, BoxedScene]]
+    ) -> list[tuple[ModelInfo, DetectorScore]]:
+        """Every other registered detector on the same held-out scenes: a shipped detector
+        that is not active is compared no other way, and "Make active" needs its figures."""
+        scored = []
+        for model in self.models.list_models():
+            if parent is not None and model.id == parent.id:
+                continue
+            self._check_stop()
+            try:
+                score = score_detector(self.models.folder(model.id), heldout)
+            except Exception as exc:  # one broken model must not end the retrain
+                self._log(f"detector v{model.version} could not be evaluated: {exc}")
+                continue
+            self._log(f"detector v{model.version}: {score.text()}")
+            scored.append((model, score))
+        return scored
 
     def _registration(
         self,

@@ -26,7 +26,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TypeVarTuple
 
-from holiscene_schema import ModelAction, ModelEvent, ModelInfo, ModelKind, ModelStatus
+from holiscene_schema import (
+    HeldoutFigure,
+    ModelAction,
+    ModelEvent,
+    ModelInfo,
+    ModelKind,
+    ModelStatus,
+)
 from sqlalchemy import Engine, Select, create_engine, func, make_url, select
 from sqlalchemy.exc import OperationalError, ProgrammingError
 from sqlalchemy.orm import Session
@@ -407,6 +414,7 @@ class ModelStore:
             training_scenes=len(data.get("training_scenes", [])),
             heldout_scenes=len(data.get("heldout_scenes", [])),
             heldout_items=_count(data.get("heldout_items")),
+            heldout_others=_heldout_others(data.get("heldout_others")),
             has_curve=(self.folder(row.id) / CURVE_FILE).is_file(),
             note=row.note,
             metrics=row.metrics or {},
@@ -449,6 +457,23 @@ def _registration_data(registration: Registration) -> dict[str, Any]:
 
 def _figure(value: object) -> float | None:
     return float(value) if isinstance(value, int | float) else None
+
+
+def _heldout_others(value: object) -> list[HeldoutFigure]:
+    """The other models' figures a retrain stored in its model's data (none before they were
+    recorded; an entry that does not read as one is left out)."""
+    figures = []
+    for entry in value if isinstance(value, list) else []:
+        accuracy = _figure(entry.get("accuracy")) if isinstance(entry, dict) else None
+        if accuracy is not None and isinstance(entry.get("model_id"), str):
+            figures.append(
+                HeldoutFigure(
+                    model_id=entry["model_id"],
+                    accuracy=accuracy,
+                    recall=_figure(entry.get("recall")),
+                )
+            )
+    return figures
 
 
 def _read_json(path: Path) -> dict[str, Any]:

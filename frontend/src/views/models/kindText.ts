@@ -66,7 +66,8 @@ export const KIND_TEXT: Record<ModelKind, KindText> = {
       "retrain, each photo's scenes on one side; with few photos the share varies): the new " +
       "detector becomes active only if it does better on them (mAP@0.5, then recall) on 20 confirmed boxes or " +
       "more; exactly as well, or better on fewer: kept as a candidate, to make active by " +
-      "hand. Every detector is kept. mAP@0.5 ranks all its boxes down to 5%; recall counts " +
+      "hand. Every detector is kept, and every other one is measured on the same held-out " +
+      "scenes, to compare before making one active. mAP@0.5 ranks all its boxes down to 5%; recall counts " +
       `the confirmed boxes it finds with their class among the boxes it keeps (${percentText(SCORE_THRESHOLD)} ` +
       "or more, as the pipeline does), so a detector can have some mAP and no recall.",
     epochs: ["Epochs", "default (12)"],

@@ -131,6 +131,26 @@ describe("the held-out column of a model never judged on held-out scenes of its 
   it("says nothing it does not know", () => {
     expect(heldoutText(shipped, text, [shipped])).toBe("—");
   });
+
+  it("gives a detector that is neither active nor a parent the figures a retrain measured", () => {
+    const detector = KIND_TEXT.detector;
+    const idle = model({ id: "c", version: 2, status: "default" });
+    const retrain = model({
+      id: "r4",
+      version: 4,
+      heldout_accuracy: 0.2,
+      parent_id: "a",
+      parent_heldout_accuracy: 0.1,
+      heldout_others: [{ model_id: "c", accuracy: 0.25, recall: 0.5 }],
+    });
+    const others = [shipped, idle, retrain];
+    expect(heldoutText(idle, detector, others)).toBe("25.0% · 50.0% on v4's held-out scenes");
+    // Measured, so "Make active" no longer warns that it never was.
+    expect(promoteQuestion(idle, shipped, detector, others)).not.toContain("Warning");
+    expect(promoteQuestion(idle, shipped, detector, [shipped, idle])).toContain(
+      "Warning: neither v2 nor the active v1 was measured",
+    );
+  });
 });
 
 describe("what the retrain form says about the labelled scenes", () => {

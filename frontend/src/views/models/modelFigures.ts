@@ -11,28 +11,44 @@ export const percent = (value: number | null) =>
 const figures = (value: number, recall: number | null) =>
   recall === null ? percent(value) : `${percent(value)} · ${percent(recall)}`;
 
-/** The newest model compared with `model` on its own held-out scenes (it has `model`'s
- * figure there), or undefined. */
-function newestComparison(model: ModelInfo, others: readonly ModelInfo[]): ModelInfo | undefined {
+/** `model`'s figures on another model's held-out scenes, and whose. */
+interface Comparison {
+  by: ModelInfo;
+  accuracy: number;
+  recall: number | null;
+}
+
+/** `model`'s newest figures on a later model's held-out scenes: as the parent it was
+ * compared with, or as another registered model its retrain measured too; undefined when no
+ * retrain measured it. */
+function newestComparison(model: ModelInfo, others: readonly ModelInfo[]): Comparison | undefined {
   return others
-    .filter((m) => m.parent_id === model.id && m.parent_heldout_accuracy !== null)
-    .sort((a, b) => b.version - a.version)[0];
+    .flatMap((m): Comparison[] => {
+      if (m.parent_id === model.id && m.parent_heldout_accuracy !== null)
+        return [{ by: m, accuracy: m.parent_heldout_accuracy, recall: m.parent_heldout_recall }];
+      const measured = (m.heldout_others ?? []).find((f) => f.model_id === model.id);
+      return measured
+        ? [{ by: m, accuracy: measured.accuracy, recall: measured.recall ?? null }]
+        : [];
+    })
+    .sort((a, b) => b.by.version - a.by.version)[0];
 }
 
 /** The held-out figures, the parent's beside them, and how many items they rest on (a
  * figure from a handful of objects decides little, and the admin should see that). A model
- * never judged on held-out scenes of its own (a shipped one) gives the figure of the newest
- * comparison with a model retrained from it, on that model's held-out scenes. */
+ * never judged on held-out scenes of its own (a shipped one) gives its figure from the newest
+ * retrain that measured it (as the parent, or as another registered model), on that retrain's
+ * held-out scenes. */
 export function heldoutText(
   model: ModelInfo,
   text: KindText,
   others: readonly ModelInfo[] = [],
 ): string {
   if (model.heldout_accuracy === null) {
-    const child = newestComparison(model, others);
-    return child?.parent_heldout_accuracy == null
-      ? "—"
-      : `${figures(child.parent_heldout_accuracy, child.parent_heldout_recall)} on v${child.version}'s held-out scenes`;
+    const seen = newestComparison(model, others);
+    return seen
+      ? `${figures(seen.accuracy, seen.recall)} on v${seen.by.version}'s held-out scenes`
+      : "—";
   }
   const parent =
     model.parent_version !== null && model.parent_heldout_accuracy !== null
