@@ -549,7 +549,7 @@ test("a crowded photo at 1280x800: a click near an object's centre only selects 
   await clickArrow(page, margin.child);
   await expect(page.getByTestId("photo")).toHaveClass(/is-picking/);
   await expect(page.getByTestId("photo-tool-options")).toContainText(
-    `Now click what holds up ${margin.child}`,
+    `Now click the object that holds up ${margin.child}`,
   );
   const other = (seeded.scene.objects ?? []).find((o) => o.id !== margin?.child)?.id ?? "";
   await objectPoint(page, other);

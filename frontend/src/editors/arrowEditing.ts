@@ -89,7 +89,9 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
   };
 
   /** The floor, wall or ceiling the photo shows under the pointer (by the stored room and
-   * camera), where there is no object: a drop or an armed click there picks it. */
+   * camera), where there is no object: a drop there picks it. (Not a click while a pick is
+   * armed: a click on an arrow arms one, and a click on the floor to deselect would then
+   * change the label.) */
   const surfaceAt = (event: MouseEvent): RoomSurface | null => {
     const at = picking.toImage(event);
     const { camera, layout, image } = session.doc.scene;
@@ -158,11 +160,6 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
       !(arrow === object && onHitMargin(event, picking.toImage(event)));
     if (armed && object && object !== selected && !onArrow) {
       pickSupporter(selected, object);
-      return;
-    }
-    const surface = armed && object === null && arrow === null ? surfaceAt(event) : null;
-    if (selected && surface) {
-      pickSupporter(selected, surface);
       return;
     }
     if (arrow && !onArrow) {

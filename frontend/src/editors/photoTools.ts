@@ -136,7 +136,7 @@ function selectTool(host: PhotoToolHost): PhotoTool {
       if (!picking && said === null && selected) return selectedObjectHint(host, selected);
       const hint = toolHint(
         picking
-          ? `Now click what holds up ${picking}: an object, or the floor, a wall or the ceiling (F, W, C) · Esc cancels.`
+          ? `Now click the object that holds up ${picking} (or F, W, C; or drag its arrow onto the floor or a wall) · Esc cancels.`
           : (said ??
               (session.editable
                 ? "Click an object or an arrow to select it; drag an arrow's head to a new supporter."

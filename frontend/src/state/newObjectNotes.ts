@@ -53,7 +53,8 @@ const isTwin = (added: SceneObject, other: SceneObject) =>
 
 /**
  * What to say of new objects that overlap an object of their class that was there before
- * (" d3 overlaps o0, also a bed: if they are the same bed, remove d3 (Delete)."): "" when
+ * (" d3 overlaps o0, also a bed: if they are the same bed, select d3 and remove it
+ * (Delete)."): "" when
  * none does. Objects added together are not compared with each other.
  */
 export function twinNote(edits: readonly ObjectEdit[], doc: SceneDocument): string {
@@ -67,7 +68,7 @@ export function twinNote(edits: readonly ObjectEdit[], doc: SceneDocument): stri
       if (!twin) return [];
       const cls = classText(o.class);
       return [
-        ` ${o.id} overlaps ${twin.id}, also a ${cls}: if they are the same ${cls}, remove ${o.id} (Delete).`,
+        ` ${o.id} overlaps ${twin.id}, also a ${cls}: if they are the same ${cls}, select ${o.id} and remove it (Delete).`,
       ];
     })
     .join("");

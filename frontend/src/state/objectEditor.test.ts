@@ -579,7 +579,7 @@ describe("new objects on top of one of their class", () => {
       at("d3", "bed", [0, 20, 190, 170]),
     ]);
     expect(twinNote([add("d3")], doc)).toBe(
-      " d3 overlaps o0, also a bed: if they are the same bed, remove d3 (Delete).",
+      " d3 overlaps o0, also a bed: if they are the same bed, select d3 and remove it (Delete).",
     );
     // Inside a larger box of its class: a part taken for a second one.
     const inside = documentOf(7, [

@@ -306,7 +306,8 @@ def _describe_edit(edit: Edit) -> str:
     if isinstance(edit, SetMask):
         return f"{edit.id} mask drawn"
     if isinstance(edit, RestoreObject):
-        return f"{edit.id} as in revision {edit.from_revision}"
+        # An undone removal reads as this too: say the object came back.
+        return f"{edit.id} back, as revision {edit.from_revision} had it"
     if isinstance(edit, RestoreScene):
         return f"the scene as in revision {edit.from_revision}"
     return f"{edit.child} support removed"

@@ -353,6 +353,8 @@ def test_undo_of_a_removal_brings_back_the_object_its_mask_and_every_support(
     restored = _edit(client, removed, undo)
     assert restored.status_code == 200, restored.text
     assert _without_time(restored.json()) == _without_time(supported)
+    history = client.get(f"/api/scenes/{removed['scene_id']}/revisions").json()
+    assert history[-1]["summary"] == f"o0 back, as revision {supported['revision']} had it"
 
 
 @pytest.mark.parametrize(

@@ -1,17 +1,11 @@
 import { describe, expect, it } from "vitest";
 import { type LabelCandidate, placeLabels } from "./viewportLabels";
 
-const at = (
-  id: string,
-  x: number,
-  y: number,
-  distance: number,
-  wanted = false,
-): LabelCandidate => ({
+const at = (id: string, x: number, y: number, size: number, wanted = false): LabelCandidate => ({
   id,
   x,
   y,
-  distance,
+  size,
   wanted,
 });
 
@@ -22,8 +16,8 @@ describe("placeLabels", () => {
     expect(placed).toEqual({ id: "o3", left: 82, top: 42 }); // 100 - 37 / 2, rounded
   });
 
-  it("keeps the nearer object's tag where two would overlap", () => {
-    const placed = placeLabels([at("o1", 100, 60, 5), at("o2", 110, 65, 2)], 400, 300);
+  it("keeps the larger object's tag where two would overlap (the shelf, not its books)", () => {
+    const placed = placeLabels([at("o1", 100, 60, 0.02), at("o2", 110, 65, 1.5)], 400, 300);
     expect(placed.map((p) => p.id)).toEqual(["o2"]);
   });
 
@@ -33,7 +27,7 @@ describe("placeLabels", () => {
   });
 
   it("always draws the hovered or selected object's tag, first", () => {
-    const placed = placeLabels([at("o1", 100, 60, 5, true), at("o2", 105, 60, 2)], 400, 300);
+    const placed = placeLabels([at("o1", 100, 60, 0.1, true), at("o2", 105, 60, 2)], 400, 300);
     expect(placed.map((p) => p.id)).toEqual(["o1"]);
     const offView = placeLabels([at("o7", -50, 60, 1, true)], 400, 300);
     expect(offView.map((p) => p.id)).toEqual(["o7"]);

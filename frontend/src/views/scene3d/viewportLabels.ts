@@ -1,7 +1,9 @@
 // Object ids over the 3D view, as on the photo: a dark tag with the object's colour over the
 // top of each object, so a reviewer can match what is drawn in 3D with the photo and the
-// object list without pointing at each one. Where two tags would overlap, the nearer object's
-// is drawn (the hovered and the selected object's always); clicking a tag selects its object.
+// object list without pointing at each one. Where two tags would overlap, the larger object's
+// is drawn (a bookshelf's, not one of the ten books on it; the hovered and the selected
+// object's always), and the checkbox's tooltip says how many are drawn; clicking a tag
+// selects its object.
 // The tags are HTML over the canvas, moved after each frame: nothing to draw in WebGL.
 import * as THREE from "three";
 import { el } from "../../dom";
@@ -20,8 +22,8 @@ export interface LabelCandidate {
   /** Where the tag's bottom centre goes, in pixels of the viewport. */
   x: number;
   y: number;
-  /** Distance from the camera: the nearer object wins a place. */
-  distance: number;
+  /** The larger wins a place (the object's 3D box volume). */
+  size: number;
   /** Hovered or selected: placed first, whatever else is there. */
   wanted: boolean;
 }
@@ -32,7 +34,7 @@ export interface PlacedLabel {
   top: number;
 }
 
-/** The tags to draw: wanted ones first, then the nearest first, each left out where it would
+/** The tags to draw: wanted ones first, then the largest objects', each left out where it would
  * overlap a tag placed before it or leave the viewport (`width` x `height` pixels). */
 export function placeLabels(
   candidates: readonly LabelCandidate[],
@@ -40,7 +42,7 @@ export function placeLabels(
   height: number,
 ): PlacedLabel[] {
   const order = [...candidates].sort(
-    (a, b) => Number(b.wanted) - Number(a.wanted) || a.distance - b.distance,
+    (a, b) => Number(b.wanted) - Number(a.wanted) || b.size - a.size,
   );
   const placed: (PlacedLabel & { right: number; bottom: number })[] = [];
   for (const candidate of order) {
@@ -76,10 +78,12 @@ export interface ViewportLabelsInputs {
 export class ViewportLabels {
   private readonly layer = el("div", { className: "scene3d-labels", testid: "scene3d-labels" });
   private readonly tags = new Map<string, HTMLElement>();
-  /** Each object's tag anchor (the top centre of its meshes' box), for the model they came from. */
-  private anchors = new Map<string, THREE.Vector3>();
+  /** Each object's tag anchor (the top centre of its meshes' box) and that box's volume, for
+   * the model they came from. */
+  private anchors = new Map<string, { at: THREE.Vector3; size: number }>();
   private anchoredModel: SceneModel | null = null;
   private shown = true;
+  private readonly toggleLabel: HTMLLabelElement;
 
   constructor(private readonly inputs: ViewportLabelsInputs) {
     const toggle = el("input", {
@@ -93,14 +97,13 @@ export class ViewportLabels {
         },
       },
     });
-    inputs.toolbar.append(
-      el(
-        "label",
-        { className: "toggle", attrs: { title: "Each object's id over it, as on the photo" } },
-        toggle,
-        "Labels",
-      ),
+    this.toggleLabel = el(
+      "label",
+      { className: "toggle", attrs: { title: "Each object's id over it, as on the photo" } },
+      toggle,
+      "Labels",
     );
+    inputs.toolbar.append(this.toggleLabel);
     // A click on a tag selects its object; pointing at it points at the object.
     this.layer.addEventListener("click", (event) => {
       const id = this.tagIdOf(event.target);
@@ -135,19 +138,21 @@ export class ViewportLabels {
     camera.updateMatrixWorld();
     const point = new THREE.Vector3();
     const candidates: LabelCandidate[] = [];
-    for (const [id, anchor] of this.anchors) {
+    for (const [id, { at, size }] of this.anchors) {
       if (!session.object(id)) continue; // removed in an edit since this GLB
-      point.copy(anchor).project(camera);
+      point.copy(at).project(camera);
       if (point.z > 1 || point.z < -1) continue; // behind the camera or past its far plane
       candidates.push({
         id,
         x: ((point.x + 1) / 2) * width,
         y: ((1 - point.y) / 2) * height,
-        distance: camera.position.distanceTo(anchor),
+        size,
         wanted: id === session.selected || id === session.hovered,
       });
     }
     const placed = new Map(placeLabels(candidates, width, height).map((p) => [p.id, p]));
+    const title = `Each object's id over it, as on the photo: ${placed.size} of ${this.anchors.size} drawn where they do not overlap (larger objects first); point at an object for its id`;
+    if (this.toggleLabel.title !== title) this.toggleLabel.title = title;
     const colours = this.inputs.colours();
     for (const id of new Set([...this.tags.keys(), ...placed.keys()])) {
       const spot = placed.get(id);
@@ -173,7 +178,11 @@ export class ViewportLabels {
       for (const mesh of model.meshesOf(object.id)) box.expandByObject(mesh);
       if (box.isEmpty()) continue; // not placed in 3D
       const centre = box.getCenter(new THREE.Vector3());
-      this.anchors.set(object.id, new THREE.Vector3(centre.x, box.max.y, centre.z));
+      const extent = box.getSize(new THREE.Vector3());
+      this.anchors.set(object.id, {
+        at: new THREE.Vector3(centre.x, box.max.y, centre.z),
+        size: extent.x * extent.y * extent.z,
+      });
     }
   }
 

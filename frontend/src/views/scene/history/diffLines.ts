@@ -39,9 +39,10 @@ export function diffLines(
             "li",
             { attrs: { "data-removed": diff.objectsRemoved.join(" ") } },
             "objects removed: ",
+            // Restorable ones with their "restore"; one back in the scene since, as a link.
             ...diff.objectsRemoved.flatMap((id, i) => {
               const link = restoreLink(id);
-              return [i > 0 ? ", " : "", id, ...(link ? [" ", link] : [])];
+              return [i > 0 ? ", " : "", ...(link ? [id, " ", link] : linkIds(id))];
             }),
           ),
         ]
