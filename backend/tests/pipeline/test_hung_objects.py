@@ -1,4 +1,5 @@
-"""The room's walls move out behind the things hung on them (`layout_holds_hung_objects`)."""
+"""The room's walls move to the things hung on them, out behind them or in to them
+(`layout_holds_hung_objects`)."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ from holiscene.inputs import read_input_folder
 from holiscene.pipeline import DEFAULT_STAGES, PLACEMENT_STAGES
 from holiscene.pipeline.base import SceneContext
 from holiscene.pipeline.stages.hung_objects import LayoutHoldsHungObjects
-from holiscene.placement.room import Room, pinhole, widened_to_hold
+from holiscene.placement.room import Room, narrowed_to_hung, pinhole, widened_to_hold
 from holiscene.services.reconstruction import reconstruct_scene
 from holiscene.synth.generate import synthesize_to
 from holiscene_schema import Box3D, Camera, Layout, SupportRelation
@@ -66,6 +67,31 @@ def test_boxes_inside_leave_the_room_as_it_was() -> None:
     assert widened_to_hold(corners, [])[1] == [0.0, 0.0, 0.0, 0.0]
 
 
+@pytest.mark.parametrize("yaw", [0.0, 30.0])
+def test_a_wall_moves_in_to_what_hangs_on_it_and_no_further_than_the_nearest_box(
+    yaw: float,
+) -> None:
+    corners = _room(yaw)
+    turn = rot_y(np.radians(yaw))
+    # A picture whose back is 0.48 m in front of the far wall (x = 4 before the turn).
+    picture = box_corners(turn @ np.array([3.5, 0.3, 0.5]), np.array([0.04, 0.5, 0.8]), yaw)
+    chair = box_corners(turn @ np.array([1.0, -0.8, 0.0]), np.array([0.8, 0.8, 0.8]), yaw)
+    narrowed, moves = narrowed_to_hung(corners, [picture], [picture, chair], camera_gap=0.3)
+    assert sorted(np.round(moves, 6)) == [0.0, 0.0, 0.0, 0.48]
+    room = Room.from_corners(narrowed)
+    np.testing.assert_allclose(room.size, [4.52, 2.6, 4.5], atol=1e-9)
+    assert _inside(room, picture) and _inside(room, chair)
+    # A cabinet against that wall, nearer it than the picture: the wall stops at the cabinet.
+    cabinet = box_corners(turn @ np.array([3.8, -0.8, -1.0]), np.array([0.2, 0.8, 0.6]), yaw)
+    _, moves = narrowed_to_hung(corners, [picture], [picture, chair, cabinet], camera_gap=0.3)
+    assert sorted(np.round(moves, 6)) == [0.0, 0.0, 0.0, 0.1]
+    # Something hung nearest the wall behind the camera (x = -1; its near edge at x = 0.2):
+    # that wall stops 0.3 m behind the camera (0.7 m in), not at the thing (1.2 m in).
+    near = box_corners(turn @ np.array([0.5, 0.3, -0.1]), np.array([0.6, 0.5, 0.04]), yaw)
+    _, moves = narrowed_to_hung(corners, [near], [near], camera_gap=0.3)
+    assert sorted(np.round(moves, 6)) == [0.0, 0.0, 0.0, 0.7]
+
+
 def _context(source: str) -> SceneContext:
     ctx = SceneContext(image=np.zeros((480, 640, 3), dtype=np.uint8))
     ctx.camera = CAMERA
@@ -101,7 +127,7 @@ def test_the_stage_moves_the_wall_behind_a_picture_and_projects_the_new_corners(
         assert (stored is None) == bool(np.isnan(corner).any())
         if stored is not None:
             np.testing.assert_allclose(stored, corner, atol=0.01)
-    said = "1 wall(s) moved out by up to 0.07 m to hold what hangs on them"
+    said = "1 wall(s) moved out by up to 0.07 m to meet what hangs on them"
     assert ctx.layout.note == f"priors; {said}"
     assert ctx.layout.source == "estimated"
     assert "1 wall(s) moved out" in ctx.reports["layout_holds_hung_objects"]

@@ -188,25 +188,65 @@ def room_of(layout: Layout | None) -> Room | None:
     return room
 
 
-def widened_to_hold(corners: FloatArray, boxes: list[FloatArray]) -> tuple[FloatArray, list[float]]:
-    """The room's corners (floor 0-3, the ceiling's 4-7 above them) with each wall moved out
-    along its normal just far enough that every box (its 8 corners) is on the room's side of
-    it, and how far each of the four walls moved (0 for a wall no box crosses)."""
-    widened = np.array(corners, dtype=float)
-    floor = widened[:4, [0, 2]]
+def _walls_outward(floor: FloatArray) -> list[tuple[FloatArray, FloatArray]]:
+    """Each wall of a floor's 4 corners (x, z), wall i from corner i to i + 1: a point on it
+    and its unit normal pointing out of the room."""
     middle = floor.mean(axis=0)
-    points = np.concatenate(boxes)[:, [0, 2]] if boxes else np.zeros((0, 2))
-    moves = []
+    walls = []
     for i in range(4):
         a, b = floor[i], floor[(i + 1) % 4]
         edge = b - a
         outward = np.array([edge[1], -edge[0]]) / max(float(np.linalg.norm(edge)), 1e-9)
         if outward @ (middle - a) > 0:
             outward = -outward
+        walls.append((a, outward))
+    return walls
+
+
+def _move_wall(corners: FloatArray, wall: int, shift: FloatArray) -> None:
+    """Move wall `wall`'s two floor corners and the two above them by `shift` (x, z)."""
+    for corner in (wall, (wall + 1) % 4):
+        corners[corner, [0, 2]] += shift
+        corners[corner + 4, [0, 2]] += shift
+
+
+def widened_to_hold(corners: FloatArray, boxes: list[FloatArray]) -> tuple[FloatArray, list[float]]:
+    """The room's corners (floor 0-3, the ceiling's 4-7 above them) with each wall moved out
+    along its normal just far enough that every box (its 8 corners) is on the room's side of
+    it, and how far each of the four walls moved (0 for a wall no box crosses)."""
+    widened = np.array(corners, dtype=float)
+    points = np.concatenate(boxes)[:, [0, 2]] if boxes else np.zeros((0, 2))
+    moves = []
+    for i, (a, outward) in enumerate(_walls_outward(widened[:4, [0, 2]])):
         beyond = float(((points - a) @ outward).max()) if len(points) else 0.0
         move = max(beyond, 0.0)
         moves.append(move)
-        for corner in (i, (i + 1) % 4):  # the wall's two floor corners and the two above
-            widened[corner, [0, 2]] += outward * move
-            widened[corner + 4, [0, 2]] += outward * move
+        _move_wall(widened, i, outward * move)
     return widened, moves
+
+
+def narrowed_to_hung(
+    corners: FloatArray, hung: list[FloatArray], boxes: list[FloatArray], camera_gap: float
+) -> tuple[FloatArray, list[float]]:
+    """The room's corners with each wall that something hangs on (a hung box whose centre is
+    nearer that wall than any other) moved in along its normal until the nearest box (hung or
+    not: every box stays inside) touches it, the camera staying `camera_gap` metres inside;
+    and how far each wall moved in (0 for one nothing hangs on, or already touched). The
+    walls are read from boxes inside the room (`widened_to_hold` first)."""
+    narrowed = np.array(corners, dtype=float)
+    walls = _walls_outward(narrowed[:4, [0, 2]])
+    points = np.concatenate(boxes)[:, [0, 2]] if boxes else np.zeros((0, 2))
+    hung_walls = set()
+    for box in hung:
+        centre = box[:, [0, 2]].mean(axis=0)
+        hung_walls.add(int(np.argmin([float((a - centre) @ out) for a, out in walls])))
+    moves = []
+    for i, (a, outward) in enumerate(walls):
+        if i not in hung_walls or not len(points):
+            moves.append(0.0)
+            continue
+        room_left = float(((a - points) @ outward).min())  # to the nearest box's point
+        move = max(min(room_left, float(a @ outward) - camera_gap), 0.0)
+        moves.append(move)
+        _move_wall(narrowed, i, -outward * move)
+    return narrowed, moves
