@@ -141,10 +141,13 @@ describe("the held-out column of a model never judged on held-out scenes of its 
       heldout_accuracy: 0.2,
       parent_id: "a",
       parent_heldout_accuracy: 0.1,
+      heldout_items: 9,
       heldout_others: [{ model_id: "c", accuracy: 0.25, recall: 0.5 }],
     });
     const others = [shipped, idle, retrain];
-    expect(heldoutText(idle, detector, others)).toBe("25.0% · 50.0% on v4's held-out scenes");
+    expect(heldoutText(idle, detector, others)).toBe(
+      "25.0% · 50.0% on v4's held-out scenes (9 confirmed boxes)",
+    );
     // Measured, so "Make active" no longer warns that it never was.
     expect(promoteQuestion(idle, shipped, detector, others)).not.toContain("Warning");
     expect(promoteQuestion(idle, shipped, detector, [shipped, idle])).toContain(

@@ -46,9 +46,11 @@ export function heldoutText(
 ): string {
   if (model.heldout_accuracy === null) {
     const seen = newestComparison(model, others);
-    return seen
-      ? `${figures(seen.accuracy, seen.recall)} on v${seen.by.version}'s held-out scenes`
-      : "—";
+    if (!seen) return "—";
+    const items = seen.by.heldout_items;
+    const [one, many] = text.heldoutItems;
+    const count = items == null ? "" : ` (${items} ${items === 1 ? one : many})`;
+    return `${figures(seen.accuracy, seen.recall)} on v${seen.by.version}'s held-out scenes${count}`;
   }
   const parent =
     model.parent_version !== null && model.parent_heldout_accuracy !== null
