@@ -101,7 +101,8 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
     className: "link-like detector-fainter",
     testid: "offer-rejected-suggestions",
     title:
-      "Offer again the boxes rejected on this scene (rejections are remembered in this browser)",
+      "Offer again the boxes rejected on this scene (rejections are remembered in this browser) " +
+      "and the boxes of objects people removed from it",
     onClick: actions.offerRejected,
   });
   const selection = el("span", { className: "detector-selection", testid: "detector-selection" });
