@@ -326,19 +326,29 @@ test("edits supports on the photo with clicks, a drag and keys, showing each edg
   const from = await arrowPoint(page, "o3", "head");
   await page.mouse.move(from.x, from.y);
   await page.mouse.down();
-  let onFloor = false;
-  for (let y = height - 6; y > height * 0.6 && !onFloor; y -= 25) {
-    for (let x = 10; x < width && !onFloor; x += 30) {
+  let floorAt: { x: number; y: number } | null = null;
+  for (let y = height - 6; y > height * 0.6 && !floorAt; y -= 25) {
+    for (let x = 10; x < width && !floorAt; x += 30) {
       const at = await screenPoint(page, x, y);
       await page.mouse.move(at.x, at.y, { steps: 2 });
-      onFloor = (await page.getByTestId("drop-surface").allTextContents()).includes("floor");
+      const named = await page.getByTestId("drop-surface").allTextContents();
+      if (named.includes("floor")) floorAt = at;
     }
   }
-  expect(onFloor).toBe(true);
+  expect(floorAt).not.toBeNull();
   await page.mouse.up();
   await expect(arrow("o3")).toHaveAttribute("data-parent", "floor");
   await expect(arrow("o3")).toHaveAttribute("data-type", "below");
   await page.keyboard.press("Control+z"); // back on o2, as the steps below expect
+  await expect(arrow("o3")).toHaveAttribute("data-parent", "o2");
+  // A click on the arrow arms a pick; pointing at the floor then names nothing (a click there
+  // deselects, it picks no supporter).
+  await clickArrow(page, "o3");
+  await expect(page.getByTestId("photo")).toHaveClass(/is-picking/);
+  await page.mouse.move(floorAt?.x ?? 0, floorAt?.y ?? 0, { steps: 2 });
+  // Read at once, as drawn for this pointer position (a later redraw of the photo clears it).
+  expect(await page.getByTestId("drop-surface").count()).toBe(0);
+  await page.keyboard.press("Escape");
   await expect(arrow("o3")).toHaveAttribute("data-parent", "o2");
 
   // R rejects a guess: it goes, and the model's next answer (if it has one) is suggested.

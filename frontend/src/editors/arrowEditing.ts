@@ -180,15 +180,16 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
   };
 
   /** The arrow `child` would get from where the pointer is: a dashed line to the pointer and
-   * the box of the object under it (the one a drop or a click would make its supporter), or
-   * the name of the room's surface there. */
-  const drawPick = (child: string, event: MouseEvent) => {
+   * the box of the object under it (the one a drop or a click would make its supporter), or,
+   * while `dragging`, the name of the room's surface a drop there would pick (a click there
+   * picks none). */
+  const drawPick = (child: string, event: MouseEvent, dragging: boolean) => {
     const to = picking.centroid(child);
     const at = picking.toImage(event);
     const target = picking.objectAt(event);
     const box = target && target !== child ? picking.bbox(target) : null;
     // Between objects, the room's surface a drop would pick is named at the pointer.
-    const surface = target === null ? surfaceAt(event) : null;
+    const surface = dragging && target === null ? surfaceAt(event) : null;
     const width = picking.strokeWidth();
     dragLayer.replaceChildren(
       ...(surface && at
@@ -239,7 +240,7 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
       return;
     press.dragging = true;
     svg.classList.add("is-picking");
-    drawPick(press.child, event);
+    drawPick(press.child, event, true);
   };
   // An armed pick shows what a click would do before it is made.
   const armedChild = () =>
@@ -247,7 +248,7 @@ export function mountArrowEditing(picking: PhotoPicking, session: SceneSession):
   const onHover = (event: MouseEvent) => {
     if (press) return;
     const child = armedChild();
-    if (child) drawPick(child, event);
+    if (child) drawPick(child, event, false);
   };
   const clearPreview = () => {
     if (!press) dragLayer.replaceChildren();
