@@ -67,6 +67,13 @@ export function matVec(m: Matrix3Like, v: readonly number[]): Vec3 {
   return [dot3(m[0] ?? [], v), dot3(m[1] ?? [], v), dot3(m[2] ?? [], v)];
 }
 
+/** a - b, for 3-vectors (a room's corners come as plain arrays). */
+export const sub3 = (a: readonly number[], b: readonly number[]): Vec3 => [
+  (a[0] ?? 0) - (b[0] ?? 0),
+  (a[1] ?? 0) - (b[1] ?? 0),
+  (a[2] ?? 0) - (b[2] ?? 0),
+];
+
 export function dot3(a: readonly number[], b: readonly number[]): number {
   return (a[0] ?? 0) * (b[0] ?? 0) + (a[1] ?? 0) * (b[1] ?? 0) + (a[2] ?? 0) * (b[2] ?? 0);
 }

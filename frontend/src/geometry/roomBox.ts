@@ -6,6 +6,7 @@ import {
   type Matrix3Like,
   matVec,
   type Point2,
+  sub3,
   transpose,
   type Vec3,
   worldFromCv,
@@ -31,16 +32,14 @@ export const BOX_EDGES: readonly (readonly [number, number])[] = [
 /** Points closer to the camera plane than this (metres) are cut off before projecting. */
 const NEAR = 0.05;
 
-const sub = (a: Vec3, b: Vec3): Vec3 => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-
 /**
  * The box with these 8 corners (contract order), as backend placement/room.py's
  * Room.from_corners reads it: local +x runs from corner 0 to 1, +z from 0 to 3.
  */
 export function roomBoxFromCorners(corners: readonly Vec3[]): RoomBox {
   const c = (i: number) => corners[i] as Vec3;
-  const xAxis = sub(c(1), c(0));
-  const zAxis = sub(c(3), c(0));
+  const xAxis = sub3(c(1), c(0));
+  const zAxis = sub3(c(3), c(0));
   const mean = (axis: 0 | 1 | 2, from: number, to: number) =>
     corners.slice(from, to).reduce((sum, p) => sum + p[axis], 0) / (to - from);
   return {

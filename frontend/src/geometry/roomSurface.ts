@@ -7,6 +7,7 @@ import {
   type Matrix3Like,
   matVec,
   type Point2,
+  sub3,
   type Vec3,
   worldFromCv,
 } from "./camera";
@@ -19,11 +20,6 @@ export interface SurfaceCamera {
   roll_deg: number | null;
 }
 
-const sub = (a: readonly number[], b: readonly number[]): Vec3 => [
-  (a[0] ?? 0) - (b[0] ?? 0),
-  (a[1] ?? 0) - (b[1] ?? 0),
-  (a[2] ?? 0) - (b[2] ?? 0),
-];
 const unit = (v: Vec3): Vec3 => {
   const length = Math.hypot(...v);
   return [v[0] / length, v[1] / length, v[2] / length];
@@ -43,8 +39,8 @@ export function roomSurfaceAt(
   if (corners?.length !== 8) return null;
   const at = (i: number) => corners[i] as readonly number[];
   // The room's own axes: along its walls from corner 0, and up.
-  const along = sub(at(1), at(0));
-  const across = sub(at(3), at(0));
+  const along = sub3(at(1), at(0));
+  const across = sub3(at(3), at(0));
   const mean = (from: number, to: number) =>
     corners.slice(from, to).reduce((sum, c) => sum + (c[1] ?? 0), 0) / (to - from);
   const floorY = mean(0, 4);
@@ -52,7 +48,7 @@ export function roomSurfaceAt(
   if (extents.some((e) => !(e > 0))) return null;
   const axes = [unit(along), [0, 1, 0] as Vec3, unit(across)];
   // The camera (the world's origin) in the room's frame: from corner 0, and above the floor.
-  const fromCorner = sub([0, 0, 0], at(0));
+  const fromCorner = sub3([0, 0, 0], at(0));
   const origin = [dot3(fromCorner, axes[0] as Vec3), -floorY, dot3(fromCorner, axes[2] as Vec3)];
   if (origin.some((o, i) => o <= 0 || o >= (extents[i] as number))) return null;
   const rayCv = matVec(invert(camera.K), [pixel[0], pixel[1], 1]);

@@ -386,14 +386,19 @@ class DetectorRetrainJob(TrainingJob):
     def _score_parent(
         self, parent: ModelInfo | None, heldout: Sequence[tuple[BoxedPhoto, BoxedScene]]
     ) -> DetectorScore | None:
-        if parent is None:
-            return None
+        return None if parent is None else self._score_logged(parent, heldout, "active detector")
+
+    def _score_logged(
+        self, model: ModelInfo, heldout: Sequence[tuple[BoxedPhoto, BoxedScene]], name: str
+    ) -> DetectorScore | None:
+        """A registered detector on the held-out scenes, its figures (or why none) logged; a
+        broken one must not block the retrain."""
         try:
-            score = score_detector(self.models.folder(parent.id), heldout)
-        except Exception as exc:  # a broken active detector must not block a working one
-            self._log(f"the active detector v{parent.version} could not be evaluated: {exc}")
+            score = score_detector(self.models.folder(model.id), heldout)
+        except Exception as exc:
+            self._log(f"the {name} v{model.version} could not be evaluated: {exc}")
             return None
-        self._log(f"active detector v{parent.version}: {score.text()}")
+        self._log(f"{name} v{model.version}: {score.text()}")
         return score
 
     def _score_others(
@@ -406,13 +411,9 @@ class DetectorRetrainJob(TrainingJob):
             if parent is not None and model.id == parent.id:
                 continue
             self._check_stop()
-            try:
-                score = score_detector(self.models.folder(model.id), heldout)
-            except Exception as exc:  # one broken model must not end the retrain
-                self._log(f"detector v{model.version} could not be evaluated: {exc}")
-                continue
-            self._log(f"detector v{model.version}: {score.text()}")
-            scored.append((model, score))
+            score = self._score_logged(model, heldout, "detector")
+            if score is not None:
+                scored.append((model, score))
         return scored
 
     def _registration(

@@ -6,7 +6,7 @@
 // object and sticks out on its far side, so the head is not hidden inside the mesh.
 import type { SceneObject } from "@holiscene/schema";
 import { boxCorners } from "../../geometry/boxes";
-import type { Vec3 } from "../../geometry/camera";
+import { dot3, sub3, type Vec3 } from "../../geometry/camera";
 
 export const ARROW_OVERSHOOT = 0.2;
 export const MIN_ARROW_LENGTH = 0.4;
@@ -31,9 +31,7 @@ export interface ArrowRoom {
 }
 
 const add = (a: Vec3, b: Vec3): Vec3 => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
-const sub = (a: Vec3, b: Vec3): Vec3 => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
 const scale = (a: Vec3, s: number): Vec3 => [a[0] * s, a[1] * s, a[2] * s];
-const dot = (a: Vec3, b: Vec3) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 const length = (a: Vec3) => Math.hypot(...a);
 
 /** The object's 8 box corners, from corners_3d or else box_3d; null when it has no box. */
@@ -116,13 +114,13 @@ export function planArrows(
       ? structuralAnchor(support.parent, room, centre)
       : supporter && centreOf(supporter);
     if (!start) continue; // the supporter has no place in 3D (no room, or no box)
-    const offset = sub(centre, start);
+    const offset = sub3(centre, start);
     const distance = length(offset);
     const direction: Vec3 = distance > 1e-6 ? scale(offset, 1 / distance) : [0, 1, 0];
-    const reach = Math.max(...child.map((p) => dot(sub(p, centre), direction)));
+    const reach = Math.max(...child.map((p) => dot3(sub3(p, centre), direction)));
     const end = add(centre, scale(direction, reach + ARROW_OVERSHOOT));
-    if (length(sub(end, start)) < MIN_ARROW_LENGTH)
-      start = sub(end, scale(direction, MIN_ARROW_LENGTH));
+    if (length(sub3(end, start)) < MIN_ARROW_LENGTH)
+      start = sub3(end, scale(direction, MIN_ARROW_LENGTH));
     arrows.push({ child: support.child, parent: support.parent, type: support.type, start, end });
   }
   return arrows;

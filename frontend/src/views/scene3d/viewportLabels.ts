@@ -138,8 +138,9 @@ export class ViewportLabels {
     camera.updateMatrixWorld();
     const point = new THREE.Vector3();
     const candidates: LabelCandidate[] = [];
+    const present = new Set(session.objects.map((o) => o.id));
     for (const [id, { at, size }] of this.anchors) {
-      if (!session.object(id)) continue; // removed in an edit since this GLB
+      if (!present.has(id)) continue; // removed in an edit since this GLB
       point.copy(at).project(camera);
       if (point.z > 1 || point.z < -1) continue; // behind the camera or past its far plane
       candidates.push({
@@ -163,9 +164,13 @@ export class ViewportLabels {
       tag.style.transform = `translate(${spot.left}px, ${spot.top}px)`;
       tag.classList.toggle("is-selected", id === session.selected);
       tag.classList.toggle("is-hovered", id === session.hovered);
+      // Written only when it changes: this runs on every frame of an orbit.
       const colour = colours.get(id);
-      const swatch = tag.firstElementChild as HTMLElement;
-      swatch.style.background = colour ? rgbCss(colour) : "transparent";
+      const css = colour ? rgbCss(colour) : "transparent";
+      if (tag.dataset.colour !== css) {
+        tag.dataset.colour = css;
+        (tag.firstElementChild as HTMLElement).style.background = css;
+      }
     }
   }
 
