@@ -20,6 +20,7 @@ from holiscene.geometry.metric_scale import (
     default_calibration,
     fit_calibration,
     mounting_points,
+    too_large_to_stand_there,
 )
 from holiscene.geometry.room_layout import RoomHypothesis
 from holiscene.knowledge.object_sizes import height_spread, mounting_height
@@ -176,3 +177,19 @@ def test_a_seen_front_wall_pulls_towards_the_typical_room_depth() -> None:
     assert FRONT_WALL_PRIOR[0] / 4.0 < near.metres < alone.metres < far.metres
     assert near.priors == "camera height + front wall distance"
     assert near.spread < alone.spread
+
+
+DOWN_20 = PinholeCamera(np.array([[500.0, 0, 320], [0, 500.0, 240], [0, 0, 1]]), 20.0, 0.0)
+
+
+def test_a_shelf_whose_bottom_edge_meets_the_floor_far_away_is_too_large_to_stand_there() -> None:
+    # Bottom edge 52 px below the horizon (y = 58): the floor there is 10 camera heights away,
+    # where 160 px span 3 m of floor even with a camera 0.87 m high.
+    high_shelf = [400.0, 0.0, 560.0, 110.0]
+    assert too_large_to_stand_there(DOWN_20, "shelves", high_shelf)
+    # The same box lower in the photo stands nearer, at a believable size.
+    assert not too_large_to_stand_there(DOWN_20, "shelves", [400.0, 0.0, 560.0, 150.0])
+    assert not too_large_to_stand_there(DOWN_20, "bookshelf", [300.0, 60.0, 440.0, 256.0])
+    # A catch-all class may be any size; a bottom edge above the horizon meets no floor.
+    assert not too_large_to_stand_there(DOWN_20, "otherprop", high_shelf)
+    assert not too_large_to_stand_there(DOWN_20, "shelves", [400.0, 0.0, 560.0, 40.0])

@@ -21,6 +21,7 @@ from ...geometry.metric_scale import (
     camera_height,
     floor_contacts,
     mounting_points,
+    too_large_to_stand_there,
 )
 from ...geometry.room_layout import RoomHypothesis, SurfaceEvidence, estimate_room, room_to_world
 from ...geometry.room_width import unseen_side_wall_distance
@@ -128,8 +129,14 @@ def estimate_layout(
     contacts = floor_contacts(camera, objects, height)
     to_room = room_to_world(frame)
     boxes = [o.bbox for o in objects]
-    # Points surely inside the room: contacts whose bottom edge no nearer object may hide.
-    inside = [p for o, p in contacts if not bottom_may_be_hidden(o, objects)]
+    # Points surely inside the room: contacts whose bottom edge no nearer object may hide, of
+    # objects of a believable size standing there.
+    inside = [
+        p
+        for o, p in contacts
+        if not bottom_may_be_hidden(o, objects)
+        and not too_large_to_stand_there(camera, o.cls, o.bbox)
+    ]
     # The objects' scale turns the priors on wall distances (metres) into camera heights; the
     # seen ceiling and front wall then join the final scale.
     metres_from_objects = camera_height(camera, contacts, None, width).metres

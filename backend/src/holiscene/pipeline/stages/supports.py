@@ -17,8 +17,10 @@ from holiscene_schema import (
     SupportRelation,
 )
 from holiscene_schema.relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER
+from numpy.typing import NDArray
 
 from ...geometry.camera import PinholeCamera
+from ...geometry.metric_scale import too_large_to_stand_there
 from ...learning.decode import DecodeMode, decode_supports
 from ...learning.preprocess import relation_inputs
 from ...learning.priors import SupportPriors
@@ -68,31 +70,71 @@ FLOOR_RAY_MIN_DROP = np.sin(np.radians(1.0))
 # least this share of its width, may hide where the object really stands.
 HIDING_GAP = 0.03
 HIDING_OVERLAP = 0.3
+# Other objects' pixels just below a bottom edge must cover this share of its width to hide
+# it, for the size test of `off_the_floor` (GrabCut's masks spill past their objects).
+PIXELS_HIDING_SHARE = 0.6
 # An object's supporter spans at least this share of its width in the photo.
 SUPPORTER_OVERLAP = 0.3
 
 
 def off_the_floor(
-    camera: PinholeCamera | None, boxes: list[list[float]], height: int
+    camera: PinholeCamera | None,
+    boxes: list[list[float]],
+    height: int,
+    objects: list[SceneObject] | None = None,
+    masks: list[NDArray[np.bool_]] | None = None,
 ) -> list[bool]:
-    """Per 2D box: whether its bottom edge is at or above the floor's horizon with nothing
-    just below it that could hide a lower bottom, so the floor cannot hold it up from below
-    (a picture high on a wall, a shelf's books); False without a camera."""
+    """Per 2D box: whether the floor cannot hold it up from below. Either its bottom edge is
+    at or above the floor's horizon (a picture high on a wall, a shelf's books) with no box
+    just below it that could hide a lower bottom; or, given the `objects` (the boxes' own,
+    for their classes) and their `masks`, it would be far too large for one standing where
+    that edge meets the floor (a shelf on a wall, cut by the photo's top and side, read as a
+    bookcase 12 m away) with no other object's pixels just below it. False without a camera."""
     if camera is None:
         return [False] * len(boxes)
     bottoms = np.array([[(b[0] + b[2]) / 2.0, b[3]] for b in boxes], dtype=float).reshape(-1, 2)
     drops = -camera.ray(bottoms)[:, 1] if len(boxes) else np.zeros(0)
     result = []
     for n, (box, drop) in enumerate(zip(boxes, drops, strict=True)):
-        hidden = any(
-            other[1] <= box[3] + HIDING_GAP * height
-            and other[3] > box[3]
-            and _overlap_x(box, other) >= HIDING_OVERLAP * _width(box)
-            for m, other in enumerate(boxes)
-            if m != n
-        )
-        result.append(bool(drop < FLOOR_RAY_MIN_DROP) and not hidden)
+        if drop < FLOOR_RAY_MIN_DROP:
+            result.append(not _box_below_may_hide(n, boxes, height))
+        elif objects is not None and masks is not None:
+            too_large = too_large_to_stand_there(camera, objects[n].cls, box)
+            result.append(too_large and not _pixels_below_may_hide(n, boxes, masks, height))
+        else:
+            result.append(False)
     return result
+
+
+def _box_below_may_hide(n: int, boxes: list[list[float]], height: int) -> bool:
+    """Whether another box starts just below box n's bottom edge (or above it) and reaches
+    lower, across enough of its width to hide where it really stands."""
+    box = boxes[n]
+    return any(
+        other[1] <= box[3] + HIDING_GAP * height
+        and other[3] > box[3]
+        and _overlap_x(box, other) >= HIDING_OVERLAP * _width(box)
+        for m, other in enumerate(boxes)
+        if m != n
+    )
+
+
+def _pixels_below_may_hide(
+    n: int, boxes: list[list[float]], masks: list[NDArray[np.bool_]], height: int
+) -> bool:
+    """Whether other objects' pixels fill the strip just below box n's bottom edge across
+    most of its width (PIXELS_HIDING_SHARE): where the strip shows no object, the bottom edge
+    is seen and the object ends there. Finer than the boxes: a bed's box reaches up to its
+    headboard at one side, its pixels do not."""
+    x1, _, x2, y2 = (round(v) for v in boxes[n])
+    strip = max(round(HIDING_GAP * height), 1)
+    if y2 + strip > height or x2 <= x1:
+        return True  # the photo's bottom edge cuts the strip: what is below is not seen
+    below = np.zeros(x2 - x1, dtype=bool)
+    for m, mask in enumerate(masks):
+        if m != n:
+            below |= mask[y2 : y2 + strip, x1:x2].any(axis=0)
+    return bool(below.mean() >= PIXELS_HIDING_SHARE)
 
 
 def rule_out_impossible(scores: np.ndarray, child: SceneObject, objects: list[SceneObject]) -> None:
@@ -169,7 +211,10 @@ class SupportsFromPriors(Stage):
         ids = [o.id for o in objects]
         pinned = kept_pins(ctx, ids)
         candidates = {o.id: prior_candidates(o, objects, self.priors) for o in objects}
-        unfloored = off_the_floor(scene_camera(ctx), [o.bbox for o in objects], ctx.height)
+        masks = [ctx.masks[o.id].pixels for o in objects] if ctx.masks is not None else None
+        unfloored = off_the_floor(
+            scene_camera(ctx), [o.bbox for o in objects], ctx.height, objects, masks
+        )
         for obj, off in zip(objects, unfloored, strict=True):
             if off:
                 kept = [c for c in candidates[obj.id] if c[1:] != ("floor", "below")]
@@ -240,7 +285,13 @@ class SupportsFromNetwork(Stage):
             [o.cls for o in objects],
         )
         probabilities = self.model.probabilities(inputs)
-        unfloored = off_the_floor(scene_camera(ctx), [o.bbox for o in objects], ctx.height)
+        unfloored = off_the_floor(
+            scene_camera(ctx),
+            [o.bbox for o in objects],
+            ctx.height,
+            objects,
+            [masks[o.id].pixels for o in objects],
+        )
         for row, off in enumerate(unfloored):
             if off:
                 rule_out_impossible(probabilities[row], objects[row], objects)
