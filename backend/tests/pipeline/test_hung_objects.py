@@ -102,8 +102,9 @@ def _context(source: str) -> SceneContext:
     ]
     ctx.boxes_3d = {
         "picture": Box3D(center=[4.05, 0.3, 0.5], size=[0.04, 0.5, 0.8], yaw_deg=0.0),
-        # A chair through a side wall: only what hangs on walls moves them.
-        "chair": Box3D(center=[2.0, -0.8, 2.4], size=[0.6, 0.8, 0.6], yaw_deg=0.0),
+        # A chair through a side wall by 0.1 m, a sixth of its size: an estimated box's
+        # error, no reason to move the wall.
+        "chair": Box3D(center=[2.0, -0.8, 2.3], size=[0.6, 0.8, 0.6], yaw_deg=0.0),
     }
     return ctx
 
@@ -131,6 +132,23 @@ def test_the_stage_moves_the_wall_behind_a_picture_and_projects_the_new_corners(
     assert ctx.layout.note == f"priors; {said}"
     assert ctx.layout.source == "estimated"
     assert "1 wall(s) moved out" in ctx.reports["layout_holds_hung_objects"]
+
+
+def test_a_wall_moves_out_to_hold_the_middle_half_of_what_stands_mostly_beyond_it() -> None:
+    ctx = _context("estimated")
+    assert ctx.boxes_3d is not None
+    # The chair's centre 0.3 m beyond the side wall at z = 2.5: the wall is wrong, not the box.
+    ctx.boxes_3d["chair"] = Box3D(center=[2.0, -0.8, 2.8], size=[0.6, 0.8, 0.6], yaw_deg=0.0)
+    LayoutHoldsHungObjects().run(ctx)
+    assert ctx.layout is not None and ctx.layout.corners_3d is not None
+    room = Room.from_corners(np.array(ctx.layout.corners_3d))
+    # Out 0.07 m behind the picture, and 0.45 m to the chair's middle half (z up to 2.95).
+    np.testing.assert_allclose(room.size, [5.07, 2.6, 4.95], atol=1e-4)
+    assert not _inside(room, corners_of(ctx.boxes_3d["chair"]))
+    assert ctx.layout.note == (
+        "priors; 1 wall(s) moved out by up to 0.07 m to meet what hangs on them;"
+        " 1 wall(s) moved out by up to 0.45 m to hold what stands on the floor"
+    )
 
 
 @pytest.mark.parametrize("source", ["manual", "ground_truth"])

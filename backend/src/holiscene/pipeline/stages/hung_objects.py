@@ -12,6 +12,11 @@ does not float in front of its wall (every box stays inside; layout IoU 71.6 -> 
 (docs/benchmarks.md, "Where the layout IoU goes"), and what hangs on a wall is evidence of
 where that wall is.
 
+Last, each wall moves out until the middle half of every box standing on the floor is inside
+the room: no floor-standing thing lies mostly beyond a wall (layout IoU +0.35, +0.11 and
++0.02 points on 40, 80 and 40 rooms of seeds 950000, 980000 and 1, where holding the whole
+boxes lost 0.5 points on the 80, the boxes' own errors moving walls out).
+
 A layout set by a person or taken from the ground truth is kept as it is. The stage is not
 in a placement job (`PLACEMENT_STAGES`): there the walls it moved are the stored layout, and
 moving them again after each placement would let the room grow job by job.
@@ -26,6 +31,21 @@ from ...placement.room import narrowed_to_hung, pinhole, widened_to_hold
 from ..base import SceneContext, Stage, required
 from ..registry import register_stage
 from .layout import image_corners
+
+
+def middle_half(corners: np.ndarray) -> np.ndarray:
+    """A box's corners pulled halfway to its centre: the part of a standing object the walls
+    must hold. An estimated box may reach through its wall by a little (its distance is a few
+    percent off); more than a quarter of its size says the wall is wrong."""
+    result: np.ndarray = (corners + corners.mean(axis=0, keepdims=True)) / 2
+    return result
+
+
+def _moved(moves: list[float], how: str) -> str:
+    """'2 wall(s) moved out by up to 0.45 m ...' for the moves that count; '' for none."""
+    counted = [m for m in moves if m >= MIN_MOVE_M]
+    return f"{len(counted)} wall(s) {how.format(max(counted))}" if counted else ""
+
 
 # The layout is rewritten only when a wall moves at least this far: a box touching its wall
 # within rounding is no reason to.
@@ -59,32 +79,30 @@ class LayoutHoldsHungObjects(Stage):
             if s.parent == "wall" and (box := boxes.get(s.child)) is not None
         ]
         placed = [corners_of(box) for box in boxes.values() if box is not None]
+        standing = [
+            middle_half(corners_of(box))
+            for s in required(ctx.supports, "supports")
+            if s.parent == "floor" and (box := boxes.get(s.child)) is not None
+        ]
         corners, outs = widened_to_hold(np.array(layout.corners_3d, dtype=float), hung)
         corners, ins = narrowed_to_hung(corners, hung, placed, CAMERA_GAP_M)
-        moved_out = [m for m in outs if m >= MIN_MOVE_M]
-        moved_in = [m for m in ins if m >= MIN_MOVE_M]
-        if not moved_out and not moved_in:
+        corners, outs_standing = widened_to_hold(corners, standing)
+        said = "; ".join(
+            described
+            for moves, how in (
+                (outs, "moved out by up to {:.2f} m to meet what hangs on them"),
+                (ins, "moved in by up to {:.2f} m to meet what hangs on them"),
+                (outs_standing, "moved out by up to {:.2f} m to hold what stands on the floor"),
+            )
+            if (described := _moved(moves, how))
+        )
+        if not said:
             ctx.reports[self.name] = (
                 f"every box hung on a wall ({len(hung)}) is inside the room, on its wall"
                 if hung
                 else "no box hung on a wall"
             )
             return
-        said = "; ".join(
-            [
-                *(
-                    [f"{len(moved_out)} wall(s) moved out by up to {max(moved_out):.2f} m"]
-                    if moved_out
-                    else []
-                ),
-                *(
-                    [f"{len(moved_in)} wall(s) moved in by up to {max(moved_in):.2f} m"]
-                    if moved_in
-                    else []
-                ),
-            ]
-        )
-        said += " to meet what hangs on them"
         stored = corners.round(4)
         ctx.layout = layout.model_copy(
             update={
