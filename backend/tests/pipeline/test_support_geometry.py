@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 from holiscene.geometry.camera import PinholeCamera
 from holiscene.inputs import read_input_folder
-from holiscene.pipeline.stages.supports import off_the_floor
+from holiscene.pipeline.stages.supports import off_the_floor, seen_against_the_floor
+from holiscene.placement.room import Room
 from holiscene.services.reconstruction import reconstruct_scene
 from holiscene_schema import SceneObject
 
@@ -92,6 +93,29 @@ def test_a_shelf_on_a_real_wall_is_not_stood_on_the_floor_nor_moves_the_wall_awa
     corners = np.array(scene.layout.corners_3d)
     floor_sides = [float(np.linalg.norm(corners[(k + 1) % 4] - corners[k])) for k in range(4)]
     assert max(floor_sides) < 8.0
+
+
+def test_a_thing_seen_against_the_floor_hangs_on_no_wall() -> None:
+    down = PinholeCamera(LEVEL.K, 20.0, 0.0)
+    # Camera 1.4 m above the floor of a room 6 m deep ahead (x) and 5 m wide (z).
+    room = Room(centre=np.array([2.5, -0.1, 0.0]), yaw_deg=0.0, size=np.array([7.0, 2.6, 5.0]))
+    floor_line = down.project(np.array([[6.0, -1.4, 0.0]]))[0]  # the far wall's foot, mid photo
+    picture = [300.0, 40.0, 340.0, floor_line[1] - 60.0]  # seen against the far wall
+    door = [300.0, 30.0, 340.0, floor_line[1] + 4.0]  # its foot on the floor line, about
+    books = [300.0, 380.0, 340.0, 420.0]  # on a table near the camera: floor behind them
+    assert seen_against_the_floor(down, room, [picture, door, books]) == [False, False, True]
+    assert seen_against_the_floor(None, room, [books]) == [False]
+    assert seen_against_the_floor(down, None, [books]) == [False]
+
+
+def test_books_on_a_real_coffee_table_are_not_hung_on_the_wall(real_photos: Path) -> None:
+    """im3d-1's o3 (books on the table in the middle of the room): the Relation Network
+    hung them on the wall."""
+    scene = reconstruct_scene(
+        read_input_folder(real_photos / "im3d-1"), name="im3d-1", image_file="img.jpg"
+    ).scene
+    support = next(s for s in scene.supports if s.child == "o3")
+    assert support.parent != "wall"
 
 
 def test_a_region_high_on_a_real_wall_is_not_stood_on_the_floor(real_photos: Path) -> None:
