@@ -4,7 +4,8 @@
 // off the photo is dragged by its handle on the photo's edge; the layout is saved as a new
 // revision; "Re-place objects" runs a placement job with its progress shown, and the 3D view
 // shows the new revision when it ends. On a real photo and on a synthetic room. And: a drag
-// saved by itself, then undone, is saved back, and a reload shows the room as it was.
+// saved by itself, then undone, is saved back, and a reload shows the room as it was; a drag
+// made just before leaving the scene is saved as the page is left.
 import type { Job, SceneDocument, SceneSummary } from "@holiscene/schema";
 import { expect, type Page, test } from "@playwright/test";
 import { getRevisions, getScene, T3D_5 } from "../helpers/api";
@@ -515,6 +516,35 @@ test("layout undo after an autosave: the drag is saved back, and a reload shows 
   expect(Math.hypot(reloaded[0] - shown[0], reloaded[1] - shown[1])).toBeLessThan(0.5);
   expect(maxDifference(shownRoom, await scene3d(page, (p) => p.roomCorners()))).toBeLessThan(2e-3);
   await expect(page.getByTestId("recovery-banner")).toBeHidden();
+});
+
+test("a corner dragged just before leaving the scene is saved as the page is left", async ({
+  page,
+  request,
+}) => {
+  test.setTimeout(300_000);
+  const doc = await seedFolder(request, synthesize(13), "synth-13 leave after a drag");
+  await slowAutosave(page); // the idle timer never fires: only leaving saves
+  await openScene(page, doc.scene_id);
+  await page.getByTestId("layout-toggle").click();
+  const floor = [...(await handles(page)).keys()].find((i) => i < 4);
+  if (floor === undefined) throw new Error("no floor corner in view");
+  const corner = await cornerAt(page, floor);
+  await dragCorner(page, floor, floor === 1 ? -24 : 24, 30);
+  await expect(page.getByTestId("layout-bar")).toHaveAttribute("data-dirty", "true");
+  await page.getByRole("link", { name: "← All scenes" }).click();
+  await expect(page).toHaveURL(/#\/$/);
+  // The layout editor is gone before the page's last save; the drag must still reach the server.
+  await expect
+    .poll(async () => (await getScene(page.request, doc.scene_id)).scene.layout?.source, {
+      timeout: 15_000,
+    })
+    .toBe("manual");
+  const saved = await getScene(page.request, doc.scene_id);
+  const dragged = saved.scene.layout?.corners_2d?.[floor] as number[];
+  expect(Math.hypot((dragged[0] ?? 0) - corner[0], (dragged[1] ?? 0) - corner[1])).toBeGreaterThan(
+    10,
+  );
 });
 
 test("the camera's height set by hand scales the room about the camera, undoes and is saved", async ({

@@ -1,7 +1,7 @@
 // Autosave's timing on a stand-in session (the real one needs a server to save to): it saves
 // after the idle time, waits again after each edit, stops on a conflict, retries a failed save
 // but not a refused one, holds while asked to or while the scene is read only, and saves once
-// more when the page leaves, and sends a save refused for an ended session once the person has
+// more when the page leaves (after a save on its way), and sends a save refused for an ended session once the person has
 // logged in again (never under someone else's session).
 import { afterEach, beforeEach, describe, expect, it, vi } from "vitest";
 import { startAutosave } from "./autosave";
@@ -146,6 +146,22 @@ describe("autosave", () => {
     stop();
     expect(session.saves).toBe(1);
     stop = () => {};
+  });
+
+  it("when the page leaves during a save, sends the edits made meanwhile once it has landed", async () => {
+    session.edit();
+    vi.advanceTimersByTime(1000);
+    expect(session.saves).toBe(1);
+    session.saveState = { kind: "saving" }; // that save is on its way
+    session.edit(); // a corner dragged meanwhile
+    session.saveState = { kind: "saving" };
+    stop();
+    stop = () => {};
+    expect(session.saves).toBe(1); // not on top of the save on its way
+    session.settle({ kind: "saved", revision: 4 });
+    await Promise.resolve();
+    await Promise.resolve();
+    expect(session.saves).toBe(2);
   });
 
   it("waits while an object action is being saved, and saves right after it", () => {

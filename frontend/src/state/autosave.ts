@@ -5,6 +5,7 @@
 // the scene to be editable again, or for the person to log in again (a save refused because
 // the session ended is sent once they have). Nothing is sent while the scene is read only.
 import { getCurrentUser, onCurrentUserChange } from "./currentUser";
+import { saveDone, trackSave } from "./savesInFlight";
 import type { SceneSession } from "./sceneSession";
 
 export interface AutosaveOptions {
@@ -84,7 +85,13 @@ export function startAutosave(session: SceneSession, options: AutosaveOptions): 
     unsubscribe();
     stopHearingLogins();
     cancel();
-    // Leaving the scene: try once more now; the draft in localStorage stays until it lands.
-    if (canSave()) void session.save(options.author());
+    // Leaving the scene: send what is left now or, when a save is on its way, as soon as it
+    // has landed (edits made during it would otherwise wait for a page that is gone); the
+    // draft in localStorage stays until they land.
+    const sendRest = () => {
+      if (canSave()) void session.save(options.author());
+    };
+    if (session.saveState.kind === "saving") trackSave(saveDone(session).then(sendRest));
+    else sendRest();
   };
 }

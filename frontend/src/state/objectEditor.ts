@@ -30,7 +30,7 @@ import { HistoryKeeper } from "./editHistory";
 import { lockText } from "./editLock";
 import { newObjectNotes } from "./newObjectNotes";
 import { predictDocument } from "./objectPrediction";
-import { trackSave } from "./savesInFlight";
+import { saveDone, trackSave } from "./savesInFlight";
 import type { SceneSession } from "./sceneSession";
 import type { Undoable } from "./undoOrder";
 
@@ -211,19 +211,6 @@ export function savedAlready(
     (r) => r.number > before && r.edits != null && canonical(r.edits) === wanted,
   );
   return found?.number ?? null;
-}
-
-/** Until the session is not saving (an object edit must not race a support save). */
-export function saveDone(session: SceneSession): Promise<void> {
-  if (session.saveState.kind !== "saving") return Promise.resolve();
-  return new Promise((resolve) => {
-    const stop = session.subscribe((change) => {
-      if (change === "save" && session.saveState.kind !== "saving") {
-        stop();
-        resolve();
-      }
-    });
-  });
 }
 
 const capital = (text: string) => text.charAt(0).toUpperCase() + text.slice(1);

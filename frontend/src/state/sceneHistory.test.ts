@@ -200,6 +200,20 @@ describe("one history for supports and the room layout", () => {
     expect(kept()?.layout).not.toBeNull();
   });
 
+  it("still sends moved corners after the layout editor is gone (the page's last save)", async () => {
+    const requests: EditRequest[] = [];
+    vi.spyOn(api, "postEdits").mockImplementation(async (_id, body) => {
+      requests.push(body);
+      return stored(session.doc, draft, body);
+    });
+    const detach = session.attachLayout(draft);
+    dragCorner(1, [20, 30]);
+    detach(); // leaving the page: the layout editor is disposed before autosave's last save
+    expect(session.savable).toBe(true);
+    await session.save("ann");
+    expect(requests[0]?.edits.map((e) => e.kind)).toEqual(["set_layout"]);
+  });
+
   it("offers moved corners back to the next visit", () => {
     dragCorner(1, [20, 30]);
     const corners = draft.snapshot().corners;

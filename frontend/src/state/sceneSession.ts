@@ -170,7 +170,9 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
     draft.onStep = (label, before, after) => this.record(label, [layoutChange(before, after)]);
     return () => {
       draft.onStep = null;
-      if (this.layout === draft) this.layout = null;
+      // Moved corners not saved yet stay with the session: the page's last save, sent as it
+      // is left (state/autosave.ts), runs after the layout editor is gone and must send them.
+      if (this.layout === draft && !draft.dirty) this.layout = null;
     };
   }
 

@@ -9,7 +9,7 @@ import { button, el } from "../../dom";
 import { warnBeforeLeaving } from "../../editors/saving/leaveWarning";
 import { getAuthor } from "../../state/author";
 import { titleUnlessLocked } from "../../state/editLock";
-import { saveDone } from "../../state/objectEditor";
+import { saveDone } from "../../state/savesInFlight";
 import { SceneSession } from "../../state/sceneSession";
 import { jobProgress, waitingText } from "../common/jobProgress";
 import { mayHaveGlb } from "../scene3d/viewportObjects";
