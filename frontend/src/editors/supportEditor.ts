@@ -1,9 +1,9 @@
 // The object list: each object's class (a button that opens the class picker) and its
 // supporter and support type, editable (read only while the scene is locked). Support edits
 // are staged in the session as undoable actions (shown at once on the photo) and autosaved.
-import type { SceneObject, StageRun } from "@holiscene/schema";
+import type { SceneObject } from "@holiscene/schema";
 import { STRUCTURAL_SUPPORTERS, SUPPORT_TYPES } from "@holiscene/schema";
-import { button, el, percentText, placeChildren } from "../dom";
+import { button, el, placeChildren } from "../dom";
 import { classText, objectClassText } from "../state/classNames";
 import type { SceneSession } from "../state/sceneSession";
 import {
@@ -25,6 +25,7 @@ import { boxConfidence } from "./boxConfidence";
 import { objectMesh } from "./objectMesh";
 import { objectSource } from "./objectSource";
 import { nearestFirst } from "./supporterOrder";
+import { supportStatus } from "./supportStatus";
 import { supportSummary } from "./supportSummary";
 
 const NONE = "";
@@ -77,32 +78,6 @@ function supporterOptions(object: SceneObject, objects: readonly SceneObject[]):
       ),
     ),
   ];
-}
-
-function statusText(support: ShownSupport | undefined): string {
-  if (!support) return "no supporter";
-  if (support.pending) return "unsaved";
-  if (support.source === "manual") return `manual${support.author ? ` · ${support.author}` : ""}`;
-  const confidence = support.confidence;
-  return typeof confidence === "number" ? `auto · ${percentText(confidence)}` : "auto";
-}
-
-/** The model whose guesses the stored supports are, as the pipeline run recorded it
- * ("Relation Network v2"; null: run outside a server, or before models were recorded). */
-function supportModel(stages: readonly StageRun[]): string | null {
-  return stages.find((run) => run.model && run.name.startsWith("supports_from_"))?.model ?? null;
-}
-
-/** What the status chip stands for, for its tooltip; `guessedBy`: the model of the guesses. */
-function sourceTitle(support: ShownSupport | undefined, guessedBy: string | null): string {
-  if (!support) return "No supporter yet: pick one in the menu, or drag the arrow on the photo";
-  if (support.pending) return "Changed here, not saved yet";
-  if (support.source === "manual")
-    return `Set by ${support.author ?? "a person"}: a label, which retraining learns from`;
-  const sure =
-    typeof support.confidence === "number" ? `, ${percentText(support.confidence)} sure` : "";
-  const by = guessedBy ? ` by the ${guessedBy}` : "";
-  return `The pipeline's guess${by}${sure}; nobody has checked it yet`;
 }
 
 /** The object's class: a button opening the picker when classes can be changed here. */
@@ -274,8 +249,8 @@ function objectRow(
     if (cls instanceof HTMLButtonElement) setDisabled(cls, !session.editable);
     markLoops(supporter, id, support?.parent, shown);
     const pending = session.isPending(id);
-    const text = statusText(support);
-    if (status.textContent !== text) status.textContent = text;
+    const chip = supportStatus(support, suggested && !pending, session.doc.scene.stages ?? []);
+    if (status.textContent !== chip.text) status.textContent = chip.text;
     // A guess at under even odds is flagged like a missing supporter: it needs a look; so is a
     // supporter from below that stands beside the object on the photo (set here or there).
     const beside =
@@ -283,7 +258,7 @@ function objectRow(
     const doubtful = !support || Boolean(beside) || (!pending && isDoubtfulSupport(support));
     const badge = `badge${doubtful ? " badge--warn" : ""}${pending ? " badge--pending" : ""}`;
     if (status.className !== badge) status.className = badge;
-    const why = beside || sourceTitle(support, supportModel(session.doc.scene.stages ?? []));
+    const why = beside || chip.title;
     if (status.title !== why) status.title = why;
     element.classList.toggle("is-unsupported", !support);
     element.classList.toggle("is-pending", pending);

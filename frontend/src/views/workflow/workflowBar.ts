@@ -11,10 +11,10 @@ import { workflowApi } from "../../api/workflow";
 import { el, hiddenErrorAlert } from "../../dom";
 import { getCurrentUser } from "../../state/currentUser";
 import { plural, type SceneSession } from "../../state/sceneSession";
-import { withoutSupporter } from "../../state/supportGraph";
 import { everyWhileVisible } from "../common/everyWhileVisible";
 import { glbOutOfDate } from "../scene/glbStaleness";
 import { nextSceneControl } from "./nextScene";
+import { unsettledSupports } from "./submitConcerns";
 import { actionState, workflowActions } from "./workflowActions";
 import { workflowKeys } from "./workflowKeys";
 import { noteText, workflowStatus } from "./workflowStatus";
@@ -80,13 +80,9 @@ export function mountWorkflowBar(
     onSubmit: (byKey = false) =>
       void (async () => {
         // What a reviewer would send the scene back for, asked about in one question: objects
-        // without a supporter, a 3D scene older than the labels, nothing checked by a person.
-        const concerns: string[] = [];
-        const missing = withoutSupporter(session.objects, session.shown()).map((o) => o.id);
-        if (missing.length > 0)
-          concerns.push(
-            `${plural(missing.length, "object")} (${missing.join(", ")}) ${missing.length === 1 ? "has" : "have"} no supporter.`,
-          );
+        // without a supporter, suggestions not accepted, a 3D scene older than the labels, nothing
+        // checked by a person.
+        const concerns = unsettledSupports(session);
         const lacks = await outOfDate3d();
         if (lacks !== "")
           concerns.push(
