@@ -70,6 +70,11 @@ test("shows the frustum and arrows, shares the selection with the photo, exports
   await page.mouse.click(at.x, at.y);
   await expect(canvas).toHaveAttribute("data-selected", first);
   await expect(page.getByTestId(`mask-${first}`)).toHaveClass(/is-selected/);
+  // As on the photo, a second click on it deselects it; a third selects it again.
+  await page.mouse.click(at.x, at.y);
+  await expect(canvas).toHaveAttribute("data-selected", "");
+  await page.mouse.click(at.x, at.y);
+  await expect(canvas).toHaveAttribute("data-selected", first);
   // The object pointed at is named over the view, with its 3D box's size in metres.
   const caption = page.getByTestId("scene3d-caption");
   await expect(caption).toContainText(

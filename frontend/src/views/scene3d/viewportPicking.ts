@@ -78,7 +78,10 @@ export class ViewportPicking {
       if (!pressed || event.button !== 0) return;
       const moved = Math.hypot(event.clientX - pressed.x, event.clientY - pressed.y);
       pressed = null;
-      if (moved <= CLICK_SLOP) session.select(this.objectAt(event.clientX, event.clientY));
+      if (moved > CLICK_SLOP) return; // an orbit, not a click
+      // As on the photo: a click on the selected object deselects it.
+      const hit = this.objectAt(event.clientX, event.clientY);
+      session.select(hit !== null && hit === session.selected ? null : hit);
     });
     canvas.addEventListener("pointermove", (event) => {
       if (event.buttons === 0) session.hover(this.objectAt(event.clientX, event.clientY));
