@@ -470,7 +470,11 @@ class Workbench:
             # A layout set by hand up to the revision read above is in the result (kept);
             # one set after it would be overwritten, so that refuses the result.
             revision = self.scenes.commit_pipeline_result(
-                job.scene_id, result.scene, result.glb, base_revision=run.revision
+                job.scene_id,
+                result.scene,
+                result.glb,
+                base_revision=run.revision,
+                author=job.started_by or "pipeline",
             )
         notes = [f"{s.name}: {s.note}" for s in result.scene.stages if s.note]
         self.jobs.succeed(job.id, revision, " | ".join(notes) or "done")

@@ -565,9 +565,11 @@ class SceneStore:
         glb: bytes | None,
         base_revision: int | None = None,
         attempts: int = 5,
+        author: str = "pipeline",
     ) -> int:
         """Store a whole pipeline run as a new revision on top of whatever is current, keeping
         every manual support and every object people set meanwhile. Returns the new revision number.
+        `author`: who started the run ("pipeline" for one nobody started, an import's).
 
         `base_revision`: the revision the run started from. A room layout set by hand after it
         cannot be merged (the run estimated its own): SceneChangedError, nothing written."""
@@ -582,7 +584,7 @@ class SceneStore:
             update = {"objects": objects, "removed_by_person": removed}
             merged = keep_manual_supports(result.model_copy(update=update), current.scene)
             try:
-                return self._commit_result(scene_id, current.revision, merged, glb)
+                return self._commit_result(scene_id, current.revision, merged, glb, author)
             except RevisionConflictError:
                 continue  # an edit landed meanwhile: merge again on top of it
         raise RevisionConflictError(self.document(scene_id).revision)

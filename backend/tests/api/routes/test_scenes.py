@@ -160,6 +160,10 @@ def test_manual_support_survives_pipeline_rerun(client: TestClient, t3d5: Path) 
     assert after["revision"] == edited["revision"] + 1
     kept = next(s for s in after["scene"]["supports"] if s["child"] == "o3")
     assert (kept["parent"], kept["source"]) == ("o2", "manual")
+    # The run is listed under the person who started it, as a placement run is.
+    revision = client.get(f"/api/scenes/{scene_id}/revisions").json()[-1]
+    assert job["started_by"] not in ("", "pipeline")
+    assert (revision["kind"], revision["author"]) == ("pipeline", job["started_by"])
 
 
 def _stored_state(client: TestClient, settings: Settings) -> tuple[int, list[str]]:

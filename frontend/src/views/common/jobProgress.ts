@@ -26,7 +26,7 @@ const STAGE_WORDS: Record<string, string> = {
   layout_from_depth: "room layout from the depth",
   layout_by_network: "room layout (network)",
   layout_from_revision: "room layout as saved",
-  layout_holds_hung_objects: "room around hung objects",
+  layout_holds_hung_objects: "walls moved to the objects",
   supports_from_network: "supports",
   supports_from_priors: "supports",
   heights_by_metrology: "object heights",

@@ -13,6 +13,7 @@ import type { ObjectEditor } from "../../state/objectEditor";
 import type { SceneSession } from "../../state/sceneSession";
 import { diffLines } from "./history/diffLines";
 import { revertTo } from "./history/revertRevision";
+import { revisionSummary } from "./history/revisionSummary";
 import { linkObjectIds } from "./objectIdLinks";
 
 export interface RevisionHistory {
@@ -159,12 +160,15 @@ export function mountRevisionHistory(
       ),
     });
     revertButton.onclick = () => void revert(info, revertButton);
+    const summary = revisionSummary(info.summary);
     revertButton.disabled = !session.editable;
     return el(
       "li",
       { attrs: { "data-revision": info.number } },
       el("strong", { text: `#${info.number}` }),
-      ` ${info.kind} by ${info.author} · ${formatTime(info.created_at)} · ${info.summary} `,
+      ` ${info.kind} by ${info.author} · ${formatTime(info.created_at)} · `,
+      el("span", { text: summary.text, attrs: summary.title ? { title: summary.title } : {} }),
+      " ",
       showButton,
       ...(info.number < current
         ? [" ", sinceButton, " ", revertButton]
