@@ -25,16 +25,25 @@ const unit = (v: Vec3): Vec3 => {
   return [v[0] / length, v[1] / length, v[2] / length];
 };
 
+/** How far along the ray through a pixel it leaves the room through each kind of face (in
+ * the ray's units; null for one it does not head for). */
+export interface RoomExits {
+  floor: number | null;
+  wall: number | null;
+  ceiling: number | null;
+}
+
 /**
- * The surface of the room (8 corners, contract order: floor 0-3, then ceiling 4-7, in the
- * world frame with the camera at the origin) seen at `pixel`; null without a room or a
+ * Where the ray through `pixel` leaves the room (8 corners, contract order: floor 0-3, then
+ * ceiling 4-7, in the world frame with the camera at the origin): the distance to the floor
+ * or ceiling it heads for and to the nearest wall it heads for. Null without a room or a
  * camera pose, or when the camera is not inside the room (a layout too wrong to say).
  */
-export function roomSurfaceAt(
+export function roomExits(
   pixel: Point2,
   camera: SurfaceCamera | null | undefined,
   corners: readonly (readonly number[])[] | null | undefined,
-): RoomSurface | null {
+): RoomExits | null {
   if (!camera || camera.pitch_deg == null || camera.roll_deg == null) return null;
   if (corners?.length !== 8) return null;
   const at = (i: number) => corners[i] as readonly number[];
@@ -53,16 +62,30 @@ export function roomSurfaceAt(
   if (origin.some((o, i) => o <= 0 || o >= (extents[i] as number))) return null;
   const rayCv = matVec(invert(camera.K), [pixel[0], pixel[1], 1]);
   const ray = matVec(worldFromCv(camera.pitch_deg, camera.roll_deg), rayCv);
-  const direction = axes.map((axis) => dot3(ray, axis));
-  // The face the ray leaves through: the nearest of the three it heads for.
-  let exit = { t: Number.POSITIVE_INFINITY, axis: -1, up: false };
-  direction.forEach((d, i) => {
+  const exits: RoomExits = { floor: null, wall: null, ceiling: null };
+  axes.forEach((axis, i) => {
+    const d = dot3(ray, axis);
     if (Math.abs(d) < 1e-12) return;
-    const wall = d > 0 ? (extents[i] as number) : 0;
-    const t = (wall - (origin[i] as number)) / d;
-    if (t > 0 && t < exit.t) exit = { t, axis: i, up: d > 0 };
+    const t = ((d > 0 ? (extents[i] as number) : 0) - (origin[i] as number)) / d;
+    if (!(t > 0)) return;
+    if (i !== 1) exits.wall = Math.min(exits.wall ?? t, t);
+    else if (d > 0) exits.ceiling = t;
+    else exits.floor = t;
   });
-  if (exit.axis === -1) return null;
-  if (exit.axis !== 1) return "wall";
-  return exit.up ? "ceiling" : "floor";
+  return exits;
+}
+
+/** The surface of the room seen at `pixel` (the face the ray leaves through first); null as
+ * for `roomExits`. */
+export function roomSurfaceAt(
+  pixel: Point2,
+  camera: SurfaceCamera | null | undefined,
+  corners: readonly (readonly number[])[] | null | undefined,
+): RoomSurface | null {
+  const exits = roomExits(pixel, camera, corners);
+  if (!exits) return null;
+  const first = (["wall", "floor", "ceiling"] as const)
+    .filter((face) => exits[face] !== null)
+    .sort((a, b) => (exits[a] as number) - (exits[b] as number))[0];
+  return first ?? null;
 }

@@ -1,7 +1,12 @@
 // The same cases as the backend's tests/pipeline/test_support_geometry.py.
 import type { Camera } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
-import { offTheFloor, ruleOutImpossible } from "./supportGeometry";
+import {
+  offTheFloor,
+  ruleOutImpossible,
+  ruleOutTheWall,
+  seenAgainstTheFloor,
+} from "./supportGeometry";
 import { STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER } from "./supportModel";
 
 const camera = (pitch: number | null): Camera =>
@@ -81,5 +86,47 @@ describe("ruling out impossible supporters", () => {
       [true, false],
     );
     expect(table[at(0, floor, "below")]).toBe(1);
+  });
+});
+
+describe("seen against the floor", () => {
+  // Camera 1.4 m above the floor of a room 6 m deep ahead (x) and 5 m wide (z); pitched down
+  // 20 degrees, the far wall's foot is at y = 179.8 in the middle of the photo.
+  const room = [-1.4, 1.2].flatMap((y) => [
+    [-1, y, -2.5],
+    [6, y, -2.5],
+    [6, y, 2.5],
+    [-1, y, 2.5],
+  ]);
+  const picture = [300, 40, 340, 179.8 - 60]; // against the far wall
+  const door = [300, 30, 340, 179.8 + 4]; // its foot on the wall's foot, about
+  const books = [300, 380, 340, 420]; // on a table near the camera: floor behind them
+
+  it("hangs on no wall what the floor is seen behind", () => {
+    expect(seenAgainstTheFloor(camera(20), room, [picture, door, books])).toEqual([
+      false,
+      false,
+      true,
+    ]);
+  });
+
+  it("says nothing without a room or a camera pose", () => {
+    expect(seenAgainstTheFloor(camera(null), room, [books])).toEqual([false]);
+    expect(seenAgainstTheFloor(camera(20), null, [books])).toEqual([false]);
+  });
+
+  it("takes the wall from behind away, and the rest sums to 1", () => {
+    const types = SUPPORT_TYPE_ORDER.length;
+    const columns = 1 + STRUCTURAL_COLUMNS.length;
+    const wallBehind =
+      (1 + STRUCTURAL_COLUMNS.indexOf("wall")) * types + SUPPORT_TYPE_ORDER.indexOf("behind");
+    const floorBelow =
+      (1 + STRUCTURAL_COLUMNS.indexOf("floor")) * types + SUPPORT_TYPE_ORDER.indexOf("below");
+    const table = new Float64Array(columns * types);
+    table[wallBehind] = 0.9;
+    table[floorBelow] = 0.1;
+    ruleOutTheWall(table, 1, [true]);
+    expect(table[wallBehind]).toBe(0);
+    expect(table[floorBelow]).toBeCloseTo(1);
   });
 });

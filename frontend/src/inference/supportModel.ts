@@ -7,7 +7,12 @@ import type { InferenceSession } from "onnxruntime-web";
 import { modelsApi } from "../api/models";
 import { loadRuntime, type Ort } from "./ortRuntime";
 import { modelObjects, type PixelImage, type RelationInputs, sceneInputs } from "./preprocess";
-import { offTheFloor, ruleOutImpossible } from "./supportGeometry";
+import {
+  offTheFloor,
+  ruleOutImpossible,
+  ruleOutTheWall,
+  seenAgainstTheFloor,
+} from "./supportGeometry";
 import { type PriorsFile, SupportPriors } from "./supportPriors";
 
 export type SupportTypeName = (typeof RELATION_MODEL.support_types)[number];
@@ -220,7 +225,7 @@ export async function scoreSupports(
 
 /** Like scoreSupports, with the probability table (for decoding the tree again). */
 export async function scoreScene(
-  scene: Pick<Scene, "objects" | "image"> & Partial<Pick<Scene, "camera">>,
+  scene: Pick<Scene, "objects" | "image"> & Partial<Pick<Scene, "camera" | "layout">>,
   imageData: PixelImage,
   modelUrl?: string,
 ): Promise<SceneScores> {
@@ -243,7 +248,9 @@ export async function scoreScene(
   // What the geometry rules out, as the pipeline's support stage does (supportGeometry.ts).
   const boxes = modelObjects(scene.objects).map((o) => o.bbox);
   const offFloor = offTheFloor(scene.camera, boxes, scene.image.height);
-  if (!offFloor.some(Boolean)) return scores;
+  const againstFloor = seenAgainstTheFloor(scene.camera, scene.layout?.corners_3d, boxes);
+  if (!offFloor.some(Boolean) && !againstFloor.some(Boolean)) return scores;
   ruleOutImpossible(scores.probabilities, boxes, offFloor);
+  ruleOutTheWall(scores.probabilities, boxes.length, againstFloor);
   return { ...scores, ranked: rankProbabilities(scores.probabilities, scores.ids) };
 }

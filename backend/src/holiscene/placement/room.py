@@ -107,6 +107,11 @@ class Room:
         result: FloatArray = (np.atleast_2d(points) - self.centre) @ self.rotation
         return result
 
+    def holds(self, point: FloatArray) -> bool:
+        """Whether `point` lies strictly inside the room."""
+        local = self.to_local(point)[0]
+        return bool((np.abs(local) < self.size / 2.0).all())
+
     def walls(self) -> list[Rect]:
         """The four walls, normals pointing into the room."""
         d, w = self.size[0] / 2.0, self.size[2] / 2.0

@@ -168,8 +168,9 @@ def seen_against_the_floor(
 ) -> list[bool]:
     """Per 2D box: whether the ray through the middle of its bottom edge meets the room's
     floor well before the wall it leaves the room through (FLOOR_BEFORE_WALL); False without a
-    camera or a room."""
-    if camera is None or room is None:
+    camera or a room, or with the camera outside the room (a layout too wrong to say; the
+    browser's twin is inference/supportGeometry.ts)."""
+    if camera is None or room is None or not room.holds(np.zeros(3)):
         return [False] * len(boxes)
     result = []
     for x1, _, x2, y2 in boxes:
