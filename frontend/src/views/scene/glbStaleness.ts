@@ -10,9 +10,10 @@ import { diffScenes } from "../../state/revisionDiff";
 import { changesSincePlacement, describeChanges } from "../scene3d/placementChanges";
 import { mayHaveGlb } from "../scene3d/viewportObjects";
 
-/** What a GLB made from scene `made` lacks of `current` ("" when nothing it shows changed). */
-export function glbLacks(made: Scene, current: Scene): string {
-  const objects = describeChanges(changesSincePlacement(made.objects, current.objects));
+/** What a GLB made from scene `made` lacks of `current` ("" when nothing it shows changed);
+ * `madeByRun`: `made` is a run's result, as a scene.glb's own revision always is. */
+export function glbLacks(made: Scene, current: Scene, madeByRun = true): string {
+  const objects = describeChanges(changesSincePlacement(made.objects, current.objects, madeByRun));
   const moved = diffScenes(made, current).layoutChanged;
   return [objects, moved ? "the room moved" : ""].filter((part) => part !== "").join(", ");
 }
@@ -32,8 +33,8 @@ export function glbStaleness(
 }
 
 /**
- * The revision that made the scene's scene.glb, when it is older than `current` (null when
- * there is no file, or it was made at `current`).
+ * The revision that made the scene's scene.glb: `current` itself when it was made there (a
+ * run's revision), null when there is no file.
  */
 export async function glbSourceRevision(
   sceneId: string,
@@ -42,7 +43,8 @@ export async function glbSourceRevision(
 ): Promise<SceneDocument | null> {
   if (!mayHaveGlb(current)) return null;
   const made = await glbRevision(sceneId, signal);
-  if (made === null || !(made < current.revision)) return null;
+  if (made === null) return null;
+  if (!(made < current.revision)) return current;
   return api.getRevision(sceneId, made, signal);
 }
 

@@ -39,6 +39,11 @@ describe("changes since placement", () => {
     const unplacedByPipeline = object("b3", { box_3d: null });
     const loaded = [...placed, drawn, unplacedByPipeline];
     expect(changesSincePlacement(loaded, loaded).added).toEqual(["b2"]);
+    // Unless `loaded` is a run's result: it tried b2 and could not place it, and placing it
+    // again would not either (the notice would never go away).
+    expect(changesSincePlacement(loaded, loaded, true).added).toEqual([]);
+    const redrawn = { ...drawn, bbox: [12, 10, 50, 60] } as SceneObject;
+    expect(changesSincePlacement(loaded, [...placed, redrawn], true).changed).toEqual(["b2"]);
     const noStructure = placed.filter((o) => o.class !== "floor");
     expect(changesSincePlacement(placed, noStructure).removed).toEqual([]);
   });

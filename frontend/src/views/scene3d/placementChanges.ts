@@ -29,11 +29,14 @@ export function newlyPlaced(previous: readonly SceneObject[], next: readonly Sce
 /**
  * The objects that differ between the ones the 3D scene was made from (`placed`) and the
  * current ones. An object a person added that has no 3D box yet counts as added even when
- * it was already there when the page opened (the notice comes back after a reload).
+ * it was already there when the page opened (the notice comes back after a reload), unless
+ * `placedByRun`: `placed` is a placement or pipeline run's own result, which tried it and
+ * could not place it (placing it again would not either; its stage note says why).
  */
 export function changesSincePlacement(
   placed: readonly SceneObject[],
   current: readonly SceneObject[],
+  placedByRun = false,
 ): PlacementChanges {
   const movable = (objects: readonly SceneObject[]) =>
     objects.filter((o) => !isStructural(o.class));
@@ -44,7 +47,8 @@ export function changesSincePlacement(
   const changed: string[] = [];
   for (const object of now) {
     const old = before.get(object.id);
-    const unplaced = !object.box_3d && (object.set_by_person ?? []).includes("object");
+    const unplaced =
+      !placedByRun && !object.box_3d && (object.set_by_person ?? []).includes("object");
     if (!old || unplaced) added.push(object.id);
     else if (placementInput(old) !== placementInput(object)) changed.push(object.id);
   }

@@ -42,14 +42,16 @@ export function mountPlacementNotice(
   // boxes (a placement or pipeline run) arrives.
   const loaded = session.doc.scene;
   let placed = loaded;
+  // Whether `placed` is known to be a run's result (it tried every object it has).
+  let placedByRun = false;
   let previous = loaded.objects;
   let running = false;
   let failure = "";
 
   const draw = () => {
     const hasRoom = session.doc.scene.layout?.corners_3d != null;
-    const changes = changesSincePlacement(placed.objects, session.objects);
-    const summary = glbLacks(placed, session.doc.scene);
+    const changes = changesSincePlacement(placed.objects, session.objects, placedByRun);
+    const summary = glbLacks(placed, session.doc.scene, placedByRun);
     notice.hidden = !hasRoom || (summary === "" && !running && failure === "");
     text.textContent = failure
       ? `Could not re-place the objects: ${failure}`
@@ -74,6 +76,7 @@ export function mountPlacementNotice(
       if (job.status === "failed") failure = job.error ?? "the placement job failed";
       else {
         placed = session.doc.scene;
+        placedByRun = true;
         progress.element.hidden = true;
       }
     } catch (error) {
@@ -87,7 +90,10 @@ export function mountPlacementNotice(
 
   const unsubscribe = session.subscribe((change) => {
     if (change === "document") {
-      if (newlyPlaced(previous, session.objects)) placed = session.doc.scene;
+      if (newlyPlaced(previous, session.objects)) {
+        placed = session.doc.scene;
+        placedByRun = true;
+      }
       previous = session.objects;
     }
     if (change === "document" || change === "lock") draw();
@@ -98,6 +104,7 @@ export function mountPlacementNotice(
       // Not when a placement has run meanwhile: its objects are the 3D scene's now.
       if (made === null || placed !== loaded) return;
       placed = made.scene;
+      placedByRun = true;
       draw();
     })
     .catch(() => {}); // without the answer the notice counts from the loaded revision
