@@ -3,12 +3,14 @@ notes are warnings."""
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import pytest
 from holiscene.inputs import InputFiles, read_input_folder
 from holiscene.learning.runtime import DEFAULT_MODEL_DIR, SupportModel
 from holiscene.pipeline import DEFAULT_STAGES, PipelineBuildError, build_pipeline, registered_stages
+from holiscene.pipeline.base import Detection
 from holiscene.services.reconstruction import reconstruct_scene
 from holiscene_schema import SupportRelation
 
@@ -97,3 +99,24 @@ def test_an_empty_detections_file_is_one_warning_that_says_so(t3d5: Path) -> Non
     # The later stages have nothing to work on; none of them blames the camera or the room.
     assert "boxes_by_refiner" not in warnings
     assert not any("camera height" in (note or "") for note in warnings.values()), warnings
+
+
+def test_an_object_without_a_3d_box_is_named_with_the_reason(t3d5: Path) -> None:
+    """A chair a person stood on the floor whose bottom edge is high on the wall (above the
+    floor's horizon): placement cannot place it, and its warning says why, where it is read."""
+    given = read_input_folder(t3d5)
+    assert given.detections is not None
+    high = Detection(cls="chair", bbox=(300.0, 2.0, 340.0, 30.0))
+    chair = f"o{len(given.detections)}"
+    on_floor = SupportRelation(child=chair, parent="floor", type="below", source="manual")
+    scene = reconstruct_scene(
+        dataclasses.replace(given, detections=[*given.detections, high]),
+        name="x",
+        image_file="img.jpg",
+        pinned_supports=[on_floor],
+    ).scene
+    placement = next(run for run in scene.stages if run.name == "placement")
+    assert placement.warning
+    assert f"no 3D box for {chair} (its bottom edge does not meet the floor in view)" in (
+        placement.note or ""
+    )

@@ -80,7 +80,15 @@ class PlacementStage(Stage):
         if room is None:
             problems.append("no room layout: objects on walls are not placed")
         if missing:
-            problems.append(f"no 3D box for {', '.join(missing)}")
+            # Each with its reason, where the warning is read ("d1 (its bottom edge does not
+            # meet the floor in view)"): a person can then fix the supporter or the box.
+            reasons = [
+                f"{obj_id} ({why.removeprefix('no 3D box: ')})"
+                if (why := ctx.object_notes.get(obj_id))
+                else obj_id
+                for obj_id in missing
+            ]
+            problems.append(f"no 3D box for {', '.join(reasons)}")
         if problems:
             ctx.notes[self.name] = "; ".join(problems)
         if self.last:
