@@ -62,6 +62,7 @@ from .classes import CLASS_ALIASES, NYU40_CLASSES
 from .detector_model import detector_contract
 from .relation_model import relation_model_contract
 from .scene import Scene
+from .support_geometry import support_geometry_contract
 from .support_graph import STRUCTURAL_SUPPORT_TYPES, STRUCTURAL_SUPPORTERS
 
 SCHEMA_DIR = Path(__file__).resolve().parent.parent / "jsonschema"
@@ -135,6 +136,7 @@ def render_schemas() -> dict[str, str]:
             "structural_support_types": STRUCTURAL_SUPPORT_TYPES,
             "support_types": ["below", "behind"],
             "relation_model": relation_model_contract(),
+            "support_geometry": support_geometry_contract(),
             "detector_model": detector_contract(),
             "retraining": {"few_heldout_items": FEW_HELDOUT_ITEMS},
         }

@@ -55,6 +55,7 @@ const vocabularyTs = [
   `export const STRUCTURAL_SUPPORT_TYPES: Readonly<Record<string, "below" | "behind">> = ${JSON.stringify(vocabulary.structural_support_types)};`,
   `export const RELATION_MODEL = ${JSON.stringify(vocabulary.relation_model)} as const;`,
   `export const DETECTOR_MODEL = ${JSON.stringify(vocabulary.detector_model)} as const;`,
+  `export const SUPPORT_GEOMETRY = ${JSON.stringify(vocabulary.support_geometry)} as const;`,
   `export const RETRAINING = ${JSON.stringify(vocabulary.retraining)} as const;`,
   "",
 ].join("\n");

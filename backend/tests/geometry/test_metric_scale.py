@@ -10,9 +10,11 @@ from holiscene.geometry.camera import PinholeCamera
 from holiscene.geometry.metric_scale import (
     CAMERA_HEIGHT_PRIOR,
     FRONT_WALL_PRIOR,
+    LOWEST_CAMERA_M,
     MIN_CALIBRATION_COUNT,
     PRIOR_GATE,
     SPREAD_WIDENING,
+    TOO_LARGE_FACTOR,
     ClassCalibration,
     ScaleCalibration,
     bottom_may_be_hidden,
@@ -23,8 +25,10 @@ from holiscene.geometry.metric_scale import (
     too_large_to_stand_there,
 )
 from holiscene.geometry.room_layout import RoomHypothesis
-from holiscene.knowledge.object_sizes import height_spread, mounting_height
+from holiscene.knowledge.object_sizes import height_spread, largest_size, mounting_height
+from holiscene.shapes.library import SIZE_RANGES
 from holiscene_schema import SceneObject
+from holiscene_schema.support_geometry import TOO_LARGE_LIMITS
 
 
 def test_fit_takes_the_median_and_a_robust_spread() -> None:
@@ -193,3 +197,17 @@ def test_a_shelf_whose_bottom_edge_meets_the_floor_far_away_is_too_large_to_stan
     # A catch-all class may be any size; a bottom edge above the horizon meets no floor.
     assert not too_large_to_stand_there(DOWN_20, "otherprop", high_shelf)
     assert not too_large_to_stand_there(DOWN_20, "shelves", [400.0, 0.0, 560.0, 40.0])
+
+
+def test_the_shared_size_limits_are_the_furniture_librarys_sizes() -> None:
+    """The contract's table (which the browser reads too) is 1.5 times each class's largest
+    footprint diagonal and height over the lowest believable camera: change the library's
+    sizes, and the table changes with them."""
+    factor = TOO_LARGE_FACTOR / LOWEST_CAMERA_M
+    expected = {
+        cls: (round(footprint * factor, 3), round(tallest * factor, 3))
+        for cls in SIZE_RANGES
+        if (largest := largest_size(cls)) is not None
+        for footprint, tallest in [largest]
+    }
+    assert expected == TOO_LARGE_LIMITS

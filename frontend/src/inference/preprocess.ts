@@ -179,7 +179,7 @@ export function imageTensor(image: PixelImage): Float32Array {
 }
 
 /** Python's round(): halves go to the even neighbour. */
-function roundHalfEven(value: number): number {
+export function roundHalfEven(value: number): number {
   const floor = Math.floor(value);
   const fraction = value - floor;
   if (fraction !== 0.5) return Math.round(value);
@@ -187,7 +187,7 @@ function roundHalfEven(value: number): number {
 }
 
 /** The runs of mask pixels of one object, as [x0, x1) segments of image rows. */
-interface Segments {
+export interface Segments {
   /** Segments of row y are `spans[offsets[y - top]] .. spans[offsets[y - top + 1]]`, pairs. */
   top: number;
   offsets: Int32Array;
@@ -196,7 +196,11 @@ interface Segments {
 
 /** Mask pixels row by row: the decoded RLE (pixels beyond the image dropped), or the box
  * rounded to pixels (at least one pixel each way), as samples.py's `object_masks`. */
-function maskSegments(object: ObjectInput, imageWidth: number, imageHeight: number): Segments {
+export function maskSegments(
+  object: ObjectInput,
+  imageWidth: number,
+  imageHeight: number,
+): Segments {
   const mask = object.mask;
   if (!mask) {
     const [bx0, by0, bx1, by1] = object.bbox.map(roundHalfEven) as [number, number, number, number];

@@ -1,11 +1,14 @@
 // The same cases as the backend's tests/pipeline/test_support_geometry.py.
 import type { Camera } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
+import { invert, matMul, worldFromCv } from "../geometry/camera";
+import type { ObjectInput } from "./preprocess";
 import {
   offTheFloor,
   ruleOutImpossible,
   ruleOutTheWall,
   seenAgainstTheFloor,
+  tooLargeToStandThere,
 } from "./supportGeometry";
 import { STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER } from "./supportModel";
 
@@ -128,5 +131,40 @@ describe("seen against the floor", () => {
     ruleOutTheWall(table, 1, [true]);
     expect(table[wallBehind]).toBe(0);
     expect(table[floorBelow]).toBeCloseTo(1);
+  });
+});
+
+describe("too large to stand there (the backend's test_metric_scale and test_support_geometry)", () => {
+  const down = camera(20); // horizon at y = 58
+  const worldFromPixel = matMul(worldFromCv(20, 0), invert(down.K));
+  const highShelf = [400, 0, 560, 110]; // would span 3 m of floor 10 camera heights away
+
+  it("judges what the photo shows of an object against its class's largest size", () => {
+    expect(tooLargeToStandThere(worldFromPixel, "shelves", highShelf)).toBe(true);
+    expect(tooLargeToStandThere(worldFromPixel, "shelves", [400, 0, 560, 150])).toBe(false);
+    expect(tooLargeToStandThere(worldFromPixel, "bookshelf", [300, 60, 440, 256])).toBe(false);
+    expect(tooLargeToStandThere(worldFromPixel, "otherprop", highShelf)).toBe(false);
+    expect(tooLargeToStandThere(worldFromPixel, "shelves", [400, 0, 560, 40])).toBe(false);
+  });
+
+  const input = (cls: string, bbox: number[]): ObjectInput => ({
+    cls,
+    bbox: bbox as unknown as ObjectInput["bbox"],
+    mask: null, // the box stands for the mask
+  });
+
+  it("takes the floor away unless other objects' pixels just below may hide its bottom", () => {
+    const bed = [0, 100, 420, 480]; // its box reaches above the shelf's bottom at one side
+    const objects = [input("shelves", highShelf), input("bed", bed)];
+    expect(offTheFloor(down, [highShelf, bed], 480)).toEqual([false, false]);
+    expect(offTheFloor(down, [highShelf, bed], 480, objects, 640)).toEqual([true, false]);
+    const dresser = [380, 115, 600, 300]; // right below it, across its width
+    const withDresser = [...objects, input("dresser", dresser)];
+    expect(offTheFloor(down, [highShelf, bed, dresser], 480, withDresser, 640)[0]).toBe(false);
+  });
+
+  it("never judges an object the photo's bottom edge cuts", () => {
+    const cut = [100, 200, 600, 479];
+    expect(offTheFloor(down, [cut], 480, [input("night_stand", cut)], 640)).toEqual([false]);
   });
 });

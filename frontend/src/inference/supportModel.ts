@@ -246,8 +246,15 @@ export async function scoreScene(
   const scores: SceneScores = { ...(await model.probabilities(scene.objects, imageData)) };
   if (modelVersion !== undefined) scores.modelVersion = modelVersion;
   // What the geometry rules out, as the pipeline's support stage does (supportGeometry.ts).
-  const boxes = modelObjects(scene.objects).map((o) => o.bbox);
-  const offFloor = offTheFloor(scene.camera, boxes, scene.image.height);
+  const objects = modelObjects(scene.objects);
+  const boxes = objects.map((o) => o.bbox);
+  const offFloor = offTheFloor(
+    scene.camera,
+    boxes,
+    scene.image.height,
+    objects.map((o) => ({ cls: o.class, bbox: o.bbox, mask: o.mask ?? null })),
+    scene.image.width,
+  );
   const againstFloor = seenAgainstTheFloor(scene.camera, scene.layout?.corners_3d, boxes);
   if (!offFloor.some(Boolean) && !againstFloor.some(Boolean)) return scores;
   ruleOutImpossible(scores.probabilities, boxes, offFloor);

@@ -36,8 +36,9 @@ from typing import Literal
 
 import numpy as np
 from holiscene_schema import SceneObject
+from holiscene_schema.support_geometry import TOO_LARGE_LIMITS
 
-from ..knowledge.object_sizes import height_spread, largest_size, middle_size, mounting_height
+from ..knowledge.object_sizes import height_spread, middle_size, mounting_height
 from .camera import FloatArray, PinholeCamera
 from .ground import height_above, hit_horizontal_plane
 
@@ -163,11 +164,13 @@ def bottom_may_be_hidden(obj: SceneObject, objects: list[SceneObject]) -> bool:
     return _inside_another_box(obj, objects, (x1 + x2) / 2, y2, bottom_margin=2)
 
 
-# A floor contact is not believed when the object, standing there, would be this many times
-# the largest size its class allows even with a camera this low (the camera prior less
-# PRIOR_GATE spreads: 0.87 m). None of 401 contacts in 40 synthetic rooms comes near 1; on
-# real photos it is a shelf hung on a wall, cut by the photo's top and side, whose bottom edge
-# read as a floor contact 12 m away made a room 16 m long.
+# A floor contact is not believed when the object, standing there, would be TOO_LARGE_FACTOR
+# times the largest size its class allows even with a camera LOWEST_CAMERA_M high (the camera
+# prior less PRIOR_GATE spreads: 0.87 m). The limits per class, in camera heights, are the
+# shared contract's TOO_LARGE_LIMITS (the browser's live suggestions apply them too); the
+# tests hold them to the furniture library's sizes. None of 401 contacts in 40 synthetic
+# rooms comes near a limit; on real photos it is a shelf hung on a wall, cut by the photo's
+# top and side, whose bottom edge read as a floor contact 12 m away made a room 16 m long.
 TOO_LARGE_FACTOR = 1.5
 LOWEST_CAMERA_M = CAMERA_HEIGHT_PRIOR[0] * math.exp(-PRIOR_GATE * CAMERA_HEIGHT_PRIOR[1])
 
@@ -178,16 +181,14 @@ def too_large_to_stand_there(camera: PinholeCamera, cls: str, bbox: list[float])
     bound when it is cut off) spans too much of the floor or rises too high there. Such an
     object is not on the floor, or its bottom is hidden: its contact says nothing about where
     the room ends. False for a class of no known size, or a bottom edge off the floor."""
-    largest = largest_size(cls)
+    limits = TOO_LARGE_LIMITS.get(cls)
     x1, y1, x2, y2 = bbox
     hits = hit_horizontal_plane(camera, np.array([[x1, y2], [x2, y2], [(x1 + x2) / 2, y2]]), -1.0)
-    if largest is None or hits is None:
+    if limits is None or hits is None:
         return False
-    footprint, tallest = largest
     span = float(np.linalg.norm(hits[0] - hits[1]))
     rise = height_above(camera, hits[2], np.array([[(x1 + x2) / 2, y1]]))
-    limit = TOO_LARGE_FACTOR / LOWEST_CAMERA_M
-    return span > limit * footprint or rise > limit * tallest
+    return span > limits[0] or rise > limits[1]
 
 
 def measured_log_camera_height(

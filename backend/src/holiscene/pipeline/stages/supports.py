@@ -17,6 +17,14 @@ from holiscene_schema import (
     SupportRelation,
 )
 from holiscene_schema.relation_model import STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER
+from holiscene_schema.support_geometry import (
+    FLOOR_BEFORE_WALL,
+    FLOOR_RAY_MIN_DROP_DEG,
+    HIDING_GAP,
+    HIDING_OVERLAP,
+    PIXELS_HIDING_SHARE,
+    SUPPORTER_OVERLAP,
+)
 from numpy.typing import NDArray
 
 from ...geometry.camera import PinholeCamera
@@ -63,18 +71,11 @@ def image_plausibility(child: list[float], parent: list[float], kind: str) -> fl
     return overlap_x if overlap_x >= 0.3 else 0.0
 
 
-# The floor meets the image below its horizon: a bottom edge this far above it (a ray at
-# most this steep downwards, in radians) cannot rest on the floor.
-FLOOR_RAY_MIN_DROP = np.sin(np.radians(1.0))
-# A box below the bottom edge, this close (share of the photo's height) and overlapping at
-# least this share of its width, may hide where the object really stands.
-HIDING_GAP = 0.03
-HIDING_OVERLAP = 0.3
-# Other objects' pixels just below a bottom edge must cover this share of its width to hide
-# it, for the size test of `off_the_floor` (GrabCut's masks spill past their objects).
-PIXELS_HIDING_SHARE = 0.6
-# An object's supporter spans at least this share of its width in the photo.
-SUPPORTER_OVERLAP = 0.3
+# The figures of the geometry's rules are the shared contract's (the browser's live
+# suggestions apply the same rules): holiscene_schema.support_geometry says what each means.
+# The floor meets the image below its horizon: a ray through a bottom edge at most this steep
+# downwards cannot rest on the floor.
+FLOOR_RAY_MIN_DROP = np.sin(np.radians(FLOOR_RAY_MIN_DROP_DEG))
 
 
 def off_the_floor(
@@ -154,13 +155,9 @@ def rule_out_impossible(scores: np.ndarray, child: SceneObject, objects: list[Sc
         scores[...] = kept
 
 
-# A thing hung on a wall is seen against that wall: the ray through the middle of its bottom
-# edge leaves the room through the wall. Where that ray meets the floor this many times
-# nearer than the wall, the thing is seen against the floor, and no wall holds it up from
-# behind (books on a coffee table). On 120 synthetic rooms (seeds 950000 and 980000, the
+# FLOOR_BEFORE_WALL (the contract's): on 120 synthetic rooms (seeds 950000 and 980000, the
 # estimated rooms) the true wall-hung things reach 1.4 (a door, its bottom on the floor, on a
 # wall estimated too far); on the real photos the books on im3d-1's table 2.7.
-FLOOR_BEFORE_WALL = 1.6
 
 
 def seen_against_the_floor(
