@@ -14,6 +14,7 @@ from holiscene.geometry.boxes import box_corners
 from holiscene.geometry.room_fit import project_room_corners
 from holiscene.inputs import read_input_folder
 from holiscene.pipeline import (
+    DEFAULT_STAGES,
     KEPT_LAYOUT_STAGES,
     PLACEMENT_STAGES,
     PipelineBuildError,
@@ -380,7 +381,10 @@ def test_a_room_set_by_hand_before_any_run(client: TestClient, t3d5: Path) -> No
 
 def test_placement_stages_on_an_unchanged_scene_place_as_the_full_pipeline(t3d5: Path) -> None:
     inputs = read_input_folder(t3d5)
-    full = reconstruct_scene(inputs, name="x", image_file="img.jpg").scene
+    # Without the walls moved to the objects after placement (a placement job does not move
+    # them, and places in the walls as stored): the same room in, the same boxes out.
+    stages = tuple(s for s in DEFAULT_STAGES if s != "layout_holds_hung_objects")
+    full = reconstruct_scene(inputs, name="x", image_file="img.jpg", stages=stages).scene
     again = reconstruct_scene(
         inputs,
         name="x",
