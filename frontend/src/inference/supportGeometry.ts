@@ -11,6 +11,7 @@
 import type { Camera } from "@holiscene/schema";
 import { SUPPORT_GEOMETRY } from "@holiscene/schema";
 import {
+  dot3,
   invert,
   type Matrix3Like,
   matMul,
@@ -40,7 +41,6 @@ const MAX_FLOOR_DISTANCE = 30; // camera heights, as the backend's ground.MAX_DI
 const width = (b: Box) => Math.max(1, (b[2] ?? 0) - (b[0] ?? 0));
 const overlapX = (a: Box, b: Box) =>
   Math.min(a[2] ?? 0, b[2] ?? 0) - Math.max(a[0] ?? 0, b[0] ?? 0);
-const dot = (a: Vec3, b: Vec3) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 
 /**
  * Per box: whether the floor cannot hold it up from below (false without pitch and roll):
@@ -151,8 +151,8 @@ export function tooLargeToStandThere(worldFromPixel: Matrix3Like, cls: string, b
  * points of the pixel's ray and that vertical), as the backend's ground.height_above. */
 function heightAbove(worldFromPixel: Matrix3Like, base: Vec3, pixel: readonly number[]): number {
   const ray = matVec(worldFromPixel, [pixel[0] as number, pixel[1] as number, 1]);
-  const rr = dot(ray, ray);
-  const rb = dot(ray, base);
+  const rr = dot3(ray, ray);
+  const rb = dot3(ray, base);
   const det = ray[1] * ray[1] - rr;
   return (rr * base[1] - rb * ray[1]) / det;
 }
