@@ -25,7 +25,7 @@ from holiscene.geometry.metric_scale import (
     too_large_to_stand_there,
 )
 from holiscene.geometry.room_layout import RoomHypothesis
-from holiscene.knowledge.object_sizes import height_spread, largest_size, mounting_height
+from holiscene.knowledge.object_sizes import height_spread, mounting_height
 from holiscene.shapes.library import SIZE_RANGES
 from holiscene_schema import SceneObject
 from holiscene_schema.support_geometry import TOO_LARGE_LIMITS
@@ -202,12 +202,16 @@ def test_a_shelf_whose_bottom_edge_meets_the_floor_far_away_is_too_large_to_stan
 def test_the_shared_size_limits_are_the_furniture_librarys_sizes() -> None:
     """The contract's table (which the browser reads too) is 1.5 times each class's largest
     footprint diagonal and height over the lowest believable camera: change the library's
-    sizes, and the table changes with them."""
+    sizes, and the table changes with them. NYU-40's catch-all classes may be of any size (a
+    whiteboard, a coffee table, a piano) and have no limit."""
     factor = TOO_LARGE_FACTOR / LOWEST_CAMERA_M
+    any_size = {"otherprop", "otherfurniture", "otherstructure"}
     expected = {
-        cls: (round(footprint * factor, 3), round(tallest * factor, 3))
-        for cls in SIZE_RANGES
-        if (largest := largest_size(cls)) is not None
-        for footprint, tallest in [largest]
+        cls: (
+            round(math.hypot(ranges.depth[1], ranges.width[1]) * factor, 3),
+            round(ranges.height[1] * factor, 3),
+        )
+        for cls, ranges in SIZE_RANGES.items()
+        if cls not in any_size
     }
     assert expected == TOO_LARGE_LIMITS

@@ -301,8 +301,10 @@ export function modelObjects(objects: readonly SceneObject[]): SceneObject[] {
 
 /** The scene's model inputs, objects in `modelObjects` order. */
 export function sceneInputs(image: PixelImage, objects: readonly SceneObject[]): RelationInputs {
-  return relationInputs(
-    image,
-    modelObjects(objects).map((o) => ({ cls: o.class, bbox: o.bbox, mask: o.mask })),
-  );
+  return relationInputs(image, objectInputs(objects));
+}
+
+/** What the model (and the support geometry) reads of the scene's objects, in its order. */
+export function objectInputs(objects: readonly SceneObject[]): ObjectInput[] {
+  return modelObjects(objects).map((o) => ({ cls: o.class, bbox: o.bbox, mask: o.mask ?? null }));
 }

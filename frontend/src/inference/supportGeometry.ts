@@ -20,7 +20,7 @@ import {
   worldFromCv,
 } from "../geometry/camera";
 import { roomExits } from "../geometry/roomSurface";
-import { maskSegments, type ObjectInput, roundHalfEven } from "./preprocess";
+import { maskSegments, type ObjectInput, roundHalfEven, type Segments } from "./preprocess";
 import { STRUCTURAL_COLUMNS, SUPPORT_TYPE_ORDER } from "./supportModel";
 
 type Box = readonly number[]; // x1, y1, x2, y2
@@ -60,16 +60,21 @@ export function offTheFloor(
     return boxes.map(() => false);
   }
   const worldFromPixel = matMul(worldFromCv(camera.pitch_deg, camera.roll_deg), invert(camera.K));
-  const rows = objects?.map((o) => maskSegments(o, imageWidth, imageHeight));
+  // The masks are decoded only when an object is too large (rarely: most photos, never).
+  let rows: Segments[] | null = null;
+  const maskRows = (inputs: readonly ObjectInput[]) => {
+    rows ??= inputs.map((o) => maskSegments(o, imageWidth, imageHeight));
+    return rows;
+  };
   return boxes.map((box, n) => {
     const ray = matVec(worldFromPixel, [((box[0] ?? 0) + (box[2] ?? 0)) / 2, box[3] ?? 0, 1]);
     const drop = -ray[1] / Math.hypot(...ray);
     if (drop < FLOOR_RAY_MIN_DROP) return !boxBelowMayHide(n, boxes, imageHeight);
     const cls = objects?.[n]?.cls;
-    if (cls === undefined || !rows) return false;
+    if (cls === undefined || !objects) return false;
     return (
       tooLargeToStandThere(worldFromPixel, cls, box) &&
-      !pixelsBelowMayHide(n, boxes, rows, imageHeight)
+      !pixelsBelowMayHide(n, boxes, maskRows(objects), imageHeight)
     );
   });
 }
@@ -93,7 +98,7 @@ function boxBelowMayHide(n: number, boxes: readonly Box[], imageHeight: number):
 function pixelsBelowMayHide(
   n: number,
   boxes: readonly Box[],
-  rows: readonly ReturnType<typeof maskSegments>[],
+  rows: readonly Segments[],
   imageHeight: number,
 ): boolean {
   const [x1, , x2, y2] = (boxes[n] as Box).map(roundHalfEven) as [number, number, number, number];
@@ -182,13 +187,19 @@ export function ruleOutImpossible(
         kept.fill(0, column * types, (column + 1) * types);
       }
     });
-    const total = kept.reduce((sum, p) => sum + p, 0);
-    if (total > 0)
-      probabilities.set(
-        kept.map((p) => p / total),
-        row * rowSize,
-      );
+    keepUnlessEmpty(probabilities, kept, row * rowSize);
   });
+}
+
+/** Write row `kept` (a copy with answers zeroed), scaled to sum to 1, at `offset` of the
+ * table, unless it zeroed every answer: then the geometry was wrong and the row stays. */
+function keepUnlessEmpty(probabilities: Float64Array, kept: Float64Array, offset: number): void {
+  const total = kept.reduce((sum, p) => sum + p, 0);
+  if (total > 0)
+    probabilities.set(
+      kept.map((p) => p / total),
+      offset,
+    );
 }
 
 /** Per box: whether it is seen against the floor: the ray through the middle of its bottom
@@ -226,11 +237,6 @@ export function ruleOutTheWall(
     if (!against) return;
     const kept = probabilities.slice(row * rowSize, (row + 1) * rowSize);
     kept[wallBehind] = 0;
-    const total = kept.reduce((sum, p) => sum + p, 0);
-    if (total > 0)
-      probabilities.set(
-        kept.map((p) => p / total),
-        row * rowSize,
-      );
+    keepUnlessEmpty(probabilities, kept, row * rowSize);
   });
 }

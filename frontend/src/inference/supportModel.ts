@@ -6,7 +6,13 @@ import { RELATION_MODEL } from "@holiscene/schema";
 import type { InferenceSession } from "onnxruntime-web";
 import { modelsApi } from "../api/models";
 import { loadRuntime, type Ort } from "./ortRuntime";
-import { modelObjects, type PixelImage, type RelationInputs, sceneInputs } from "./preprocess";
+import {
+  modelObjects,
+  objectInputs,
+  type PixelImage,
+  type RelationInputs,
+  sceneInputs,
+} from "./preprocess";
 import {
   offTheFloor,
   ruleOutImpossible,
@@ -246,15 +252,9 @@ export async function scoreScene(
   const scores: SceneScores = { ...(await model.probabilities(scene.objects, imageData)) };
   if (modelVersion !== undefined) scores.modelVersion = modelVersion;
   // What the geometry rules out, as the pipeline's support stage does (supportGeometry.ts).
-  const objects = modelObjects(scene.objects);
+  const objects = objectInputs(scene.objects);
   const boxes = objects.map((o) => o.bbox);
-  const offFloor = offTheFloor(
-    scene.camera,
-    boxes,
-    scene.image.height,
-    objects.map((o) => ({ cls: o.class, bbox: o.bbox, mask: o.mask ?? null })),
-    scene.image.width,
-  );
+  const offFloor = offTheFloor(scene.camera, boxes, scene.image.height, objects, scene.image.width);
   const againstFloor = seenAgainstTheFloor(scene.camera, scene.layout?.corners_3d, boxes);
   if (!offFloor.some(Boolean) && !againstFloor.some(Boolean)) return scores;
   ruleOutImpossible(scores.probabilities, boxes, offFloor);

@@ -19,20 +19,6 @@ def middle_size(cls: str) -> tuple[float, float, float]:
     return depth, height, width
 
 
-# NYU-40's catch-all classes: their library ranges give a shape a size, but a thing of these
-# classes may be of any size (a whiteboard, a coffee table, a piano).
-ANY_SIZE_CLASSES = frozenset({"otherprop", "otherfurniture", "otherstructure"})
-
-
-def largest_size(cls: str) -> tuple[float, float] | None:
-    """(the widest footprint's diagonal, the greatest height) the class's ranges allow, metres;
-    None for a class that may be of any size."""
-    ranges = SIZE_RANGES.get(cls)
-    if ranges is None or cls in ANY_SIZE_CLASSES:
-        return None
-    return math.hypot(ranges.depth[1], ranges.width[1]), ranges.height[1]
-
-
 def height_spread(cls: str) -> float:
     """Standard deviation of log(height) for the class (a uniform range's, about its middle)."""
     low, high = SIZE_RANGES.get(cls, _DEFAULT).height

@@ -44,6 +44,10 @@ export function mountPlacementNotice(
   let placed = loaded;
   // Whether `placed` is known to be a run's result (it tried every object it has).
   let placedByRun = false;
+  const placedByARun = (scene: typeof loaded) => {
+    placed = scene;
+    placedByRun = true;
+  };
   let previous = loaded.objects;
   let running = false;
   let failure = "";
@@ -75,8 +79,7 @@ export function mountPlacementNotice(
       });
       if (job.status === "failed") failure = job.error ?? "the placement job failed";
       else {
-        placed = session.doc.scene;
-        placedByRun = true;
+        placedByARun(session.doc.scene);
         progress.element.hidden = true;
       }
     } catch (error) {
@@ -90,10 +93,7 @@ export function mountPlacementNotice(
 
   const unsubscribe = session.subscribe((change) => {
     if (change === "document") {
-      if (newlyPlaced(previous, session.objects)) {
-        placed = session.doc.scene;
-        placedByRun = true;
-      }
+      if (newlyPlaced(previous, session.objects)) placedByARun(session.doc.scene);
       previous = session.objects;
     }
     if (change === "document" || change === "lock") draw();
@@ -103,8 +103,7 @@ export function mountPlacementNotice(
     .then((made) => {
       // Not when a placement has run meanwhile: its objects are the 3D scene's now.
       if (made === null || placed !== loaded) return;
-      placed = made.scene;
-      placedByRun = true;
+      placedByARun(made.scene);
       draw();
     })
     .catch(() => {}); // without the answer the notice counts from the loaded revision

@@ -151,6 +151,12 @@ def rule_out_impossible(scores: np.ndarray, child: SceneObject, objects: list[Sc
     for column, other in enumerate(objects):
         if other.id == child.id or _overlap_x(child.bbox, other.bbox) < least:
             kept[column] = 0.0
+    _keep_unless_empty(scores, kept)
+
+
+def _keep_unless_empty(scores: np.ndarray, kept: np.ndarray) -> None:
+    """Write `kept` (a copy of `scores` with answers zeroed) into `scores`, unless it zeroed
+    every answer: then the geometry was wrong, and the scores stay as they were."""
     if kept.sum() > 0:
         scores[...] = kept
 
@@ -186,8 +192,23 @@ def rule_out_the_wall(scores: np.ndarray, objects: list[SceneObject]) -> None:
     behind in its row of the network's scores, unless nothing would be left."""
     kept = scores.copy()
     kept[len(objects) + STRUCTURAL_COLUMNS.index("wall"), SUPPORT_TYPE_ORDER.index("behind")] = 0
-    if kept.sum() > 0:
-        scores[...] = kept
+    _keep_unless_empty(scores, kept)
+
+
+def geometry_rules(
+    ctx: SceneContext, objects: list[SceneObject], masks: list[NDArray[np.bool_]] | None
+) -> list[tuple[bool, bool]]:
+    """Per object: whether the floor cannot hold it from below (off_the_floor) and whether it
+    is seen against the floor, so no wall holds it from behind (seen_against_the_floor)."""
+    camera = scene_camera(ctx)
+    boxes = [o.bbox for o in objects]
+    return list(
+        zip(
+            off_the_floor(camera, boxes, ctx.height, objects, masks),
+            seen_against_the_floor(camera, room_of(ctx.layout), boxes),
+            strict=True,
+        )
+    )
 
 
 def scene_camera(ctx: SceneContext) -> PinholeCamera | None:
@@ -248,13 +269,7 @@ class SupportsFromPriors(Stage):
         pinned = kept_pins(ctx, ids)
         candidates = {o.id: prior_candidates(o, objects, self.priors) for o in objects}
         masks = [ctx.masks[o.id].pixels for o in objects] if ctx.masks is not None else None
-        unfloored = off_the_floor(
-            scene_camera(ctx), [o.bbox for o in objects], ctx.height, objects, masks
-        )
-        unwalled = seen_against_the_floor(
-            scene_camera(ctx), room_of(ctx.layout), [o.bbox for o in objects]
-        )
-        for obj, off, floored in zip(objects, unfloored, unwalled, strict=True):
+        for obj, (off, floored) in zip(objects, geometry_rules(ctx, objects, masks), strict=True):
             ruled_out = [("floor", "below")] * off + [("wall", "behind")] * floored
             kept = [c for c in candidates[obj.id] if c[1:] not in ruled_out]
             candidates[obj.id] = kept or candidates[obj.id]
@@ -317,24 +332,12 @@ class SupportsFromNetwork(Stage):
         if not objects:
             ctx.supports = pinned
             return
+        pixels = [masks[o.id].pixels for o in objects]
         inputs = relation_inputs(
-            ctx.image,
-            [masks[o.id].pixels for o in objects],
-            [o.bbox for o in objects],
-            [o.cls for o in objects],
+            ctx.image, pixels, [o.bbox for o in objects], [o.cls for o in objects]
         )
         probabilities = self.model.probabilities(inputs)
-        unfloored = off_the_floor(
-            scene_camera(ctx),
-            [o.bbox for o in objects],
-            ctx.height,
-            objects,
-            [masks[o.id].pixels for o in objects],
-        )
-        unwalled = seen_against_the_floor(
-            scene_camera(ctx), room_of(ctx.layout), [o.bbox for o in objects]
-        )
-        for row, (off, floored) in enumerate(zip(unfloored, unwalled, strict=True)):
+        for row, (off, floored) in enumerate(geometry_rules(ctx, objects, pixels)):
             if off:
                 rule_out_impossible(probabilities[row], objects[row], objects)
             if floored:
