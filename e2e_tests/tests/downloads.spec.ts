@@ -8,6 +8,7 @@ import type { Download, Page } from "@playwright/test";
 import { expect, test } from "@playwright/test";
 import { getScene, postEdits, seedScene, T3D_5 } from "../helpers/api";
 import { importZip } from "../helpers/datasetImport";
+import { nextDialog } from "../helpers/dialogs";
 import { openScene } from "../helpers/photo";
 import { screenshotPath } from "../helpers/screenshots";
 import { readZip } from "../helpers/zip";
@@ -119,12 +120,7 @@ test("the scene page downloads scene.json, scene.glb and COCO JSON", async ({ pa
   await expect(page.getByTestId("workflow-state")).toHaveText("in annotation"); // the edit took it
   const submit = page.getByTestId("workflow-submit");
   await expect(submit).toBeEnabled();
-  const question = new Promise<string>((resolve) =>
-    page.once("dialog", (dialog) => {
-      resolve(dialog.message());
-      void dialog.dismiss();
-    }),
-  );
+  const question = nextDialog(page, "dismiss");
   await submit.click();
   expect(await question).toContain("The 3D scene was made before these changes: 1 removed.");
   await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");

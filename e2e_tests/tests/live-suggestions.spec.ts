@@ -6,6 +6,7 @@
 import type { Request } from "@playwright/test";
 import { expect, test } from "@playwright/test";
 import { getScene, postEdits, supportOf } from "../helpers/api";
+import { nextDialog } from "../helpers/dialogs";
 import {
   arrowOf,
   clickArrow,
@@ -149,4 +150,15 @@ test("a person's label the model is sure is something else is flagged, not chang
   const stored = await getScene(request, seeded.scene_id);
   expect(supportOf(stored, target.id)?.parent).toBe("ceiling");
   await page.getByTestId("object-table").screenshot({ path: screenshotPath("doubted-label.png") });
+
+  // Submitting asks about it first: a reviewer would send a slip back.
+  const submit = page.getByTestId("workflow-submit");
+  await expect(submit).toBeEnabled();
+  const question = nextDialog(page, "dismiss");
+  await submit.click();
+  expect(await question).toContain(
+    `1 object (${target.id}) has a supporter set by a person that the support model is sure ` +
+      "is something else (orange in the list)",
+  );
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
 });

@@ -105,6 +105,12 @@ export function mountSupportSuggestions(
   let run = 0;
 
   const render = () => showSuggestionBadges(table, scores, doubtedLabels(session.shown(), scores));
+  // Doubts only from scores for the objects as they are now (not while a new scoring is due).
+  session.setDoubter(() =>
+    scores !== null && !due && inputsKey(session.objects) === scoredFor
+      ? new Set(doubtedLabels(session.shown(), scores).keys())
+      : new Set(),
+  );
 
   const describe = (ms: number) => {
     const count = scores?.ids.length ?? 0;
@@ -210,5 +216,6 @@ export function mountSupportSuggestions(
     abort.abort();
     unsubscribe();
     session.setSuggester(null);
+    session.setDoubter(null);
   };
 }

@@ -150,6 +150,7 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
   readonly drafts: DraftStore;
   private shownCache: Map<string, ShownSupport> | null = null;
   private suggester: Suggester | null = null;
+  private doubter: (() => ReadonlySet<string>) | null = null;
   private suggestionCache: Map<string, SuggestedSupport> | null = null;
 
   constructor(doc: SceneDocument, options: { drafts?: DraftStore } = {}) {
@@ -279,6 +280,17 @@ export class SceneSession extends HistoryKeeper<HistoryState> {
   /** Whether a person set the object's supporter (saved or not): the model leaves it alone. */
   isResolved(child: string): boolean {
     return this.shown().get(child)?.source === "manual";
+  }
+
+  /** People's labels the support model is sure are something else (inference/labelDoubts.ts)
+   * for the objects it last scored: child ids, none until it has scored them. The
+   * suggestions panel sets where they come from; the submit question reads them. */
+  doubtedLabels(): ReadonlySet<string> {
+    return this.doubter?.() ?? new Set();
+  }
+
+  setDoubter(doubter: (() => ReadonlySet<string>) | null): void {
+    this.doubter = doubter;
   }
 
   setSuggester(suggester: Suggester | null): void {
