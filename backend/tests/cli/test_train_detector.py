@@ -16,6 +16,13 @@ from holiscene.cli import main
         (["--retexture", "-0.1"], "--retexture must be between 0 and 1"),
         (["--coco-weight", "2"], "--coco-weight must be between 0 and 1"),
         (["--views", "0"], "must be at least 1"),
+        # PicoDet's class head has none of the CenterNet head's options.
+        (["--on-picodet"], "--on-picodet trains PicoDet's class head; drop --tune-deep-blocks"),
+        (
+            ["--on-picodet", "--cushion-rows"],
+            "drop --tune-deep-blocks, --cushion-rows",
+        ),
+        (["--branch-learning-rate", "0.5"], "--branch-learning-rate is for --on-picodet"),
     ],
 )
 def test_bad_settings_are_refused_and_nothing_is_written(

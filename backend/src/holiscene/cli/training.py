@@ -129,6 +129,19 @@ def add_detector_training_command(
         type=float,
         help="--from-scratch: end training (annealed) after this many seconds",
     )
+    detector.add_argument(
+        "--on-picodet",
+        action="store_true",
+        help="train an NYU-40 class head on the COCO PicoDet's anchors instead, keeping its "
+        "boxes (the CenterNet's options do not apply)",
+    )
+    detector.add_argument(
+        "--branch-learning-rate",
+        type=float,
+        default=None,
+        help="--on-picodet: the learning rate of the copies of PicoDet's class branches as a "
+        "share of the head's (default 0.1; 0 keeps them as they are)",
+    )
     detector.set_defaults(handler=_train_detector)
 
 
@@ -178,6 +191,20 @@ def _train_detector(args: argparse.Namespace) -> int:
         raise CliError("--retexture must be between 0 and 1")
     if args.time_budget is not None and not args.time_budget > 0:
         raise CliError("--time-budget must be a positive number of seconds")
+    centernet_only = {
+        "--from-scratch": args.from_scratch,
+        "--tune-deep-blocks": args.tune_deep_blocks,
+        "--deep-blocks-learning-rate": args.deep_blocks_learning_rate is not None,
+        "--retexture": args.retexture > 0,
+        "--cushion-rows": args.cushion_rows,
+    }
+    clashing = [flag for flag, given in centernet_only.items() if given]
+    if args.on_picodet and clashing:
+        raise CliError(f"--on-picodet trains PicoDet's class head; drop {', '.join(clashing)}")
+    if args.branch_learning_rate is not None and not (
+        args.on_picodet and args.branch_learning_rate >= 0
+    ):
+        raise CliError("--branch-learning-rate is for --on-picodet, at 0 or more")
     cache = args.cache or Path.home() / ".cache" / "holiscene" / "detector-rooms"
     with _training_progress("train-detector") as progress:
 
@@ -210,6 +237,8 @@ def _train_detector(args: argparse.Namespace) -> int:
         )
         if args.from_scratch:
             metrics = _train_scratch(args, train, validation, progress)
+        elif args.on_picodet:
+            metrics = _train_on_picodet(args, train, validation, progress)
         else:
             metrics = train_detector(train, validation, config, args.out, progress)
     print(f"validation mAP@0.5 {metrics['validation_map_at_0_5']:.3f} -> {args.out}")
@@ -226,6 +255,22 @@ def _train_scratch(
 
     config = ScratchTrainConfig(seed=args.seed, epochs=args.epochs, time_budget_s=args.time_budget)
     return train_scratch_detector(train, validation, config, args.out, progress)
+
+
+def _train_on_picodet(
+    args: argparse.Namespace,
+    train: list[BoxedPhoto],
+    validation: list[BoxedPhoto],
+    progress: Callable[[float, str], None],
+) -> dict[str, Any]:
+    from ..learning.detector.picodet_train import PicoDetHeadConfig, train_picodet_head
+
+    config = PicoDetHeadConfig(
+        seed=args.seed, epochs=args.epochs, views=args.views, coco_weight=args.coco_weight
+    )
+    if args.branch_learning_rate is not None:
+        config = dataclasses.replace(config, branch_learning_rate=args.branch_learning_rate)
+    return train_picodet_head(train, validation, config, args.out, progress)
 
 
 def _train_rn(args: argparse.Namespace) -> int:

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 
 import cv2
 import numpy as np
-from holiscene_schema import Mask
+from holiscene_schema import NYU40_CLASSES, Mask
 
 from ...inputs import read_input_folder
 from .retexture import retexture
@@ -37,6 +37,11 @@ class BoxedPhoto:
     classes: list[str]  # NYU-40, one per box
     # The visible masks of a synthetic room's objects (its gt.json), for repainting surfaces.
     masks: tuple[Mask, ...] = ()
+
+
+def classes_in(photos: Sequence[BoxedPhoto]) -> list[str]:
+    """The NYU-40 classes the photos' boxes hold, in NYU-40 order: what a detector learns."""
+    return [c for c in NYU40_CLASSES if any(c in p.classes for p in photos)]
 
 
 def _crop(photo: BoxedPhoto, rng: np.random.Generator) -> BoxedPhoto:

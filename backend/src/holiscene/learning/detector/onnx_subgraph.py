@@ -1,10 +1,12 @@
 """A stretch of an ONNX graph run by PyTorch, its weights trainable (training only).
 
-The NYU-40 head fine-tunes a copy of the COCO backbone's last blocks (docs/detector.md). The
-converted graph is the only source of those blocks, so rather than rewrite MobileNetV3 by
-hand, this module runs the graph's own nodes between one tensor and another with PyTorch
-operators: convolutions become parameters, scalar constants stay constants. Only the
-operators those blocks use are known; any other is refused by name.
+The NYU-40 heads fine-tune copies of a converted graph's blocks (the CenterNet backbone's last
+blocks, PicoDet's class branches; docs/detector.md). The converted graph is the only source of
+those blocks, so rather than rewrite MobileNetV3 or PicoDet by hand, this module runs the
+graph's own nodes between one tensor and another with PyTorch operators: convolutions and
+batch norms' scales and shifts become parameters (their running statistics stay fixed), scalar
+constants stay constants. Weights may be initializers or Constant nodes. Only the operators
+those blocks use are known; any other is refused by name.
 """
 
 from __future__ import annotations
@@ -52,24 +54,36 @@ class OnnxSubgraph(nn.Module):
     """Runs the nodes from tensor `start` to tensor `end` of `model`; every Conv's weight
     and bias become parameters (copies: the model is left as it is)."""
 
-    SUPPORTED = frozenset({"Conv", "Mul", "Add", "Clip", "Relu", "Sigmoid", "ReduceMean"})
+    SUPPORTED = frozenset({
+        "Conv", "Mul", "Add", "Clip", "Relu", "Sigmoid", "ReduceMean", "BatchNormalization",
+        "HardSwish", "GlobalAveragePool",
+    })  # fmt: skip
 
     def __init__(self, model: onnx.ModelProto, start: str, end: str) -> None:
         super().__init__()
         self.start, self.end = start, end
         initializers = {t.name: numpy_helper.to_array(t) for t in model.graph.initializer}
+        for node in model.graph.node:
+            if node.op_type == "Constant" and node.attribute and node.attribute[0].name == "value":
+                initializers[node.output[0]] = numpy_helper.to_array(node.attribute[0].t)
         self.weights = nn.ParameterDict()
+        self.statistics: dict[str, str] = {}  # batch norms' running mean and variance: buffers
         self.constants: dict[str, float] = {}
         self._parameter_key: dict[str, str] = {}
         self.steps: list[_Step] = []
         for node in _stretch(model, start, end):
             if node.op_type not in self.SUPPORTED:
                 raise UnsupportedGraphError(f"operator {node.op_type} ({node.name}) is not run")
-            for name in node.input:
+            for position, name in enumerate(node.input):
                 if name not in initializers:
                     continue
                 value = initializers[name]
-                if value.size == 1 and node.op_type != "Conv":
+                if node.op_type == "BatchNormalization" and position >= 3:
+                    if name not in self.statistics:
+                        key = f"s{len(self.statistics)}"
+                        self.statistics[name] = key
+                        self.register_buffer(key, torch.from_numpy(value.copy()))
+                elif value.size == 1 and node.op_type not in ("Conv", "BatchNormalization"):
                     self.constants[name] = float(value.reshape(()))
                 elif name not in self._parameter_key:
                     key = f"p{len(self._parameter_key)}"  # ParameterDict keys cannot hold "/"
@@ -83,6 +97,9 @@ class OnnxSubgraph(nn.Module):
             return values[name]
         if name in self.constants:
             return self.constants[name]
+        if name in self.statistics:
+            statistic: torch.Tensor = getattr(self, self.statistics[name])
+            return statistic
         weight: torch.Tensor = self.weights[self._parameter_key[name]]
         return weight
 
@@ -111,6 +128,15 @@ def _run(step: _Step, args: list[torch.Tensor | float]) -> torch.Tensor:
         return F.relu(x)
     if step.op == "Sigmoid":
         return torch.sigmoid(x)
+    if step.op == "HardSwish":
+        return F.hardswish(x)
+    if step.op == "GlobalAveragePool":
+        return x.mean(dim=[2, 3], keepdim=True)
+    if step.op == "BatchNormalization":
+        scale, shift, mean, variance = args[1:5]
+        assert all(isinstance(v, torch.Tensor) for v in (scale, shift, mean, variance))
+        epsilon = float(step.attributes.get("epsilon", 1e-5))  # type: ignore[arg-type]
+        return F.batch_norm(x, mean, variance, scale, shift, False, 0.0, epsilon)  # type: ignore[arg-type]
     axes = step.attributes.get("axes")
     if not isinstance(axes, list) or step.attributes.get("keepdims", 1) != 1:
         raise UnsupportedGraphError(f"ReduceMean with {step.attributes} is not run")

@@ -39,7 +39,7 @@ class PicoDetGraphError(ValueError):
     """The converted graph is not the PicoDet this wrapper expects."""
 
 
-def _nms_inputs(graph: onnx.GraphProto) -> list[str]:
+def nms_inputs(graph: onnx.GraphProto) -> list[str]:
     """What the graph's one NonMaxSuppression reads: boxes [1, N, 4], scores [1, C, N], and
     the model's own settings (boxes kept per class, IoU, lowest score)."""
     nms = [node for node in graph.node if node.op_type == "NonMaxSuppression"]
@@ -75,7 +75,7 @@ def _prefix_nodes() -> tuple[list[onnx.NodeProto], list[onnx.TensorProto]]:
     return nodes, constants
 
 
-def _suffix_nodes(nms_inputs: list[str]) -> tuple[list[onnx.NodeProto], list[onnx.TensorProto]]:
+def suffix_nodes(nms_inputs: list[str]) -> tuple[list[onnx.NodeProto], list[onnx.TensorProto]]:
     """The model's NMS, then its MAX_DETECTIONS best rows as the contract's [1, k, 6]."""
     boxes, scores = nms_inputs[:2]
     k = MAX_DETECTIONS
@@ -153,7 +153,7 @@ def _suffix_nodes(nms_inputs: list[str]) -> tuple[list[onnx.NodeProto], list[onn
     return nodes, constants
 
 
-def _upstream(graph: onnx.GraphProto, outputs: set[str]) -> list[onnx.NodeProto]:
+def upstream(graph: onnx.GraphProto, outputs: set[str]) -> list[onnx.NodeProto]:
     """The nodes the given tensors depend on, in the graph's order."""
     producer = {name: node for node in graph.node for name in node.output}
     needed: set[int] = set()
@@ -199,8 +199,8 @@ def wrap_picodet(converted: onnx.ModelProto, doc_string: str = "") -> onnx.Model
             f"expected inputs {PICODET_INPUT!r} and {PICODET_SCALE_INPUT!r}, "
             f"found {[i.name for i in graph.input]}"
         )
-    nms_inputs = _nms_inputs(graph)
-    body = _upstream(graph, set(nms_inputs))
+    nms_tensors = nms_inputs(graph)
+    body = upstream(graph, set(nms_tensors))
     used = {name for node in body for name in node.input}
     initializers = [t for t in graph.initializer if t.name in used]
     # Boxes are divided by scale_factor (resized input -> photo); 416/512 maps them to the
@@ -209,7 +209,7 @@ def wrap_picodet(converted: onnx.ModelProto, doc_string: str = "") -> onnx.Model
         np.full((1, 2), PICODET_SIZE / INPUT_SIZE, np.float32), PICODET_SCALE_INPUT
     )
     prefix, prefix_constants = _prefix_nodes()
-    suffix, suffix_constants = _suffix_nodes(nms_inputs)
+    suffix, suffix_constants = suffix_nodes(nms_tensors)
     wrapped_graph = helper.make_graph(
         prefix + body + suffix,
         "picodet_detector_contract",

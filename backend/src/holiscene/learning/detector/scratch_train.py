@@ -11,7 +11,6 @@ metadata.json, metrics.json and curve.png.
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from collections.abc import Sequence
@@ -21,13 +20,12 @@ from typing import Any
 
 import numpy as np
 import torch
-from holiscene_schema import NYU40_CLASSES
 from holiscene_schema.detector_model import INPUT_SIZE
 
-from ..train import plot_curve, run_record
 from ..training_api import TrainProgress
-from .data import BoxedPhoto, center_targets
-from .runtime import METADATA_FILE, MODEL_FILE, preprocess
+from .data import BoxedPhoto, center_targets, classes_in
+from .epoch_record import EpochRecord
+from .runtime import MODEL_FILE, preprocess
 from .scratch_net import CELLS, STRIDE, ScratchDetector, ScratchNet, export_scratch_detector, halve
 from .train import FeatureSet, detection_loss, extract, score_raw
 
@@ -116,16 +114,16 @@ def _fit(
     classes: list[str],
     config: ScratchTrainConfig,
     say: TrainProgress,
-) -> tuple[list[dict[str, float]], float, int]:
-    """Train `net` in place; leaves it at its best evaluation. Returns (curve, best mAP, best
-    epoch)."""
+    run_started: float,
+) -> EpochRecord:
+    """Train `net` in place; leaves it at its best evaluation. The record's times count from
+    `run_started` (the photos' preparation included); the time budget from here."""
     rng = np.random.default_rng(config.seed)
     optimiser = torch.optim.AdamW(net.parameters(), lr=config.learning_rate, weight_decay=1e-4)
     rooms = len(train.features) // config.views
     per_epoch = -(-rooms // config.batch)
     steps, step, started = per_epoch * config.epochs, 0, time.perf_counter()
-    curve: list[dict[str, float]] = []
-    best, best_state, best_epoch = -1.0, net.state_dict(), 0
+    record = EpochRecord(net, run_started)
     done = 0.0
     for epoch in range(1, config.epochs + 1):
         net.train()
@@ -152,24 +150,12 @@ def _fit(
         done = _share_done(config, step, steps, time.perf_counter() - started)
         net.eval()
         score = validation_map(net, validation, classes)
-        seconds = time.perf_counter() - started
-        curve.append({
-            "epoch": epoch, "train_loss": total / max(seen, 1), "validation_accuracy": score,
-            "seconds": seconds, "photos_seen": seen,
-        })  # fmt: skip
-        if score > best:
-            best, best_epoch = score, epoch
-            best_state = {k: v.clone() for k, v in net.state_dict().items()}
-        say(
-            min(1.0, done),
-            f"epoch {epoch}: loss {curve[-1]['train_loss']:.3f}, validation mAP@0.5 "
-            f"{100 * score:.1f} (best {100 * best:.1f}), {seconds / 60:.1f} min",
-        )
+        line = record.add(epoch, total / max(seen, 1), score, photos_seen=seen)
+        say(min(1.0, done), f"{line}, {(time.perf_counter() - started) / 60:.1f} min")
         if done >= 1.0:
             break
-    net.load_state_dict(best_state)
-    net.eval()
-    return curve, best, best_epoch
+    record.keep_best()
+    return record
 
 
 def train_scratch_detector(
@@ -184,30 +170,25 @@ def train_scratch_detector(
     torch.manual_seed(config.seed)
     torch.set_num_threads(config.threads)
     rng = np.random.default_rng(config.seed)
-    classes = [c for c in NYU40_CLASSES if any(c in p.classes for p in train_photos)]
+    classes = classes_in(train_photos)
     views = [p for p in train_photos for _ in range(config.views)]
     train = extract(views, classes, _encode, rng, False, say, "training photos")
     validation = extract(validation_photos, classes, _encode, None, False, say, "validation")
     prepared = time.perf_counter() - started
     net = ScratchNet(len(classes))
-    curve, best, best_epoch = _fit(net, train, validation, classes, config, say)
+    record = _fit(net, train, validation, classes, config, say, started)
     out_dir.mkdir(parents=True, exist_ok=True)
     example = preprocess(validation_photos[0].rgb)
     difference = export_scratch_detector(net, example, out_dir / MODEL_FILE)
     metrics = {
         "classes": classes,
-        "best_epoch": best_epoch,
-        "validation_map_at_0_5": best,
         "train_photos": len(train_photos),
         "train_views": len(views),
         "validation_photos": len(validation_photos),
         "parameters": sum(p.numel() for p in net.parameters()),
         "prepare_seconds": round(prepared, 1),
         "export_difference": difference,
-        "curve": curve,
-        **run_record(started, config),
     }
-    (out_dir / "metrics.json").write_text(json.dumps(metrics, indent=1, default=str) + "\n")
     metadata = {
         "name": "NYU-40 detector trained from scratch on synthetic rooms",
         "label_space": "nyu40",
@@ -217,6 +198,4 @@ def train_scratch_detector(
             "the photos in metrics.json",
         },
     }
-    (out_dir / METADATA_FILE).write_text(json.dumps(metadata, indent=2) + "\n")
-    plot_curve(curve, out_dir / "curve.png", "validation mAP@0.5", "train loss per photo")
-    return metrics
+    return record.write_files(out_dir, config, metrics, metadata)

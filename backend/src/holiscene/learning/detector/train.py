@@ -11,7 +11,6 @@ detector contract, and written with metadata.json, metrics.json and curve.png.
 
 from __future__ import annotations
 
-import json
 import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
@@ -25,12 +24,12 @@ from holiscene_schema.detector_model import COCO_TO_NYU40, INPUT_SIZE
 
 from ...evaluation.detection_2d import MAP_SCORE_THRESHOLD, DetectionEvaluation, ScoredBox
 from ...synth.plan import RoomStyle
-from ..train import plot_curve, run_record
 from ..training_api import TrainProgress
 from .backbone import DEEP_STRIDE, FeatureExtractor, box_head_weights
-from .data import BoxedPhoto, center_targets, randomise
+from .data import BoxedPhoto, center_targets, classes_in, randomise
+from .epoch_record import EpochRecord
 from .net import STRIDE, DetectorHead, ExportedHead, deep_blocks, export_detector
-from .runtime import COCO_DETECTOR_DIR, METADATA_FILE, MODEL_FILE, decode, preprocess
+from .runtime import COCO_DETECTOR_DIR, MODEL_FILE, decode, preprocess
 
 CELLS = INPUT_SIZE // STRIDE
 DEEP_SCALE = DEEP_STRIDE // STRIDE  # neck cells per deep cell along each side
@@ -297,7 +296,7 @@ def train_detector(
     started = time.perf_counter()
     torch.manual_seed(config.seed)
     rng = np.random.default_rng(config.seed)
-    trained = [c for c in NYU40_CLASSES if any(c in p.classes for p in train_photos)]
+    trained = classes_in(train_photos)
     classes = final_classes(trained)
     learned = [classes.index(c) for c in trained]
     blocks = deep_blocks(config.coco_model) if config.tune_deep_blocks else None
@@ -313,8 +312,7 @@ def train_detector(
     )
     steps = -(-len(views) // config.batch)
     optimiser, schedule = _optimiser(head, config, steps * config.epochs)
-    curve: list[dict[str, float]] = []
-    best, best_state, best_epoch = -1.0, head.state_dict(), 0
+    record = EpochRecord(head, started)
     for epoch in range(1, config.epochs + 1):
         head.train()
         total = 0.0
@@ -331,20 +329,8 @@ def train_detector(
             total += loss.item() * len(index)
         head.eval()
         score, _ = validation_map(head, validation, trained, classes, 0.0)
-        curve.append({
-            "epoch": epoch, "train_loss": total / len(views), "validation_accuracy": score,
-            "seconds": time.perf_counter() - started,
-        })  # fmt: skip
-        if score > best:
-            best, best_epoch = score, epoch
-            best_state = {k: v.clone() for k, v in head.state_dict().items()}
-        say(
-            0.25 + 0.75 * epoch / config.epochs,
-            f"epoch {epoch}: loss {curve[-1]['train_loss']:.3f}, "
-            f"validation mAP@0.5 {100 * score:.1f}% (best {100 * best:.1f}%)",
-        )
-    head.load_state_dict(best_state)
-    head.eval()
+        say(0.25 + 0.75 * epoch / config.epochs, record.add(epoch, total / len(views), score))
+    record.keep_best()
     rules = {
         weight: validation_map(head, validation, trained, classes, weight)[1].summary(set(trained))
         for weight in (0.0, config.coco_weight)
@@ -359,16 +345,11 @@ def train_detector(
         "classes": classes,
         "trained_classes": trained,
         "learned_channels": learned,
-        "best_epoch": best_epoch,
-        "validation_map_at_0_5": best,
         "validation_by_rule": {str(w): s for w, s in rules.items()},
         "train_photos": len(train_photos),
         "validation_photos": len(validation_photos),
         "export_difference": difference,
-        "curve": curve,
-        **run_record(started, config),
     }
-    (out_dir / "metrics.json").write_text(json.dumps(metrics, indent=1, default=str) + "\n")
     metadata = {
         "name": model_name(config),
         "label_space": "nyu40",
@@ -379,6 +360,4 @@ def train_detector(
             "head": "trained by holiscene train-detector on the photos in metrics.json",
         },
     }
-    (out_dir / METADATA_FILE).write_text(json.dumps(metadata, indent=2) + "\n")
-    plot_curve(curve, out_dir / "curve.png", "validation mAP@0.5", "train loss per photo")
-    return metrics
+    return record.write_files(out_dir, config, metrics, metadata)
