@@ -1,4 +1,4 @@
-"""An NYU-40 class head on PicoDet's frozen anchors (PyTorch), its targets and its export.
+"""An NYU-40 class head on PicoDet's anchors (PyTorch), its targets and its export.
 
 PicoDet's boxes stay as they are (`picodet_taps.py`: they already meet almost every real
 object); the head only learns which NYU-40 class each anchor's box holds, and how well. Each
@@ -35,6 +35,7 @@ from torch import nn
 from .onnx_subgraph import OnnxSubgraph
 from .picodet_contract import suffix_nodes, upstream
 from .picodet_taps import FEATURE_CHANNELS, STRIDES, PicoDetTapNames, grid_sizes
+from .runtime import box_iou
 
 EVIDENCE_CHANNELS = 1 + len(COCO_CLASSES)  # the alignment probability, COCO's scores
 INPUT_CHANNELS = FEATURE_CHANNELS + EVIDENCE_CHANNELS
@@ -56,16 +57,7 @@ def anchor_targets(
     target_iou = np.zeros(count, np.float32)
     if len(truth) == 0:
         return target_class, target_iou
-    inter_w = np.minimum(truth[:, None, 2], anchor_boxes[None, :, 2]) - np.maximum(
-        truth[:, None, 0], anchor_boxes[None, :, 0]
-    )
-    inter_h = np.minimum(truth[:, None, 3], anchor_boxes[None, :, 3]) - np.maximum(
-        truth[:, None, 1], anchor_boxes[None, :, 1]
-    )
-    inter = np.clip(inter_w, 0, None) * np.clip(inter_h, 0, None)
-    area_t = (truth[:, 2] - truth[:, 0]) * (truth[:, 3] - truth[:, 1])
-    area_a = (anchor_boxes[:, 2] - anchor_boxes[:, 0]) * (anchor_boxes[:, 3] - anchor_boxes[:, 1])
-    iou = inter / np.maximum(area_t[:, None] + area_a[None, :] - inter, 1e-9)
+    iou = np.stack([box_iou(box, anchor_boxes) for box in truth])  # [M, N]
     inside = (
         (points[None, :, 0] >= truth[:, None, 0])
         & (points[None, :, 0] <= truth[:, None, 2])
@@ -288,15 +280,8 @@ def nms_rows(boxes: np.ndarray, scores: np.ndarray) -> np.ndarray:
         order = order[class_scores[order] > NMS_LOWEST_SCORE][:NMS_PER_CLASS]
         kept: list[int] = []
         for n in order:
-            if kept:
-                other = boxes[kept]
-                iw = np.minimum(other[:, 2], boxes[n, 2]) - np.maximum(other[:, 0], boxes[n, 0])
-                ih = np.minimum(other[:, 3], boxes[n, 3]) - np.maximum(other[:, 1], boxes[n, 1])
-                inter = np.clip(iw, 0, None) * np.clip(ih, 0, None)
-                area = (other[:, 2] - other[:, 0]) * (other[:, 3] - other[:, 1])
-                own = (boxes[n, 2] - boxes[n, 0]) * (boxes[n, 3] - boxes[n, 1])
-                if (inter / np.maximum(area + own - inter, 1e-9)).max() > NMS_IOU:
-                    continue
+            if kept and box_iou(boxes[n], boxes[kept]).max() > NMS_IOU:
+                continue
             kept.append(int(n))
         rows.extend((*map(float, boxes[n]), float(class_scores[n]), float(k)) for n in kept)
     rows.sort(key=lambda r: -r[4])
