@@ -1,5 +1,5 @@
 // The page's confirm questions (window.confirm), read and answered by a test.
-import type { Page } from "@playwright/test";
+import type { Dialog, Page } from "@playwright/test";
 
 /** The message of the page's next dialog, once it is answered Yes ("accept") or No. */
 export function nextDialog(page: Page, answer: "accept" | "dismiss"): Promise<string> {
@@ -9,4 +9,21 @@ export function nextDialog(page: Page, answer: "accept" | "dismiss"): Promise<st
       void (answer === "accept" ? dialog.accept() : dialog.dismiss());
     }),
   );
+}
+
+/** Runs `act` answering Yes to every question it raises (what a submit asks depends on the
+ * support model's scores, which a test does not fix); the questions asked, in order. */
+export async function answeringYes(page: Page, act: () => Promise<void>): Promise<string[]> {
+  const asked: string[] = [];
+  const answer = (dialog: Dialog) => {
+    asked.push(dialog.message());
+    void dialog.accept();
+  };
+  page.on("dialog", answer);
+  try {
+    await act();
+  } finally {
+    page.off("dialog", answer);
+  }
+  return asked;
 }

@@ -14,6 +14,7 @@ import {
   type PlaywrightWorkerArgs,
   test,
 } from "@playwright/test";
+import { answeringYes } from "../helpers/dialogs";
 import { clickObject } from "../helpers/photo";
 import { screenshotPath } from "../helpers/screenshots";
 import {
@@ -56,6 +57,14 @@ async function correctASupporter(page: Page, request: APIRequestContext, sceneId
   await expect(page.getByTestId("save-status")).toHaveAttribute("data-state", "saved");
   await expect(page.getByTestId(`supporter-select-${child}`)).toHaveValue(target);
   return child;
+}
+
+/** Submit from the workflow bar, answering Yes to what it asks first (if anything). */
+async function submitAnsweringYes(page: Page): Promise<void> {
+  await answeringYes(page, async () => {
+    await page.getByTestId("workflow-submit").click();
+    await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
+  });
 }
 
 /**
@@ -233,12 +242,21 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await correctASupporter(page, admin, first.id);
   await expect(page.getByTestId("workflow-submit")).toBeEnabled();
   await shot(page, "annotating");
-  await page.getByTestId("workflow-submit").click();
-  await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
+  // The corrected supporter may be one the model is sure of otherwise: then submit asks first.
+  await submitAnsweringYes(page);
   // Submitted work is locked: the server refuses edits until a reviewer decides.
   await expect(page.getByTestId("workflow-note")).toContainText("Submitted");
   await expectReadOnly(page, first.id, "Submitted for review — read only");
   await shot(page, "read-only");
+  // Submitted too soon: taken back before any review, it is theirs to change again.
+  await page.getByTestId("workflow-withdraw").click();
+  await expect(page.getByTestId("workflow-state")).toHaveText("in annotation");
+  await expect(page.getByTestId("workflow-events").locator("li").last()).toContainText(
+    `${ANNOTATOR.name} took the submission back`,
+  );
+  await expect(page.getByTestId("workflow-withdraw")).toBeHidden();
+  await submitAnsweringYes(page);
+  await expect(page.getByTestId("workflow-withdraw")).toBeVisible();
 
   await page.keyboard.press(">"); // the next scene, from the scene page
   await expect(page).toHaveURL(new RegExp(`#/scenes/${second.id}$`));
@@ -308,7 +326,7 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId("read-only-reason")).toHaveText("Submitted for review — read only");
   // Where to start: what the annotator changed since taking the scene.
   const takenAt = (await workflowOf(admin, first.id)).events.findLast(
-    (e) => e.to_state === "in_annotation",
+    (e) => e.to_state === "in_annotation" && e.action !== "withdraw",
   )?.revision;
   await expect(page.getByTestId("since-rejection")).toHaveText(
     `What ${ANNOTATOR.name} changed since taking it (revision ${takenAt})`,
@@ -363,8 +381,7 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
   await expect(page.getByTestId("workflow-events")).toContainText(comment);
   await shot(page, "comment-seen");
   await correctASupporter(page, admin, first.id);
-  await page.getByTestId("workflow-submit").click();
-  await expect(page.getByTestId("workflow-state")).toHaveText("submitted");
+  await submitAnsweringYes(page);
   await expect(page.getByTestId("review-comment")).toBeHidden();
   await logOut(page);
 
@@ -416,6 +433,8 @@ test("accounts, next scene by uncertainty, submit, reject with a comment, resubm
     ["import", ADMIN.name],
     ["predict", "pipeline"],
     ["claim", ANNOTATOR.name],
+    ["submit", ANNOTATOR.name],
+    ["withdraw", ANNOTATOR.name],
     ["submit", ANNOTATOR.name],
     ["reject", REVIEWER.name],
     ["reopen", ANNOTATOR.name],

@@ -621,6 +621,7 @@ WorkflowAction = Literal[
     "release",
     "reopen",
     "submit",
+    "withdraw",
     "accept",
     "reject",
     "second_annotation",

@@ -1282,7 +1282,7 @@ state: ("new" | "predicted" | "in_annotation" | "submitted" | "accepted" | "reje
  * via the `definition` "WorkflowEvent".
  */
 export interface WorkflowEvent {
-action: ("import" | "predict" | "claim" | "release" | "reopen" | "submit" | "accept" | "reject" | "second_annotation" | "archive" | "unarchive")
+action: ("import" | "predict" | "claim" | "release" | "reopen" | "submit" | "withdraw" | "accept" | "reject" | "second_annotation" | "archive" | "unarchive")
 actor: string
 annotation_round: number
 /**

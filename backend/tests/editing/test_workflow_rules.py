@@ -15,6 +15,7 @@ from holiscene.editing.workflow_rules import (
     submit,
     support_agreement,
     take_for_annotation,
+    withdraw,
 )
 from holiscene_schema import StageRun
 
@@ -177,6 +178,19 @@ def test_submitting_and_reviewing() -> None:
     # The local single-user mode plays every part.
     local = Actor("local", "admin", local=True)
     assert review(SceneStatus("submitted", "local", 1), local, accept=True).to_state == "accepted"
+
+
+def test_a_submission_is_taken_back_by_its_annotator_before_a_review() -> None:
+    submitted = SceneStatus("submitted", "ann", 1)
+    back = withdraw(submitted, ANN)
+    assert (back.action, back.to_state, back.assignee) == ("withdraw", "in_annotation", "ann")
+    with pytest.raises(WorkflowError, match=r"only the annotator who submitted this scene \(ann\)"):
+        withdraw(submitted, BOB)
+    with pytest.raises(WorkflowError, match="a reviewer sends it back"):
+        withdraw(submitted, REV)
+    for state in ("in_annotation", "accepted", "rejected"):
+        with pytest.raises(WorkflowError, match="only a submitted scene can be taken back"):
+            withdraw(SceneStatus(state, "ann", 1), ANN)
 
 
 def test_release_gives_a_scene_back_as_new_or_predicted_unless_sent_back_to_be_fixed() -> None:

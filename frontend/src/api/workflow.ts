@@ -118,6 +118,10 @@ export const workflowApi = {
   submit: (sceneId: string, revision: number) =>
     request<SceneWorkflow>(`${sceneUrl(sceneId)}/submit`, jsonBody({ revision })),
 
+  /** Take a submission back before a reviewer decides (its annotator). */
+  withdraw: (sceneId: string, revision: number) =>
+    request<SceneWorkflow>(`${sceneUrl(sceneId)}/withdraw`, jsonBody({ revision })),
+
   accept: (sceneId: string, revision: number) =>
     request<SceneWorkflow>(`${sceneUrl(sceneId)}/accept`, jsonBody({ revision })),
 

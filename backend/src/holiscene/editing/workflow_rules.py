@@ -3,7 +3,8 @@ user may make, how uncertain a predicted scene is, and how far two annotations a
 
 States: new -> predicted (the pipeline finished) -> in_annotation (an annotator took it) ->
 submitted -> accepted | rejected (with a comment) ; rejected -> in_annotation (the annotator
-fixes it). A reviewer may ask for a second, independent annotation of a submitted or accepted
+fixes it) ; submitted -> in_annotation (its annotator takes it back before a reviewer
+decides). A reviewer may ask for a second, independent annotation of a submitted or accepted
 scene: its supports go back to the pipeline's guesses, the annotation round goes up and the
 scene is predicted again, for someone who did not label it before.
 """
@@ -178,6 +179,21 @@ def submit(status: SceneStatus, actor: Actor) -> Transition:
             f"only the annotator of this scene ({status.assignee or 'nobody yet'}) can submit it"
         )
     return Transition("submit", "submitted", actor.name)
+
+
+def withdraw(status: SceneStatus, actor: Actor) -> Transition:
+    """Take a submission back before a reviewer decides (submitted too soon, or a slip seen
+    since): the scene is in annotation again, with its annotator."""
+    if status.state != "submitted":
+        raise WorkflowError(
+            f"only a submitted scene can be taken back; this one is {describe(status.state)}"
+        )
+    if status.assignee != actor.name:
+        raise WorkflowError(
+            f"only the annotator who submitted this scene ({status.assignee or 'nobody'}) can "
+            "take it back; a reviewer sends it back with a comment"
+        )
+    return Transition("withdraw", "in_annotation", actor.name)
 
 
 def review(status: SceneStatus, actor: Actor, accept: bool) -> Transition:

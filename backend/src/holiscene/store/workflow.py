@@ -273,6 +273,11 @@ class WorkflowStore:
             scene_id, revision, lambda status: workflow_rules.submit(status, actor), actor
         )
 
+    def withdraw(self, scene_id: str, revision: int, actor: Actor) -> SceneWorkflow:
+        return self._change(
+            scene_id, revision, lambda status: workflow_rules.withdraw(status, actor), actor
+        )
+
     # -- reviewers -----------------------------------------------------------------------
 
     def accept(
@@ -386,6 +391,8 @@ class WorkflowStore:
         for event in events:
             if event.action == "submit":
                 people[event.actor]["submitted"] += 1
+            elif event.action == "withdraw":  # taken back: a submission that never was
+                people[event.actor]["submitted"] -= 1
             elif event.action in ("accept", "reject") and event.assignee:
                 people[event.assignee]["accepted" if event.action == "accept" else "rejected"] += 1
                 people[event.actor]["reviewed"] += 1

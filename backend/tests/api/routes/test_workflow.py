@@ -202,6 +202,35 @@ def test_a_scene_taken_by_mistake_is_given_back_with_its_edits(
     assert (by_admin.json()["state"], by_admin.json()["assignee"]) == ("predicted", None)
 
 
+def test_a_submission_is_taken_back_by_its_annotator_until_a_reviewer_decides(
+    api: Api, accounts: Accounts
+) -> None:
+    scene_id = store_predicted_scene(accounts.workbench.scenes)
+    assert api.edit("ann", scene_id, _set("o2", "floor")).status_code == 200
+    submitted = api.act("ann", scene_id, "submit")
+    assert submitted.status_code == 200, submitted.text
+    before = api.snapshot(scene_id)
+    _refused(api, scene_id, api.act("bob", scene_id, "withdraw"), 409, "only the annotator who")
+    _refused(api, scene_id, api.act("rita", scene_id, "withdraw"), 409, "sends it back")
+    assert api.snapshot(scene_id) == before
+
+    back = api.act("ann", scene_id, "withdraw")
+    assert back.status_code == 200, back.text
+    flow = back.json()
+    assert (flow["state"], flow["assignee"]) == ("in_annotation", "ann")
+    assert flow["events"][-1]["action"] == "withdraw"
+    assert flow["editable"] is True
+    # Hers to edit again; the reviewer's queue no longer holds it.
+    assert api.edit("ann", scene_id, _set("o1", "floor")).status_code == 200
+    _refused(api, scene_id, api.act("rita", scene_id, "accept"), 409, "only a submitted scene")
+    assert api.act("ann", scene_id, "submit").status_code == 200
+    assert api.act("rita", scene_id, "accept").status_code == 200
+    _refused(api, scene_id, api.act("ann", scene_id, "withdraw"), 409, "only a submitted scene")
+    # The dashboard counts one submission: the one taken back never reached a reviewer.
+    people = {p["name"]: p for p in api.get("ada", "/api/dashboard")["people"]}
+    assert (people["ann"]["submitted"], people["ann"]["accepted"]) == (1, 1)
+
+
 def test_an_admin_takes_a_scene_over_by_taking_it_not_by_an_edit(
     api: Api, accounts: Accounts
 ) -> None:

@@ -1,5 +1,5 @@
 // Who is offered "Give back": the scene's annotator (not when a reviewer sent it back to be
-// fixed) and admins; never in local single-user mode.
+// fixed) and admins; never in local single-user mode. "Take over" and "Take back" likewise.
 import type { CurrentUser, SceneWorkflow, WorkflowEvent } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
 import { actionState } from "./workflowActions";
@@ -60,5 +60,19 @@ describe("take over", () => {
     expect(takeOver(taken, user("rita", "reviewer"))).toBe(false);
     expect(takeOver(flow("in_annotation", "ada"), user("ada", "admin"))).toBe(false);
     expect(takeOver(flow("submitted", "ann"), user("ada", "admin"))).toBe(false);
+  });
+});
+
+describe("take back", () => {
+  it("is offered to the annotator who submitted, until a reviewer decides", () => {
+    const takeBack = (f: SceneWorkflow, me: CurrentUser) =>
+      actionState(f, me, 0, false).canWithdraw;
+    const submitted = flow("submitted", "ann", [event("submit")]);
+    expect(takeBack(submitted, user("ann", "annotator"))).toBe(true);
+    expect(takeBack(submitted, user("bob", "annotator"))).toBe(false);
+    expect(takeBack(submitted, user("rita", "reviewer"))).toBe(false);
+    expect(takeBack(flow("accepted", "ann"), user("ann", "annotator"))).toBe(false);
+    expect(takeBack(flow("rejected", "ann"), user("ann", "annotator"))).toBe(false);
+    expect(takeBack(flow("in_annotation", "ann"), user("ann", "annotator"))).toBe(false);
   });
 });

@@ -1,5 +1,5 @@
-// The workflow bar's buttons: take, give back, submit, accept, reject (with the comment box it
-// opens) and "ask for a second annotation", each shown only when the user's role and the scene's state
+// The workflow bar's buttons: take, give back, submit, take a submission back, accept, reject
+// (with the comment box it opens) and "ask for a second annotation", each shown only when the user's role and the scene's state
 // allow it. What they do is the bar's business (onTake, ...).
 import type { CurrentUser, SceneWorkflow } from "@holiscene/schema";
 import { button, el } from "../../dom";
@@ -19,6 +19,8 @@ export interface ActionState {
   annotator: boolean;
   mine: boolean;
   canSubmit: boolean;
+  /** Take a submission back: its annotator, until a reviewer decides. */
+  canWithdraw: boolean;
   /** Give the scene back to the queue: its annotator (or an admin), unless sent back to fix. */
   canRelease: boolean;
   /** An admin may take over a scene someone else annotates (edits alone do not). */
@@ -53,6 +55,7 @@ export function actionState(
     admin,
     mine,
     canSubmit: flow.state === "in_annotation" && mine && annotator && !busy,
+    canWithdraw: flow.state === "submitted" && mine && annotator,
     // In local mode one person plays every part: there is nobody to give it back to.
     canRelease:
       flow.state === "in_annotation" &&
@@ -73,6 +76,7 @@ export interface ActionHandlers {
   /** `byKey`: one keystroke, so it is asked about even when nothing else is. */
   onSubmit(byKey?: boolean): void;
   onRelease(): void;
+  onWithdraw(): void;
   /** Always asked first: an accepted scene is final. */
   onAccept(): void;
   /** The reviewer sends the comment (trimmed; never empty). */
@@ -112,6 +116,11 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
     "Give back",
     "workflow-release",
     "Put the scene back in the queue for another annotator (your saved changes stay)",
+  );
+  const withdraw = actionButton(
+    "Take back",
+    "workflow-withdraw",
+    "Take the submission back to change it before a reviewer decides",
   );
   const accept = actionButton("Accept", "workflow-accept", "Accept (Shift+Enter)", true);
   const reject = actionButton("Reject…", "workflow-reject", "Reject with a comment (Shift+X)");
@@ -163,6 +172,7 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
   take.addEventListener("click", handlers.onTake);
   submit.addEventListener("click", () => handlers.onSubmit());
   release.addEventListener("click", handlers.onRelease);
+  withdraw.addEventListener("click", handlers.onWithdraw);
   accept.addEventListener("click", () => handlers.onAccept());
   reject.addEventListener("click", openReject);
   rejectCancel.addEventListener("click", () => {
@@ -190,7 +200,8 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
     archive.disabled = unarchive.disabled = busy;
     // Archived: no step of the workflow until an admin restores it (the banner says so).
     if (archived) {
-      for (const action of [take, submit, release, accept, reject, again]) action.hidden = true;
+      for (const action of [take, submit, release, withdraw, accept, reject, again])
+        action.hidden = true;
       rejectBox.hidden = true;
       return;
     }
@@ -222,6 +233,8 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
       : pending > 0
         ? "Save or discard your changes first"
         : "Put the scene back in the queue for another annotator (your saved changes stay)";
+    withdraw.hidden = !now.canWithdraw;
+    withdraw.disabled = busy;
     accept.hidden = reject.hidden = !now.canReview;
     accept.disabled = reject.disabled = busy;
     if (!now.canReview) rejectBox.hidden = true;
@@ -236,6 +249,7 @@ export function workflowActions(handlers: ActionHandlers): WorkflowActions {
       take,
       submit,
       release,
+      withdraw,
       accept,
       reject,
       again,

@@ -109,6 +109,7 @@ export function mountWorkflowBar(
       if (window.confirm(question))
         void act(() => workflowApi.release(session.sceneId, revision()));
     },
+    onWithdraw: () => void act(() => workflowApi.withdraw(session.sceneId, revision())),
     onAccept: () =>
       void (async () => {
         const lacks = await outOfDate3d();

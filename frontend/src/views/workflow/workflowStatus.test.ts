@@ -54,6 +54,19 @@ describe("where a reviewer starts", () => {
     });
   });
 
+  it("a submission taken back and submitted again counts from the taking, not the taking back", () => {
+    const flow = submitted(
+      [
+        event("claim", "in_annotation", 2),
+        event("submit", "submitted", 5),
+        event("withdraw", "in_annotation", 5),
+        event("submit", "submitted", 6),
+      ],
+      6,
+    );
+    expect(reviewStart(flow)?.revision).toBe(2);
+  });
+
   it("after a rejection: what changed since it was sent back", () => {
     const flow = submitted(
       [

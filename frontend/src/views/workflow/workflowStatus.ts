@@ -11,6 +11,7 @@ const ACTION_TEXT: Record<WorkflowEvent["action"], string> = {
   release: "gave it back",
   reopen: "reopened it",
   submit: "submitted",
+  withdraw: "took the submission back",
   accept: "accepted",
   reject: "rejected",
   second_annotation: "asked for a second annotation",
@@ -62,7 +63,7 @@ export function noteText({ flow, pending, recovered, me, labelled }: NoteInputs)
         : `When every supporter is right, submit the scene for review. ${labelled}`;
     case "submitted":
       if (flow.assignee === name && !me?.local_mode)
-        return "Submitted: a reviewer will accept it or send it back to you.";
+        return 'Submitted: a reviewer will accept it or send it back to you. Until then, "Take back" lets you change it.';
       return `Submitted by ${flow.assignee ?? "an annotator"} at revision ${flow.revision}. ${labelled}`;
     case "accepted":
       return `Accepted. ${labelled}`;
@@ -108,7 +109,10 @@ export function reviewStart(flow: SceneWorkflow): { revision: number; text: stri
       text: `What changed since it was sent back (revision ${rejected})`,
     };
   if (flow.state !== "submitted") return null;
-  const taken = [...flow.events].reverse().find((e) => e.to_state === "in_annotation");
+  // A submission taken back and submitted again was still one taking of the scene.
+  const taken = [...flow.events]
+    .reverse()
+    .find((e) => e.to_state === "in_annotation" && e.action !== "withdraw");
   if (!taken || flow.revision <= taken.revision) return null;
   const who = flow.assignee ?? "the annotator";
   return {

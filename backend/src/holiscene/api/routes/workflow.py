@@ -83,6 +83,16 @@ def submit_scene(
     return with_edit_permission(flow, workbench, user)
 
 
+@router.post("/scenes/{scene_id}/withdraw", response_model=SceneWorkflow, responses=_ERRORS)
+def withdraw_scene(
+    scene_id: str, body: SubmitRequest, user: AnnotatorDep, workbench: WorkbenchDep
+) -> SceneWorkflow:
+    """Take a submission back before a reviewer decides (only the annotator who submitted it;
+    `revision` must be the latest): it is in annotation again, theirs."""
+    flow = workbench.workflow.withdraw(scene_id, body.revision, user)
+    return with_edit_permission(flow, workbench, user)
+
+
 @router.post("/scenes/{scene_id}/accept", response_model=SceneWorkflow, responses=_ERRORS)
 def accept_scene(
     scene_id: str, body: ReviewRequest, user: ReviewerDep, workbench: WorkbenchDep
