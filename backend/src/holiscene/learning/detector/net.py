@@ -135,6 +135,22 @@ def coco_sources(classes: list[str]) -> tuple[np.ndarray, np.ndarray]:
     return index.astype(np.int64), mask
 
 
+def own_channels(trained: list[str], classes: list[str]) -> torch.Tensor:
+    """Each class's channel of a head that learned `trained`, or the zero channel after the
+    last one (to be appended) for a class it did not learn."""
+    own = [trained.index(c) if c in trained else len(trained) for c in classes]
+    return torch.tensor(own, dtype=torch.int64)
+
+
+def mapped_coco(coco: torch.Tensor, index: torch.Tensor) -> torch.Tensor:
+    """Each class's COCO evidence: the largest of its COCO channels (`coco_sources`' index
+    [K, S]) of COCO's scores [B, 80, ...], class-wise on dimension 1."""
+    mapped = coco[:, index[:, 0]]
+    for j in range(1, index.shape[1]):
+        mapped = torch.maximum(mapped, coco[:, index[:, j]])
+    return mapped
+
+
 class ExportedHead(nn.Module):
     """Features, the COCO heatmap and the deep branch's input (NCHW) -> the contract's raw
     detections."""
@@ -145,12 +161,10 @@ class ExportedHead(nn.Module):
         super().__init__()
         self.head = head
         index, mask = coco_sources(classes)
-        # Each class's channel of the head's output, or the zero channel after the last one.
-        own = [trained.index(c) if c in trained else len(trained) for c in classes]
         self.own_channel: torch.Tensor
         self.coco_index: torch.Tensor
         self.coco_weight: torch.Tensor
-        self.register_buffer("own_channel", torch.tensor(own, dtype=torch.int64))
+        self.register_buffer("own_channel", own_channels(trained, classes))
         self.register_buffer("coco_index", torch.from_numpy(index))
         self.register_buffer("coco_weight", torch.from_numpy(mask) * coco_weight)
 
@@ -160,9 +174,7 @@ class ExportedHead(nn.Module):
         logits, sides = self.head(features, self.head.deep_features(deep_input))
         zero = torch.zeros_like(logits[:, :1])
         ours = torch.cat([torch.sigmoid(logits), zero], dim=1)[:, self.own_channel]
-        coco = coco_heatmap[:, self.coco_index[:, 0]]
-        for j in range(1, self.coco_index.shape[1]):
-            coco = torch.maximum(coco, coco_heatmap[:, self.coco_index[:, j]])
+        coco = mapped_coco(coco_heatmap, self.coco_index)
         heat = torch.maximum(ours, coco * self.coco_weight.view(1, -1, 1, 1))
         return centernet_decode(heat, sides, STRIDE, MAX_DETECTIONS)
 

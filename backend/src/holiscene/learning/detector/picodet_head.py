@@ -17,24 +17,20 @@ box's IoU with its true box (GFL's quality focal loss: the score says how good t
 
 from __future__ import annotations
 
+import io
 from pathlib import Path
 
 import numpy as np
 import onnx
 import torch
-from holiscene_schema.detector_model import (
-    COCO_CLASSES,
-    COCO_TO_NYU40,
-    INPUT_NAME,
-    MAX_DETECTIONS,
-    OUTPUT_NAME,
-)
+from holiscene_schema.detector_model import COCO_CLASSES, MAX_DETECTIONS, OUTPUT_NAME
 from onnx import helper
 from torch import nn
 
+from .net import coco_sources, mapped_coco, own_channels
 from .onnx_subgraph import OnnxSubgraph
 from .picodet_contract import suffix_nodes, upstream
-from .picodet_taps import FEATURE_CHANNELS, STRIDES, PicoDetTapNames, grid_sizes
+from .picodet_taps import FEATURE_CHANNELS, STRIDES, NmsSettings, PicoDetTapNames, grid_sizes
 from .runtime import box_iou
 
 EVIDENCE_CHANNELS = 1 + len(COCO_CLASSES)  # the alignment probability, COCO's scores
@@ -42,9 +38,6 @@ INPUT_CHANNELS = FEATURE_CHANNELS + EVIDENCE_CHANNELS
 CANDIDATE_IOUS = 10  # a true box's anchors: as many as the sum of its best ten IoUs
 HEAD_PREFIX = "nyu_head/"
 HEAD_SCORES = HEAD_PREFIX + "scores"
-NMS_IOU = 0.6  # PicoDet's own NMS settings, which the export keeps
-NMS_LOWEST_SCORE = 0.025
-NMS_PER_CLASS = 1000
 
 
 def anchor_targets(
@@ -65,16 +58,14 @@ def anchor_targets(
         & (points[None, :, 1] <= truth[:, None, 3])
     )
     candidate_iou = np.where(inside, iou, 0.0)
-    best_iou = np.zeros(count, np.float32)
     for m in range(len(truth)):
         order = np.argsort(-candidate_iou[m])
         k = max(1, int(candidate_iou[m, order[:CANDIDATE_IOUS]].sum()))
         chosen = [n for n in order[:k] if candidate_iou[m, n] > 0]
         for n in chosen:
-            if candidate_iou[m, n] > best_iou[n]:
-                best_iou[n] = candidate_iou[m, n]
+            if candidate_iou[m, n] > target_iou[n]:
+                target_iou[n] = candidate_iou[m, n]
                 target_class[n] = truth_class[m]
-    target_iou[:] = best_iou
     return target_class, target_iou
 
 
@@ -145,46 +136,32 @@ class PicoDetClassHead(nn.Module):
         return logits
 
 
-def coco_evidence_matrix(classes: list[str]) -> tuple[list[int], np.ndarray]:
-    """The COCO classes that map to one of `classes`, and [K, those] 0/1: which class each
-    maps to (for the max rule: an NYU-40 class scores at least as COCO's mapped ones)."""
-    rows = [i for i, nyu in enumerate(COCO_TO_NYU40) if nyu in classes]
-    matrix = np.zeros((len(classes), len(rows)), np.float32)
-    for column, coco_index in enumerate(rows):
-        matrix[classes.index(str(COCO_TO_NYU40[coco_index])), column] = 1.0
-    return rows, matrix
-
-
 class ScoringHead(nn.Module):
-    """The exported scoring: per-level taps -> [1, K, N] scores in the model's class list
-    (the head's classes by sigmoid, COCO-only classes and the max rule by COCO's scores)."""
+    """The exported scoring: the head's inputs -> [B, K, N] scores in the model's class list:
+    the head's sigmoid for the classes it learned, COCO's mapped scores for the classes only
+    COCO knows, and the larger of the head's and `coco_weight` times COCO's where both do."""
 
     def __init__(
         self, head: PicoDetClassHead, trained: list[str], classes: list[str], coco_weight: float
     ) -> None:
         super().__init__()
         self.head = head
-        place = np.zeros((len(classes), len(trained)), np.float32)
-        for column, name in enumerate(trained):
-            place[classes.index(name), column] = 1.0
-        rows, matrix = coco_evidence_matrix(classes)
+        index, mask = coco_sources(classes)
         learned = np.array([c in trained for c in classes])
-        # COCO's evidence: for classes the head learned, times coco_weight; alone otherwise.
-        weights = np.where(learned, coco_weight, 1.0).astype(np.float32)[:, None]
-        self.register_buffer("place", torch.from_numpy(place))
-        self.register_buffer("coco_rows", torch.tensor(rows, dtype=torch.long))
-        self.register_buffer("coco_matrix", torch.from_numpy(matrix * weights))
-
-    place: torch.Tensor
-    coco_rows: torch.Tensor
-    coco_matrix: torch.Tensor
+        weight = mask * np.where(learned, coco_weight, 1.0).astype(np.float32)
+        self.own_channel: torch.Tensor
+        self.coco_index: torch.Tensor
+        self.coco_weight: torch.Tensor
+        self.register_buffer("own_channel", own_channels(trained, classes))
+        self.register_buffer("coco_index", torch.from_numpy(index))
+        self.register_buffer("coco_weight", torch.from_numpy(weight))
 
     def forward(self, branch_inputs: torch.Tensor, evidence: torch.Tensor) -> torch.Tensor:
-        logits = self.head(branch_inputs, evidence)
-        own = torch.matmul(torch.sigmoid(logits), self.place.T).transpose(1, 2)
-        coco = evidence[:, :, 1:][:, :, self.coco_rows]  # [B, N, R]
-        mapped = (self.coco_matrix[None, :, None, :] * coco[:, None]).amax(dim=3)
-        return torch.maximum(own, mapped)
+        probability = torch.sigmoid(self.head(branch_inputs, evidence)).transpose(1, 2)
+        zero = torch.zeros_like(probability[:, :1])
+        ours = torch.cat([probability, zero], dim=1)[:, self.own_channel]
+        coco = mapped_coco(evidence[:, :, 1:].transpose(1, 2), self.coco_index)
+        return torch.maximum(ours, coco * self.coco_weight.view(1, -1, 1))
 
 
 class _TapsToScores(nn.Module):
@@ -206,8 +183,6 @@ def export_picodet_head(
 ) -> onnx.ModelProto:
     """One ONNX file of the detector contract: the wrapped PicoDet up to its taps, the head's
     scores in place of COCO's, then PicoDet's NMS and the contract's rows."""
-    import io
-
     tap_inputs = [*names.branch_inputs, *names.alignment, names.coco_scores]
     sizes = grid_sizes()
     anchors = sum(c * c for c in sizes)
@@ -266,21 +241,20 @@ def export_picodet_head(
     model = helper.make_model(merged, opset_imports=picodet.opset_import, producer_name="holiscene")
     model.ir_version = picodet.ir_version
     onnx.checker.check_model(model, full_check=True)
-    assert graph.input[0].name == INPUT_NAME
     onnx.save(model, str(path))
     return model
 
 
-def nms_rows(boxes: np.ndarray, scores: np.ndarray) -> np.ndarray:
+def nms_rows(boxes: np.ndarray, scores: np.ndarray, nms: NmsSettings) -> np.ndarray:
     """What the exported tail makes of boxes [N, 4] and scores [K, N]: PicoDet's NMS per
     class, then the contract's MAX_DETECTIONS best rows [k, 6] (for validation in training)."""
     rows: list[tuple[float, ...]] = []
     for k, class_scores in enumerate(scores):
         order = np.argsort(-class_scores, kind="stable")
-        order = order[class_scores[order] > NMS_LOWEST_SCORE][:NMS_PER_CLASS]
+        order = order[class_scores[order] > nms.lowest_score][: nms.per_class]
         kept: list[int] = []
         for n in order:
-            if kept and box_iou(boxes[n], boxes[kept]).max() > NMS_IOU:
+            if kept and box_iou(boxes[n], boxes[kept]).max() > nms.iou:
                 continue
             kept.append(int(n))
         rows.extend((*map(float, boxes[n]), float(class_scores[n]), float(k)) for n in kept)

@@ -20,7 +20,7 @@ import numpy as np
 import onnx
 import onnxruntime as ort
 from holiscene_schema.detector_model import INPUT_NAME, INPUT_SIZE
-from onnx import TensorProto, helper
+from onnx import TensorProto, helper, numpy_helper
 
 from .picodet_contract import PICODET_SIZE, PicoDetGraphError, nms_inputs, upstream
 
@@ -87,6 +87,25 @@ def _branch_input(producer: dict[str, onnx.NodeProto], features: str) -> str:
     return tensor
 
 
+@dataclass(frozen=True)
+class NmsSettings:
+    """PicoDet's own NMS settings, as its graph holds them."""
+
+    per_class: int  # boxes kept per class at most
+    iou: float  # a box overlapping a kept one of its class more than this is dropped
+    lowest_score: float
+
+
+def nms_settings(model: onnx.ModelProto, names: PicoDetTapNames) -> NmsSettings:
+    """The values of the graph's NMS settings (Constant nodes or initializers)."""
+    values = {t.name: numpy_helper.to_array(t) for t in model.graph.initializer}
+    for node in model.graph.node:
+        if node.op_type == "Constant" and node.output[0] in names.nms_settings:
+            values[node.output[0]] = numpy_helper.to_array(node.attribute[0].t)
+    per_class, iou, lowest = (values[name].reshape(-1)[0] for name in names.nms_settings)
+    return NmsSettings(int(per_class), float(iou), float(lowest))
+
+
 def grid_sizes() -> list[int]:
     """Cells per side of each level (PicoDet rounds up)."""
     return [-(-PICODET_SIZE // stride) for stride in STRIDES]
@@ -134,6 +153,7 @@ class PicoDetTaps:
     def __init__(self, model_path: Path, threads: int = 2) -> None:
         self.model = onnx.load(str(model_path))
         self.names = tap_names(self.model)
+        self.nms = nms_settings(self.model, self.names)
         options = ort.SessionOptions()
         options.intra_op_num_threads = threads
         self.session = ort.InferenceSession(

@@ -1,4 +1,4 @@
-"""Train the NYU-40 class head on PicoDet's frozen anchors (`picodet_head.py`; PyTorch).
+"""Train the NYU-40 class head on PicoDet's anchors (`picodet_head.py`; PyTorch).
 
 Each training photo is randomised once per view (data.randomise) and run through the wrapped
 PicoDet once (onnxruntime) up to its taps; the anchors' inputs and fixed targets are cached,
@@ -19,10 +19,9 @@ import numpy as np
 import onnx
 import onnxruntime as ort
 import torch
-from holiscene_schema.detector_model import INPUT_NAME, INPUT_SIZE
+from holiscene_schema.detector_model import INPUT_NAME
 from onnx import TensorProto, helper
 
-from ...evaluation.detection_2d import ScoredBox
 from ..training_api import TrainProgress
 from .data import BoxedPhoto, classes_in, randomise
 from .epoch_record import EpochRecord
@@ -37,9 +36,15 @@ from .picodet_head import (
     nms_rows,
     quality_focal_loss,
 )
-from .picodet_taps import FEATURE_CHANNELS, PicoDetTaps, TappedAnchors, anchor_points
+from .picodet_taps import (
+    FEATURE_CHANNELS,
+    NmsSettings,
+    PicoDetTaps,
+    TappedAnchors,
+    anchor_points,
+)
 from .runtime import MODEL_FILE, PICODET_DETECTOR_DIR, preprocess
-from .train import FeatureSet, final_classes, score_raw
+from .train import FeatureSet, final_classes, optimiser_with_copies, score_raw
 
 HEAD_FILE = "head.pt"
 
@@ -102,22 +107,13 @@ def extract_anchors(
     )
     for n, original in enumerate(photos):
         photo = randomise(original, rng) if rng is not None else original
-        height, width = photo.rgb.shape[:2]
         tapped = taps(preprocess(photo.rgb))
         anchors.branches[n], anchors.evidence[n] = tap_inputs(tapped)
         anchors.boxes[n] = tapped.boxes
-        known = [i for i, c in enumerate(photo.classes) if c in index_of]
-        scale = np.array([INPUT_SIZE / width, INPUT_SIZE / height] * 2)
-        truth = photo.boxes[known] * scale if known else np.zeros((0, 4))
-        truth_class = np.array([index_of[photo.classes[i]] for i in known], np.int16)
-        target_class, target_iou = anchor_targets(tapped.boxes, points, truth, truth_class)
-        anchors.target_class[n] = target_class
-        anchors.target_iou[n] = target_iou
-        anchors.scoring.photo_boxes.append([
-            ScoredBox(tuple(float(v) for v in photo.boxes[i]), photo.classes[i])  # type: ignore[arg-type]
-            for i in known
-        ])  # fmt: skip
-        anchors.scoring.photo_sizes.append((width, height))
+        truth, truth_class = anchors.scoring.add_truth(photo, index_of)
+        anchors.target_class[n], anchors.target_iou[n] = anchor_targets(
+            tapped.boxes, points, truth, truth_class
+        )
         if n % 20 == 0 or n == len(photos) - 1:
             done = share[0] + (share[1] - share[0]) * (n + 1) / len(photos)
             say(done, f"{label}: anchors {n + 1}/{len(photos)}")
@@ -132,29 +128,19 @@ def _tensors(data: AnchorSet, index: np.ndarray | slice) -> tuple[torch.Tensor, 
 
 
 def validation_map(
-    scoring: ScoringHead, data: AnchorSet, classes: list[str], trained: list[str]
+    scoring: ScoringHead,
+    data: AnchorSet,
+    classes: list[str],
+    trained: list[str],
+    nms: NmsSettings,
 ) -> tuple[float, Any]:
     """mAP@0.5 over the trained classes (PicoDet's NMS and the contract's decoding)."""
     with torch.no_grad():
         raw = (
-            nms_rows(data.boxes[n], scoring(*_tensors(data, slice(n, n + 1)))[0].numpy())
+            nms_rows(data.boxes[n], scoring(*_tensors(data, slice(n, n + 1)))[0].numpy(), nms)
             for n in range(len(data.branches))
         )
         return score_raw(raw, data.scoring, classes, set(trained))
-
-
-def _optimiser(
-    head: PicoDetClassHead, config: PicoDetHeadConfig, total_steps: int
-) -> tuple[torch.optim.AdamW, torch.optim.lr_scheduler.OneCycleLR]:
-    """AdamW over the head and, at their own smaller rate, the branches' copies."""
-    copies = {id(p) for p in head.branches.parameters()}
-    groups = [
-        {"params": [p for p in head.parameters() if id(p) not in copies]},
-        {"params": list(head.branches.parameters())},
-    ]
-    rates = [config.learning_rate, config.learning_rate * config.branch_learning_rate]
-    optimiser = torch.optim.AdamW(groups, lr=config.learning_rate, weight_decay=1e-4)
-    return optimiser, torch.optim.lr_scheduler.OneCycleLR(optimiser, rates, total_steps=total_steps)
 
 
 def train_picodet_head(
@@ -178,7 +164,13 @@ def train_picodet_head(
     )
     head = PicoDetClassHead(len(trained), class_branches(taps.model, taps.names), config.hidden)
     steps = -(-len(views) // config.batch)
-    optimiser, schedule = _optimiser(head, config, steps * config.epochs)
+    optimiser, schedule = optimiser_with_copies(
+        head,
+        list(head.branches.parameters()),
+        config.learning_rate,
+        config.branch_learning_rate,
+        steps * config.epochs,
+    )
     record = EpochRecord(head, started)
     for epoch in range(1, config.epochs + 1):
         head.train()
@@ -199,13 +191,13 @@ def train_picodet_head(
             total += loss.item() * len(index)
         head.eval()
         score, _ = validation_map(
-            ScoringHead(head, trained, classes, 0.0), validation, classes, trained
+            ScoringHead(head, trained, classes, 0.0), validation, classes, trained, taps.nms
         )
         say(0.25 + 0.75 * epoch / config.epochs, record.add(epoch, total / len(views), score))
     record.keep_best()
     rules = {
         weight: validation_map(
-            ScoringHead(head, trained, classes, weight), validation, classes, trained
+            ScoringHead(head, trained, classes, weight), validation, classes, trained, taps.nms
         )[1].summary(set(trained))
         for weight in (0.0, config.coco_weight)
     }

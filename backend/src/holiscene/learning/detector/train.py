@@ -78,6 +78,22 @@ class FeatureSet:
     photo_boxes: list[list[ScoredBox]] = field(default_factory=list)  # photo pixels
     photo_sizes: list[tuple[int, int]] = field(default_factory=list)  # (width, height)
 
+    def add_truth(
+        self, photo: BoxedPhoto, index_of: dict[str, int]
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Keep the photo's boxes of the classes in `index_of`: in input pixels with their
+        class indices (for targets; also returned), and in photo pixels (for scoring)."""
+        height, width = photo.rgb.shape[:2]
+        known = [i for i, c in enumerate(photo.classes) if c in index_of]
+        scale = np.array([INPUT_SIZE / width, INPUT_SIZE / height] * 2)
+        boxes = photo.boxes[known] * scale if known else np.zeros((0, 4))
+        class_index = np.array([index_of[photo.classes[i]] for i in known], np.int64)
+        self.boxes.append(boxes)
+        self.class_index.append(class_index)
+        self.photo_boxes.append([ScoredBox(_box(photo.boxes[i]), photo.classes[i]) for i in known])
+        self.photo_sizes.append((width, height))
+        return boxes, class_index
+
 
 def model_name(config: DetectorTrainConfig) -> str:
     """What the model is, for people choosing one (the models page, the benchmark)."""
@@ -114,7 +130,6 @@ def extract(
     feature_set = FeatureSet(features=np.zeros(0, np.float16), coco=None)
     for n, original in enumerate(photos):
         photo = randomise(original, rng, retexture) if rng is not None else original
-        height, width = photo.rgb.shape[:2]
         features, coco, deep = extractor(preprocess(photo.rgb))
         if n == 0:  # sized by the first sample: the extractor decides the shapes
             feature_set.features = np.zeros((len(photos), *features.shape[1:]), np.float16)
@@ -127,14 +142,7 @@ def extract(
             feature_set.deep[n] = deep[0]
         if feature_set.coco is not None:
             feature_set.coco[n] = coco[0]
-        known = [i for i, c in enumerate(photo.classes) if c in index_of]
-        scale = np.array([INPUT_SIZE / width, INPUT_SIZE / height] * 2)
-        feature_set.boxes.append(photo.boxes[known] * scale if known else np.zeros((0, 4)))
-        feature_set.class_index.append(np.array([index_of[photo.classes[i]] for i in known]))
-        feature_set.photo_boxes.append(
-            [ScoredBox(_box(photo.boxes[i]), photo.classes[i]) for i in known]
-        )
-        feature_set.photo_sizes.append((width, height))
+        feature_set.add_truth(photo, index_of)
         if n % 20 == 0 or n == len(photos) - 1:
             done = share[0] + (share[1] - share[0]) * (n + 1) / len(photos)
             say(done, f"{label}: features {n + 1}/{len(photos)}")
@@ -268,19 +276,23 @@ def validation_map(
         return score_raw(raw_outputs, data, classes, set(trained))
 
 
-def _optimiser(
-    head: DetectorHead, config: DetectorTrainConfig, total_steps: int
+def optimiser_with_copies(
+    net: torch.nn.Module,
+    copies: list[torch.nn.Parameter],
+    learning_rate: float,
+    copy_share: float,
+    total_steps: int,
 ) -> tuple[torch.optim.AdamW, torch.optim.lr_scheduler.OneCycleLR]:
-    """AdamW over the head, its copy of the deep blocks (if any) at their own smaller rate,
-    and one-cycle schedules for both."""
-    blocks = list(head.deep_blocks.parameters()) if head.deep_blocks is not None else []
-    own = {id(p) for p in blocks}
-    groups = [{"params": [p for p in head.parameters() if id(p) not in own]}]
-    rates = [config.learning_rate]
-    if blocks:
-        groups.append({"params": blocks})
-        rates.append(config.learning_rate * config.deep_blocks_learning_rate)
-    optimiser = torch.optim.AdamW(groups, lr=config.learning_rate, weight_decay=1e-4)
+    """AdamW over `net`, with the copied pretrained blocks among its parameters (`copies`, if
+    any) at `copy_share` of the rate (they start trained, the rest does not), and one-cycle
+    schedules for both."""
+    own = {id(p) for p in copies}
+    groups = [{"params": [p for p in net.parameters() if id(p) not in own]}]
+    rates = [learning_rate]
+    if copies:
+        groups.append({"params": copies})
+        rates.append(learning_rate * copy_share)
+    optimiser = torch.optim.AdamW(groups, lr=learning_rate, weight_decay=1e-4)
     schedule = torch.optim.lr_scheduler.OneCycleLR(optimiser, rates, total_steps=total_steps)
     return optimiser, schedule
 
@@ -311,7 +323,13 @@ def train_detector(
         validation_photos, trained, extractor, None, True, say, "validation", share=(0.2, 0.25)
     )
     steps = -(-len(views) // config.batch)
-    optimiser, schedule = _optimiser(head, config, steps * config.epochs)
+    optimiser, schedule = optimiser_with_copies(
+        head,
+        list(head.deep_blocks.parameters()) if head.deep_blocks is not None else [],
+        config.learning_rate,
+        config.deep_blocks_learning_rate,
+        steps * config.epochs,
+    )
     record = EpochRecord(head, started)
     for epoch in range(1, config.epochs + 1):
         head.train()
