@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 PORT ?= 8000
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: surface-model coco-detector picodet-detector detector-model scratch-detector-model bench-detector bench-refine bench-batch completion-model box-refiner-model mesh-net-model scene-net-model bench-completion bench-writers calibrate-scale bench bench-layout bench-depth-layout bench-box-parts bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
+.PHONY: surface-model coco-detector picodet-detector detector-model suggester-detector-model scratch-detector-model bench-detector bench-refine bench-batch completion-model box-refiner-model mesh-net-model scene-net-model bench-completion bench-writers calibrate-scale bench bench-layout bench-depth-layout bench-box-parts bench-synth bench-geometry bench-support bench-relation vectors relation-vectors detector-vectors decode-vectors class-vectors test-frontend run test install install-python install-node install-chromium install-postgres build schema schema-check \
         lint format pytest e2e demo serve clean
 
 run: install build demo serve
@@ -119,6 +119,16 @@ detector-model: install-python
 
 # For comparison only: a small CenterNet with no pretrained weights, trained on the same rooms
 # on two CPU threads; training stops, annealed, after 25 minutes (docs/detector.md).
+# The scene page's suggester (docs/detector.md): PicoDet's boxes named with NYU-40 classes by a
+# head trained on synthetic rooms; it does not name books itself (half its real-photo boxes).
+suggester-detector-model: install-python
+	rm -rf /tmp/holiscene-suggester-detector
+	$(PY) -m holiscene.cli train-detector --on-picodet -o /tmp/holiscene-suggester-detector \
+		--scenes 1000 --views 2 --epochs 12 --unnamed books
+	mkdir -p backend/src/holiscene/learning/picodet_nyu_detector
+	cp /tmp/holiscene-suggester-detector/* backend/src/holiscene/learning/picodet_detector/LICENSE \
+		backend/src/holiscene/learning/picodet_nyu_detector/
+
 scratch-detector-model: install-python
 	rm -rf /tmp/holiscene-scratch-detector
 	mkdir -p backend/src/holiscene/learning/scratch_detector
@@ -193,6 +203,9 @@ relation-vectors:
 # preprocessing or its decoding.
 detector-vectors:
 	$(PY) -m holiscene.twin_vectors.detector_model
+	$(PY) -m holiscene.twin_vectors.detector_model \
+		--model-dir backend/src/holiscene/learning/picodet_nyu_detector \
+		-o shared_schema/vectors/suggester_model.json
 
 # The support-tree decoder's vectors (Python decode.py <-> frontend/src/inference/treeDecode.ts).
 decode-vectors:

@@ -1,5 +1,6 @@
-// The object detector in the browser agrees with the backend: the app's detector-check page
-// fetches the active detector from the app (GET /api/detector/active, then its model.onnx),
+// The object detectors in the browser agree with the backend: the app's detector-check page
+// fetches the active detector from the app (GET /api/detector/active, then its model.onnx), and
+// the suggester (GET /api/detector/suggester; its vectors are suggester_model.json),
 // runs it with onnxruntime-web (WASM, one thread, the wasm file served by the app) on each photo
 // of the shared vectors (shared_schema/vectors/detector_model.json), stretching the photo itself,
 // and its raw rows must match onnxruntime's in Python within 1e-4 (scores, and box corners as
@@ -8,14 +9,13 @@
 import { createHash } from "node:crypto";
 import { readFileSync } from "node:fs";
 import path from "node:path";
-import { expect, test } from "@playwright/test";
+import { type APIRequestContext, expect, type Page, test } from "@playwright/test";
 import type { DetectorInfo } from "../../frontend/src/inference/detector";
 import type { EncodedPhoto } from "../../frontend/src/inference/detectorCheck";
+import { watchAppOnly } from "../helpers/appOnly";
 
-const VECTORS = path.resolve(
-  import.meta.dirname,
-  "../../shared_schema/vectors/detector_model.json",
-);
+const vectorsFile = (name: string) =>
+  path.resolve(import.meta.dirname, "../../shared_schema/vectors", name);
 const RAW_TOLERANCE = 1e-4;
 const INPUT_SIZE = 512;
 // Decoded boxes in photo pixels: the corners' differences (a few thousandths of an input pixel)
@@ -155,17 +155,19 @@ function matchRows(actual: readonly number[], expected: readonly number[], tol: 
   return match;
 }
 
-test("the browser runs the app's detector and agrees with the backend on the shared vectors", async ({
-  page,
-  request,
-  baseURL,
-}) => {
-  const vectors = JSON.parse(readFileSync(VECTORS, "utf8")) as Vectors;
+type Which = "active" | "suggester";
+
+async function agreesOnVectors(
+  { page, request, baseURL }: { page: Page; request: APIRequestContext; baseURL?: string },
+  which: Which,
+  vectorsPath: string,
+): Promise<void> {
+  const vectors = JSON.parse(readFileSync(vectorsPath, "utf8")) as Vectors;
   expect(vectors.tolerance.detections).toBe(RAW_TOLERANCE);
 
-  const active = await request.get("/api/detector/active");
-  expect(active.status(), await active.text()).toBe(200);
-  const info = (await active.json()) as DetectorInfo;
+  const served = await request.get(`/api/detector/${which}`);
+  expect(served.status(), await served.text()).toBe(200);
+  const info = (await served.json()) as DetectorInfo;
   const modelFile = await request.get(info.model_url);
   expect(modelFile.status()).toBe(200);
   const sha256 = createHash("sha256")
@@ -174,31 +176,16 @@ test("the browser runs the app's detector and agrees with the backend on the sha
   expect(sha256).toBe(info.model_sha256);
   expect(sha256, "the vectors are stale: run `make detector-vectors`").toBe(vectors.model.sha256);
 
-  const origin = new URL(baseURL ?? "").origin;
-  const foreign: string[] = [];
-  const wasm: { url: string; status: number; type: string | undefined }[] = [];
-  page.on("request", (r) => {
-    if (!r.url().startsWith(origin) && !r.url().startsWith("data:")) foreign.push(r.url());
-  });
-  page.on("response", (r) => {
-    if (new URL(r.url()).pathname.endsWith(".wasm")) {
-      wasm.push({ url: r.url(), status: r.status(), type: r.headers()["content-type"] });
-    }
-  });
+  const requests = watchAppOnly(page, baseURL);
   const modelFetched = page.waitForResponse((r) => new URL(r.url()).pathname === info.model_url);
   await page.goto("/detector-check.html");
-  const loaded = await page.evaluate(() => {
+  const loaded = await page.evaluate((which) => {
     if (!window.holisceneDetector) throw new Error("the detector check page did not start");
-    return window.holisceneDetector.load();
-  });
+    return window.holisceneDetector.load(which);
+  }, which);
   expect(loaded.info.model_url).toBe(info.model_url);
   expect((await modelFetched).status()).toBe(200);
-  expect(wasm.length).toBeGreaterThan(0);
-  for (const w of wasm) {
-    expect(w.url.startsWith(`${origin}/assets/`), w.url).toBe(true);
-    expect(w.status).toBe(200);
-    expect(w.type).toBe("application/wasm");
-  }
+  requests.expectWasmFromApp();
 
   const report: string[] = [];
   for (const c of vectors.cases) {
@@ -248,7 +235,21 @@ test("the browser runs the app's detector and agrees with the backend on the sha
     );
     expect(sha, `${c.name}: input tensor`).toBe(c.expected.images.float32_sha256);
   }
-  console.log(`object detector, browser vs backend (session ${loaded.loadMs.toFixed(0)} ms):`);
+  console.log(`${which} detector, browser vs backend (session ${loaded.loadMs.toFixed(0)} ms):`);
   for (const line of report) console.log(`  ${line}`);
-  expect(foreign).toEqual([]);
-});
+  requests.expectNothingForeign();
+}
+
+test("the browser runs the app's detector and agrees with the backend on the shared vectors", ({
+  page,
+  request,
+  baseURL,
+}) => agreesOnVectors({ page, request, baseURL }, "active", vectorsFile("detector_model.json")));
+
+// The scene page's guesses come from the suggester, run in the browser too: its own vectors.
+test("the browser runs the suggester and agrees with the backend on its shared vectors", ({
+  page,
+  request,
+  baseURL,
+}) =>
+  agreesOnVectors({ page, request, baseURL }, "suggester", vectorsFile("suggester_model.json")));

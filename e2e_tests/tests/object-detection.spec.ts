@@ -9,23 +9,24 @@ import type { SceneDocument } from "@holiscene/schema";
 import { expect, type Locator, test } from "@playwright/test";
 import { getScene, importWithoutObjects, T3D_5 } from "../helpers/api";
 
-const T3D_4 = path.join(path.dirname(T3D_5), "t3d-4");
 // A bedroom where the detector suggests one bed and one chair.
 const IM3D_2 = path.join(path.dirname(T3D_5), "im3d-2");
 
 import { screenshotPath } from "../helpers/screenshots";
 
 interface Suggested {
+  cls: string;
   score: number;
   bbox: number[];
 }
 
-/** The suggested boxes on the photo: score (percent) and box (photo pixels). */
+/** The suggested boxes on the photo: class, score (percent) and box (photo pixels). */
 function suggestions(boxes: Locator): Promise<Suggested[]> {
   return boxes.evaluateAll((nodes) =>
     nodes.map((n) => {
       const data = (n as SVGGElement).dataset;
-      return { score: Number(data.score), bbox: (data.bbox ?? "").split(",").map(Number) };
+      const bbox = (data.bbox ?? "").split(",").map(Number);
+      return { cls: data.class ?? "", score: Number(data.score), bbox };
     }),
   );
 }
@@ -154,49 +155,56 @@ test("a scene without objects gets the detector's suggestions to accept or rejec
   await other.close();
 });
 
-test("the detector's fainter boxes are offered when asked for, and find more of the photo's objects", async ({
+test("the suggester's guesses are offered when asked for, and find more of the photo's objects", async ({
   page,
 }) => {
-  // t3d-4: rows of desks and chairs, some of which the detector sees only below its threshold.
-  const sceneId = await importWithoutObjects(page.request, "t3d-4 fainter suggestions", T3D_4);
+  // t3d-5: a bedroom; COCO has no name for its night stands, lamps and pictures.
+  const sceneId = await importWithoutObjects(page.request, "t3d-5 guesses", T3D_5);
   await page.goto(`/#/scenes/${sceneId}`);
   const status = page.getByTestId("detector-status");
   await expect(status).toContainText("suggested in", { timeout: 90_000 });
   const boxes = page.getByTestId("detector-suggestion");
   const offered = await suggestions(boxes);
   expect(offered.every((o) => o.score >= 30)).toBe(true);
-  const more = page.getByTestId("show-fainter-suggestions");
-  await expect(more).toBeVisible();
-  const fainter = Number((await more.textContent())?.match(/^Show (\d+) fainter$/)?.[1]);
-  expect(fainter).toBeGreaterThan(0);
-  await expect(more).toHaveAttribute("title", /below its threshold/);
+  // The suggester runs after the suggestions are up: its button comes when it is done.
+  const more = page.getByTestId("show-guess-suggestions");
+  await expect(more).toBeVisible({ timeout: 30_000 });
+  const guesses = Number((await more.textContent())?.match(/^Show (\d+) guess(es)?$/)?.[1]);
+  expect(guesses).toBeGreaterThan(0);
+  await expect(more).toHaveAttribute("title", /indoor classes COCO lacks/);
 
   // The photo stays where it is (the person's pointer is over it) whatever the bar shows.
   const photoTop = async () => (await page.getByTestId("photo").boundingBox())?.y;
   const top = await photoTop();
   await more.click();
-  await expect(boxes).toHaveCount(offered.length + fainter);
+  await expect(boxes).toHaveCount(offered.length + guesses);
   expect(await photoTop()).toBe(top);
   await expect(more).toBeHidden();
-  await expect(status).toContainText(`Showing ${fainter} fainter`);
+  await expect(status).toContainText(`Showing ${guesses} guess`);
   const all = await suggestions(boxes);
-  const faint = all.filter((o) => o.score < 30);
-  expect(faint).toHaveLength(fainter);
-  await expect(page.locator('[data-testid="detector-suggestion"].is-faint')).toHaveCount(fainter);
-  // "Accept all" now says it takes the boxes at the threshold only, not the fainter ones.
-  await expect(page.getByTestId("accept-all-suggestions")).toHaveText(
-    `Accept the ${all.length - fainter} at 30%+`,
+  const faint = page.locator('[data-testid="detector-suggestion"].is-faint');
+  await expect(faint).toHaveCount(guesses);
+  // The guesses name classes the COCO detector has no name for (the suggester's NYU-40 head).
+  const guessed = await faint.evaluateAll((nodes) =>
+    nodes.map((n) => (n as SVGGElement).dataset.class ?? ""),
   );
-  // The photo's own boxes (detections.json): the fainter offers find some the others missed.
-  const truth = JSON.parse(readFileSync(path.join(T3D_4, "detections.json"), "utf8")) as {
+  const activeClasses = new Set(offered.map((o) => o.cls));
+  console.log(`guesses: ${guessed.join(", ")}`);
+  expect(guessed.some((cls) => !activeClasses.has(cls))).toBe(true);
+  // "Accept all" now says it takes the suggestions only, not the guesses.
+  await expect(page.getByTestId("accept-all-suggestions")).toHaveText(
+    `Accept the ${all.length - guesses} suggestion${all.length - guesses === 1 ? "" : "s"}`,
+  );
+  // The photo's own boxes (detections.json): the guesses find some the suggestions missed.
+  const truth = JSON.parse(readFileSync(path.join(T3D_5, "detections.json"), "utf8")) as {
     bbox: number[];
   }[];
   const found = (list: typeof all) =>
     truth.filter((t) => list.some((o) => iou(o.bbox, t.bbox) >= 0.5)).length;
   expect(found(all)).toBeGreaterThan(found(offered));
-  await page.screenshot({ path: screenshotPath("object-suggestions-fainter.png") });
+  await page.screenshot({ path: screenshotPath("object-suggestions-guesses.png") });
 
-  // A fainter box's tag covers no other tag: where it finds no free spot it goes without one
+  // A guess's tag covers no other tag: where it finds no free spot it goes without one
   // (its class in its tooltip) until it is selected.
   const tagRects = () =>
     page.getByTestId("detector-suggestion-tag").evaluateAll((tags) =>
@@ -219,14 +227,17 @@ test("the detector's fainter boxes are offered when asked for, and find more of 
     nodes.map((n) => (n as SVGGElement).dataset.key ?? ""),
   );
   const untagged = keys.filter((key) => !tagged.has(key));
-  console.log(`fainter boxes: ${fainter}; tags drawn ${drawnTags.length} of ${keys.length}`);
-  expect(untagged.length).toBeGreaterThan(0);
-  const chosen = page.locator(`[data-testid="detector-suggestion"][data-key="${untagged[0]}"]`);
+  console.log(`guesses: ${guesses}; tags drawn ${drawnTags.length} of ${keys.length}`);
+  // A guess left without a tag (on a crowded photo) shows it once selected; here every guess
+  // may have found a spot, and a selected one keeps it.
+  const guessKey = untagged[0] ?? drawnTags.find((t) => t.faint)?.key;
+  const chosen = page.locator(`[data-testid="detector-suggestion"][data-key="${guessKey}"]`);
+  await expect(chosen).toHaveClass(/is-faint/);
   await expect(chosen.locator("title")).toContainText("Suggested ");
   await chosen.locator(".detector-box").dispatchEvent("click");
   await expect(chosen).toHaveClass(/is-selected/);
   await expect(
-    page.locator(`[data-testid="detector-suggestion-tag"][data-key="${untagged[0]}"]`),
+    page.locator(`[data-testid="detector-suggestion-tag"][data-key="${guessKey}"]`),
   ).toBeVisible();
 
   // Every tag is drawn over every box (the likelier tag over another where the two could not be

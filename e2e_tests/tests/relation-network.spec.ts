@@ -11,6 +11,7 @@ import type { ModelInfo, SceneObject } from "@holiscene/schema";
 import { expect, test } from "@playwright/test";
 import type { EncodedImage } from "../../frontend/src/inference/relationCheck";
 import { seedScene, T3D_5 } from "../helpers/api";
+import { watchAppOnly } from "../helpers/appOnly";
 
 const VECTORS = path.resolve(
   import.meta.dirname,
@@ -75,17 +76,7 @@ test("the browser runs the app's model and agrees with the backend on the shared
     .digest("hex");
   expect(sha256, "the vectors are stale: run `make relation-vectors`").toBe(vectors.model.sha256);
 
-  const origin = new URL(baseURL ?? "").origin;
-  const foreign: string[] = [];
-  const wasm: { url: string; status: number; type: string | undefined }[] = [];
-  page.on("request", (r) => {
-    if (!r.url().startsWith(origin) && !r.url().startsWith("data:")) foreign.push(r.url());
-  });
-  page.on("response", (r) => {
-    if (new URL(r.url()).pathname.endsWith(".wasm")) {
-      wasm.push({ url: r.url(), status: r.status(), type: r.headers()["content-type"] });
-    }
-  });
+  const requests = watchAppOnly(page, baseURL);
   const modelFetched = page.waitForResponse((r) => new URL(r.url()).pathname === modelUrl);
   await page.goto("/relation-check.html");
   const loaded = await page.evaluate((url) => {
@@ -94,13 +85,7 @@ test("the browser runs the app's model and agrees with the backend on the shared
   }, modelUrl);
   expect(loaded.url).toBe(modelUrl);
   expect((await modelFetched).status()).toBe(200);
-  // onnxruntime-web's wasm came from the app itself, as wasm.
-  expect(wasm.length).toBeGreaterThan(0);
-  for (const w of wasm) {
-    expect(w.url.startsWith(`${origin}/assets/`), w.url).toBe(true);
-    expect(w.status).toBe(200);
-    expect(w.type).toBe("application/wasm");
-  }
+  requests.expectWasmFromApp();
 
   const report: string[] = [];
   for (const c of vectors.cases) {
@@ -147,7 +132,7 @@ test("the browser runs the app's model and agrees with the backend on the shared
   }
   console.log(`relation network, browser vs backend (session ${loaded.loadMs.toFixed(0)} ms):`);
   for (const line of report) console.log(`  ${line}`);
-  expect(foreign).toEqual([]);
+  requests.expectNothingForeign();
 });
 
 test("the scene page shows the model's suggested supporter of each object", async ({

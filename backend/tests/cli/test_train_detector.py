@@ -23,6 +23,7 @@ from holiscene.cli import main
             "drop --tune-deep-blocks, --cushion-rows",
         ),
         (["--branch-learning-rate", "0.5"], "--branch-learning-rate is for --on-picodet"),
+        (["--unnamed", "books"], "--unnamed is for --on-picodet"),
     ],
 )
 def test_bad_settings_are_refused_and_nothing_is_written(
@@ -46,3 +47,13 @@ def test_a_model_is_named_after_its_recipe() -> None:
     assert "a copy of its stride-32 blocks" in full
     assert full.endswith("synthetic rooms with rows of cushions and repainted surfaces)")
     assert model_name(DetectorTrainConfig(retexture=0.5)).endswith("with repainted surfaces)")
+
+
+def test_an_unknown_unnamed_class_is_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out, cache = tmp_path / "model", tmp_path / "rooms"
+    argv = ["train-detector", "-o", str(out), "--cache", str(cache), "--on-picodet"]
+    assert main([*argv, "--unnamed", "books", "--unnamed", "bookz"]) != 0
+    assert "--unnamed: not NYU-40 classes: bookz" in capsys.readouterr().err
+    assert not out.exists() and not cache.exists()

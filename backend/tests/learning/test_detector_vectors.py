@@ -2,7 +2,8 @@
 side: the photos stretch to the stored input tensor (bit for bit, by its sha256), onnxruntime
 on the committed default detector reproduces the stored raw rows (within 1e-4: scores, and box
 corners as shares of the input size), decoding reproduces the stored boxes, and the vectors
-were made from that very model file. The browser side is checked against
+were made from that very model file; the same for the scene page's suggester
+(suggester_model.json). The browser side is checked against
 the same file by frontend/src/inference/detectorTensor.test.ts and
 e2e_tests/tests/detector-model.spec.ts."""
 
@@ -20,6 +21,7 @@ from holiscene.learning.detector.row_matching import unmatched_rows
 from holiscene.learning.detector.runtime import (
     DEFAULT_DETECTOR_DIR,
     MODEL_FILE,
+    SUGGESTER_DETECTOR_DIR,
     DetectedBox,
     Detector,
     decode,
@@ -199,3 +201,29 @@ def test_hand_made_cases_meet_the_edges_they_name() -> None:
     assert small[0]["bbox"][:2] == [0.0, 0.0] and small[1]["bbox"][2:] == [97.0, 61.0]
     nyu = by_name["nyu40-model"]
     assert [b["class"] for b in nyu] == ["table", "chair", "otherprop"]
+
+
+def test_the_suggester_vectors_come_from_the_committed_suggester_and_hold() -> None:
+    data = json.loads(dv.SUGGESTER_VECTORS.read_text())
+    assert data["model"]["sha256"] == dv.sha256(SUGGESTER_DETECTOR_DIR / MODEL_FILE), (
+        "the suggester's vectors are stale: run `make detector-vectors`"
+    )
+    suggester = Detector(SUGGESTER_DETECTOR_DIR)
+    assert data["model"]["classes"] == suggester.classes
+    named = 0
+    for case in data["cases"]:
+        tensor = preprocess(dv.decoded_photo(case["image"]))
+        expected = case["expected"]
+        assert (
+            hashlib.sha256(tensor.astype("<f4").tobytes()).hexdigest()
+            == (expected[INPUT_NAME]["float32_sha256"])
+        )
+        rows = raw_rows(expected[OUTPUT_NAME])
+        assert unmatched_rows(suggester.raw(tensor), rows, RAW_TOL) == []
+        width, height = case["image"]["width"], case["image"]["height"]
+        boxes = decode(
+            rows, width, height, suggester.classes, suggester.to_nyu40, data["low_threshold"]
+        )
+        assert_same_boxes(as_json(boxes), expected["boxes_low_threshold"])
+        named += len(boxes)
+    assert named > 0  # the low threshold's boxes exercise its classes' decoding

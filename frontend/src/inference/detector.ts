@@ -1,6 +1,7 @@
 // The object detector in the browser: onnxruntime-web (WASM, one thread, ortRuntime.ts) on the
 // same ONNX file the backend runs (runtime.py's Detector), fed and decoded by detectorTensor.ts.
-// The app serves the active detector's files (GET /api/detector/active, then its model_url);
+// The app serves the active detector's files (GET /api/detector/active, then its model_url), and
+// the suggester's (GET /api/detector/suggester);
 // the model is about 8 MB and its session takes a moment to create, so each model URL gets one
 // session, kept and reused.
 import { DETECTOR_MODEL, type DetectorInfo } from "@holiscene/schema";
@@ -40,6 +41,12 @@ const ROW = DETECTOR_MODEL.output.shape[2];
 /** The active detector's description (404: none is installed). */
 export function activeDetector(signal?: AbortSignal): Promise<DetectorInfo> {
   return request<DetectorInfo>("/detector/active", { signal });
+}
+
+/** The suggester's description: the detector whose boxes the scene page offers as guesses
+ * (GET /api/detector/suggester; 404: none is installed). */
+export function suggesterDetector(signal?: AbortSignal): Promise<DetectorInfo> {
+  return request<DetectorInfo>("/detector/suggester", { signal });
 }
 
 /** The body of `response`, telling `onProgress` how much has come. */

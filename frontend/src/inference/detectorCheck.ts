@@ -4,7 +4,13 @@
 // (shared_schema/vectors/detector_model.json) and to measure detection; a person can open it
 // to see whether the browser runs the detector and how fast.
 import { mountCheckPage } from "./checkPage";
-import { activeDetector, type DetectorInfo, type DetectorModel, detectorModel } from "./detector";
+import {
+  activeDetector,
+  type DetectorInfo,
+  type DetectorModel,
+  detectorModel,
+  suggesterDetector,
+} from "./detector";
 import { type DetectedBox, decodeDetections, detectorInput } from "./detectorTensor";
 import type { PixelImage } from "./preprocess";
 import { photoPixels } from "./supportSuggestions";
@@ -38,8 +44,9 @@ export interface DetectionTimings {
 }
 
 export interface DetectorCheck {
-  /** Create the active detector's session; what it is and how long that took. */
-  load(): Promise<{ info: DetectorInfo; loadMs: number }>;
+  /** Create the active detector's session (or the suggester's); what it is and how long that
+   * took. */
+  load(which?: "active" | "suggester"): Promise<{ info: DetectorInfo; loadMs: number }>;
   /** The sha256 of a photo's input tensor's float32 bytes (no model needed). */
   inputSha256(photo: EncodedPhoto): Promise<string>;
   /** The raw rows and decoded boxes of a photo (`threshold`: the contract's by default). */
@@ -81,9 +88,9 @@ function model(): Promise<DetectorModel> {
 }
 
 const check: DetectorCheck = {
-  async load() {
+  async load(which = "active") {
     const start = performance.now();
-    const info = await activeDetector();
+    const info = await (which === "suggester" ? suggesterDetector() : activeDetector());
     current = detectorModel(info);
     await current;
     return { info, loadMs: performance.now() - start };

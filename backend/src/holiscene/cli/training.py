@@ -13,6 +13,8 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from holiscene_schema.classes import NYU40_CLASSES
+
 from .common import CliError, needs_pytorch, settings_from
 
 if TYPE_CHECKING:
@@ -142,6 +144,14 @@ def add_detector_training_command(
         help="--on-picodet: the learning rate of the copies of PicoDet's class branches as a "
         "share of the head's (default 0.1; 0 keeps them as they are)",
     )
+    detector.add_argument(
+        "--unnamed",
+        action="append",
+        default=[],
+        metavar="CLASS",
+        help="--on-picodet: a class the exported head does not name (it still learns it; "
+        "COCO's evidence for it stays); repeat for more",
+    )
     detector.set_defaults(handler=_train_detector)
 
 
@@ -205,6 +215,11 @@ def _train_detector(args: argparse.Namespace) -> int:
         args.on_picodet and args.branch_learning_rate >= 0
     ):
         raise CliError("--branch-learning-rate is for --on-picodet, at 0 or more")
+    if args.unnamed and not args.on_picodet:
+        raise CliError("--unnamed is for --on-picodet")
+    unknown = [c for c in args.unnamed if c not in NYU40_CLASSES]
+    if unknown:
+        raise CliError(f"--unnamed: not NYU-40 classes: {', '.join(unknown)}")
     cache = args.cache or Path.home() / ".cache" / "holiscene" / "detector-rooms"
     with _training_progress("train-detector") as progress:
 
@@ -266,7 +281,11 @@ def _train_on_picodet(
     from ..learning.detector.picodet_train import PicoDetHeadConfig, train_picodet_head
 
     config = PicoDetHeadConfig(
-        seed=args.seed, epochs=args.epochs, views=args.views, coco_weight=args.coco_weight
+        seed=args.seed,
+        epochs=args.epochs,
+        views=args.views,
+        coco_weight=args.coco_weight,
+        unnamed=tuple(args.unnamed),
     )
     if args.branch_learning_rate is not None:
         config = dataclasses.replace(config, branch_learning_rate=args.branch_learning_rate)

@@ -28,7 +28,8 @@ still suppress), and a model whose classes are NYU-40 already.
 Made from the detector the app serves (holiscene.learning.detector.active: the default
 detector, else the COCO model). The model file's sha256 is stored, so a test fails when the
 vectors are stale relative to that model: run `make detector-vectors` again after changing the
-default detector, its preprocessing or its decoding.
+default detector, its preprocessing or its decoding (`make detector-vectors` also writes the
+suggester's, SUGGESTER_VECTORS).
 """
 
 from __future__ import annotations
@@ -66,6 +67,9 @@ from ..learning.detector.runtime import (
 from .relation_model import exact_float32, sha256, to_json
 
 DETECTOR_VECTORS = REPO_ROOT / "shared_schema" / "vectors" / "detector_model.json"
+# The same cases on the scene page's suggester (`--model-dir` its folder): its guesses run in
+# the browser too.
+SUGGESTER_VECTORS = DETECTOR_VECTORS.with_name("suggester_model.json")
 SEED = 20260518
 LOW_THRESHOLD = 0.02
 SAMPLES = 240  # sampled input-tensor values per photo (besides the corners)

@@ -7,6 +7,7 @@ import json
 import shutil
 from pathlib import Path
 
+import pytest
 from fastapi.testclient import TestClient
 from holiscene.learning.detector import runtime
 from holiscene.learning.detector.runtime import DEFAULT_DETECTOR_DIR
@@ -36,6 +37,7 @@ def test_refuses_other_ids_and_files(client: TestClient) -> None:
     info = client.get("/api/detector/active").json()
     stale = client.get(f"/api/detector/0123456789abcdef/{runtime.MODEL_FILE}")
     assert stale.status_code == 404 and "not the active one" in stale.json()["detail"]
+    assert "or the suggester" in stale.json()["detail"]
     for name in ("LICENSE", "..%2Fmetadata.json", "model.onnx.bak"):
         assert client.get(f"/api/detector/{info['id']}/{name}").status_code == 404
 
@@ -53,3 +55,29 @@ def test_a_promoted_detector_is_served_under_a_new_id(client: TestClient, tmp_pa
     assert second["id"] == hashlib.sha256(b"another model").hexdigest()[:16] != first["id"]
     assert client.get(first["model_url"]).status_code == 404
     assert client.get(second["model_url"]).content == b"another model"
+
+
+def test_serves_the_suggester_beside_the_active_detector(client: TestClient) -> None:
+    """The scene page's guesses come from the shipped suggester, whatever detector is active;
+    its files are served under its own id."""
+    info = client.get("/api/detector/suggester").json()
+    model = runtime.SUGGESTER_DETECTOR_DIR / runtime.MODEL_FILE
+    sha256 = hashlib.sha256(model.read_bytes()).hexdigest()
+    assert info["id"] == sha256[:16] != client.get("/api/detector/active").json()["id"]
+    assert info["label_space"] == "nyu40" and "lamp" in info["classes"]
+    onnx = client.get(info["model_url"])
+    assert onnx.status_code == 200 and hashlib.sha256(onnx.content).hexdigest() == sha256
+    metadata = json.loads((runtime.SUGGESTER_DETECTOR_DIR / runtime.METADATA_FILE).read_text())
+    assert client.get(info["metadata_url"]).json() == metadata
+
+
+def test_no_suggester_installed_is_a_404(
+    client: TestClient, monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    from holiscene.api.routes import detector
+
+    shipped = client.get("/api/detector/suggester").json()
+    monkeypatch.setattr(detector, "SUGGESTER_DETECTOR_DIR", tmp_path / "none")
+    missing = client.get("/api/detector/suggester")
+    assert missing.status_code == 404 and "no object detector" in missing.json()["detail"]
+    assert client.get(shipped["model_url"]).status_code == 404

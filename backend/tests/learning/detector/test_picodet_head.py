@@ -124,6 +124,26 @@ def test_coco_only_classes_keep_cocos_scores() -> None:
     assert scores[0, 7] < 0.5
 
 
+def test_an_unnamed_class_keeps_only_cocos_evidence() -> None:
+    """The suggester does not name "books" itself (it calls patterned patches books): only
+    COCO's "book" speaks for it."""
+    taps = PicoDetTaps(PICODET_MODEL)
+    head = PicoDetClassHead(2, class_branches(taps.model, taps.names))
+    classes = ["bed", "books"]
+    named = ScoringHead(head, classes, classes, 1.0).eval()
+    unnamed = ScoringHead(head, classes, classes, 1.0, unnamed=("books",)).eval()
+    count = sum(c * c for c in grid_sizes())
+    branch_inputs = torch.randn(1, 96, count)
+    evidence = torch.zeros(1, count, 1 + 80)
+    evidence[0, 3, 1 + 73] = 0.6  # COCO's "book" at anchor 3
+    with torch.no_grad():
+        before, after = named(branch_inputs, evidence)[0], unnamed(branch_inputs, evidence)[0]
+    assert torch.equal(before[0], after[0])  # bed: the head's, as before
+    assert (before[1] > 0).all()  # the head's sigmoid speaks for books everywhere...
+    assert after[1, 3] == pytest.approx(0.6)  # ...and now COCO alone does
+    assert (torch.cat([after[1, :3], after[1, 4:]]) == 0).all()
+
+
 def test_a_short_run_exports_one_faithful_model(tmp_path: Path, rooms: list[BoxedPhoto]) -> None:
     out = tmp_path / "head"
     before = PICODET_MODEL.read_bytes()

@@ -18,6 +18,8 @@ export interface Offer {
   cls: string;
   /** The detector's own class name. */
   sourceClass: string;
+  /** A guess: offered only when a person asks for more (suggestions/offerState.ts), pale. */
+  faint: boolean;
 }
 
 /**
@@ -26,16 +28,17 @@ export interface Offer {
  */
 export type AddObjectEdit = Omit<AddObject, "mask"> & { score: number; source: "detector" };
 
-/** The detector's boxes as offers, best first. */
-export function offersOf(boxes: readonly DetectedBox[]): Offer[] {
+/** The detector's boxes as offers, best first (keys "s1", "s2"...; guesses "g1"...). */
+export function offersOf(boxes: readonly DetectedBox[], faint = false): Offer[] {
   return [...boxes]
     .sort((a, b) => b.score - a.score)
     .map((box, i) => ({
-      key: `s${i + 1}`,
+      key: `${faint ? "g" : "s"}${i + 1}`,
       bbox: box.bbox,
       score: box.score,
       cls: box.cls,
       sourceClass: box.sourceClass,
+      faint,
     }));
 }
 

@@ -5,7 +5,9 @@
 // left out). Click one to select it; Accept adds it to the scene (an add_object edit: the
 // server makes its mask and answers with the new revision), Reject drops it: later runs leave
 // it out too (remembered in this browser, suggestions/rejectedOffers.ts) until the person asks
-// for the rejected boxes again.
+// for the rejected boxes again. On request ("Show N guesses") it also offers the suggester's
+// boxes, which name the indoor classes COCO lacks (or, without a suggester, the detector's own
+// below its threshold).
 // The bar above the photo says what the detector is doing, or why it failed.
 import { SCORE_THRESHOLD } from "../../inference/detectorTensor";
 import type { ObjectEditor } from "../../state/objectEditor";
@@ -15,14 +17,13 @@ import { frameFor } from "../photo/arrowGeometry";
 import { classHints } from "./classHints";
 import { type Offer, offerLabel } from "./detectionOffers";
 import { addingText, addOffers } from "./suggestions/addOffers";
-import { type DetectorBarActions, detectorBar } from "./suggestions/detectorBar";
-import { fainterText, foundText, runDetector } from "./suggestions/detectorRun";
+import { type DetectorBarActions, detectorBar, guessesText } from "./suggestions/detectorBar";
+import { type DetectorRun, foundText, runDetector, runSuggester } from "./suggestions/detectorRun";
 import { offerBoxes } from "./suggestions/offerBoxes";
 import { OfferState } from "./suggestions/offerState";
 import { loadRejected, saveRejected } from "./suggestions/rejectedOffers";
 import { suggestionKeys } from "./suggestions/suggestionKeys";
 import "./objectSuggestions.css";
-import { percentText } from "../../dom";
 
 // Its parts, in suggestions/: the bar (detectorBar), a detector run (detectorRun), the boxes on
 // the photo (offerBoxes) and the keys; this module keeps the offers and accepts or rejects them.
@@ -70,12 +71,10 @@ export function mountObjectSuggestions(
       const confident = state.confident();
       if (confident.length > 0) void accept(confident);
       else
-        say(
-          `Accept all takes the boxes at ${percentText(SCORE_THRESHOLD)} or more; select a fainter one and press Accept.`,
-        );
+        say("Accept all takes the suggestions, not the guesses: select a guess and press Accept.");
     },
     rejectAll: () => reject(shown()),
-    showFainter: () => showFainter(),
+    showGuesses: () => showGuesses(),
     offerRejected: () => offerRejected(),
   };
 
@@ -96,7 +95,7 @@ export function mountObjectSuggestions(
       editable: session.editable,
       open: open.length,
       confident: state.confident().length,
-      fainter: state.fainter(),
+      guesses: state.guesses(),
       rejected: state.rejectedHidden(),
       chosen: state.selectedOffer(),
     });
@@ -104,7 +103,7 @@ export function mountObjectSuggestions(
 
   // What the last run found, said again when the scene changes under it (an object deleted
   // makes its box a rejected one), unless something else has been said since.
-  let lastRun: Awaited<ReturnType<typeof runDetector>> | null = null;
+  let lastRun: DetectorRun | null = null;
   let showingFound = false;
   const say = (text: string, error = false) => {
     status = text;
@@ -128,11 +127,12 @@ export function mountObjectSuggestions(
         say("Detecting objects…");
       });
       if (disposed) return;
-      state.reset(run.seen, SCORE_THRESHOLD);
+      state.reset(run.seen, SCORE_THRESHOLD, true);
       classHints.set(session.sceneId, run.seen);
       busy = null;
       lastRun = run;
       sayFound();
+      void guess(run);
     } catch (error) {
       if (disposed) return;
       busy = null;
@@ -161,12 +161,32 @@ export function mountObjectSuggestions(
     say(`Added ${names}.${left > 0 ? ` ${plural(left, "suggestion")} left.` : ""}`);
   };
 
-  /** Offer the run's boxes below the detector's threshold too: more real ones, more wrong. */
-  const showFainter = () => {
-    const fainter = state.fainter();
-    if (busy !== null || fainter === 0) return;
-    state.showFainter();
-    say(`Showing ${fainterText(fainter)} as well: most of them are wrong; accept the right ones.`);
+  /** The suggester runs after the suggestions are up (they need not wait for it); "Show N
+   * guesses" appears when it is done. Without it the suggestions still stand. */
+  const guess = async (run: DetectorRun) => {
+    try {
+      const boxes = await runSuggester(run);
+      if (disposed || lastRun !== run) return; // another run began meanwhile
+      state.setGuesses(boxes);
+      draw();
+    } catch (error) {
+      if (disposed || lastRun !== run) return;
+      state.setGuesses(null);
+      say(
+        `Could not run the suggester (the detector's own fainter boxes are the guesses): ${message(error)}`,
+        true,
+      );
+    }
+  };
+
+  /** Offer the guesses too: more real objects, and more wrong boxes. */
+  const showGuesses = () => {
+    const guesses = state.guesses();
+    if (busy !== null || guesses === 0) return;
+    state.showGuesses();
+    say(
+      `Showing ${guessesText(guesses)} as well (pale): most of them are wrong; accept the right ones one by one.`,
+    );
   };
 
   /** Offer again the boxes rejected on this scene, in this run and before. */

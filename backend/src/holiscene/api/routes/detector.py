@@ -1,6 +1,7 @@
-"""The object detector's files, for the browser: which detector is active (the registry's active
+"""The object detectors' files, for the browser: which detector is active (the registry's active
 one of kind "detector", the one pipeline jobs use), and its model.onnx and metadata.json (the
-scene page runs the model with onnxruntime-web to suggest objects).
+scene page runs the model with onnxruntime-web to suggest objects); and the suggester, the
+shipped detector whose boxes the page offers as guesses on request (docs/detector.md).
 
 As with the Relation Network's registry (models.py), the files live under an id that changes
 whenever the model does (the start of the model file's sha256), so browsers may keep them for
@@ -18,7 +19,7 @@ from fastapi.responses import FileResponse
 from holiscene_schema import DetectorInfo, ErrorMessage
 
 from ...learning.detector import runtime
-from ...learning.detector.runtime import DEFAULT_DETECTOR_DIR
+from ...learning.detector.runtime import DEFAULT_DETECTOR_DIR, SUGGESTER_DETECTOR_DIR
 from ..deps import WorkbenchDep
 
 router = APIRouter(prefix="/api/detector", tags=["detector"])
@@ -58,6 +59,13 @@ def _info(model_dir: Path) -> DetectorInfo:
     )
 
 
+def _is_suggester(detector_id: str) -> bool:
+    try:
+        return _info(SUGGESTER_DETECTOR_DIR).id == detector_id
+    except HTTPException:  # none installed
+        return False
+
+
 def _active_dir(workbench: WorkbenchDep) -> Path:
     return workbench.detectors.active_dir() or DEFAULT_DETECTOR_DIR
 
@@ -68,16 +76,27 @@ def active_detector(workbench: WorkbenchDep) -> DetectorInfo:
     return _info(_active_dir(workbench))
 
 
+@router.get("/suggester", response_model=DetectorInfo, responses=_404)
+def suggester_detector() -> DetectorInfo:
+    """The detector behind the scene page's guesses; 404 when none is installed."""
+    return _info(SUGGESTER_DETECTOR_DIR)
+
+
 @router.get(
     "/{detector_id}/{file_name}",
     responses={200: {"content": {media: {} for media in set(DETECTOR_FILES.values())}}, **_404},
 )
 def detector_file(detector_id: str, file_name: str, workbench: WorkbenchDep) -> FileResponse:
-    """The active detector's model.onnx or metadata.json (404 under an older id)."""
+    """The active detector's or the suggester's model.onnx or metadata.json (404 under an
+    older id)."""
     model_dir = _active_dir(workbench)
-    info = _info(model_dir)
-    if detector_id != info.id:
-        raise HTTPException(404, f"detector {detector_id} is not the active one ({info.id})")
+    active = _info(model_dir)
+    if detector_id != active.id:
+        if not _is_suggester(detector_id):
+            raise HTTPException(
+                404, f"detector {detector_id} is not the active one ({active.id}) or the suggester"
+            )
+        model_dir = SUGGESTER_DETECTOR_DIR
     if file_name not in DETECTOR_FILES:
         raise HTTPException(404, f"the detector has no file {file_name!r}")
     return FileResponse(

@@ -18,6 +18,7 @@ box's IoU with its true box (GFL's quality focal loss: the score says how good t
 from __future__ import annotations
 
 import io
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
@@ -139,20 +140,30 @@ class PicoDetClassHead(nn.Module):
 class ScoringHead(nn.Module):
     """The exported scoring: the head's inputs -> [B, K, N] scores in the model's class list:
     the head's sigmoid for the classes it learned, COCO's mapped scores for the classes only
-    COCO knows, and the larger of the head's and `coco_weight` times COCO's where both do."""
+    COCO knows, and the larger of the head's and `coco_weight` times COCO's where both do.
+    The head's own score of an `unnamed` class is left out (COCO's evidence for it stays):
+    a class it learned but names wrongly on real photos."""
 
     def __init__(
-        self, head: PicoDetClassHead, trained: list[str], classes: list[str], coco_weight: float
+        self,
+        head: PicoDetClassHead,
+        trained: list[str],
+        classes: list[str],
+        coco_weight: float,
+        unnamed: Sequence[str] = (),
     ) -> None:
         super().__init__()
         self.head = head
         index, mask = coco_sources(classes)
-        learned = np.array([c in trained for c in classes])
+        named = [c for c in trained if c not in unnamed]
+        learned = np.array([c in named for c in classes])
         weight = mask * np.where(learned, coco_weight, 1.0).astype(np.float32)
         self.own_channel: torch.Tensor
         self.coco_index: torch.Tensor
         self.coco_weight: torch.Tensor
-        self.register_buffer("own_channel", own_channels(trained, classes))
+        own = own_channels(trained, classes)
+        own[[c in unnamed for c in classes]] = len(trained)  # the zero channel
+        self.register_buffer("own_channel", own)
         self.register_buffer("coco_index", torch.from_numpy(index))
         self.register_buffer("coco_weight", torch.from_numpy(weight))
 

@@ -65,6 +65,10 @@ class PicoDetHeadConfig:
     learning_rate: float = 3e-3
     hidden: int = 96
     coco_weight: float = 1.0  # 0: the head alone for the classes it learned
+    # Classes the exported head does not name (learned all the same; COCO's evidence stays):
+    # the scene page's suggester leaves out "books", which it puts on every patterned patch of
+    # a real photo (docs/detector.md).
+    unnamed: tuple[str, ...] = ()
     views: int = 2  # randomised views of each training photo
     # The copies of PicoDet's class branches learn at this share of the head's rate: they
     # start trained, the head does not.
@@ -203,7 +207,7 @@ def train_picodet_head(
     }
     out_dir.mkdir(parents=True, exist_ok=True)
     torch.save({"state": head.state_dict(), "trained": trained}, out_dir / HEAD_FILE)
-    scoring = ScoringHead(head, trained, classes, config.coco_weight).eval()
+    scoring = ScoringHead(head, trained, classes, config.coco_weight, config.unnamed).eval()
     export_picodet_head(scoring, taps.model, taps.names, out_dir / MODEL_FILE)
     difference = _export_difference(scoring, taps, out_dir / MODEL_FILE, validation_photos[0])
     metrics = {
@@ -219,6 +223,7 @@ def train_picodet_head(
         "label_space": "nyu40",
         "classes": classes,
         "coco_weight": config.coco_weight,
+        "unnamed": list(config.unnamed),
         "provenance": {
             "backbone": "the COCO PicoDet of ../picodet_detector (see its metadata.json)",
             "head": "trained by holiscene train-detector --on-picodet on the photos in "

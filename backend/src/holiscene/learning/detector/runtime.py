@@ -36,6 +36,9 @@ _LEARNING_DIR = Path(__file__).resolve().parent.parent
 COCO_DETECTOR_DIR = _LEARNING_DIR / "coco_detector"
 NYU_DETECTOR_DIR = _LEARNING_DIR / "nyu_detector"
 PICODET_DETECTOR_DIR = _LEARNING_DIR / "picodet_detector"
+# The scene page's fainter suggestions: PicoDet's boxes named by a head trained on synthetic
+# rooms (docs/detector.md): it knows the classes COCO lacks, and names too much for the pipeline.
+SUGGESTER_DETECTOR_DIR = _LEARNING_DIR / "picodet_nyu_detector"
 # The detector the pipeline uses unless told otherwise, and the one a new registry starts
 # from: PicoDet finds about twice as many real objects as the CenterNet, about as precisely;
 # the NYU-40 head finds more but a quarter as precisely (docs/detector.md).

@@ -1,15 +1,19 @@
 // The bar above the photo for object suggestions: "Detect objects", what the detector is doing
-// (or why it failed) with "Show N fainter" after it when the run saw boxes below the
-// detector's threshold and "Offer N rejected again" when boxes rejected before are left out,
+// (or why it failed) with "Show N guesses" after it when the run has guesses to offer (the
+// suggester's boxes: offerState.ts) and "Offer N rejected again" when boxes rejected before
+// are left out,
 // and while there are boxes: the selected one, Accept, Reject, Accept all, Reject all.
-import { button, el, percentText } from "../../../dom";
-import { SCORE_THRESHOLD } from "../../../inference/detectorTensor";
+import { button, el } from "../../../dom";
+import { plural } from "../../../state/sceneSession";
 import { type Offer, offerLabel } from "../detectionOffers";
 
 export const DETECT_KEY = "D";
 export const ACCEPT_KEY = "Y";
 export const ACCEPT_ALL_KEY = "Shift+Y";
 export const REJECT_KEY = "X";
+
+/** "3 guesses" */
+export const guessesText = (guesses: number) => plural(guesses, "guess");
 
 export interface DetectorBarState {
   /** The detector is loading or running, or objects are being added. */
@@ -19,10 +23,10 @@ export interface DetectorBarState {
   editable: boolean;
   /** How many boxes are open. */
   open: number;
-  /** How many of them are at the detector's threshold or above ("Accept all" takes those). */
+  /** How many of them are suggestions proper, not guesses ("Accept all" takes those). */
   confident: number;
-  /** How many more the run found below the detector's threshold, not shown yet. */
-  fainter: number;
+  /** How many guesses the run has that are not shown yet. */
+  guesses: number;
   /** How many of the run's boxes are left out because they were rejected before. */
   rejected: number;
   chosen: Offer | null;
@@ -34,7 +38,7 @@ export interface DetectorBarActions {
   rejectSelected(): void;
   acceptAll(): void;
   rejectAll(): void;
-  showFainter(): void;
+  showGuesses(): void;
   offerRejected(): void;
 }
 
@@ -78,7 +82,7 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
   const acceptAllButton = action(
     "Accept all",
     "accept-all-suggestions",
-    `Add every box at ${percentText(SCORE_THRESHOLD)} or more as an object (${ACCEPT_ALL_KEY})`,
+    `Add every suggested box as an object (${ACCEPT_ALL_KEY})`,
     actions.acceptAll,
   );
   const rejectAllButton = action(
@@ -89,16 +93,17 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
   );
   // A link-sized button at the end of the status line: the line's height stays the same
   // whether it shows or not, so the photo does not move when a detection ends.
-  const fainterButton = button("Show fainter", {
-    className: "link-like detector-fainter",
-    testid: "show-fainter-suggestions",
+  const guessesButton = button("Show guesses", {
+    className: "link-like detector-more",
+    testid: "show-guess-suggestions",
     title:
-      "Also offer the boxes the detector saw below its threshold: more of the real objects, " +
-      "and many wrong boxes",
-    onClick: actions.showFainter,
+      "Also offer guesses, drawn pale: boxes named with the indoor classes COCO lacks (lamp, " +
+      "pillow, picture, night stand...) by a detector trained on synthetic rooms. More of the " +
+      "real objects, and many wrong boxes",
+    onClick: actions.showGuesses,
   });
   const rejectedButton = button("Offer rejected again", {
-    className: "link-like detector-fainter",
+    className: "link-like detector-more",
     testid: "offer-rejected-suggestions",
     title:
       "Offer again the boxes rejected on this scene (rejections are remembered in this browser) " +
@@ -124,7 +129,7 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
     "div",
     { className: "detector-bar", testid: "detector-bar" },
     detectButton,
-    el("div", { className: "detector-status-row" }, statusLine, fainterButton, rejectedButton),
+    el("div", { className: "detector-status-row" }, statusLine, guessesButton, rejectedButton),
     actionRow,
   );
   // Until the first detection, nothing can appear there: no room is kept (a band of blank
@@ -132,7 +137,7 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
   let used = false;
   return {
     element,
-    show({ busy, status, failed, editable, open, confident, fainter, rejected, chosen }) {
+    show({ busy, status, failed, editable, open, confident, guesses, rejected, chosen }) {
       used ||= busy || open > 0;
       actionRow.classList.toggle("is-unused", !used);
       detectButton.disabled = busy;
@@ -140,9 +145,9 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
       detectButton.title = editable
         ? detectTitle
         : `${detectTitle}: to look at only, the scene is read only`;
-      fainterButton.hidden = fainter === 0;
-      fainterButton.disabled = busy;
-      fainterButton.textContent = `Show ${fainter} fainter`;
+      guessesButton.hidden = guesses === 0;
+      guessesButton.disabled = busy;
+      guessesButton.textContent = `Show ${guessesText(guesses)}`;
       rejectedButton.hidden = rejected === 0;
       rejectedButton.disabled = busy;
       rejectedButton.textContent = `Offer ${rejected} rejected again`;
@@ -162,18 +167,16 @@ export function detectorBar(actions: DetectorBarActions): DetectorBar {
       const why = editable ? "" : " (the scene is read only)";
       acceptButton.disabled = busy || !editable || chosen === null;
       acceptAllButton.disabled = busy || !editable || confident === 0;
-      // With fainter boxes shown, "all" would read as every box: say which ones it takes.
+      // With guesses shown, "all" would read as every box: say which ones it takes.
       acceptAllButton.textContent =
         open > confident && confident > 0
-          ? `Accept the ${confident} at ${percentText(SCORE_THRESHOLD)}+`
+          ? `Accept the ${plural(confident, "suggestion")}`
           : "Accept all";
       // Rejections are remembered for the scene (in this browser): also the editor's to make.
       rejectButton.disabled = busy || !editable || chosen === null;
       rejectAllButton.disabled = busy || !editable;
       acceptButton.title = `Add the selected box as an object (${ACCEPT_KEY})${why}`;
-      acceptAllButton.title =
-        `Add every box at ${percentText(SCORE_THRESHOLD)} or more as an object ` +
-        `(${ACCEPT_ALL_KEY}); fainter boxes one by one${why}`;
+      acceptAllButton.title = `Add every suggested box as an object (${ACCEPT_ALL_KEY}); guesses one by one${why}`;
     },
   };
 }

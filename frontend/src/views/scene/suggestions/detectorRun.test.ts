@@ -7,6 +7,7 @@ const run = (over: Partial<DetectorRun> = {}): DetectorRun => ({
   runMs: 600,
   flat: false,
   detector: "COCO PicoDet-S 416 (LCNet), converted",
+  pixels: { width: 1, height: 1, data: new Uint8ClampedArray(4) },
   ...over,
 });
 

@@ -1,9 +1,10 @@
 // One run of the object detector on the scene's photo, in this browser, and what to say about
 // what it found.
 import { api } from "../../../api/client";
-import { percentText } from "../../../dom";
-import { activeDetector, detectorModel } from "../../../inference/detector";
+import { ApiError } from "../../../api/errors";
+import { activeDetector, detectorModel, suggesterDetector } from "../../../inference/detector";
 import { type DetectedBox, isFlatPhoto, SCORE_THRESHOLD } from "../../../inference/detectorTensor";
+import type { PixelImage } from "../../../inference/preprocess";
 import { photoPixels } from "../../../inference/supportSuggestions";
 import { plural } from "../../../state/sceneSession";
 import { HINT_SCORE } from "../classHints";
@@ -12,7 +13,7 @@ const MB = (bytes: number) => `${(bytes / 1e6).toFixed(1)} MB`;
 
 export interface DetectorRun {
   /** Every box down to HINT_SCORE: the offers (at the model's score threshold, SCORE_THRESHOLD),
-   * the fainter ones a person may ask for, and the class picker's hints. */
+   * the guesses when there is no suggester, and the class picker's hints. */
   seen: DetectedBox[];
   /** Loading the detector (about nothing once its session exists), milliseconds. */
   loadMs: number;
@@ -22,6 +23,8 @@ export interface DetectorRun {
   flat: boolean;
   /** Which detector ran (the registry's active one), as its metadata names it. */
   detector: string;
+  /** The photo it ran on (the suggester runs on it next). */
+  pixels: PixelImage;
 }
 
 /**
@@ -54,7 +57,23 @@ export async function runDetector(
     runMs: performance.now() - loaded,
     flat,
     detector: info.name,
+    pixels,
   };
+}
+
+/** The guesses on the run's photo: the suggester's boxes at the contract's threshold, or null
+ * when no suggester is installed (the detector's own fainter boxes are the guesses then). */
+export async function runSuggester(run: DetectorRun): Promise<DetectedBox[] | null> {
+  if (run.flat) return [];
+  let info: Awaited<ReturnType<typeof suggesterDetector>>;
+  try {
+    info = await suggesterDetector();
+  } catch (error) {
+    if (error instanceof ApiError && error.status === 404) return null;
+    throw error;
+  }
+  const model = await detectorModel(info);
+  return (await model.detect(run.pixels, SCORE_THRESHOLD)).boxes;
 }
 
 /** A detector's name as the status line says it: up to its first comma or bracket ("COCO
@@ -63,7 +82,7 @@ export async function runDetector(
 export const shortDetectorName = (name: string): string => name.split(/,| \(/)[0]?.trim() || name;
 
 /** What the run found, for the status line: `found` boxes, `open` of them not labelled yet,
- * `rejected` left out as rejected before (the fainter ones have their own button in the bar). */
+ * `rejected` left out as rejected before (the guesses have their own button in the bar). */
 export function foundText(found: number, open: number, run: DetectorRun, rejected = 0): string {
   const seconds = (ms: number) => `${(ms / 1000).toFixed(1)} s`;
   // Which detector: after an admin switches models, a reviewer can tell whose boxes these are.
@@ -84,7 +103,3 @@ export function foundText(found: number, open: number, run: DetectorRun, rejecte
   }
   return `${plural(open, "object")} suggested${left} ${time}: click a box, then Accept or Reject.`;
 }
-
-/** "3 fainter boxes (below 30%)" */
-export const fainterText = (fainter: number) =>
-  `${plural(fainter, "fainter box")} (below ${percentText(SCORE_THRESHOLD)})`;

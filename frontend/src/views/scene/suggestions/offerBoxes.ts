@@ -1,11 +1,10 @@
 // The detector's suggested boxes over the photo: dashed boxes with class and score, larger
 // ones first so a smaller box inside one stays clickable, and every tag over every box, so a
 // box's tag is never under another box; a click on a box or its tag selects it. The tags keep
-// clear of each other and of the objects' labels (offerLabelPlacement.ts); a fainter box whose
+// clear of each other and of the objects' labels (offerLabelPlacement.ts); a guess whose
 // tag finds no free spot goes without one until it is selected (its class in its tooltip and
 // in the bar): on a dense shelf fifteen "books" tags piled up, cut to "b".
 import { percentText, svgEl } from "../../../dom";
-import { SCORE_THRESHOLD } from "../../../inference/detectorTensor";
 import { type Frame, strokeWidth } from "../../photo/arrowGeometry";
 import type { Rect } from "../../photo/cornerHandles";
 import { drawnLabelTags } from "../../photo/labelLayer";
@@ -17,9 +16,6 @@ function tagSize(label: string, frame: Frame): { size: number; width: number; he
   const size = strokeWidth(frame) * 5;
   return { size, width: label.length * size * 0.62 + size * 0.6, height: size * 1.35 };
 }
-
-/** Below the detector's threshold: offered only because the person asked for fainter boxes. */
-const isFaint = (offer: Offer) => offer.score < SCORE_THRESHOLD;
 
 /** The offer's box and, drawn over all boxes, its tag (if it has a place): both select it
  * (`data-key`). */
@@ -33,7 +29,7 @@ function offerBox(
   const [x1, y1, x2, y2] = offer.bbox;
   const label = offerLabel(offer);
   const { size } = tagSize(label, frame);
-  const classes = `detector-suggestion${selected ? " is-selected" : ""}${isFaint(offer) ? " is-faint" : ""}`;
+  const classes = `detector-suggestion${selected ? " is-selected" : ""}${offer.faint ? " is-faint" : ""}`;
   const title = `Suggested ${label} (the detector's ${offer.sourceClass}): click to select`;
   const box = svgEl(
     "g",
@@ -135,8 +131,11 @@ export function offerBoxes(
         box: offer.bbox,
         ...tagSize(offerLabel(offer), frame),
       }));
-      // The selected box places its tag first, then the surer ones.
-      const rank = byArea.map((offer) => (offer.key === selected ? 2 : offer.score));
+      // The selected box places its tag first, then the suggestions, then the guesses, each
+      // the surer ones first (a guess's score is its own detector's).
+      const rank = byArea.map((offer) =>
+        offer.key === selected ? 3 : offer.score + (offer.faint ? 0 : 1),
+      );
       const surest = rank.map((_, i) => i).sort((a, b) => (rank[b] ?? 0) - (rank[a] ?? 0));
       const bounds = {
         left: -frame.margin,
@@ -151,7 +150,7 @@ export function offerBoxes(
         drawnLabelTags(svg).map((tag) => tag.rect),
         (i) => {
           const offer = byArea[i] as Offer;
-          return isFaint(offer) && offer.key !== selected;
+          return offer.faint && offer.key !== selected;
         },
       );
       const drawn = byArea.map((offer, i) =>

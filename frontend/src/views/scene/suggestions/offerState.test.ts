@@ -1,4 +1,5 @@
-// A detector run's offers: its boxes at the threshold first, its fainter ones when asked for.
+// A detector run's offers: its boxes at the threshold first, guesses when asked for (the
+// suggester's boxes, or the detector's own below its threshold).
 import type { SceneObject } from "@holiscene/schema";
 import { describe, expect, it } from "vitest";
 import type { DetectedBox } from "../../../inference/detectorTensor";
@@ -26,17 +27,17 @@ describe("offer state", () => {
     state.reset(boxes, 0.3);
     expect(state.open().map((o) => o.cls)).toEqual(["bed"]);
     expect(state.found).toBe(1);
-    expect(state.fainter()).toBe(2);
+    expect(state.guesses()).toBe(2);
     expect(state.selectedOffer()?.cls).toBe("bed");
   });
 
   it("shows the fainter boxes when asked, keeping the selection", () => {
     const state = new OfferState(() => []);
     state.reset(boxes, 0.3);
-    state.showFainter();
+    state.showGuesses();
     expect(state.open().map((o) => o.cls)).toEqual(["bed", "lamp", "picture"]);
     expect(state.found).toBe(4);
-    expect(state.fainter()).toBe(0);
+    expect(state.guesses()).toBe(0);
     expect(state.selectedOffer()?.cls).toBe("bed");
     // "Accept all" still takes only the boxes at the threshold.
     expect(state.confident().map((o) => o.cls)).toEqual(["bed"]);
@@ -45,7 +46,7 @@ describe("offer state", () => {
   it("moves the selection on to a box at the threshold, never to a fainter one", () => {
     const state = new OfferState(() => []);
     state.reset([...boxes, box("chair", [420, 300, 480, 400], 0.5)], 0.3);
-    state.showFainter();
+    state.showGuesses();
     state.selected = state.open().find((o) => o.cls === "lamp")?.key ?? null;
     state.reject(state.open().filter((o) => o.cls === "lamp"));
     state.keepSelection();
@@ -60,8 +61,8 @@ describe("offer state", () => {
     const lamp = { id: "o1", class: "lamp", bbox: [10, 12, 60, 80] } as unknown as SceneObject;
     const state = new OfferState(() => [lamp]);
     state.reset(boxes, 0.3);
-    expect(state.fainter()).toBe(1);
-    state.showFainter();
+    expect(state.guesses()).toBe(1);
+    state.showGuesses();
     const picture = state.open().find((o) => o.cls === "picture");
     expect(picture).toBeDefined();
     state.reject(picture ? [picture] : []);
@@ -82,7 +83,7 @@ describe("offer state", () => {
     state.forgetRejected();
     expect(state.open().map((o) => o.cls)).toEqual(["bed"]);
     removed.push({ cls: "lamp", bbox: [10, 10, 60, 80] }); // removed after asking: left out
-    state.showFainter();
+    state.showGuesses();
     expect(state.open().map((o) => o.cls)).toEqual(["bed", "picture"]);
     state.reset(boxes, 0.3); // a new run leaves them all out again
     expect(state.open()).toEqual([]);
@@ -110,10 +111,43 @@ describe("offer state", () => {
     expect(state.rejectedHidden()).toBe(0);
   });
 
+  it("takes the suggester's boxes as the guesses once it has run, the suggestions standing", () => {
+    const state = new OfferState(() => []);
+    state.reset(boxes, 0.3, true);
+    expect(state.guesses()).toBe(0); // the suggester is still running: no button yet
+    state.setGuesses([
+      // A surer guess at the bed's place: the same thing, the suggestion stands.
+      box("sofa", [100, 102, 400, 400], 0.9),
+      box("lamp", [10, 10, 60, 80], 0.6),
+      box("night_stand", [420, 300, 480, 400], 0.4),
+    ]);
+    expect(state.guesses()).toBe(2);
+    expect(state.open().map((o) => o.cls)).toEqual(["bed"]);
+    state.showGuesses();
+    const open = state.open();
+    expect(open.map((o) => [o.cls, o.faint])).toEqual([
+      ["bed", false],
+      ["lamp", true],
+      ["night_stand", true],
+    ]);
+    expect(new Set(open.map((o) => o.key)).size).toBe(3);
+    expect(state.confident().map((o) => o.cls)).toEqual(["bed"]);
+    expect(state.found).toBe(4);
+  });
+
+  it("falls back to the detector's own fainter boxes without a suggester", () => {
+    const state = new OfferState(() => []);
+    state.reset(boxes, 0.3, true);
+    state.setGuesses(null);
+    expect(state.guesses()).toBe(2);
+    state.showGuesses();
+    expect(state.open().map((o) => o.cls)).toEqual(["bed", "lamp", "picture"]);
+  });
+
   it("has nothing fainter without a threshold", () => {
     const state = new OfferState(() => []);
     state.reset(boxes);
-    expect(state.fainter()).toBe(0);
+    expect(state.guesses()).toBe(0);
     expect(state.open()).toHaveLength(3);
   });
 });

@@ -1,8 +1,9 @@
 // The offers of one detector run: which are still open (not accepted, now objects; not
-// rejected; not over an object of their class) and which one is selected. A run keeps its
-// fainter boxes too (down to the class hints' score): a person who asks for them sees them as
-// offers, since at a low score the detector finds about twice the real boxes it finds at its
-// own threshold, at the cost of many wrong ones (docs/benchmarks.md, "Object detector").
+// rejected; not over an object of their class) and which one is selected. A run also keeps
+// guesses, offered only when a person asks for them: the NYU-40 suggester's boxes, which name
+// the classes COCO lacks, or without a suggester the detector's own boxes below its threshold
+// (down to the class hints' score). Either finds about half again the real boxes the
+// suggestions find, at the cost of many wrong ones (docs/detector.md, "In the browser").
 import type { SceneObject } from "@holiscene/schema";
 import type { DetectedBox } from "../../../inference/detectorTensor";
 import { type Offer, offersOf, openOffers } from "../detectionOffers";
@@ -11,12 +12,14 @@ import type { RejectedOffer } from "./rejectedOffers";
 const removedKey = ({ cls, bbox }: RejectedOffer) => JSON.stringify([cls, bbox]);
 
 export class OfferState {
-  /** This run's boxes down to the faintest kept, best first. */
+  /** This run's suggestions proper (at the detector's threshold), best first. */
   private offers: Offer[] = [];
-  /** Offers below this score stay hidden until `showFainter` (0: every box of the run). */
-  private minScore = 0;
-  /** The detector's own threshold: the boxes at or above it are its suggestions proper. */
-  private threshold = 0;
+  /** The detector's own boxes below its threshold: the guesses when there is no suggester. */
+  private below: Offer[] = [];
+  /** The guesses, best first; null while the suggester is still running. */
+  private guessOffers: Offer[] | null = [];
+  /** The guesses are shown (`showGuesses`). */
+  private guessesShown = false;
   /** The selected offer's key. */
   selected: string | null = null;
 
@@ -37,31 +40,32 @@ export class OfferState {
     private readonly removed: () => readonly RejectedOffer[] = () => [],
   ) {}
 
-  /** How many boxes the run offered (open or not), the fainter ones once shown. */
+  /** How many boxes the run offered (open or not), the guesses once shown. */
   get found(): number {
-    return this.offers.filter((o) => o.score >= this.minScore).length;
+    return this.shownOffers().length;
   }
 
   /** The offers still open. */
   open(): Offer[] {
-    return this.openAbove(this.minScore);
+    return this.openOf(this.shownOffers());
   }
 
-  /** The open offers at the detector's threshold or above ("Accept all" takes these: the
-   * fainter ones, once shown, are mostly wrong and are accepted one by one). */
+  /** The open suggestions proper ("Accept all" takes these: the guesses, once shown, are
+   * mostly wrong and are accepted one by one). */
   confident(): Offer[] {
-    return this.openAbove(this.threshold);
+    return this.openOf(this.offers);
   }
 
-  /** How many more offers would open if the fainter boxes were shown (0 once they are). */
-  fainter(): number {
-    if (this.minScore === 0) return 0;
-    return this.openAbove(0).length - this.open().length;
+  /** How many more offers would open if the guesses were shown (0 once they are, and while
+   * the suggester is still running). */
+  guesses(): number {
+    if (this.guessesShown || this.guessOffers === null) return 0;
+    return this.openOf([...this.offers, ...this.guessOffers]).length - this.open().length;
   }
 
   /** How many of the shown boxes are left out only because they were rejected before. */
   rejectedHidden(): number {
-    return this.openAbove(this.minScore, []).length - this.open().length;
+    return this.openOf(this.shownOffers(), []).length - this.open().length;
   }
 
   /** Offer the rejected boxes again (a rejection was a mistake), and removed objects' too. */
@@ -71,9 +75,9 @@ export class OfferState {
     this.remember(this.rejected);
   }
 
-  /** Offer the fainter boxes as well; the selection stays where it was. */
-  showFainter(): void {
-    this.minScore = 0;
+  /** Offer the guesses as well; the selection stays where it was. */
+  showGuesses(): void {
+    this.guessesShown = true;
   }
 
   selectedOffer(): Offer | null {
@@ -81,15 +85,26 @@ export class OfferState {
   }
 
   /**
-   * A new run's boxes (`boxes` at or above `threshold` are offered, the others down to the
-   * faintest kept wait for `showFainter`): open unless rejected before, the best one selected.
+   * A new run's boxes (those at or above `threshold` are offered, the others down to the
+   * faintest kept are the guesses unless `suggesterRunning`: then `setGuesses` brings them):
+   * open unless rejected before, the best one selected.
    */
-  reset(boxes: readonly DetectedBox[], threshold = 0): void {
-    this.offers = offersOf(boxes);
+  reset(boxes: readonly DetectedBox[], threshold = 0, suggesterRunning = false): void {
+    this.offers = offersOf(boxes.filter((b) => b.score >= threshold));
+    this.below = offersOf(
+      boxes.filter((b) => b.score < threshold),
+      true,
+    );
+    this.guessOffers = suggesterRunning ? null : this.below;
+    this.guessesShown = false;
     this.removedShown.clear();
-    this.minScore = threshold;
-    this.threshold = threshold;
     this.selected = this.open()[0]?.key ?? null;
+  }
+
+  /** The suggester's boxes as the guesses (null: there is none; the detector's own boxes
+   * below its threshold are the guesses then). */
+  setGuesses(boxes: readonly DetectedBox[] | null): void {
+    this.guessOffers = boxes === null ? this.below : offersOf(boxes, true);
   }
 
   reject(chosen: readonly Offer[]): void {
@@ -104,20 +119,25 @@ export class OfferState {
   }
 
   /**
-   * The selection moves to the best open offer at the detector's threshold when its own is
-   * gone (accepted or rejected); returns the open ones. Never to a fainter one: most of those
-   * are wrong, and a second press of Accept would add it unchosen.
+   * The selection moves to the best open suggestion when its own is gone (accepted or
+   * rejected); returns the open offers. Never to a guess: most of those are wrong, and a
+   * second press of Accept would add it unchosen.
    */
   keepSelection(): Offer[] {
     const open = this.open();
     if (this.selected && !open.some((o) => o.key === this.selected)) {
-      this.selected = open.find((o) => o.score >= this.threshold)?.key ?? null;
+      this.selected = open.find((o) => !o.faint)?.key ?? null;
     }
     return open;
   }
 
-  private openAbove(score: number, rejected = this.leftOut()): Offer[] {
-    const offers = this.offers.filter((o) => o.score >= score);
+  /** The suggestions, then the guesses once shown: a guess at the place of a suggestion is
+   * the same thing, and the suggestion stands. */
+  private shownOffers(): Offer[] {
+    return this.guessesShown ? [...this.offers, ...(this.guessOffers ?? [])] : this.offers;
+  }
+
+  private openOf(offers: readonly Offer[], rejected = this.leftOut()): Offer[] {
     return openOffers(offers, this.objects(), rejected);
   }
 }

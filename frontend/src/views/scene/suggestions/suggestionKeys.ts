@@ -38,8 +38,7 @@ export function suggestionKeys(keys: SuggestionKeyInputs): () => void {
     }),
     registerShortcut({
       keys: ACCEPT_ALL_KEY,
-      description:
-        "Accept every suggested box at the detector's threshold (fainter ones one by one)",
+      description: "Accept every suggested box (guesses one by one)",
       scope: SCOPE,
       run: keys.acceptAll,
       enabled: () => hasOffers() && idle() && editable(),
