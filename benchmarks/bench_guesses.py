@@ -17,6 +17,11 @@ at IoU 0.5 by everything shown (whatever the class, and with the right class), t
 person looks through per photo, and the real boxes of the classes COCO has no name for found
 with the right class.
 
+The class picker's hints (frontend classHints.ts) are compared too: for each given box, as if
+a person drew it, the classes of the boxes at its place (IoU 0.5 or more, score 0.1 or more),
+best first, at most three: from the active detector's run alone, and with the suggester's
+boxes added.
+
     python benchmarks/bench_guesses.py [--suggester DIR]
 """
 
@@ -94,6 +99,34 @@ def evaluate(photos: list[BoxedPhoto], offers: Source, guesses: Source | None) -
     ]
 
 
+MAX_HINTS = 3  # classHints.ts
+HINT_IOU = 0.5
+
+
+def hinted(bbox: tuple[float, ...], seen: Boxes) -> list[str]:
+    """The picker's hints for a box: classes of the boxes at its place, best score first."""
+    best: dict[str, float] = {}
+    for box in seen:
+        if (box.score or 0.0) >= HINT_SCORE and box_iou(np.array(bbox), np.array([box.bbox]))[
+            0
+        ] >= HINT_IOU:
+            best[box.cls] = max(best.get(box.cls, 0.0), box.score or 0.0)
+    return sorted(best, key=lambda c: -best[c])[:MAX_HINTS]
+
+
+def hint_figures(photos: list[BoxedPhoto], seen: Callable[[BoxedPhoto], Boxes]) -> list[str]:
+    first = among = some = total = 0
+    for photo in photos:
+        boxes = seen(photo)
+        for truth in truth_of(photo):
+            hints = hinted(truth.bbox, boxes)
+            total += 1
+            first += bool(hints) and hints[0] == truth.cls
+            among += truth.cls in hints
+            some += bool(hints)
+    return [percent(first / total), percent(among / total), percent(some / total)]
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--real", type=Path, default=REAL)
@@ -131,6 +164,21 @@ def main(argv: list[str] | None = None) -> int:
     )
     print("| --- | --- | --- | --- | --- |")
     for name, cells in rows.items():
+        print(f"| {name} | " + " | ".join(cells) + " |")
+
+    def active_run(photo: BoxedPhoto) -> Boxes:
+        return scored(active, photo, HINT_SCORE)
+
+    hints = {
+        "the active detector's run": hint_figures(photos, active_run),
+        "with the suggester's boxes": hint_figures(
+            photos, lambda photo: active_run(photo) + suggested(photo)
+        ),
+    }
+    print("\nClass hints for the given boxes (as if drawn by hand)\n")
+    print("| hints from | first hint right % | right class among the hints % | any hint % |")
+    print("| --- | --- | --- | --- |")
+    for name, cells in hints.items():
         print(f"| {name} | " + " | ".join(cells) + " |")
     return 0
 

@@ -8,11 +8,11 @@ import path from "node:path";
 import type { SceneDocument } from "@holiscene/schema";
 import { expect, type Locator, test } from "@playwright/test";
 import { getScene, importWithoutObjects, T3D_5 } from "../helpers/api";
+import { dragOnPhoto } from "../helpers/objects";
+import { screenshotPath } from "../helpers/screenshots";
 
 // A bedroom where the detector suggests one bed and one chair.
 const IM3D_2 = path.join(path.dirname(T3D_5), "im3d-2");
-
-import { screenshotPath } from "../helpers/screenshots";
 
 interface Suggested {
   cls: string;
@@ -266,6 +266,24 @@ test("the suggester's guesses are offered when asked for, and find more of the p
     clicked++;
   }
   expect(clicked).toBeGreaterThan((await tags.count()) / 2);
+
+  // The guesses' classes are the class picker's hints too: a box drawn by hand over a guess
+  // (the guesses rejected first: they are no objects) lists the guess's class among the first.
+  const guess = all
+    .filter((o) => !offered.some((s) => iou(s.bbox, o.bbox) > 0.3))
+    .sort((a, b) => b.score - a.score)[0];
+  if (!guess) throw new Error("no guess clear of the suggestions");
+  await page.getByTestId("reject-all-suggestions").click();
+  await expect(boxes).toHaveCount(0);
+  await page.keyboard.press("b");
+  const [x1, y1, x2, y2] = guess.bbox as [number, number, number, number];
+  await dragOnPhoto(page, [x1 + 1, y1 + 1], [x2 - 1, y2 - 1]);
+  await expect(page.getByTestId("class-picker")).toBeVisible();
+  const firstLines = await page
+    .getByTestId("class-option")
+    .evaluateAll((nodes) => nodes.slice(0, 3).map((n) => (n as HTMLElement).dataset.name ?? ""));
+  expect(firstLines, `hinted for the ${guess.cls} guess`).toContain(guess.cls);
+  await page.keyboard.press("Escape");
 });
 
 test("the detector's failure is said plainly, and Detect objects can try again", async ({

@@ -43,4 +43,12 @@ describe("likelyClasses", () => {
     expect(classHints.at("aaaaaaaaaaaa", box)).toEqual([{ cls: "lamp", score: 0.2 }]);
     expect(classHints.at("bbbbbbbbbbbb", box)).toEqual([]);
   });
+
+  it("adds the suggester's boxes to the detector's run; a new run starts over", () => {
+    classHints.set("cccccccccccc", [seen("table", 0.5, box)]);
+    classHints.add("cccccccccccc", [seen("desk", 0.6, box), seen("lamp", 0.05, box)]);
+    expect(classHints.at("cccccccccccc", box).map((h) => h.cls)).toEqual(["desk", "table"]);
+    classHints.set("cccccccccccc", [seen("chair", 0.4, box)]);
+    expect(classHints.at("cccccccccccc", box).map((h) => h.cls)).toEqual(["chair"]);
+  });
 });

@@ -168,6 +168,7 @@ export function mountObjectSuggestions(
       const boxes = await runSuggester(run);
       if (disposed || lastRun !== run) return; // another run began meanwhile
       state.setGuesses(boxes);
+      if (boxes) classHints.add(session.sceneId, boxes);
       draw();
     } catch (error) {
       if (disposed || lastRun !== run) return;
