@@ -402,7 +402,9 @@ class Annotator {
       index = options.indexOf(cls);
     }
     if (index < 0 || index >= 9) throw new Error(`${cls} is not among the picker's first lines`);
-    const key = index === 0 ? "Enter" : String(index + 1);
+    // A digit picks its line; Enter only once something is typed (on a blank field the first
+    // line, often a faint hint, is nobody's choice: the picker then says how to choose).
+    const key = String(index + 1);
     await this.timed(`key ${key}: ${cls}`, shows, () => this.page.keyboard.press(key), later);
     await expect(picker).toBeHidden();
   }
@@ -676,6 +678,16 @@ async function useSyntheticDetector(request: APIRequestContext): Promise<string>
   return active.id;
 }
 
+// The detector to make active again after run 2, pass or fail: left to the NYU-40 head, the
+// later specs' scenes would get its suggestions instead of the default's.
+let restoreDetector: string | null = null;
+
+test.afterEach(async ({ request }) => {
+  if (restoreDetector === null) return;
+  await promote(request, restoreDetector);
+  restoreDetector = null;
+});
+
 async function promote(request: APIRequestContext, id: string) {
   const response = await request.post(`/api/models/${id}/promote`, {
     data: { author: "benchmark", note: "object annotator benchmark" },
@@ -687,7 +699,7 @@ test("run 2: the same photo annotated from the detector's suggestions", async ({
   page,
 }, testInfo) => {
   test.setTimeout(10 * 60_000);
-  const previous = await useSyntheticDetector(page.request);
+  restoreDetector = await useSyntheticDetector(page.request);
   test.info().annotations.push({ type: "detector", description: "the registry's NYU-40 head" });
   const { sceneId, truth } = await openPlainPhoto(page, `synth-${SEED} (from suggestions)`);
   const stopTrace = await traceRun(page, "from-suggestions");
@@ -744,7 +756,6 @@ test("run 2: the same photo annotated from the detector's suggestions", async ({
   await run.fixSupports();
   await stopTrace();
   const row = await report({ ...(await finish(run, "from-suggestions")), suggested }, testInfo);
-  await promote(page.request, previous);
   expectComplete(row, testInfo);
   // The detector's recall decides much of this count (issue 18's accuracy targets are not met
   // yet: it finds 5 of the 9 objects here); the workbench must still keep it within target.
