@@ -33,6 +33,18 @@ REAL = REPO.parent / "shared" / "data" / "real"
 IOU = 0.5
 
 
+def add_photo_arguments(parser: argparse.ArgumentParser) -> None:
+    """The photos every detector benchmark scores: the real ones, and held-out synthetic rooms."""
+    parser.add_argument("--real", type=Path, default=REAL)
+    parser.add_argument("--synth-seed", type=int, default=950000)
+    parser.add_argument("--synth-count", type=int, default=40)
+
+
+def real_folders(real: Path) -> list[Path]:
+    """The real photos' folders that come with boxes (detections.json)."""
+    return sorted(p for p in real.iterdir() if (p / "detections.json").is_file())
+
+
 def truth_of(photo: BoxedPhoto) -> list[ScoredBox]:
     return [
         ScoredBox((b[0], b[1], b[2], b[3]), c)
@@ -65,9 +77,7 @@ def percent(value: float | None) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--model", type=Path, action="append", help="detector directory")
-    parser.add_argument("--real", type=Path, default=REAL)
-    parser.add_argument("--synth-seed", type=int, default=950000)
-    parser.add_argument("--synth-count", type=int, default=40)
+    add_photo_arguments(parser)
     parser.add_argument("--threshold", type=float, default=SCORE_THRESHOLD)
     parser.add_argument("--json", type=Path, help="write the figures here too")
     parser.add_argument(
@@ -77,7 +87,7 @@ def main(argv: list[str] | None = None) -> int:
     )
     args = parser.parse_args(argv)
     models = args.model or [DEFAULT_DETECTOR_DIR]
-    folders = sorted(p for p in args.real.iterdir() if (p / "detections.json").is_file())
+    folders = real_folders(args.real)
     real = [boxed_photo(f) for f in folders]
     complete = [p for f, p in zip(folders, real, strict=True) if f.name.startswith("mm3d")]
     results: dict[str, dict[str, Any]] = {}

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from bench_detector import IOU, REAL, percent, truth_of
+from bench_detector import IOU, add_photo_arguments, percent, real_folders, truth_of
 from holiscene.evaluation.detection_2d import MAP_SCORE_THRESHOLD, DetectionEvaluation, ScoredBox
 from holiscene.learning.detector.data import BoxedPhoto, boxed_photo, synthetic_photos
 from holiscene.learning.detector.runtime import (
@@ -144,9 +144,7 @@ def score(
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--real", type=Path, default=REAL)
-    parser.add_argument("--synth-seed", type=int, default=950000)
-    parser.add_argument("--synth-count", type=int, default=40)
+    add_photo_arguments(parser)
     args = parser.parse_args(argv)
     picodet, nyu = Detector.load(PICODET_DETECTOR_DIR), Detector.load(NYU_DETECTOR_DIR)
 
@@ -165,7 +163,7 @@ def main(argv: list[str] | None = None) -> int:
             )
         return outputs
 
-    folders = sorted(p for p in args.real.iterdir() if (p / "detections.json").is_file())
+    folders = real_folders(args.real)
     real = run_both([boxed_photo(f) for f in folders], "real")
     complete = [o for f, o in zip(folders, real, strict=True) if f.name.startswith("mm3d")]
     with tempfile.TemporaryDirectory(prefix="bench-union-") as scratch:

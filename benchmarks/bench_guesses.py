@@ -33,7 +33,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
-from bench_detector import IOU, REAL, percent, truth_of
+from bench_detector import IOU, REAL, percent, real_folders, truth_of
 from holiscene.evaluation.detection_2d import DetectionEvaluation, ScoredBox
 from holiscene.learning.detector.data import BoxedPhoto, boxed_photo
 from holiscene.learning.detector.runtime import (
@@ -134,7 +134,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--suggester", type=Path, default=SUGGESTER_DETECTOR_DIR)
     args = parser.parse_args(argv)
     active, suggester = Detector.load(args.active), Detector.load(args.suggester)
-    folders = sorted(p for p in args.real.iterdir() if (p / "detections.json").is_file())
+    folders = real_folders(args.real)
     photos = [boxed_photo(f) for f in folders]
 
     def offers(photo: BoxedPhoto) -> Boxes:

@@ -14,6 +14,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+from bench_detector import add_photo_arguments, real_folders
 from holiscene.learning.detector.data import BoxedPhoto, boxed_photo, synthetic_photos
 from holiscene.learning.detector.picodet_taps import PicoDetTaps
 from holiscene.learning.detector.runtime import (
@@ -24,7 +25,6 @@ from holiscene.learning.detector.runtime import (
 )
 from holiscene_schema.detector_model import INPUT_SIZE
 
-REAL = Path(__file__).resolve().parent.parent.parent / "shared" / "data" / "real"
 IOUS = (0.5, 0.7)
 
 
@@ -45,12 +45,10 @@ def line(name: str, ious: np.ndarray) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--real", type=Path, default=REAL)
-    parser.add_argument("--synth-seed", type=int, default=950000)
-    parser.add_argument("--synth-count", type=int, default=40)
+    add_photo_arguments(parser)
     args = parser.parse_args(argv)
     taps = PicoDetTaps(PICODET_DETECTOR_DIR / MODEL_FILE)
-    folders = sorted(p for p in args.real.iterdir() if (p / "detections.json").is_file())
+    folders = real_folders(args.real)
     real = best_ious(taps, [boxed_photo(f) for f in folders])
     with tempfile.TemporaryDirectory(prefix="bench-anchors-") as scratch:
         seeds = range(args.synth_seed, args.synth_seed + args.synth_count)
